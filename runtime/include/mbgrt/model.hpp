@@ -1,0 +1,95 @@
+// mbgrt/model.hpp — the contract between a generated model and the runtime.
+//
+// mbgc emits one class deriving from mbgrt::Model. The runtime owns everything
+// that is not the model: the command line, the integrators (SUNDIALS), the CSV
+// writer, the run summary and the divergence report.
+//
+// Two shapes of model exist:
+//   * ODE:  x' = f(t, x)                         (is_dae() == false)
+//   * DAE:  F(t, y, y') = 0, y = [states; algebraic unknowns]   (is_dae() == true)
+// An ODE model can be integrated by every solver; a DAE model only by IDA.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace mbgrt {
+
+/// Integrators the runtime offers (names as used by --solver).
+enum class Solver { rk4, dopri5, cvode, ida };
+
+/// Run settings. The model supplies defaults from its `simulate { }` block;
+/// the command line overrides them.
+struct Settings {
+  double t_start_s = 0.0;
+  double t_end_s = 1.0;
+  double interval_s = 0.01;   ///< communication interval: one CSV row per interval
+  Solver solver = Solver::cvode;
+  double rtol = 1e-6;
+  double atol = 1e-8;
+  double step_s = 0.0;        ///< fixed step for rk4 (0: use interval/10)
+};
+
+/// A named, overridable model parameter (`--set NAME=VALUE`).
+struct ParameterInfo {
+  std::string name;
+  double default_value;      ///< value from the model text (NaN if it is an expression)
+  std::string unit_or_doc;   ///< free text from the model (may be empty)
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+
+  // ---- identity ---------------------------------------------------------
+  virtual const char* name() const = 0;         ///< model name from the .mbg file
+  virtual const char* source_file() const = 0;  ///< .mbg file it was generated from
+
+  // ---- sizes and names -----------------------------------------------------
+  /// Number of unknowns handed to the integrator: states (ODE) or y (DAE).
+  virtual std::size_t size() const = 0;
+  /// Name of unknown i in model terms (e.g. "armature_l.p"); used in reports.
+  virtual std::string variable_name(std::size_t i) const = 0;
+  /// Output column names, in declaration order (the CSV header after `t`).
+  virtual std::vector<std::string> output_names() const = 0;
+  virtual std::vector<ParameterInfo> parameters() const = 0;
+
+  virtual bool is_dae() const { return false; }
+  /// DAE only: 1.0 for differential components of y, 0.0 for algebraic ones.
+  virtual void differential_ids(double* id) const { (void)id; }
+
+  /// Defaults from the model's `simulate { }` block.
+  virtual Settings default_settings() const = 0;
+
+  // ---- parameters ------------------------------------------------------------
+  /// Override a parameter before initial(). Returns false for an unknown name.
+  virtual bool set_parameter(const std::string& name, double value) = 0;
+
+  // ---- ACSL sections ---------------------------------------------------------
+  /// INITIAL: evaluate parameters (honouring overrides), then write the initial
+  /// unknowns into y (and, for DAEs, a first guess of y' into yp; yp may be null
+  /// for ODEs).
+  virtual void initial(double t, double* y, double* yp) = 0;
+
+  /// DERIVATIVE (ODE): ydot = f(t, y). Must not throw.
+  virtual void derivative(double t, const double* y, double* ydot) { (void)t; (void)y; (void)ydot; }
+
+  /// RESIDUAL (DAE): r = F(t, y, yp). Must not throw.
+  virtual void residual(double t, const double* y, const double* yp, double* r) {
+    (void)t; (void)y; (void)yp; (void)r;
+  }
+
+  /// OUTPUT: compute the declared outputs at (t, y). yp is the current
+  /// derivative for DAEs and null for ODEs (the model recomputes what it needs).
+  virtual void outputs(double t, const double* y, const double* yp, double* out) = 0;
+
+  /// TERMINAL: called once after the run (successful or not).
+  virtual void terminal(double t, const double* y) { (void)t; (void)y; }
+};
+
+/// The simulator's entry point: parse the command line (see DESIGN §9), run,
+/// write CSV and the summary. Returns the process exit status.
+int run_main(Model& model, int argc, char** argv);
+
+}  // namespace mbgrt
