@@ -1,0 +1,68 @@
+# mbgcFunctions.cmake — compile .mbg models at build time.
+#
+#   mbgc_add_simulation(<target> MODEL <file.mbg> [OPTIONS <mbgc options>...])
+#       a simulator executable (generated C++ with main()).
+#   mbgc_add_model(<target> MODEL <file.mbg> [OPTIONS ...])
+#       an INTERFACE library whose header <target>.hpp holds the model class
+#       (mbgc --library), for embedding a model in your own program.
+#
+# The generated source is rebuilt when the model, any file it imports, or the
+# compiler changes (add_custom_command with DEPENDS and a depfile).
+# MBGC_COMPILER_TARGET names the mbgc executable target: `mbgc` inside this
+# project, `mbgc::mbgc` after find_package(mbgc).
+include_guard(GLOBAL)
+
+if(NOT DEFINED MBGC_COMPILER_TARGET)
+  set(MBGC_COMPILER_TARGET mbgc)
+endif()
+if(NOT DEFINED MBGC_RUNTIME_TARGET)
+  set(MBGC_RUNTIME_TARGET mbgc::mbgrt)
+endif()
+
+function(_mbgc_generate target model_in out_file)
+  cmake_parse_arguments(ARG "" "" "OPTIONS" ${ARGN})
+  get_filename_component(model ${model_in} ABSOLUTE)
+  if(NOT EXISTS ${model})
+    message(FATAL_ERROR "mbgc: model file ${model_in} not found (for target ${target})")
+  endif()
+  set(depfile ${CMAKE_CURRENT_BINARY_DIR}/${target}.mbgc.d)
+  set(depfile_args)
+  if(CMAKE_GENERATOR MATCHES "Ninja|Makefiles")
+    set(depfile_args DEPFILE ${depfile})
+    list(APPEND ARG_OPTIONS --depfile ${depfile})
+  endif()
+  add_custom_command(
+    OUTPUT ${out_file}
+    COMMAND ${MBGC_COMPILER_TARGET} ${model} -o ${out_file} ${ARG_OPTIONS}
+    DEPENDS ${model} ${MBGC_COMPILER_TARGET}
+    ${depfile_args}
+    COMMENT "mbgc: compiling model ${model_in}"
+    VERBATIM)
+endfunction()
+
+function(mbgc_add_simulation target)
+  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS" ${ARGN})
+  if(NOT ARG_MODEL)
+    message(FATAL_ERROR "mbgc_add_simulation(${target}): MODEL <file.mbg> is required")
+  endif()
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}.cpp)
+  _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS ${ARG_OPTIONS})
+  add_executable(${target} ${out})
+  target_link_libraries(${target} PRIVATE ${MBGC_RUNTIME_TARGET})
+endfunction()
+
+function(mbgc_add_model target)
+  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS" ${ARGN})
+  if(NOT ARG_MODEL)
+    message(FATAL_ERROR "mbgc_add_model(${target}): MODEL <file.mbg> is required")
+  endif()
+  set(dir ${CMAKE_CURRENT_BINARY_DIR}/${target}_include)
+  set(out ${dir}/${target}.hpp)
+  file(MAKE_DIRECTORY ${dir})
+  _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS --library ${ARG_OPTIONS})
+  add_custom_target(${target}_generate DEPENDS ${out})
+  add_library(${target} INTERFACE)
+  add_dependencies(${target} ${target}_generate)
+  target_include_directories(${target} INTERFACE ${dir})
+  target_link_libraries(${target} INTERFACE ${MBGC_RUNTIME_TARGET})
+endfunction()

@@ -1,0 +1,51 @@
+#include "codegen/cpp.hpp"
+
+namespace mbgc::codegen {
+
+static void put(std::string& out, int indent, const std::string& text) {
+  out.append(static_cast<std::size_t>(indent), ' ');
+  out += text;
+  out += '\n';
+}
+
+static void put_body(std::string& out, int indent, const std::vector<CppStmt>& body) {
+  for (const CppStmt& s : body) {
+    switch (s.kind) {
+      case CppStmt::Kind::Blank: out += '\n'; break;
+      case CppStmt::Kind::Comment: put(out, indent, "// " + s.text); break;
+      case CppStmt::Kind::Line: put(out, indent, s.text); break;
+    }
+  }
+}
+
+std::string print(const CppFunction& f, int indent) {
+  std::string out;
+  if (!f.doc.empty()) put(out, indent, "// " + f.doc);
+  if (f.body.empty()) {
+    put(out, indent, f.signature + " {}");
+    return out;
+  }
+  put(out, indent, f.signature + " {");
+  put_body(out, indent + 2, f.body);
+  put(out, indent, "}");
+  return out;
+}
+
+std::string print(const CppClass& c, int indent) {
+  std::string out;
+  put(out, indent, "class " + c.name + " final : public " + c.base + " {");
+  put(out, indent, " public:");
+  for (std::size_t i = 0; i < c.public_methods.size(); ++i) {
+    if (i) out += '\n';
+    out += print(c.public_methods[i], indent + 2);
+  }
+  out += '\n';
+  put(out, indent, " private:");
+  for (std::size_t i = 0; i < c.private_methods.size(); ++i) out += print(c.private_methods[i], indent + 2);
+  if (!c.private_members.empty()) out += '\n';
+  put_body(out, indent + 2, c.private_members);
+  put(out, indent, "};");
+  return out;
+}
+
+}  // namespace mbgc::codegen

@@ -1,0 +1,30 @@
+// driver/driver.hpp — the only place that knows the order of the passes:
+//
+//   parse -> resolve -> graph -> causality -> equations -> reduce -> emit
+//
+// Each pass reports into one Diagnostics; the pipeline stops after the first
+// pass with an error, so later passes only ever see well-formed input.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+namespace mbgc::driver {
+
+enum class Dump { None, Ast, Graph, Causality, Equations, Reduced };
+
+struct Options {
+  std::string input;          ///< the .mbg file
+  std::string output;         ///< -o file ("" or "-": stdout)
+  Dump dump = Dump::None;
+  bool dot = false;           ///< --format=dot (graph and causality dumps)
+  bool library = false;       ///< --library: model class without main()
+  std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
+};
+
+/// Runs the compiler. Returns the exit status: 0 ok, 1 errors in the model,
+/// 3 the output file could not be written. Diagnostics go to `err`.
+/// The output file is written only when everything succeeded (never partially).
+int compile(const Options& options, std::ostream& out, std::ostream& err);
+
+}  // namespace mbgc::driver

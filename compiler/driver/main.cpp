@@ -1,0 +1,34 @@
+// mbgc — the multibond-graph compiler. Command line only; the work is in
+// driver::compile.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <map>
+
+#include "driver/driver.hpp"
+
+int main(int argc, char** argv) {
+  using mbgc::driver::Dump;
+  CLI::App app{"mbgc " MBGC_VERSION " — compiles a multibond-graph model (.mbg) into a C++ simulator"};
+  mbgc::driver::Options opt;
+  std::string dump = "none", format = "text";
+  app.add_option("model", opt.input, "the .mbg model file")->required();
+  app.add_option("-o,--output", opt.output, "output file (default: standard output)");
+  app.add_flag("--library", opt.library, "emit the model class without main(), to include in your own program");
+  app.add_option("--depfile", opt.depfile, "also write a Makefile-style dependency file (model and imports)");
+  app.add_option("--dump", dump, "print a compiler stage instead of C++")
+      ->check(CLI::IsMember({"none", "ast", "graph", "causality", "equations", "reduced"}));
+  app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
+      ->check(CLI::IsMember({"text", "dot"}));
+  app.set_version_flag("--version", "mbgc " MBGC_VERSION);
+  CLI11_PARSE(app, argc, argv);
+  static const std::map<std::string, Dump> dumps = {{"none", Dump::None},           {"ast", Dump::Ast},
+                                                    {"graph", Dump::Graph},         {"causality", Dump::Causality},
+                                                    {"equations", Dump::Equations}, {"reduced", Dump::Reduced}};
+  opt.dump = dumps.at(dump);
+  opt.dot = format == "dot";
+  if (opt.dot && opt.dump != Dump::Graph) {
+    std::cerr << "mbgc: error: --format=dot goes with --dump=graph\n";
+    return 2;
+  }
+  return mbgc::driver::compile(opt, std::cout, std::cerr);
+}

@@ -1,0 +1,224 @@
+#include "equations/generate.hpp"
+
+#include <fmt/format.h>
+
+namespace mbgc::equations {
+namespace {
+
+using namespace mbgc::ir;
+
+class Generator {
+ public:
+  Generator(EquationSystem& sys, Diagnostics& diags) : s_(sys), g_(sys.graph), diags_(diags) {}
+
+  void run() {
+    for (std::size_t n = 0; n < g_.nodes.size(); ++n) node(static_cast<int>(n));
+    for (const Signal& sig : g_.signals) emit(var(sig.var), sig.value, sig.var, sig.loc, "signal " + sig.name);
+  }
+
+ private:
+  // ---- helpers ----------------------------------------------------------------
+  const Bond& bond(int b) const { return g_.bonds[static_cast<std::size_t>(b)]; }
+  Expr e(int b, int k) const { return var(bond(b).effort_vars[static_cast<std::size_t>(k)]); }
+  Expr f(int b, int k) const { return var(bond(b).flow_vars[static_cast<std::size_t>(k)]); }
+  int e_id(int b, int k) const { return bond(b).effort_vars[static_cast<std::size_t>(k)]; }
+  int f_id(int b, int k) const { return bond(b).flow_vars[static_cast<std::size_t>(k)]; }
+
+  /// Entry (r, c) of a node's modulus; a scalar stands for scalar * identity.
+  static Expr entry(const Value& v, int r, int c) {
+    if (v.is_scalar()) return r == c ? v.items[0] : constant(0);
+    return v.at(r, c);
+  }
+  /// sum_c M(r, c) * x(c)
+  template <class X>
+  static Expr row_times(const Value& m, int r, int n, X x, bool transpose = false) {
+    Expr s = constant(0);
+    for (int c = 0; c < n; ++c) s = add(s, mul(transpose ? entry(m, c, r) : entry(m, r, c), x(c)));
+    return s;
+  }
+
+  void emit(Expr lhs, Expr rhs, int unknown, SourceLoc loc, std::string origin) {
+    s_.equations.push_back({std::move(lhs), std::move(rhs), unknown, loc, std::move(origin)});
+  }
+
+  /// Sign of the element's flow relative to bond b (power in for passive, out for sources).
+  int sign(int n, int b) const {
+    const GraphNode& node = g_.nodes[static_cast<std::size_t>(n)];
+    bool into = bond(b).to == n;
+    bool source = node.kind == NodeKind::Se || node.kind == NodeKind::Sf;
+    return into != source ? 1 : -1;
+  }
+  static Expr signed_(int s, Expr x) { return s < 0 ? neg(x) : x; }
+
+  std::string label(const GraphNode& n, const std::string& what) const {
+    return fmt::format("{} {}: {}", node_kind_name(n.kind), n.name, what);
+  }
+
+  // ---- per node kind ------------------------------------------------------------
+  void node(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    if (nd.bonds.empty()) return;
+    switch (nd.kind) {
+      case NodeKind::Se: case NodeKind::Sf: source(n); break;
+      case NodeKind::I: case NodeKind::C: storage(n); break;
+      case NodeKind::R: resistor(n); break;
+      case NodeKind::TF: case NodeKind::MTF: transformer(n); break;
+      case NodeKind::GY: case NodeKind::MGY: gyrator(n); break;
+      case NodeKind::Zero: case NodeKind::One: junction(n); break;
+    }
+  }
+
+  void source(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    int b = nd.bonds[0];
+    int s = sign(n, b);
+    for (int k = 0; k < nd.dim; ++k) {
+      Expr v = nd.value.is_scalar() ? nd.value.items[0] : nd.value.items[static_cast<std::size_t>(k)];
+      if (nd.kind == NodeKind::Se) emit(e(b, k), v, e_id(b, k), nd.loc, label(nd, "e = value"));
+      else emit(signed_(s, f(b, k)), v, f_id(b, k), nd.loc, label(nd, "f = value"));
+    }
+  }
+
+  void storage(int n) {
+    GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    int b = nd.bonds[0];
+    int s = sign(n, b);
+    bool inertia = nd.kind == NodeKind::I;
+    // The state's input: effort for I (dp/dt = e), flow for C (dq/dt = f).
+    auto input = [&](int k) { return inertia ? e(b, k) : signed_(s, f(b, k)); };
+    auto output = [&](int k) { return inertia ? signed_(s, f(b, k)) : e(b, k); };
+    auto output_id = [&](int k) { return inertia ? f_id(b, k) : e_id(b, k); };
+    auto input_id = [&](int k) { return inertia ? e_id(b, k) : f_id(b, k); };
+    const char* st = inertia ? "p" : "q";
+    const char* out = inertia ? "f" : "e";
+    bool integral = sets_effort(g_, n, b) == !inertia;
+    if (integral) {
+      for (int k = 0; k < nd.dim; ++k) {
+        int x = nd.state_vars[static_cast<std::size_t>(k)];
+        int dx = g_.add_var("der(" + g_.vars[static_cast<std::size_t>(x)].name + ")", VarKind::Derivative, nd.loc, x);
+        s_.states.push_back({x, dx, n, nd.initial.items[static_cast<std::size_t>(k)]});
+        emit(var(dx), input(k), dx, nd.loc, label(nd, fmt::format("der({}) = {}", st, inertia ? "e" : "f")));
+      }
+      for (int k = 0; k < nd.dim; ++k) {
+        int x = nd.state_vars[static_cast<std::size_t>(k)];
+        if (nd.law != LawForm::Linear) {
+          emit(output(k), nd.law_rhs, output_id(k), nd.loc, label(nd, fmt::format("{} = law({})", out, st)));
+        } else {
+          // p = I f  (q = C e): one row per component; reduce solves the block.
+          emit(var(x), row_times(nd.value, k, nd.dim, output), output_id(k), nd.loc,
+               label(nd, fmt::format("{} = {} {}", st, inertia ? "I" : "C", out)));
+        }
+      }
+      return;
+    }
+    // Derivative causality: the state is a function of the imposed input.
+    if (nd.law != LawForm::Linear) {
+      diags_.error(nd.loc,
+                   fmt::format("{} `{}` is in derivative causality, but its nonlinear law cannot be inverted", node_kind_name(nd.kind), nd.name),
+                   "give it a linear law, or change the graph so that it gets integral causality (e.g. a stiff C or small R in between)");
+      return;
+    }
+    for (int k = 0; k < nd.dim; ++k) {
+      int x = nd.state_vars[static_cast<std::size_t>(k)];
+      g_.vars[static_cast<std::size_t>(x)].kind = VarKind::Auxiliary;  // no longer a state
+      emit(var(x), row_times(nd.value, k, nd.dim, output), x, nd.loc,
+           label(nd, fmt::format("{} = {} {} (derivative causality)", st, inertia ? "I" : "C", out)));
+      emit(input(k), der(var(x)), input_id(k), nd.loc,
+           label(nd, fmt::format("{} = der({}) (derivative causality)", inertia ? "e" : "f", st)));
+    }
+  }
+
+  void resistor(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    int b = nd.bonds[0];
+    int s = sign(n, b);
+    bool sets_e = sets_effort(g_, n, b);
+    auto flow = [&](int k) { return signed_(s, f(b, k)); };
+    if (nd.law == LawForm::EffortOfFlow) {
+      emit(e(b, 0), nd.law_rhs, e_id(b, 0), nd.loc, label(nd, "e = law(f)"));
+      return;
+    }
+    if (nd.law == LawForm::FlowOfEffort) {
+      emit(flow(0), nd.law_rhs, f_id(b, 0), nd.loc, label(nd, "f = law(e)"));
+      return;
+    }
+    for (int k = 0; k < nd.dim; ++k)
+      emit(e(b, k), row_times(nd.value, k, nd.dim, flow), sets_e ? e_id(b, k) : f_id(b, k), nd.loc,
+           label(nd, sets_e ? "e = R f" : "f = e / R"));
+  }
+
+  void transformer(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    int b1 = nd.bonds[0], b2 = nd.bonds[1];
+    int s1 = bond(b1).to == n ? 1 : -1;    // flow into port 1
+    int s2 = bond(b2).from == n ? 1 : -1;  // flow out of port 2
+    bool forward = sets_effort(g_, n, b1);  // computes e1 and f2
+    // f2 = T f1  (rows: dim2)   and   e1 = T^T e2  (rows: dim1)
+    for (int r = 0; r < nd.dim2; ++r)
+      emit(signed_(s2, f(b2, r)), row_times(nd.value, r, nd.dim, [&](int c) { return signed_(s1, f(b1, c)); }),
+           forward ? f_id(b2, r) : f_id(b1, r), nd.loc, label(nd, "f2 = T f1"));
+    for (int r = 0; r < nd.dim; ++r)
+      emit(e(b1, r), row_times(nd.value, r, nd.dim2, [&](int c) { return e(b2, c); }, /*transpose=*/true),
+           forward ? e_id(b1, r) : e_id(b2, r), nd.loc, label(nd, "e1 = T' e2"));
+  }
+
+  void gyrator(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    int b1 = nd.bonds[0], b2 = nd.bonds[1];
+    int s1 = bond(b1).to == n ? 1 : -1;
+    int s2 = bond(b2).from == n ? 1 : -1;
+    bool efforts = sets_effort(g_, n, b1);  // computes e1 and e2 (from the flows)
+    // e2 = G f1 (rows: dim2)   and   e1 = G^T f2 (rows: dim1)
+    for (int r = 0; r < nd.dim2; ++r)
+      emit(e(b2, r), row_times(nd.value, r, nd.dim, [&](int c) { return signed_(s1, f(b1, c)); }),
+           efforts ? e_id(b2, r) : f_id(b1, r), nd.loc, label(nd, "e2 = G f1"));
+    for (int r = 0; r < nd.dim; ++r)
+      emit(e(b1, r), row_times(nd.value, r, nd.dim2, [&](int c) { return signed_(s2, f(b2, c)); }, true),
+           efforts ? e_id(b1, r) : f_id(b2, r), nd.loc, label(nd, "e1 = G' f2"));
+  }
+
+  void junction(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    bool zero = nd.kind == NodeKind::Zero;
+    int strong = -1;
+    for (int b : nd.bonds) {
+      bool junction_sets = sets_effort(g_, n, b);
+      if (zero ? !junction_sets : junction_sets) strong = b;
+    }
+    if (strong < 0) return;  // causality reported the conflict
+    for (int k = 0; k < nd.dim; ++k) {
+      // Common variable: every other bond copies the strong bond's.
+      for (int b : nd.bonds) {
+        if (b == strong) continue;
+        if (zero) emit(e(b, k), e(strong, k), e_id(b, k), nd.loc, label(nd, "equal efforts"));
+        else emit(f(b, k), f(strong, k), f_id(b, k), nd.loc, label(nd, "equal flows"));
+      }
+      // Balance: sum in = sum out, solved for the strong bond's other variable.
+      Expr in = constant(0), out = constant(0);
+      for (int b : nd.bonds) {
+        Expr x = zero ? f(b, k) : e(b, k);
+        if (bond(b).to == n) in = add(in, x);
+        else out = add(out, x);
+      }
+      emit(in, out, zero ? f_id(strong, k) : e_id(strong, k), nd.loc,
+           label(nd, zero ? "flows in = flows out" : "efforts in = efforts out"));
+    }
+  }
+
+  EquationSystem& s_;
+  BondGraph& g_;
+  Diagnostics& diags_;
+};
+
+}  // namespace
+
+EquationSystem generate(CausalGraph causal, Diagnostics& diags) {
+  EquationSystem sys;
+  sys.graph = std::move(causal.graph);
+  sys.causality = std::move(causal.report);
+  Generator gen(sys, diags);
+  gen.run();
+  return sys;
+}
+
+}  // namespace mbgc::equations

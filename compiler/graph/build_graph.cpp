@@ -1,0 +1,631 @@
+#include "graph/build_graph.hpp"
+
+#include <fmt/format.h>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <set>
+
+namespace mbgc::graph {
+namespace {
+
+using namespace mbgc::ir;
+
+/// Dimension slots: one per bond, merged by junctions and scalar two-ports.
+class DimSlots {
+ public:
+  explicit DimSlots(std::size_t n) : parent_(n), fixed_(n, 0), why_(n) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int find(int a) {
+    while (parent_[static_cast<std::size_t>(a)] != a) a = parent_[static_cast<std::size_t>(a)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(a)])];
+    return a;
+  }
+  /// Returns false (and the conflicting reason) if both are fixed differently.
+  bool unite(int a, int b, std::pair<SourceLoc, std::string>* conflict) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return true;
+    int fa = fixed_[static_cast<std::size_t>(a)], fb = fixed_[static_cast<std::size_t>(b)];
+    if (fa && fb && fa != fb) {
+      *conflict = why_[static_cast<std::size_t>(a)];
+      return false;
+    }
+    parent_[static_cast<std::size_t>(b)] = a;
+    if (!fa && fb) {
+      fixed_[static_cast<std::size_t>(a)] = fb;
+      why_[static_cast<std::size_t>(a)] = why_[static_cast<std::size_t>(b)];
+    }
+    return true;
+  }
+  bool fix(int a, int dim, SourceLoc loc, std::string why, std::pair<SourceLoc, std::string>* conflict) {
+    a = find(a);
+    int& f = fixed_[static_cast<std::size_t>(a)];
+    if (f && f != dim) {
+      *conflict = why_[static_cast<std::size_t>(a)];
+      return false;
+    }
+    if (!f) {
+      f = dim;
+      why_[static_cast<std::size_t>(a)] = {loc, std::move(why)};
+    }
+    return true;
+  }
+  int dim(int a) {
+    int f = fixed_[static_cast<std::size_t>(find(a))];
+    return f ? f : 1;
+  }
+  int fixed(int a) { return fixed_[static_cast<std::size_t>(find(a))]; }
+
+ private:
+  std::vector<int> parent_;
+  std::vector<int> fixed_;
+  std::vector<std::pair<SourceLoc, std::string>> why_;
+};
+
+class Builder {
+ public:
+  Builder(const ResolvedModel& m, const SourceManager& sources, Diagnostics& diags)
+      : m_(m), sources_(sources), diags_(diags) {}
+
+  BondGraph run() {
+    g_.model_name = m_.model_name;
+    g_.source_file = m_.source_file;
+    g_.params = m_.params;
+    g_.settings = m_.settings;
+    make_nodes_and_bonds();
+    if (diags_.has_errors()) return std::move(g_);
+    infer_dimensions();
+    if (diags_.has_errors()) return std::move(g_);
+    make_variables();
+    lower_laws();
+    lower_signals_and_outputs();
+    return std::move(g_);
+  }
+
+ private:
+  // ---- structure -----------------------------------------------------------------
+  void make_nodes_and_bonds() {
+    for (const ResolvedNode& rn : m_.nodes) {
+      GraphNode n;
+      n.kind = rn.kind;
+      n.name = rn.name;
+      n.loc = rn.loc;
+      if (is_two_port(rn.kind)) n.bonds = {-1, -1};
+      g_.nodes.push_back(std::move(n));
+    }
+    std::set<std::string> used_names;
+    for (const ResolvedBond& rb : m_.bonds) {
+      Bond b;
+      b.number = static_cast<int>(g_.bonds.size()) + 1;
+      b.name = rb.name.empty() ? fmt::format("b{}", b.number) : rb.name;
+      b.loc = rb.loc;
+      b.from = rb.from.node;
+      b.to = rb.to.node;
+      int index = static_cast<int>(g_.bonds.size());
+      g_.bonds.push_back(b);
+      attach(index, rb.from, /*outgoing=*/true);
+      attach(index, rb.to, /*outgoing=*/false);
+    }
+    for (std::size_t i = 0; i < g_.nodes.size(); ++i) {
+      const GraphNode& n = g_.nodes[i];
+      if (is_junction(n.kind)) {
+        if (n.bonds.empty())
+          diags_.error(n.loc, fmt::format("{}-junction `{}` has no bonds", node_kind_name(n.kind), n.name),
+                       "connect it, or remove it");
+      } else if (is_two_port(n.kind)) {
+        for (int p = 0; p < 2; ++p)
+          if (n.bonds[static_cast<std::size_t>(p)] < 0)
+            diags_.error(n.loc, fmt::format("port p{} of {} `{}` is not connected", p + 1, node_kind_name(n.kind), n.name),
+                         p == 0 ? fmt::format("add a bond into it: bond some_node -> {}", n.name)
+                                : fmt::format("add a bond out of it: bond {} -> some_node", n.name));
+      } else if (n.bonds.empty()) {
+        diags_.error(n.loc, fmt::format("{} `{}` is not connected to anything", node_kind_name(n.kind), n.name),
+                     "bond it to a junction, e.g. in `1 j : ... -> " + n.name + "`");
+      }
+    }
+  }
+
+  void attach(int bond, const ResolvedEnd& end, bool outgoing) {
+    GraphNode& n = g_.nodes[static_cast<std::size_t>(end.node)];
+    if (is_two_port(n.kind)) {
+      int port = end.port ? end.port : (outgoing ? 2 : 1);
+      int& slot = n.bonds[static_cast<std::size_t>(port - 1)];
+      if (slot >= 0) {
+        auto& d = diags_.error(end.loc, fmt::format("port p{} of `{}` already has a bond", port, n.name),
+                               "each port of a two-port takes exactly one bond; join several through a junction");
+        d.notes.push_back({g_.bonds[static_cast<std::size_t>(slot)].loc, "the first bond is here"});
+        return;
+      }
+      slot = bond;
+      return;
+    }
+    if (end.port) {
+      diags_.error(end.loc, fmt::format("`{}` has no ports", n.name), "connect the element itself");
+      return;
+    }
+    if (!is_junction(n.kind) && !n.bonds.empty()) {
+      auto& d = diags_.error(end.loc, fmt::format("{} `{}` already has a bond", node_kind_name(n.kind), n.name),
+                             "a one-port element takes exactly one bond; put a junction in between");
+      d.notes.push_back({g_.bonds[static_cast<std::size_t>(n.bonds[0])].loc, "the first bond is here"});
+      return;
+    }
+    n.bonds.push_back(bond);
+  }
+
+  // ---- dimensions -------------------------------------------------------------------
+  /// Lower an element's value only to learn its shape (variables read as scalars).
+  std::optional<Value> probe_shape(const ResolvedNode& rn) {
+    if (!rn.element || !rn.element->value) return std::nullopt;
+    Diagnostics scratch(sources_);
+    NameLookup lookup = [&](const std::string& name, const SourceLoc& loc) -> std::optional<Value> {
+      if (auto v = find_param(name, rn.scope)) return v;
+      (void)loc;
+      return Value::scalar(constant(0));
+    };
+    return lower(*rn.element->value, lookup, scratch);
+  }
+
+  void infer_dimensions() {
+    DimSlots slots(g_.bonds.size());
+    std::pair<SourceLoc, std::string> conflict;
+    auto mismatch = [&](SourceLoc at, int dim, const std::string& what) {
+      auto& d = diags_.error(at, fmt::format("multibond dimension mismatch: {} needs dimension {}", what, dim),
+                             "every bond at a junction has the same dimension; check the shapes of the elements");
+      d.notes.push_back({conflict.first, conflict.second});
+    };
+    for (std::size_t b = 0; b < g_.bonds.size(); ++b) {
+      const ResolvedBond& rb = m_.bonds[b];
+      if (rb.dim && !slots.fix(static_cast<int>(b), *rb.dim, rb.dim_loc, fmt::format("bond declared [{}] here", *rb.dim), &conflict))
+        mismatch(rb.dim_loc, *rb.dim, fmt::format("bond {}", g_.bonds[b].number));
+    }
+    for (std::size_t i = 0; i < g_.nodes.size(); ++i) {
+      GraphNode& n = g_.nodes[i];
+      const ResolvedNode& rn = m_.nodes[i];
+      if (is_junction(n.kind)) {
+        if (rn.dim && !n.bonds.empty() &&
+            !slots.fix(n.bonds[0], *rn.dim, rn.dim_loc, fmt::format("junction `{}` declared [{}] here", n.name, *rn.dim), &conflict))
+          mismatch(rn.dim_loc, *rn.dim, fmt::format("junction `{}`", n.name));
+        for (std::size_t k = 1; k < n.bonds.size(); ++k)
+          if (!slots.unite(n.bonds[0], n.bonds[k], &conflict))
+            mismatch(g_.bonds[static_cast<std::size_t>(n.bonds[k])].loc, slots.fixed(n.bonds[k]),
+                     fmt::format("bond {} at junction `{}`", g_.bonds[static_cast<std::size_t>(n.bonds[k])].number, n.name));
+        continue;
+      }
+      auto shape = probe_shape(rn);
+      if (is_two_port(n.kind)) {
+        if (n.bonds[0] < 0 || n.bonds[1] < 0) continue;
+        if (!shape || shape->is_scalar()) {
+          if (!slots.unite(n.bonds[0], n.bonds[1], &conflict))
+            mismatch(n.loc, slots.fixed(n.bonds[0]), fmt::format("scalar {} `{}` (same dimension on both ports)", node_kind_name(n.kind), n.name));
+          continue;
+        }
+        // TF: f2 = T f1 (T is dim2 x dim1); GY: e2 = G f1 (likewise).
+        if (!slots.fix(n.bonds[0], shape->cols, n.loc, fmt::format("`{}` is {} (port p1 has dimension {})", n.name, shape->shape(), shape->cols), &conflict))
+          mismatch(n.loc, shape->cols, fmt::format("port p1 of `{}`", n.name));
+        if (!slots.fix(n.bonds[1], shape->rows, n.loc, fmt::format("`{}` is {} (port p2 has dimension {})", n.name, shape->shape(), shape->rows), &conflict))
+          mismatch(n.loc, shape->rows, fmt::format("port p2 of `{}`", n.name));
+        continue;
+      }
+      if (n.bonds.empty() || !shape || shape->is_scalar()) continue;
+      int dim = 0;
+      bool is_source = n.kind == NodeKind::Se || n.kind == NodeKind::Sf;
+      if (is_source) {
+        if (!shape->is_vector()) {
+          diags_.error(rn.element->value->loc, fmt::format("{} `{}` needs a scalar or a vector, not {}", node_kind_name(n.kind), n.name, shape->shape()),
+                       "write a vector as [a, b, c]");
+          continue;
+        }
+        dim = shape->length();
+      } else {
+        if (shape->rows != shape->cols) {
+          diags_.error(rn.element->value->loc, fmt::format("{} `{}` needs a scalar or a square matrix, not {}", node_kind_name(n.kind), n.name, shape->shape()),
+                       "an n-dimensional I, C or R takes an n x n matrix, e.g. diag(m, m, J)");
+          continue;
+        }
+        dim = shape->rows;
+      }
+      if (!slots.fix(n.bonds[0], dim, n.loc, fmt::format("`{}` is {} here", n.name, shape->shape()), &conflict))
+        mismatch(n.loc, dim, fmt::format("{} `{}`", node_kind_name(n.kind), n.name));
+    }
+    for (std::size_t b = 0; b < g_.bonds.size(); ++b) g_.bonds[b].dim = slots.dim(static_cast<int>(b));
+    for (GraphNode& n : g_.nodes) {
+      if (n.bonds.empty() || n.bonds[0] < 0) continue;
+      n.dim = g_.bonds[static_cast<std::size_t>(n.bonds[0])].dim;
+      if (is_two_port(n.kind) && n.bonds[1] >= 0) n.dim2 = g_.bonds[static_cast<std::size_t>(n.bonds[1])].dim;
+    }
+  }
+
+  // ---- variables ----------------------------------------------------------------------
+  static std::string component_name(const std::string& base, const char* q, int k, int dim) {
+    return dim == 1 ? fmt::format("{}.{}", base, q) : fmt::format("{}.{}[{}]", base, q, k + 1);
+  }
+
+  void make_variables() {
+    // Name bond variables after the element they feed, so dumps and code read
+    // in model terms: "armature_l.f" rather than "b3.f".
+    std::vector<std::string> base(g_.bonds.size());
+    std::vector<std::string> suffix(g_.bonds.size());
+    for (std::size_t b = 0; b < g_.bonds.size(); ++b) base[b] = g_.bonds[b].name;
+    for (const GraphNode& n : g_.nodes) {
+      if (is_junction(n.kind)) continue;
+      for (std::size_t p = 0; p < n.bonds.size(); ++p) {
+        int b = n.bonds[p];
+        if (b < 0 || m_.bonds[static_cast<std::size_t>(b)].name.size()) continue;
+        base[static_cast<std::size_t>(b)] = n.name;
+        if (is_two_port(n.kind)) suffix[static_cast<std::size_t>(b)] = std::to_string(p + 1);
+      }
+    }
+    for (std::size_t b = 0; b < g_.bonds.size(); ++b) {
+      Bond& bond = g_.bonds[b];
+      std::string e = "e" + suffix[b], f = "f" + suffix[b];
+      for (int k = 0; k < bond.dim; ++k) {
+        bond.effort_vars.push_back(g_.add_var(component_name(base[b], e.c_str(), k, bond.dim), VarKind::Effort, bond.loc, static_cast<int>(b)));
+        bond.flow_vars.push_back(g_.add_var(component_name(base[b], f.c_str(), k, bond.dim), VarKind::Flow, bond.loc, static_cast<int>(b)));
+      }
+    }
+    for (GraphNode& n : g_.nodes) {
+      if (!is_storage(n.kind) || n.bonds.empty()) continue;
+      const char* q = n.kind == NodeKind::I ? "p" : "q";
+      for (int k = 0; k < n.dim; ++k)
+        n.state_vars.push_back(g_.add_var(component_name(n.name, q, k, n.dim), VarKind::State, n.loc));
+    }
+    for (const ResolvedExpr& s : m_.signals) {
+      signal_var_[s.name] = g_.add_var(s.name, VarKind::Signal, s.loc);
+    }
+  }
+
+  /// +1 if the bond's direction agrees with the node's sign convention:
+  /// power into passive elements (I, C, R), out of sources.
+  int flow_sign(const GraphNode& n, int bond) const {
+    const Bond& b = g_.bonds[static_cast<std::size_t>(bond)];
+    bool into = b.to == &n - g_.nodes.data();
+    bool source = n.kind == NodeKind::Se || n.kind == NodeKind::Sf;
+    return (into != source) ? 1 : -1;
+  }
+
+  Value bond_value(int bond, bool effort, int sign) const {
+    const Bond& b = g_.bonds[static_cast<std::size_t>(bond)];
+    Value v{b.dim, 1, {}};
+    for (int k = 0; k < b.dim; ++k) {
+      Expr x = var(effort ? b.effort_vars[static_cast<std::size_t>(k)] : b.flow_vars[static_cast<std::size_t>(k)]);
+      v.items.push_back(sign < 0 ? neg(x) : x);
+    }
+    return v;
+  }
+
+  // ---- name lookup for laws, signals and outputs -----------------------------------
+  std::optional<Value> find_param(const std::string& name, int scope) const {
+    if (scope != 0) {
+      auto it = m_.param_values.find(m_.scopes[static_cast<std::size_t>(scope)].prefix + name);
+      if (it != m_.param_values.end()) return it->second;
+    }
+    auto it = m_.param_values.find(name);
+    if (it != m_.param_values.end()) return it->second;
+    return std::nullopt;
+  }
+
+  /// `X.q` for a node, bond or signal X; nullopt without a report if not found.
+  std::optional<Value> find_quantity(const std::string& full, const SourceLoc& loc, bool* reported) {
+    if (auto it = signal_var_.find(full); it != signal_var_.end()) return Value::scalar(var(it->second));
+    auto dot = full.rfind('.');
+    if (dot == std::string::npos) return std::nullopt;
+    std::string stem = full.substr(0, dot), q = full.substr(dot + 1);
+    auto report = [&](const std::string& message, const std::string& hint) {
+      diags_.error(loc, message, hint);
+      *reported = true;
+      return std::nullopt;
+    };
+    if (auto it = m_.node_index.find(stem); it != m_.node_index.end()) {
+      const GraphNode& n = g_.nodes[static_cast<std::size_t>(it->second)];
+      if (n.bonds.empty()) return report(fmt::format("`{}` has no bonds, so no `{}`", stem, q), "connect it first");
+      if (is_junction(n.kind)) {
+        if (n.kind == NodeKind::Zero && q == "e") return bond_value(n.bonds[0], true, 1);
+        if (n.kind == NodeKind::One && q == "f") return bond_value(n.bonds[0], false, 1);
+        return report(fmt::format("{}-junction `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
+                      n.kind == NodeKind::Zero ? "a 0-junction has one common effort: use `.e`; for a flow, name a bond"
+                                               : "a 1-junction has one common flow: use `.f`; for an effort, name a bond");
+      }
+      if (is_two_port(n.kind)) {
+        if (q.size() == 2 && (q[0] == 'e' || q[0] == 'f') && (q[1] == '1' || q[1] == '2')) {
+          int port = q[1] - '1';
+          int b = n.bonds[static_cast<std::size_t>(port)];
+          if (b < 0) return report("port not connected", "");
+          const Bond& bond = g_.bonds[static_cast<std::size_t>(b)];
+          int node_index = it->second;
+          bool agrees = port == 0 ? bond.to == node_index : bond.from == node_index;
+          return bond_value(b, q[0] == 'e', q[0] == 'e' ? 1 : (agrees ? 1 : -1));
+        }
+        return report(fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
+                      "two-ports have e1, f1 (port p1) and e2, f2 (port p2)");
+      }
+      int sign = flow_sign(n, n.bonds[0]);
+      if (q == "e") return bond_value(n.bonds[0], true, 1);
+      if (q == "f") return bond_value(n.bonds[0], false, sign);
+      if ((q == "p" && n.kind == NodeKind::I) || (q == "q" && n.kind == NodeKind::C)) {
+        Value v{n.dim, 1, {}};
+        for (int s : n.state_vars) v.items.push_back(var(s));
+        return v;
+      }
+      return report(fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
+                    n.kind == NodeKind::I   ? "an I element has e, f and its momentum p"
+                    : n.kind == NodeKind::C ? "a C element has e, f and its displacement q"
+                                            : "this element has e and f");
+    }
+    for (std::size_t b = 0; b < g_.bonds.size(); ++b) {
+      if (m_.bonds[b].name != stem && g_.bonds[b].name != stem) continue;
+      if (q == "e") return bond_value(static_cast<int>(b), true, 1);
+      if (q == "f") return bond_value(static_cast<int>(b), false, 1);
+      return report(fmt::format("bond `{}` has no quantity `{}`", stem, q), "a bond has e and f");
+    }
+    return std::nullopt;
+  }
+
+  NameLookup lookup_in(int scope, const std::map<std::string, Value>* locals = nullptr) {
+    return [this, scope, locals](const std::string& name, const SourceLoc& loc) -> std::optional<Value> {
+      if (locals) {
+        if (auto it = locals->find(name); it != locals->end()) return it->second;
+      }
+      if (auto v = find_param(name, scope)) return v;
+      bool reported = false;
+      std::vector<std::string> tries;
+      if (scope != 0) tries.push_back(m_.scopes[static_cast<std::size_t>(scope)].prefix + name);
+      tries.push_back(name);
+      for (const std::string& full : tries) {
+        auto v = find_quantity(full, loc, &reported);
+        if (v || reported) return v;
+      }
+      std::vector<std::string> names;
+      for (const auto& [n, v] : m_.param_values) names.push_back(n);
+      for (const auto& [n, v] : signal_var_) names.push_back(n);
+      for (const auto& [n, i] : m_.node_index) {
+        const GraphNode& node = g_.nodes[static_cast<std::size_t>(i)];
+        for (const char* q : {"e", "f", "p", "q"}) {
+          if ((*q == 'p' && node.kind != NodeKind::I) || (*q == 'q' && node.kind != NodeKind::C)) continue;
+          names.push_back(n + "." + q);
+        }
+      }
+      std::string near = closest_name(name, names);
+      diags_.error(loc, fmt::format("unknown name `{}`", name),
+                   near.empty() ? "refer to parameters, signals, t, or quantities like element.e, element.f, inertia.p"
+                                : fmt::format("did you mean `{}`?", near));
+      return std::nullopt;
+    };
+  }
+
+  // ---- element laws ---------------------------------------------------------------------
+  static bool only_params(const Value& v) {
+    for (const Expr& e : v.items) {
+      std::unordered_set<int> vars;
+      collect_vars(e, vars);
+      if (!vars.empty() || depends_on_time(e)) return false;
+    }
+    return true;
+  }
+
+  void lower_laws() {
+    for (std::size_t i = 0; i < g_.nodes.size(); ++i) {
+      GraphNode& n = g_.nodes[i];
+      const ResolvedNode& rn = m_.nodes[i];
+      if (!rn.element || n.bonds.empty() || (is_two_port(n.kind) && (n.bonds[0] < 0 || n.bonds[1] < 0))) continue;
+      const AstElement& el = *rn.element;
+      std::map<std::string, Value> locals;  // the element's own e, f, p/q inside { } laws
+      if (!is_two_port(n.kind)) {
+        int sign = flow_sign(n, n.bonds[0]);
+        locals["e"] = bond_value(n.bonds[0], true, 1);
+        locals["f"] = bond_value(n.bonds[0], false, sign);
+        if (!n.state_vars.empty()) {
+          Value s{n.dim, 1, {}};
+          for (int v : n.state_vars) s.items.push_back(var(v));
+          locals[n.kind == NodeKind::I ? "p" : "q"] = s;
+        }
+      }
+      NameLookup plain = lookup_in(rn.scope);
+      NameLookup with_locals = lookup_in(rn.scope, &locals);
+      if (el.value) {
+        auto v = lower(*el.value, plain, diags_);
+        if (!v) continue;
+        n.value = *v;
+        if (!check_value_shape(n, el)) continue;
+        n.law = (n.kind == NodeKind::Se || n.kind == NodeKind::Sf) ? LawForm::Source : LawForm::Linear;
+        if ((n.kind == NodeKind::I || n.kind == NodeKind::C || n.kind == NodeKind::TF || n.kind == NodeKind::GY) && !only_params(n.value)) {
+          diags_.error(el.value->loc,
+                       fmt::format("the value of {} `{}` must be constant (parameters only)", el.kind, n.name),
+                       n.kind == NodeKind::TF   ? "use MTF for a modulus that depends on states, time or signals"
+                       : n.kind == NodeKind::GY ? "use MGY for a modulus that depends on states, time or signals"
+                                                : "give a nonlinear law instead, e.g. I m { f = p / mass(p) }");
+        }
+      }
+      bool has_law = false;
+      for (const AstAttr& a : el.attrs) {
+        if (is_law_key(n.kind, a.key)) {
+          if (el.value || has_law) {
+            diags_.error(a.loc, fmt::format("{} `{}` has two constitutive laws", el.kind, n.name),
+                         "give either `= value` or one law in { }, not both");
+            continue;
+          }
+          has_law = true;
+          if (n.dim != 1) {
+            diags_.error(a.loc, fmt::format("nonlinear law on a {}-dimensional multibond", n.dim),
+                         "nonlinear laws are scalar; use one element per component");
+            continue;
+          }
+          auto v = lower(*a.value, with_locals, diags_);
+          if (!v) continue;
+          if (!v->is_scalar()) {
+            diags_.error(a.value->loc, "a constitutive law must be a scalar expression", "");
+            continue;
+          }
+          n.law_rhs = v->items[0];
+          n.law = law_form(n.kind, a.key);
+          check_law_inputs(n, a);
+        } else if (is_initial_key(n.kind, a.key)) {
+          // handled after the law is known
+        } else {
+          std::vector<std::string> keys = allowed_keys(n.kind);
+          std::string near = closest_name(a.key, keys);
+          diags_.error(a.loc, fmt::format("{} `{}` has no setting `{}`", el.kind, n.name, a.key),
+                       keys.empty() ? fmt::format("{} takes only a value: {} {} = ...", el.kind, el.kind, n.name)
+                       : near.empty() ? fmt::format("{} accepts {}", el.kind, fmt::join(keys, ", "))
+                                      : fmt::format("did you mean `{}`?", near));
+        }
+      }
+      if (!el.value && !has_law) {
+        diags_.error(n.loc, fmt::format("{} `{}` has no value or law", el.kind, n.name),
+                     law_hint(n.kind, n.name));
+        continue;
+      }
+      if (is_storage(n.kind)) lower_initial(n, el, plain);
+    }
+  }
+
+  bool check_value_shape(const GraphNode& n, const AstElement& el) {
+    const Value& v = n.value;
+    if (v.is_scalar()) return true;
+    bool ok = true;
+    if (is_two_port(n.kind)) ok = v.rows == n.dim2 && v.cols == n.dim;
+    else if (n.kind == NodeKind::Se || n.kind == NodeKind::Sf) ok = v.is_vector() && v.length() == n.dim;
+    else ok = v.rows == n.dim && v.cols == n.dim;
+    if (!ok)
+      diags_.error(el.value->loc, fmt::format("{} `{}` is {}, but its multibond has dimension {}", el.kind, n.name, v.shape(), n.dim),
+                   "the value's shape must match the multibond");
+    return ok;
+  }
+
+  static bool is_law_key(NodeKind k, const std::string& key) {
+    switch (k) {
+      case NodeKind::R: return key == "e" || key == "f";
+      case NodeKind::C: return key == "e";
+      case NodeKind::I: return key == "f";
+      default: return false;
+    }
+  }
+  static bool is_initial_key(NodeKind k, const std::string& key) {
+    if (k == NodeKind::I) return key == "p0" || key == "f0";
+    if (k == NodeKind::C) return key == "q0" || key == "e0";
+    return false;
+  }
+  static std::vector<std::string> allowed_keys(NodeKind k) {
+    switch (k) {
+      case NodeKind::R: return {"e", "f"};
+      case NodeKind::C: return {"e", "q0", "e0"};
+      case NodeKind::I: return {"f", "p0", "f0"};
+      default: return {};
+    }
+  }
+  static LawForm law_form(NodeKind k, const std::string& key) {
+    if (k == NodeKind::R) return key == "e" ? LawForm::EffortOfFlow : LawForm::FlowOfEffort;
+    if (k == NodeKind::C) return LawForm::EffortOfState;
+    return LawForm::FlowOfState;
+  }
+  static std::string law_hint(NodeKind k, const std::string& name) {
+    switch (k) {
+      case NodeKind::R: return fmt::format("write R {} = resistance, or R {} {{ e = expression of f }}", name, name);
+      case NodeKind::C: return fmt::format("write C {} = capacitance, or C {} {{ e = expression of q }}", name, name);
+      case NodeKind::I: return fmt::format("write I {} = inertia, or I {} {{ f = expression of p }}", name, name);
+      default: return fmt::format("write {} {} = value", node_kind_name(k), name);
+    }
+  }
+
+  /// A law may read its own input (f for e = phi(f), q for e = phi(q), ...) but not its output.
+  void check_law_inputs(const GraphNode& n, const AstAttr& a) {
+    std::unordered_set<int> vars;
+    collect_vars(n.law_rhs, vars);
+    const Bond& b = g_.bonds[static_cast<std::size_t>(n.bonds[0])];
+    int own_output = -1;
+    const char* out_name = "";
+    switch (n.law) {
+      case LawForm::EffortOfFlow: case LawForm::EffortOfState: own_output = b.effort_vars[0]; out_name = "e"; break;
+      case LawForm::FlowOfEffort: case LawForm::FlowOfState: own_output = b.flow_vars[0]; out_name = "f"; break;
+      default: break;
+    }
+    if (n.kind != NodeKind::R) {
+      int other = n.law == LawForm::EffortOfState ? b.flow_vars[0] : b.effort_vars[0];
+      if (vars.count(other))
+        diags_.error(a.value->loc, fmt::format("the law of `{}` must be a function of its state", n.name),
+                     n.kind == NodeKind::C ? "write C name { e = expression of q }" : "write I name { f = expression of p }");
+    }
+    if (own_output >= 0 && vars.count(own_output))
+      diags_.error(a.value->loc, fmt::format("the law `{} = ...` of `{}` refers to `{}` itself", out_name, n.name, out_name),
+                   "the right-hand side may use the element's input, parameters, time and signals");
+  }
+
+  void lower_initial(GraphNode& n, const AstElement& el, const NameLookup& lookup) {
+    n.initial = Value{n.dim, 1, std::vector<Expr>(static_cast<std::size_t>(n.dim), constant(0))};
+    for (const AstAttr& a : el.attrs) {
+      if (!is_initial_key(n.kind, a.key)) continue;
+      auto v = lower(*a.value, lookup, diags_);
+      if (!v) return;
+      if (!only_params(*v)) {
+        diags_.error(a.value->loc, "an initial value must be constant (numbers and parameters)", "");
+        return;
+      }
+      if (!(v->is_scalar() && n.dim == 1) && !(v->is_vector() && v->length() == n.dim)) {
+        diags_.error(a.value->loc, fmt::format("initial value is {}, but `{}` has dimension {}", v->shape(), n.name, n.dim), "");
+        return;
+      }
+      bool given_as_state = a.key == "p0" || a.key == "q0";
+      if (given_as_state) {
+        n.initial.items = v->items;
+        continue;
+      }
+      if (n.law != LawForm::Linear) {
+        diags_.error(a.loc, fmt::format("`{}` needs a linear element", a.key),
+                     fmt::format("give the initial state instead ({})", n.kind == NodeKind::I ? "p0" : "q0"));
+        return;
+      }
+      // p0 = I f0, q0 = C e0
+      for (int r = 0; r < n.dim; ++r) {
+        Expr s = constant(0);
+        for (int c = 0; c < n.dim; ++c) {
+          Expr m = n.value.is_scalar() ? (r == c ? n.value.items[0] : constant(0)) : n.value.at(r, c);
+          s = add(s, mul(m, v->items[static_cast<std::size_t>(c)]));
+        }
+        n.initial.items[static_cast<std::size_t>(r)] = s;
+      }
+    }
+  }
+
+  void lower_signals_and_outputs() {
+    for (const ResolvedExpr& s : m_.signals) {
+      auto v = lower(*s.expr, lookup_in(s.scope), diags_);
+      if (!v) continue;
+      if (!v->is_scalar()) {
+        diags_.error(s.expr->loc, fmt::format("signal `{}` is {}; signals are scalars", s.name, v->shape()),
+                     "index it, e.g. v[1], or declare one signal per component");
+        continue;
+      }
+      g_.signals.push_back({s.name, s.loc, signal_var_.at(s.name), v->items[0]});
+    }
+    for (const ResolvedExpr& o : m_.outputs) {
+      auto v = lower(*o.expr, lookup_in(o.scope), diags_);
+      if (!v) continue;
+      if (v->is_scalar()) {
+        g_.outputs.push_back({o.name, o.loc, v->items[0]});
+        continue;
+      }
+      for (int r = 0; r < v->rows; ++r)
+        for (int c = 0; c < v->cols; ++c) {
+          std::string col = v->cols == 1 ? fmt::format("{}[{}]", o.name, r + 1)
+                                         : fmt::format("{}[{},{}]", o.name, r + 1, c + 1);
+          g_.outputs.push_back({col, o.loc, v->at(r, c)});
+        }
+    }
+  }
+
+  const ResolvedModel& m_;
+  const SourceManager& sources_;
+  Diagnostics& diags_;
+  BondGraph g_;
+  std::map<std::string, int> signal_var_;
+};
+
+}  // namespace
+
+BondGraph build_graph(const ResolvedModel& model, const SourceManager& sources, Diagnostics& diags) {
+  Builder b(model, sources, diags);
+  return b.run();
+}
+
+}  // namespace mbgc::graph
+

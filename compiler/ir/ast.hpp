@@ -1,0 +1,117 @@
+// ir/ast.hpp — the syntax tree of a .mbg file, as written (no names resolved).
+// Produced by parse, consumed by resolve. Every node keeps its SourceLoc.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "ir/diagnostics.hpp"
+
+namespace mbgc::ir {
+
+struct AstExpr;
+using AstExprPtr = std::shared_ptr<const AstExpr>;
+
+struct AstExpr {
+  enum class Kind {
+    Number,  // number
+    Name,    // name: a dotted path, e.g. `rotor.p`, `m1.loop.f`, `t`, `pi`
+    Unary,   // op ('-' or '+') args[0]
+    Binary,  // args[0] op args[1], op in + - * / ^
+    Call,    // name(args...)
+    Index,   // args[0] [ args[1] (, args[2]) ]   1-based
+    List,    // [ args... ]  (a vector; a list of lists is a matrix)
+  };
+  Kind kind = Kind::Number;
+  SourceLoc loc;
+  double number = 0.0;
+  std::string name;
+  char op = 0;
+  std::vector<AstExprPtr> args;
+};
+
+/// `key = value` inside an element's { } or the simulate { } block.
+struct AstAttr {
+  std::string key;
+  SourceLoc loc;
+  AstExprPtr value;
+};
+
+/// An end of a bond: `name` or `name.port` (dotted path, resolved later).
+struct AstEndpoint {
+  std::string path;
+  SourceLoc loc;
+};
+
+struct AstModel { std::string name; SourceLoc loc; };
+struct AstImport { std::string path; SourceLoc loc; };
+struct AstParam { std::string name; SourceLoc loc; AstExprPtr value; };
+struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; };
+struct AstOutput { std::string name; SourceLoc loc; AstExprPtr value; };
+
+/// `Se supply = expr`, `R fr { e = c*f^2 }`, `C k = 1/k_s { q0 = 0.1 }`.
+struct AstElement {
+  std::string kind;   // Se Sf I C R TF GY MTF MGY
+  SourceLoc kind_loc;
+  std::string name;
+  SourceLoc loc;      // of the name
+  AstExprPtr value;   // may be null (nonlinear law given in attrs)
+  std::vector<AstAttr> attrs;
+};
+
+/// `1 loop [n] : a, b -> c, d` — a junction and, optionally, the bonds into
+/// (left of ->) and out of (right of ->) it.
+struct AstJunction {
+  char type = '0';
+  SourceLoc kind_loc;
+  std::string name;
+  SourceLoc loc;
+  std::optional<int> dim;
+  SourceLoc dim_loc;
+  std::vector<AstEndpoint> inputs;
+  std::vector<AstEndpoint> outputs;
+};
+
+/// `bond [name :] from -> to [n]`: power flows from `from` to `to`.
+struct AstBond {
+  std::string name;  // may be empty
+  SourceLoc loc;     // of the `bond` keyword
+  AstEndpoint from;
+  AstEndpoint to;
+  std::optional<int> dim;
+  SourceLoc dim_loc;
+};
+
+struct AstSimulate { SourceLoc loc; std::vector<AstAttr> settings; };
+
+struct AstComponent;
+/// `instance m1 = dc_motor(shaft = speed, V = 48)`
+struct AstInstance {
+  std::string name;
+  SourceLoc loc;
+  std::string component;
+  SourceLoc component_loc;
+  std::vector<AstAttr> args;  // port = endpoint (a Name expr) or param = expr
+};
+
+using AstStmt = std::variant<AstModel, AstImport, AstParam, AstSignal, AstOutput, AstElement,
+                             AstJunction, AstBond, AstSimulate, AstInstance,
+                             std::shared_ptr<AstComponent>>;
+
+/// `component name(port a, port b, param V = 60) { statements }`
+struct AstComponent {
+  std::string name;
+  SourceLoc loc;
+  std::vector<AstEndpoint> ports;  // port names
+  std::vector<AstParam> params;    // parameters with defaults
+  std::vector<AstStmt> body;
+};
+
+struct AstProgram {
+  std::vector<AstStmt> stmts;  // imports already spliced in by the driver
+};
+
+}  // namespace mbgc::ir

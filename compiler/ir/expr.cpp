@@ -1,0 +1,764 @@
+// ir/expr.cpp — see expr.hpp.
+//
+// Canonical forms produced by the smart constructors (other passes may rely on
+// them, the unit tests pin them down):
+//   * constants: -0.0 is stored as 0.0 and every NaN as the quiet NaN, so that
+//     structural equality of constants is bit equality;
+//   * a Neg never wraps a Const or another Neg;
+//   * signs float outward through * and /: (-a)*b, a*(-b), (-2)*a and a/(-2)
+//     become Neg(a*b), Neg(a*b), Neg(2*a) and Neg(a/2);
+//   * a constant factor of a product is on the left, and c1*(c2*x) is (c1*c2)*x;
+//   * a + (-b) is a - b, a - (-b) is a + b, also for negative constants b.
+#include "ir/expr.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+namespace mbgc::ir {
+namespace {
+
+// ---- hashing ----------------------------------------------------------------
+
+std::uint64_t mix64(std::uint64_t x) {  // splitmix64 finaliser
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  return x;
+}
+
+std::uint64_t combine(std::uint64_t h, std::uint64_t v) {
+  return mix64(h ^ (mix64(v) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2)));
+}
+
+Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn = Fn::Sin) {
+  auto n = std::make_shared<Node>();
+  n->op = op;
+  n->args = std::move(args);
+  std::uint64_t h = mix64(static_cast<std::uint64_t>(op) + 0x51afd7ed558ccdULL);
+  switch (op) {
+    case Op::Const:
+      n->value = value;
+      h = combine(h, std::bit_cast<std::uint64_t>(value));
+      break;
+    case Op::Param:
+    case Op::Var:
+      n->id = id;
+      h = combine(h, static_cast<std::uint64_t>(static_cast<std::int64_t>(id)));
+      break;
+    case Op::Call:
+      n->fn = fn;
+      h = combine(h, static_cast<std::uint64_t>(fn));
+      break;
+    default:
+      break;
+  }
+  for (const Expr& a : n->args) h = combine(h, a->hash);
+  n->hash = static_cast<std::size_t>(h);
+  return n;
+}
+
+Expr make1(Op op, const Expr& a) { return make(op, {a}); }
+Expr make2(Op op, const Expr& a, const Expr& b) { return make(op, {a, b}); }
+
+const Expr& zero() {
+  static const Expr z = make(Op::Const, {}, 0.0);
+  return z;
+}
+const Expr& one() {
+  static const Expr o = make(Op::Const, {}, 1.0);
+  return o;
+}
+
+bool cval(const Expr& e, double& v) {
+  if (e->op != Op::Const) return false;
+  v = e->value;
+  return true;
+}
+
+double eval_fn(Fn fn, const double* x) {
+  switch (fn) {
+    case Fn::Sin: return std::sin(x[0]);
+    case Fn::Cos: return std::cos(x[0]);
+    case Fn::Tan: return std::tan(x[0]);
+    case Fn::Asin: return std::asin(x[0]);
+    case Fn::Acos: return std::acos(x[0]);
+    case Fn::Atan: return std::atan(x[0]);
+    case Fn::Atan2: return std::atan2(x[0], x[1]);
+    case Fn::Sinh: return std::sinh(x[0]);
+    case Fn::Cosh: return std::cosh(x[0]);
+    case Fn::Tanh: return std::tanh(x[0]);
+    case Fn::Exp: return std::exp(x[0]);
+    case Fn::Log: return std::log(x[0]);
+    case Fn::Sqrt: return std::sqrt(x[0]);
+    case Fn::Abs: return std::fabs(x[0]);
+    case Fn::Sign: return x[0] > 0.0 ? 1.0 : (x[0] < 0.0 ? -1.0 : 0.0);
+    case Fn::Min: return std::fmin(x[0], x[1]);
+    case Fn::Max: return std::fmax(x[0], x[1]);
+    case Fn::Step: return x[0] >= 0.0 ? 1.0 : 0.0;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// ---- structural equality ----------------------------------------------------
+
+bool shallow_equal(const Node* a, const Node* b) {
+  if (a->hash != b->hash || a->op != b->op || a->args.size() != b->args.size()) return false;
+  switch (a->op) {
+    case Op::Const:
+      return std::bit_cast<std::uint64_t>(a->value) == std::bit_cast<std::uint64_t>(b->value);
+    case Op::Param:
+    case Op::Var:
+      return a->id == b->id;
+    case Op::Call:
+      return a->fn == b->fn;
+    default:
+      return true;
+  }
+}
+
+enum class Cmp { Equal, Different, OutOfBudget };
+
+// Plain recursion with a work budget: enough for ordinary trees, and no
+// allocation. Separately built DAGs with heavy sharing would make it
+// exponential, so past the budget we restart with a memo of proven pairs.
+Cmp equal_budget(const Node* a, const Node* b, long& budget) {
+  if (a == b) return Cmp::Equal;
+  if (!shallow_equal(a, b)) return Cmp::Different;
+  if (--budget < 0) return Cmp::OutOfBudget;
+  for (std::size_t i = 0; i < a->args.size(); ++i) {
+    Cmp c = equal_budget(a->args[i].get(), b->args[i].get(), budget);
+    if (c != Cmp::Equal) return c;
+  }
+  return Cmp::Equal;
+}
+
+struct PairHash {
+  std::size_t operator()(const std::pair<const Node*, const Node*>& p) const {
+    return static_cast<std::size_t>(combine(reinterpret_cast<std::uintptr_t>(p.first),
+                                            reinterpret_cast<std::uintptr_t>(p.second)));
+  }
+};
+using PairSet = std::unordered_set<std::pair<const Node*, const Node*>, PairHash>;
+
+bool equal_memo(const Node* a, const Node* b, PairSet& proven) {
+  if (a == b) return true;
+  if (!shallow_equal(a, b)) return false;
+  if (a->args.empty()) return true;
+  if (proven.count({a, b})) return true;
+  for (std::size_t i = 0; i < a->args.size(); ++i)
+    if (!equal_memo(a->args[i].get(), b->args[i].get(), proven)) return false;
+  proven.insert({a, b});
+  return true;
+}
+
+// ---- traversal helpers --------------------------------------------------------
+
+// Calls f on every distinct node (by pointer) of e; stops early when f returns false.
+template <class F>
+void visit_unique(const Expr& e, F&& f) {
+  std::unordered_set<const Node*> seen;
+  std::vector<const Node*> stack{e.get()};
+  while (!stack.empty()) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    if (!f(n)) return;
+    for (const Expr& a : n->args) stack.push_back(a.get());
+  }
+}
+
+// Rebuild e with new operands through the smart constructors; returns e itself
+// when nothing changed.
+Expr rebuild(const Expr& e, std::vector<Expr> args) {
+  bool same = true;
+  for (std::size_t i = 0; i < args.size(); ++i)
+    if (args[i] != e->args[i]) same = false;
+  if (same) return e;
+  switch (e->op) {
+    case Op::Neg: return neg(args[0]);
+    case Op::Add: return add(args[0], args[1]);
+    case Op::Sub: return sub(args[0], args[1]);
+    case Op::Mul: return mul(args[0], args[1]);
+    case Op::Div: return div(args[0], args[1]);
+    case Op::Pow: return pow(args[0], args[1]);
+    case Op::Call: return call(e->fn, std::move(args));
+    case Op::Der: return der(args[0]);
+    default: return e;  // leaves have no operands
+  }
+}
+
+class Rewriter {
+ public:
+  explicit Rewriter(const std::function<Expr(const Expr&)>& f) : f_(f) {}
+  Expr run(const Expr& e) {
+    auto it = memo_.find(e.get());
+    if (it != memo_.end()) return it->second;
+    Expr r = f_(e);
+    if (!r) {
+      std::vector<Expr> args;
+      args.reserve(e->args.size());
+      for (const Expr& a : e->args) args.push_back(run(a));
+      r = rebuild(e, std::move(args));
+    }
+    memo_.emplace(e.get(), r);
+    return r;
+  }
+
+ private:
+  const std::function<Expr(const Expr&)>& f_;
+  std::unordered_map<const Node*, Expr> memo_;
+};
+
+// ---- differentiation ------------------------------------------------------------
+
+class Differentiator {
+ public:
+  Differentiator(int id, bool wrt_time) : id_(id), wrt_time_(wrt_time) {}
+
+  Expr d(const Expr& e) {
+    auto it = memo_.find(e.get());
+    if (it != memo_.end()) return it->second;
+    Expr r = compute(e);
+    memo_.emplace(e.get(), r);
+    return r;
+  }
+
+ private:
+  Expr compute(const Expr& e) {
+    switch (e->op) {
+      case Op::Const:
+      case Op::Param:
+      case Op::Der:  // opaque
+        return zero();
+      case Op::Var:
+        return (!wrt_time_ && e->id == id_) ? one() : zero();
+      case Op::Time:
+        return wrt_time_ ? one() : zero();
+      case Op::Neg:
+        return neg(d(e->args[0]));
+      case Op::Add:
+        return add(d(e->args[0]), d(e->args[1]));
+      case Op::Sub:
+        return sub(d(e->args[0]), d(e->args[1]));
+      case Op::Mul: {
+        const Expr &a = e->args[0], &b = e->args[1];
+        return add(mul(d(a), b), mul(a, d(b)));
+      }
+      case Op::Div: {
+        const Expr &a = e->args[0], &b = e->args[1];
+        Expr da = d(a), db = d(b);
+        if (is_zero(db)) return div(da, b);
+        Expr b2 = pow(b, constant(2.0));
+        if (is_zero(da)) return neg(div(mul(a, db), b2));
+        return div(sub(mul(da, b), mul(a, db)), b2);
+      }
+      case Op::Pow: {
+        const Expr &a = e->args[0], &b = e->args[1];
+        Expr da = d(a), db = d(b);
+        if (is_zero(db)) {
+          if (is_zero(da)) return zero();
+          return mul(mul(b, pow(a, sub(b, one()))), da);
+        }
+        Expr log_a = call(Fn::Log, {a});
+        if (is_zero(da)) return mul(e, mul(db, log_a));
+        return mul(e, add(mul(db, log_a), div(mul(b, da), a)));
+      }
+      case Op::Call:
+        return call_derivative(e);
+    }
+    return zero();
+  }
+
+  Expr call_derivative(const Expr& e) {
+    const std::vector<Expr>& x = e->args;
+    switch (e->fn) {
+      case Fn::Atan2: {
+        const Expr &y = x[0], &xx = x[1];
+        Expr dy = d(y), dx = d(xx);
+        if (is_zero(dy) && is_zero(dx)) return zero();
+        return div(sub(mul(xx, dy), mul(y, dx)),
+                   add(pow(xx, constant(2.0)), pow(y, constant(2.0))));
+      }
+      case Fn::Min:
+      case Fn::Max: {
+        const Expr &a = x[0], &b = x[1];
+        Expr da = d(a), db = d(b);
+        if (is_zero(da) && is_zero(db)) return zero();
+        Expr s = e->fn == Fn::Min ? call(Fn::Step, {sub(b, a)}) : call(Fn::Step, {sub(a, b)});
+        return add(mul(s, da), mul(sub(one(), s), db));
+      }
+      default:
+        break;
+    }
+    const Expr& a = x[0];
+    Expr da = d(a);
+    if (is_zero(da)) return zero();
+    Expr two = constant(2.0);
+    Expr fp;
+    switch (e->fn) {
+      case Fn::Sin: fp = call(Fn::Cos, {a}); break;
+      case Fn::Cos: fp = neg(call(Fn::Sin, {a})); break;
+      case Fn::Tan: fp = add(one(), pow(e, two)); break;
+      case Fn::Asin: fp = div(one(), call(Fn::Sqrt, {sub(one(), pow(a, two))})); break;
+      case Fn::Acos: fp = neg(div(one(), call(Fn::Sqrt, {sub(one(), pow(a, two))}))); break;
+      case Fn::Atan: fp = div(one(), add(one(), pow(a, two))); break;
+      case Fn::Sinh: fp = call(Fn::Cosh, {a}); break;
+      case Fn::Cosh: fp = call(Fn::Sinh, {a}); break;
+      case Fn::Tanh: fp = sub(one(), pow(e, two)); break;
+      case Fn::Exp: fp = e; break;
+      case Fn::Log: return div(da, a);
+      case Fn::Sqrt: return div(da, mul(two, e));
+      case Fn::Abs: fp = call(Fn::Sign, {a}); break;
+      case Fn::Sign:
+      case Fn::Step: return zero();
+      case Fn::Atan2:
+      case Fn::Min:
+      case Fn::Max: return zero();  // handled above
+    }
+    return mul(fp, da);
+  }
+
+  int id_;
+  bool wrt_time_;
+  std::unordered_map<const Node*, Expr> memo_;
+};
+
+// ---- printing ----------------------------------------------------------------------
+
+enum Prec : int { kAdd = 1, kMul = 2, kUnary = 3, kPow = 4, kAtom = 5 };
+
+struct Printed {
+  std::string s;
+  int prec = kAtom;
+  bool neg_lead = false;  // text starts with a unary minus
+};
+
+class Printer {
+ public:
+  Printer(const Namer& names, bool cpp) : names_(names), cpp_(cpp) {}
+
+  Printed print(const Expr& e) {
+    if (!e) return {"<null>", kAtom, false};
+    switch (e->op) {
+      case Op::Const: return constant_text(e->value);
+      case Op::Param:
+        return {names_.param ? names_.param(e->id) : fmt::format("p{}", e->id), kAtom, false};
+      case Op::Var:
+        return {names_.var ? names_.var(e->id) : fmt::format("v{}", e->id), kAtom, false};
+      case Op::Time: return {names_.time, kAtom, false};
+      case Op::Neg: {
+        const Expr& x = e->args[0];
+        Printed px = print(x);
+        // -(a*b) == (-a)*b exactly, so print it as "-a*b" (a Mul-level text).
+        // Not when the product starts with a NaN: "-nan" would read as nan.
+        if ((x->op == Op::Mul || x->op == Op::Div) && px.prec == kMul && !px.neg_lead &&
+            !starts_with_nan(x))
+          return {"-" + px.s, kMul, true};
+        if (px.prec >= kUnary && !px.neg_lead) return {"-" + px.s, kUnary, true};
+        return {"-(" + px.s + ")", kUnary, true};
+      }
+      case Op::Add: return binary(e, kAdd, " + ");
+      case Op::Sub: return binary(e, kAdd, " - ");
+      case Op::Mul: return binary(e, kMul, cpp_ ? " * " : "*");
+      case Op::Div: return binary(e, kMul, cpp_ ? " / " : "/");
+      case Op::Pow: return cpp_ ? cpp_pow(e) : model_pow(e);
+      case Op::Call: return cpp_ ? cpp_call(e) : model_call(e);
+      case Op::Der:
+        if (cpp_) return {"/*der*/ MBGC_DER_NOT_REMOVED(" + print(e->args[0]).s + ")", kAtom, false};
+        return {"der(" + print(e->args[0]).s + ")", kAtom, false};
+    }
+    return {"<bad>", kAtom, false};
+  }
+
+ private:
+  static bool starts_with_nan(const Expr& product) {
+    const Node* n = product.get();
+    while (n->op == Op::Mul || n->op == Op::Div) n = n->args[0].get();
+    return n->op == Op::Const && std::isnan(n->value);
+  }
+
+  Printed constant_text(double v) const {
+    if (std::isnan(v))
+      return {cpp_ ? "std::numeric_limits<double>::quiet_NaN()" : "nan", kAtom, false};
+    if (std::isinf(v)) {
+      std::string inf = cpp_ ? "std::numeric_limits<double>::infinity()" : "inf";
+      if (v > 0) return {inf, kAtom, false};
+      return {"-" + inf, kUnary, true};
+    }
+    std::string s = fmt::format("{}", v);
+    if (cpp_ && s.find_first_of(".eE") == std::string::npos) s += ".0";
+    if (v < 0) return {s, kUnary, true};
+    return {s, kAtom, false};
+  }
+
+  // Left-associative binary operators: the right operand is parenthesised at
+  // equal precedence (a - (b - c), a/(b*c), also a + (b + c) to keep the tree).
+  Printed binary(const Expr& e, int p, const char* sep) {
+    Printed l = print(e->args[0]);
+    Printed r = print(e->args[1]);
+    bool lp = l.prec < p;
+    bool rp = r.prec <= p || r.neg_lead;
+    std::string s = lp ? "(" + l.s + ")" : std::move(l.s);
+    s += sep;
+    s += rp ? "(" + r.s + ")" : r.s;
+    return {std::move(s), p, !lp && l.neg_lead};
+  }
+
+  // ^ is right-associative and binds tighter than unary minus.
+  Printed model_pow(const Expr& e) {
+    Printed l = print(e->args[0]);
+    Printed r = print(e->args[1]);
+    bool lp = l.prec <= kPow || l.neg_lead;
+    bool rp = r.prec < kPow || r.neg_lead;
+    std::string s = lp ? "(" + l.s + ")" : std::move(l.s);
+    s += "^";
+    s += rp ? "(" + r.s + ")" : r.s;
+    return {std::move(s), kPow, false};
+  }
+
+  Printed cpp_pow(const Expr& e) {
+    const Expr &a = e->args[0], &b = e->args[1];
+    double c = 0.0;
+    bool leaf = a->op == Op::Var || a->op == Op::Param || a->op == Op::Time;
+    if (leaf && cval(b, c) && (c == 2.0 || c == 3.0)) {
+      std::string x = print(a).s;
+      return {c == 2.0 ? "(" + x + "*" + x + ")" : "(" + x + "*" + x + "*" + x + ")", kAtom, false};
+    }
+    return {"std::pow(" + print(a).s + ", " + print(b).s + ")", kAtom, false};
+  }
+
+  std::string arg_list(const Expr& e) {
+    std::string s;
+    for (std::size_t i = 0; i < e->args.size(); ++i) {
+      if (i) s += ", ";
+      s += print(e->args[i]).s;
+    }
+    return s;
+  }
+
+  Printed model_call(const Expr& e) {
+    return {std::string(fn_name(e->fn)) + "(" + arg_list(e) + ")", kAtom, false};
+  }
+
+  Printed cpp_call(const Expr& e) {
+    const char* f = nullptr;
+    switch (e->fn) {
+      case Fn::Sign: {
+        std::string x = print(e->args[0]).s;
+        return {"((" + x + ") > 0.0 ? 1.0 : ((" + x + ") < 0.0 ? -1.0 : 0.0))", kAtom, false};
+      }
+      case Fn::Step:
+        return {"((" + print(e->args[0]).s + ") >= 0.0 ? 1.0 : 0.0)", kAtom, false};
+      case Fn::Abs: f = "std::fabs"; break;
+      case Fn::Min: f = "std::fmin"; break;
+      case Fn::Max: f = "std::fmax"; break;
+      default: break;
+    }
+    std::string name = f ? std::string(f) : "std::" + std::string(fn_name(e->fn));
+    return {name + "(" + arg_list(e) + ")", kAtom, false};
+  }
+
+  const Namer& names_;
+  bool cpp_;
+};
+
+}  // namespace
+
+// ---- construction ---------------------------------------------------------------
+
+Expr constant(double v) {
+  if (v == 0.0) return zero();  // also maps -0.0 to 0.0
+  if (v == 1.0) return one();
+  if (std::isnan(v)) v = std::numeric_limits<double>::quiet_NaN();
+  return make(Op::Const, {}, v);
+}
+
+Expr param(int id) { return make(Op::Param, {}, 0.0, id); }
+Expr var(int id) { return make(Op::Var, {}, 0.0, id); }
+
+Expr time() {
+  static const Expr t = make(Op::Time, {});
+  return t;
+}
+
+Expr neg(const Expr& a) {
+  double x = 0.0;
+  if (cval(a, x)) return constant(-x);
+  if (a->op == Op::Neg) return a->args[0];
+  return make1(Op::Neg, a);
+}
+
+Expr add(const Expr& a, const Expr& b) {
+  double x = 0.0, y = 0.0;
+  bool ca = cval(a, x), cb = cval(b, y);
+  if (ca && cb) return constant(x + y);
+  if (ca && x == 0.0) return b;
+  if (cb && y == 0.0) return a;
+  if (b->op == Op::Neg) return sub(a, b->args[0]);
+  if (cb && y < 0.0) return sub(a, constant(-y));
+  return make2(Op::Add, a, b);
+}
+
+Expr sub(const Expr& a, const Expr& b) {
+  double x = 0.0, y = 0.0;
+  bool ca = cval(a, x), cb = cval(b, y);
+  if (ca && cb) return constant(x - y);
+  if (cb && y == 0.0) return a;
+  if (ca && x == 0.0) return neg(b);
+  if (equal(a, b)) return zero();
+  if (b->op == Op::Neg) return add(a, b->args[0]);
+  if (cb && y < 0.0) return add(a, constant(-y));
+  return make2(Op::Sub, a, b);
+}
+
+Expr mul(const Expr& a, const Expr& b) {
+  double x = 0.0, y = 0.0;
+  bool ca = cval(a, x), cb = cval(b, y);
+  if (ca && cb) return constant(x * y);
+  if ((ca && x == 0.0) || (cb && y == 0.0)) return zero();
+  if (ca && x == 1.0) return b;
+  if (cb && y == 1.0) return a;
+  bool na = a->op == Op::Neg, nb = b->op == Op::Neg;
+  if (na && nb) return mul(a->args[0], b->args[0]);
+  if (na) return neg(mul(a->args[0], b));
+  if (nb) return neg(mul(a, b->args[0]));
+  if (ca && x < 0.0) return neg(mul(constant(-x), b));  // also a*(-1) = -a
+  if (cb && y < 0.0) return neg(mul(a, constant(-y)));
+  if (cb) return mul(b, a);  // constants to the left
+  if (ca && b->op == Op::Mul && b->args[0]->op == Op::Const)
+    return mul(constant(x * b->args[0]->value), b->args[1]);
+  return make2(Op::Mul, a, b);
+}
+
+Expr div(const Expr& a, const Expr& b) {
+  double x = 0.0, y = 0.0;
+  bool ca = cval(a, x), cb = cval(b, y);
+  const bool by_zero = cb && y == 0.0;  // never folded away (but signs still float)
+  if (ca && cb && !by_zero) return constant(x / y);
+  if (ca && x == 0.0 && !by_zero) return zero();
+  if (cb && y == 1.0) return a;
+  bool na = a->op == Op::Neg, nb = b->op == Op::Neg;
+  if (na && nb) return div(a->args[0], b->args[0]);
+  if (na) return neg(div(a->args[0], b));
+  if (nb) return neg(div(a, b->args[0]));
+  if (ca && x < 0.0) return neg(div(constant(-x), b));
+  if (cb && y < 0.0) return neg(div(a, constant(-y)));
+  return make2(Op::Div, a, b);
+}
+
+Expr pow(const Expr& a, const Expr& b) {
+  double x = 0.0, y = 0.0;
+  bool ca = cval(a, x), cb = cval(b, y);
+  if (ca && cb) return constant(std::pow(x, y));
+  if (cb && y == 1.0) return a;
+  if (cb && y == 0.0) return one();
+  return make2(Op::Pow, a, b);
+}
+
+Expr call(Fn fn, std::vector<Expr> args) {
+  if (static_cast<int>(args.size()) != arity(fn))
+    throw std::invalid_argument(fmt::format("mbgc::ir::call: {}() takes {} argument(s), got {}",
+                                            fn_name(fn), arity(fn), args.size()));
+  double x[2] = {0.0, 0.0};
+  bool all_const = true;
+  for (std::size_t i = 0; i < args.size(); ++i)
+    if (!cval(args[i], x[i])) all_const = false;
+  if (all_const) return constant(eval_fn(fn, x));
+  return make(Op::Call, std::move(args), 0.0, -1, fn);
+}
+
+Expr der(const Expr& a) {
+  if (a->op == Op::Const || a->op == Op::Param) return zero();
+  if (a->op == Op::Time) return one();
+  return make1(Op::Der, a);
+}
+
+int arity(Fn fn) {
+  switch (fn) {
+    case Fn::Atan2:
+    case Fn::Min:
+    case Fn::Max: return 2;
+    default: return 1;
+  }
+}
+
+const char* fn_name(Fn fn) {
+  switch (fn) {
+    case Fn::Sin: return "sin";
+    case Fn::Cos: return "cos";
+    case Fn::Tan: return "tan";
+    case Fn::Asin: return "asin";
+    case Fn::Acos: return "acos";
+    case Fn::Atan: return "atan";
+    case Fn::Atan2: return "atan2";
+    case Fn::Sinh: return "sinh";
+    case Fn::Cosh: return "cosh";
+    case Fn::Tanh: return "tanh";
+    case Fn::Exp: return "exp";
+    case Fn::Log: return "log";
+    case Fn::Sqrt: return "sqrt";
+    case Fn::Abs: return "abs";
+    case Fn::Sign: return "sign";
+    case Fn::Min: return "min";
+    case Fn::Max: return "max";
+    case Fn::Step: return "step";
+  }
+  return "?";
+}
+
+// ---- inspection --------------------------------------------------------------------
+
+bool is_const(const Expr& e, double* value) {
+  if (e->op != Op::Const) return false;
+  if (value) *value = e->value;
+  return true;
+}
+
+bool is_zero(const Expr& e) { return e->op == Op::Const && e->value == 0.0; }
+bool is_one(const Expr& e) { return e->op == Op::Const && e->value == 1.0; }
+
+bool equal(const Expr& a, const Expr& b) {
+  if (a == b) return true;
+  if (!a || !b) return false;
+  long budget = 4096;
+  Cmp c = equal_budget(a.get(), b.get(), budget);
+  if (c != Cmp::OutOfBudget) return c == Cmp::Equal;
+  PairSet proven;
+  return equal_memo(a.get(), b.get(), proven);
+}
+
+void collect_vars(const Expr& e, std::unordered_set<int>& out) {
+  visit_unique(e, [&](const Node* n) {
+    if (n->op == Op::Var) out.insert(n->id);
+    return true;
+  });
+}
+
+void collect_params(const Expr& e, std::unordered_set<int>& out) {
+  visit_unique(e, [&](const Node* n) {
+    if (n->op == Op::Param) out.insert(n->id);
+    return true;
+  });
+}
+
+bool depends_on_time(const Expr& e) {
+  bool found = false;
+  visit_unique(e, [&](const Node* n) {
+    if (n->op == Op::Time) found = true;
+    return !found;
+  });
+  return found;
+}
+
+bool contains_der(const Expr& e) {
+  bool found = false;
+  visit_unique(e, [&](const Node* n) {
+    if (n->op == Op::Der) found = true;
+    return !found;
+  });
+  return found;
+}
+
+namespace {
+std::size_t tree_size(const Node* n, std::unordered_map<const Node*, std::size_t>& memo) {
+  if (n->args.empty()) return 1;
+  auto it = memo.find(n);
+  if (it != memo.end()) return it->second;
+  constexpr std::size_t kMax = std::numeric_limits<std::size_t>::max();
+  std::size_t s = 1;
+  for (const Expr& a : n->args) {
+    std::size_t k = tree_size(a.get(), memo);
+    s = (k > kMax - s) ? kMax : s + k;
+  }
+  memo.emplace(n, s);
+  return s;
+}
+}  // namespace
+
+std::size_t size(const Expr& e) {
+  std::unordered_map<const Node*, std::size_t> memo;
+  return tree_size(e.get(), memo);
+}
+
+// ---- transformation ----------------------------------------------------------------
+
+Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var) {
+  if (by_var.empty()) return e;
+  std::function<Expr(const Expr&)> f = [&](const Expr& n) -> Expr {
+    if (n->op != Op::Var) return nullptr;
+    auto it = by_var.find(n->id);
+    return it == by_var.end() ? nullptr : it->second;
+  };
+  return Rewriter(f).run(e);
+}
+
+Expr rewrite(const Expr& e, const std::function<Expr(const Expr&)>& f) {
+  return Rewriter(f).run(e);
+}
+
+Expr diff_var(const Expr& e, int id) { return Differentiator(id, false).d(e); }
+Expr diff_time(const Expr& e) { return Differentiator(-1, true).d(e); }
+
+bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr>& coeff,
+               Expr& rest) {
+  const std::unordered_set<int> u(unknowns.begin(), unknowns.end());
+  std::unordered_map<const Node*, bool> memo;
+  // Does the subtree mention an unknown?
+  std::function<bool(const Node*)> mentions = [&](const Node* n) -> bool {
+    if (n->op == Op::Var) return u.count(n->id) > 0;
+    if (n->args.empty()) return false;
+    auto it = memo.find(n);
+    if (it != memo.end()) return it->second;
+    bool r = false;
+    for (const Expr& a : n->args)
+      if (mentions(a.get())) {
+        r = true;
+        break;
+      }
+    memo.emplace(n, r);
+    return r;
+  };
+  // Dependence the derivative does not see: Der is opaque, and step/sign have
+  // derivative 0 almost everywhere but are not affine.
+  bool hidden = false;
+  visit_unique(e, [&](const Node* n) {
+    bool opaque = n->op == Op::Der ||
+                  (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign));
+    if (opaque && mentions(n)) hidden = true;
+    return !hidden;
+  });
+  if (hidden) return false;
+
+  std::vector<Expr> c;
+  c.reserve(unknowns.size());
+  for (int id : unknowns) {
+    Expr ci = diff_var(e, id);
+    if (mentions(ci.get())) return false;
+    c.push_back(std::move(ci));
+  }
+  std::unordered_map<int, Expr> zeros;
+  for (int id : unknowns) zeros.emplace(id, zero());
+  rest = substitute(e, zeros);
+  coeff = std::move(c);
+  return true;
+}
+
+// ---- printing -----------------------------------------------------------------------
+
+std::string to_string(const Expr& e, const Namer& names) {
+  return Printer(names, false).print(e).s;
+}
+
+std::string to_cpp(const Expr& e, const Namer& names) {
+  return Printer(names, true).print(e).s;
+}
+
+}  // namespace mbgc::ir

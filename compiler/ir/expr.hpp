@@ -1,0 +1,145 @@
+// ir/expr.hpp — symbolic scalar expressions, the currency of every pass after
+// resolve. Immutable, shared trees; the smart constructors fold constants and
+// apply the trivial identities (x+0, x*1, x*0, --x, ...), so "constant folding"
+// happens everywhere by construction. Every node carries a structural hash so
+// equality and common-subexpression detection are cheap.
+//
+// Leaves refer to model quantities by integer id; the pass that owns the ids
+// (resolve for parameters, equations for variables) provides their names when
+// printing through a `Namer`.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace mbgc::ir {
+
+enum class Op {
+  Const,  // value
+  Param,  // id: a model parameter (known before the run, overridable)
+  Var,    // id: an equation-system variable (state, effort, flow, signal, ...)
+  Time,   // the simulation time t
+  Neg,    // -a
+  Add,    // a + b
+  Sub,    // a - b
+  Mul,    // a * b
+  Div,    // a / b
+  Pow,    // a ^ b
+  Call,   // fn(args...)
+  Der,    // d/dt of args[0] (derivative causality; removed by reduce)
+};
+
+enum class Fn {
+  Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Sinh, Cosh, Tanh,
+  Exp, Log, Sqrt, Abs, Sign, Min, Max,
+  Step,   // step(x): 1 if x >= 0 else 0   (the language's step(t0) is Step(t - t0))
+};
+
+struct Node;
+using Expr = std::shared_ptr<const Node>;
+
+struct Node {
+  Op op = Op::Const;
+  double value = 0.0;       // Const
+  int id = -1;              // Param, Var
+  Fn fn = Fn::Sin;          // Call
+  std::vector<Expr> args;   // operands (1 for Neg/Der, 2 for binary, n for Call)
+  std::size_t hash = 0;     // structural hash, set by the constructors
+};
+
+// ---- construction (all fold constants and simplify trivially) -------------
+// Canonical forms (listed at the top of expr.cpp): -0.0 is stored as 0.0; a Neg
+// never wraps a Const or a Neg; signs float out of * and / ((-2)*x is -(2*x));
+// constant factors go left and merge (3*(2*x) is 6*x); a + (-b) is a - b.
+// Division by a constant zero is never folded.
+Expr constant(double v);
+Expr param(int id);
+Expr var(int id);
+Expr time();
+Expr neg(const Expr& a);
+Expr add(const Expr& a, const Expr& b);
+Expr sub(const Expr& a, const Expr& b);
+Expr mul(const Expr& a, const Expr& b);
+Expr div(const Expr& a, const Expr& b);
+Expr pow(const Expr& a, const Expr& b);
+/// Throws std::invalid_argument if args.size() != arity(fn) (a caller bug).
+Expr call(Fn fn, std::vector<Expr> args);
+/// der(Const) = der(Param) = 0 and der(t) = 1; any other operand stays a Der node.
+Expr der(const Expr& a);
+
+/// Number of arguments a function takes (min == max for all but none today).
+int arity(Fn fn);
+/// Name as written in the language and in dumps ("sin", "atan2", "step", ...).
+const char* fn_name(Fn fn);
+
+// ---- inspection -------------------------------------------------------------
+bool is_const(const Expr& e, double* value = nullptr);
+bool is_zero(const Expr& e);
+bool is_one(const Expr& e);
+/// Structural equality (same tree shape, ops, ids and constant bits).
+bool equal(const Expr& a, const Expr& b);
+struct ExprHash { std::size_t operator()(const Expr& e) const { return e->hash; } };
+struct ExprEqual { bool operator()(const Expr& a, const Expr& b) const { return equal(a, b); } };
+
+/// Ids of the Var leaves in e (inside Der too).
+void collect_vars(const Expr& e, std::unordered_set<int>& out);
+void collect_params(const Expr& e, std::unordered_set<int>& out);
+bool depends_on_time(const Expr& e);
+bool contains_der(const Expr& e);
+/// Node count of the tree as printed: a shared sub-tree counts once per
+/// occurrence, so structurally equal trees have equal sizes (saturates at
+/// SIZE_MAX). For swell checks and CSE heuristics.
+std::size_t size(const Expr& e);
+
+// ---- transformation -----------------------------------------------------------
+/// Replace Var leaves by the mapped expressions (others unchanged).
+Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var);
+/// Generic rewrite: f is called on every node, top-down; it returns nullptr to
+/// keep the node (its operands are then visited and the node rebuilt through
+/// the smart constructors), else the replacement, which is not visited further.
+Expr rewrite(const Expr& e, const std::function<Expr(const Expr&)>& f);
+
+/// Partial derivative with respect to Var `id`. Step' = 0, Abs' = Sign, Sign' = 0,
+/// Min/Max' select the active branch with Step. Der nodes are treated as opaque
+/// (derivative 0, also when they contain the variable) — callers expand Der first.
+Expr diff_var(const Expr& e, int id);
+/// Partial derivative with respect to time (explicit t only; Var leaves and Der
+/// nodes have derivative 0).
+Expr diff_time(const Expr& e);
+
+/// If e is affine in the variables `unknowns`, write e = sum_j coeff[j]*x_j + rest
+/// with coefficients and rest free of the unknowns, and return true
+/// (coeff[j] = diff_var(e, unknowns[j]), rest = e with the unknowns set to 0).
+/// Returns false, leaving coeff and rest untouched, if a coefficient depends on
+/// an unknown, or an unknown occurs inside der(), step() or sign(). The ids in
+/// `unknowns` must be distinct.
+bool affine_in(const Expr& e, const std::vector<int>& unknowns,
+               std::vector<Expr>& coeff, Expr& rest);
+
+// ---- printing ------------------------------------------------------------------
+/// Names for leaves. `var` / `param` must return a valid identifier in the
+/// target syntax; `time` defaults to "t". An empty `var` / `param` prints
+/// "v<id>" / "p<id>".
+struct Namer {
+  std::function<std::string(int)> var;
+  std::function<std::string(int)> param;
+  std::string time = "t";
+};
+
+/// Model syntax (used by dumps and diagnostics): infix, minimal parentheses,
+/// shortest round-trip constants ("0.4", "1e-06").
+std::string to_string(const Expr& e, const Namer& names);
+/// C++ syntax: std::sin, std::pow, doubles always with a decimal point or
+/// exponent ("2.0", "0.4"), Step as ((x) >= 0.0 ? 1.0 : 0.0), min/max via
+/// std::fmin/std::fmax, Sign via a ternary, infinities and NaN through
+/// std::numeric_limits (the text needs <cmath> and <limits>). Der must have been
+/// removed: a leftover one prints as MBGC_DER_NOT_REMOVED(...), which does not
+/// compile.
+std::string to_cpp(const Expr& e, const Namer& names);
+
+}  // namespace mbgc::ir

@@ -1,0 +1,115 @@
+// ir/graph.hpp — the flattened multibond graph: nodes (elements, junctions),
+// directed bonds (power from `from` to `to`) with dimensions, and the scalar
+// variables every later pass refers to by id. Produced by graph, annotated by
+// causality, read by equations and emit.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/diagnostics.hpp"
+#include "ir/expr.hpp"
+#include "ir/value.hpp"
+
+namespace mbgc::ir {
+
+enum class NodeKind { Se, Sf, I, C, R, TF, GY, MTF, MGY, Zero, One };
+
+const char* node_kind_name(NodeKind k);  // "Se", ..., "0", "1"
+inline bool is_junction(NodeKind k) { return k == NodeKind::Zero || k == NodeKind::One; }
+inline bool is_two_port(NodeKind k) {
+  return k == NodeKind::TF || k == NodeKind::GY || k == NodeKind::MTF || k == NodeKind::MGY;
+}
+inline bool is_storage(NodeKind k) { return k == NodeKind::I || k == NodeKind::C; }
+
+/// How a one-port's constitutive law was given.
+enum class LawForm {
+  Linear,          // value is a scalar or n x n matrix (R: e = R f; I: p = I f; C: q = C e)
+  EffortOfFlow,    // R { e = phi(f) }
+  FlowOfEffort,    // R { f = phi(e) }
+  EffortOfState,   // C { e = phi(q) }
+  FlowOfState,     // I { f = phi(p) }
+  Source,          // Se/Sf: value is the imposed effort/flow (any expression)
+};
+
+struct GraphNode {
+  NodeKind kind = NodeKind::Zero;
+  std::string name;        // full path, e.g. "m1.rotor"
+  SourceLoc loc;           // of the declaration's name
+  int dim = 1;             // multibond dimension (two-ports: of port 1)
+  int dim2 = 1;            // two-ports: dimension of port 2
+  std::vector<int> bonds;  // attached bond indices (two-ports: [port1, port2])
+  // Constitutive law (elements only):
+  LawForm law = LawForm::Linear;
+  Value value;             // modulus / parameter / source value (shaped)
+  Expr law_rhs;            // nonlinear law right-hand side (in terms of the node's own variables)
+  Value initial;           // initial state (storage elements), shaped dim x 1
+  std::vector<int> state_vars;  // storage: one variable per component
+};
+
+struct Bond {
+  std::string name;   // user's name or "b<number>"
+  int number = 0;     // 1-based, in declaration order (what dumps and reports show)
+  SourceLoc loc;
+  int from = -1, to = -1;            // node indices; power flows from -> to
+  int dim = 1;
+  std::vector<int> effort_vars;      // one per component
+  std::vector<int> flow_vars;
+  // Causality (set by the causality pass): the node that computes the effort.
+  int effort_setter = -1;
+};
+
+enum class VarKind { Effort, Flow, State, Derivative, Signal, Auxiliary };
+
+struct Variable {
+  std::string name;   // model terms: "armature_l.p", "b3.e[2]", "der(rotor.p)"
+  VarKind kind = VarKind::Auxiliary;
+  SourceLoc loc;
+  int of = -1;        // Derivative: the state variable id; Effort/Flow: the bond index
+};
+
+struct Parameter {
+  std::string name;    // full path ("m1.V")
+  SourceLoc loc;
+  Expr value;          // in terms of earlier parameters (ordered: dependencies first)
+  bool literal = false;
+  double literal_value = 0.0;
+};
+
+struct Signal {
+  std::string name;
+  SourceLoc loc;
+  int var = -1;
+  Expr value;
+};
+
+struct Output {
+  std::string name;    // CSV column ("omega", or "v[2]" for vector outputs)
+  SourceLoc loc;
+  Expr value;
+};
+
+struct SimSettings {
+  std::optional<double> t_end, interval, rtol, atol, step;
+  std::optional<std::string> solver;
+};
+
+struct BondGraph {
+  std::string model_name;
+  std::string source_file;
+  std::vector<Parameter> params;
+  std::vector<GraphNode> nodes;
+  std::vector<Bond> bonds;
+  std::vector<Variable> vars;
+  std::vector<Signal> signals;
+  std::vector<Output> outputs;
+  SimSettings settings;
+
+  int add_var(std::string name, VarKind kind, SourceLoc loc, int of = -1) {
+    vars.push_back({std::move(name), kind, loc, of});
+    return static_cast<int>(vars.size()) - 1;
+  }
+};
+
+}  // namespace mbgc::ir

@@ -1,0 +1,243 @@
+#include "ir/print.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+namespace mbgc::ir {
+
+Namer model_namer(const BondGraph& g) {
+  Namer n;
+  n.var = [&g](int id) { return g.vars[static_cast<std::size_t>(id)].name; };
+  n.param = [&g](int id) { return g.params[static_cast<std::size_t>(id)].name; };
+  return n;
+}
+
+// ---- AST ---------------------------------------------------------------------------
+static std::string ast_expr(const AstExpr& e) {
+  switch (e.kind) {
+    case AstExpr::Kind::Number: return fmt::format("{}", e.number);
+    case AstExpr::Kind::Name: return e.name;
+    case AstExpr::Kind::Unary: return fmt::format("({}{})", e.op, ast_expr(*e.args[0]));
+    case AstExpr::Kind::Binary: return fmt::format("({} {} {})", ast_expr(*e.args[0]), e.op, ast_expr(*e.args[1]));
+    case AstExpr::Kind::Call:
+    case AstExpr::Kind::List:
+    case AstExpr::Kind::Index: {
+      std::vector<std::string> parts;
+      std::size_t first = e.kind == AstExpr::Kind::Index ? 1 : 0;
+      for (std::size_t i = first; i < e.args.size(); ++i) parts.push_back(ast_expr(*e.args[i]));
+      if (e.kind == AstExpr::Kind::Call) return fmt::format("{}({})", e.name, fmt::join(parts, ", "));
+      if (e.kind == AstExpr::Kind::List) return fmt::format("[{}]", fmt::join(parts, ", "));
+      return fmt::format("{}[{}]", ast_expr(*e.args[0]), fmt::join(parts, ", "));
+    }
+  }
+  return "?";
+}
+
+static std::string attrs(const std::vector<AstAttr>& a) {
+  std::vector<std::string> parts;
+  for (const AstAttr& x : a) parts.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
+  return fmt::format("{{ {} }}", fmt::join(parts, "; "));
+}
+
+static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int indent) {
+  std::string pad(static_cast<std::size_t>(indent), ' ');
+  for (const AstStmt& s : stmts) {
+    std::visit(
+        [&](const auto& st) {
+          using T = std::decay_t<decltype(st)>;
+          if constexpr (std::is_same_v<T, AstModel>) out += fmt::format("{}model {}\n", pad, st.name);
+          else if constexpr (std::is_same_v<T, AstImport>) out += fmt::format("{}import \"{}\"\n", pad, st.path);
+          else if constexpr (std::is_same_v<T, AstParam>) out += fmt::format("{}param {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_same_v<T, AstSignal>) out += fmt::format("{}signal {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_same_v<T, AstOutput>) out += fmt::format("{}output {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_same_v<T, AstElement>) {
+            out += fmt::format("{}{} {}", pad, st.kind, st.name);
+            if (st.value) out += " = " + ast_expr(*st.value);
+            if (!st.attrs.empty()) out += " " + attrs(st.attrs);
+            out += "\n";
+          } else if constexpr (std::is_same_v<T, AstJunction>) {
+            std::vector<std::string> in, o;
+            for (const auto& e : st.inputs) in.push_back(e.path);
+            for (const auto& e : st.outputs) o.push_back(e.path);
+            out += fmt::format("{}{} {}{} : {} -> {}\n", pad, st.type, st.name, st.dim ? fmt::format(" [{}]", *st.dim) : "",
+                               fmt::join(in, ", "), fmt::join(o, ", "));
+          } else if constexpr (std::is_same_v<T, AstBond>) {
+            out += fmt::format("{}bond {}{} -> {}{}\n", pad, st.name.empty() ? "" : st.name + ": ", st.from.path, st.to.path,
+                               st.dim ? fmt::format(" [{}]", *st.dim) : "");
+          } else if constexpr (std::is_same_v<T, AstSimulate>) {
+            out += fmt::format("{}simulate {}\n", pad, attrs(st.settings));
+          } else if constexpr (std::is_same_v<T, AstInstance>) {
+            std::vector<std::string> a;
+            for (const AstAttr& x : st.args) a.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
+            out += fmt::format("{}instance {} = {}({})\n", pad, st.name, st.component, fmt::join(a, ", "));
+          } else {
+            std::vector<std::string> iface;
+            for (const auto& p : st->ports) iface.push_back("port " + p.path);
+            for (const auto& p : st->params)
+              iface.push_back(p.value ? fmt::format("param {} = {}", p.name, ast_expr(*p.value)) : "param " + p.name);
+            out += fmt::format("{}component {}({}) {{\n", pad, st->name, fmt::join(iface, ", "));
+            ast_stmts(out, st->body, indent + 2);
+            out += pad + "}\n";
+          }
+        },
+        s);
+  }
+}
+
+std::string print_ast(const AstProgram& program) {
+  std::string out;
+  ast_stmts(out, program.stmts, 0);
+  return out;
+}
+
+// ---- graph ----------------------------------------------------------------------------
+static std::string value_text(const Value& v, const Namer& n) {
+  if (v.items.empty()) return "";
+  if (v.is_scalar()) return to_string(v.items[0], n);
+  std::vector<std::string> rows;
+  for (int r = 0; r < v.rows; ++r) {
+    std::vector<std::string> cols;
+    for (int c = 0; c < v.cols; ++c) cols.push_back(to_string(v.at(r, c), n));
+    rows.push_back(v.cols == 1 ? cols[0] : fmt::format("[{}]", fmt::join(cols, ", ")));
+  }
+  return fmt::format("[{}]", fmt::join(rows, ", "));
+}
+
+static std::string law_text(const GraphNode& nd, const Namer& n) {
+  switch (nd.law) {
+    case LawForm::EffortOfFlow: return "e = " + to_string(nd.law_rhs, n);
+    case LawForm::FlowOfEffort: return "f = " + to_string(nd.law_rhs, n);
+    case LawForm::EffortOfState: return "e = " + to_string(nd.law_rhs, n);
+    case LawForm::FlowOfState: return "f = " + to_string(nd.law_rhs, n);
+    default: return value_text(nd.value, n);
+  }
+}
+
+std::string print_graph(const BondGraph& g) {
+  Namer n = model_namer(g);
+  std::string out = fmt::format("model {}: {} nodes, {} bonds\n", g.model_name, g.nodes.size(), g.bonds.size());
+  out += "nodes:\n";
+  for (const GraphNode& nd : g.nodes) {
+    std::string dim = is_two_port(nd.kind) ? fmt::format("[{}->{}]", nd.dim, nd.dim2) : fmt::format("[{}]", nd.dim);
+    out += fmt::format("  {:<3} {} {}", node_kind_name(nd.kind), nd.name, dim);
+    if (!is_junction(nd.kind)) out += "  " + law_text(nd, n);
+    out += "\n";
+  }
+  out += "bonds:\n";
+  for (const Bond& b : g.bonds)
+    out += fmt::format("  {:>3}  {} -> {}  [{}]  e: {}  f: {}\n", b.number, g.nodes[static_cast<std::size_t>(b.from)].name,
+                       g.nodes[static_cast<std::size_t>(b.to)].name, b.dim,
+                       g.vars[static_cast<std::size_t>(b.effort_vars[0])].name, g.vars[static_cast<std::size_t>(b.flow_vars[0])].name);
+  if (!g.signals.empty()) out += "signals:\n";
+  for (const Signal& s : g.signals) out += fmt::format("  {} = {}\n", s.name, to_string(s.value, n));
+  if (!g.outputs.empty()) out += "outputs:\n";
+  for (const Output& o : g.outputs) out += fmt::format("  {} = {}\n", o.name, to_string(o.value, n));
+  return out;
+}
+
+std::string print_graph_dot(const BondGraph& g, bool with_causality) {
+  std::string out = fmt::format("// {} graph of model {} (mbgc --dump=graph --format=dot | dot -Tsvg)\n",
+                                with_causality ? "causal multibond" : "multibond", g.model_name);
+  out += "digraph bondgraph {\n  rankdir=LR;\n  node [shape=plaintext, fontname=\"Helvetica\"];\n"
+         "  edge [fontname=\"Helvetica\", fontsize=10];\n";
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const GraphNode& nd = g.nodes[i];
+    std::string label = is_junction(nd.kind) ? fmt::format("{}\\n{}", node_kind_name(nd.kind), nd.name)
+                                             : fmt::format("{}: {}", node_kind_name(nd.kind), nd.name);
+    out += fmt::format("  n{} [label=\"{}\"];\n", i, label);
+  }
+  for (const Bond& b : g.bonds) {
+    // Half-arrow head at `to` (power direction); the causal stroke (a bar,
+    // "tee") at the end that receives the effort, i.e. not the effort setter.
+    std::string label = b.dim > 1 ? fmt::format("{} [{}]", b.number, b.dim) : std::to_string(b.number);
+    std::string attrs = fmt::format("label=\"{}\", arrowhead=lvee", label);
+    if (b.dim > 1) attrs += ", penwidth=2.5, color=\"black:white:black\"";
+    if (with_causality && b.effort_setter >= 0) {
+      bool stroke_at_to = b.effort_setter == b.from;
+      attrs += stroke_at_to ? ", arrowhead=\"teelvee\"" : ", dir=both, arrowtail=tee";
+    }
+    out += fmt::format("  n{} -> n{} [{}];\n", b.from, b.to, attrs);
+  }
+  out += "}\n";
+  return out;
+}
+
+// ---- causality ---------------------------------------------------------------------------
+std::string print_causality(const CausalGraph& c) {
+  const BondGraph& g = c.graph;
+  std::string out = fmt::format("causality of model {} (SCAP)\n", g.model_name);
+  out += "bonds (stroke at the end that receives the effort):\n";
+  for (const Bond& b : g.bonds) {
+    std::string setter = b.effort_setter >= 0 ? g.nodes[static_cast<std::size_t>(b.effort_setter)].name : "?";
+    int receiver = b.effort_setter == b.from ? b.to : b.from;
+    out += fmt::format("  {:>3}  {} -> {}  effort from {}, stroke at {}\n", b.number, g.nodes[static_cast<std::size_t>(b.from)].name,
+                       g.nodes[static_cast<std::size_t>(b.to)].name, setter,
+                       b.effort_setter >= 0 ? g.nodes[static_cast<std::size_t>(receiver)].name : "?");
+  }
+  out += "procedure:\n";
+  for (const std::string& s : c.report.steps) out += "  " + s + "\n";
+  out += fmt::format("report:\n  states ({}):", c.report.integral.size());
+  for (int n : c.report.integral) {
+    const GraphNode& nd = g.nodes[static_cast<std::size_t>(n)];
+    out += fmt::format(" {}.{}", nd.name, nd.kind == NodeKind::I ? "p" : "q");
+  }
+  out += fmt::format("\n  derivative causality ({}):", c.report.derivative.size());
+  for (int n : c.report.derivative) out += " " + g.nodes[static_cast<std::size_t>(n)].name;
+  out += fmt::format("\n  arbitrary choices ({}): ", c.report.chosen.size());
+  std::vector<std::string> chosen;
+  for (int b : c.report.chosen) chosen.push_back(fmt::format("bond {}", g.bonds[static_cast<std::size_t>(b)].number));
+  out += fmt::format("{}\n", fmt::join(chosen, ", "));
+  return out;
+}
+
+// ---- equations -----------------------------------------------------------------------------
+std::string print_equations(const EquationSystem& s) {
+  Namer n = model_namer(s.graph);
+  std::string out = fmt::format("equations of model {}: {} equations, {} states\n", s.graph.model_name, s.equations.size(), s.states.size());
+  for (const Equation& eq : s.equations)
+    out += fmt::format("  [{}]  {} = {}    ; {} (line {})\n", s.graph.vars[static_cast<std::size_t>(eq.unknown)].name,
+                       to_string(eq.lhs, n), to_string(eq.rhs, n), eq.origin, eq.loc.line);
+  return out;
+}
+
+// ---- reduced ---------------------------------------------------------------------------------
+std::string print_reduced(const ReducedSystem& s) {
+  const BondGraph& g = s.graph;
+  Namer n = model_namer(g);
+  std::string out = fmt::format("reduced model {}: {} states, {} assignments{}\n", g.model_name, s.states.size(),
+                                s.assignments.size(), s.dae ? fmt::format(", DAE with {} algebraic unknowns", s.algebraic.size()) : ", ODE");
+  out += "reduction:\n";
+  for (const std::string& l : s.log) out += "  " + l + "\n";
+  if (!s.derivative_causality.empty()) out += "derivative causality:\n";
+  for (const std::string& l : s.derivative_causality) out += "  " + l + "\n";
+  out += fmt::format("algebraic loops ({}):\n", s.loops.size());
+  for (const AlgebraicLoop& l : s.loops) {
+    std::vector<std::string> vars, bonds;
+    for (int v : l.vars) vars.push_back(g.vars[static_cast<std::size_t>(v)].name);
+    for (int b : l.bonds) bonds.push_back(std::to_string(g.bonds[static_cast<std::size_t>(b)].number));
+    out += fmt::format("  bonds {}: unknowns {} — {}\n", fmt::join(bonds, ", "), fmt::join(vars, ", "), l.resolution);
+  }
+  out += "assignments (in order):\n";
+  for (std::size_t i = 0; i < s.assignments.size(); ++i) {
+    const Assignment& a = s.assignments[i];
+    bool d = std::find(s.for_derivative.begin(), s.for_derivative.end(), static_cast<int>(i)) != s.for_derivative.end();
+    bool o = std::find(s.for_outputs.begin(), s.for_outputs.end(), static_cast<int>(i)) != s.for_outputs.end();
+    out += fmt::format("  {} := {}    ; {}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, to_string(a.value, n), a.origin,
+                       d ? " [derivative]" : "", o ? " [outputs]" : "");
+  }
+  out += "states:\n";
+  for (std::size_t i = 0; i < s.states.size(); ++i) {
+    const StateVar& st = s.states[i];
+    out += fmt::format("  {}' = {}    (initial {})\n", g.vars[static_cast<std::size_t>(st.var)].name,
+                       to_string(s.state_derivative[i], n), to_string(st.initial, n));
+  }
+  if (s.dae) {
+    out += "residuals:\n";
+    for (const Residual& r : s.residuals) out += fmt::format("  0 = {}    ; {}\n", to_string(r.value, n), r.origin);
+  }
+  out += "outputs:\n";
+  for (const Output& o : g.outputs) out += fmt::format("  {} = {}\n", o.name, to_string(o.value, n));
+  return out;
+}
+
+}  // namespace mbgc::ir

@@ -1,0 +1,446 @@
+#include "reduce/reduce.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <functional>
+#include <map>
+#include <set>
+
+namespace mbgc::reduce {
+namespace {
+
+using namespace mbgc::ir;
+
+class Reducer {
+ public:
+  Reducer(EquationSystem& sys, ReducedSystem& out, Diagnostics& diags) : sys_(sys), out_(out), diags_(diags) {}
+
+  void run() {
+    out_.graph = std::move(sys_.graph);
+    out_.causality = std::move(sys_.causality);
+    out_.states = sys_.states;
+    eqs_ = std::move(sys_.equations);
+    for (const StateVar& s : out_.states) is_state_.insert(s.var);
+    if (!check_each_unknown_once()) return;
+    eliminate_aliases();
+    if (!expand_derivatives()) return;
+    sort_and_solve();
+    if (diags_.has_errors()) return;
+    slice();
+  }
+
+ private:
+  const Variable& v(int id) const { return out_.graph.vars[static_cast<std::size_t>(id)]; }
+
+  bool check_each_unknown_once() {
+    std::map<int, int> count;
+    for (const Equation& e : eqs_) ++count[e.unknown];
+    for (const auto& [var, c] : count) {
+      if (c > 1) {
+        diags_.error(v(var).loc, fmt::format("internal error: `{}` is computed by {} equations", v(var).name, c),
+                     "please report this model to the mbgc developers");
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // ---- 2. aliases -----------------------------------------------------------------
+  /// If e is ±var, the var id and sign.
+  static bool as_signed_var(const Expr& e, int* id, int* sign) {
+    if (e->op == Op::Var) { *id = e->id; *sign = 1; return true; }
+    if (e->op == Op::Neg && e->args[0]->op == Op::Var) { *id = e->args[0]->id; *sign = -1; return true; }
+    return false;
+  }
+
+  void eliminate_aliases() {
+    std::unordered_map<int, Expr> alias;
+    std::vector<Equation> kept;
+    std::function<Expr(const Expr&)> resolve = [&](const Expr& e) {
+      return rewrite(e, [&](const Expr& n) -> Expr {
+        if (n->op != Op::Var) return nullptr;
+        auto it = alias.find(n->id);
+        return it == alias.end() ? nullptr : resolve(it->second);
+      });
+    };
+    for (Equation& eq : eqs_) {
+      int a = -1, sa = 0, b = -1, sb = 0;
+      if (as_signed_var(eq.lhs, &a, &sa) && as_signed_var(eq.rhs, &b, &sb) && a != b &&
+          (eq.unknown == a || eq.unknown == b)) {
+        int unknown = eq.unknown, other = eq.unknown == a ? b : a;
+        // unknown = (sa*sb) * other
+        Expr target = resolve(sa * sb > 0 ? var(other) : neg(var(other)));
+        std::unordered_set<int> in_target;
+        collect_vars(target, in_target);
+        if (!in_target.count(unknown)) {
+          alias[unknown] = target;
+          ++aliases_;
+          continue;
+        }
+      }
+      kept.push_back(std::move(eq));
+    }
+    for (Equation& eq : kept) {
+      eq.lhs = resolve(eq.lhs);
+      eq.rhs = resolve(eq.rhs);
+    }
+    eqs_ = std::move(kept);
+    for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve(var(s.der)));
+    for (Output& o : out_.graph.outputs) o.value = resolve(o.value);
+    alias_ = std::move(alias);
+    out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
+  }
+
+  // ---- 1. derivative causality ------------------------------------------------------
+  /// Explicit solution of `unknown` from its equation, if it is affine in it.
+  static std::optional<Expr> solve_single(const Equation& eq) {
+    Expr r = sub(eq.lhs, eq.rhs);
+    std::vector<Expr> coeff;
+    Expr rest;
+    if (!affine_in(r, {eq.unknown}, coeff, rest) || is_zero(coeff[0])) return std::nullopt;
+    return div(neg(rest), coeff[0]);
+  }
+
+  /// `e` with every non-state variable replaced by its explicit solution.
+  std::optional<Expr> in_terms_of_states(const Expr& e, std::vector<int>& path) {
+    std::unordered_set<int> vars;
+    collect_vars(e, vars);
+    std::unordered_map<int, Expr> subst;
+    for (int id : vars) {
+      if (is_state_.count(id)) continue;
+      if (auto it = expanded_.find(id); it != expanded_.end()) {
+        subst[id] = it->second;
+        continue;
+      }
+      auto eq = eq_of_.find(id);
+      if (eq == eq_of_.end() || std::count(path.begin(), path.end(), id)) return std::nullopt;
+      auto sol = solve_single(eqs_[static_cast<std::size_t>(eq->second)]);
+      if (!sol || contains_der(*sol)) return std::nullopt;
+      path.push_back(id);
+      auto inner = in_terms_of_states(*sol, path);
+      path.pop_back();
+      if (!inner) return std::nullopt;
+      expanded_[id] = *inner;
+      subst[id] = *inner;
+    }
+    return substitute(e, subst);
+  }
+
+  /// d/dt of an expression in states and time: sum_i dX/dx_i * der(x_i) + dX/dt.
+  Expr time_derivative(const Expr& x) {
+    Expr d = diff_time(x);
+    std::unordered_set<int> vars;
+    collect_vars(x, vars);
+    for (const StateVar& s : out_.states)
+      if (vars.count(s.var)) d = add(d, mul(diff_var(x, s.var), var(s.der)));
+    return d;
+  }
+
+  bool expand_derivatives() {
+    for (std::size_t i = 0; i < eqs_.size(); ++i) eq_of_[eqs_[i].unknown] = static_cast<int>(i);
+    int expanded = 0;
+    for (Equation& eq : eqs_) {
+      if (!contains_der(eq.lhs) && !contains_der(eq.rhs)) continue;
+      bool ok = true;
+      auto expand = [&](const Expr& side) {
+        return rewrite(side, [&](const Expr& n) -> Expr {
+          if (n->op != Op::Der || !ok) return nullptr;
+          std::vector<int> path;
+          auto x = in_terms_of_states(n->args[0], path);
+          if (!x) {
+            ok = false;
+            return nullptr;
+          }
+          return time_derivative(*x);
+        });
+      };
+      eq.lhs = expand(eq.lhs);
+      eq.rhs = expand(eq.rhs);
+      if (!ok) {
+        diags_.error(eq.loc, fmt::format("cannot eliminate the derivative causality in `{}`", eq.origin),
+                     "the dependent storage's input comes through an algebraic loop or a nonlinear relation; "
+                     "break the rigid coupling with a stiff C or a small R");
+        return false;
+      }
+      ++expanded;
+      out_.derivative_causality.push_back(fmt::format("{}: state eliminated, derivative taken symbolically", eq.origin));
+    }
+    if (expanded)
+      out_.log.push_back(fmt::format("derivative causality: {} equation{} differentiated symbolically", expanded, expanded == 1 ? "" : "s"));
+    return true;
+  }
+
+  // ---- 3. sorting and algebraic loops -------------------------------------------------
+  void sort_and_solve() {
+    std::size_t n = eqs_.size();
+    eq_of_.clear();
+    for (std::size_t i = 0; i < n; ++i) eq_of_[eqs_[i].unknown] = static_cast<int>(i);
+    std::vector<std::vector<int>> deps(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::unordered_set<int> vars;
+      collect_vars(eqs_[i].lhs, vars);
+      collect_vars(eqs_[i].rhs, vars);
+      for (int id : vars) {
+        if (is_state_.count(id)) continue;
+        auto it = eq_of_.find(id);
+        if (it == eq_of_.end()) {
+          diags_.error(v(id).loc, fmt::format("internal error: nothing computes `{}`", v(id).name),
+                       "please report this model to the mbgc developers");
+          return;
+        }
+        deps[i].push_back(it->second);
+      }
+      std::sort(deps[i].begin(), deps[i].end());
+    }
+    // Tarjan's SCC, iterative; SCCs come out dependencies-first.
+    std::vector<int> index(n, -1), low(n, 0), stack;
+    std::vector<bool> on_stack(n, false);
+    int counter = 0;
+    std::vector<std::vector<int>> blocks;
+    for (std::size_t root = 0; root < n; ++root) {
+      if (index[root] >= 0) continue;
+      std::vector<std::pair<int, std::size_t>> call{{static_cast<int>(root), 0}};
+      index[root] = low[root] = counter++;
+      stack.push_back(static_cast<int>(root));
+      on_stack[root] = true;
+      while (!call.empty()) {
+        auto& [u, k] = call.back();
+        std::size_t uu = static_cast<std::size_t>(u);
+        if (k < deps[uu].size()) {
+          int w = deps[uu][k++];
+          std::size_t ww = static_cast<std::size_t>(w);
+          if (index[ww] < 0) {
+            index[ww] = low[ww] = counter++;
+            stack.push_back(w);
+            on_stack[ww] = true;
+            call.push_back({w, 0});
+          } else if (on_stack[ww]) {
+            low[uu] = std::min(low[uu], index[ww]);
+          }
+          continue;
+        }
+        if (low[uu] == index[uu]) {
+          std::vector<int> block;
+          int w;
+          do {
+            w = stack.back();
+            stack.pop_back();
+            on_stack[static_cast<std::size_t>(w)] = false;
+            block.push_back(w);
+          } while (w != u);
+          std::sort(block.begin(), block.end());
+          blocks.push_back(std::move(block));
+        }
+        int done = u;
+        call.pop_back();
+        if (!call.empty()) {
+          std::size_t parent = static_cast<std::size_t>(call.back().first);
+          low[parent] = std::min(low[parent], low[static_cast<std::size_t>(done)]);
+        }
+      }
+    }
+    for (const auto& block : blocks) solve_block(block);
+    if (out_.dae) finish_dae();
+    int linear = 0, nonlinear = 0;
+    for (const AlgebraicLoop& l : out_.loops) (l.linear ? linear : nonlinear)++;
+    out_.log.push_back(fmt::format("sorting: {} equations in {} blocks; {} linear algebraic loop{} solved symbolically, {} nonlinear left to IDA",
+                                   n, blocks.size(), linear, linear == 1 ? "" : "s", nonlinear));
+  }
+
+  void solve_block(const std::vector<int>& block) {
+    if (block.size() == 1) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
+      if (auto sol = solve_single(eq)) {
+        std::unordered_set<int> vars;
+        collect_vars(*sol, vars);
+        if (!vars.count(eq.unknown)) {
+          out_.assignments.push_back({eq.unknown, *sol, eq.loc, eq.origin});
+          return;
+        }
+      }
+    }
+    std::vector<int> unknowns;
+    for (int i : block) unknowns.push_back(eqs_[static_cast<std::size_t>(i)].unknown);
+    AlgebraicLoop loop;
+    loop.vars = unknowns;
+    for (int u : unknowns) {
+      const Variable& var_info = v(u);
+      if ((var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) &&
+          std::find(loop.bonds.begin(), loop.bonds.end(), var_info.of) == loop.bonds.end())
+        loop.bonds.push_back(var_info.of);
+    }
+    std::sort(loop.bonds.begin(), loop.bonds.end());
+    std::size_t n = block.size();
+    std::vector<std::vector<Expr>> a(n);
+    std::vector<Expr> b(n);
+    bool linear = true;
+    for (std::size_t i = 0; i < n && linear; ++i) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(block[i])];
+      Expr rest;
+      linear = affine_in(sub(eq.lhs, eq.rhs), unknowns, a[i], rest);
+      b[i] = neg(rest);
+    }
+    if (linear && gauss(block, unknowns, a, b)) {
+      loop.linear = true;
+      loop.resolution = "linear: solved symbolically (Gaussian elimination)";
+      out_.loops.push_back(loop);
+      return;
+    }
+    // Nonlinear (or singular) loop: hand it to IDA.
+    loop.linear = false;
+    loop.resolution = "nonlinear: left to IDA as a DAE (residuals)";
+    out_.loops.push_back(loop);
+    out_.dae = true;
+    for (int i : block) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(i)];
+      dae_block_eqs_.push_back(i);
+      dae_unknowns_.insert(eq.unknown);
+    }
+  }
+
+  bool gauss(const std::vector<int>& block, const std::vector<int>& unknowns, std::vector<std::vector<Expr>> a,
+             std::vector<Expr> b) {
+    std::size_t n = unknowns.size();
+    std::vector<std::size_t> row_of(n);  // pivot row for each column after elimination
+    for (std::size_t i = 0; i < n; ++i) row_of[i] = i;
+    for (std::size_t k = 0; k < n; ++k) {
+      std::size_t pivot = n;
+      for (std::size_t r = k; r < n; ++r) {
+        double c = 0;
+        if (is_const(a[r][k], &c) && c != 0) { pivot = r; break; }
+      }
+      if (pivot == n)
+        for (std::size_t r = k; r < n; ++r)
+          if (!is_zero(a[r][k])) { pivot = r; break; }
+      if (pivot == n) {
+        const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
+        diags_.error(eq.loc, fmt::format("singular algebraic loop: `{}` cannot be solved from the loop's equations", v(unknowns[k]).name),
+                     "the junction structure leaves this variable undetermined; check for a loop of junctions without an element");
+        return true;  // reported; do not fall back to a DAE
+      }
+      std::swap(a[k], a[pivot]);
+      std::swap(b[k], b[pivot]);
+      for (std::size_t r = k + 1; r < n; ++r) {
+        if (is_zero(a[r][k])) continue;
+        Expr factor = div(a[r][k], a[k][k]);
+        for (std::size_t c = k + 1; c < n; ++c) a[r][c] = sub(a[r][c], mul(factor, a[k][c]));
+        b[r] = sub(b[r], mul(factor, b[k]));
+        a[r][k] = constant(0);
+      }
+    }
+    for (std::size_t k = n; k-- > 0;) {
+      Expr s = b[k];
+      for (std::size_t c = k + 1; c < n; ++c) s = sub(s, mul(a[k][c], var(unknowns[c])));
+      const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
+      out_.assignments.push_back({unknowns[k], div(s, a[k][k]), eq.loc,
+                                  fmt::format("algebraic loop ({} unknowns), solved for {}", n, v(unknowns[k]).name)});
+    }
+    return true;
+  }
+
+  void finish_dae() {
+    // y = [states, algebraic]; a state's derivative inside a nonlinear loop is read from yp.
+    out_.derivative_unknowns.assign(out_.states.size(), -1);
+    std::map<int, std::size_t> state_of_der;
+    for (std::size_t i = 0; i < out_.states.size(); ++i) state_of_der[out_.states[i].der] = i;
+    std::vector<Residual> state_residuals(out_.states.size());
+    std::vector<bool> have(out_.states.size(), false);
+    std::vector<Residual> algebraic_residuals;
+    for (int i : dae_block_eqs_) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(i)];
+      Residual r{sub(eq.lhs, eq.rhs), eq.loc, eq.origin};
+      if (auto it = state_of_der.find(eq.unknown); it != state_of_der.end()) {
+        out_.derivative_unknowns[it->second] = eq.unknown;
+        state_residuals[it->second] = r;
+        have[it->second] = true;
+      } else {
+        out_.algebraic.push_back(eq.unknown);
+        algebraic_residuals.push_back(r);
+      }
+    }
+    for (std::size_t i = 0; i < out_.states.size(); ++i) {
+      if (have[i]) continue;
+      // yp_i - f_i(t, y), with yp_i a variable of its own (the der variable is computed).
+      const StateVar& s = out_.states[i];
+      int yp = out_.graph.add_var("yp(" + v(s.var).name + ")", VarKind::Derivative, v(s.var).loc, s.var);
+      out_.derivative_unknowns[i] = yp;
+      state_residuals[i] = Residual{sub(var(yp), out_.state_derivative[i]), v(s.var).loc,
+                                    fmt::format("der({}) from the integrator", v(s.var).name)};
+    }
+    out_.residuals = std::move(state_residuals);
+    for (Residual& r : algebraic_residuals) out_.residuals.push_back(std::move(r));
+  }
+
+  // ---- 4. dead equations ---------------------------------------------------------------
+  void slice() {
+    std::map<int, int> assignment_of;
+    for (std::size_t i = 0; i < out_.assignments.size(); ++i) assignment_of[out_.assignments[i].var] = static_cast<int>(i);
+    auto needed_by = [&](const std::vector<Expr>& roots) {
+      std::set<int> need;
+      std::vector<int> work;
+      auto visit = [&](const Expr& e) {
+        std::unordered_set<int> vars;
+        collect_vars(e, vars);
+        for (int id : vars) {
+          auto it = assignment_of.find(id);
+          if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
+        }
+      };
+      for (const Expr& r : roots) visit(r);
+      while (!work.empty()) {
+        int i = work.back();
+        work.pop_back();
+        visit(out_.assignments[static_cast<std::size_t>(i)].value);
+      }
+      return std::vector<int>(need.begin(), need.end());  // assignment order = sorted order
+    };
+    std::vector<Expr> deriv_roots = out_.state_derivative;
+    for (const Residual& r : out_.residuals) deriv_roots.push_back(r.value);
+    std::vector<Expr> output_roots;
+    for (const Output& o : out_.graph.outputs) output_roots.push_back(o.value);
+    out_.for_derivative = needed_by(deriv_roots);
+    if (out_.dae) {
+      // outputs may read anything the residual computes
+      for (const Residual& r : out_.residuals) output_roots.push_back(r.value);
+    }
+    out_.for_outputs = needed_by(output_roots);
+    std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
+    used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
+    // Drop what nobody needs; renumber the slices.
+    std::vector<Assignment> kept;
+    std::map<int, int> renumber;
+    for (std::size_t i = 0; i < out_.assignments.size(); ++i) {
+      if (!used.count(static_cast<int>(i))) continue;
+      renumber[static_cast<int>(i)] = static_cast<int>(kept.size());
+      kept.push_back(out_.assignments[i]);
+    }
+    std::size_t dropped = out_.assignments.size() - kept.size();
+    out_.assignments = std::move(kept);
+    for (int& i : out_.for_derivative) i = renumber.at(i);
+    for (int& i : out_.for_outputs) i = renumber.at(i);
+    out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
+  }
+
+  EquationSystem& sys_;
+  ReducedSystem& out_;
+  Diagnostics& diags_;
+  std::vector<Equation> eqs_;
+  std::unordered_set<int> is_state_;
+  std::unordered_map<int, Expr> alias_;
+  std::unordered_map<int, int> eq_of_;
+  std::unordered_map<int, Expr> expanded_;
+  std::vector<int> dae_block_eqs_;
+  std::unordered_set<int> dae_unknowns_;
+  int aliases_ = 0;
+};
+
+}  // namespace
+
+ReducedSystem reduce(EquationSystem system, Diagnostics& diags) {
+  ReducedSystem out;
+  Reducer r(system, out, diags);
+  r.run();
+  return out;
+}
+
+}  // namespace mbgc::reduce

@@ -1,0 +1,445 @@
+#include "sema/resolve.hpp"
+
+#include <fmt/format.h>
+#include <functional>
+#include <set>
+
+namespace mbgc::sema {
+namespace {
+
+using namespace mbgc::ir;
+
+NodeKind kind_of(const std::string& k) {
+  if (k == "Se") return NodeKind::Se;
+  if (k == "Sf") return NodeKind::Sf;
+  if (k == "I") return NodeKind::I;
+  if (k == "C") return NodeKind::C;
+  if (k == "R") return NodeKind::R;
+  if (k == "TF") return NodeKind::TF;
+  if (k == "GY") return NodeKind::GY;
+  if (k == "MTF") return NodeKind::MTF;
+  return NodeKind::MGY;
+}
+
+/// A parameter declared somewhere, not yet evaluated.
+struct PendingParam {
+  std::string full;
+  SourceLoc loc;
+  AstExprPtr expr;
+  int scope;  // scope its expression is evaluated in
+};
+
+/// A bond end as written, with the scope and port bindings it is read in.
+struct PendingEnd {
+  AstEndpoint ep;
+  int scope;
+};
+
+struct PendingBond {
+  std::string name;
+  SourceLoc loc;
+  PendingEnd from, to;
+  std::optional<int> dim;
+  SourceLoc dim_loc;
+};
+
+class Resolver {
+ public:
+  Resolver(Diagnostics& diags, ResolvedModel& out) : diags_(diags), m_(out) {}
+
+  void run(const AstProgram& prog) {
+    m_.scopes.push_back({"", ""});
+    port_bindings_.emplace_back();
+    for (const AstStmt& s : prog.stmts) {
+      if (auto* c = std::get_if<std::shared_ptr<AstComponent>>(&s)) {
+        const AstComponent& comp = **c;
+        if (components_.count(comp.name)) {
+          diags_.error(comp.loc, fmt::format("component `{}` is declared twice", comp.name),
+                       "rename one of them");
+          continue;
+        }
+        components_[comp.name] = *c;
+        m_.components.push_back(*c);
+      }
+    }
+    flatten(prog.stmts, 0, 0);
+    evaluate_params();
+    bind_bonds();
+  }
+
+ private:
+  // ---- flattening ----------------------------------------------------------------
+  bool claim_name(const std::string& full, const SourceLoc& loc, const char* what) {
+    auto it = declared_.find(full);
+    if (it != declared_.end()) {
+      auto& d = diags_.error(loc, fmt::format("`{}` is already declared", full),
+                             fmt::format("give this {} another name", what));
+      d.notes.push_back({it->second, "first declared here"});
+      return false;
+    }
+    declared_[full] = loc;
+    return true;
+  }
+
+  void flatten(const std::vector<AstStmt>& stmts, int scope, int depth) {
+    const std::string prefix = m_.scopes[static_cast<std::size_t>(scope)].prefix;
+    for (const AstStmt& s : stmts) {
+      std::visit(
+          [&](const auto& st) {
+            using T = std::decay_t<decltype(st)>;
+            if constexpr (std::is_same_v<T, AstModel>) {
+              if (m_.model_name.empty()) m_.model_name = st.name;
+            } else if constexpr (std::is_same_v<T, AstImport>) {
+              // spliced by parse
+            } else if constexpr (std::is_same_v<T, AstParam>) {
+              if (claim_name(prefix + st.name, st.loc, "parameter"))
+                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope});
+            } else if constexpr (std::is_same_v<T, AstSignal>) {
+              if (claim_name(prefix + st.name, st.loc, "signal"))
+                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope});
+            } else if constexpr (std::is_same_v<T, AstOutput>) {
+              if (claim_name("output " + prefix + st.name, st.loc, "output"))
+                m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope});
+            } else if constexpr (std::is_same_v<T, AstElement>) {
+              if (!claim_name(prefix + st.name, st.loc, "element")) return;
+              ResolvedNode n;
+              n.kind = kind_of(st.kind);
+              n.name = prefix + st.name;
+              n.loc = st.loc;
+              n.kind_loc = st.kind_loc;
+              n.scope = scope;
+              n.element = st;
+              add_node(std::move(n));
+            } else if constexpr (std::is_same_v<T, AstJunction>) {
+              if (!claim_name(prefix + st.name, st.loc, "junction")) return;
+              ResolvedNode n;
+              n.kind = st.type == '0' ? NodeKind::Zero : NodeKind::One;
+              n.name = prefix + st.name;
+              n.loc = st.loc;
+              n.kind_loc = st.kind_loc;
+              n.scope = scope;
+              n.dim = st.dim;
+              n.dim_loc = st.dim_loc;
+              add_node(std::move(n));
+              AstEndpoint self{st.name, st.loc};
+              for (const AstEndpoint& in : st.inputs)
+                bonds_.push_back({"", in.loc, {in, scope}, {self, scope}, std::nullopt, {}});
+              for (const AstEndpoint& out : st.outputs)
+                bonds_.push_back({"", out.loc, {self, scope}, {out, scope}, std::nullopt, {}});
+            } else if constexpr (std::is_same_v<T, AstBond>) {
+              std::string name = st.name.empty() ? "" : prefix + st.name;
+              if (!name.empty() && !claim_name(name, st.loc, "bond")) return;
+              bonds_.push_back({name, st.loc, {st.from, scope}, {st.to, scope}, st.dim, st.dim_loc});
+            } else if constexpr (std::is_same_v<T, AstSimulate>) {
+              if (scope != 0) {
+                diags_.error(st.loc, "`simulate` belongs at the top level, not inside a component",
+                             "move the simulate { } block to the model file's top level");
+                return;
+              }
+              read_settings(st);
+            } else if constexpr (std::is_same_v<T, AstInstance>) {
+              instantiate(st, scope, depth);
+            } else {
+              // components were collected up front; nested ones are rejected by the parser
+            }
+          },
+          s);
+    }
+  }
+
+  void add_node(ResolvedNode n) {
+    m_.node_index[n.name] = static_cast<int>(m_.nodes.size());
+    m_.nodes.push_back(std::move(n));
+  }
+
+  void instantiate(const AstInstance& in, int scope, int depth) {
+    const std::string prefix = m_.scopes[static_cast<std::size_t>(scope)].prefix;
+    auto it = components_.find(in.component);
+    if (it == components_.end()) {
+      std::vector<std::string> names;
+      for (const auto& [n, c] : components_) names.push_back(n);
+      std::string near = closest_name(in.component, names);
+      diags_.error(in.component_loc, fmt::format("unknown component `{}`", in.component),
+                   near.empty() ? "declare it with component name(port a, ...) { ... } or import its file"
+                                : fmt::format("did you mean `{}`?", near));
+      return;
+    }
+    const AstComponent& comp = *it->second;
+    if (depth > 32 || std::count(stack_.begin(), stack_.end(), comp.name)) {
+      diags_.error(in.component_loc, fmt::format("component `{}` instantiates itself", comp.name),
+                   "a component cannot contain an instance of itself, directly or through others");
+      return;
+    }
+    if (!claim_name(prefix + in.name, in.loc, "instance")) return;
+    int child = static_cast<int>(m_.scopes.size());
+    m_.scopes.push_back({prefix + in.name + ".", comp.name});
+    port_bindings_.emplace_back();
+    std::set<std::string> given;
+    for (const AstAttr& a : in.args) {
+      given.insert(a.key);
+      bool is_port = std::any_of(comp.ports.begin(), comp.ports.end(),
+                                 [&](const AstEndpoint& p) { return p.path == a.key; });
+      bool is_param = std::any_of(comp.params.begin(), comp.params.end(),
+                                  [&](const AstParam& p) { return p.name == a.key; });
+      if (is_port) {
+        if (a.value->kind != AstExpr::Kind::Name) {
+          diags_.error(a.value->loc, fmt::format("port `{}` must be connected to a junction or element", a.key),
+                       fmt::format("write {} = node_name", a.key));
+          continue;
+        }
+        port_bindings_[static_cast<std::size_t>(child)][a.key] = {{a.value->name, a.value->loc}, scope};
+      } else if (is_param) {
+        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, a.value, scope});
+        declared_[m_.scopes.back().prefix + a.key] = a.loc;
+      } else {
+        std::vector<std::string> names;
+        for (const auto& p : comp.ports) names.push_back(p.path);
+        for (const auto& p : comp.params) names.push_back(p.name);
+        std::string near = closest_name(a.key, names);
+        diags_.error(a.loc, fmt::format("component `{}` has no port or parameter `{}`", comp.name, a.key),
+                     near.empty() ? fmt::format("its interface is ({})", fmt::join(names, ", "))
+                                  : fmt::format("did you mean `{}`?", near));
+      }
+    }
+    for (const AstEndpoint& p : comp.ports) {
+      if (!given.count(p.path))
+        diags_.error(in.loc, fmt::format("port `{}` of component `{}` is not connected", p.path, comp.name),
+                     fmt::format("connect it: instance {} = {}(..., {} = some_junction)", in.name, comp.name, p.path));
+    }
+    for (const AstParam& p : comp.params) {
+      if (given.count(p.name)) continue;
+      if (!p.value) {
+        diags_.error(in.loc, fmt::format("parameter `{}` of component `{}` has no default and is not given", p.name, comp.name),
+                     fmt::format("write instance {} = {}(..., {} = value)", in.name, comp.name, p.name));
+        continue;
+      }
+      pending_params_.push_back({m_.scopes.back().prefix + p.name, p.loc, p.value, child});
+      declared_[m_.scopes.back().prefix + p.name] = p.loc;
+    }
+    stack_.push_back(comp.name);
+    flatten(comp.body, child, depth + 1);
+    stack_.pop_back();
+  }
+
+  void read_settings(const AstSimulate& sim) {
+    for (const AstAttr& a : sim.settings) {
+      if (a.key == "solver") {
+        static const std::set<std::string> solvers = {"rk4", "dopri5", "cvode", "ida"};
+        if (a.value->kind != AstExpr::Kind::Name || !solvers.count(a.value->name)) {
+          diags_.error(a.value->loc, "unknown solver", "choose one of rk4, dopri5, cvode, ida");
+          continue;
+        }
+        m_.settings.solver = a.value->name;
+        continue;
+      }
+      std::optional<double>* slot = nullptr;
+      if (a.key == "t_end") slot = &m_.settings.t_end;
+      else if (a.key == "interval") slot = &m_.settings.interval;
+      else if (a.key == "rtol") slot = &m_.settings.rtol;
+      else if (a.key == "atol") slot = &m_.settings.atol;
+      else if (a.key == "step") slot = &m_.settings.step;
+      if (!slot) {
+        std::string near = closest_name(a.key, {"t_end", "interval", "solver", "rtol", "atol", "step"});
+        diags_.error(a.loc, fmt::format("unknown simulation setting `{}`", a.key),
+                     near.empty() ? "settings are t_end, interval, solver, rtol, atol, step"
+                                  : fmt::format("did you mean `{}`?", near));
+        continue;
+      }
+      settings_.push_back({slot, a});
+    }
+  }
+
+  // ---- parameters --------------------------------------------------------------------
+  void evaluate_params() {
+    for (std::size_t i = 0; i < pending_params_.size(); ++i) param_by_name_[pending_params_[i].full] = i;
+    state_.assign(pending_params_.size(), 0);
+    for (std::size_t i = 0; i < pending_params_.size(); ++i) evaluate(i);
+    for (auto& [slot, attr] : settings_) {
+      auto v = lower(*attr.value, param_lookup(0), diags_);
+      if (!v) continue;
+      double c = 0;
+      if (!v->is_scalar() || !is_const(substitute_params(v->items[0]), &c)) {
+        diags_.error(attr.value->loc, fmt::format("`{}` must be a constant number", attr.key),
+                     "simulation settings may use numbers and parameters, not time or states");
+        continue;
+      }
+      if (!(c > 0)) {
+        diags_.error(attr.value->loc, fmt::format("`{}` must be positive", attr.key), "");
+        continue;
+      }
+      *slot = c;
+    }
+  }
+
+  /// Fold parameters to their current values (for settings, which are fixed at compile time).
+  Expr substitute_params(const Expr& e) {
+    return rewrite(e, [&](const Expr& n) -> Expr {
+      if (n->op != Op::Param) return nullptr;
+      return substitute_params(m_.params[static_cast<std::size_t>(n->id)].value);
+    });
+  }
+
+  NameLookup param_lookup(int scope) {
+    return [this, scope](const std::string& name, const SourceLoc& loc) -> std::optional<Value> {
+      return lookup_param(name, scope, loc);
+    };
+  }
+
+  std::optional<Value> lookup_param(const std::string& name, int scope, const SourceLoc& loc) {
+    std::vector<std::string> tries;
+    if (scope != 0) tries.push_back(m_.scopes[static_cast<std::size_t>(scope)].prefix + name);
+    tries.push_back(name);
+    for (const std::string& full : tries) {
+      auto it = param_by_name_.find(full);
+      if (it == param_by_name_.end()) continue;
+      if (!evaluate(it->second, &loc)) return std::nullopt;
+      return m_.param_values.at(full);
+    }
+    std::vector<std::string> names;
+    for (const auto& [n, i] : param_by_name_) names.push_back(n);
+    std::string near = closest_name(name, names);
+    if (m_.node_index.count(tries.front()) || m_.node_index.count(name) || name.find('.') != std::string::npos) {
+      diags_.error(loc, fmt::format("`{}` is not a parameter", name),
+                   "parameters and simulation settings may only use numbers and other parameters");
+    } else {
+      diags_.error(loc, fmt::format("unknown parameter `{}`", name),
+                   near.empty() ? "declare it with param name = value" : fmt::format("did you mean `{}`?", near));
+    }
+    return std::nullopt;
+  }
+
+  /// Evaluate pending parameter i (depth-first; a cycle is reported once).
+  bool evaluate(std::size_t i, const SourceLoc* used_at = nullptr) {
+    if (state_[i] == 2) return m_.param_values.count(pending_params_[i].full) > 0;
+    if (state_[i] == 1) {
+      if (!cycle_reported_) {
+        cycle_reported_ = true;
+        std::vector<std::string> chain;
+        for (std::size_t k : eval_stack_) chain.push_back(pending_params_[k].full);
+        auto pos = std::find(eval_stack_.begin(), eval_stack_.end(), i);
+        std::vector<std::string> cycle;
+        for (auto p = pos; p != eval_stack_.end(); ++p) cycle.push_back(pending_params_[*p].full);
+        cycle.push_back(pending_params_[i].full);
+        auto& d = diags_.error(pending_params_[i].loc,
+                               fmt::format("parameter cycle: {}", fmt::join(cycle, " -> ")),
+                               "a parameter cannot depend on itself; give one of them a value");
+        if (used_at) d.notes.push_back({*used_at, "the cycle closes here"});
+      }
+      return false;
+    }
+    state_[i] = 1;
+    eval_stack_.push_back(i);
+    const PendingParam& p = pending_params_[i];
+    auto v = lower(*p.expr, param_lookup(p.scope), diags_);
+    eval_stack_.pop_back();
+    state_[i] = 2;
+    if (!v) return false;
+    for (const Expr& item : v->items) {
+      if (depends_on_time(item)) {
+        diags_.error(p.expr->loc, fmt::format("parameter `{}` depends on time", p.full),
+                     "parameters are constant; use a signal for a time-varying quantity");
+        return false;
+      }
+    }
+    Value as_params = *v;
+    for (int k = 0; k < v->length(); ++k) {
+      std::string name = v->is_scalar() ? p.full
+                         : v->cols == 1 ? fmt::format("{}[{}]", p.full, k + 1)
+                                        : fmt::format("{}[{},{}]", p.full, k / v->cols + 1, k % v->cols + 1);
+      Parameter par;
+      par.name = name;
+      par.loc = p.loc;
+      par.value = v->items[static_cast<std::size_t>(k)];
+      par.literal = is_const(par.value, &par.literal_value);
+      m_.params.push_back(par);
+      as_params.items[static_cast<std::size_t>(k)] = param(static_cast<int>(m_.params.size()) - 1);
+    }
+    m_.param_values[p.full] = as_params;
+    return true;
+  }
+
+  // ---- bonds --------------------------------------------------------------------------
+  std::optional<ResolvedEnd> bind_end(const PendingEnd& end, int depth = 0) {
+    const Scope& sc = m_.scopes[static_cast<std::size_t>(end.scope)];
+    const std::string& path = end.ep.path;
+    std::string head = path.substr(0, path.find('.'));
+    auto& ports = port_bindings_[static_cast<std::size_t>(end.scope)];
+    if (auto p = ports.find(head); p != ports.end() && depth < 64) {
+      if (head != path) {
+        diags_.error(end.ep.loc, fmt::format("`{}` is a port; it has no parts", head), "connect to the port itself");
+        return std::nullopt;
+      }
+      auto bound = bind_end(p->second, depth + 1);
+      if (bound) bound->loc = end.ep.loc;
+      return bound;
+    }
+    std::string full = sc.prefix + path;
+    if (auto it = m_.node_index.find(full); it != m_.node_index.end()) return ResolvedEnd{it->second, 0, end.ep.loc};
+    auto dot = full.rfind('.');
+    if (dot != std::string::npos) {
+      std::string stem = full.substr(0, dot), port = full.substr(dot + 1);
+      if (auto it = m_.node_index.find(stem); it != m_.node_index.end()) {
+        if (!is_two_port(m_.nodes[static_cast<std::size_t>(it->second)].kind)) {
+          diags_.error(end.ep.loc, fmt::format("`{}` has no port `{}`", stem, port),
+                       "only two-ports (TF, GY, MTF, MGY) have ports p1 and p2; connect the element itself");
+          return std::nullopt;
+        }
+        if (port != "p1" && port != "p2") {
+          diags_.error(end.ep.loc, fmt::format("two-port `{}` has no port `{}`", stem, port),
+                       "two-ports have ports p1 (power in) and p2 (power out)");
+          return std::nullopt;
+        }
+        return ResolvedEnd{it->second, port == "p1" ? 1 : 2, end.ep.loc};
+      }
+    }
+    std::vector<std::string> names;
+    for (const auto& [n, i] : m_.node_index)
+      if (n.rfind(sc.prefix, 0) == 0) names.push_back(n.substr(sc.prefix.size()));
+    for (const auto& [n, b] : ports) names.push_back(n);
+    std::string near = closest_name(path, names);
+    diags_.error(end.ep.loc, fmt::format("bond to nowhere: no element or junction named `{}`", path),
+                 near.empty() ? "declare it, or fix the name" : fmt::format("did you mean `{}`?", near));
+    return std::nullopt;
+  }
+
+  void bind_bonds() {
+    for (const PendingBond& pb : bonds_) {
+      auto from = bind_end(pb.from);
+      auto to = bind_end(pb.to);
+      if (!from || !to) continue;
+      if (from->node == to->node) {
+        diags_.error(pb.loc, fmt::format("bond from `{}` to itself", m_.nodes[static_cast<std::size_t>(from->node)].name),
+                     "a bond connects two different nodes");
+        continue;
+      }
+      m_.bonds.push_back({pb.name, pb.loc, *from, *to, pb.dim, pb.dim_loc});
+    }
+  }
+
+  Diagnostics& diags_;
+  ResolvedModel& m_;
+  std::map<std::string, std::shared_ptr<const AstComponent>> components_;
+  std::map<std::string, SourceLoc> declared_;
+  std::vector<std::map<std::string, PendingEnd>> port_bindings_;  // per scope
+  std::vector<PendingParam> pending_params_;
+  std::map<std::string, std::size_t> param_by_name_;
+  std::vector<int> state_;
+  std::vector<std::size_t> eval_stack_;
+  bool cycle_reported_ = false;
+  std::vector<PendingBond> bonds_;
+  std::vector<std::string> stack_;
+  std::vector<std::pair<std::optional<double>*, AstAttr>> settings_;
+};
+
+}  // namespace
+
+ResolvedModel resolve(const AstProgram& program, const std::string& source_file, Diagnostics& diags) {
+  ResolvedModel m;
+  m.source_file = source_file;
+  Resolver r(diags, m);
+  r.run(program);
+  if (m.model_name.empty()) m.model_name = "model";
+  return m;
+}
+
+}  // namespace mbgc::sema
