@@ -79,7 +79,12 @@ class Scap {
       int b = node.bonds[0];
       if (g_.bonds[static_cast<std::size_t>(b)].effort_setter >= 0) continue;
       report_.chosen.push_back(b);
-      set_want(n, Want::Effort, fmt::format("R `{}`: resistance causality (a choice)", node.name));
+      // A nonlinear law is used in the form it was written (e = phi(f) or
+      // f = phi(e)); if the graph forces the other form, the law becomes an
+      // implicit equation (see reduce).
+      bool conductance = node.law == LawForm::FlowOfEffort;
+      set_want(n, conductance ? Want::Flow : Want::Effort,
+               fmt::format("R `{}`: {} causality (a choice)", node.name, conductance ? "conductance" : "resistance"));
       if (!propagate()) return;
     }
     // Step 4: whatever is still open.
@@ -98,11 +103,6 @@ class Scap {
   Want fixed_want(int n) const {
     const GraphNode& node = g_.nodes[static_cast<std::size_t>(n)];
     if (node.bonds.empty()) return Want::Either;
-    if (node.kind == NodeKind::R) {
-      if (node.law == LawForm::EffortOfFlow) return Want::Effort;
-      if (node.law == LawForm::FlowOfEffort) return Want::Flow;
-      return Want::Either;
-    }
     if (is_two_port(node.kind)) return node.dim != node.dim2 ? Want::Effort : Want::Either;
     return rule(node.kind).fixed;
   }

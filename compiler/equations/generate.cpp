@@ -134,12 +134,14 @@ class Generator {
     int s = sign(n, b);
     bool sets_e = sets_effort(g_, n, b);
     auto flow = [&](int k) { return signed_(s, f(b, k)); };
+    // A nonlinear law solved for the other variable is implicit; reduce hands it to IDA.
+    int unknown = sets_e ? e_id(b, 0) : f_id(b, 0);
     if (nd.law == LawForm::EffortOfFlow) {
-      emit(e(b, 0), nd.law_rhs, e_id(b, 0), nd.loc, label(nd, "e = law(f)"));
+      emit(e(b, 0), nd.law_rhs, unknown, nd.loc, label(nd, sets_e ? "e = law(f)" : "e = law(f), solved for f"));
       return;
     }
     if (nd.law == LawForm::FlowOfEffort) {
-      emit(flow(0), nd.law_rhs, f_id(b, 0), nd.loc, label(nd, "f = law(e)"));
+      emit(flow(0), nd.law_rhs, unknown, nd.loc, label(nd, sets_e ? "f = law(e), solved for e" : "f = law(e)"));
       return;
     }
     for (int k = 0; k < nd.dim; ++k)

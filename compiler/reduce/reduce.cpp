@@ -131,8 +131,9 @@ class Reducer {
     Expr d = diff_time(x);
     std::unordered_set<int> vars;
     collect_vars(x, vars);
-    for (const StateVar& s : out_.states)
-      if (vars.count(s.var)) d = add(d, mul(diff_var(x, s.var), var(s.der)));
+    // der(x_i) is whatever the integrator gets for state i (after alias elimination).
+    for (std::size_t i = 0; i < out_.states.size(); ++i)
+      if (vars.count(out_.states[i].var)) d = add(d, mul(diff_var(x, out_.states[i].var), out_.state_derivative[i]));
     return d;
   }
 
@@ -278,7 +279,7 @@ class Reducer {
       const Equation& eq = eqs_[static_cast<std::size_t>(block[i])];
       Expr rest;
       linear = affine_in(sub(eq.lhs, eq.rhs), unknowns, a[i], rest);
-      b[i] = neg(rest);
+      if (linear) b[i] = neg(rest);
     }
     if (linear && gauss(block, unknowns, a, b)) {
       loop.linear = true;
@@ -399,10 +400,6 @@ class Reducer {
     std::vector<Expr> output_roots;
     for (const Output& o : out_.graph.outputs) output_roots.push_back(o.value);
     out_.for_derivative = needed_by(deriv_roots);
-    if (out_.dae) {
-      // outputs may read anything the residual computes
-      for (const Residual& r : out_.residuals) output_roots.push_back(r.value);
-    }
     out_.for_outputs = needed_by(output_roots);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
     used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
