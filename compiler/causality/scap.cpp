@@ -161,8 +161,8 @@ class Scap {
     for (int b : bonds) nums.push_back(std::to_string(g_.bonds[static_cast<std::size_t>(b)].number));
     auto& d = diags_.error(
         node.loc,
-        fmt::format("causal conflict at {}-junction `{}`: bonds {} all impose {} on it", zero ? "0" : "1", node.name,
-                    fmt::join(nums, " and "), zero ? "effort" : "flow"),
+        fmt::format("causal conflict at {}-junction `{}`: bonds {} {} impose {} on it", zero ? "0" : "1", node.name,
+                    fmt::join(nums, " and "), nums.size() == 2 ? "both" : "all", zero ? "effort" : "flow"),
         zero ? "a 0-junction takes its effort from exactly one bond; two effort sources (or an effort source and a C in "
                "parallel) cannot both set it — remove one or put an R between them"
              : "a 1-junction takes its flow from exactly one bond; two flow sources (or a flow source and an I in "

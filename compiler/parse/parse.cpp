@@ -403,6 +403,11 @@ class Parser {
       return e;
     }
     if (t.kind == Tok::Ident) {
+      // `R load` here means the previous line's expression is unfinished.
+      bool starts_line = pos_ > 0 && toks_[pos_ - 1].loc.line != t.loc.line;
+      if (starts_line && (kKeywords.count(t.text) || kElementKinds.count(t.text)) && peek(1).kind == Tok::Ident)
+        fail(fmt::format("expected an expression, found the start of a statement (`{} {}`)", t.text, peek(1).text),
+             "the expression before it is incomplete");
       ir::AstEndpoint path = endpoint("");
       if (at(Tok::LParen)) {
         next();
@@ -454,7 +459,9 @@ class Parser {
 }  // namespace
 
 ir::AstProgram parse_source(const ir::SourceManager& sources, int file_id, ir::Diagnostics& diags) {
+  int errors_before = diags.error_count();
   std::vector<Token> toks = lex(sources, file_id, diags);
+  if (diags.error_count() > errors_before) return {};  // parsing around bad characters only adds noise
   Parser p(std::move(toks), diags);
   return p.program();
 }

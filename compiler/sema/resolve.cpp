@@ -202,6 +202,7 @@ class Resolver {
       }
     }
     for (const AstEndpoint& p : comp.ports) {
+      if (!given.count(p.path)) unconnected_ports_.insert(m_.scopes.back().prefix + p.path);
       if (!given.count(p.path))
         diags_.error(in.loc, fmt::format("port `{}` of component `{}` is not connected", p.path, comp.name),
                      fmt::format("connect it: instance {} = {}(..., {} = some_junction)", in.name, comp.name, p.path));
@@ -373,6 +374,7 @@ class Resolver {
       if (bound) bound->loc = end.ep.loc;
       return bound;
     }
+    if (unconnected_ports_.count(sc.prefix + head)) return std::nullopt;  // reported at the instance
     std::string full = sc.prefix + path;
     if (auto it = m_.node_index.find(full); it != m_.node_index.end()) return ResolvedEnd{it->second, 0, end.ep.loc};
     auto dot = full.rfind('.');
@@ -421,6 +423,7 @@ class Resolver {
   std::map<std::string, std::shared_ptr<const AstComponent>> components_;
   std::map<std::string, SourceLoc> declared_;
   std::vector<std::map<std::string, PendingEnd>> port_bindings_;  // per scope
+  std::set<std::string> unconnected_ports_;                      // "u1.b": reported once
   std::vector<PendingParam> pending_params_;
   std::map<std::string, std::size_t> param_by_name_;
   std::vector<int> state_;

@@ -1,0 +1,78 @@
+# run_golden.cmake — one golden test, run with `cmake -P`.
+#
+#   -DMBGC=<mbgc> -DDIR=<golden dir> -DNAME=<model name without .mbg> -DKIND=good|bad
+#
+# good: the generated C++ and every stage dump must equal the blessed files
+#       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot; mbgc must exit 0 and be
+#       deterministic (two runs, same bytes).
+# bad:  stderr must equal <NAME>.stderr and the exit status <NAME>.status;
+#       no output file may be written.
+# With the environment variable MBGC_BLESS=1 the expected files are rewritten
+# from the actual output instead (review the diff before committing).
+cmake_minimum_required(VERSION 3.20)
+
+set(bless "$ENV{MBGC_BLESS}")
+set(failures "")
+
+function(check expected_file actual)
+  if(bless STREQUAL "1")
+    file(WRITE ${DIR}/${expected_file} "${actual}")
+    return()
+  endif()
+  if(NOT EXISTS ${DIR}/${expected_file})
+    set(failures "${failures}\n  missing ${expected_file} (run with MBGC_BLESS=1 to create it)" PARENT_SCOPE)
+    return()
+  endif()
+  file(READ ${DIR}/${expected_file} expected)
+  if(NOT expected STREQUAL actual)
+    set(tmp ${CMAKE_CURRENT_BINARY_DIR}/golden-actual-${expected_file})
+    file(WRITE ${tmp} "${actual}")
+    execute_process(COMMAND diff -u ${DIR}/${expected_file} ${tmp} OUTPUT_VARIABLE d)
+    set(failures "${failures}\n  ${expected_file} differs:\n${d}" PARENT_SCOPE)
+  endif()
+endfunction()
+
+if(KIND STREQUAL "good")
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg WORKING_DIRECTORY ${DIR}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE cpp ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "mbgc failed on good model ${NAME}.mbg (status ${rc}):\n${err}")
+  endif()
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE cpp2)
+  if(NOT cpp STREQUAL cpp2)
+    message(FATAL_ERROR "mbgc is not deterministic on ${NAME}.mbg: two runs gave different C++")
+  endif()
+  check(${NAME}.cpp "${cpp}")
+  foreach(stage ast graph causality equations reduced)
+    execute_process(COMMAND ${MBGC} ${NAME}.mbg --dump=${stage} WORKING_DIRECTORY ${DIR}
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "mbgc --dump=${stage} failed on ${NAME}.mbg:\n${err}")
+    endif()
+    check(${NAME}.${stage}.txt "${out}")
+  endforeach()
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg --dump=graph --format=dot WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE dot)
+  check(${NAME}.dot "${dot}")
+elseif(KIND STREQUAL "bad")
+  set(out_file ${CMAKE_CURRENT_BINARY_DIR}/golden-bad-${NAME}.cpp)
+  file(REMOVE ${out_file})
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg -o ${out_file} WORKING_DIRECTORY ${DIR}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "mbgc accepted bad model ${NAME}.mbg")
+  endif()
+  if(NOT rc MATCHES "^[0-9]+$")
+    message(FATAL_ERROR "mbgc crashed on ${NAME}.mbg: ${rc}\n${err}")
+  endif()
+  if(EXISTS ${out_file})
+    message(FATAL_ERROR "mbgc wrote an output file for bad model ${NAME}.mbg")
+  endif()
+  check(${NAME}.stderr "${err}")
+  check(${NAME}.status "${rc}\n")
+else()
+  message(FATAL_ERROR "KIND must be good or bad")
+endif()
+
+if(failures)
+  message(FATAL_ERROR "golden test ${KIND}/${NAME} failed:${failures}")
+endif()
