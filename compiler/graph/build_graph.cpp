@@ -107,6 +107,17 @@ class Builder {
       attach(index, rb.from, /*outgoing=*/true);
       attach(index, rb.to, /*outgoing=*/false);
     }
+    std::map<std::pair<int, int>, int> seen_pair;
+    for (const Bond& b : g_.bonds) {
+      auto key = std::minmax(b.from, b.to);
+      auto [it, fresh] = seen_pair.emplace(key, b.number);
+      if (!fresh) {
+        auto& d = diags_.warning(b.loc, fmt::format("a second bond between `{}` and `{}`", g_.nodes[static_cast<std::size_t>(b.from)].name,
+                                                    g_.nodes[static_cast<std::size_t>(b.to)].name),
+                                 "a junction's bond list already connects them; list each bond once");
+        d.notes.push_back({g_.bonds[static_cast<std::size_t>(it->second - 1)].loc, fmt::format("bond {} is here", it->second)});
+      }
+    }
     for (std::size_t i = 0; i < g_.nodes.size(); ++i) {
       const GraphNode& n = g_.nodes[i];
       if (is_junction(n.kind)) {

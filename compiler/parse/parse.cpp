@@ -458,6 +458,9 @@ class Parser {
 
 }  // namespace
 
+const std::set<std::string>& statement_keywords() { return kKeywords; }
+const std::set<std::string>& element_kinds() { return kElementKinds; }
+
 ir::AstProgram parse_source(const ir::SourceManager& sources, int file_id, ir::Diagnostics& diags) {
   int errors_before = diags.error_count();
   std::vector<Token> toks = lex(sources, file_id, diags);

@@ -5,12 +5,18 @@
 // importing file, each file once, cycles diagnosed).
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
 
 namespace mbgc::parse {
+
+/// The statement keywords and element kinds the parser knows (grammar/mbg.ebnf
+/// lists the same; tests/unit/grammar_test.cpp keeps them in sync).
+const std::set<std::string>& statement_keywords();
+const std::set<std::string>& element_kinds();
 
 /// Parse the already-registered source file `file_id`.
 ir::AstProgram parse_source(const ir::SourceManager& sources, int file_id, ir::Diagnostics& diags);
