@@ -1,0 +1,84 @@
+#include "guard.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <exception>
+
+namespace mbgrt::detail {
+
+namespace {
+
+const char* value_word(double v) {
+  if (std::isnan(v)) return "NaN";
+  return v > 0 ? "+Inf" : "-Inf";
+}
+
+}  // namespace
+
+GuardedModel::GuardedModel(Model& model)
+    : model_(model), n_(model.size()), dae_(model.is_dae()), ids_(n_, 1.0) {
+  if (dae_) model_.differential_ids(ids_.data());
+}
+
+std::size_t GuardedModel::first_non_finite(const double* v) const {
+  for (std::size_t i = 0; i < n_; ++i)
+    if (!std::isfinite(v[i])) return i;
+  return n_;
+}
+
+int GuardedModel::record(double t, BlameSite site, std::size_t index, double value,
+                         std::string detail) {
+  if (!blame_) blame_ = Blame{t, site, index, value, std::move(detail)};
+  return -1;
+}
+
+int GuardedModel::derivative(double t, const double* y, double* ydot) {
+  // A non-finite input means an earlier step already went wrong; blaming the
+  // state itself points the user at the real culprit, not at its consumers.
+  if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
+  try {
+    model_.derivative(t, y, ydot);
+  } catch (const std::exception& e) {
+    return record(t, BlameSite::exception, 0, 0.0, e.what());
+  } catch (...) {
+    return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
+  }
+  if (std::size_t i = first_non_finite(ydot); i < n_)
+    return record(t, BlameSite::derivative, i, ydot[i]);
+  return 0;
+}
+
+int GuardedModel::residual(double t, const double* y, const double* yp, double* r) {
+  if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
+  try {
+    model_.residual(t, y, yp, r);
+  } catch (const std::exception& e) {
+    return record(t, BlameSite::exception, 0, 0.0, e.what());
+  } catch (...) {
+    return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
+  }
+  if (std::size_t i = first_non_finite(r); i < n_) return record(t, BlameSite::residual, i, r[i]);
+  return 0;
+}
+
+bool GuardedModel::check_state(double t, const double* y) {
+  if (std::size_t i = first_non_finite(y); i < n_) {
+    record(t, BlameSite::state, i, y[i]);
+    return false;
+  }
+  return true;
+}
+
+std::string GuardedModel::describe(const Blame& b) const {
+  if (b.site == BlameSite::exception)
+    return fmt::format("the model threw an exception: {}", b.detail);
+  const char* kind = ids_.at(b.index) != 0.0 ? "state" : "algebraic variable";
+  std::string text =
+      fmt::format("{} '{}' became {}", kind, model_.variable_name(b.index), value_word(b.value));
+  if (b.site == BlameSite::derivative) text += " (derivative non-finite)";
+  if (b.site == BlameSite::residual) text += " (residual non-finite)";
+  return text;
+}
+
+}  // namespace mbgrt::detail

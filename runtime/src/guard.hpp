@@ -1,0 +1,63 @@
+// The single door through which integrators call the model. It turns a
+// non-finite number (or a stray exception) into a recorded "blame" and an
+// unrecoverable error code, so the run stops at the first bad value with the
+// time and the variable that caused it instead of marching on with NaNs.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mbgrt/model.hpp"
+
+namespace mbgrt::detail {
+
+/// Where the first non-finite value was seen.
+enum class BlameSite { derivative, residual, state, exception };
+
+struct Blame {
+  double t = 0.0;
+  BlameSite site = BlameSite::state;
+  std::size_t index = 0;  ///< unknown (or equation) index into y
+  double value = 0.0;     ///< the offending value (NaN, +Inf or -Inf)
+  std::string detail;     ///< exception text for BlameSite::exception
+};
+
+class GuardedModel {
+ public:
+  explicit GuardedModel(Model& model);
+
+  Model& model() { return model_; }
+  const Model& model() const { return model_; }
+  std::size_t size() const { return n_; }
+  bool is_dae() const { return dae_; }
+  /// 1.0 for differential unknowns, 0.0 for algebraic ones (all 1.0 for ODEs).
+  const std::vector<double>& differential_ids() const { return ids_; }
+
+  /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
+  int derivative(double t, const double* y, double* ydot);
+  int residual(double t, const double* y, const double* yp, double* r);
+
+  /// Checks y after a step; false (and a recorded blame) if any entry is non-finite.
+  bool check_state(double t, const double* y);
+
+  /// The first recorded problem; later ones are consequences and are ignored.
+  const std::optional<Blame>& blame() const { return blame_; }
+
+  /// "state 'x' became NaN (derivative non-finite)" and the like.
+  std::string describe(const Blame& b) const;
+
+ private:
+  int record(double t, BlameSite site, std::size_t index, double value, std::string detail = {});
+  /// Index of the first non-finite entry of v[0..n), or n if all are finite.
+  std::size_t first_non_finite(const double* v) const;
+
+  Model& model_;
+  std::size_t n_;
+  bool dae_;
+  std::vector<double> ids_;
+  std::optional<Blame> blame_;
+};
+
+}  // namespace mbgrt::detail

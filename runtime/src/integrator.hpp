@@ -1,0 +1,69 @@
+// The interface every integrator implements, so the run loop, the CSV writer
+// and the report never need to know which method is underneath.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "guard.hpp"
+#include "mbgrt/model.hpp"
+
+namespace mbgrt::detail {
+
+/// Counters for the run summary. A counter a method does not have is -1 and
+/// is left out of the summary rather than printed as a misleading zero.
+struct SolverStats {
+  long steps = 0;
+  long rhs_evals = 0;      ///< RHS (ODE) or residual (DAE) evaluations by the method
+  long fd_jac_evals = -1;  ///< extra evaluations spent on finite-difference Jacobians
+  long jac_evals = -1;
+  long nonlin_iters = -1;
+  long nonlin_conv_fails = -1;
+  long err_test_fails = -1;
+  double last_step = 0.0;
+  long warnings = 0;  ///< solver warnings (e.g. "t + h = t"), kept out of stderr
+  std::string first_warning;
+};
+
+/// Why an integrator gave up.
+struct SolverFailure {
+  double t = 0.0;              ///< time of the last successful internal step
+  std::string flag_name;       ///< e.g. "CV_TOO_MUCH_WORK"
+  std::string explanation;     ///< plain English
+  std::string solver_message;  ///< the library's own message (captured, not printed by it)
+  int suspect = -1;            ///< unknown with the largest weighted local error estimate (-1: unknown)
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+
+  virtual const char* name() const = 0;         ///< as spelled on --solver
+  virtual std::string description() const = 0;  ///< method details for the summary
+
+  /// Starts at (t0, y0[, yp0]). yp0 is only read for DAE models. May correct
+  /// the initial values (IDA computes consistent ones). False on failure.
+  virtual bool init(double t0, const double* y0, const double* yp0) = 0;
+
+  /// Integrates to exactly t_out (never beyond the stop time). False on failure.
+  virtual bool advance_to(double t_out) = 0;
+
+  virtual double t() const = 0;
+  virtual const double* y() const = 0;
+  /// y' at t() for DAE models, null otherwise.
+  virtual const double* yp() const { return nullptr; }
+
+  virtual SolverStats stats() const = 0;
+  virtual const SolverFailure& failure() const = 0;
+};
+
+/// Settings::t_end_s is used as the stop time the integrator never steps past.
+std::unique_ptr<Integrator> make_rk4(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_dopri5(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_cvode(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_ida(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_integrator(GuardedModel& model, const Settings& s);
+
+const char* solver_name(Solver s);
+
+}  // namespace mbgrt::detail

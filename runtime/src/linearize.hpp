@@ -1,0 +1,28 @@
+// --linearize-at: small-signal modes of an ODE model around x(T).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "csv.hpp"
+#include "guard.hpp"
+
+namespace mbgrt::detail {
+
+struct Mode {
+  double omega_rad_s;    ///< |lambda|: undamped natural frequency
+  double f_hz;           ///< |Im lambda| / 2 pi: damped frequency
+  double damping_ratio;  ///< -Re lambda / |lambda| (NaN for lambda = 0)
+};
+
+/// Central-difference Jacobian df/dx at (t, x), row-major n x n. False if an
+/// evaluation was non-finite; the blame is then recorded in `model`.
+bool numeric_jacobian(GuardedModel& model, double t, const double* x, std::vector<double>& jac);
+
+/// One mode per eigenvalue with Im >= 0 (a complex pair is one mode),
+/// sorted by omega_rad_s, lowest first.
+std::vector<Mode> modes_of(const std::vector<double>& jac, std::size_t n);
+
+void write_modes(OutputFile& out, const std::vector<Mode>& modes);
+
+}  // namespace mbgrt::detail

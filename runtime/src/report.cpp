@@ -1,0 +1,105 @@
+#include "report.hpp"
+
+#include <fmt/format.h>
+
+#include <string_view>
+
+namespace mbgrt::detail {
+
+namespace {
+
+bool flag_is(const std::string& flag, std::string_view suffix) { return flag.ends_with(suffix); }
+
+/// What a failure most likely means for a mechanical model, and what to try.
+std::string hint_for(const SolverFailure& f, std::string_view solver) {
+  const std::string& flag = f.flag_name;
+  const bool explicit_method = solver == "rk4" || solver == "dopri5";
+  if (flag_is(flag, "TOO_MUCH_WORK"))
+    return explicit_method
+               ? "the model is probably stiff here; try --solver cvode (or ida)"
+               : "the solution changes extremely fast or approaches a singularity near this time; "
+                 "a shorter --interval also allows more steps between outputs";
+  if (flag_is(flag, "TOO_MUCH_ACC")) return "loosen --rtol/--atol";
+  if (flag_is(flag, "ERR_FAILURE") || flag_is(flag, "ERR_FAIL") || flag_is(flag, "CONV_FAILURE") ||
+      flag_is(flag, "CONV_FAIL"))
+    return "the solution probably has a singularity or a discontinuity near this time (an "
+           "impact, a lock-up, a joint passing through a singular configuration); the CSV shows "
+           "the approach to it";
+  if (flag == "RK4_NONFINITE")
+    return "try a smaller --step, or an adaptive solver (--solver dopri5 or cvode)";
+  if (flag_is(flag, "LINESEARCH_FAIL") || flag_is(flag, "NO_RECOVERY"))
+    return "check the initial values of the algebraic variables";
+  return {};
+}
+
+void note(std::FILE* err, std::string_view text) {
+  if (!text.empty()) fmt::print(err, "mbgrt: note: {}\n", text);
+}
+
+}  // namespace
+
+std::string format_time(double t) { return fmt::format("{:.9g}", t); }
+
+void print_summary(std::FILE* err, const RunRecord& run) {
+  const Integrator& integ = *run.integrator;
+  const SolverStats st = integ.stats();
+  const Settings& s = run.settings;
+  const bool residual = std::string_view(integ.name()) == "ida" && run.model->is_dae();
+
+  fmt::print(err, "mbgrt: run summary for model '{}' ({})\n", run.model->name(),
+             run.model->source_file());
+  fmt::print(err, "  solver       {}: {}\n", integ.name(), integ.description());
+  fmt::print(err, "  time         {} s to {} s, interval {} s, reached {} s\n",
+             format_time(s.t_start_s), format_time(s.t_end_s), format_time(s.interval_s),
+             format_time(integ.t()));
+  fmt::print(err, "  steps        {} (last step {:.3g} s)\n", st.steps, st.last_step);
+
+  std::string evals = fmt::format("{} {}", st.rhs_evals, residual ? "residual" : "RHS");
+  if (st.fd_jac_evals >= 0)
+    evals += fmt::format(" (+ {} for finite-difference Jacobians)", st.fd_jac_evals);
+  if (st.jac_evals >= 0) evals += fmt::format(", {} Jacobian evaluations", st.jac_evals);
+  fmt::print(err, "  evaluations  {}\n", evals);
+
+  if (st.nonlin_iters >= 0)
+    fmt::print(err, "  nonlinear    {} iterations, {} convergence failures\n", st.nonlin_iters,
+               st.nonlin_conv_fails);
+  if (st.err_test_fails >= 0) fmt::print(err, "  error tests  {} failed\n", st.err_test_fails);
+  if (st.warnings > 0)
+    fmt::print(err, "  warnings     {} from the solver (first: {})\n", st.warnings,
+               st.first_warning);
+  fmt::print(err, "  output       {}\n", run.output);
+  fmt::print(err, "  wall time    {:.3g} s\n", run.wall_s);
+}
+
+void print_stop_message(std::FILE* err, const GuardedModel& model, const Integrator& integrator,
+                        bool solver_failed) {
+  const auto& blame = model.blame();
+  const SolverFailure& f = integrator.failure();
+  const double t = blame ? blame->t : f.t;
+
+  std::string line = fmt::format("mbgrt: error: at t = {} s: ", format_time(t));
+  if (blame) line += model.describe(*blame) + "; ";
+  else if (solver_failed && f.suspect >= 0)
+    line += fmt::format("state '{}' has the largest error estimate; ",
+                        model.model().variable_name(static_cast<std::size_t>(f.suspect)));
+  if (solver_failed)
+    line +=
+        fmt::format("solver {} stopped: {} ({})", integrator.name(), f.flag_name, f.explanation);
+  else
+    line += fmt::format("run stopped (solver {})", integrator.name());
+  fmt::print(err, "{}\n", line);
+
+  if (solver_failed && blame && f.t != blame->t)
+    note(err, fmt::format("the last accepted solution is at t = {} s", format_time(f.t)));
+  if (blame && blame->site != BlameSite::exception)
+    note(err,
+         fmt::format("a non-finite value usually comes from a division by zero, the square root or "
+                     "logarithm of a negative number, or a state growing without bound; check the "
+                     "equations that involve '{}' near this time",
+                     model.model().variable_name(blame->index)));
+  if (solver_failed) note(err, hint_for(f, integrator.name()));
+  if (solver_failed && !f.solver_message.empty())
+    note(err, fmt::format("solver message: {}", f.solver_message));
+}
+
+}  // namespace mbgrt::detail

@@ -1,0 +1,31 @@
+// What the user reads on stderr: the run summary and, when a run stops
+// early, a stop message that names the time, the variable and the reason.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "guard.hpp"
+#include "integrator.hpp"
+
+namespace mbgrt::detail {
+
+struct RunRecord {
+  const Model* model = nullptr;
+  const Integrator* integrator = nullptr;
+  Settings settings;  ///< as used (t_end_s is the --linearize-at time in that mode)
+  double wall_s = 0.0;
+  std::string output;  ///< e.g. "101 rows to out.csv"
+};
+
+void print_summary(std::FILE* err, const RunRecord& run);
+
+/// `solver_failed` says whether the integrator itself gave up (its failure()
+/// is meaningful) or the runtime stopped it (a non-finite state after a step).
+void print_stop_message(std::FILE* err, const GuardedModel& model, const Integrator& integrator,
+                        bool solver_failed);
+
+/// Times in messages: enough digits to tell steps apart, no more.
+std::string format_time(double t);
+
+}  // namespace mbgrt::detail

@@ -1,0 +1,180 @@
+// run_main: command line -> parameters -> integration loop -> CSV, summary,
+// stop message. The order of events here is the behaviour DESIGN §9 promises.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "csv.hpp"
+#include "grid.hpp"
+#include "guard.hpp"
+#include "integrator.hpp"
+#include "linearize.hpp"
+#include "mbgrt/model.hpp"
+#include "report.hpp"
+
+namespace mbgrt {
+
+namespace detail {
+
+namespace {
+
+int list_parameters(const Model& model) {
+  for (const ParameterInfo& p : model.parameters())
+    fmt::print(stdout, "{},{}\n", p.name, p.default_value);
+  std::fflush(stdout);
+  return kExitSuccess;
+}
+
+bool apply_overrides(Model& model, const Options& o) {
+  for (const auto& [name, value] : o.overrides) {
+    if (model.set_parameter(name, value)) continue;
+    std::string known;
+    for (const ParameterInfo& p : model.parameters()) known += (known.empty() ? "" : ", ") + p.name;
+    print_error(fmt::format("--set {}: unknown parameter '{}'; known parameters: {}", name, name,
+                            known.empty() ? "(none)" : known));
+    return false;
+  }
+  return true;
+}
+
+/// Rejects solver/model combinations that cannot work, before any output is written.
+bool check_model_fits(const Model& model, const Options& o) {
+  if (!model.is_dae()) return true;
+  if (o.linearize_at) {
+    print_error(
+        fmt::format("--linearize-at: model '{}' is a DAE; linearization is only "
+                    "implemented for ODE models",
+                    model.name()));
+    return false;
+  }
+  if (o.settings.solver != Solver::ida) {
+    print_error(
+        fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has "
+                    "algebraic unknowns); use --solver ida",
+                    solver_name(o.settings.solver), model.name()));
+    return false;
+  }
+  return true;
+}
+
+struct Outcome {
+  bool ok = true;
+  bool started = false;        ///< init() was reached: the integrator holds the state
+  bool solver_failed = false;  ///< the integrator gave up (vs. the runtime stopping it)
+};
+
+/// Starts the integrator at t_start and marches it over the output grid,
+/// calling `on_point` at every communication point reached.
+template <class OnPoint>
+Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
+              const std::vector<double>& y0, const std::vector<double>& yp0, OnPoint on_point) {
+  Outcome r;
+  // A NaN in the initial values would otherwise surface as an obscure first-step failure.
+  if (!guard.check_state(s.t_start_s, y0.data())) return {false, false, false};
+  r.started = true;
+  r.solver_failed = !integrator.init(s.t_start_s, y0.data(), yp0.data());
+  r.ok = !r.solver_failed;
+  if (r.ok) on_point();
+
+  const OutputGrid grid(s.t_start_s, s.t_end_s, s.interval_s);
+  for (std::size_t k = 1; r.ok && k < grid.size(); ++k) {
+    r.solver_failed = !integrator.advance_to(grid[k]);
+    r.ok = !r.solver_failed && guard.check_state(integrator.t(), integrator.y());
+    if (r.ok) on_point();
+  }
+  return r;
+}
+
+int simulate(Model& model, const Options& o, OutputFile& out) {
+  Settings s = o.settings;
+  const bool linearize = o.linearize_at.has_value();
+  if (linearize) s.t_end_s = *o.linearize_at;  // integrate only as far as the linearization point
+
+  GuardedModel guard(model);
+  const std::size_t n = model.size();
+  std::vector<double> y0(n), yp0(model.is_dae() ? n : 0);
+  model.initial(s.t_start_s, y0.data(), model.is_dae() ? yp0.data() : nullptr);
+  auto integrator = make_integrator(guard, s);
+
+  CsvWriter csv(out);
+  const std::vector<std::string> names = model.output_names();
+  std::vector<double> outputs(names.size());
+  auto write_row = [&] {
+    model.outputs(integrator->t(), integrator->y(), integrator->yp(), outputs.data());
+    csv.row(integrator->t(), outputs);
+  };
+
+  const auto started = std::chrono::steady_clock::now();
+  Outcome r;
+  std::vector<Mode> modes;
+  if (linearize) {
+    r = march(guard, *integrator, s, y0, yp0, [] {});
+    std::vector<double> jac;
+    if (r.ok) r.ok = numeric_jacobian(guard, integrator->t(), integrator->y(), jac);
+    if (r.ok) {
+      modes = modes_of(jac, n);
+      write_modes(out, modes);
+    }
+  } else {
+    csv.header("t", names);
+    r = march(guard, *integrator, s, y0, yp0, write_row);
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+
+  if (r.started)
+    model.terminal(integrator->t(), integrator->y());
+  else
+    model.terminal(s.t_start_s, y0.data());
+
+  if (!o.quiet) {
+    RunRecord record{&model, integrator.get(), s, wall_s, {}};
+    record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
+                              : fmt::format("{} rows to {}", csv.rows(), out.display_name());
+    print_summary(stderr, record);
+  }
+  if (!r.ok) print_stop_message(stderr, guard, *integrator, r.solver_failed);
+  return r.ok ? kExitSuccess : kExitRunFailed;
+}
+
+int run(Model& model, int argc, char** argv) {
+  ParseOutcome parsed = parse_command_line(model, argc, argv);
+  if (!parsed.options) return parsed.exit_status;
+  const Options& o = *parsed.options;
+
+  if (o.list_parameters) return list_parameters(model);
+  if (!apply_overrides(model, o) || !check_model_fits(model, o)) return kExitUsage;
+
+  std::optional<OutputFile> out;
+  try {
+    out.emplace(o.out_path);
+  } catch (const std::runtime_error& e) {
+    print_error(e.what());
+    return kExitUsage;
+  }
+  return simulate(model, o, *out);
+}
+
+}  // namespace
+
+}  // namespace detail
+
+int run_main(Model& model, int argc, char** argv) {
+  try {
+    return detail::run(model, argc, argv);
+  } catch (const std::exception& e) {
+    detail::print_error(e.what());
+  } catch (...) {
+    detail::print_error("unknown internal error");
+  }
+  return detail::kExitRunFailed;
+}
+
+}  // namespace mbgrt

@@ -1,0 +1,109 @@
+// dopri5: ARKODE's explicit stepper with the Dormand–Prince 5(4) table —
+// the adaptive non-stiff workhorse, comparable with MATLAB's ode45.
+#include <arkode/arkode_erkstep.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "solvers/sundials_util.hpp"
+
+namespace mbgrt::detail {
+
+namespace {
+
+int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+  auto* m = static_cast<GuardedModel*>(user_data);
+  return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+class Dopri5 final : public Integrator {
+ public:
+  Dopri5(GuardedModel& model, const Settings& s) : m_(model), s_(s), y_(model.size(), ctx_) {}
+  ~Dopri5() override { ERKStepFree(&mem_); }
+
+  const char* name() const override { return "dopri5"; }
+  std::string description() const override {
+    return fmt::format("ARKODE ERKStep, Dormand-Prince 5(4), adaptive, rtol {:g}, atol {:g}",
+                       s_.rtol, s_.atol);
+  }
+
+  bool init(double t0, const double* y0, const double*) override {
+    std::copy(y0, y0 + m_.size(), y_.data());
+    t_ = t0;
+    remember();
+    mem_ = ERKStepCreate(rhs, t0, y_.get(), ctx_);
+    check_setup(mem_, "ERKStepCreate");
+    check_setup(ERKStepSetErrHandlerFn(mem_, MessageSink::handler, &sink_),
+                "ERKStepSetErrHandlerFn", sink_);
+    check_setup(ERKStepSetUserData(mem_, &m_), "ERKStepSetUserData", sink_);
+    check_setup(ERKStepSetTableNum(mem_, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum", sink_);
+    check_setup(ERKStepSStolerances(mem_, s_.rtol, s_.atol), "ERKStepSStolerances", sink_);
+    check_setup(ERKStepSetStopTime(mem_, s_.t_end_s), "ERKStepSetStopTime", sink_);
+    check_setup(ERKStepSetMaxNumSteps(mem_, kMaxStepsPerOutput), "ERKStepSetMaxNumSteps", sink_);
+    // Like ACSL's MAXTERVAL: never step over more than one communication
+    // interval, so an input that is zero at the start (a bump, a late step)
+    // cannot be jumped over by an ever-growing step.
+    check_setup(ERKStepSetMaxStep(mem_, s_.interval_s), "ERKStepSetMaxStep", sink_);
+    return true;
+  }
+
+  bool advance_to(double t_out) override {
+    int flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);
+    if (flag < 0) {
+      // On failure ARKODE returns the last accepted y but the time of the
+      // failed stage, and it offers no getter for the accepted step's time.
+      // Fall back to the last communication point so (t, y) stay a true pair.
+      t_ = t_good_;
+      std::copy(y_good_.begin(), y_good_.end(), y_.data());
+      failure_ = make_failure(t_, ERKStepGetReturnFlagName(flag), sink_);
+      SerialVector ele(y_good_.size(), ctx_), w(y_good_.size(), ctx_);
+      if (ERKStepGetEstLocalErrors(mem_, ele.get()) == 0 && ERKStepGetErrWeights(mem_, w.get()) == 0)
+        failure_.suspect = largest_weighted_error(ele.get(), w.get());
+      return false;
+    }
+    remember();
+    return true;
+  }
+
+  double t() const override { return t_; }
+  const double* y() const override { return y_.data(); }
+
+  SolverStats stats() const override {
+    SolverStats st;
+    st.warnings = sink_.warnings;
+    st.first_warning = sink_.first_warning;
+    if (!mem_) return st;
+    ERKStepGetNumSteps(mem_, &st.steps);
+    ERKStepGetNumRhsEvals(mem_, &st.rhs_evals);
+    ERKStepGetNumErrTestFails(mem_, &st.err_test_fails);
+    ERKStepGetLastStep(mem_, &st.last_step);
+    return st;
+  }
+  const SolverFailure& failure() const override { return failure_; }
+
+ private:
+  void remember() {
+    t_good_ = t_;
+    y_good_.assign(y_.data(), y_.data() + m_.size());
+  }
+
+  GuardedModel& m_;
+  Settings s_;
+  SunContext ctx_;
+  SerialVector y_;
+  MessageSink sink_;
+  void* mem_ = nullptr;
+  double t_ = 0.0;
+  double t_good_ = 0.0;
+  std::vector<double> y_good_;
+  SolverFailure failure_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_dopri5(GuardedModel& model, const Settings& s) {
+  return std::make_unique<Dopri5>(model, s);
+}
+
+}  // namespace mbgrt::detail

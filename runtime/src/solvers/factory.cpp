@@ -1,0 +1,33 @@
+#include "integrator.hpp"
+
+namespace mbgrt::detail {
+
+const char* solver_name(Solver s) {
+  switch (s) {
+    case Solver::rk4:
+      return "rk4";
+    case Solver::dopri5:
+      return "dopri5";
+    case Solver::cvode:
+      return "cvode";
+    case Solver::ida:
+      return "ida";
+  }
+  return "?";
+}
+
+std::unique_ptr<Integrator> make_integrator(GuardedModel& model, const Settings& s) {
+  switch (s.solver) {
+    case Solver::rk4:
+      return make_rk4(model, s);
+    case Solver::dopri5:
+      return make_dopri5(model, s);
+    case Solver::cvode:
+      return make_cvode(model, s);
+    case Solver::ida:
+      return make_ida(model, s);
+  }
+  return nullptr;
+}
+
+}  // namespace mbgrt::detail

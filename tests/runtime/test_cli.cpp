@@ -1,0 +1,145 @@
+// The command line contract (DESIGN §9): option names, exit status 2 for bad
+// input with a readable message, --set and --list-parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "harness.hpp"
+#include "models.hpp"
+
+namespace mbgrt::test {
+namespace {
+
+TEST(Cli, HelpExitsZeroAndNamesEveryContractOption) {
+  Decay m;
+  RunResult r = run(m, {"--help"}, false);
+  EXPECT_EQ(r.status, 0);
+  for (const char* opt : {"--t-end", "--interval", "--solver", "--rtol", "--atol", "--step",
+                          "--set", "--out", "--quiet", "--list-parameters", "--linearize-at"})
+    EXPECT_TRUE(Contains(r.out, opt)) << opt;
+}
+
+TEST(Cli, UnknownOptionExits2) {
+  Decay m;
+  RunResult r = run(m, {"--frobnicate"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "mbgrt: error:"));
+  EXPECT_TRUE(Contains(r.err, "--frobnicate"));
+}
+
+TEST(Cli, BadValuesExit2WithMessage) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"--t-end", "abc"},
+      {"--interval", "-1"},
+      {"--interval", "0"},
+      {"--rtol", "-1e-6"},
+      {"--solver", "euler"},
+      {"--t-end", "-5"},
+      {"--step", "0.01"},  // --step with an adaptive solver
+      {"--solver", "rk4", "--step", "0"},
+      {"--linearize-at", "-1"},
+      {"--t-end", "nan"},
+  };
+  for (const auto& args : cases) {
+    Decay m;
+    RunResult r = run(m, args);
+    EXPECT_EQ(r.status, 2) << args[0] << " " << args[1];
+    EXPECT_TRUE(Contains(r.err, "mbgrt: error:")) << args[0];
+    EXPECT_TRUE(r.csv.empty()) << "no CSV may be written for a usage error: " << args[0];
+  }
+}
+
+TEST(Cli, UnknownSolverIsNamedInTheMessage) {
+  Decay m;
+  RunResult r = run(m, {"--solver", "euler"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "euler"));
+}
+
+TEST(Cli, SetKnownParameterChangesTheSolution) {
+  Decay m;
+  RunResult r = run(m, {"--set", "k=1.5", "--set", "x0=3", "--rtol", "1e-10", "--atol", "1e-12"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  Csv csv = parse_csv(r.csv);
+  ASSERT_EQ(csv.rows.size(), 21u);
+  for (const auto& row : csv.rows) EXPECT_NEAR(row[1], 3.0 * std::exp(-1.5 * row[0]), 1e-8);
+}
+
+TEST(Cli, RepeatedSetOfTheSameNameLastWins) {
+  Decay m;
+  RunResult r = run(m, {"--set", "x0=5", "--set", "x0=7", "--t-end", "0"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(parse_csv(r.csv).at(0, "x"), 7.0);
+}
+
+TEST(Cli, SetUnknownParameterExits2AndListsTheKnownOnes) {
+  Decay m;
+  RunResult r = run(m, {"--set", "nope=1"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "unknown parameter 'nope'"));
+  EXPECT_TRUE(Contains(r.err, "k, x0"));
+}
+
+TEST(Cli, MalformedSetExits2) {
+  for (const char* arg : {"k", "=1", "k=", "k=abc", "k=1x", "k=inf"}) {
+    Decay m;
+    RunResult r = run(m, {"--set", arg});
+    EXPECT_EQ(r.status, 2) << arg;
+    EXPECT_TRUE(Contains(r.err, "--set")) << arg;
+  }
+}
+
+TEST(Cli, ListParametersPrintsNameCommaDefault) {
+  Decay m;
+  RunResult r = run(m, {"--list-parameters"}, false);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "k,0.5\nx0,2\n");
+}
+
+TEST(Cli, DaeModelRejectsNonIdaSolvers) {
+  for (const char* solver : {"rk4", "dopri5", "cvode"}) {
+    SmallDae m;
+    RunResult r = run(m, {"--solver", solver});
+    EXPECT_EQ(r.status, 2) << solver;
+    EXPECT_TRUE(Contains(r.err, "DAE")) << solver;
+    EXPECT_TRUE(Contains(r.err, "--solver ida")) << solver;
+  }
+}
+
+TEST(Cli, UnwritableOutputFileExits2) {
+  Decay m;
+  RunResult r = run(m, {"-o", "/nonexistent-dir/x.csv"}, false);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "/nonexistent-dir/x.csv"));
+}
+
+TEST(Cli, QuietSuppressesTheSummary) {
+  Decay m;
+  RunResult r = run(m, {"--quiet"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Cli, SummaryReportsTheRun) {
+  Decay m;
+  RunResult r = run(m, {"--solver", "cvode"});
+  ASSERT_EQ(r.status, 0);
+  for (const char* item :
+       {"cvode", "rtol 1e-06", "atol 1e-08", "steps", "RHS", "Jacobian evaluations", "nonlinear",
+        "error tests", "21 rows", "wall time"})
+    EXPECT_TRUE(Contains(r.err, item)) << item << "\n" << r.err;
+}
+
+TEST(Cli, DefaultsComeFromTheModel) {
+  Decay m;
+  m.settings.t_end_s = 0.5;
+  m.settings.interval_s = 0.25;
+  m.settings.solver = Solver::dopri5;
+  RunResult r = run(m, {});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(parse_csv(r.csv).rows.size(), 3u);
+  EXPECT_TRUE(Contains(r.err, "dopri5"));
+}
+
+}  // namespace
+}  // namespace mbgrt::test

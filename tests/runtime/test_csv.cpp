@@ -1,0 +1,76 @@
+// CSV layout (DESIGN §9): `t,<outputs>` header, one row per communication
+// point from t_start to t_end, numbers that read back exactly.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <sstream>
+
+#include "harness.hpp"
+#include "models.hpp"
+
+namespace mbgrt::test {
+namespace {
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST(Csv, HeaderIsTThenOutputsInDeclarationOrder) {
+  Clock m;
+  RunResult r = run(m, {});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines(r.csv).at(0), "t,a.b,third_of_t");
+}
+
+TEST(Csv, OneRowPerIntervalIncludingStartAndEnd) {
+  Clock m;
+  RunResult r = run(m, {});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> l = lines(r.csv);
+  ASSERT_EQ(l.size(), 12u);  // header + t = 0, 0.1, ..., 1
+  // Decimal intervals produce the decimal times a reader expects, not 0.30000000000000004.
+  EXPECT_EQ(l[1].substr(0, 2), "0,");
+  EXPECT_EQ(l[4].substr(0, 4), "0.3,");
+  EXPECT_EQ(l[11].substr(0, 2), "1,");
+}
+
+TEST(Csv, LastRowIsAtTEndWhenTheSpanIsNotAWholeNumberOfIntervals) {
+  Clock m;
+  RunResult r = run(m, {"--interval", "0.3"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  Csv csv = parse_csv(r.csv);
+  std::vector<double> expected{0.0, 0.3, 0.6, 0.9, 1.0};
+  ASSERT_EQ(csv.rows.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_DOUBLE_EQ(csv.rows[i][0], expected[i]);
+  EXPECT_EQ(csv.rows.back()[0], 1.0);
+}
+
+TEST(Csv, ZeroLengthRunWritesTheInitialRowOnly) {
+  Clock m;
+  RunResult r = run(m, {"--t-end", "0"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(parse_csv(r.csv).rows.size(), 1u);
+}
+
+TEST(Csv, NumbersReadBackBitForBit) {
+  Clock m;
+  RunResult r = run(m, {"--interval", "0.07"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  Csv csv = parse_csv(r.csv);
+  ASSERT_GT(csv.rows.size(), 10u);
+  for (const auto& row : csv.rows) EXPECT_EQ(row[2], row[0] / 3.0) << "t = " << row[0];
+}
+
+TEST(Csv, WithoutOutFileTheCsvGoesToStdout) {
+  Clock m;
+  RunResult r = run(m, {"--t-end", "0.2"}, false);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "t,a.b,third_of_t\n0,0,0\n0.1,0.1,0.03333333333333333\n0.2,0.2,0.06666666666666667\n");
+}
+
+}  // namespace
+}  // namespace mbgrt::test
