@@ -609,7 +609,7 @@ const char* fn_name(Fn fn) {
     case Fn::Sign: return "sign";
     case Fn::Min: return "min";
     case Fn::Max: return "max";
-    case Fn::Step: return "step";
+    case Fn::Step: return "heaviside";
   }
   return "?";
 }

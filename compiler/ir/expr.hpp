@@ -37,7 +37,7 @@ enum class Op {
 enum class Fn {
   Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Sinh, Cosh, Tanh,
   Exp, Log, Sqrt, Abs, Sign, Min, Max,
-  Step,   // step(x): 1 if x >= 0 else 0   (the language's step(t0) is Step(t - t0))
+  Step,   // heaviside(x): 1 if x >= 0 else 0 (the language's step(t0) is heaviside(t - t0))
 };
 
 struct Node;

@@ -26,7 +26,7 @@ const std::map<std::string, FnInfo> kFunctions = {
     {"atan", {1, 1}},  {"atan2", {2, 2}}, {"sinh", {1, 1}}, {"cosh", {1, 1}}, {"tanh", {1, 1}},
     {"exp", {1, 1}},   {"log", {1, 1}},   {"sqrt", {1, 1}}, {"abs", {1, 1}},  {"sign", {1, 1}},
     {"min", {2, 2}},   {"max", {2, 2}},   {"step", {1, 2}}, {"ramp", {1, 2}}, {"sine", {2, 3}},
-    {"diag", {1, 1000}},
+    {"diag", {1, 1000}}, {"heaviside", {1, 1}},
 };
 
 const std::map<std::string, Fn> kScalarFns = {
@@ -34,7 +34,7 @@ const std::map<std::string, Fn> kScalarFns = {
     {"acos", Fn::Acos}, {"atan", Fn::Atan}, {"atan2", Fn::Atan2}, {"sinh", Fn::Sinh},
     {"cosh", Fn::Cosh}, {"tanh", Fn::Tanh}, {"exp", Fn::Exp},     {"log", Fn::Log},
     {"sqrt", Fn::Sqrt}, {"abs", Fn::Abs},   {"sign", Fn::Sign},   {"min", Fn::Min},
-    {"max", Fn::Max},
+    {"max", Fn::Max},     {"heaviside", Fn::Step},
 };
 
 class Lowerer {

@@ -450,7 +450,7 @@ TEST(ExprFold, ArityAndNames) {
                Fn::Tanh, Fn::Exp, Fn::Log, Fn::Sqrt, Fn::Abs, Fn::Sign, Fn::Step})
     EXPECT_EQ(arity(f), 1) << fn_name(f);
   EXPECT_STREQ(fn_name(Fn::Atan2), "atan2");
-  EXPECT_STREQ(fn_name(Fn::Step), "step");
+  EXPECT_STREQ(fn_name(Fn::Step), "heaviside");
   EXPECT_STREQ(fn_name(Fn::Abs), "abs");
   EXPECT_STREQ(fn_name(Fn::Sign), "sign");
   std::unordered_set<std::string> seen;
@@ -976,7 +976,7 @@ TEST(ExprToString, Precedence) {
   EXPECT_EQ(str(sub(a, k(-2))), "a + 2");
   EXPECT_EQ(str(sub(a, neg(mul(b, c)))), "a + b*c");
   EXPECT_EQ(str(add(a, neg(mul(b, c)))), "a - b*c");
-  EXPECT_EQ(str(sub(k(1), fn(Fn::Step, sub(b, a)))), "1 - step(b - a)");
+  EXPECT_EQ(str(sub(k(1), fn(Fn::Step, sub(b, a)))), "1 - heaviside(b - a)");
 }
 
 TEST(ExprToString, NonCanonicalTreesStillParenthesiseSafely) {
@@ -1008,7 +1008,7 @@ TEST(ExprToString, LeavesConstantsCalls) {
   EXPECT_EQ(str(fn(Fn::Sin, var(X))), "sin(x)");
   EXPECT_EQ(str(fn(Fn::Atan2, var(Y), var(X))), "atan2(y, x)");
   EXPECT_EQ(str(fn(Fn::Min, var(A), neg(var(B)))), "min(a, -b)");
-  EXPECT_EQ(str(fn(Fn::Step, sub(time(), k(2)))), "step(t - 2)");
+  EXPECT_EQ(str(fn(Fn::Step, sub(time(), k(2)))), "heaviside(t - 2)");
   EXPECT_EQ(str(der(var(X))), "der(x)");
   EXPECT_EQ(str(neg(der(var(X)))), "-der(x)");
   Namer custom;
