@@ -215,6 +215,7 @@ class Emitter {
     CppFunction f{"INITIAL: parameters (honouring --set overrides), then the initial state.",
                   fmt::format("void initial(double t, double* {}, double* yp) override", s_.dae ? "y" : "x"), {}};
     f.body.push_back(CppStmt::line("(void)t;"));
+    if (s_.states.empty() && s_.algebraic.empty()) f.body.push_back(CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"));
     if (!s_.dae) f.body.push_back(CppStmt::line("(void)yp;"));
     if (!g_.params.empty()) f.body.push_back(CppStmt::comment("CONSTANTS / PARAMETERS"));
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
