@@ -6,9 +6,9 @@ ncols = STATS_columns
 panels = ncols - 1
 set terminal pngcairo size 900, (180 * panels + 60) font 'DejaVu Sans,10'
 set output png
+set termoption noenhanced
 set multiplot layout panels, 1 title sprintf('%s  (mbgc simulation)', name)
 set grid
-set termoption noenhanced
 set key top right
 set lmargin 12
 do for [i = 2:ncols] {

@@ -1,0 +1,57 @@
+# tools/common.sh — shared by tools/demo.sh and tools/test.sh (source it; do not run it).
+#
+# Environment:
+#   BUILD_DIR   build directory (default: build; a relative path is taken from
+#               the repository root)
+#   BUILD_TYPE  CMAKE_BUILD_TYPE for a new build directory (default: RelWithDebInfo)
+#   JOBS        parallel build jobs and ctest jobs (default: 2)
+
+MBGC_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$MBGC_ROOT"
+BUILD_DIR=${BUILD_DIR:-build}
+BUILD_TYPE=${BUILD_TYPE:-RelWithDebInfo}
+JOBS=${JOBS:-2}
+
+# Debian packages the build, the tests and the demo's plot need.
+MBGC_PACKAGES=(g++ cmake ninja-build pkg-config libeigen3-dev libfmt-dev libcli11-dev
+               libsundials-dev libgtest-dev gnuplot-nox)
+
+step() { printf '\n==> %s\n' "$*"; }
+die() { printf 'error: %s\n' "$*" >&2; exit 1; }
+
+# Install the packages with apt-get, unless every one is installed already.
+mbgc_install_packages() {
+  local missing=() p
+  for p in "${MBGC_PACKAGES[@]}"; do
+    if ! dpkg -s "$p" 2>/dev/null | grep -q '^Status: install ok installed'; then
+      missing+=("$p")
+    fi
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    step "Debian packages: all installed"
+    return 0
+  fi
+  step "Installing Debian packages (missing: ${missing[*]})"
+  command -v apt-get >/dev/null || die "apt-get not found: install ${missing[*]} by hand"
+  local sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || die "not root and sudo is not available: install ${missing[*]} as root"
+    sudo=sudo
+  fi
+  $sudo apt-get update
+  $sudo env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y --no-install-recommends "${MBGC_PACKAGES[@]}"
+}
+
+# Configure BUILD_DIR (Ninja for a new directory) and build everything.
+# Extra arguments go to the cmake configure step.
+mbgc_configure_and_build() {
+  local generator=()
+  if [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
+    generator=(-G Ninja)
+  fi
+  step "Configuring $BUILD_DIR ($BUILD_TYPE)"
+  cmake -S "$MBGC_ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "$@"
+  step "Building ($JOBS jobs)"
+  cmake --build "$BUILD_DIR" --parallel "$JOBS"
+}

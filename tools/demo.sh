@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# tools/demo.sh — on a fresh Debian machine: install the packages, build mbgc,
+# compile the DC-motor example, simulate it and plot current and speed.
+#
+#   tools/demo.sh             # writes build/demo/{dc_motor.cpp,dc_motor.csv,dc_motor.png}
+#
+# Exits nonzero if anything fails. See tools/common.sh for BUILD_DIR, BUILD_TYPE, JOBS.
+# MBGC_DEMO_BY_HAND=1 compiles build/demo/dc_motor.cpp with c++ directly even
+# when the build has the example's CMake target.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+
+mbgc_install_packages
+mbgc_configure_and_build
+
+DEMO=$BUILD_DIR/demo
+MODEL=examples/dc_motor/dc_motor.mbg
+mkdir -p "$DEMO"
+
+# 1. The compiler: model -> one readable C++ file.
+step "Compiling the model: $BUILD_DIR/compiler/mbgc $MODEL -o $DEMO/dc_motor.cpp"
+"$BUILD_DIR/compiler/mbgc" "$MODEL" -o "$DEMO/dc_motor.cpp"
+echo "$DEMO/dc_motor.cpp: $(wc -l < "$DEMO/dc_motor.cpp") lines of C++"
+
+# 2. The simulator: that C++ linked against the runtime mbgrt. The build tree
+# has it as the CMake target `dc_motor` (examples/CMakeLists.txt,
+# mbgc_add_simulation, the same compiler and model); otherwise compile by hand.
+targets=$(cmake --build "$BUILD_DIR" --target help)
+if [ "${MBGC_DEMO_BY_HAND:-0}" != 1 ] && grep -Eq '^(\.\.\. )?dc_motor(:|$| )' <<<"$targets"; then
+  step "Building the simulator: cmake --build $BUILD_DIR --target dc_motor"
+  cmake --build "$BUILD_DIR" --target dc_motor
+  SIM=$(find "$BUILD_DIR/examples" -type f -name dc_motor -perm -u+x | head -n 1)
+  [ -n "$SIM" ] || die "built target dc_motor, but found no executable dc_motor under $BUILD_DIR/examples"
+else
+  step "Building the simulator: c++ $DEMO/dc_motor.cpp + $BUILD_DIR/runtime/libmbgrt.a"
+  libs=(-lsundials_arkode -lsundials_cvode -lsundials_ida -lsundials_nvecserial
+        -lsundials_sunmatrixdense -lsundials_sunlinsoldense)
+  if compgen -G '/usr/lib/*/libsundials_core.so' >/dev/null ||
+     compgen -G '/usr/lib/libsundials_core.so' >/dev/null; then
+    libs+=(-lsundials_core)    # SUNDIALS 7 and later
+  fi
+  flags=()
+  if grep -q '^MBGC_SANITIZE:BOOL=ON' "$BUILD_DIR/CMakeCache.txt"; then
+    flags=(-fsanitize=address,undefined)
+  fi
+  SIM=$DEMO/dc_motor
+  c++ -std=c++17 -O2 "${flags[@]}" -I runtime/include "$DEMO/dc_motor.cpp" \
+      "$BUILD_DIR/runtime/libmbgrt.a" "${libs[@]}" -lfmt -o "$SIM"
+fi
+
+# 3. Simulate: the model's own simulate { } settings, CSV out, summary on stderr.
+CSV=$DEMO/dc_motor.csv
+step "Simulating: $SIM --out $CSV"
+"$SIM" --out "$CSV"
+
+awk -F, '
+  NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+  { last = $0 }
+  END {
+    if (!("t" in col) || !("current" in col) || !("omega" in col)) {
+      print "error: expected columns t, current, omega in the CSV" > "/dev/stderr"; exit 1
+    }
+    if (last == "") { print "error: the CSV has no rows" > "/dev/stderr"; exit 1 }
+    n = split(last, v, ",")
+    printf "\nFinal state (t = %g s):\n", v[col["t"]]
+    printf "  armature current  i     = %10.4f A\n", v[col["current"]]
+    printf "  rotor speed       omega = %10.4f rad/s  (%.1f rpm)\n",
+           v[col["omega"]], v[col["omega"]] * 60 / (2 * 3.141592653589793)
+  }' "$CSV"
+
+# 4. Plot current and speed against time, one panel each.
+PNG=$DEMO/dc_motor.png
+column() { head -n 1 "$CSV" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
+T_COL=$(column t); I_COL=$(column current); W_COL=$(column omega)
+step "Plotting: $PNG"
+if gnuplot -e 'set terminal pngcairo' >/dev/null 2>&1; then
+  terminal="pngcairo noenhanced size 900,700 font ',10'"
+else
+  terminal="png noenhanced size 900,700"
+fi
+gnuplot <<GNUPLOT
+set terminal $terminal
+set output '$PNG'
+set datafile separator ','
+set key noautotitle
+set grid
+set xlabel 'time t [s]'
+set multiplot layout 2,1 title 'DC motor started on 60 V (examples/dc_motor)'
+set ylabel 'armature current i [A]'
+plot '$CSV' using $T_COL:$I_COL skip 1 with lines linewidth 2 linecolor rgb '#1f77b4'
+set ylabel 'rotor speed omega [rad/s]'
+plot '$CSV' using $T_COL:$W_COL skip 1 with lines linewidth 2 linecolor rgb '#d62728'
+unset multiplot
+GNUPLOT
+[ -s "$PNG" ] || die "gnuplot wrote no plot"
+echo
+echo "Plot: $(realpath "$PNG")"
