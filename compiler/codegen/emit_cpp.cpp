@@ -298,8 +298,13 @@ class Emitter {
     for (int i : assignment_indices) {
       const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
       body.push_back(CppStmt::comment(fmt::format("{}  {}", where(a.loc), a.origin)));
+      // An assignment whose whole value recurs elsewhere becomes the shared
+      // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
+      bool shared_whole = pending.count(a.value) && !temp.count(a.value);
+      if (shared_whole) pending.erase(a.value);
       std::string rhs = print_expr(a.value, body, "");
       body.push_back(CppStmt::line(fmt::format("const double {} = {};", var_name(a.var), rhs)));
+      if (shared_whole) temp[a.value] = var_name(a.var);
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
     for (const auto& [target, e] : results) {

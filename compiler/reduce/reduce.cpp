@@ -64,6 +64,18 @@ class Reducer {
       });
     };
     for (Equation& eq : eqs_) {
+      // unknown = constant: propagate the constant (e.g. a zero force component).
+      std::unordered_set<int> vars;
+      collect_vars(eq.lhs, vars);
+      collect_vars(eq.rhs, vars);
+      if (vars.size() == 1 && vars.count(eq.unknown)) {
+        auto sol = solve_single(eq);
+        if (sol && is_const(*sol)) {
+          alias[eq.unknown] = *sol;
+          ++constants_;
+          continue;
+        }
+      }
       int a = -1, sa = 0, b = -1, sb = 0;
       if (as_signed_var(eq.lhs, &a, &sa) && as_signed_var(eq.rhs, &b, &sb) && a != b &&
           (eq.unknown == a || eq.unknown == b)) {
@@ -89,6 +101,7 @@ class Reducer {
     for (Output& o : out_.graph.outputs) o.value = resolve(o.value);
     alias_ = std::move(alias);
     out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
+    out_.log.push_back(fmt::format("constant propagation: {} variable{} with a constant value folded into their uses", constants_, constants_ == 1 ? "" : "s"));
   }
 
   // ---- 1. derivative causality ------------------------------------------------------
@@ -429,6 +442,7 @@ class Reducer {
   std::vector<int> dae_block_eqs_;
   std::unordered_set<int> dae_unknowns_;
   int aliases_ = 0;
+  int constants_ = 0;
 };
 
 }  // namespace

@@ -68,12 +68,10 @@ class algebraic_loop_model final : public mbgrt::Model {
     (void)x;
     // states
     const double cap_q = x[0];
-    // algebraic_loop.mbg:4:4  Se src: e = value
-    const double src_e = 10.0;
     // algebraic_loop.mbg:8:3  C cap: q = C e
     const double cap_e = cap_q / 0.5;
     // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r3.e
-    const double r3_e = -(cap_e - src_e + 0.3333333333333333 * src_e) / 1.2222222222222223;
+    const double r3_e = -(cap_e - 10.0 + 3.333333333333333) / 1.2222222222222223;
     // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r3.f
     const double r3_f = r3_e / 3.0;
     // state derivatives

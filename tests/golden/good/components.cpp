@@ -85,18 +85,16 @@ class components_model final : public mbgrt::Model {
     // states
     const double u1_c_q = x[0];
     const double u2_c_q = x[1];
-    // components.mbg:9:4  Se src: e = value
-    const double src_e = 1.0;
     // components.mbg:6:5  C u1.c: q = C e
     const double u1_c_e = u1_c_q / u1_Cc;
     // components.mbg:7:5  1 u1.j: efforts in = efforts out
-    const double u1_r_e = src_e - u1_c_e;
+    const double u1_r_e = 1.0 - u1_c_e;
     // components.mbg:5:5  R u1.r: f = e / R
     const double u1_r_f = u1_r_e / u1_R;
     // components.mbg:6:5  C u2.c: q = C e
     const double u2_c_e = u2_c_q / u2_Cc;
     // components.mbg:7:5  1 u2.j: efforts in = efforts out
-    const double u2_r_e = src_e - u2_c_e;
+    const double u2_r_e = 1.0 - u2_c_e;
     // components.mbg:5:5  R u2.r: f = e / R
     const double u2_r_f = u2_r_e / u2_R;
     // state derivatives

@@ -86,8 +86,6 @@ class multibond_model final : public mbgrt::Model {
     const double spring_q_1 = x[2];
     const double spring_q_2 = x[3];
     // multibond.mbg:6:4  Se gravity: e = value
-    const double gravity_e_1 = 0.0;
-    // multibond.mbg:6:4  Se gravity: e = value
     const double gravity_e_2 = -9.81 * m;
     // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_1 = mass_p_1 / m;
@@ -103,7 +101,7 @@ class multibond_model final : public mbgrt::Model {
     // multibond.mbg:9:3  R damper: e = R f
     const double damper_e_2 = 0.1 * mass_f_1 + 0.5 * mass_f_2;
     // multibond.mbg:10:3  1 v: efforts in = efforts out
-    const double mass_e_1 = gravity_e_1 - (spring_e_1 + damper_e_1);
+    const double mass_e_1 = -(spring_e_1 + damper_e_1);
     // multibond.mbg:10:3  1 v: efforts in = efforts out
     const double mass_e_2 = gravity_e_2 - (spring_e_2 + damper_e_2);
     // state derivatives
