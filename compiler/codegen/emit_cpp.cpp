@@ -1,5 +1,6 @@
 #include "codegen/emit_cpp.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <map>
@@ -13,16 +14,45 @@ namespace {
 
 using namespace mbgc::ir;
 
+// Identifiers a model name must not become: C++ keywords and alternative
+// tokens, macros the included headers define, and the names the generated
+// class itself uses (its methods, locals and members).
 const std::set<std::string> kReserved = {
-    // C++ keywords that can plausibly be model names
-    "auto", "bool", "break", "case", "char", "class", "const", "continue", "default", "delete", "do", "double",
-    "else", "enum", "explicit", "extern", "false", "float", "for", "friend", "goto", "if", "inline", "int",
-    "long", "namespace", "new", "operator", "private", "protected", "public", "register", "return", "short",
-    "signed", "sizeof", "static", "struct", "switch", "template", "this", "throw", "true", "try", "typedef",
-    "union", "unsigned", "using", "virtual", "void", "volatile", "while", "and", "or", "not", "xor",
+    "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case",
+    "catch", "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval",
+    "constexpr", "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype",
+    "default", "delete", "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern",
+    "false", "float", "for", "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace",
+    "new", "noexcept", "not", "not_eq", "nullptr", "operator", "or", "or_eq", "private", "protected",
+    "public", "register", "reinterpret_cast", "requires", "return", "short", "signed", "sizeof",
+    "static", "static_assert", "static_cast", "struct", "switch", "template", "this", "thread_local",
+    "throw", "true", "try", "typedef", "typeid", "typename", "union", "unsigned", "using", "virtual",
+    "void", "volatile", "wchar_t", "while", "xor", "xor_eq", "final", "override", "import", "module",
+    // macros from <cmath>, <climits>, <cstddef>, <cstdio> and friends
+    "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "NULL", "EOF", "errno", "assert",
+    "offsetof", "math_errhandling", "MATH_ERRNO", "MATH_ERREXCEPT", "DOMAIN", "SING", "OVERFLOW",
+    "UNDERFLOW", "TLOSS", "PLOSS", "CHAR_BIT", "INT_MAX", "INT_MIN", "stdin", "stdout", "stderr",
+    "unix", "linux", "i386",
     // names the generated code uses itself
-    "t", "x", "xdot", "xp", "y", "yp", "r", "out", "id", "param", "std", "mbgrt", "main", "model", "name",
-    "size", "initial", "derivative", "residual", "outputs", "terminal", "overrides_", "overridden_"};
+    "t", "x", "xdot", "xp", "y", "yp", "r", "out", "id", "i", "s", "value", "std", "mbgrt", "mbgc_model",
+    "main", "model", "argc", "argv", "param", "overrides_", "overridden_", "kNames", "kParams",
+    "name", "source_file", "size", "variable_name", "output_names", "parameters", "is_dae",
+    "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
+    "outputs", "terminal"};
+
+/// Reserved by the C++ implementation or by the standard library's macros.
+bool reserved(const std::string& id) {
+  if (kReserved.count(id)) return true;
+  if (id.size() > 1 && id[0] == '_' && (std::isupper(static_cast<unsigned char>(id[1])) || id[1] == '_')) return true;
+  if (id.find("__") != std::string::npos) return true;
+  // <cmath>/<cfloat>/<cstdint> macro families: M_PI, FP_NAN, DBL_MAX, INT8_MAX, ...
+  for (const char* prefix : {"M_", "FP_", "DBL_", "FLT_", "LDBL_", "INT", "UINT", "SIZE_", "PTRDIFF_"})
+    if (id.rfind(prefix, 0) == 0 && std::all_of(id.begin(), id.end(), [](char c) {
+          return std::isupper(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+        }))
+      return true;
+  return false;
+}
 
 /// Unique C++ identifiers for model names ("m1.rotor.p" -> "m1_rotor_p").
 class Mangler {
@@ -36,10 +66,13 @@ class Mangler {
       else if (!id.empty() && id.back() != '_') id += '_';
     }
     while (!id.empty() && id.back() == '_') id.pop_back();
+    while (!id.empty() && id.front() == '_') id.erase(id.begin());
+    for (auto p = id.find("__"); p != std::string::npos; p = id.find("__")) id.erase(p, 1);
     if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "v_" + id;
     if (id.rfind("cse", 0) == 0) id = "v_" + id;  // keep cseN for common subexpressions
+    if (reserved(id)) id += "_v";  // lower-case suffix: no longer a keyword or a macro-like name
     std::string unique = id;
-    for (int k = 2; kReserved.count(unique) || used_.count(unique); ++k) unique = fmt::format("{}_{}", id, k);
+    for (int k = 2; used_.count(unique); ++k) unique = fmt::format("{}_{}", id, k);
     used_.insert(unique);
     given_[key] = unique;
     return unique;

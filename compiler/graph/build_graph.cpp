@@ -94,11 +94,19 @@ class Builder {
       if (is_two_port(rn.kind)) n.bonds = {-1, -1};
       g_.nodes.push_back(std::move(n));
     }
-    std::set<std::string> used_names;
+    // Unnamed bonds are called b<number>, unless the user took that name.
+    std::set<std::string> taken;
+    for (const ResolvedBond& rb : m_.bonds) taken.insert(rb.name);
+    for (const auto& [name, index] : m_.node_index) taken.insert(name);
     for (const ResolvedBond& rb : m_.bonds) {
       Bond b;
       b.number = static_cast<int>(g_.bonds.size()) + 1;
-      b.name = rb.name.empty() ? fmt::format("b{}", b.number) : rb.name;
+      b.name = rb.name;
+      if (b.name.empty()) {
+        b.name = fmt::format("b{}", b.number);
+        for (int k = 2; taken.count(b.name); ++k) b.name = fmt::format("b{}_{}", b.number, k);
+        taken.insert(b.name);
+      }
       b.loc = rb.loc;
       b.from = rb.from.node;
       b.to = rb.to.node;
@@ -364,7 +372,7 @@ class Builder {
                                             : "this element has e and f");
     }
     for (std::size_t b = 0; b < g_.bonds.size(); ++b) {
-      if (m_.bonds[b].name != stem && g_.bonds[b].name != stem) continue;
+      if (g_.bonds[b].name != stem) continue;
       if (q == "e") return bond_value(static_cast<int>(b), true, 1);
       if (q == "f") return bond_value(static_cast<int>(b), false, 1);
       return report(fmt::format("bond `{}` has no quantity `{}`", stem, q), "a bond has e and f");

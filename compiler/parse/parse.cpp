@@ -71,19 +71,29 @@ class Parser {
   }
   bool at_statement_start() const {
     if (at(Tok::End) || at(Tok::RBrace)) return true;
-    if (at(Tok::Number)) return peek().text == "0" || peek().text == "1";
+    // A statement starts a line (or follows `;`): a 0 or 1 inside an
+    // expression, or a parameter named like an element kind, does not.
+    bool line_start = pos_ == 0 || toks_[pos_ - 1].loc.line != peek().loc.line ||
+                      toks_[pos_ - 1].kind == Tok::Semi || toks_[pos_ - 1].kind == Tok::LBrace ||
+                      toks_[pos_ - 1].kind == Tok::RBrace;
+    if (at(Tok::Number))
+      return line_start && (peek().text == "0" || peek().text == "1") && peek(1).kind == Tok::Ident;
     if (!at(Tok::Ident)) return false;
-    return kKeywords.count(peek().text) || kElementKinds.count(peek().text);
+    return line_start && (kKeywords.count(peek().text) || kElementKinds.count(peek().text));
   }
-  void recover() {
-    // Skip at least one token, then up to the next statement start.
-    next();
+  /// Skip to the next statement. `start` is where the failed statement began:
+  /// if the error was found at the start of a later statement, that statement
+  /// is kept (its own errors get reported too).
+  void recover(std::size_t start) {
+    if (pos_ == start || !at_statement_start()) next();
     int depth = 0;
     while (!at(Tok::End)) {
       if (at(Tok::LBrace)) ++depth;
       if (at(Tok::RBrace)) {
-        if (depth == 0) return;
+        if (depth == 0) return;  // the enclosing component's `}`
         --depth;
+        next();  // the failed statement's own `}`
+        continue;
       }
       if (depth == 0 && (at(Tok::Semi))) { next(); return; }
       if (depth == 0 && at_statement_start()) return;
@@ -93,11 +103,12 @@ class Parser {
 
   // ---- statements ------------------------------------------------------------
   void statement_into(std::vector<ir::AstStmt>& out, bool in_component) {
+    std::size_t start = pos_;
     try {
       out.push_back(statement(in_component));
       accept(Tok::Semi);
     } catch (const ParseError&) {
-      recover();
+      recover(start);
     }
   }
 

@@ -175,7 +175,15 @@ class Resolver {
     m_.scopes.push_back({prefix + in.name + ".", comp.name});
     port_bindings_.emplace_back();
     std::set<std::string> given;
+    std::map<std::string, SourceLoc> given_at;
     for (const AstAttr& a : in.args) {
+      if (auto dup = given_at.find(a.key); dup != given_at.end()) {
+        auto& d = diags_.error(a.loc, fmt::format("`{}` is given twice for instance `{}`", a.key, in.name),
+                               "give each port and parameter once");
+        d.notes.push_back({dup->second, "first given here"});
+        continue;
+      }
+      given_at[a.key] = a.loc;
       given.insert(a.key);
       bool is_port = std::any_of(comp.ports.begin(), comp.ports.end(),
                                  [&](const AstEndpoint& p) { return p.path == a.key; });

@@ -17,6 +17,9 @@ const char* solver_name(Solver s) {
 }
 
 std::unique_ptr<Integrator> make_integrator(GuardedModel& model, const Settings& s) {
+  // A purely algebraic model (no states) has nothing to integrate, and the
+  // SUNDIALS solvers reject empty vectors: only time advances.
+  if (model.size() == 0) return make_rk4(model, s);
   switch (s.solver) {
     case Solver::rk4:
       return make_rk4(model, s);
