@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # tools/common.sh — shared by tools/demo.sh and tools/test.sh (source it; do not run it).
 #
 # Environment:
@@ -7,7 +8,7 @@
 #   JOBS        parallel build jobs and ctest jobs (default: 2)
 
 MBGC_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-cd "$MBGC_ROOT"
+cd "$MBGC_ROOT" || exit 1
 BUILD_DIR=${BUILD_DIR:-build}
 BUILD_TYPE=${BUILD_TYPE:-RelWithDebInfo}
 JOBS=${JOBS:-2}

@@ -2,16 +2,17 @@
 # tools/demo.sh — on a fresh Debian machine: install the packages, build mbgc,
 # compile the DC-motor example, simulate it and plot current and speed.
 #
-#   tools/demo.sh             # writes build/demo/{dc_motor.cpp,dc_motor.csv,dc_motor.png}
+#   tools/demo.sh [cmake -D options]   # writes build/demo/{dc_motor.cpp,dc_motor.csv,dc_motor.png}
 #
 # Exits nonzero if anything fails. See tools/common.sh for BUILD_DIR, BUILD_TYPE, JOBS.
 # MBGC_DEMO_BY_HAND=1 compiles build/demo/dc_motor.cpp with c++ directly even
 # when the build has the example's CMake target.
 set -euo pipefail
+# shellcheck source=tools/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 mbgc_install_packages
-mbgc_configure_and_build
+mbgc_configure_and_build "$@"
 
 DEMO=$BUILD_DIR/demo
 MODEL=examples/dc_motor/dc_motor.mbg
@@ -41,7 +42,7 @@ else
   fi
   flags=()
   if grep -q '^MBGC_SANITIZE:BOOL=ON' "$BUILD_DIR/CMakeCache.txt"; then
-    flags=(-fsanitize=address,undefined)
+    flags=("-fsanitize=address,undefined")
   fi
   SIM=$DEMO/dc_motor
   c++ -std=c++17 -O2 "${flags[@]}" -I runtime/include "$DEMO/dc_motor.cpp" \
