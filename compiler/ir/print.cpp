@@ -150,12 +150,13 @@ std::string print_graph_dot(const BondGraph& g, bool with_causality) {
     // Half-arrow head at `to` (power direction); the causal stroke (a bar,
     // "tee") at the end that receives the effort, i.e. not the effort setter.
     std::string label = b.dim > 1 ? fmt::format("{} [{}]", b.number, b.dim) : std::to_string(b.number);
-    std::string attrs = fmt::format("label=\"{}\", arrowhead=lvee", label);
-    if (b.dim > 1) attrs += ", penwidth=2.5, color=\"black:white:black\"";
+    std::string head = "lvee", tail;
     if (with_causality && b.effort_setter >= 0) {
-      bool stroke_at_to = b.effort_setter == b.from;
-      attrs += stroke_at_to ? ", arrowhead=\"teelvee\"" : ", dir=both, arrowtail=tee";
+      if (b.effort_setter == b.from) head = "teelvee";  // the `to` end receives the effort
+      else tail = ", dir=both, arrowtail=tee";
     }
+    // A multibond is drawn heavier and labelled with its dimension.
+    std::string attrs = fmt::format("label=\"{}\", arrowhead={}{}{}", label, head, tail, b.dim > 1 ? ", penwidth=3" : "");
     out += fmt::format("  n{} -> n{} [{}];\n", b.from, b.to, attrs);
   }
   out += "}\n";

@@ -90,7 +90,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                            model.source_file())};
   app.footer(
       "Exit status: 0 success, 1 solver failure or divergence (rows already written are kept), "
-      "2 bad command line.");
+      "2 bad command line.\n");
 
   std::string solver = solver_name(s.solver);
   std::vector<std::string> sets;
