@@ -278,7 +278,7 @@ class Emitter {
                const std::vector<std::pair<std::string, Expr>>& results, const std::string& results_comment) {
     // Which variables does this section touch?
     std::unordered_set<int> used;
-    for (int i : assignment_indices) collect_vars(s_.assignments[static_cast<std::size_t>(i)].value, used);
+    for (int i : assignment_indices) assignment_inputs(s_, s_.assignments[static_cast<std::size_t>(i)], used);
     for (const auto& [target, e] : results) collect_vars(e, used);
     const char* y = s_.dae ? "y" : "x";
     bool any_read = false;
@@ -306,7 +306,18 @@ class Emitter {
       if (++count[e] > 1) return;  // children already counted through the first occurrence
       for (const Expr& a : e->args) visit(a);
     };
-    for (int i : assignment_indices) visit(s_.assignments[static_cast<std::size_t>(i)].value);
+    std::set<int> blocks_counted;
+    for (int i : assignment_indices) {
+      const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
+      if (a.block < 0) {
+        visit(a.value);
+        continue;
+      }
+      if (!blocks_counted.insert(a.block).second) continue;  // count each block once
+      const LinearBlock& lb = s_.linear_blocks[static_cast<std::size_t>(a.block)];
+      for (const Expr& e : lb.a) visit(e);
+      for (const Expr& e : lb.b) visit(e);
+    }
     for (const auto& [target, e] : results) visit(e);
     std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp;
     std::unordered_set<Expr, ExprHash, ExprEqual> pending;
@@ -328,8 +339,14 @@ class Emitter {
       define(e);
       return cpp_with_temps(e, temp, false);
     };
+    std::set<int> blocks_done;
     for (int i : assignment_indices) {
       const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
+      if (a.block >= 0) {
+        if (blocks_done.insert(a.block).second) emit_block(body, a, print_expr);
+        body.push_back(CppStmt::line(fmt::format("const double {} = blk{}_x[{}];", var_name(a.var), a.block + 1, block_position(a))));
+        continue;
+      }
       body.push_back(CppStmt::comment(fmt::format("{}  {}", where(a.loc), a.origin)));
       // An assignment whose whole value recurs elsewhere becomes the shared
       // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
@@ -344,6 +361,34 @@ class Emitter {
       std::string rhs = print_expr(e, body, "");
       body.push_back(CppStmt::line(fmt::format("{} = {};", target, rhs)));
     }
+  }
+
+  std::size_t block_position(const Assignment& a) const {
+    const LinearBlock& lb = s_.linear_blocks[static_cast<std::size_t>(a.block)];
+    return static_cast<std::size_t>(std::find(lb.unknowns.begin(), lb.unknowns.end(), a.var) - lb.unknowns.begin());
+  }
+
+  /// A numerically solved loop: fill A and b, solve in place.
+  template <class Print>
+  void emit_block(std::vector<CppStmt>& body, const Assignment& a, Print& print_expr) {
+    const LinearBlock& lb = s_.linear_blocks[static_cast<std::size_t>(a.block)];
+    std::size_t n = lb.unknowns.size();
+    std::vector<std::string> names;
+    for (int u : lb.unknowns) names.push_back(g_.vars[static_cast<std::size_t>(u)].name);
+    body.push_back(CppStmt::comment(fmt::format("{}  {}", where(a.loc), a.origin)));
+    body.push_back(CppStmt::comment(fmt::format("A x = b for x = ({})", fmt::join(names, ", "))));
+    std::vector<std::string> entries, rhs;
+    for (const Expr& e : lb.a) entries.push_back(print_expr(e, body, ""));
+    for (const Expr& e : lb.b) rhs.push_back(print_expr(e, body, ""));
+    std::string id = fmt::format("blk{}", a.block + 1);
+    body.push_back(CppStmt::line(fmt::format("double {}_a[{}] = {{", id, n * n)));
+    for (std::size_t r = 0; r < n; ++r) {
+      std::vector<std::string> row(entries.begin() + static_cast<long>(r * n), entries.begin() + static_cast<long>((r + 1) * n));
+      body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(row, ", "))));
+    }
+    body.push_back(CppStmt::line("};"));
+    body.push_back(CppStmt::line(fmt::format("double {}_x[{}] = {{{}}};", id, n, fmt::join(rhs, ", "))));
+    body.push_back(CppStmt::line(fmt::format("mbgrt::solve_linear({}, {}_a, {}_x);", n, id, id)));
   }
 
   /// to_cpp, with already-defined common subexpressions replaced by their names.

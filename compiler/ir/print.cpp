@@ -223,8 +223,22 @@ std::string print_reduced(const ReducedSystem& s) {
     const Assignment& a = s.assignments[i];
     bool d = std::find(s.for_derivative.begin(), s.for_derivative.end(), static_cast<int>(i)) != s.for_derivative.end();
     bool o = std::find(s.for_outputs.begin(), s.for_outputs.end(), static_cast<int>(i)) != s.for_outputs.end();
-    out += fmt::format("  {} := {}    ; {}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, to_string(a.value, n), a.origin,
+    std::string value = a.block >= 0 ? fmt::format("solve(block {})", a.block + 1) : to_string(a.value, n);
+    out += fmt::format("  {} := {}    ; {}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, value, a.origin,
                        d ? " [derivative]" : "", o ? " [outputs]" : "");
+  }
+  for (std::size_t k = 0; k < s.linear_blocks.size(); ++k) {
+    const LinearBlock& lb = s.linear_blocks[k];
+    std::size_t m = lb.unknowns.size();
+    out += fmt::format("linear block {} (A x = b, solved at run time with partial pivoting):\n", k + 1);
+    for (std::size_t r = 0; r < m; ++r) {
+      std::vector<std::string> row;
+      for (std::size_t c = 0; c < m; ++c) row.push_back(to_string(lb.a[r * m + c], n));
+      out += fmt::format("  [{}] * x = {}\n", fmt::join(row, ", "), to_string(lb.b[r], n));
+    }
+    std::vector<std::string> xs;
+    for (int u : lb.unknowns) xs.push_back(g.vars[static_cast<std::size_t>(u)].name);
+    out += fmt::format("  x = ({})\n", fmt::join(xs, ", "));
   }
   out += "states:\n";
   for (std::size_t i = 0; i < s.states.size(); ++i) {

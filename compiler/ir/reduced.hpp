@@ -8,12 +8,23 @@
 
 namespace mbgc::ir {
 
-/// var := value, in evaluation order.
+/// var := value, in evaluation order. An unknown of a numerically solved
+/// linear block has no value of its own: `block` names the block that
+/// computes it (all of a block's unknowns are adjacent in the order).
 struct Assignment {
   int var = -1;
-  Expr value;
+  Expr value;          // null when block >= 0
   SourceLoc loc;
   std::string origin;
+  int block = -1;      // index into ReducedSystem::linear_blocks
+};
+
+/// A linear algebraic loop A x = b whose symbolic pivots could vanish at run
+/// time: the emitter fills A and b and calls mbgrt::solve_linear (partial pivoting).
+struct LinearBlock {
+  std::vector<int> unknowns;  // x
+  std::vector<Expr> a;        // n x n, row-major
+  std::vector<Expr> b;        // n
 };
 
 /// An algebraic loop found while sorting, in bond-graph terms.
@@ -30,18 +41,22 @@ struct Residual {
   std::string origin;
 };
 
+/// The variables an assignment reads (its value, or its whole block).
+void assignment_inputs(const struct ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out);
+
 struct ReducedSystem {
   BondGraph graph;
   CausalityReport causality;
   std::vector<StateVar> states;
   std::vector<Expr> state_derivative;     // per state: what the integrator gets
   std::vector<Assignment> assignments;    // everything derivative/residual/outputs need, sorted
+  std::vector<LinearBlock> linear_blocks; // loops solved numerically (see Assignment::block)
   std::vector<int> for_derivative;        // indices into assignments, in order
   std::vector<int> for_outputs;           // indices into assignments, in order
   // DAE form (dae == true): y = [states, algebraic], residuals in the same order.
   bool dae = false;
   std::vector<int> algebraic;             // algebraic unknowns (read from y)
-  std::vector<int> derivative_unknowns;   // der vars read from yp (per state, -1 if computed)
+  std::vector<int> derivative_unknowns;   // DAE: per state, the variable read from yp[i]
   std::vector<Residual> residuals;
   std::vector<AlgebraicLoop> loops;
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled

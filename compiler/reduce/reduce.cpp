@@ -294,9 +294,12 @@ class Reducer {
       linear = affine_in(sub(eq.lhs, eq.rhs), unknowns, a[i], rest);
       if (linear) b[i] = neg(rest);
     }
+    std::size_t blocks_before = out_.linear_blocks.size();
     if (linear && gauss(block, unknowns, a, b)) {
       loop.linear = true;
-      loop.resolution = "linear: solved symbolically (Gaussian elimination)";
+      loop.resolution = out_.linear_blocks.size() > blocks_before
+                            ? "linear: coefficients derived symbolically, solved at run time with partial pivoting"
+                            : "linear: solved symbolically (Gaussian elimination)";
       out_.loops.push_back(loop);
       return;
     }
@@ -312,11 +315,17 @@ class Reducer {
     }
   }
 
+  /// Symbolic Gaussian elimination, preferring constant pivots. If every pivot
+  /// is free of variables and time it cannot vanish during a run, and the
+  /// solution is emitted as plain assignments; otherwise the block is solved
+  /// numerically with partial pivoting at run time.
   bool gauss(const std::vector<int>& block, const std::vector<int>& unknowns, std::vector<std::vector<Expr>> a,
              std::vector<Expr> b) {
+    const std::vector<std::vector<Expr>> a0 = a;
+    const std::vector<Expr> b0 = b;
     std::size_t n = unknowns.size();
-    std::vector<std::size_t> row_of(n);  // pivot row for each column after elimination
-    for (std::size_t i = 0; i < n; ++i) row_of[i] = i;
+    const Equation& first = eqs_[static_cast<std::size_t>(block[0])];
+    bool constant_pivots = true;
     for (std::size_t k = 0; k < n; ++k) {
       std::size_t pivot = n;
       for (std::size_t r = k; r < n; ++r) {
@@ -327,11 +336,13 @@ class Reducer {
         for (std::size_t r = k; r < n; ++r)
           if (!is_zero(a[r][k])) { pivot = r; break; }
       if (pivot == n) {
-        const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
-        diags_.error(eq.loc, fmt::format("singular algebraic loop: `{}` cannot be solved from the loop's equations", v(unknowns[k]).name),
+        diags_.error(first.loc, fmt::format("singular algebraic loop: `{}` cannot be solved from the loop's equations", v(unknowns[k]).name),
                      "the junction structure leaves this variable undetermined; check for a loop of junctions without an element");
         return true;  // reported; do not fall back to a DAE
       }
+      std::unordered_set<int> pivot_vars;
+      collect_vars(a[pivot][k], pivot_vars);
+      if (!pivot_vars.empty() || depends_on_time(a[pivot][k])) constant_pivots = false;
       std::swap(a[k], a[pivot]);
       std::swap(b[k], b[pivot]);
       for (std::size_t r = k + 1; r < n; ++r) {
@@ -342,11 +353,23 @@ class Reducer {
         a[r][k] = constant(0);
       }
     }
+    if (!constant_pivots) {
+      LinearBlock lb;
+      lb.unknowns = unknowns;
+      for (std::size_t r = 0; r < n; ++r)
+        for (std::size_t c = 0; c < n; ++c) lb.a.push_back(a0[r][c]);
+      lb.b = b0;
+      int index = static_cast<int>(out_.linear_blocks.size());
+      out_.linear_blocks.push_back(std::move(lb));
+      for (int u : unknowns)
+        out_.assignments.push_back({u, nullptr, first.loc,
+                                    fmt::format("algebraic loop ({} unknowns), solved numerically (pivots depend on the state)", n), index});
+      return true;
+    }
     for (std::size_t k = n; k-- > 0;) {
       Expr s = b[k];
       for (std::size_t c = k + 1; c < n; ++c) s = sub(s, mul(a[k][c], var(unknowns[c])));
-      const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
-      out_.assignments.push_back({unknowns[k], div(s, a[k][k]), eq.loc,
+      out_.assignments.push_back({unknowns[k], div(s, a[k][k]), first.loc,
                                   fmt::format("algebraic loop ({} unknowns), solved for {}", n, v(unknowns[k]).name)});
     }
     return true;
@@ -404,7 +427,12 @@ class Reducer {
       while (!work.empty()) {
         int i = work.back();
         work.pop_back();
-        visit(out_.assignments[static_cast<std::size_t>(i)].value);
+        std::unordered_set<int> inputs;
+        assignment_inputs(out_, out_.assignments[static_cast<std::size_t>(i)], inputs);
+        for (int id : inputs) {
+          auto it = assignment_of.find(id);
+          if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
+        }
       }
       return std::vector<int>(need.begin(), need.end());  // assignment order = sorted order
     };
@@ -446,6 +474,22 @@ class Reducer {
 };
 
 }  // namespace
+}  // namespace mbgc::reduce
+
+namespace mbgc::ir {
+void assignment_inputs(const ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out) {
+  if (a.block < 0) {
+    collect_vars(a.value, out);
+    return;
+  }
+  const LinearBlock& lb = s.linear_blocks[static_cast<std::size_t>(a.block)];
+  for (const Expr& e : lb.a) collect_vars(e, out);
+  for (const Expr& e : lb.b) collect_vars(e, out);
+  for (int u : lb.unknowns) out.erase(u);
+}
+}  // namespace mbgc::ir
+
+namespace mbgc::reduce {
 
 ReducedSystem reduce(EquationSystem system, Diagnostics& diags) {
   ReducedSystem out;

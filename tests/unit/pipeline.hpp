@@ -197,7 +197,34 @@ inline Env evaluate(const ir::ReducedSystem& r, const std::map<std::string, doub
     if (id < 0) throw std::out_of_range("evaluate: no variable `" + name + "`");
     env.vars[id] = value;
   }
-  for (const ir::Assignment& a : r.assignments) env.vars[a.var] = eval(a.value, env);
+  for (const ir::Assignment& a : r.assignments) {
+    if (a.block < 0) {
+      env.vars[a.var] = eval(a.value, env);
+      continue;
+    }
+    // A numerically solved block: evaluate A and b, solve by Cramer-free
+    // Gauss-Jordan with partial pivoting (independent of mbgrt::solve_linear).
+    const ir::LinearBlock& lb = r.linear_blocks[static_cast<std::size_t>(a.block)];
+    if (env.vars.count(lb.unknowns[0])) continue;  // solved with an earlier unknown of this block
+    std::size_t n = lb.unknowns.size();
+    std::vector<std::vector<double>> m(n, std::vector<double>(n + 1));
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) m[i][j] = eval(lb.a[i * n + j], env);
+      m[i][n] = eval(lb.b[i], env);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      std::size_t p = k;
+      for (std::size_t i = k + 1; i < n; ++i)
+        if (std::abs(m[i][k]) > std::abs(m[p][k])) p = i;
+      std::swap(m[k], m[p]);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (i == k) continue;
+        double f = m[i][k] / m[k][k];
+        for (std::size_t j = k; j <= n; ++j) m[i][j] -= f * m[k][j];
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) env.vars[lb.unknowns[i]] = m[i][n] / m[i][i];
+  }
   return env;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
 namespace {
