@@ -116,6 +116,7 @@ class Emitter {
     c.name = class_name_;
     c.base = "mbgrt::Model";
     identity(c);
+    find_parameter_expressions();
     c.public_methods.push_back(initial());
     c.public_methods.push_back(s_.dae ? residual() : derivative());
     c.public_methods.push_back(outputs());
@@ -256,6 +257,9 @@ class Emitter {
       f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});  // {}", names_.param(static_cast<int>(i)), i,
                                                  to_cpp(p.value, names_), where(p.loc))));
     }
+    if (!hoisted_order_.empty()) f.body.push_back(CppStmt::comment("DERIVED CONSTANTS: parameter expressions, computed once per run"));
+    for (const Expr& e : hoisted_order_)
+      f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), to_cpp(e, names_))));
     if (!s_.states.empty()) f.body.push_back(CppStmt::comment("INITIAL STATE"));
     const char* y = s_.dae ? "y" : "x";
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
@@ -303,6 +307,7 @@ class Emitter {
     std::unordered_map<Expr, int, ExprHash, ExprEqual> count;
     std::function<void(const Expr&)> visit = [&](const Expr& e) {
       if (e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty())) return;
+      if (hoisted_.count(e)) return;  // computed once in initial()
       if (++count[e] > 1) return;  // children already counted through the first occurrence
       for (const Expr& a : e->args) visit(a);
     };
@@ -319,7 +324,7 @@ class Emitter {
       for (const Expr& e : lb.b) visit(e);
     }
     for (const auto& [target, e] : results) visit(e);
-    std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp;
+    std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp(hoisted_.begin(), hoisted_.end());
     std::unordered_set<Expr, ExprHash, ExprEqual> pending;
     for (const auto& [e, n] : count)
       if (n > 1) pending.insert(e);
@@ -468,7 +473,52 @@ class Emitter {
     return f;
   }
 
+  /// Largest subexpressions that depend on parameters only (1/J, m*g, ...):
+  /// they are computed once in initial() instead of at every derivative call.
+  void find_parameter_expressions() {
+    std::function<bool(const Expr&)> param_only = [&](const Expr& e) {
+      if (e->op == Op::Var || e->op == Op::Time || e->op == Op::Der) return false;
+      for (const Expr& a : e->args)
+        if (!param_only(a)) return false;
+      return true;
+    };
+    // Only what costs something at run time (a division, a power, a function
+    // call) is worth a member: -m * g reads better where it is used.
+    std::function<bool(const Expr&)> costly = [&](const Expr& e) {
+      if (e->op == Op::Div || e->op == Op::Pow || e->op == Op::Call) return true;
+      for (const Expr& a : e->args)
+        if (costly(a)) return true;
+      return false;
+    };
+    std::function<void(const Expr&)> scan = [&](const Expr& e) {
+      bool trivial = e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty());
+      if (!trivial && param_only(e) && costly(e)) {
+        if (!hoisted_.count(e)) {
+          hoisted_[e] = fmt::format("derived{}_", hoisted_order_.size() + 1);
+          hoisted_order_.push_back(e);
+        }
+        return;
+      }
+      for (const Expr& a : e->args) scan(a);
+    };
+    for (const Assignment& a : s_.assignments) {
+      if (a.block < 0) scan(a.value);
+    }
+    for (const LinearBlock& lb : s_.linear_blocks) {
+      for (const Expr& e : lb.a) scan(e);
+      for (const Expr& e : lb.b) scan(e);
+    }
+    for (const Expr& e : s_.state_derivative) scan(e);
+    for (const Residual& r : s_.residuals) scan(r.value);
+    for (const Output& o : g_.outputs) scan(o.value);
+  }
+
   void private_part(CppClass& c) {
+    if (!hoisted_order_.empty()) {
+      c.private_members.push_back(CppStmt::comment("derived constants (set in initial())"));
+      for (const Expr& e : hoisted_order_)
+        c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;  // = {}", hoisted_.at(e), to_string(e, names_for_dump()))));
+    }
     if (!g_.params.empty()) {
       c.private_methods.push_back({"", "double param(std::size_t i, double model_value) const",
                                    {CppStmt::line("return overridden_[i] ? overrides_[i] : model_value;")}});
@@ -488,6 +538,8 @@ class Emitter {
   Namer names_;
   std::string class_name_;
   int cse_counter_ = 0;
+  std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
+  std::vector<Expr> hoisted_order_;                                    // in first-use order
 };
 
 }  // namespace

@@ -72,6 +72,8 @@ class derivative_causality_model final : public mbgrt::Model {
     F = param(0, 2.0);  // derivative_causality.mbg:3:7
     m1 = param(1, 1.0);  // derivative_causality.mbg:4:7
     m2 = param(2, 3.0);  // derivative_causality.mbg:5:7
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = -1.0 - m2 * (1.0 / m1);
     // INITIAL STATE
     x[0] = 0.0;  // mass1.p (derivative_causality.mbg:7:3)
   }
@@ -83,7 +85,7 @@ class derivative_causality_model final : public mbgrt::Model {
     // derivative_causality.mbg:6:4  Se force: e = value
     const double force_e = F;
     // derivative_causality.mbg:8:3  algebraic loop (2 unknowns), solved for mass1.e
-    const double mass1_e = -force_e / (-1.0 - m2 * (1.0 / m1));
+    const double mass1_e = -force_e / derived1_;
     // state derivatives
     xdot[0] = mass1_e;
   }
@@ -100,7 +102,7 @@ class derivative_causality_model final : public mbgrt::Model {
     // derivative_causality.mbg:7:3  I mass1: p = I f
     const double mass1_f = mass1_p / m1;
     // derivative_causality.mbg:8:3  algebraic loop (2 unknowns), solved for mass1.e
-    const double mass1_e = -force_e / (-1.0 - m2 * (1.0 / m1));
+    const double mass1_e = -force_e / derived1_;
     // outputs, in declaration order
     out[0] = mass1_f;
     out[1] = mass1_e;
@@ -117,6 +119,8 @@ class derivative_causality_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = -1 - m2*(1/m1)
   // parameters (set in initial())
   double F = 0.0;  // derivative_causality.mbg:3:7
   double m1 = 0.0;  // derivative_causality.mbg:4:7

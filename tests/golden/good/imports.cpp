@@ -73,6 +73,8 @@ class imports_model final : public mbgrt::Model {
     m = param(0, 0.5);  // imports.mbg:6:7
     sd_k = param(1, 50.0);  // imports.mbg:10:42
     sd_c = param(2, 2.0);  // lib/spring_damper.mbg:2:54
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = 1.0 / sd_k;
     // INITIAL STATE
     x[0] = m;  // mass.p (imports.mbg:7:3)
     x[1] = 0.0;  // sd.spring.q (lib/spring_damper.mbg:3:5)
@@ -88,7 +90,7 @@ class imports_model final : public mbgrt::Model {
     // imports.mbg:7:3  I mass: p = I f
     const double mass_f = mass_p / m;
     // lib/spring_damper.mbg:3:5  C sd.spring: q = C e
-    const double sd_spring_e = sd_spring_q / (1.0 / sd_k);
+    const double sd_spring_e = sd_spring_q / derived1_;
     // lib/spring_damper.mbg:4:5  R sd.damper: e = R f
     const double sd_damper_e = sd_c * mass_f;
     // lib/spring_damper.mbg:5:5  1 sd.j: efforts in = efforts out
@@ -126,6 +128,8 @@ class imports_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = 1/sd.k
   // parameters (set in initial())
   double m = 0.0;  // imports.mbg:6:7
   double sd_k = 0.0;  // imports.mbg:10:42

@@ -70,6 +70,8 @@ class multibond_model final : public mbgrt::Model {
     // CONSTANTS / PARAMETERS
     m = param(0, 2.0);  // multibond.mbg:4:7
     k = param(1, 10.0);  // multibond.mbg:5:7
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = 1.0 / k;
     // INITIAL STATE
     x[0] = m;  // mass.p[1] (multibond.mbg:7:3)
     x[1] = 0.0;  // mass.p[2] (multibond.mbg:7:3)
@@ -93,10 +95,9 @@ class multibond_model final : public mbgrt::Model {
     // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_2 = mass_p_2 / m;
     // multibond.mbg:8:3  C spring: q = C e
-    const double cse1 = 1.0 / k;  // shared by several equations
-    const double spring_e_1 = spring_q_1 / cse1;
+    const double spring_e_1 = spring_q_1 / derived1_;
     // multibond.mbg:8:3  C spring: q = C e
-    const double spring_e_2 = spring_q_2 / cse1;
+    const double spring_e_2 = spring_q_2 / derived1_;
     // multibond.mbg:9:3  R damper: e = R f
     const double damper_e_1 = 0.5 * mass_f_1 + 0.1 * mass_f_2;
     // multibond.mbg:9:3  R damper: e = R f
@@ -126,7 +127,7 @@ class multibond_model final : public mbgrt::Model {
     // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_2 = mass_p_2 / m;
     // multibond.mbg:8:3  C spring: q = C e
-    const double spring_e_1 = spring_q_1 / (1.0 / k);
+    const double spring_e_1 = spring_q_1 / derived1_;
     // outputs, in declaration order
     out[0] = mass_f_1;
     out[1] = mass_f_2;
@@ -144,6 +145,8 @@ class multibond_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = 1/k
   // parameters (set in initial())
   double m = 0.0;  // multibond.mbg:4:7
   double k = 0.0;  // multibond.mbg:5:7

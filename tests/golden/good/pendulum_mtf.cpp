@@ -78,6 +78,9 @@ class pendulum_mtf_model final : public mbgrt::Model {
     g = param(2, 9.81);  // pendulum_mtf.mbg:17:7
     J_hub = param(3, 0.01);  // pendulum_mtf.mbg:18:7
     theta0 = param(4, 0.5);  // pendulum_mtf.mbg:19:7
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = 0.5 * (J_hub + m * (L*L));
+    derived2_ = 1.0 / J_hub;
     // INITIAL STATE
     x[0] = 0.0;  // hub.p (pendulum_mtf.mbg:21:3)
     x[1] = theta0;  // angle.q (pendulum_mtf.mbg:22:3)
@@ -98,11 +101,10 @@ class pendulum_mtf_model final : public mbgrt::Model {
     // A x = b for x = (arm.e1, bob.e[1], bob.e[2], hub.e, arm.e2[1], arm.e2[2])
     const double cse1 = L * std::cos(angle_q);  // shared by several equations
     const double cse2 = L * std::sin(angle_q);  // shared by several equations
-    const double cse3 = 1.0 / J_hub;  // shared by several equations
     double blk1_a[36] = {
         1.0, 0.0, 0.0, 0.0, -cse1, -cse2,
-        0.0, 1.0, 0.0, -m * (cse1 * cse3), 0.0, 0.0,
-        0.0, 0.0, 1.0, -m * (cse2 * cse3), 0.0, 0.0,
+        0.0, 1.0, 0.0, -m * (cse1 * derived2_), 0.0, 0.0,
+        0.0, 0.0, 1.0, -m * (cse2 * derived2_), 0.0, 0.0,
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, 1.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, 1.0,
@@ -126,13 +128,13 @@ class pendulum_mtf_model final : public mbgrt::Model {
     // pendulum_mtf.mbg:21:3  I hub: p = I f
     const double hub_f = hub_p / J_hub;
     // pendulum_mtf.mbg:30:8  signal energy
-    const double cse4 = std::cos(angle_q);  // shared by several equations
-    const double energy = 0.5 * (J_hub + m * (L*L)) * (hub_f*hub_f) - m * g * L * cse4;
+    const double cse3 = std::cos(angle_q);  // shared by several equations
+    const double energy = derived1_ * (hub_f*hub_f) - m * g * L * cse3;
     // outputs, in declaration order
     out[0] = angle_q;
     out[1] = hub_f;
     out[2] = L * std::sin(angle_q);
-    out[3] = -L * cse4;
+    out[3] = -L * cse3;
     out[4] = energy;
   }
 
@@ -147,6 +149,9 @@ class pendulum_mtf_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = 0.5*(J_hub + m*L^2)
+  double derived2_ = 0.0;  // = 1/J_hub
   // parameters (set in initial())
   double m = 0.0;  // pendulum_mtf.mbg:15:7
   double L = 0.0;  // pendulum_mtf.mbg:16:7
