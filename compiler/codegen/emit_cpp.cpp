@@ -416,7 +416,7 @@ class Emitter {
     if (top) {
       std::vector<Expr> args;
       for (const Expr& a : e->args) args.push_back(swap_in(a));
-      replaced = rebuild(e, args);
+      replaced = with_operands(e, args);
     }
     Namer n = names_;
     n.var = [&](int id) {
@@ -424,20 +424,6 @@ class Emitter {
       return it != placeholder.end() ? it->second : names_.var(id);
     };
     return to_cpp(replaced, n);
-  }
-
-  static Expr rebuild(const Expr& e, const std::vector<Expr>& a) {
-    switch (e->op) {
-      case Op::Neg: return neg(a[0]);
-      case Op::Add: return add(a[0], a[1]);
-      case Op::Sub: return sub(a[0], a[1]);
-      case Op::Mul: return mul(a[0], a[1]);
-      case Op::Div: return div(a[0], a[1]);
-      case Op::Pow: return pow(a[0], a[1]);
-      case Op::Call: return call(e->fn, a);
-      case Op::Der: return der(a[0]);
-      default: return e;
-    }
   }
 
   CppFunction derivative() {

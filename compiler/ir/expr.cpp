@@ -761,4 +761,6 @@ std::string to_cpp(const Expr& e, const Namer& names) {
   return Printer(names, true).print(e).s;
 }
 
+Expr with_operands(const Expr& e, std::vector<Expr> operands) { return rebuild(e, std::move(operands)); }
+
 }  // namespace mbgc::ir

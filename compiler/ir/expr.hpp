@@ -104,6 +104,10 @@ Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var);
 /// the smart constructors), else the replacement, which is not visited further.
 Expr rewrite(const Expr& e, const std::function<Expr(const Expr&)>& f);
 
+/// The same operation on new operands, through the smart constructors (so the
+/// result is re-simplified); e itself if the operands are unchanged.
+Expr with_operands(const Expr& e, std::vector<Expr> operands);
+
 /// Partial derivative with respect to Var `id`. Step' = 0, Abs' = Sign, Sign' = 0,
 /// Min/Max' select the active branch with Step. Der nodes are treated as opaque
 /// (derivative 0, also when they contain the variable) — callers expand Der first.
