@@ -119,6 +119,10 @@ class Emitter {
     find_parameter_expressions();
     c.public_methods.push_back(initial());
     c.public_methods.push_back(s_.dae ? residual() : derivative());
+    if (!s_.jacobian.empty()) {
+      c.public_methods.push_back({"", "bool has_jacobian() const override", {CppStmt::line("return true;")}});
+      c.public_methods.push_back(jacobian());
+    }
     c.public_methods.push_back(outputs());
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
@@ -437,6 +441,19 @@ class Emitter {
     return f;
   }
 
+  CppFunction jacobian() {
+    std::size_t n = s_.states.size();
+    CppFunction f{"JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.",
+                  "void jacobian(double t, const double* x, double* J) override",
+                  {CppStmt::line("(void)t;"), CppStmt::line("(void)x;"),
+                   CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) J[k] = 0.0;", n * n))}};
+    std::vector<std::pair<std::string, Expr>> results;
+    for (std::size_t k = 0; k < s_.jacobian.size(); ++k)
+      if (!is_zero(s_.jacobian[k])) results.push_back({fmt::format("J[{}]", k), s_.jacobian[k]});
+    section(f.body, s_.for_jacobian, results, "nonzero entries");
+    return f;
+  }
+
   CppFunction residual() {
     CppFunction f{"RESIDUAL (DAE): r = F(t, y, yp) must vanish; states first, then algebraic unknowns.",
                   "void residual(double t, const double* y, const double* yp, double* r) override",
@@ -495,6 +512,7 @@ class Emitter {
       for (const Expr& e : lb.b) scan(e);
     }
     for (const Expr& e : s_.state_derivative) scan(e);
+    for (const Expr& e : s_.jacobian) scan(e);
     for (const Residual& r : s_.residuals) scan(r.value);
     for (const Output& o : g_.outputs) scan(o.value);
   }

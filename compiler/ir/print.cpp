@@ -246,6 +246,14 @@ std::string print_reduced(const ReducedSystem& s) {
     out += fmt::format("  {}' = {}    (initial {})\n", g.vars[static_cast<std::size_t>(st.var)].name,
                        to_string(s.state_derivative[i], n), to_string(st.initial, n));
   }
+  if (!s.jacobian.empty()) {
+    out += "jacobian (nonzero entries d x_i' / d x_j):\n";
+    std::size_t m = s.states.size();
+    for (std::size_t k = 0; k < s.jacobian.size(); ++k)
+      if (!is_zero(s.jacobian[k]))
+        out += fmt::format("  [{}, {}] = {}\n", g.vars[static_cast<std::size_t>(s.states[k / m].var)].name,
+                           g.vars[static_cast<std::size_t>(s.states[k % m].var)].name, to_string(s.jacobian[k], n));
+  }
   if (s.dae) {
     out += "residuals:\n";
     for (const Residual& r : s.residuals) out += fmt::format("  0 = {}    ; {}\n", to_string(r.value, n), r.origin);

@@ -53,6 +53,10 @@ struct ReducedSystem {
   std::vector<LinearBlock> linear_blocks; // loops solved numerically (see Assignment::block)
   std::vector<int> for_derivative;        // indices into assignments, in order
   std::vector<int> for_outputs;           // indices into assignments, in order
+  // d(state derivative i)/d(state j), row-major n x n, for ODEs whose loops are
+  // all solved symbolically (empty otherwise: the solver uses finite differences).
+  std::vector<Expr> jacobian;
+  std::vector<int> for_jacobian;          // indices into assignments, in order
   // DAE form (dae == true): y = [states, algebraic], residuals in the same order.
   bool dae = false;
   std::vector<int> algebraic;             // algebraic unknowns (read from y)

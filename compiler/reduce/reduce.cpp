@@ -26,6 +26,7 @@ class Reducer {
     if (!expand_derivatives()) return;
     sort_and_solve();
     if (diags_.has_errors()) return;
+    differentiate_for_jacobian();
     slice();
   }
 
@@ -408,6 +409,55 @@ class Reducer {
     for (Residual& r : algebraic_residuals) out_.residuals.push_back(std::move(r));
   }
 
+  // ---- 5. Jacobian for the implicit solvers ------------------------------------------------
+  /// d(xdot_i)/d(x_j) by forward-mode symbolic differentiation through the
+  /// sorted assignments (chain rule), for ODEs whose assignments are all
+  /// explicit. The result refers to assignment variables, so the emitter
+  /// computes it after the same assignments the derivative uses.
+  void differentiate_for_jacobian() {
+    if (out_.dae || !out_.linear_blocks.empty()) return;
+    std::size_t n = out_.states.size();
+    if (n == 0) return;
+    std::unordered_map<int, std::size_t> state_index;
+    for (std::size_t j = 0; j < n; ++j) state_index[out_.states[j].var] = j;
+    std::unordered_map<int, const Assignment*> assignment_of;
+    for (const Assignment& a : out_.assignments) assignment_of[a.var] = &a;
+    // memo: variable -> its derivative with respect to each state
+    std::unordered_map<int, std::vector<Expr>> d_var;
+    std::function<const std::vector<Expr>&(int)> d_of_var;
+    auto d_of_expr = [&](const Expr& e) {
+      std::vector<Expr> d(n, constant(0));
+      std::unordered_set<int> vars;
+      collect_vars(e, vars);
+      std::vector<int> sorted(vars.begin(), vars.end());
+      std::sort(sorted.begin(), sorted.end());  // deterministic term order
+      for (int u : sorted) {
+        const std::vector<Expr>& du = d_of_var(u);
+        Expr partial;
+        for (std::size_t j = 0; j < n; ++j) {
+          if (is_zero(du[j])) continue;
+          if (!partial) partial = diff_var(e, u);
+          d[j] = add(d[j], mul(partial, du[j]));
+        }
+      }
+      return d;
+    };
+    d_of_var = [&](int u) -> const std::vector<Expr>& {
+      if (auto it = d_var.find(u); it != d_var.end()) return it->second;
+      std::vector<Expr> d(n, constant(0));
+      if (auto s = state_index.find(u); s != state_index.end()) d[s->second] = constant(1);
+      else if (auto a = assignment_of.find(u); a != assignment_of.end()) d = d_of_expr(a->second->value);
+      return d_var.emplace(u, std::move(d)).first->second;
+    };
+    out_.jacobian.reserve(n * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::vector<Expr> row = d_of_expr(out_.state_derivative[i]);
+      for (const Expr& e : row) out_.jacobian.push_back(e);
+    }
+    std::size_t nonzero = std::count_if(out_.jacobian.begin(), out_.jacobian.end(), [](const Expr& e) { return !is_zero(e); });
+    out_.log.push_back(fmt::format("jacobian: {} of {} entries nonzero, by symbolic differentiation", nonzero, n * n));
+  }
+
   // ---- 4. dead equations ---------------------------------------------------------------
   void slice() {
     std::map<int, int> assignment_of;
@@ -442,8 +492,10 @@ class Reducer {
     for (const Output& o : out_.graph.outputs) output_roots.push_back(o.value);
     out_.for_derivative = needed_by(deriv_roots);
     out_.for_outputs = needed_by(output_roots);
+    out_.for_jacobian = needed_by(out_.jacobian);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
     used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
+    used.insert(out_.for_jacobian.begin(), out_.for_jacobian.end());
     // Drop what nobody needs; renumber the slices.
     std::vector<Assignment> kept;
     std::map<int, int> renumber;
@@ -456,6 +508,7 @@ class Reducer {
     out_.assignments = std::move(kept);
     for (int& i : out_.for_derivative) i = renumber.at(i);
     for (int& i : out_.for_outputs) i = renumber.at(i);
+    for (int& i : out_.for_jacobian) i = renumber.at(i);
     out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
   }
 

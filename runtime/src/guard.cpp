@@ -49,6 +49,19 @@ int GuardedModel::derivative(double t, const double* y, double* ydot) {
   return 0;
 }
 
+int GuardedModel::jacobian(double t, const double* y, double* J) {
+  try {
+    model_.jacobian(t, y, J);
+  } catch (const std::exception& e) {
+    return record(t, BlameSite::exception, 0, 0.0, e.what());
+  } catch (...) {
+    return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
+  }
+  for (std::size_t k = 0; k < n_ * n_; ++k)
+    if (!std::isfinite(J[k])) return record(t, BlameSite::derivative, k / n_, J[k], "in the Jacobian");
+  return 0;
+}
+
 int GuardedModel::residual(double t, const double* y, const double* yp, double* r) {
   if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
   try {

@@ -38,6 +38,9 @@ class GuardedModel {
   /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
   int derivative(double t, const double* y, double* ydot);
   int residual(double t, const double* y, const double* yp, double* r);
+  /// The model's own Jacobian (row-major n x n); -1 after recording a blame.
+  int jacobian(double t, const double* y, double* J);
+  bool has_jacobian() const { return model_.has_jacobian() && !dae_; }
 
   /// Checks y after a step; false (and a recorded blame) if any entry is non-finite.
   bool check_state(double t, const double* y);

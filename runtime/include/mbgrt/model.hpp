@@ -80,6 +80,12 @@ class Model {
     (void)t; (void)y; (void)yp; (void)r;
   }
 
+  /// JACOBIAN (ODE, optional): J[i * size() + j] = d ydot_i / d y_j at (t, y),
+  /// row-major. A model that provides it returns true from has_jacobian(); the
+  /// implicit solvers then use it instead of finite differences.
+  virtual bool has_jacobian() const { return false; }
+  virtual void jacobian(double t, const double* y, double* J) { (void)t; (void)y; (void)J; }
+
   /// OUTPUT: compute the declared outputs at (t, y). yp is the current
   /// derivative for DAEs and null for ODEs (the model recomputes what it needs).
   virtual void outputs(double t, const double* y, const double* yp, double* out) = 0;

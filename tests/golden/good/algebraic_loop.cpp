@@ -79,6 +79,19 @@ class algebraic_loop_model final : public mbgrt::Model {
     xdot[0] = r3_f;
   }
 
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 1; ++k) J[k] = 0.0;
+    // nonzero entries
+    J[0] = -0.5454545454545454;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;

@@ -74,6 +74,9 @@ class components_model final : public mbgrt::Model {
     u1_Cc = param(1, 1.0);  // components.mbg:4:41
     u2_Cc = param(2, 3.0);  // components.mbg:14:26
     u2_R = param(3, 1.0);  // components.mbg:4:28
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = -1.0 / u1_R * (1.0 / u1_Cc);
+    derived2_ = -1.0 / u2_R * (1.0 / u2_Cc);
     // INITIAL STATE
     x[0] = 0.0;  // u1.c.q (components.mbg:6:5)
     x[1] = 0.0;  // u2.c.q (components.mbg:6:5)
@@ -101,6 +104,20 @@ class components_model final : public mbgrt::Model {
     // state derivatives
     xdot[0] = u1_r_f;
     xdot[1] = u2_r_f;
+  }
+
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 4; ++k) J[k] = 0.0;
+    // nonzero entries
+    J[0] = derived1_;
+    J[3] = derived2_;
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -131,6 +148,9 @@ class components_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = -1/u1.R*(1/u1.Cc)
+  double derived2_ = 0.0;  // = -1/u2.R*(1/u2.Cc)
   // parameters (set in initial())
   double u1_R = 0.0;  // components.mbg:13:26
   double u1_Cc = 0.0;  // components.mbg:4:41

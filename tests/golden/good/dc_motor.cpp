@@ -80,6 +80,11 @@ class dc_motor_model final : public mbgrt::Model {
     K_m = param(3, 0.678);  // dc_motor.mbg:9:7
     J = param(4, 0.57207);  // dc_motor.mbg:10:7
     D = param(5, 0.226);  // dc_motor.mbg:11:7
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = -R_a * (1.0 / L_a);
+    derived2_ = -K_m * (1.0 / J);
+    derived3_ = K_m * (1.0 / L_a);
+    derived4_ = -D * (1.0 / J);
     // INITIAL STATE
     x[0] = 0.0;  // armature_l.p (dc_motor.mbg:15:4)
     x[1] = 0.0;  // rotor.p (dc_motor.mbg:17:4)
@@ -115,6 +120,22 @@ class dc_motor_model final : public mbgrt::Model {
     xdot[1] = rotor_e;
   }
 
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 4; ++k) J[k] = 0.0;
+    // nonzero entries
+    J[0] = derived1_;
+    J[1] = derived2_;
+    J[2] = derived3_;
+    J[3] = derived4_;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -143,6 +164,11 @@ class dc_motor_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = -R_a*(1/L_a)
+  double derived2_ = 0.0;  // = -K_m*(1/J)
+  double derived3_ = 0.0;  // = K_m*(1/L_a)
+  double derived4_ = 0.0;  // = -D*(1/J)
   // parameters (set in initial())
   double V_supply = 0.0;  // dc_motor.mbg:6:7
   double R_a = 0.0;  // dc_motor.mbg:7:7

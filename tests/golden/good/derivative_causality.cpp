@@ -90,6 +90,17 @@ class derivative_causality_model final : public mbgrt::Model {
     xdot[0] = mass1_e;
   }
 
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 1; ++k) J[k] = 0.0;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;

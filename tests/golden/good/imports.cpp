@@ -75,6 +75,9 @@ class imports_model final : public mbgrt::Model {
     sd_c = param(2, 2.0);  // lib/spring_damper.mbg:2:54
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / sd_k;
+    derived2_ = -sd_c * (1.0 / m);
+    derived3_ = -1.0 / (1.0 / sd_k);
+    derived4_ = 1.0 / m;
     // INITIAL STATE
     x[0] = m;  // mass.p (imports.mbg:7:3)
     x[1] = 0.0;  // sd.spring.q (lib/spring_damper.mbg:3:5)
@@ -100,6 +103,21 @@ class imports_model final : public mbgrt::Model {
     // state derivatives
     xdot[0] = mass_e;
     xdot[1] = mass_f;
+  }
+
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 4; ++k) J[k] = 0.0;
+    // nonzero entries
+    J[0] = derived2_;
+    J[1] = derived3_;
+    J[2] = derived4_;
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -130,6 +148,9 @@ class imports_model final : public mbgrt::Model {
 
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/sd.k
+  double derived2_ = 0.0;  // = -sd.c*(1/m)
+  double derived3_ = 0.0;  // = -1/(1/sd.k)
+  double derived4_ = 0.0;  // = 1/m
   // parameters (set in initial())
   double m = 0.0;  // imports.mbg:6:7
   double sd_k = 0.0;  // imports.mbg:10:42

@@ -100,6 +100,29 @@ class modulated_model final : public mbgrt::Model {
     xdot[1] = arm_f2;
   }
 
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 4; ++k) J[k] = 0.0;
+    // states
+    const double m_p = x[0];
+    const double c_q = x[1];
+    // modulated.mbg:6:3  I m: f = law(p)
+    const double m_f = m_p / 2.0;
+    // modulated.mbg:8:8  signal theta
+    const double theta = 0.5 * t;
+    // nonzero entries
+    J[0] = -0.5 * (0.1 * std::fabs(m_f) + 0.1 * m_f * ((m_f) > 0.0 ? 1.0 : ((m_f) < 0.0 ? -1.0 : 0.0)));
+    const double cse2 = std::cos(theta);  // shared by several equations
+    J[1] = -cse2 * (100.0 + 30.0 * (c_q*c_q));
+    J[2] = 0.5 * cse2;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;

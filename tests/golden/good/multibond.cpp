@@ -72,6 +72,10 @@ class multibond_model final : public mbgrt::Model {
     k = param(1, 10.0);  // multibond.mbg:5:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / k;
+    derived2_ = -0.5 * (1.0 / m);
+    derived3_ = -0.1 * (1.0 / m);
+    derived4_ = -1.0 / (1.0 / k);
+    derived5_ = 1.0 / m;
     // INITIAL STATE
     x[0] = m;  // mass.p[1] (multibond.mbg:7:3)
     x[1] = 0.0;  // mass.p[2] (multibond.mbg:7:3)
@@ -113,6 +117,26 @@ class multibond_model final : public mbgrt::Model {
     xdot[3] = mass_f_2;
   }
 
+  bool has_jacobian() const override {
+    return true;
+  }
+
+  // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
+  void jacobian(double t, const double* x, double* J) override {
+    (void)t;
+    (void)x;
+    for (std::size_t k = 0; k < 16; ++k) J[k] = 0.0;
+    // nonzero entries
+    J[0] = derived2_;
+    J[1] = derived3_;
+    J[2] = derived4_;
+    J[4] = derived3_;
+    J[5] = derived2_;
+    J[7] = derived4_;
+    J[8] = derived5_;
+    J[13] = derived5_;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -147,6 +171,10 @@ class multibond_model final : public mbgrt::Model {
 
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/k
+  double derived2_ = 0.0;  // = -0.5*(1/m)
+  double derived3_ = 0.0;  // = -0.1*(1/m)
+  double derived4_ = 0.0;  // = -1/(1/k)
+  double derived5_ = 0.0;  // = 1/m
   // parameters (set in initial())
   double m = 0.0;  // multibond.mbg:4:7
   double k = 0.0;  // multibond.mbg:5:7
