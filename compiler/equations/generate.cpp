@@ -41,13 +41,7 @@ class Generator {
     s_.equations.push_back({std::move(lhs), std::move(rhs), unknown, loc, std::move(origin)});
   }
 
-  /// Sign of the element's flow relative to bond b (power in for passive, out for sources).
-  int sign(int n, int b) const {
-    const GraphNode& node = g_.nodes[static_cast<std::size_t>(n)];
-    bool into = bond(b).to == n;
-    bool source = node.kind == NodeKind::Se || node.kind == NodeKind::Sf;
-    return into != source ? 1 : -1;
-  }
+  int sign(int n, int b) const { return flow_sign(g_, n, b); }
   static Expr signed_(int s, Expr x) { return s < 0 ? neg(x) : x; }
 
   std::string label(const GraphNode& n, const std::string& what) const {
@@ -152,8 +146,7 @@ class Generator {
   void transformer(int n) {
     const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
     int b1 = nd.bonds[0], b2 = nd.bonds[1];
-    int s1 = bond(b1).to == n ? 1 : -1;    // flow into port 1
-    int s2 = bond(b2).from == n ? 1 : -1;  // flow out of port 2
+    int s1 = sign(n, b1), s2 = sign(n, b2);  // flow into port 1, out of port 2
     bool forward = sets_effort(g_, n, b1);  // computes e1 and f2
     // f2 = T f1  (rows: dim2)   and   e1 = T^T e2  (rows: dim1)
     for (int r = 0; r < nd.dim2; ++r)
@@ -167,8 +160,7 @@ class Generator {
   void gyrator(int n) {
     const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
     int b1 = nd.bonds[0], b2 = nd.bonds[1];
-    int s1 = bond(b1).to == n ? 1 : -1;
-    int s2 = bond(b2).from == n ? 1 : -1;
+    int s1 = sign(n, b1), s2 = sign(n, b2);
     bool efforts = sets_effort(g_, n, b1);  // computes e1 and e2 (from the flows)
     // e2 = G f1 (rows: dim2)   and   e1 = G^T f2 (rows: dim1)
     for (int r = 0; r < nd.dim2; ++r)

@@ -294,15 +294,6 @@ class Builder {
     }
   }
 
-  /// +1 if the bond's direction agrees with the node's sign convention:
-  /// power into passive elements (I, C, R), out of sources.
-  int flow_sign(const GraphNode& n, int bond) const {
-    const Bond& b = g_.bonds[static_cast<std::size_t>(bond)];
-    bool into = b.to == &n - g_.nodes.data();
-    bool source = n.kind == NodeKind::Se || n.kind == NodeKind::Sf;
-    return (into != source) ? 1 : -1;
-  }
-
   Value bond_value(int bond, bool effort, int sign) const {
     const Bond& b = g_.bonds[static_cast<std::size_t>(bond)];
     Value v{b.dim, 1, {}};
@@ -350,15 +341,12 @@ class Builder {
           int port = q[1] - '1';
           int b = n.bonds[static_cast<std::size_t>(port)];
           if (b < 0) return report("port not connected", "");
-          const Bond& bond = g_.bonds[static_cast<std::size_t>(b)];
-          int node_index = it->second;
-          bool agrees = port == 0 ? bond.to == node_index : bond.from == node_index;
-          return bond_value(b, q[0] == 'e', q[0] == 'e' ? 1 : (agrees ? 1 : -1));
+          return bond_value(b, q[0] == 'e', q[0] == 'e' ? 1 : flow_sign(g_, it->second, b));
         }
         return report(fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
                       "two-ports have e1, f1 (port p1) and e2, f2 (port p2)");
       }
-      int sign = flow_sign(n, n.bonds[0]);
+      int sign = flow_sign(g_, it->second, n.bonds[0]);
       if (q == "e") return bond_value(n.bonds[0], true, 1);
       if (q == "f") return bond_value(n.bonds[0], false, sign);
       if ((q == "p" && n.kind == NodeKind::I) || (q == "q" && n.kind == NodeKind::C)) {
@@ -430,7 +418,7 @@ class Builder {
       const AstElement& el = *rn.element;
       std::map<std::string, Value> locals;  // the element's own e, f, p/q inside { } laws
       if (!is_two_port(n.kind)) {
-        int sign = flow_sign(n, n.bonds[0]);
+        int sign = flow_sign(g_, static_cast<int>(i), n.bonds[0]);
         locals["e"] = bond_value(n.bonds[0], true, 1);
         locals["f"] = bond_value(n.bonds[0], false, sign);
         if (!n.state_vars.empty()) {

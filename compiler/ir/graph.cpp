@@ -17,4 +17,16 @@ const char* node_kind_name(NodeKind k) {
   }
   return "?";
 }
+
+int flow_sign(const BondGraph& g, int n, int b) {
+  const GraphNode& node = g.nodes[static_cast<std::size_t>(n)];
+  const Bond& bond = g.bonds[static_cast<std::size_t>(b)];
+  bool into = bond.to == n;
+  if (is_two_port(node.kind)) {
+    bool port1 = !node.bonds.empty() && node.bonds[0] == b;
+    return into == port1 ? 1 : -1;
+  }
+  bool source = node.kind == NodeKind::Se || node.kind == NodeKind::Sf;
+  return into != source ? 1 : -1;
+}
 }  // namespace mbgc::ir

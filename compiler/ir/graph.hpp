@@ -112,4 +112,9 @@ struct BondGraph {
   }
 };
 
+/// +1 if bond b's direction agrees with node n's sign convention for its own
+/// flow: power into passive elements (I, C, R) and into port 1 of a two-port;
+/// out of sources and out of port 2. -1 otherwise (the element's flow is -f).
+int flow_sign(const BondGraph& g, int n, int b);
+
 }  // namespace mbgc::ir
