@@ -97,9 +97,58 @@ struct AstInstance {
   std::vector<AstAttr> args;  // port = endpoint (a Name expr) or param = expr
 };
 
+// ---- the multibody layer (expanded into the statements above by elaborate) ----
+
+/// `point tip = [0.5, 0, 0]` inside a body (or ground) block: a named point,
+/// in body-frame coordinates.
+struct AstPoint { std::string name; SourceLoc loc; AstExprPtr value; };
+
+/// `body link { mass = 1; inertia = diag(...); com = [...]; point tip = [...] }`,
+/// and `ground { point pivot = [...] }` (name "ground", no attrs): a rigid body.
+/// Names inside `for` loops may carry interpolations, e.g. "link{i}".
+struct AstBody {
+  std::string name;
+  SourceLoc loc;          // of the name
+  SourceLoc kind_loc;     // of `body` / `ground`
+  std::vector<AstAttr> attrs;
+  std::vector<AstPoint> points;
+};
+
+/// `joint j1 revolute(ground.pivot, crank.a) { axis = [0, 0, 1]; q0 = 0.3 }`:
+/// a joint between a point on body a and a point on body b (an endpoint is
+/// `body.point`, `body` (its frame origin) or `ground`/`ground.point`).
+struct AstJoint {
+  std::string name;
+  SourceLoc loc;          // of the name
+  SourceLoc kind_loc;     // of `joint`
+  std::string type;       // revolute, spherical, ...
+  SourceLoc type_loc;
+  AstEndpoint a, b;
+  std::vector<AstAttr> attrs;
+};
+
+/// A model-wide setting statement: `gravity = [0, -9.81, 0]`,
+/// `constraints = lagrange` (value is then a Name expression).
+struct AstSetting { std::string key; SourceLoc loc; AstExprPtr value; };
+
+struct AstFor;
+
 using AstStmt = std::variant<AstModel, AstImport, AstParam, AstSignal, AstOutput, AstElement,
                              AstJunction, AstBond, AstSimulate, AstInstance,
-                             std::shared_ptr<AstComponent>>;
+                             std::shared_ptr<AstComponent>, AstBody, AstJoint, AstSetting,
+                             std::shared_ptr<AstFor>>;
+
+/// `for i in 1..N { statements }`: the statements repeated for i = from..to
+/// (integers, both ends included; bounds are parameter expressions known at
+/// compile time). Inside, a name may interpolate `{expr}` (e.g. `link{i-1}.tip`,
+/// `output q{i} = ...`): the text keeps "{expr}" verbatim (whitespace removed)
+/// and elaborate substitutes the value.
+struct AstFor {
+  std::string var;
+  SourceLoc loc;          // of `for`
+  AstExprPtr from, to;
+  std::vector<AstStmt> body;
+};
 
 /// `component name(port a, port b, param V = 60) { statements }`
 struct AstComponent {

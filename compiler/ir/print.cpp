@@ -70,6 +70,22 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
             std::vector<std::string> a;
             for (const AstAttr& x : st.args) a.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
             out += fmt::format("{}instance {} = {}({})\n", pad, st.name, st.component, fmt::join(a, ", "));
+          } else if constexpr (std::is_same_v<T, AstBody>) {
+            std::vector<std::string> parts;
+            for (const AstAttr& x : st.attrs) parts.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
+            for (const AstPoint& p : st.points) parts.push_back(fmt::format("point {} = {}", p.name, ast_expr(*p.value)));
+            if (st.name == "ground") out += fmt::format("{}ground {{ {} }}\n", pad, fmt::join(parts, "; "));
+            else out += fmt::format("{}body {} {{ {} }}\n", pad, st.name, fmt::join(parts, "; "));
+          } else if constexpr (std::is_same_v<T, AstJoint>) {
+            out += fmt::format("{}joint {} {}({}, {})", pad, st.name, st.type, st.a.path, st.b.path);
+            if (!st.attrs.empty()) out += " " + attrs(st.attrs);
+            out += "\n";
+          } else if constexpr (std::is_same_v<T, AstSetting>) {
+            out += fmt::format("{}{} = {}\n", pad, st.key, ast_expr(*st.value));
+          } else if constexpr (std::is_same_v<T, std::shared_ptr<AstFor>>) {
+            out += fmt::format("{}for {} in {}..{} {{\n", pad, st->var, ast_expr(*st->from), ast_expr(*st->to));
+            ast_stmts(out, st->body, indent + 2);
+            out += pad + "}\n";
           } else {
             std::vector<std::string> iface;
             for (const auto& p : st->ports) iface.push_back("port " + p.path);
