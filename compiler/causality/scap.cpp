@@ -26,6 +26,7 @@ constexpr Rule kRules[] = {
     {NodeKind::I, Want::Either, Want::Flow, 2},
     {NodeKind::C, Want::Either, Want::Effort, 2},
     {NodeKind::R, Want::Either, Want::Effort, 3},
+    {NodeKind::CN, Want::Effort, Want::Effort, 1},  // lagrange: unknown effort; penalty: e = law(g, f)
     {NodeKind::TF, Want::Either, Want::Either, 4},
     {NodeKind::MTF, Want::Either, Want::Either, 4},
     {NodeKind::GY, Want::Either, Want::Either, 4},

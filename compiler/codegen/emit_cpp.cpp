@@ -38,7 +38,8 @@ const std::set<std::string> kReserved = {
     "main", "model", "argc", "argv", "param", "overrides_", "overridden_", "kNames", "kParams",
     "name", "source_file", "size", "variable_name", "output_names", "parameters", "is_dae",
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
-    "outputs", "terminal"};
+    "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
+    "constraints_enforced", "constraint_name", "constraints", "kConstraintNames"};
 
 /// Reserved by the C++ implementation or by the standard library's macros.
 bool reserved(const std::string& id) {
@@ -124,6 +125,7 @@ class Emitter {
       c.public_methods.push_back(jacobian());
     }
     c.public_methods.push_back(outputs());
+    if (!s_.constraints.empty()) constraint_functions(c);
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
     private_part(c);
@@ -463,6 +465,36 @@ class Emitter {
       results.push_back({fmt::format("r[{}]", i), s_.residuals[i].value});
     section(f.body, s_.for_derivative, results, "residuals");
     return f;
+  }
+
+  /// The CN rows for assembly and drift reports: g (position level) for every
+  /// row, then gdot (velocity level) for every row.
+  void constraint_functions(CppClass& c) {
+    std::size_t n = s_.constraints.size();
+    bool enforced = s_.constraints.front().multiplier >= 0;
+    if (s_.dae)
+      c.public_methods.push_back({"", "std::size_t state_count() const override", {CppStmt::line(fmt::format("return {};", s_.states.size()))}});
+    c.public_methods.push_back({"", "std::size_t position_constraint_count() const override", {CppStmt::line(fmt::format("return {};", n))}});
+    c.public_methods.push_back({"", "std::size_t velocity_constraint_count() const override", {CppStmt::line(fmt::format("return {};", n))}});
+    c.public_methods.push_back({enforced ? "lagrange: the DAE enforces the constraints; the runtime reports their drift."
+                                         : "penalty: the constraints are only pulled back; the runtime reports the violation.",
+                                "bool constraints_enforced() const override", {CppStmt::line(enforced ? "return true;" : "return false;")}});
+    CppFunction names{"", "std::string constraint_name(std::size_t i) const override", {}};
+    std::vector<std::string> list;
+    for (const ConstraintRow& r : s_.constraints) list.push_back(cpp_string(r.name + " g"));
+    for (const ConstraintRow& r : s_.constraints) list.push_back(cpp_string(r.name + " gdot"));
+    names.body.push_back(CppStmt::line(fmt::format("static const char* const kConstraintNames[] = {{{}}};", fmt::join(list, ", "))));
+    names.body.push_back(CppStmt::line(fmt::format("return i < {} ? kConstraintNames[i] : \"?\";", 2 * n)));
+    c.public_methods.push_back(names);
+    const char* y = s_.dae ? "y" : "x";
+    CppFunction f{"CONSTRAINTS: g(x) for every CN row, then gdot(x).",
+                  fmt::format("void constraints(double t, const double* {}, double* c) override", y),
+                  {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
+    std::vector<std::pair<std::string, Expr>> results;
+    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("c[{}]", i), s_.constraints[i].g});
+    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("c[{}]", n + i), s_.constraints[i].gdot});
+    section(f.body, s_.for_constraints, results, "g, then gdot");
+    c.public_methods.push_back(f);
   }
 
   CppFunction outputs() {

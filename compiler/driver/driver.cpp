@@ -6,6 +6,8 @@
 
 #include "causality/scap.hpp"
 #include "codegen/emit_cpp.hpp"
+#include "elaborate/unroll.hpp"
+#include "multibody/expand.hpp"
 #include "equations/generate.hpp"
 #include "graph/build_graph.hpp"
 #include "ir/print.hpp"
@@ -69,6 +71,12 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   ir::AstProgram ast = parse::load_program(opt.input, sources, diags);
   if (failed()) return 1;
   if (opt.dump == Dump::Ast) return finish(ir::print_ast(ast));
+
+  ast = elaborate::unroll_loops(ast, opt.overrides, diags);
+  if (failed()) return 1;
+  ast = multibody::expand(ast, diags);
+  if (failed()) return 1;
+  if (opt.dump == Dump::Expanded) return finish(ir::print_ast(ast));
 
   ir::ResolvedModel resolved = sema::resolve(ast, opt.input, diags);
   if (failed()) return 1;

@@ -1,17 +1,19 @@
 // driver/driver.hpp — the only place that knows the order of the passes:
 //
-//   parse -> resolve -> graph -> causality -> equations -> reduce -> emit
+//   parse -> unroll loops -> expand multibody -> resolve -> graph -> causality
+//         -> equations -> reduce -> emit
 //
 // Each pass reports into one Diagnostics; the pipeline stops after the first
 // pass with an error, so later passes only ever see well-formed input.
 #pragma once
 
+#include <map>
 #include <ostream>
 #include <string>
 
 namespace mbgc::driver {
 
-enum class Dump { None, Ast, Graph, Causality, Equations, Reduced };
+enum class Dump { None, Ast, Expanded, Graph, Causality, Equations, Reduced };
 
 struct Options {
   std::string input;          ///< the .mbg file
@@ -20,6 +22,7 @@ struct Options {
   bool dot = false;           ///< --format=dot (graph and causality dumps)
   bool library = false;       ///< --library: model class without main()
   std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
+  std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time
 };
 
 /// Runs the compiler. Returns the exit status: 0 ok, 1 errors in the model,

@@ -2,7 +2,10 @@
 // driver::compile.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <cstdlib>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "driver/driver.hpp"
 
@@ -16,12 +19,24 @@ int main(int argc, char** argv) {
   app.add_flag("--library", opt.library, "emit the model class without main(), to include in your own program");
   app.add_option("--depfile", opt.depfile, "also write a Makefile-style dependency file (model and imports)");
   app.add_option("--dump", dump, "print a compiler stage instead of C++")
-      ->check(CLI::IsMember({"none", "ast", "graph", "causality", "equations", "reduced"}));
+      ->check(CLI::IsMember({"none", "ast", "expanded", "graph", "causality", "equations", "reduced"}));
+  std::vector<std::string> sets;
+  app.add_option("--set", sets, "NAME=VALUE: fix a top-level parameter at compile time (e.g. a chain's N)");
   app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
       ->check(CLI::IsMember({"text", "dot"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
   CLI11_PARSE(app, argc, argv);
-  static const std::map<std::string, Dump> dumps = {{"none", Dump::None},           {"ast", Dump::Ast},
+  for (const std::string& s : sets) {
+    auto eq = s.find('=');
+    char* end = nullptr;
+    double v = eq == std::string::npos ? 0.0 : std::strtod(s.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || eq == 0 || end == s.c_str() + eq + 1 || *end != '\0') {
+      std::cerr << "mbgc: error: --set expects NAME=NUMBER, got `" << s << "`\n";
+      return 2;
+    }
+    opt.overrides[s.substr(0, eq)] = v;
+  }
+  static const std::map<std::string, Dump> dumps = {{"none", Dump::None},           {"ast", Dump::Ast}, {"expanded", Dump::Expanded},
                                                     {"graph", Dump::Graph},         {"causality", Dump::Causality},
                                                     {"equations", Dump::Equations}, {"reduced", Dump::Reduced}};
   opt.dump = dumps.at(dump);

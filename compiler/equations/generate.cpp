@@ -59,6 +59,26 @@ class Generator {
       case NodeKind::TF: case NodeKind::MTF: transformer(n); break;
       case NodeKind::GY: case NodeKind::MGY: gyrator(n); break;
       case NodeKind::Zero: case NodeKind::One: junction(n); break;
+      case NodeKind::CN: constraintor(n); break;
+    }
+  }
+
+  void constraintor(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    int b = nd.bonds[0];
+    int s = sign(n, b);
+    bool lagrange = nd.law == LawForm::Constraint;
+    for (int k = 0; k < nd.dim; ++k) {
+      std::string row = nd.dim == 1 ? nd.name : fmt::format("{}[{}]", nd.name, k + 1);
+      s_.constraints.push_back({row, nd.loc, nd.constraint_g.items[static_cast<std::size_t>(k)], f_id(b, k), lagrange ? e_id(b, k) : -1, nullptr, -1});
+      if (lagrange) {
+        // The flow is computed by the rest of the graph; this equation pins it
+        // to zero and thereby determines the multiplier e (an index-2 DAE row).
+        s_.equations.push_back({signed_(s, f(b, k)), constant(0), e_id(b, k), nd.loc,
+                                label(nd, "f = dg/dt = 0, e is the multiplier"), /*constraint=*/true});
+      } else {
+        emit(e(b, k), nd.law_rhs[static_cast<std::size_t>(k)], e_id(b, k), nd.loc, label(nd, "e = stiffness g + damping f (penalty)"));
+      }
     }
   }
 
@@ -96,7 +116,7 @@ class Generator {
       for (int k = 0; k < nd.dim; ++k) {
         int x = nd.state_vars[static_cast<std::size_t>(k)];
         if (nd.law != LawForm::Linear) {
-          emit(output(k), nd.law_rhs, output_id(k), nd.loc, label(nd, fmt::format("{} = law({})", out, st)));
+          emit(output(k), nd.law_rhs[static_cast<std::size_t>(k)], output_id(k), nd.loc, label(nd, fmt::format("{} = law({})", out, st)));
         } else {
           // p = I f  (q = C e): one row per component; reduce solves the block.
           emit(var(x), row_times(nd.value, k, nd.dim, output), output_id(k), nd.loc,
@@ -129,13 +149,14 @@ class Generator {
     bool sets_e = sets_effort(g_, n, b);
     auto flow = [&](int k) { return signed_(s, f(b, k)); };
     // A nonlinear law solved for the other variable is implicit; reduce hands it to IDA.
-    int unknown = sets_e ? e_id(b, 0) : f_id(b, 0);
-    if (nd.law == LawForm::EffortOfFlow) {
-      emit(e(b, 0), nd.law_rhs, unknown, nd.loc, label(nd, sets_e ? "e = law(f)" : "e = law(f), solved for f"));
-      return;
-    }
-    if (nd.law == LawForm::FlowOfEffort) {
-      emit(flow(0), nd.law_rhs, unknown, nd.loc, label(nd, sets_e ? "f = law(e), solved for e" : "f = law(e)"));
+    if (nd.law == LawForm::EffortOfFlow || nd.law == LawForm::FlowOfEffort) {
+      bool effort_law = nd.law == LawForm::EffortOfFlow;
+      for (int k = 0; k < nd.dim; ++k) {
+        int unknown = sets_e ? e_id(b, k) : f_id(b, k);
+        Expr rhs = nd.law_rhs[static_cast<std::size_t>(k)];
+        if (effort_law) emit(e(b, k), rhs, unknown, nd.loc, label(nd, sets_e ? "e = law(f)" : "e = law(f), solved for f"));
+        else emit(flow(k), rhs, unknown, nd.loc, label(nd, sets_e ? "f = law(e), solved for e" : "f = law(e)"));
+      }
       return;
     }
     for (int k = 0; k < nd.dim; ++k)

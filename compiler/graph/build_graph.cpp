@@ -452,21 +452,25 @@ class Builder {
             continue;
           }
           has_law = true;
-          if (n.dim != 1) {
-            diags_.error(a.loc, fmt::format("nonlinear law on a {}-dimensional multibond", n.dim),
-                         "nonlinear laws are scalar; use one element per component");
-            continue;
-          }
           auto v = lower(*a.value, with_locals, diags_);
           if (!v) continue;
-          if (!v->is_scalar()) {
-            diags_.error(a.value->loc, "a constitutive law must be a scalar expression", "");
+          if (!(v->is_scalar() || (v->is_vector() && v->length() == n.dim))) {
+            diags_.error(a.value->loc, fmt::format("the law of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
+                         n.dim == 1 ? "a scalar element's law is a scalar expression"
+                                    : fmt::format("give a vector of {} components (a scalar applies to every component)", n.dim));
             continue;
           }
-          n.law_rhs = v->items[0];
+          n.law_rhs = v->is_scalar() ? std::vector<Expr>(static_cast<std::size_t>(n.dim), v->items[0]) : v->items;
+          if (n.kind == NodeKind::CN) {
+            n.constraint_g = Value{n.dim, 1, n.law_rhs};
+            n.law_rhs.clear();
+            n.law = LawForm::Constraint;
+            check_constraint_inputs(n, a);
+            continue;
+          }
           n.law = law_form(n.kind, a.key);
           check_law_inputs(n, a);
-        } else if (is_initial_key(n.kind, a.key)) {
+        } else if (is_initial_key(n.kind, a.key) || is_penalty_key(n.kind, a.key)) {
           // handled after the law is known
         } else {
           std::vector<std::string> keys = allowed_keys(n.kind);
@@ -483,6 +487,56 @@ class Builder {
         continue;
       }
       if (is_storage(n.kind)) lower_initial(n, el, plain);
+      if (n.kind == NodeKind::CN && n.law == LawForm::Constraint) lower_penalty(n, el, plain, locals);
+    }
+  }
+
+  static bool is_penalty_key(NodeKind k, const std::string& key) {
+    return k == NodeKind::CN && (key == "stiffness" || key == "damping");
+  }
+
+  /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
+  /// e = stiffness * g + damping * f per component, an ODE instead of a multiplier.
+  void lower_penalty(GraphNode& n, const AstElement& el, const NameLookup& lookup, std::map<std::string, Value>& locals) {
+    std::optional<Value> k, d;
+    for (const AstAttr& a : el.attrs) {
+      if (!is_penalty_key(n.kind, a.key)) continue;
+      auto v = lower(*a.value, lookup, diags_);
+      if (!v) return;
+      if (!v->is_scalar() || !only_params(*v)) {
+        diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name), "");
+        return;
+      }
+      (a.key == "stiffness" ? k : d) = v;
+    }
+    if (!k && !d) return;
+    if (!k) {
+      diags_.error(n.loc, fmt::format("CN `{}` has a damping but no stiffness", n.name),
+                   "a penalty constraint needs `stiffness = ...` (and usually `damping = ...`)");
+      return;
+    }
+    n.law = LawForm::Penalty;
+    const Value& f = locals.at("f");
+    for (int c = 0; c < n.dim; ++c) {
+      Expr e = mul(k->items[0], n.constraint_g.items[static_cast<std::size_t>(c)]);
+      if (d) e = add(e, mul(d->items[0], f.items[static_cast<std::size_t>(c)]));
+      n.law_rhs.push_back(e);
+    }
+  }
+
+  /// g must be a function of states (the positions whose rate the CN's flow is), not of efforts or flows.
+  void check_constraint_inputs(const GraphNode& n, const AstAttr& a) {
+    for (const Expr& e : n.constraint_g.items) {
+      std::unordered_set<int> vars;
+      collect_vars(e, vars);
+      for (int id : vars) {
+        VarKind k = g_.vars[static_cast<std::size_t>(id)].kind;
+        if (k != VarKind::State) {
+          diags_.error(a.value->loc, fmt::format("the constraint g of `{}` depends on `{}`, which is not a state", n.name, g_.vars[static_cast<std::size_t>(id)].name),
+                       "g is a position-level constraint: write it in terms of displacements (a C element's q)");
+          return;
+        }
+      }
     }
   }
 
@@ -504,6 +558,7 @@ class Builder {
       case NodeKind::R: return key == "e" || key == "f";
       case NodeKind::C: return key == "e";
       case NodeKind::I: return key == "f";
+      case NodeKind::CN: return key == "g";
       default: return false;
     }
   }
@@ -517,6 +572,7 @@ class Builder {
       case NodeKind::R: return {"e", "f"};
       case NodeKind::C: return {"e", "q0", "e0"};
       case NodeKind::I: return {"f", "p0", "f0"};
+      case NodeKind::CN: return {"g", "stiffness", "damping"};
       default: return {};
     }
   }
@@ -530,6 +586,7 @@ class Builder {
       case NodeKind::R: return fmt::format("write R {} = resistance, or R {} {{ e = expression of f }}", name, name);
       case NodeKind::C: return fmt::format("write C {} = capacitance, or C {} {{ e = expression of q }}", name, name);
       case NodeKind::I: return fmt::format("write I {} = inertia, or I {} {{ f = expression of p }}", name, name);
+      case NodeKind::CN: return fmt::format("write CN {} {{ g = position constraint }} (add stiffness/damping for a penalty)", name);
       default: return fmt::format("write {} {} = value", node_kind_name(k), name);
     }
   }
@@ -537,22 +594,21 @@ class Builder {
   /// A law may read its own input (f for e = phi(f), q for e = phi(q), ...) but not its output.
   void check_law_inputs(const GraphNode& n, const AstAttr& a) {
     std::unordered_set<int> vars;
-    collect_vars(n.law_rhs, vars);
+    for (const Expr& e : n.law_rhs) collect_vars(e, vars);
     const Bond& b = g_.bonds[static_cast<std::size_t>(n.bonds[0])];
-    int own_output = -1;
-    const char* out_name = "";
-    switch (n.law) {
-      case LawForm::EffortOfFlow: case LawForm::EffortOfState: own_output = b.effort_vars[0]; out_name = "e"; break;
-      case LawForm::FlowOfEffort: case LawForm::FlowOfState: own_output = b.flow_vars[0]; out_name = "f"; break;
-      default: break;
-    }
+    bool effort_out = n.law == LawForm::EffortOfFlow || n.law == LawForm::EffortOfState;
+    const char* out_name = effort_out ? "e" : "f";
+    const std::vector<int>& own_outputs = effort_out ? b.effort_vars : b.flow_vars;
+    const std::vector<int>& others = n.law == LawForm::EffortOfState ? b.flow_vars : b.effort_vars;
+    bool reads_own_output = false, reads_other = false;
+    for (int id : own_outputs) reads_own_output |= vars.count(id) > 0;
+    for (int id : others) reads_other |= vars.count(id) > 0;
     if (n.kind != NodeKind::R) {
-      int other = n.law == LawForm::EffortOfState ? b.flow_vars[0] : b.effort_vars[0];
-      if (vars.count(other))
+      if (reads_other)
         diags_.error(a.value->loc, fmt::format("the law of `{}` must be a function of its state", n.name),
                      n.kind == NodeKind::C ? "write C name { e = expression of q }" : "write I name { f = expression of p }");
     }
-    if (own_output >= 0 && vars.count(own_output))
+    if (reads_own_output)
       diags_.error(a.value->loc, fmt::format("the law `{} = ...` of `{}` refers to `{}` itself", out_name, n.name, out_name),
                    "the right-hand side may use the element's input, parameters, time and signals");
   }

@@ -14,6 +14,7 @@ const char* node_kind_name(NodeKind k) {
     case NodeKind::MGY: return "MGY";
     case NodeKind::Zero: return "0";
     case NodeKind::One: return "1";
+    case NodeKind::CN: return "CN";
   }
   return "?";
 }

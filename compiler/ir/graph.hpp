@@ -14,7 +14,10 @@
 
 namespace mbgc::ir {
 
-enum class NodeKind { Se, Sf, I, C, R, TF, GY, MTF, MGY, Zero, One };
+/// CN is the constraintor (thesis §7.3): a one-port that keeps its flow at zero
+/// (`lagrange`: its effort is an unknown multiplier) or pulls it back with a
+/// stiff spring-damper on the position-level constraint g (`penalty`).
+enum class NodeKind { Se, Sf, I, C, R, TF, GY, MTF, MGY, Zero, One, CN };
 
 const char* node_kind_name(NodeKind k);  // "Se", ..., "0", "1"
 inline bool is_junction(NodeKind k) { return k == NodeKind::Zero || k == NodeKind::One; }
@@ -31,6 +34,8 @@ enum class LawForm {
   EffortOfState,   // C { e = phi(q) }
   FlowOfState,     // I { f = phi(p) }
   Source,          // Se/Sf: value is the imposed effort/flow (any expression)
+  Constraint,      // CN, lagrange: f = 0, e is an unknown multiplier
+  Penalty,         // CN, penalty: e = stiffness * g + damping * f
 };
 
 struct GraphNode {
@@ -43,7 +48,8 @@ struct GraphNode {
   // Constitutive law (elements only):
   LawForm law = LawForm::Linear;
   Value value;             // modulus / parameter / source value (shaped)
-  Expr law_rhs;            // nonlinear law right-hand side (in terms of the node's own variables)
+  std::vector<Expr> law_rhs;  // nonlinear law right-hand side, one per component
+  Value constraint_g;      // CN: the position-level constraint g(states), dim x 1 (f = dg/dt)
   Value initial;           // initial state (storage elements), shaped dim x 1
   std::vector<int> state_vars;  // storage: one variable per component
 };

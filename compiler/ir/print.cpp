@@ -120,11 +120,14 @@ static std::string value_text(const Value& v, const Namer& n) {
 }
 
 static std::string law_text(const GraphNode& nd, const Namer& n) {
+  auto rhs = [&] { return value_text(Value{static_cast<int>(nd.law_rhs.size()), 1, nd.law_rhs}, n); };
   switch (nd.law) {
-    case LawForm::EffortOfFlow: return "e = " + to_string(nd.law_rhs, n);
-    case LawForm::FlowOfEffort: return "f = " + to_string(nd.law_rhs, n);
-    case LawForm::EffortOfState: return "e = " + to_string(nd.law_rhs, n);
-    case LawForm::FlowOfState: return "f = " + to_string(nd.law_rhs, n);
+    case LawForm::EffortOfFlow: return "e = " + rhs();
+    case LawForm::FlowOfEffort: return "f = " + rhs();
+    case LawForm::EffortOfState: return "e = " + rhs();
+    case LawForm::FlowOfState: return "f = " + rhs();
+    case LawForm::Constraint: return "f = d/dt g = 0 (lagrange), g = " + value_text(nd.constraint_g, n);
+    case LawForm::Penalty: return "e = " + rhs() + " (penalty), g = " + value_text(nd.constraint_g, n);
     default: return value_text(nd.value, n);
   }
 }

@@ -62,6 +62,12 @@ struct ReducedSystem {
   std::vector<int> algebraic;             // algebraic unknowns (read from y)
   std::vector<int> derivative_unknowns;   // DAE: per state, the variable read from yp[i]
   std::vector<Residual> residuals;
+  // Holonomic constraints of the CN elements (g in states, gdot after the
+  // assignments in for_constraints): enforced by the DAE for lagrange rows
+  // (stabilised index-2: residuals gdot = 0 and g = 0, multipliers lambda and
+  // mu), monitored for penalty rows.
+  std::vector<ConstraintRow> constraints;
+  std::vector<int> for_constraints;       // indices into assignments, in order
   std::vector<AlgebraicLoop> loops;
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled
   std::vector<std::string> log;           // what reduction did, one line per step

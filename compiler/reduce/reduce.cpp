@@ -19,6 +19,7 @@ class Reducer {
     out_.graph = std::move(sys_.graph);
     out_.causality = std::move(sys_.causality);
     out_.states = sys_.states;
+    out_.constraints = std::move(sys_.constraints);
     eqs_ = std::move(sys_.equations);
     for (const StateVar& s : out_.states) is_state_.insert(s.var);
     if (!check_each_unknown_once()) return;
@@ -100,6 +101,7 @@ class Reducer {
     eqs_ = std::move(kept);
     for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve(var(s.der)));
     for (Output& o : out_.graph.outputs) o.value = resolve(o.value);
+    for (ConstraintRow& row : out_.constraints) row.gdot = resolve(var(row.flow));
     alias_ = std::move(alias);
     out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
     out_.log.push_back(fmt::format("constant propagation: {} variable{} with a constant value folded into their uses", constants_, constants_ == 1 ? "" : "s"));
@@ -263,6 +265,18 @@ class Reducer {
   }
 
   void solve_block(const std::vector<int>& block) {
+    bool has_constraint = false;
+    for (int i : block) has_constraint |= eqs_[static_cast<std::size_t>(i)].constraint;
+    if (has_constraint) {
+      // A CN row gdot = 0 determines its multiplier only through the
+      // dynamics: it stays a residual of the (index-2) DAE.
+      out_.dae = true;
+      for (int i : block) {
+        dae_block_eqs_.push_back(i);
+        dae_unknowns_.insert(eqs_[static_cast<std::size_t>(i)].unknown);
+      }
+      return;
+    }
     if (block.size() == 1) {
       const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
       if (auto sol = solve_single(eq)) {
@@ -405,8 +419,39 @@ class Reducer {
       state_residuals[i] = Residual{sub(var(yp), out_.state_derivative[i]), v(s.var).loc,
                                     fmt::format("der({}) from the integrator", v(s.var).name)};
     }
+    stabilise(state_residuals, have, algebraic_residuals);
     out_.residuals = std::move(state_residuals);
     for (Residual& r : algebraic_residuals) out_.residuals.push_back(std::move(r));
+  }
+
+  /// Gear-Gupta-Leimkuhler stabilisation of the lagrange rows: besides
+  /// gdot = 0 (multiplier lambda), the position-level g = 0 is a residual too,
+  /// with a multiplier mu that corrects the rates of the states g depends on:
+  /// x' = f(x) + (dg/dx)^T mu. At the exact solution mu = 0; numerically it keeps
+  /// g from drifting, so neither positions nor velocities leave the constraints.
+  void stabilise(std::vector<Residual>& state_residuals, const std::vector<bool>& have,
+                 std::vector<Residual>& algebraic_residuals) {
+    int rows = 0;
+    for (ConstraintRow& row : out_.constraints) {
+      if (row.multiplier < 0) continue;
+      row.stabiliser = out_.graph.add_var("mu(" + row.name + ")", VarKind::Auxiliary, row.loc);
+      out_.algebraic.push_back(row.stabiliser);
+      algebraic_residuals.push_back({row.g, row.loc, "CN " + row.name + ": g = 0 (position level, GGL)"});
+      for (std::size_t i = 0; i < out_.states.size(); ++i) {
+        Expr dg = diff_var(row.g, out_.states[i].var);
+        if (is_zero(dg)) continue;
+        if (have[i]) {
+          diags_.error(row.loc, fmt::format("internal error: constraint `{}` depends on `{}`, whose derivative is implicit", row.name, v(out_.states[i].var).name),
+                       "please report this model to the mbgc developers");
+          continue;
+        }
+        state_residuals[i].value = sub(state_residuals[i].value, mul(dg, var(row.stabiliser)));
+      }
+      ++rows;
+    }
+    if (rows)
+      out_.log.push_back(fmt::format("constraints: {} lagrange row{} in stabilised index-2 form (GGL: gdot = 0 with lambda, g = 0 with mu)",
+                                     rows, rows == 1 ? "" : "s"));
   }
 
   // ---- 5. Jacobian for the implicit solvers ------------------------------------------------
@@ -493,7 +538,11 @@ class Reducer {
     out_.for_derivative = needed_by(deriv_roots);
     out_.for_outputs = needed_by(output_roots);
     out_.for_jacobian = needed_by(out_.jacobian);
+    std::vector<Expr> constraint_roots;
+    for (const ConstraintRow& row : out_.constraints) constraint_roots.push_back(row.gdot);
+    out_.for_constraints = needed_by(constraint_roots);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
+    used.insert(out_.for_constraints.begin(), out_.for_constraints.end());
     used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
     used.insert(out_.for_jacobian.begin(), out_.for_jacobian.end());
     // Drop what nobody needs; renumber the slices.
@@ -509,6 +558,7 @@ class Reducer {
     for (int& i : out_.for_derivative) i = renumber.at(i);
     for (int& i : out_.for_outputs) i = renumber.at(i);
     for (int& i : out_.for_jacobian) i = renumber.at(i);
+    for (int& i : out_.for_constraints) i = renumber.at(i);
     out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
   }
 

@@ -18,6 +18,7 @@ NodeKind kind_of(const std::string& k) {
   if (k == "TF") return NodeKind::TF;
   if (k == "GY") return NodeKind::GY;
   if (k == "MTF") return NodeKind::MTF;
+  if (k == "CN") return NodeKind::CN;
   return NodeKind::MGY;
 }
 

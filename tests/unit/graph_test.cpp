@@ -234,7 +234,7 @@ TEST(GraphSigns, PassiveElementFlowIsPowerIn) {
   ASSERT_EQ(output(*c, "eb").value->op, ir::Op::Var);  // efforts keep their sign
   EXPECT_EQ(output(*c, "eb").value->id, eb);
   // Inside the law, f is the element's (power-in) flow too: e = 3 * (-b.f).
-  EXPECT_EQ(value_of(*c, nd(*c, "b").law_rhs, {{"b.f", 1.0}}), -3.0);
+  EXPECT_EQ(value_of(*c, nd(*c, "b").law_rhs[0], {{"b.f", 1.0}}), -3.0);
 }
 
 TEST(GraphSigns, SourceFlowIsPowerOut) {
@@ -291,10 +291,10 @@ TEST(GraphLaws, LawFormsAndTheirVariables) {
   EXPECT_EQ(nd(*c, "c").law, ir::LawForm::EffortOfState);
   EXPECT_EQ(nd(*c, "lin").law, ir::LawForm::Linear);
   EXPECT_EQ(nd(*c, "g").law, ir::LawForm::Source);
-  EXPECT_EQ(str(nd(*c, "m").law_rhs, c->graph), "m.p/2");
-  EXPECT_EQ(str(nd(*c, "cond").law_rhs, c->graph), "cond.e^3");
-  EXPECT_EQ(value_of(*c, nd(*c, "drag").law_rhs, {{"drag.f", -2.0}}), -0.4);
-  EXPECT_EQ(value_of(*c, nd(*c, "c").law_rhs, {{"c.q", 2.0}}), 280.0);
+  EXPECT_EQ(str(nd(*c, "m").law_rhs[0], c->graph), "m.p/2");
+  EXPECT_EQ(str(nd(*c, "cond").law_rhs[0], c->graph), "cond.e^3");
+  EXPECT_EQ(value_of(*c, nd(*c, "drag").law_rhs[0], {{"drag.f", -2.0}}), -0.4);
+  EXPECT_EQ(value_of(*c, nd(*c, "c").law_rhs[0], {{"c.q", 2.0}}), 280.0);
   EXPECT_EQ(str(nd(*c, "lin").value.items[0], c->graph), "4");
 }
 

@@ -1,0 +1,749 @@
+#include "multibody/expand.hpp"
+
+#include <deque>
+#include <fmt/format.h>
+#include <functional>
+#include <map>
+#include <set>
+
+namespace mbgc::multibody {
+namespace {
+
+using namespace mbgc::ir;
+using E = AstExprPtr;
+
+// ---- building AST expressions (all carry the location of the declaration) ----------
+class Build {
+ public:
+  explicit Build(SourceLoc loc) : loc_(loc) {}
+  E num(double v) const { return make(AstExpr::Kind::Number, [&](AstExpr& e) { e.number = v; }); }
+  E name(const std::string& n) const { return make(AstExpr::Kind::Name, [&](AstExpr& e) { e.name = n; }); }
+  E op(char o, E a, E b) const {
+    return make(AstExpr::Kind::Binary, [&](AstExpr& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });
+  }
+  E neg(E a) const { return make(AstExpr::Kind::Unary, [&](AstExpr& e) { e.op = '-'; e.args = {std::move(a)}; }); }
+  E call(const std::string& fn, std::vector<E> args) const {
+    return make(AstExpr::Kind::Call, [&](AstExpr& e) { e.name = fn; e.args = std::move(args); });
+  }
+  E list(std::vector<E> items) const { return make(AstExpr::Kind::List, [&](AstExpr& e) { e.args = std::move(items); }); }
+  E vec(double x, double y, double z) const { return list({num(x), num(y), num(z)}); }
+  E at(E a, int i) const { return make(AstExpr::Kind::Index, [&](AstExpr& e) { e.args = {std::move(a), num(i)}; }); }
+  E dot(E a, E b) const { return call("dot", {std::move(a), std::move(b)}); }
+  const SourceLoc& loc() const { return loc_; }
+
+ private:
+  template <class F>
+  E make(AstExpr::Kind k, F fill) const {
+    auto e = std::make_shared<AstExpr>();
+    e->kind = k;
+    e->loc = loc_;
+    fill(*e);
+    return e;
+  }
+  SourceLoc loc_;
+};
+
+enum class Strategy { Lagrange, Penalty, Coordinates };
+
+struct Body {
+  const AstBody* decl = nullptr;
+  bool ground = false;
+  bool particle = false;                 // no inertia: translation only
+  std::map<std::string, E> points;       // name -> body-frame coordinates (ground: inertial)
+  bool placed = false;                   // initial pose known (ground, or from a tree joint)
+  std::string placed_by;                 // joint that placed it
+};
+
+struct Side {
+  std::string body;   // "ground" or a body name
+  std::string point;  // may be empty (the frame origin)
+};
+
+struct Joint {
+  const AstJoint* decl = nullptr;
+  Side a, b;
+  std::map<std::string, const AstAttr*> attrs;
+  Strategy strategy = Strategy::Lagrange;
+};
+
+const std::set<std::string> kJointTypes = {"revolute", "spherical", "cylindrical", "prismatic", "screw",
+                                           "planar",   "universal", "fixed",       "distance"};
+
+bool has_rotation_coordinate(const std::string& t) { return t == "revolute" || t == "cylindrical" || t == "screw"; }
+bool has_axial_coordinate(const std::string& t) { return t == "prismatic" || t == "cylindrical" || t == "screw"; }
+
+class Expander {
+ public:
+  explicit Expander(Diagnostics& diags) : diags_(diags) {}
+
+  AstProgram run(const AstProgram& in) {
+    collect(in);
+    if (diags_.has_errors()) return {};
+    if (bodies_.size() <= 1 && joints_.empty() && !gravity_) return in;  // nothing multibody here
+    if (gravity_) param(Build(gravity_loc_), "gravity", gravity_);
+    for (const std::string& name : body_order_) emit_body(bodies_.at(name));
+    for (Joint& j : joints_) emit_joint(j);
+    place_bodies();
+    define_quantities();
+    AstProgram out;
+    for (const AstStmt& s : in.stmts) {
+      if (std::holds_alternative<AstBody>(s) || std::holds_alternative<AstJoint>(s) || std::holds_alternative<AstSetting>(s)) continue;
+      out.stmts.push_back(rewrite_user(s));
+    }
+    for (AstStmt& s : generated_) out.stmts.push_back(std::move(s));
+    return out;
+  }
+
+ private:
+  // ---- 1. collect and check ------------------------------------------------------------
+  void collect(const AstProgram& in) {
+    Body ground;
+    ground.ground = true;
+    ground.placed = true;
+    bodies_["ground"] = ground;
+    for (const AstStmt& s : in.stmts) {
+      if (auto* b = std::get_if<AstBody>(&s)) add_body(*b);
+      else if (auto* st = std::get_if<AstSetting>(&s)) setting(*st);
+    }
+    for (const AstStmt& s : in.stmts)
+      if (auto* j = std::get_if<AstJoint>(&s)) add_joint(*j);
+  }
+
+  void setting(const AstSetting& st) {
+    if (st.key == "gravity") {
+      if (gravity_) diags_.error(st.loc, "gravity is set twice", "keep one `gravity = [gx, gy, gz]`");
+      gravity_ = st.value;
+      gravity_loc_ = st.loc;
+      return;
+    }
+    if (st.key == "constraints") {
+      auto s = strategy_of(*st.value);
+      if (s) strategy_ = *s;
+      return;
+    }
+    diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty|coordinates`");
+  }
+
+  std::optional<Strategy> strategy_of(const AstExpr& v) {
+    if (v.kind == AstExpr::Kind::Name) {
+      if (v.name == "lagrange") return Strategy::Lagrange;
+      if (v.name == "penalty") return Strategy::Penalty;
+      if (v.name == "coordinates") {
+        diags_.error(v.loc, "`coordinates` (joint coordinates as states) is not available yet",
+                     "use `lagrange` (multipliers, a DAE for IDA) or `penalty` (stiff spring-dampers, an ODE)");
+        return std::nullopt;
+      }
+    }
+    diags_.error(v.loc, "a constraint strategy is `lagrange`, `penalty` or `coordinates`", "e.g. constraints = lagrange");
+    return std::nullopt;
+  }
+
+  void add_body(const AstBody& b) {
+    if (b.name == "ground") {
+      Body& g = bodies_["ground"];
+      for (const AstAttr& a : b.attrs)
+        diags_.error(a.loc, fmt::format("ground has no setting `{}`", a.key), "ground only declares points: ground { point pivot = [x, y, z] }");
+      add_points(g, b, "ground");
+      return;
+    }
+    if (bodies_.count(b.name)) {
+      diags_.error(b.loc, fmt::format("body `{}` is declared twice", b.name), "give each body its own name");
+      return;
+    }
+    Body body;
+    body.decl = &b;
+    static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0"};
+    bool has_mass = false, has_inertia = false;
+    for (const AstAttr& a : b.attrs) {
+      if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {
+        std::string near = closest_name(a.key, keys);
+        diags_.error(a.loc, fmt::format("body `{}` has no setting `{}`", b.name, a.key),
+                     near.empty() ? fmt::format("a body takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+      }
+      has_mass |= a.key == "mass";
+      has_inertia |= a.key == "inertia";
+    }
+    if (!has_mass) diags_.error(b.loc, fmt::format("body `{}` has no mass", b.name), "write body name { mass = ...; inertia = ... }");
+    body.particle = !has_inertia;
+    if (body.particle)
+      for (const AstAttr& a : b.attrs)
+        if (a.key == "com" || a.key == "quat0" || a.key == "w0")
+          diags_.error(a.loc, fmt::format("body `{}` has no inertia, so it is a particle: `{}` means nothing", b.name, a.key),
+                       "give an inertia tensor (inertia = diag(Jx, Jy, Jz)) for a rigid body");
+    add_points(body, b, b.name);
+    if (body.particle && !body.points.empty())
+      diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name), "a body without inertia is a point mass; give it an inertia to have points");
+    bodies_[b.name] = body;
+    body_order_.push_back(b.name);
+  }
+
+  void add_points(Body& body, const AstBody& b, const std::string& owner) {
+    for (const AstPoint& p : b.points) {
+      if (body.points.count(p.name)) {
+        diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "");
+        continue;
+      }
+      body.points[p.name] = p.value;
+    }
+  }
+
+  std::optional<Side> side(const AstEndpoint& ep) {
+    std::string body = ep.path.substr(0, ep.path.find('.'));
+    std::string point = body.size() < ep.path.size() ? ep.path.substr(body.size() + 1) : "";
+    auto it = bodies_.find(body);
+    if (it == bodies_.end()) {
+      std::vector<std::string> names;
+      for (const auto& [n, x] : bodies_) names.push_back(n);
+      std::string near = closest_name(body, names);
+      diags_.error(ep.loc, fmt::format("no body named `{}`", body),
+                   near.empty() ? "declare it with body name { mass = ...; inertia = ... }" : fmt::format("did you mean `{}`?", near));
+      return std::nullopt;
+    }
+    if (!point.empty() && !it->second.points.count(point)) {
+      std::vector<std::string> names;
+      for (const auto& [n, x] : it->second.points) names.push_back(n);
+      std::string near = closest_name(point, names);
+      diags_.error(ep.loc, fmt::format("`{}` has no point `{}`", body, point),
+                   near.empty() ? fmt::format("declare it: point {} = [x, y, z] inside {}", point, body == "ground" ? "ground { }" : "the body") 
+                                : fmt::format("did you mean `{}`?", near));
+      return std::nullopt;
+    }
+    return Side{body, point};
+  }
+
+  void add_joint(const AstJoint& j) {
+    if (!kJointTypes.count(j.type)) {
+      std::vector<std::string> names(kJointTypes.begin(), kJointTypes.end());
+      std::string near = closest_name(j.type, names);
+      diags_.error(j.type_loc, fmt::format("unknown joint type `{}`", j.type),
+                   near.empty() ? fmt::format("joint types: {}", fmt::join(names, ", ")) : fmt::format("did you mean `{}`?", near));
+      return;
+    }
+    auto a = side(j.a);
+    auto b = side(j.b);
+    if (!a || !b) return;
+    if (a->body == b->body) {
+      diags_.error(j.loc, fmt::format("joint `{}` connects `{}` to itself", j.name, a->body), "a joint connects two different bodies");
+      return;
+    }
+    Joint joint;
+    joint.decl = &j;
+    joint.a = *a;
+    joint.b = *b;
+    joint.strategy = strategy_;
+    std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping"};
+    if (has_rotation_coordinate(j.type)) keys.insert(keys.end(), {"q0", "rate0", "torque", "motion"});
+    if (j.type == "prismatic") keys.insert(keys.end(), {"q0", "rate0", "force", "motion"});
+    if (j.type == "cylindrical") keys.insert(keys.end(), {"d0", "ddot0"});
+    if (j.type == "spherical") keys.push_back("rot0");
+    if (j.type == "screw") keys.push_back("pitch");
+    if (j.type == "distance") keys.push_back("length");
+    for (const AstAttr& at : j.attrs) {
+      if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
+        std::string near = closest_name(at.key, keys);
+        diags_.error(at.loc, fmt::format("a {} joint has no setting `{}`", j.type, at.key),
+                     near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+        continue;
+      }
+      joint.attrs[at.key] = &at;
+      if (at.key == "constraint") {
+        if (auto s = strategy_of(*at.value)) joint.strategy = *s;
+      }
+    }
+    for (const char* required : {"pitch", "length"})
+      if (std::find(keys.begin(), keys.end(), required) != keys.end() && !joint.attrs.count(required))
+        diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required),
+                     fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required));
+    bool needs_orientation = j.type != "spherical" && j.type != "distance";
+    for (const Side* s : {&joint.a, &joint.b}) {
+      const Body& body = bodies_.at(s->body);
+      if (body.particle && needs_orientation)
+        diags_.error(j.loc, fmt::format("a {} joint needs the orientation of `{}`, which is a particle", j.type, s->body),
+                     "give the body an inertia, or use a spherical or distance joint");
+    }
+    joints_.push_back(std::move(joint));
+  }
+
+  // ---- 2. bodies -------------------------------------------------------------------------
+  E attr(const AstBody& b, const std::string& key) const {
+    for (const AstAttr& a : b.attrs)
+      if (a.key == key) return a.value;
+    return nullptr;
+  }
+
+  void param(const Build& B, const std::string& name, E value) { generated_.push_back(AstParam{name, B.loc(), std::move(value)}); }
+  void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {}) {
+    AstElement el;
+    el.kind = kind;
+    el.kind_loc = B.loc();
+    el.name = name;
+    el.loc = B.loc();
+    el.value = std::move(value);
+    el.attrs = std::move(attrs);
+    generated_.push_back(std::move(el));
+  }
+  void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out) {
+    AstJunction j;
+    j.type = type;
+    j.kind_loc = B.loc();
+    j.name = name;
+    j.loc = B.loc();
+    j.dim = dim;
+    j.dim_loc = B.loc();
+    for (auto& s : in) j.inputs.push_back({s, B.loc()});
+    for (auto& s : out) j.outputs.push_back({s, B.loc()});
+    generated_.push_back(std::move(j));
+  }
+  void bond(const Build& B, const std::string& from, const std::string& to) {
+    AstBond b;
+    b.loc = B.loc();
+    b.from = {from, B.loc()};
+    b.to = {to, B.loc()};
+    generated_.push_back(std::move(b));
+  }
+  static AstAttr kv(const std::string& key, E value, const SourceLoc& loc) { return AstAttr{key, loc, std::move(value)}; }
+
+  void emit_body(const Body& body) {
+    const AstBody& d = *body.decl;
+    const std::string& n = d.name;
+    Build B(d.loc);
+    param(B, n + ".mass", attr(d, "mass"));
+    for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
+    // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
+    junction(B, '1', n + ".v", 3, gravity_ ? std::vector<std::string>{n + ".weight"} : std::vector<std::string>{}, {n + ".m", n + ".r"});
+    element(B, "I", n + ".m", B.op('*', B.name(n + ".mass"), B.call("eye", {B.num(3)})), {kv("f0", B.name(n + ".v0"), d.loc)});
+    element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
+    if (gravity_) element(B, "Se", n + ".weight", B.op('*', B.name(n + ".mass"), B.name("gravity")));
+    if (body.particle) return;
+    E com = attr(d, "com");
+    param(B, n + ".com", com ? com : B.vec(0, 0, 0));
+    param(B, n + ".inertia", attr(d, "inertia"));
+    junction(B, '1', n + ".w", 3, {}, {n + ".J", n + ".ejs", n + ".qrate.p1"});
+    element(B, "I", n + ".J", B.name(n + ".inertia"), {kv("f0", B.name(n + ".w0"), d.loc)});
+    // Euler junction structure: torque omega x h on the body-frame junction, no power.
+    element(B, "R", n + ".ejs", nullptr, {kv("e", B.call("cross", {B.name("f"), B.name(n + ".J.p")}), d.loc)});
+    element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
+    element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
+    bond(B, n + ".qrate.p2", n + ".q");
+  }
+
+  // ---- 3. joints -------------------------------------------------------------------------
+  /// World-frame expressions of one side of a joint.
+  struct Frame {
+    bool ground = false, particle = false;
+    std::string body;
+    E R;         // rotation body -> world (eye(3) for ground and particles)
+    E p;         // joint point, world
+    E X, Y, Z;   // joint-frame axes, world
+  };
+
+  Frame frame(const Build& B, const Joint& j, const Side& s, const std::string& tag) {
+    const Body& body = bodies_.at(s.body);
+    Frame f;
+    f.ground = body.ground;
+    f.particle = body.particle;
+    f.body = s.body;
+    const std::string jn = j.decl->name;
+    f.R = body.ground || body.particle ? B.call("eye", {B.num(3)}) : B.call("rotq", {B.name(s.body + ".q.q")});
+    E local = B.name(jn + ".p" + tag);  // the point in CoM-relative body coordinates (ground: absolute)
+    if (body.ground) f.p = local;
+    else if (body.particle) f.p = B.name(s.body + ".r.q");
+    else f.p = B.op('+', B.name(s.body + ".r.q"), B.op('*', f.R, local));
+    E F = B.op('*', f.R, B.name(jn + ".F" + tag));
+    f.X = B.op('*', F, B.vec(1, 0, 0));
+    f.Y = B.op('*', F, B.vec(0, 1, 0));
+    f.Z = B.op('*', F, B.vec(0, 0, 1));
+    return f;
+  }
+
+  void joint_params(const Build& B, const Joint& j) {
+    const std::string jn = j.decl->name;
+    for (const auto& [s, tag] : {std::pair{&j.a, "a"}, std::pair{&j.b, "b"}}) {
+      const Body& body = bodies_.at(s->body);
+      E point = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
+      if (body.ground || body.particle) param(B, jn + ".p" + tag, point);
+      else param(B, jn + ".p" + tag, B.op('-', point, B.name(s->body + ".com")));
+      const AstAttr* ax = j.attrs.count(std::string("axis_") + tag) ? j.attrs.at(std::string("axis_") + tag)
+                          : j.attrs.count("axis")                     ? j.attrs.at("axis")
+                                                                      : nullptr;
+      E axis = ax ? ax->value : B.vec(0, 0, 1);
+      param(B, jn + ".axis_" + tag, B.op('/', axis, B.call("norm", {axis})));
+      param(B, jn + ".f" + tag, B.call("quat_arc", {B.name(jn + ".axis_" + tag)}));
+      param(B, jn + ".F" + tag, B.call("rotq", {B.name(jn + ".f" + tag)}));
+    }
+    // Length scale that turns the angular rows (dot products) into metres: the
+    // radius of gyration of the lighter body, so one stiffness suits all rows.
+    std::vector<E> radii;
+    for (const Side* s : {&j.a, &j.b}) {
+      const Body& body = bodies_.at(s->body);
+      if (body.ground || body.particle) continue;
+      E I = B.name(s->body + ".inertia");
+      E trace = B.op('+', B.op('+', idx2(B, I, 1, 1), idx2(B, I, 2, 2)), idx2(B, I, 3, 3));
+      radii.push_back(B.call("sqrt", {B.op('/', trace, B.op('*', B.num(3), B.name(s->body + ".mass")))}));
+    }
+    E scale = radii.empty() ? B.num(1) : radii.size() == 1 ? radii[0] : B.call("min", {radii[0], radii[1]});
+    param(B, jn + ".scale", scale);
+  }
+
+  static E idx2(const Build& B, E m, int r, int c) {
+    auto e = std::make_shared<AstExpr>();
+    e->kind = AstExpr::Kind::Index;
+    e->loc = B.loc();
+    e->args = {std::move(m), B.num(r), B.num(c)};
+    return e;
+  }
+
+  E attr_or(const Joint& j, const std::string& key, E fallback) const {
+    auto it = j.attrs.find(key);
+    return it == j.attrs.end() ? fallback : it->second->value;
+  }
+
+  /// The constraint rows g (each a scalar AST expression) of a joint.
+  std::vector<E> rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
+    const std::string& t = j.decl->type;
+    const std::string jn = j.decl->name;
+    E d = B.op('-', Bf.p, A.p);
+    E scale = B.name(jn + ".scale");
+    auto perp = [&](E u, E v) { return B.op('*', scale, B.dot(u, v)); };
+    std::vector<E> r;
+    auto point = [&] { for (int k = 1; k <= 3; ++k) r.push_back(B.at(d, k)); };
+    auto aligned = [&] { r.push_back(perp(A.Z, Bf.X)); r.push_back(perp(A.Z, Bf.Y)); };
+    auto on_axis = [&] { r.push_back(B.dot(A.X, d)); r.push_back(B.dot(A.Y, d)); };
+    if (t == "spherical") point();
+    else if (t == "revolute") { point(); aligned(); }
+    else if (t == "universal") { point(); r.push_back(perp(A.Z, Bf.Z)); }
+    else if (t == "cylindrical") { on_axis(); aligned(); }
+    else if (t == "prismatic") { on_axis(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
+    else if (t == "screw") {
+      on_axis();
+      aligned();
+      // s = pitch * theta, written without atan2 (no wrap): pitch * sin(theta - s/pitch) = 0
+      E h = B.name(jn + ".pitch");
+      E phase = B.op('/', B.dot(A.Z, d), h);
+      r.push_back(B.op('*', h, B.op('-', B.op('*', B.dot(A.Y, Bf.X), B.call("cos", {phase})),
+                                           B.op('*', B.dot(A.X, Bf.X), B.call("sin", {phase})))));
+    } else if (t == "planar") { r.push_back(B.dot(A.Z, d)); aligned(); }
+    else if (t == "fixed") { point(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
+    else if (t == "distance") {
+      E L = B.name(jn + ".length");
+      r.push_back(B.op('/', B.op('-', B.dot(d, d), B.op('^', L, B.num(2))), B.op('*', B.num(2), L)));
+    }
+    if (auto m = j.attrs.find("motion"); m != j.attrs.end()) {
+      E f = m->second->value;
+      if (t == "prismatic") r.push_back(B.op('-', B.dot(A.Z, d), f));
+      else  // scale * sin(theta - f(t)), again without atan2
+        r.push_back(B.op('*', scale, B.op('-', B.op('*', B.dot(A.Y, Bf.X), B.call("cos", {f})),
+                                              B.op('*', B.dot(A.X, Bf.X), B.call("sin", {f})))));
+    }
+    return r;
+  }
+
+  /// The rate of `rows` (a k-vector of position-level expressions) collected on
+  /// 0-junction `sum`: one MTF per body junction, modulus d(rows)/d(position) times
+  /// the map from the junction's flow to that position's rate.
+  void rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
+                  bool towards_sum, bool translational) {
+    if (f.ground) return;
+    const std::string& b = f.body;
+    std::vector<std::pair<std::string, std::string>> parts;  // (MTF name, body junction)
+    if (translational) {
+      element(B, "MTF", prefix + "t", B.call("jacobian", {rows_vec, B.name(b + ".r.q")}));
+      parts.push_back({prefix + "t", b + ".v"});
+    }
+    if (!f.particle) {
+      element(B, "MTF", prefix + "r",
+              B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
+      parts.push_back({prefix + "r", b + ".w"});
+    }
+    for (const auto& [mtf, junc] : parts) {
+      if (towards_sum) {
+        bond(B, junc, mtf + ".p1");
+        bond(B, mtf + ".p2", sum);
+      } else {
+        bond(B, sum, mtf + ".p2");
+        bond(B, mtf + ".p1", junc);
+      }
+    }
+  }
+
+  void emit_joint(Joint& j) {
+    const AstJoint& d = *j.decl;
+    const std::string jn = d.name;
+    Build B(d.loc);
+    joint_params(B, j);
+    if (d.type == "screw") param(B, jn + ".pitch", j.attrs.at("pitch")->value);
+    if (d.type == "distance") param(B, jn + ".length", j.attrs.at("length")->value);
+    Frame A = frame(B, j, j.a, "a");
+    Frame Bf = frame(B, j, j.b, "b");
+    frames_[jn] = {A, Bf};
+    std::vector<E> g = rows(B, j, A, Bf);
+    int k = static_cast<int>(g.size());
+    E gvec = B.list(g);
+    // constraint fragment: body junctions -> MTFs -> 0-junction -> CN
+    junction(B, '0', jn + ".c", k, {}, {jn + ".cn"});
+    rates_into(B, jn + ".ca", gvec, A, jn + ".c", true, true);
+    rates_into(B, jn + ".cb", gvec, Bf, jn + ".c", true, true);
+    std::vector<AstAttr> cn = {kv("g", gvec, d.loc)};
+    if (j.strategy == Strategy::Penalty) {
+      // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
+      std::vector<E> masses;
+      for (const Frame* f : {&A, &Bf})
+        if (!f->ground) masses.push_back(B.name(f->body + ".mass"));
+      E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
+      param(B, jn + ".stiffness", attr_or(j, "stiffness", B.op('*', m, B.num(1e6))));
+      param(B, jn + ".damping", attr_or(j, "damping", B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
+      cn.push_back(kv("stiffness", B.name(jn + ".stiffness"), d.loc));
+      cn.push_back(kv("damping", B.name(jn + ".damping"), d.loc));
+    }
+    element(B, "CN", jn + ".cn", nullptr, cn);
+    if (j.attrs.count("motion")) {
+      // the prescribed motion's explicit time dependence enters the rate as a flow source
+      element(B, "Sf", jn + ".motion", B.call("partial_t", {gvec}));
+      bond(B, jn + ".motion", jn + ".c");
+    }
+    // drive port: a 1-junction whose flow is the joint coordinate's rate
+    std::optional<E> coordinate = joint_coordinate(B, j, A, Bf);
+    if (coordinate) {
+      coordinates_[jn] = *coordinate;
+      bool translational = d.type == "prismatic";
+      junction(B, '1', jn + ".drive", 1, {}, {jn + ".dsum"});
+      junction(B, '0', jn + ".dsum", 1, {}, {});
+      E cvec = B.list({*coordinate});
+      rates_into(B, jn + ".da", cvec, A, jn + ".dsum", false, translational);
+      rates_into(B, jn + ".db", cvec, Bf, jn + ".dsum", false, translational);
+      for (const char* key : {"torque", "force"}) {
+        if (!j.attrs.count(key)) continue;
+        element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
+        bond(B, jn + ".applied", jn + ".drive");
+      }
+    }
+  }
+
+  std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
+    const std::string& t = j.decl->type;
+    if (t == "prismatic") return B.dot(A.Z, B.op('-', Bf.p, A.p));
+    if (has_rotation_coordinate(t)) return B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
+    return std::nullopt;
+  }
+
+  // ---- 4. initial conditions along a spanning tree from ground ----------------------------
+  void place_bodies() {
+    std::deque<std::string> queue{"ground"};
+    std::set<const Joint*> used;
+    while (!queue.empty()) {
+      std::string from = queue.front();
+      queue.pop_front();
+      for (const Joint& j : joints_) {
+        if (used.count(&j)) continue;
+        bool forward = j.a.body == from, backward = j.b.body == from;
+        if (!forward && !backward) continue;
+        const std::string& child = forward ? j.b.body : j.a.body;
+        if (bodies_.at(child).placed) continue;  // closes a loop: the runtime assembles it
+        used.insert(&j);
+        place(j, forward);
+        bodies_.at(child).placed = true;
+        bodies_.at(child).placed_by = j.decl->name;
+        queue.push_back(child);
+      }
+    }
+    for (const std::string& n : body_order_) {
+      Body& body = bodies_.at(n);
+      const AstBody& d = *body.decl;
+      Build B(d.loc);
+      if (body.placed) {
+        for (const char* key : {"r0", "quat0", "v0", "w0"})
+          for (const AstAttr& a : d.attrs)
+            if (a.key == key)
+              diags_.error(a.loc, fmt::format("body `{}` is placed by joint `{}`, so `{}` cannot be given", n, body.placed_by, key),
+                           "give the joint's coordinates instead (q0, rate0), or remove the joint");
+        continue;
+      }
+      E r0 = attr(d, "r0"), v0 = attr(d, "v0");
+      param(B, n + ".r0", r0 ? r0 : B.vec(0, 0, 0));
+      param(B, n + ".v0", v0 ? v0 : B.vec(0, 0, 0));
+      if (body.particle) continue;
+      E q0 = attr(d, "quat0"), w0 = attr(d, "w0");
+      param(B, n + ".q0", q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+      param(B, n + ".w0", w0 ? w0 : B.vec(0, 0, 0));
+    }
+  }
+
+  /// Pose and velocity names of a placed side (ground: constants).
+  struct Pose { E q, R, r, v, w; };
+  Pose pose(const Build& B, const std::string& body) {
+    const Body& b = bodies_.at(body);
+    if (b.ground) return {B.list({B.num(1), B.num(0), B.num(0), B.num(0)}), B.call("eye", {B.num(3)}), B.vec(0, 0, 0), B.vec(0, 0, 0), B.vec(0, 0, 0)};
+    E q = b.particle ? B.list({B.num(1), B.num(0), B.num(0), B.num(0)}) : B.name(body + ".q0");
+    E w = b.particle ? B.vec(0, 0, 0) : B.name(body + ".w0");
+    return {q, B.call("rotq", {q}), B.name(body + ".r0"), B.name(body + ".v0"), w};
+  }
+
+  /// Initial pose of the child of a tree joint from its parent and the joint coordinates.
+  void place(const Joint& j, bool a_is_parent) {
+    const std::string jn = j.decl->name;
+    const std::string& t = j.decl->type;
+    Build B(j.decl->loc);
+    E zero = B.num(0);
+    E angle = has_rotation_coordinate(t) ? attr_or(j, "q0", zero) : zero;
+    E angle_rate = has_rotation_coordinate(t) ? attr_or(j, "rate0", zero) : zero;
+    E axial = zero, axial_rate = zero;
+    if (t == "prismatic") axial = attr_or(j, "q0", zero), axial_rate = attr_or(j, "rate0", zero);
+    if (t == "cylindrical") axial = attr_or(j, "d0", zero), axial_rate = attr_or(j, "ddot0", zero);
+    if (t == "screw") {
+      axial = B.op('*', B.name(jn + ".pitch"), angle);
+      axial_rate = B.op('*', B.name(jn + ".pitch"), angle_rate);
+    }
+    E qrel = t == "spherical" ? attr_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}))
+                              : B.call("quat_axis_angle", {B.vec(0, 0, 1), angle});
+    E axis_a = B.name(jn + ".axis_a");
+    E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
+    E pb = B.name(jn + ".pb");
+    E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
+    const std::string& child = a_is_parent ? j.b.body : j.a.body;
+    const std::string& parent = a_is_parent ? j.a.body : j.b.body;
+    const Body& cb = bodies_.at(child);
+    Pose P = pose(B, parent);
+    auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
+    auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
+    if (!cb.particle) {
+      E q = a_is_parent ? qmul(qmul(qmul(P.q, fa), qrel), conj(fb)) : qmul(qmul(qmul(P.q, fb), conj(qrel)), conj(fa));
+      param(B, child + ".q0", q);
+    }
+    Pose C = pose(B, child);
+    auto cross = [&](E x, E y) { return B.call("cross", {std::move(x), std::move(y)}); };
+    auto T = [&](E m) { return B.call("transpose", {std::move(m)}); };
+    E rel_w = B.op('*', axis_a, angle_rate);   // in A's frame
+    E rel_v = B.op('*', axis_a, axial_rate);   // in A's frame
+    // Ground points are absolute: their "local" coordinates already are world positions.
+    auto world_point = [&](const Pose& X, E local, bool ground) { return ground ? local : B.op('+', X.r, B.op('*', X.R, local)); };
+    bool parent_ground = bodies_.at(parent).ground;
+    if (a_is_parent) {
+      E pa_world = world_point(P, pa, parent_ground);
+      param(B, child + ".r0", B.op('-', pa_world, B.op('*', C.R, pb)));
+      if (!cb.particle) param(B, child + ".w0", B.op('*', B.op('*', T(C.R), P.R), B.op('+', P.w, rel_w)));
+      E v = B.op('+', B.op('+', P.v, B.op('*', P.R, cross(P.w, pa))), B.op('*', P.R, rel_v));
+      param(B, child + ".v0", B.op('-', v, B.op('*', C.R, cross(C.w, pb))));
+    } else {
+      E pb_world = world_point(P, pb, parent_ground);
+      param(B, child + ".r0", B.op('-', pb_world, B.op('*', C.R, pa)));
+      if (!cb.particle) param(B, child + ".w0", B.op('-', B.op('*', B.op('*', T(C.R), P.R), P.w), rel_w));
+      E v = B.op('+', P.v, B.op('*', P.R, cross(P.w, pb)));
+      param(B, child + ".v0", B.op('-', B.op('-', v, B.op('*', C.R, cross(C.w, pa))), B.op('*', C.R, rel_v)));
+    }
+  }
+
+  // ---- 5. quantities users may name ------------------------------------------------------
+  void define_quantities() {
+    for (const std::string& n : body_order_) {
+      const Body& body = bodies_.at(n);
+      Build B(body.decl->loc);
+      E r = B.name(n + ".r.q"), v = B.name(n + ".v.f");
+      quantity_[n + ".position"] = r;
+      quantity_[n + ".velocity"] = v;
+      quantity_[n + ".momentum"] = B.name(n + ".m.p");
+      E ke = B.op('*', B.num(0.5), B.dot(v, B.name(n + ".m.p")));
+      if (!body.particle) {
+        E q = B.name(n + ".q.q"), R = B.call("rotq", {q}), w = B.name(n + ".w.f");
+        quantity_[n + ".quaternion"] = q;
+        quantity_[n + ".rotation"] = R;
+        quantity_[n + ".bryant"] = B.call("bryant", {q});
+        quantity_[n + ".omega"] = w;
+        quantity_[n + ".omega_world"] = B.op('*', R, w);
+        quantity_[n + ".angular_momentum"] = B.op('*', R, B.name(n + ".J.p"));
+        ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.name(n + ".J.p"))));
+        for (const auto& [p, x] : body.points) {
+          E local = B.op('-', B.name(n + "." + p), B.name(n + ".com"));
+          quantity_[n + "." + p + ".position"] = B.op('+', r, B.op('*', R, local));
+          quantity_[n + "." + p + ".velocity"] = B.op('+', v, B.op('*', R, B.call("cross", {w, local})));
+        }
+      }
+      quantity_[n + ".kinetic_energy"] = ke;
+      quantity_[n + ".potential_energy"] =
+          gravity_ ? B.neg(B.op('*', B.name(n + ".mass"), B.dot(B.name("gravity"), r))) : B.num(0);
+    }
+    for (const Joint& j : joints_) {
+      const std::string jn = j.decl->name;
+      Build B(j.decl->loc);
+      const auto& [A, Bf] = frames_.at(jn);
+      const Frame& body_side = Bf.ground ? A : Bf;
+      // reaction on the second body (on the first, negated, if the second is ground)
+      std::string side = Bf.ground ? "ca" : "cb";
+      E force = Bf.ground ? B.name(jn + "." + side + "t.e1") : B.neg(B.name(jn + "." + side + "t.e1"));
+      if (body_side.particle) {
+        quantity_[jn + ".force"] = force;
+      } else {
+        E torque_body = Bf.ground ? B.name(jn + "." + side + "r.e1") : B.neg(B.name(jn + "." + side + "r.e1"));
+        E lever = B.op('*', body_side.R, B.name(jn + (Bf.ground ? ".pa" : ".pb")));
+        quantity_[jn + ".force"] = force;
+        quantity_[jn + ".torque"] = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
+      }
+      quantity_[jn + ".violation"] = B.list(rows(B, j, A, Bf));
+      const std::string& t = j.decl->type;
+      E wrel = B.op('-', Bf.ground || Bf.particle ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.name(Bf.body + ".w.f")),
+                    A.ground || A.particle ? B.vec(0, 0, 0) : B.op('*', A.R, B.name(A.body + ".w.f")));
+      if (has_rotation_coordinate(t)) {
+        quantity_[jn + ".angle"] = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
+        quantity_[jn + ".rate"] = B.dot(A.Z, wrel);
+      }
+      if (has_axial_coordinate(t) || t == "distance") {
+        E dvec = B.op('-', Bf.p, A.p);
+        quantity_[jn + ".displacement"] = t == "distance" ? B.call("norm", {dvec}) : B.dot(A.Z, dvec);
+      }
+    }
+  }
+
+  E rewrite_expr(const E& e) {
+    if (!e) return e;
+    if (e->kind == AstExpr::Kind::Name) {
+      auto it = quantity_.find(e->name);
+      return it == quantity_.end() ? e : it->second;
+    }
+    bool changed = false;
+    std::vector<E> args;
+    for (const E& a : e->args) {
+      args.push_back(rewrite_expr(a));
+      changed |= args.back() != a;
+    }
+    if (!changed) return e;
+    auto copy = std::make_shared<AstExpr>(*e);
+    copy->args = std::move(args);
+    return copy;
+  }
+
+  AstStmt rewrite_user(const AstStmt& s) {
+    AstStmt out = s;
+    std::visit(
+        [&](auto& st) {
+          using T = std::decay_t<decltype(st)>;
+          if constexpr (std::is_same_v<T, AstSignal> || std::is_same_v<T, AstOutput>) {
+            st.value = rewrite_expr(st.value);
+          } else if constexpr (std::is_same_v<T, AstElement>) {
+            st.value = rewrite_expr(st.value);
+            for (AstAttr& a : st.attrs) a.value = rewrite_expr(a.value);
+          }
+        },
+        out);
+    return out;
+  }
+
+  Diagnostics& diags_;
+  std::map<std::string, Body> bodies_;
+  std::vector<std::string> body_order_;
+  std::vector<Joint> joints_;
+  std::map<std::string, std::pair<Frame, Frame>> frames_;
+  std::map<std::string, E> coordinates_;
+  std::map<std::string, E> quantity_;
+  E gravity_;
+  SourceLoc gravity_loc_;
+  Strategy strategy_ = Strategy::Lagrange;
+  std::vector<AstStmt> generated_;
+};
+
+}  // namespace
+
+AstProgram expand(const AstProgram& program, Diagnostics& diags) {
+  Expander x(diags);
+  return x.run(program);
+}
+
+}  // namespace mbgc::multibody

@@ -1,0 +1,34 @@
+// multibody/expand.hpp — pass 1c: bodies and joints -> multibond-graph fragments.
+//
+// Every `body` becomes the rigid-body multibond graph of the thesis (§2.6,
+// Fig. 2-3): a 3-dimensional 1-junction for the centre-of-mass velocity
+// (inertial frame) with the mass I, the weight Se and a C (e = 0) that
+// integrates the position; a 1-junction for the angular velocity (body frame)
+// with the inertia tensor I, the Euler junction structure (the gyrating
+// resistor e = omega x h, power-free) and a modulated transformer that feeds
+// the Euler-parameter (quaternion) rates q' = E(q) omega into a 4-dimensional
+// C (e = 0). A body without `inertia` is a particle (translation only).
+//
+// Every `joint` is a set of holonomic constraint rows g(positions) = 0 written
+// with the joint frames of both bodies. Their rates are collected on a
+// 0-junction from one modulated transformer per body junction (modulus
+// dg/dr and dg/dq E(q), by symbolic differentiation), and a constraintor CN
+// (§7.3) closes it: `lagrange` (multipliers, a DAE) or `penalty` (stiff
+// spring-damper on g). A joint's drive port `j.drive` is a 1-junction whose
+// flow is the joint rate, built the same way from the joint coordinate.
+//
+// Initial positions and velocities follow from the joint coordinates (q0,
+// rate0) along a spanning tree from ground; loop-closing joints are closed by
+// the runtime's assembly. Names users may read in expressions, such as
+// `bob.position`, `crank.bryant` or `j1.angle`, are replaced here by their
+// definitions. The result is a plain layer-1 program (`mbgc --dump=expanded`).
+#pragma once
+
+#include "ir/ast.hpp"
+#include "ir/diagnostics.hpp"
+
+namespace mbgc::multibody {
+
+ir::AstProgram expand(const ir::AstProgram& program, ir::Diagnostics& diags);
+
+}  // namespace mbgc::multibody
