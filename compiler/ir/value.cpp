@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <map>
+#include <utility>
 
 namespace mbgc::ir {
 
@@ -17,17 +18,90 @@ namespace {
 struct FnInfo {
   int min_args;
   int max_args;
+  bool shaped = false;  // takes vectors/matrices (else every argument must be a scalar)
 };
 
 // Functions of the language. The time-source helpers (step, ramp, sine) take
-// explicit parameters and read the time t implicitly.
+// explicit parameters and read the time t implicitly. The shaped ones build or
+// transform vectors and matrices (quaternions are 4-vectors [w, x, y, z]).
 const std::map<std::string, FnInfo> kFunctions = {
     {"sin", {1, 1}},   {"cos", {1, 1}},   {"tan", {1, 1}},  {"asin", {1, 1}}, {"acos", {1, 1}},
     {"atan", {1, 1}},  {"atan2", {2, 2}}, {"sinh", {1, 1}}, {"cosh", {1, 1}}, {"tanh", {1, 1}},
     {"exp", {1, 1}},   {"log", {1, 1}},   {"sqrt", {1, 1}}, {"abs", {1, 1}},  {"sign", {1, 1}},
     {"min", {2, 2}},   {"max", {2, 2}},   {"step", {1, 2}}, {"ramp", {1, 2}}, {"sine", {2, 3}},
     {"diag", {1, 1000}}, {"heaviside", {1, 1}},
+    // shaped
+    {"eye", {1, 1, true}},        {"zeros", {1, 2, true}},     {"transpose", {1, 1, true}},
+    {"dot", {2, 2, true}},        {"cross", {2, 2, true}},     {"skew", {1, 1, true}},
+    {"norm", {1, 1, true}},       {"hcat", {1, 1000, true}},   {"vcat", {1, 1000, true}},
+    {"rotq", {1, 1, true}},       {"quat_rate", {1, 1, true}}, {"quat_mul", {2, 2, true}},
+    {"quat_conj", {1, 1, true}},  {"quat_axis_angle", {2, 2, true}},
+    {"quat_arc", {1, 1, true}},   {"bryant", {1, 1, true}},    {"jacobian", {2, 2, true}},
 };
+
+// Largest dimension eye() and zeros() build (a typo must not exhaust memory).
+constexpr int kMaxDimension = 1000;
+
+using Vec = std::vector<Expr>;
+
+Expr sq(const Expr& a) { return mul(a, a); }
+Expr twice(const Expr& a) { return mul(constant(2), a); }
+
+Value column(Vec items) {
+  Value r{static_cast<int>(items.size()), 1, std::move(items)};
+  return r;
+}
+
+Expr dot_of(const Vec& a, const Vec& b) {
+  Expr s = constant(0);
+  for (std::size_t i = 0; i < a.size(); ++i) s = add(s, mul(a[i], b[i]));
+  return s;
+}
+
+Vec cross_of(const Vec& a, const Vec& b) {
+  return {sub(mul(a[1], b[2]), mul(a[2], b[1])), sub(mul(a[2], b[0]), mul(a[0], b[2])),
+          sub(mul(a[0], b[1]), mul(a[1], b[0]))};
+}
+
+/// |q|^2 * rotq(q), row-major: the rotation matrix of q = [w, x, y, z] times
+/// w^2 + x^2 + y^2 + z^2 (Hamilton convention, body -> inertial).
+Vec scaled_rotation(const Vec& q) {
+  const Expr &w = q[0], &x = q[1], &y = q[2], &z = q[3];
+  Expr ww = sq(w), xx = sq(x), yy = sq(y), zz = sq(z);
+  Expr xy = mul(x, y), xz = mul(x, z), yz = mul(y, z), wx = mul(w, x), wy = mul(w, y), wz = mul(w, z);
+  return {sub(sub(add(ww, xx), yy), zz), twice(sub(xy, wz)),  twice(add(xz, wy)),
+          twice(add(xy, wz)),  sub(sub(add(ww, yy), xx), zz), twice(sub(yz, wx)),
+          twice(sub(xz, wy)),  twice(add(yz, wx)),  sub(sub(add(ww, zz), xx), yy)};
+}
+
+/// Hamilton product a (x) b of quaternions [w, x, y, z].
+Vec quat_product(const Vec& a, const Vec& b) {
+  Vec av{a[1], a[2], a[3]}, bv{b[1], b[2], b[3]};
+  Vec c = cross_of(av, bv);
+  Vec r{sub(mul(a[0], b[0]), dot_of(av, bv))};
+  for (std::size_t i = 0; i < 3; ++i) r.push_back(add(add(mul(a[0], bv[i]), mul(b[0], av[i])), c[i]));
+  return r;
+}
+
+/// The unit quaternion of the shortest rotation taking +z onto a/|a|, without
+/// branches. With b = a/|a| and c = b_z it is u/|u|, u = [1 + c, -b_y, b_x, 0]
+/// (|u|^2 = 2(1 + c)). 1 + c is computed without cancellation: as 1 + |c| for
+/// c >= 0 and as (b_x^2 + b_y^2)/(1 + |c|) for c < 0. Where b is -z to within
+/// 1e-150 rad (b_x^2 + b_y^2 < 1e-300, c < 0) u vanishes and the result is
+/// 180 degrees about +x, [0, 1, 0, 0].
+Vec arc_quaternion(const Vec& a) {
+  Expr r = call(Fn::Sqrt, {dot_of(a, a)});
+  Expr bx = div(a[0], r), by = div(a[1], r), c = div(a[2], r);
+  Expr h = add(sq(bx), sq(by));
+  Expr m = add(constant(1), call(Fn::Abs, {c}));
+  Expr up = call(Fn::Step, {c});
+  Expr one_plus_c = add(mul(up, m), mul(sub(constant(1), up), div(h, m)));
+  Expr d = mul(call(Fn::Step, {sub(constant(1e-300), h)}), call(Fn::Step, {neg(c)}));
+  Expr keep = sub(constant(1), d);
+  Expr n = call(Fn::Sqrt, {add(add(sq(one_plus_c), h), d)});
+  auto part = [&](const Expr& u) { return div(mul(keep, u), n); };
+  return {part(one_plus_c), add(part(neg(by)), d), part(bx), constant(0)};
+}
 
 const std::map<std::string, Fn> kScalarFns = {
     {"sin", Fn::Sin},   {"cos", Fn::Cos},   {"tan", Fn::Tan},     {"asin", Fn::Asin},
@@ -135,7 +209,8 @@ class Lowerer {
     if (it == kFunctions.end()) {
       std::string near = closest_name(e.name, function_names());
       diags_.error(e.loc, fmt::format("unknown function `{}`", e.name),
-                   near.empty() ? "functions: sin cos tan atan2 exp log sqrt abs min max step ramp sine diag ..."
+                   near.empty() ? "functions: sin cos tan atan2 exp log sqrt abs min max step ramp sine diag "
+                                  "eye zeros transpose dot cross skew norm hcat vcat rotq quat_mul ..."
                                 : fmt::format("did you mean `{}`?", near));
       return std::nullopt;
     }
@@ -148,6 +223,15 @@ class Lowerer {
                                       it->second.max_args == 1 ? "" : "s", n, n == 1 ? "was" : "were"),
                    call_hint(e.name));
       return std::nullopt;
+    }
+    if (it->second.shaped) {
+      std::vector<Value> vals;
+      for (const auto& a : e.args) {
+        auto v = run(*a);
+        if (!v) return std::nullopt;
+        vals.push_back(std::move(*v));
+      }
+      return shaped_fn(e, vals);
     }
     std::vector<Expr> args;
     for (const auto& a : e.args) {
@@ -183,12 +267,212 @@ class Lowerer {
   }
 
   static std::string call_hint(const std::string& fn) {
+    static const std::map<std::string, std::string> kHints = {
+        {"eye", "write eye(n), n a constant integer: the n x n identity"},
+        {"zeros", "write zeros(rows) for a column of zeros or zeros(rows, columns), with constant integers"},
+        {"transpose", "write transpose(M)"},
+        {"dot", "write dot(a, b) with two vectors of the same length"},
+        {"cross", "write cross(a, b) with two 3-vectors"},
+        {"skew", "write skew(v) with a 3-vector v (skew(a) * b is cross(a, b))"},
+        {"norm", "write norm(v) with a vector v"},
+        {"hcat", "write hcat(A, B, ...) with the same number of rows in every argument"},
+        {"vcat", "write vcat(A, B, ...) with the same number of columns in every argument"},
+        {"rotq", "write rotq(q) with a quaternion q = [w, x, y, z]"},
+        {"quat_rate", "write quat_rate(q) with a quaternion q = [w, x, y, z]"},
+        {"quat_mul", "write quat_mul(a, b) with quaternions a, b = [w, x, y, z]"},
+        {"quat_conj", "write quat_conj(q) with a quaternion q = [w, x, y, z]"},
+        {"quat_axis_angle", "write quat_axis_angle(axis, angle) with a 3-vector axis and a scalar angle"},
+        {"quat_arc", "write quat_arc(a) with a nonzero 3-vector a"},
+        {"bryant", "write bryant(q) with a quaternion q = [w, x, y, z]"},
+        {"jacobian", "write jacobian(f, x): f a vector of expressions, x a vector of model variables"},
+    };
+    if (auto h = kHints.find(fn); h != kHints.end()) return h->second;
     if (fn == "step") return "write step(t0) or step(t0, height)";
     if (fn == "ramp") return "write ramp(t0) or ramp(t0, slope)";
     if (fn == "sine") return "write sine(amplitude, frequency_hz) or sine(amplitude, frequency_hz, phase_rad)";
     if (fn == "atan2") return "write atan2(y, x)";
     if (fn == "min" || fn == "max") return fmt::format("write {}(a, b)", fn);
     return fmt::format("write {}(x)", fn);
+  }
+
+  // ---- shaped functions ---------------------------------------------------------
+
+  /// The items of argument k of call e if it is a vector (n x 1 or 1 x n) of
+  /// length `len` (any length if len < 0); else reports `what` and returns nullopt.
+  std::optional<Vec> vector_arg(const AstExpr& e, const std::vector<Value>& args, std::size_t k, int len,
+                                const std::string& what) {
+    const Value& v = args[k];
+    if (v.is_vector() && (len < 0 || v.length() == len)) return v.items;
+    std::string where = e.args.size() == 1 ? "its argument" : fmt::format("argument {}", k + 1);
+    diags_.error(e.args[k]->loc, fmt::format("`{}` expects {} as {}, this is {}", e.name, what, where, v.shape()),
+                 call_hint(e.name));
+    return std::nullopt;
+  }
+  std::optional<Vec> quaternion_arg(const AstExpr& e, const std::vector<Value>& args, std::size_t k) {
+    return vector_arg(e, args, k, 4, "a quaternion (a 4-vector [w, x, y, z])");
+  }
+
+  /// Argument k as a constant integer in 1..kMaxDimension.
+  std::optional<int> dimension_arg(const AstExpr& e, const std::vector<Value>& args, std::size_t k) {
+    double c = 0;
+    const Value& v = args[k];
+    if (v.is_scalar() && is_const(v.items[0], &c) && c == std::floor(c) && c >= 1 && c <= kMaxDimension)
+      return static_cast<int>(c);
+    diags_.error(e.args[k]->loc,
+                 fmt::format("`{}` needs a constant integer from 1 to {} here", e.name, kMaxDimension),
+                 call_hint(e.name));
+    return std::nullopt;
+  }
+
+  std::optional<Value> shaped_fn(const AstExpr& e, const std::vector<Value>& args) {
+    const std::string& f = e.name;
+    if (f == "eye" || f == "zeros") {
+      auto rows = dimension_arg(e, args, 0);
+      if (!rows) return std::nullopt;
+      int cols = f == "eye" ? *rows : 1;
+      if (args.size() > 1) {
+        auto c = dimension_arg(e, args, 1);
+        if (!c) return std::nullopt;
+        cols = *c;
+      }
+      Value r{*rows, cols, {}};
+      for (int i = 0; i < *rows; ++i)
+        for (int j = 0; j < cols; ++j) r.items.push_back(constant(f == "eye" && i == j ? 1 : 0));
+      return r;
+    }
+    if (f == "transpose") {
+      const Value& m = args[0];
+      Value r{m.cols, m.rows, {}};
+      for (int i = 0; i < m.cols; ++i)
+        for (int j = 0; j < m.rows; ++j) r.items.push_back(m.at(j, i));
+      return r;
+    }
+    if (f == "dot") {
+      auto a = vector_arg(e, args, 0, -1, "a vector");
+      if (!a) return std::nullopt;
+      auto b = vector_arg(e, args, 1, static_cast<int>(a->size()), fmt::format("a {}-vector (like argument 1)", a->size()));
+      if (!b) return std::nullopt;
+      return Value::scalar(dot_of(*a, *b));
+    }
+    if (f == "norm") {
+      auto a = vector_arg(e, args, 0, -1, "a vector");
+      if (!a) return std::nullopt;
+      return Value::scalar(call(Fn::Sqrt, {dot_of(*a, *a)}));
+    }
+    if (f == "cross") {
+      auto a = vector_arg(e, args, 0, 3, "a 3-vector");
+      if (!a) return std::nullopt;
+      auto b = vector_arg(e, args, 1, 3, "a 3-vector");
+      if (!b) return std::nullopt;
+      return column(cross_of(*a, *b));
+    }
+    if (f == "skew") {
+      auto v = vector_arg(e, args, 0, 3, "a 3-vector");
+      if (!v) return std::nullopt;
+      const Vec& a = *v;
+      Expr o = constant(0);
+      return Value{3, 3, {o, neg(a[2]), a[1], a[2], o, neg(a[0]), neg(a[1]), a[0], o}};
+    }
+    if (f == "hcat" || f == "vcat") return concatenate(e, args, f == "hcat");
+    if (f == "rotq") {
+      auto q = quaternion_arg(e, args, 0);
+      if (!q) return std::nullopt;
+      Expr n2 = dot_of(*q, *q);
+      Value r{3, 3, scaled_rotation(*q)};
+      for (Expr& x : r.items) x = div(x, n2);
+      return r;
+    }
+    if (f == "quat_rate") {  // q' = E omega = 1/2 q (x) [0, omega], omega in body coordinates
+      auto q = quaternion_arg(e, args, 0);
+      if (!q) return std::nullopt;
+      auto h = [](const Expr& x) { return mul(constant(0.5), x); };
+      const Expr &w = (*q)[0], &x = (*q)[1], &y = (*q)[2], &z = (*q)[3];
+      return Value{4, 3, {h(neg(x)), h(neg(y)), h(neg(z)),  //
+                          h(w), h(neg(z)), h(y),            //
+                          h(z), h(w), h(neg(x)),            //
+                          h(neg(y)), h(x), h(w)}};
+    }
+    if (f == "quat_mul") {
+      auto a = quaternion_arg(e, args, 0);
+      if (!a) return std::nullopt;
+      auto b = quaternion_arg(e, args, 1);
+      if (!b) return std::nullopt;
+      return column(quat_product(*a, *b));
+    }
+    if (f == "quat_conj") {
+      auto q = quaternion_arg(e, args, 0);
+      if (!q) return std::nullopt;
+      return column({(*q)[0], neg((*q)[1]), neg((*q)[2]), neg((*q)[3])});
+    }
+    if (f == "quat_axis_angle") {
+      auto axis = vector_arg(e, args, 0, 3, "a 3-vector (the axis)");
+      if (!axis) return std::nullopt;
+      if (!args[1].is_scalar()) {
+        diags_.error(e.args[1]->loc, fmt::format("`{}` expects a scalar angle as argument 2, this is {}", f, args[1].shape()),
+                     call_hint(f));
+        return std::nullopt;
+      }
+      Expr half = mul(constant(0.5), args[1].items[0]);
+      Expr s = div(call(Fn::Sin, {half}), call(Fn::Sqrt, {dot_of(*axis, *axis)}));
+      return column({call(Fn::Cos, {half}), mul((*axis)[0], s), mul((*axis)[1], s), mul((*axis)[2], s)});
+    }
+    if (f == "quat_arc") {
+      auto a = vector_arg(e, args, 0, 3, "a 3-vector");
+      if (!a) return std::nullopt;
+      return column(arc_quaternion(*a));
+    }
+    if (f == "bryant") {  // rotq(q) = Rx(phi) Ry(theta) Rz(psi) -> [phi, theta, psi]
+      auto q = quaternion_arg(e, args, 0);
+      if (!q) return std::nullopt;
+      Vec a = scaled_rotation(*q);  // |q|^2 A: atan2 needs no division
+      Expr s = div(a[2], dot_of(*q, *q));
+      s = call(Fn::Max, {constant(-1), call(Fn::Min, {constant(1), s})});  // rounding may leave [-1, 1]
+      return column({call(Fn::Atan2, {neg(a[5]), a[8]}), call(Fn::Asin, {s}), call(Fn::Atan2, {neg(a[1]), a[0]})});
+    }
+    if (f == "jacobian") {
+      auto fv = vector_arg(e, args, 0, -1, "a vector of expressions");
+      if (!fv) return std::nullopt;
+      auto xv = vector_arg(e, args, 1, -1, "a vector of model variables");
+      if (!xv) return std::nullopt;
+      for (const Expr& x : *xv)
+        if (x->op != Op::Var) {
+          diags_.error(e.args[1]->loc, "jacobian's second argument must be model variables (e.g. a C element's q)",
+                       call_hint(f));
+          return std::nullopt;
+        }
+      Value r{static_cast<int>(fv->size()), static_cast<int>(xv->size()), {}};
+      for (const Expr& fi : *fv)
+        for (const Expr& x : *xv) r.items.push_back(diff_var(fi, x->id));
+      return r;
+    }
+    diags_.error(e.loc, fmt::format("internal error: no lowering for `{}`", f));
+    return std::nullopt;
+  }
+
+  std::optional<Value> concatenate(const AstExpr& e, const std::vector<Value>& args, bool side_by_side) {
+    const Value& first = args[0];
+    int rows = first.rows, cols = first.cols;
+    for (std::size_t k = 1; k < args.size(); ++k) {
+      const Value& v = args[k];
+      if (side_by_side ? v.rows != first.rows : v.cols != first.cols) {
+        diags_.error(e.args[k]->loc,
+                     fmt::format("`{}` of {} and {}: the {} counts differ ({} and {})", e.name, first.shape(), v.shape(),
+                                 side_by_side ? "row" : "column", side_by_side ? first.rows : first.cols,
+                                 side_by_side ? v.rows : v.cols),
+                     call_hint(e.name));
+        return std::nullopt;
+      }
+      (side_by_side ? cols : rows) += side_by_side ? v.cols : v.rows;
+    }
+    Value r{rows, cols, {}};
+    if (side_by_side) {
+      for (int i = 0; i < rows; ++i)
+        for (const Value& v : args)
+          for (int j = 0; j < v.cols; ++j) r.items.push_back(v.at(i, j));
+    } else {
+      for (const Value& v : args) r.items.insert(r.items.end(), v.items.begin(), v.items.end());
+    }
+    return r;
   }
 
   std::optional<Value> index(const AstExpr& e) {
