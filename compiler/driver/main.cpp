@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   app.add_option("--dump", dump, "print a compiler stage instead of C++")
       ->check(CLI::IsMember({"none", "ast", "expanded", "graph", "causality", "equations", "reduced"}));
   std::vector<std::string> sets;
-  app.add_option("--set", sets, "NAME=VALUE: fix a top-level parameter at compile time (e.g. a chain's N)");
+  app.add_option("--set", sets, "NAME=VALUE: fix a top-level parameter at compile time (e.g. a chain's N)")
+      ->allow_extra_args(false);
   app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
       ->check(CLI::IsMember({"text", "dot"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);

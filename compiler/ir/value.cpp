@@ -37,6 +37,7 @@ const std::map<std::string, FnInfo> kFunctions = {
     {"rotq", {1, 1, true}},       {"quat_rate", {1, 1, true}}, {"quat_mul", {2, 2, true}},
     {"quat_conj", {1, 1, true}},  {"quat_axis_angle", {2, 2, true}},
     {"quat_arc", {1, 1, true}},   {"bryant", {1, 1, true}},    {"jacobian", {2, 2, true}},
+    {"partial_t", {1, 1, true}},
 };
 
 // Largest dimension eye() and zeros() build (a typo must not exhaust memory).
@@ -285,6 +286,7 @@ class Lowerer {
         {"quat_arc", "write quat_arc(a) with a nonzero 3-vector a"},
         {"bryant", "write bryant(q) with a quaternion q = [w, x, y, z]"},
         {"jacobian", "write jacobian(f, x): f a vector of expressions, x a vector of model variables"},
+        {"partial_t", "write partial_t(f): the explicit time derivative of f (variables held fixed)"},
     };
     if (auto h = kHints.find(fn); h != kHints.end()) return h->second;
     if (fn == "step") return "write step(t0) or step(t0, height)";
@@ -443,6 +445,11 @@ class Lowerer {
       Value r{static_cast<int>(fv->size()), static_cast<int>(xv->size()), {}};
       for (const Expr& fi : *fv)
         for (const Expr& x : *xv) r.items.push_back(diff_var(fi, x->id));
+      return r;
+    }
+    if (f == "partial_t") {  // d/dt with the variables held fixed (a prescribed motion's rate)
+      Value r = args[0];
+      for (Expr& x : r.items) x = diff_time(x);
       return r;
     }
     diags_.error(e.loc, fmt::format("internal error: no lowering for `{}`", f));

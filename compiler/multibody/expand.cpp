@@ -81,6 +81,7 @@ class Expander {
     if (diags_.has_errors()) return {};
     if (bodies_.size() <= 1 && joints_.empty() && !gravity_) return in;  // nothing multibody here
     if (gravity_) param(Build(gravity_loc_), "gravity", gravity_);
+    for (const auto& [p, v] : bodies_.at("ground").points) param(Build(v->loc), "ground." + p, v);
     for (const std::string& name : body_order_) emit_body(bodies_.at(name));
     for (Joint& j : joints_) emit_joint(j);
     place_bodies();
@@ -294,9 +295,11 @@ class Expander {
     for (auto& s : out) j.outputs.push_back({s, B.loc()});
     generated_.push_back(std::move(j));
   }
-  void bond(const Build& B, const std::string& from, const std::string& to) {
+  void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt) {
     AstBond b;
     b.loc = B.loc();
+    b.dim = dim;
+    b.dim_loc = B.loc();
     b.from = {from, B.loc()};
     b.to = {to, B.loc()};
     generated_.push_back(std::move(b));
@@ -324,7 +327,7 @@ class Expander {
     element(B, "R", n + ".ejs", nullptr, {kv("e", B.call("cross", {B.name("f"), B.name(n + ".J.p")}), d.loc)});
     element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
     element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
-    bond(B, n + ".qrate.p2", n + ".q");
+    bond(B, n + ".qrate.p2", n + ".q", 4);
   }
 
   // ---- 3. joints -------------------------------------------------------------------------
@@ -589,6 +592,7 @@ class Expander {
     E axial = zero, axial_rate = zero;
     if (t == "prismatic") axial = attr_or(j, "q0", zero), axial_rate = attr_or(j, "rate0", zero);
     if (t == "cylindrical") axial = attr_or(j, "d0", zero), axial_rate = attr_or(j, "ddot0", zero);
+    if (t == "distance") axial = B.name(jn + ".length");  // the rod starts along the joint axis
     if (t == "screw") {
       axial = B.op('*', B.name(jn + ".pitch"), angle);
       axial_rate = B.op('*', B.name(jn + ".pitch"), angle_rate);
