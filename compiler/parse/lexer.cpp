@@ -21,6 +21,7 @@ const char* tok_name(Tok t) {
     case Tok::Semi: return "`;`";
     case Tok::Colon: return "`:`";
     case Tok::Dot: return "`.`";
+    case Tok::DotDot: return "`..`";
     case Tok::Assign: return "`=`";
     case Tok::Plus: return "`+`";
     case Tok::Minus: return "`-`";
@@ -77,7 +78,9 @@ std::vector<Token> lex(const ir::SourceManager& sources, int file_id, ir::Diagno
       t.text = s.substr(start, i - start);
     } else if (std::isdigit(static_cast<unsigned char>(c)) ||
                (c == '.' && i + 1 < s.size() && std::isdigit(static_cast<unsigned char>(s[i + 1])))) {
-      while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || s[i] == '.')) ++i;
+      // A `.` followed by another `.` is the range operator: `1..N` is 1 .. N.
+      auto range_at = [&](std::size_t j) { return j + 1 < s.size() && s[j] == '.' && s[j + 1] == '.'; };
+      while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || (s[i] == '.' && !range_at(i)))) ++i;
       if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
         std::size_t j = i + 1;
         if (j < s.size() && (s[j] == '+' || s[j] == '-')) ++j;
@@ -118,7 +121,10 @@ std::vector<Token> lex(const ir::SourceManager& sources, int file_id, ir::Diagno
         case ',': t.kind = Tok::Comma; break;
         case ';': t.kind = Tok::Semi; break;
         case ':': t.kind = Tok::Colon; break;
-        case '.': t.kind = Tok::Dot; break;
+        case '.':
+          if (i < s.size() && s[i] == '.') { ++i; t.kind = Tok::DotDot; }
+          else t.kind = Tok::Dot;
+          break;
         case '=': t.kind = Tok::Assign; break;
         case '+': t.kind = Tok::Plus; break;
         case '*': t.kind = Tok::Star; break;

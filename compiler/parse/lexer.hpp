@@ -11,7 +11,7 @@ namespace mbgc::parse {
 enum class Tok {
   Ident, Number, String,
   LParen, RParen, LBracket, RBracket, LBrace, RBrace,
-  Comma, Semi, Colon, Dot, Assign, Plus, Minus, Star, Slash, Caret, Arrow,
+  Comma, Semi, Colon, Dot, DotDot, Assign, Plus, Minus, Star, Slash, Caret, Arrow,
   End, Bad,
 };
 

@@ -2,11 +2,16 @@
 // terminator (`;` is optional): every statement starts with a keyword, an
 // element kind or a junction type, so the next statement is always
 // recognisable. On an error we report it and skip to the next statement start.
+//
+// Inside a `for` loop a name may interpolate `{expr}` (`link{i-1}.tip`): an
+// identifier immediately followed by `{` (no whitespace) starts one. The name's
+// text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
 #include "parse/parse.hpp"
 
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -18,9 +23,25 @@ namespace {
 using ir::AstExpr;
 using ir::AstExprPtr;
 
-const std::set<std::string> kElementKinds = {"Se", "Sf", "I", "C", "R", "TF", "GY", "MTF", "MGY"};
+const std::set<std::string> kElementKinds = {"Se", "Sf", "I", "C", "R", "TF", "GY", "MTF", "MGY", "CN"};
 const std::set<std::string> kKeywords = {"model", "import", "param", "signal", "output", "bond",
-                                         "simulate", "component", "instance"};
+                                         "simulate", "component", "instance", "body", "ground",
+                                         "joint", "gravity", "constraints", "for"};
+/// The multibody keywords are also ordinary names in bond-graph models
+/// (`I body = m`, `Se gravity = ...`), so they start a statement only in their
+/// statement's shape: followed, on the same line, by this token.
+const std::map<std::string, Tok> kShapedKeywords = {
+    {"body", Tok::Ident},    {"joint", Tok::Ident},   {"for", Tok::Ident},
+    {"ground", Tok::LBrace}, {"gravity", Tok::Assign}, {"constraints", Tok::Assign}};
+/// Statements a `for` loop cannot repeat.
+const std::set<std::string> kNotInLoop = {"model", "import", "component", "simulate"};
+constexpr int kMaxLoopNesting = 64;
+
+/// A name as written, with its interpolations (`link{i-1}`), and its span.
+struct Name {
+  std::string text;
+  ir::SourceLoc loc;
+};
 
 struct ParseError {};
 
@@ -78,15 +99,33 @@ class Parser {
                       toks_[pos_ - 1].kind == Tok::RBrace;
     if (at(Tok::Number))
       return line_start && (peek().text == "0" || peek().text == "1") && peek(1).kind == Tok::Ident;
-    if (!at(Tok::Ident)) return false;
-    return line_start && (kKeywords.count(peek().text) || kElementKinds.count(peek().text));
+    return line_start && statement_word();
+  }
+  /// Whether the identifier at peek(k) is a keyword or element kind that can
+  /// start a statement here (wherever the line starts).
+  bool statement_word(std::size_t k = 0) const {
+    const Token& t = peek(k);
+    if (t.kind != Tok::Ident) return false;
+    if (kElementKinds.count(t.text)) return true;
+    auto shaped = kShapedKeywords.find(t.text);
+    if (shaped == kShapedKeywords.end()) return kKeywords.count(t.text) > 0;
+    return peek(k + 1).kind == shaped->second && peek(k + 1).loc.line == t.loc.line;
+  }
+  /// A statement clearly begins at the start of this line: a keyword or element
+  /// kind followed by a name (`R load`, `param k`), or a multibody keyword in
+  /// its shape. Used to tell an unfinished expression or block from the next statement.
+  bool new_statement_here() const {
+    if (!at(Tok::Ident) || pos_ == 0 || toks_[pos_ - 1].loc.line == peek().loc.line) return false;
+    return statement_word() && (peek(1).kind == Tok::Ident || kShapedKeywords.count(peek().text));
   }
   /// Skip to the next statement. `start` is where the failed statement began:
   /// if the error was found at the start of a later statement, that statement
-  /// is kept (its own errors get reported too).
-  void recover(std::size_t start) {
-    if (pos_ == start || !at_statement_start()) next();
-    int depth = 0;
+  /// is kept (its own errors get reported too). `open_blocks` of the failed
+  /// statement's `{` are not closed yet: the next `}`s are its own.
+  void recover(std::size_t start, int open_blocks) {
+    // A `{` where the error was found opens the failed statement's block: it is counted below.
+    if (pos_ == start || (!at_statement_start() && !at(Tok::LBrace))) next();
+    int depth = open_blocks;
     while (!at(Tok::End)) {
       if (at(Tok::LBrace)) ++depth;
       if (at(Tok::RBrace)) {
@@ -104,11 +143,15 @@ class Parser {
   // ---- statements ------------------------------------------------------------
   void statement_into(std::vector<ir::AstStmt>& out, bool in_component) {
     std::size_t start = pos_;
+    int blocks = block_depth_;
     try {
       out.push_back(statement(in_component));
       accept(Tok::Semi);
     } catch (const ParseError&) {
-      recover(start);
+      depth_ = 0;  // statements are never inside expressions
+      int open_blocks = block_depth_ - blocks;
+      block_depth_ = blocks;
+      recover(start, open_blocks);
     }
   }
 
@@ -117,10 +160,14 @@ class Parser {
     if (t.kind == Tok::Number && (t.text == "0" || t.text == "1")) return junction();
     if (t.kind != Tok::Ident) {
       fail(fmt::format("expected a statement, found {}", describe(t)),
-           "a statement starts with a keyword (param, bond, output, ...), an element kind "
-           "(Se Sf I C R TF GY MTF MGY) or a junction (0 or 1)");
+           "a statement starts with a keyword (param, bond, output, body, joint, for, ...), an element kind "
+           "(Se Sf I C R TF GY MTF MGY CN) or a junction (0 or 1)");
     }
     if (kElementKinds.count(t.text)) return element();
+    if (for_depth_ > 0 && kNotInLoop.count(t.text))
+      fail(fmt::format("`{}` cannot appear inside a for loop", t.text),
+           "move it out of the loop; a loop repeats the statements that build the model "
+           "(elements, junctions, bonds, bodies, joints, parameters, outputs, ...)");
     if (t.text == "model") {
       next();
       ir::AstModel m;
@@ -138,7 +185,7 @@ class Parser {
     if (t.text == "param") {
       next();
       ir::AstParam p;
-      const Token& n = expect(Tok::Ident, "(the parameter's name) after `param`");
+      Name n = name("(the parameter's name) after `param`");
       p.name = n.text;
       p.loc = n.loc;
       expect(Tok::Assign, "after the parameter's name", fmt::format("write param {} = value", p.name));
@@ -148,13 +195,11 @@ class Parser {
     if (t.text == "signal" || t.text == "output") {
       bool is_signal = t.text == "signal";
       next();
-      const Token& n = expect(Tok::Ident, is_signal ? "(the signal's name)" : "(the output's name)");
-      std::string name = n.text;
-      ir::SourceLoc loc = n.loc;
-      expect(Tok::Assign, "after the name", fmt::format("write {} {} = expression", is_signal ? "signal" : "output", name));
+      Name n = name(is_signal ? "(the signal's name)" : "(the output's name)");
+      expect(Tok::Assign, "after the name", fmt::format("write {} {} = expression", is_signal ? "signal" : "output", n.text));
       AstExprPtr v = expr();
-      if (is_signal) return ir::AstSignal{name, loc, v};
-      return ir::AstOutput{name, loc, v};
+      if (is_signal) return ir::AstSignal{n.text, n.loc, v};
+      return ir::AstOutput{n.text, n.loc, v};
     }
     if (t.text == "bond") return bond();
     if (t.text == "simulate") return simulate();
@@ -164,19 +209,99 @@ class Parser {
       return component();
     }
     if (t.text == "instance") return instance();
+    if (t.text == "body" || t.text == "ground") return body();
+    if (t.text == "joint") return joint();
+    if (t.text == "gravity" || t.text == "constraints") return setting();
+    if (t.text == "for") return for_loop(in_component);
+    if (t.text == "point")
+      fail("`point` belongs inside a body or ground block",
+           "write body name { point p = [x, y, z] } or ground { point p = [x, y, z] }");
     fail(fmt::format("unknown statement `{}`", t.text),
          "a statement starts with model, import, param, signal, output, bond, simulate, component, "
          "instance, an element kind (Se Sf I C R TF GY MTF MGY) or a junction (0 or 1)");
   }
 
+  /// `b` starts right where `a` ends: no whitespace between them.
+  static bool adjacent(const Token& a, const Token& b) {
+    return a.loc.line == b.loc.line && a.loc.col + a.loc.length == b.loc.col;
+  }
+  /// Extends `loc` to the end of `last` (a span stays on one line).
+  static void extend(ir::SourceLoc& loc, const ir::SourceLoc& last) {
+    if (last.line == loc.line) loc.length = last.col + last.length - loc.col;
+  }
+
+  /// A name. Inside a for loop it may interpolate: `link{i-1}`, `n{i}_{j}`.
+  Name name(const char* what_for, const std::string& hint = {}) {
+    const Token& first = expect(Tok::Ident, what_for, hint);
+    Name n{first.text, first.loc};
+    const Token* last = &first;
+    if (for_depth_ == 0) {
+      // `link{i}` outside a loop: a block cannot start with `i }` or `i - 1`.
+      if (at(Tok::LBrace) && adjacent(*last, peek()) && (peek(1).kind == Tok::Ident || peek(1).kind == Tok::Number) &&
+          peek(2).kind != Tok::Assign && peek(2).kind != Tok::Ident)
+        fail(fmt::format("a name can interpolate `{}{{...}}` only inside a for loop", first.text),
+             "write the name in full here; or put a space before `{` to open a block");
+      return n;
+    }
+    while (at(Tok::LBrace) && adjacent(*last, peek())) {
+      const Token& open = next();
+      std::size_t from = pos_;
+      try {
+        if (at(Tok::RBrace)) {
+          ir::SourceLoc empty = open.loc;
+          extend(empty, peek().loc);
+          diags_.error(empty, fmt::format("empty interpolation in `{}{{}}`", n.text),
+                       "write the index inside the braces, e.g. link{i}");
+          throw ParseError{};
+        }
+        expr();  // checked here, evaluated by elaborate
+        if (!at(Tok::RBrace)) {
+          std::string so_far = n.text + "{";
+          for (std::size_t k = from; k < pos_; ++k) so_far += toks_[k].text;
+          fail(fmt::format("expected `}}` to close the interpolation in `{}`, found {}", so_far, describe(peek())),
+               "an interpolated name is written name{expression}, e.g. link{i-1}; to open a block "
+               "instead, put a space before `{`");
+        }
+      } catch (const ParseError&) {
+        skip_interpolation(open);
+        throw;
+      }
+      n.text += "{";
+      for (std::size_t k = from; k < pos_; ++k) n.text += toks_[k].text;
+      n.text += "}";
+      last = &next();
+      if (at(Tok::Ident) && adjacent(*last, peek())) {  // `n{i}_tip`
+        last = &next();
+        n.text += last->text;
+      }
+    }
+    extend(n.loc, last->loc);
+    return n;
+  }
+
+  /// After an error inside the interpolation opened by `open`: skip past its
+  /// `}` if that closes on the same line, so that recovery does not take it for
+  /// the end of the enclosing loop (`R fr{ e = f }` meant as a block).
+  void skip_interpolation(const Token& open) {
+    int depth = 1;
+    for (std::size_t k = pos_; toks_[k].kind != Tok::End && toks_[k].loc.line == open.loc.line; ++k) {
+      if (toks_[k].kind == Tok::LBrace) ++depth;
+      if (toks_[k].kind == Tok::RBrace && --depth == 0) {
+        pos_ = k + 1;
+        return;
+      }
+    }
+  }
+
+  /// A dotted path (`crank.a`, `m1.loop.f`); each part may interpolate inside a loop.
   ir::AstEndpoint endpoint(const char* what_for) {
-    const Token& first = expect(Tok::Ident, what_for);
+    Name first = name(what_for);
     ir::AstEndpoint e{first.text, first.loc};
     while (at(Tok::Dot)) {
       next();
-      const Token& part = expect(Tok::Ident, "after `.`");
+      Name part = name("after `.`");
       e.path += "." + part.text;
-      e.loc.length = part.loc.col + part.loc.length - e.loc.col;
+      extend(e.loc, part.loc);
     }
     return e;
   }
@@ -200,7 +325,7 @@ class Parser {
     ir::AstJunction j;
     j.type = kind.text[0];
     j.kind_loc = kind.loc;
-    const Token& n = expect(Tok::Ident, "(the junction's name)", fmt::format("write {} name", kind.text));
+    Name n = name("(the junction's name)", fmt::format("write {} name", kind.text));
     j.name = n.text;
     j.loc = n.loc;
     j.dim = dimension(j.dim_loc);
@@ -211,23 +336,22 @@ class Parser {
       }
       expect(Tok::Arrow, "between the bonds into and out of the junction",
              fmt::format("write {} {} : into, ... -> out, ...", kind.text, j.name));
-      if (at(Tok::Ident) && !at_statement_start_ident()) {
+      if (at(Tok::Ident) && !statement_word()) {
         j.outputs.push_back(endpoint("(a bond out of the junction)"));
         while (accept(Tok::Comma)) j.outputs.push_back(endpoint("after `,`"));
       }
     }
     return j;
   }
-  bool at_statement_start_ident() const {
-    return at(Tok::Ident) && (kKeywords.count(peek().text) || kElementKinds.count(peek().text));
-  }
 
   ir::AstStmt bond() {
     ir::AstBond b;
     b.loc = next().loc;
-    if (at(Tok::Ident) && peek(1).kind == Tok::Colon) {
-      b.name = next().text;
-      next();
+    if (at(Tok::Ident)) {  // `bond name: ...`? (a name may interpolate, so look past it)
+      std::size_t from = pos_;
+      Name n = name("");
+      if (accept(Tok::Colon)) b.name = n.text;
+      else pos_ = from;
     }
     b.from = endpoint("(where the bond starts)");
     expect(Tok::Arrow, "between the bond's ends", "write bond from -> to (power flows from -> to)");
@@ -239,17 +363,23 @@ class Parser {
   std::vector<ir::AstAttr> attr_block(const char* what_for) {
     std::vector<ir::AstAttr> attrs;
     expect(Tok::LBrace, what_for);
+    ++block_depth_;
     while (!at(Tok::RBrace)) {
       if (accept(Tok::Semi) || accept(Tok::Comma)) continue;
       if (at(Tok::End)) fail("missing `}`", "close the block with `}`");
-      const Token& k = expect(Tok::Ident, "(a setting name)");
-      ir::AstAttr a{k.text, k.loc, nullptr};
-      expect(Tok::Assign, "after the setting name", fmt::format("write {} = value", k.text));
-      a.value = expr();
-      attrs.push_back(std::move(a));
+      attrs.push_back(attr());
     }
     next();
+    --block_depth_;
     return attrs;
+  }
+  /// `key = expression`
+  ir::AstAttr attr() {
+    const Token& k = expect(Tok::Ident, "(a setting name)");
+    ir::AstAttr a{k.text, k.loc, nullptr};
+    expect(Tok::Assign, "after the setting name", fmt::format("write {} = value", k.text));
+    a.value = expr();
+    return a;
   }
 
   ir::AstStmt element() {
@@ -257,7 +387,7 @@ class Parser {
     ir::AstElement e;
     e.kind = kind.text;
     e.kind_loc = kind.loc;
-    const Token& n = expect(Tok::Ident, "(the element's name)", fmt::format("write {} name = value", kind.text));
+    Name n = name("(the element's name)", fmt::format("write {} name = value", kind.text));
     e.name = n.text;
     e.loc = n.loc;
     if (accept(Tok::Assign)) e.value = expr();
@@ -310,7 +440,7 @@ class Parser {
   ir::AstStmt instance() {
     next();
     ir::AstInstance in;
-    const Token& n = expect(Tok::Ident, "(the instance's name)");
+    Name n = name("(the instance's name)");
     in.name = n.text;
     in.loc = n.loc;
     expect(Tok::Assign, "after the instance's name", "write instance name = component(port = node, k = 2)");
@@ -328,6 +458,118 @@ class Parser {
     }
     expect(Tok::RParen, "to close the instance's arguments");
     return in;
+  }
+
+  // ---- the multibody layer ----------------------------------------------------------
+  /// `body name { mass = m; point tip = [...] }` or `ground { point pivot = [...] }`.
+  ir::AstStmt body() {
+    const Token& kw = next();
+    const bool ground = kw.text == "ground";
+    const char* form = ground ? "write ground { point p = [x, y, z] }" : "write body name { mass = m; point p = [x, y, z] }";
+    ir::AstBody b;
+    b.kind_loc = kw.loc;
+    if (ground) {
+      b.name = "ground";
+      b.loc = kw.loc;
+    } else {
+      Name n = name("(the body's name) after `body`", form);
+      if (n.text == "ground") {
+        diags_.error(n.loc, "`ground` is the fixed frame, not a body", "give its points with ground { point p = [x, y, z] }");
+        throw ParseError{};
+      }
+      b.name = n.text;
+      b.loc = n.loc;
+    }
+    expect(Tok::LBrace, ground ? "after `ground`" : "after the body's name", form);
+    ++block_depth_;
+    while (!at(Tok::RBrace)) {
+      if (accept(Tok::Semi) || accept(Tok::Comma)) continue;
+      if (at(Tok::End) || new_statement_here()) {
+        --block_depth_;  // given up: recovery resumes at this statement
+        fail(fmt::format("missing `}}` at the end of {}", ground ? "`ground`" : fmt::format("body `{}`", b.name)),
+             "close the block with `}`");
+      }
+      if (at_ident("point") && peek(1).kind == Tok::Ident) {
+        next();
+        Name p = name("(the point's name)");
+        expect(Tok::Assign, "after the point's name", fmt::format("write point {} = [x, y, z]", p.text));
+        b.points.push_back({p.text, p.loc, expr()});
+      } else {
+        b.attrs.push_back(attr());
+      }
+    }
+    next();
+    --block_depth_;
+    return b;
+  }
+
+  /// `joint name type(a, b) { key = value ... }`
+  ir::AstStmt joint() {
+    const char* form = "write joint name revolute(body_a.point, body_b.point)";
+    ir::AstJoint j;
+    j.kind_loc = next().loc;
+    Name n = name("(the joint's name) after `joint`", form);
+    j.name = n.text;
+    j.loc = n.loc;
+    const Token& type = expect(Tok::Ident, "(the joint's type)", form);
+    j.type = type.text;
+    j.type_loc = type.loc;
+    expect(Tok::LParen, fmt::format("after the joint's type `{}`", j.type).c_str(), form);
+    j.a = endpoint("(the joint's first endpoint)");
+    expect(Tok::Comma, "between the joint's two endpoints", "a joint connects two points: " + std::string(form));
+    j.b = endpoint("(the joint's second endpoint)");
+    expect(Tok::RParen, "after the joint's endpoints", form);
+    if (at(Tok::LBrace)) j.attrs = attr_block("");
+    return j;
+  }
+
+  /// `gravity = expression` or `constraints = method`.
+  ir::AstStmt setting() {
+    const Token& k = next();
+    ir::AstSetting s{k.text, k.loc, nullptr};
+    const char* form = k.text == "gravity" ? "write gravity = [0, -9.81, 0]" : "write constraints = lagrange";
+    expect(Tok::Assign, fmt::format("after `{}`", k.text).c_str(), form);
+    if (k.text == "gravity") {
+      s.value = expr();
+    } else {
+      const Token& v = expect(Tok::Ident, "(the constraint method)", form);
+      auto e = std::make_shared<AstExpr>();
+      e->kind = AstExpr::Kind::Name;
+      e->loc = v.loc;
+      e->name = v.text;
+      s.value = e;
+    }
+    return s;
+  }
+
+  /// `for i in from..to { statements }`
+  ir::AstStmt for_loop(bool in_component) {
+    const char* form = "write for i in 1..N { ... }";
+    auto f = std::make_shared<ir::AstFor>();
+    f->loc = next().loc;
+    if (for_depth_ >= kMaxLoopNesting) {
+      diags_.error(f->loc, "for loops nested too deeply", "use fewer levels of loops");
+      throw ParseError{};
+    }
+    f->var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;
+    if (!at_ident("in")) fail(fmt::format("expected `in` after the loop variable, found {}", describe(peek())), form);
+    next();
+    f->from = expr();
+    expect(Tok::DotDot, "between the loop's bounds", form);
+    f->to = expr();
+    expect(Tok::LBrace, "to open the loop's body", form);
+    ++for_depth_;
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{for_depth_};
+    while (!at(Tok::RBrace)) {
+      if (at(Tok::End)) fail(fmt::format("missing `}}` at the end of the for loop over `{}`", f->var), "close the body with `}`");
+      if (accept(Tok::Semi)) continue;
+      statement_into(f->body, in_component);
+    }
+    next();
+    return f;
   }
 
   // ---- expressions -------------------------------------------------------------
@@ -415,8 +657,7 @@ class Parser {
     }
     if (t.kind == Tok::Ident) {
       // `R load` here means the previous line's expression is unfinished.
-      bool starts_line = pos_ > 0 && toks_[pos_ - 1].loc.line != t.loc.line;
-      if (starts_line && (kKeywords.count(t.text) || kElementKinds.count(t.text)) && peek(1).kind == Tok::Ident)
+      if (new_statement_here())
         fail(fmt::format("expected an expression, found the start of a statement (`{} {}`)", t.text, peek(1).text),
              "the expression before it is incomplete");
       ir::AstEndpoint path = endpoint("");
@@ -463,7 +704,9 @@ class Parser {
 
   std::vector<Token> toks_;
   std::size_t pos_ = 0;
-  int depth_ = 0;
+  int depth_ = 0;        // expression nesting
+  int for_depth_ = 0;    // for-loop nesting: names interpolate inside a loop
+  int block_depth_ = 0;  // open { } of settings and body blocks (for recovery)
   ir::Diagnostics& diags_;
 };
 

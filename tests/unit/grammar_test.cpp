@@ -70,11 +70,48 @@ TEST(Grammar, StatementKeywordsMatchTheParser) {
   std::string ebnf = read(fs::path(MBGC_SOURCE_DIR) / "grammar" / "mbg.ebnf");
   // Keywords are the first terminal of each statement rule.
   std::set<std::string> keywords;
-  for (const char* rule : {"model decl", "import", "parameter", "signal", "output", "bond", "simulate", "component", "instance"}) {
+  for (const char* rule : {"model decl", "import", "parameter", "signal", "output", "bond", "simulate", "component",
+                           "instance", "body", "ground", "joint", "gravity", "constraints", "for loop"}) {
     std::smatch m;
     std::regex first(std::string("\\n") + rule + "\\s*=\\s*\"([^\"]+)\"");
     ASSERT_TRUE(std::regex_search(ebnf, m, first)) << rule;
     keywords.insert(m[1]);
   }
   EXPECT_EQ(keywords, mbgc::parse::statement_keywords());
+}
+
+TEST(Grammar, ContextualWordsAreNotStatementKeywords) {
+  // `point` (inside a body block) and `in` (in a for loop's header) are
+  // terminals of the grammar but start no statement, so they stay usable as names.
+  std::string ebnf = read(fs::path(MBGC_SOURCE_DIR) / "grammar" / "mbg.ebnf");
+  EXPECT_TRUE(terminals_of_rule(ebnf, "body entry").count("point"));
+  EXPECT_TRUE(terminals_of_rule(ebnf, "for loop").count("in"));
+  EXPECT_TRUE(terminals_of_rule(ebnf, "for loop").count(".."));
+  EXPECT_FALSE(mbgc::parse::statement_keywords().count("point"));
+  EXPECT_FALSE(mbgc::parse::statement_keywords().count("in"));
+}
+
+TEST(Grammar, MultibodyStatementsParse) {
+  // One of each multibody form, as the grammar's comments show them.
+  const char* text =
+      "model chain\n"
+      "param N = 3\n"
+      "gravity = [0, -9.81, 0]\n"
+      "constraints = lagrange\n"
+      "ground { point pivot = [0, 0, 0] }\n"
+      "for i in 1..N {\n"
+      "  body link{i} { mass = 1; inertia = diag(1, 1, 1); com = [0.5, 0, 0]; point base = [0, 0, 0]; point tip = [1, 0, 0] }\n"
+      "  output q{i} = j{i}.angle\n"
+      "}\n"
+      "joint j1 revolute(ground.pivot, link1.base) { axis = [0, 0, 1]; q0 = 0.3 }\n"
+      "for i in 2..N { joint j{i} revolute(link{i-1}.tip, link{i}.base) }\n"
+      "CN closure { g = 0 }\n";
+  mbgc::ir::SourceManager sources;
+  mbgc::ir::Diagnostics diags(sources);
+  int id = sources.add("chain.mbg", text);
+  mbgc::ir::AstProgram p = mbgc::parse::parse_source(sources, id, diags);
+  std::ostringstream rendered;
+  diags.render(rendered);
+  EXPECT_FALSE(diags.has_errors()) << rendered.str();
+  EXPECT_EQ(p.stmts.size(), 9u);
 }

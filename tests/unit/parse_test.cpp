@@ -1,6 +1,7 @@
 // Unit tests for pass 1 (parse/): statement kinds, expression precedence and
-// associativity, junction and bond syntax, source locations, comments, and
-// error reporting and recovery.
+// associativity, junction and bond syntax, the multibody statements (body,
+// ground, joint, gravity, constraints, for loops) and name interpolation,
+// source locations, comments, printing round trips, and error reporting and recovery.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -240,6 +241,345 @@ TEST(Parse, SimulateSettings) {
   EXPECT_DOUBLE_EQ(sims[0]->settings[3].value->number, 1e-10);
 }
 
+// ---- the multibody layer -------------------------------------------------------------------
+
+TEST(Parse, BodyAttributesAndPoints) {
+  auto c = parse(
+      "body crank {\n"
+      "  mass = 2; inertia = diag(1, 2, 3)\n"
+      "  com = [0.5, 0, 0], point a = [0, 0, 0]\n"
+      "  point tip = [L, 0, 0]\n"
+      "}\n"
+      "body empty { }\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto bodies = all_of<ir::AstBody>(c->ast);
+  ASSERT_EQ(bodies.size(), 2u);
+  const ir::AstBody& b = *bodies[0];
+  EXPECT_EQ(b.name, "crank");
+  EXPECT_EQ(b.kind_loc.line, 1);
+  EXPECT_EQ(b.kind_loc.col, 1);
+  EXPECT_EQ(b.loc.col, 6);
+  EXPECT_EQ(b.loc.length, 5);
+  ASSERT_EQ(b.attrs.size(), 3u);
+  EXPECT_EQ(b.attrs[0].key, "mass");
+  EXPECT_EQ(b.attrs[1].key, "inertia");
+  EXPECT_EQ(tree(*b.attrs[1].value), "diag(1, 2, 3)");
+  EXPECT_EQ(b.attrs[2].key, "com");
+  ASSERT_EQ(b.points.size(), 2u);
+  EXPECT_EQ(b.points[0].name, "a");
+  EXPECT_EQ(b.points[1].name, "tip");
+  EXPECT_EQ(tree(*b.points[1].value), "[L, 0, 0]");
+  EXPECT_EQ(b.points[1].loc.line, 4);
+  EXPECT_EQ(b.points[1].loc.col, 9);
+  EXPECT_EQ(bodies[1]->name, "empty");
+  EXPECT_TRUE(bodies[1]->attrs.empty());
+  EXPECT_TRUE(bodies[1]->points.empty());
+}
+
+TEST(Parse, GroundIsABodyNamedGround) {
+  auto c = parse("model m\n  ground { point pivot = [0, 0, 0]; point top = [0, 1, 0]; mass = 1 }\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto bodies = all_of<ir::AstBody>(c->ast);
+  ASSERT_EQ(bodies.size(), 1u);
+  EXPECT_EQ(bodies[0]->name, "ground");
+  EXPECT_EQ(bodies[0]->kind_loc.line, 2);
+  EXPECT_EQ(bodies[0]->kind_loc.col, 3);
+  EXPECT_EQ(bodies[0]->loc.col, 3);
+  ASSERT_EQ(bodies[0]->points.size(), 2u);
+  EXPECT_EQ(bodies[0]->points[1].name, "top");
+  ASSERT_EQ(bodies[0]->attrs.size(), 1u);  // accepted here, rejected by elaborate
+  EXPECT_EQ(bodies[0]->attrs[0].key, "mass");
+}
+
+TEST(Parse, JointTypeEndpointsAndSettings) {
+  auto c = parse(
+      "joint j1 revolute(ground.pivot, crank.a) { axis = [0, 0, 1]; q0 = 0.3 }\n"
+      "joint weld fixed(ground, crank)\n"
+      "joint j3 anything_goes(a.b, c)\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto js = all_of<ir::AstJoint>(c->ast);
+  ASSERT_EQ(js.size(), 3u);
+  const ir::AstJoint& j = *js[0];
+  EXPECT_EQ(j.name, "j1");
+  EXPECT_EQ(j.kind_loc.col, 1);
+  EXPECT_EQ(j.loc.col, 7);
+  EXPECT_EQ(j.type, "revolute");
+  EXPECT_EQ(j.type_loc.col, 10);
+  EXPECT_EQ(j.type_loc.length, 8);
+  EXPECT_EQ(j.a.path, "ground.pivot");
+  EXPECT_EQ(j.a.loc.col, 19);
+  EXPECT_EQ(j.a.loc.length, 12);
+  EXPECT_EQ(j.b.path, "crank.a");
+  ASSERT_EQ(j.attrs.size(), 2u);
+  EXPECT_EQ(j.attrs[0].key, "axis");
+  EXPECT_EQ(j.attrs[1].key, "q0");
+  EXPECT_EQ(js[1]->type, "fixed");
+  EXPECT_EQ(js[1]->a.path, "ground");
+  EXPECT_EQ(js[1]->b.path, "crank");
+  EXPECT_TRUE(js[1]->attrs.empty());
+  EXPECT_EQ(js[2]->type, "anything_goes");  // elaborate checks the type
+}
+
+TEST(Parse, GravityAndConstraintsSettings) {
+  auto c = parse("gravity = [0, -g, 0]\nconstraints = lagrange\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto ss = all_of<ir::AstSetting>(c->ast);
+  ASSERT_EQ(ss.size(), 2u);
+  EXPECT_EQ(ss[0]->key, "gravity");
+  EXPECT_EQ(ss[0]->loc.line, 1);
+  EXPECT_EQ(ss[0]->loc.col, 1);
+  EXPECT_EQ(ss[0]->loc.length, 7);
+  EXPECT_EQ(tree(*ss[0]->value), "[0, (-g), 0]");
+  EXPECT_EQ(ss[1]->key, "constraints");
+  ASSERT_TRUE(ss[1]->value);
+  EXPECT_EQ(ss[1]->value->kind, Kind::Name);
+  EXPECT_EQ(ss[1]->value->name, "lagrange");
+  EXPECT_EQ(ss[1]->value->loc.line, 2);
+  EXPECT_EQ(ss[1]->value->loc.col, 15);
+}
+
+TEST(Parse, ConstraintorIsAnElementKind) {
+  EXPECT_TRUE(mbgc::parse::element_kinds().count("CN"));
+  auto c = parse("CN closure { g = q1 - q2; stiffness = 1e6 }\nCN c2 = 1\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto els = all_of<ir::AstElement>(c->ast);
+  ASSERT_EQ(els.size(), 2u);
+  EXPECT_EQ(els[0]->kind, "CN");
+  EXPECT_EQ(els[0]->name, "closure");
+  ASSERT_EQ(els[0]->attrs.size(), 2u);
+  EXPECT_EQ(tree(*els[0]->attrs[0].value), "(q1 - q2)");
+  EXPECT_EQ(els[1]->kind, "CN");
+  ASSERT_TRUE(els[1]->value);
+}
+
+TEST(Parse, ForLoopBoundsAndBody) {
+  auto c = parse(
+      "for i in 1..N {\n"
+      "  R r = 1; C k = 2\n"
+      "  for j in 2 .. N - 1 { bond a -> b }\n"
+      "}\n"
+      "for k in -1..2*M { }\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  ASSERT_EQ(c->ast.stmts.size(), 2u);
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  EXPECT_EQ(f.var, "i");
+  EXPECT_EQ(f.loc.line, 1);
+  EXPECT_EQ(f.loc.col, 1);
+  EXPECT_EQ(tree(*f.from), "1");
+  EXPECT_EQ(tree(*f.to), "N");
+  ASSERT_EQ(f.body.size(), 3u);
+  EXPECT_TRUE(std::holds_alternative<ir::AstElement>(f.body[0]));
+  EXPECT_TRUE(std::holds_alternative<ir::AstElement>(f.body[1]));
+  const auto& inner = *std::get<std::shared_ptr<ir::AstFor>>(f.body[2]);
+  EXPECT_EQ(inner.var, "j");
+  EXPECT_EQ(inner.loc.line, 3);
+  EXPECT_EQ(tree(*inner.from), "2");
+  EXPECT_EQ(tree(*inner.to), "(N - 1)");
+  ASSERT_EQ(inner.body.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<ir::AstBond>(inner.body[0]));
+  const auto& g = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[1]);
+  EXPECT_EQ(tree(*g.from), "(-1)");
+  EXPECT_EQ(tree(*g.to), "(2 * M)");
+  EXPECT_TRUE(g.body.empty());
+}
+
+TEST(Parse, ForLoopInsideAComponent) {
+  auto c = parse("component chain(port a) {\n  for i in 1..3 { R r{i} = i }\n}\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const auto& comp = *std::get<std::shared_ptr<ir::AstComponent>>(c->ast.stmts[0]);
+  ASSERT_EQ(comp.body.size(), 1u);
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(comp.body[0]);
+  ASSERT_EQ(f.body.size(), 1u);
+  EXPECT_EQ(std::get<ir::AstElement>(f.body[0]).name, "r{i}");
+}
+
+TEST(Parse, RangeOperatorAndNumbers) {
+  // `1..N` is 1 .. N; `1.5..2.5` two numbers; `1.5` alone still a number.
+  auto c = parse("for i in 1..N {}\nfor j in 1.5..2.5 {}\nfor k in .5 ..3 {}\nparam p = 1.5\nparam q = 2.\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  EXPECT_EQ(f.from->kind, Kind::Number);
+  EXPECT_EQ(f.from->number, 1.0);
+  EXPECT_EQ(f.to->kind, Kind::Name);
+  EXPECT_EQ(f.to->loc.col, 13);
+  const auto& g = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[1]);
+  EXPECT_DOUBLE_EQ(g.from->number, 1.5);
+  EXPECT_DOUBLE_EQ(g.to->number, 2.5);
+  const auto& h = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[2]);
+  EXPECT_DOUBLE_EQ(h.from->number, 0.5);
+  EXPECT_DOUBLE_EQ(h.to->number, 3.0);
+  auto ps = all_of<ir::AstParam>(c->ast);
+  ASSERT_EQ(ps.size(), 2u);
+  EXPECT_DOUBLE_EQ(ps[0]->value->number, 1.5);
+  EXPECT_DOUBLE_EQ(ps[1]->value->number, 2.0);
+}
+
+TEST(Parse, MultibodyKeywordsStayUsableAsNames) {
+  // Bond-graph models name elements body or gravity; only `body name`,
+  // `gravity =`, `ground {`, ... start the new statements.
+  auto c = parse(
+      "I body = m\n"
+      "Se gravity = [0, -9.81]\n"
+      "1 v : gravity -> body\n"
+      "R r = 1\n"
+      "0 w : -> joint, ground, for\n"
+      "param x = 2 *\n"
+      "  body.f\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto js = all_of<ir::AstJunction>(c->ast);
+  ASSERT_EQ(js.size(), 2u);
+  ASSERT_EQ(js[0]->inputs.size(), 1u);
+  EXPECT_EQ(js[0]->inputs[0].path, "gravity");
+  ASSERT_EQ(js[0]->outputs.size(), 1u);  // `R r` on the next line is still a statement
+  EXPECT_EQ(js[0]->outputs[0].path, "body");
+  ASSERT_EQ(js[1]->outputs.size(), 3u);
+  EXPECT_EQ(js[1]->outputs[2].path, "for");
+  EXPECT_EQ(all_of<ir::AstElement>(c->ast).size(), 3u);
+  auto ps = all_of<ir::AstParam>(c->ast);
+  ASSERT_EQ(ps.size(), 1u);
+  EXPECT_EQ(tree(*ps[0]->value), "(2 * body.f)");
+}
+
+// ---- name interpolation inside for loops ----------------------------------------------------
+
+TEST(ParseInterpolation, NamesEverywhereInsideALoop) {
+  auto c = parse(
+      "for i in 1..N {\n"
+      "  body link{i} { mass = m; point tip{i} = [i, 0, 0] }\n"
+      "  joint j{i} revolute(link{i-1}.tip, link{i}) { q0 = q{i} }\n"
+      "  R r{i} = k{i} * 2\n"
+      "  1 n{i} : a{i}, b.p{i} -> c{i+1}.p1\n"
+      "  bond b{i}: x{i} -> y{i}\n"
+      "  signal s{i} = sin(j{i}.angle)\n"
+      "  output q{i} = j{i}.angle\n"
+      "  param k{i} = 2 * i\n"
+      "  instance u{i} = comp(port = n{i})\n"
+      "}\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  ASSERT_EQ(f.body.size(), 9u);
+  const auto& body = std::get<ir::AstBody>(f.body[0]);
+  EXPECT_EQ(body.name, "link{i}");
+  EXPECT_EQ(body.loc.col, 8);
+  EXPECT_EQ(body.loc.length, 7);  // the span covers the interpolation
+  ASSERT_EQ(body.points.size(), 1u);
+  EXPECT_EQ(body.points[0].name, "tip{i}");
+  const auto& joint = std::get<ir::AstJoint>(f.body[1]);
+  EXPECT_EQ(joint.name, "j{i}");
+  EXPECT_EQ(joint.a.path, "link{i-1}.tip");
+  EXPECT_EQ(joint.a.loc.length, 13);
+  EXPECT_EQ(joint.b.path, "link{i}");
+  EXPECT_EQ(joint.attrs[0].value->name, "q{i}");
+  const auto& r = std::get<ir::AstElement>(f.body[2]);
+  EXPECT_EQ(r.name, "r{i}");
+  EXPECT_EQ(tree(*r.value), "(k{i} * 2)");
+  const auto& n = std::get<ir::AstJunction>(f.body[3]);
+  EXPECT_EQ(n.name, "n{i}");
+  ASSERT_EQ(n.inputs.size(), 2u);
+  EXPECT_EQ(n.inputs[0].path, "a{i}");
+  EXPECT_EQ(n.inputs[1].path, "b.p{i}");
+  ASSERT_EQ(n.outputs.size(), 1u);
+  EXPECT_EQ(n.outputs[0].path, "c{i+1}.p1");
+  const auto& bond = std::get<ir::AstBond>(f.body[4]);
+  EXPECT_EQ(bond.name, "b{i}");
+  EXPECT_EQ(bond.from.path, "x{i}");
+  EXPECT_EQ(bond.to.path, "y{i}");
+  const auto& sig = std::get<ir::AstSignal>(f.body[5]);
+  EXPECT_EQ(sig.name, "s{i}");
+  EXPECT_EQ(tree(*sig.value), "sin(j{i}.angle)");
+  const auto& out = std::get<ir::AstOutput>(f.body[6]);
+  EXPECT_EQ(out.name, "q{i}");
+  ASSERT_EQ(out.value->kind, Kind::Name);
+  EXPECT_EQ(out.value->name, "j{i}.angle");
+  EXPECT_EQ(std::get<ir::AstParam>(f.body[7]).name, "k{i}");
+  const auto& inst = std::get<ir::AstInstance>(f.body[8]);
+  EXPECT_EQ(inst.name, "u{i}");
+  EXPECT_EQ(inst.args[0].value->name, "n{i}");
+}
+
+TEST(ParseInterpolation, NestedLoopsWhitespaceAndRepeatedInterpolations) {
+  auto c = parse(
+      "for i in 1..N {\n"
+      "  for j in 1..M {\n"
+      "    C k{ i }_{j - 1} = 1\n"
+      "    0 n{i}{j} : k{i}_{j-1} -> m{ (i - 1) * M + j }\n"
+      "    output e{i}{j} = n{i}{j}.e + a{b{i}}\n"
+      "  }\n"
+      "}\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const auto& outer = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  const auto& inner = *std::get<std::shared_ptr<ir::AstFor>>(outer.body[0]);
+  ASSERT_EQ(inner.body.size(), 3u);
+  EXPECT_EQ(std::get<ir::AstElement>(inner.body[0]).name, "k{i}_{j-1}");  // whitespace removed
+  const auto& n = std::get<ir::AstJunction>(inner.body[1]);
+  EXPECT_EQ(n.name, "n{i}{j}");
+  EXPECT_EQ(n.inputs[0].path, "k{i}_{j-1}");
+  EXPECT_EQ(n.outputs[0].path, "m{(i-1)*M+j}");
+  const auto& out = std::get<ir::AstOutput>(inner.body[2]);
+  EXPECT_EQ(out.name, "e{i}{j}");
+  EXPECT_EQ(tree(*out.value), "(n{i}{j}.e + a{b{i}})");
+}
+
+TEST(ParseInterpolation, BraceAfterWhitespaceStillOpensABlock) {
+  auto c = parse("for i in 1..N {\n  R fr{i} { e = c{i} * f }\n  body b{i} {mass = 1}\n}\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  const auto& r = std::get<ir::AstElement>(f.body[0]);
+  EXPECT_EQ(r.name, "fr{i}");
+  ASSERT_EQ(r.attrs.size(), 1u);
+  EXPECT_EQ(tree(*r.attrs[0].value), "(c{i} * f)");
+  EXPECT_EQ(std::get<ir::AstBody>(f.body[1]).attrs.size(), 1u);
+}
+
+TEST(ParseInterpolation, OutsideALoopABraceAfterANameIsABlock) {
+  auto c = parse("R fr{ e = f }\nR s{}\nbody b{ point p = [0, 0, 0] }\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto els = all_of<ir::AstElement>(c->ast);
+  ASSERT_EQ(els.size(), 2u);
+  EXPECT_EQ(els[0]->name, "fr");
+  EXPECT_EQ(els[0]->attrs.size(), 1u);
+  EXPECT_EQ(all_of<ir::AstBody>(c->ast)[0]->points.size(), 1u);
+}
+
+// ---- printing ------------------------------------------------------------------------------
+
+TEST(Parse, MultibodyRoundTripThroughPrintAst) {
+  const std::string text =
+      "model chain\n"
+      "param N = 3\n"
+      "gravity = [0, -9.81, 0]\n"
+      "constraints = lagrange\n"
+      "ground { point pivot = [0, 0, 0] }\n"
+      "for i in 1..N {\n"
+      "  body link{i} { mass = 1; point tip = [1, 0, 0] }\n"
+      "  for j in 1..i - 1 {\n"
+      "    joint j{i}_{j} spherical(link{ i - 1 }.tip, link{i}) { q0 = 0.1 * j }\n"
+      "  }\n"
+      "  output q{i} = j{i}.angle\n"
+      "}\n"
+      "CN c { g = q }\n";
+  auto c = parse(text);
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const std::string printed = ir::print_ast(c->ast);
+  EXPECT_EQ(printed,
+            "model chain\n"
+            "param N = 3\n"
+            "gravity = [0, (-9.81), 0]\n"
+            "constraints = lagrange\n"
+            "ground { point pivot = [0, 0, 0] }\n"
+            "for i in 1..N {\n"
+            "  body link{i} { mass = 1; point tip = [1, 0, 0] }\n"
+            "  for j in 1..(i - 1) {\n"
+            "    joint j{i}_{j} spherical(link{i-1}.tip, link{i}) { q0 = (0.1 * j) }\n"
+            "  }\n"
+            "  output q{i} = j{i}.angle\n"
+            "}\n"
+            "CN c { g = q }\n");
+  auto again = parse(printed);
+  ASSERT_TRUE(again->ok()) << again->messages() << printed;
+  EXPECT_EQ(ir::print_ast(again->ast), printed);
+}
+
 // ---- expressions: precedence and associativity ----------------------------------------------
 
 TEST(ParseExpr, SubtractionIsLeftAssociative) { EXPECT_EQ(tree_of("a - b - c"), "((a - b) - c)"); }
@@ -460,6 +800,184 @@ TEST(ParseErrors, MissingArrowInBondGivesHint) {
   EXPECT_EQ(d.message, "expected `->` between the bond's ends, found `b`");
   EXPECT_EQ(d.hint, "write bond from -> to (power flows from -> to)");
   EXPECT_EQ(d.loc.col, 8);
+}
+
+std::vector<std::string> error_messages(const Compiled& c) {
+  std::vector<std::string> out;
+  for (const Reported& r : errors(c)) out.push_back(r.message);
+  return out;
+}
+
+TEST(ParseErrors, JointNeedsTwoParenthesisedEndpoints) {
+  auto c = parse("joint j1 revolute\nR r = 1\njoint j2 revolute(ground.pivot)\njoint j3 revolute(a, b, c)\nC k = 1\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 3u) << c->messages();
+  EXPECT_EQ(e[0].message, "expected `(` after the joint's type `revolute`, found `R`");
+  EXPECT_EQ(e[0].line, 2);
+  EXPECT_EQ(e[1].message, "expected `,` between the joint's two endpoints, found `)`");
+  EXPECT_EQ(e[1].line, 3);
+  EXPECT_EQ(e[1].col, 31);
+  EXPECT_EQ(e[2].message, "expected `)` after the joint's endpoints, found `,`");
+  EXPECT_EQ(c->diags.all()[0].hint, "write joint name revolute(body_a.point, body_b.point)");
+  EXPECT_EQ(all_of<ir::AstElement>(c->ast).size(), 2u);  // recovery keeps the statements between
+}
+
+TEST(ParseErrors, ForLoopHeader) {
+  auto c = parse(
+      "for i 1..3 { R a{i} = 1 }\n"
+      "for i in 1 3 { R b{i} = 1 }\n"
+      "for in 1..3 { }\n"
+      "for i in 1..3\n"
+      "R ok = 1\n");
+  EXPECT_EQ(error_messages(*c), (std::vector<std::string>{
+                                    "expected `in` after the loop variable, found number `1`",
+                                    "expected `..` between the loop's bounds, found number `3`",
+                                    "expected `in` after the loop variable, found number `1`",
+                                    "expected `{` to open the loop's body, found `R`",
+                                }))
+      << c->messages();
+  EXPECT_EQ(c->diags.all()[0].hint, "write for i in 1..N { ... }");
+  auto els = all_of<ir::AstElement>(c->ast);
+  ASSERT_EQ(els.size(), 1u);  // the failed loops' bodies are skipped whole
+  EXPECT_EQ(els[0]->name, "ok");
+}
+
+TEST(ParseErrors, StatementsThatCannotBeRepeatedInALoop) {
+  auto c = parse(
+      "for i in 1..3 {\n"
+      "  model inner\n"
+      "  import \"x.mbg\"\n"
+      "  component k(port a) { R r = 1 }\n"
+      "  simulate { t_end = 1 }\n"
+      "  R r{i} = 1\n"
+      "}\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 4u) << c->messages();
+  EXPECT_EQ(e[0].message, "`model` cannot appear inside a for loop");
+  EXPECT_EQ(e[0].line, 2);
+  EXPECT_EQ(e[0].col, 3);
+  EXPECT_EQ(e[1].message, "`import` cannot appear inside a for loop");
+  EXPECT_EQ(e[2].message, "`component` cannot appear inside a for loop");
+  EXPECT_EQ(e[3].message, "`simulate` cannot appear inside a for loop");
+  ASSERT_EQ(c->ast.stmts.size(), 1u);
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  ASSERT_EQ(f.body.size(), 1u);
+  EXPECT_EQ(std::get<ir::AstElement>(f.body[0]).name, "r{i}");
+}
+
+TEST(ParseErrors, ErrorsInsideALoopRecoverInsideIt) {
+  auto c = parse(
+      "for i in 1..3 {\n"
+      "  R r{i} = *\n"
+      "  body b{i} { mass = }\n"
+      "  C c{i} = 1\n"
+      "}\n"
+      "R after = 1\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 2u) << c->messages();
+  EXPECT_EQ(e[0].line, 2);
+  EXPECT_EQ(e[1].line, 3);
+  ASSERT_EQ(c->ast.stmts.size(), 2u);
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  ASSERT_EQ(f.body.size(), 1u);
+  EXPECT_EQ(std::get<ir::AstElement>(f.body[0]).name, "c{i}");
+  EXPECT_EQ(std::get<ir::AstElement>(c->ast.stmts[1]).name, "after");
+}
+
+TEST(ParseErrors, UnbalancedInterpolation) {
+  auto c = parse(
+      "for i in 1..3 {\n"
+      "  body link{i { mass = 1 }\n"
+      "  output q{i = 1\n"
+      "  R fr{ e = f }\n"
+      "  R ok{i} = 1\n"
+      "}\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 3u) << c->messages();  // one per line: recovery stays inside the loop
+  EXPECT_EQ(e[0].message, "expected `}` to close the interpolation in `link{i`, found `{`");
+  EXPECT_EQ(e[0].line, 2);
+  EXPECT_EQ(e[0].col, 15);
+  EXPECT_EQ(e[1].message, "expected `}` to close the interpolation in `q{i`, found `=`");
+  EXPECT_EQ(e[2].message, "expected `}` to close the interpolation in `fr{e`, found `=`");
+  EXPECT_EQ(c->diags.all()[2].hint,
+            "an interpolated name is written name{expression}, e.g. link{i-1}; to open a block instead, put a space "
+            "before `{`");
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[0]);
+  ASSERT_EQ(f.body.size(), 1u);
+  EXPECT_EQ(std::get<ir::AstElement>(f.body[0]).name, "ok{i}");
+}
+
+TEST(ParseErrors, EmptyInterpolationAndInterpolationOutsideALoop) {
+  auto c = parse("for i in 1..3 {\n  R r{} = 1\n}\noutput q{1} = 2\nR ok = 1\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 2u) << c->messages();
+  EXPECT_EQ(e[0].message, "empty interpolation in `r{}`");
+  EXPECT_EQ(e[0].line, 2);
+  EXPECT_EQ(e[0].col, 6);
+  EXPECT_EQ(e[1].message, "a name can interpolate `q{...}` only inside a for loop");
+  EXPECT_EQ(e[1].line, 4);
+  EXPECT_EQ(e[1].col, 9);
+  EXPECT_EQ(all_of<ir::AstElement>(c->ast).size(), 1u);
+}
+
+TEST(ParseErrors, PointOutsideABody) {
+  auto c = parse("point p = [0, 0, 0]\nR r = 1\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 1u) << c->messages();
+  EXPECT_EQ(e[0].message, "`point` belongs inside a body or ground block");
+  EXPECT_EQ(e[0].col, 1);
+  EXPECT_EQ(all_of<ir::AstElement>(c->ast).size(), 1u);
+}
+
+TEST(ParseErrors, BodyBlockErrors) {
+  auto c = parse(
+      "body ground { mass = 1 }\n"
+      "body a { mass = 1\n"
+      "joint j revolute(a, b)\n"
+      "ground { point = 1 }\n"
+      "body c { point p [0, 0, 0] }\n");
+  EXPECT_EQ(error_messages(*c), (std::vector<std::string>{
+                                    "`ground` is the fixed frame, not a body",
+                                    "missing `}` at the end of body `a`",
+                                    "expected `=` after the point's name, found `[`",
+                                }))
+      << c->messages();
+  // `point = 1` is an attribute named point (elaborate rejects it); the joint survives.
+  EXPECT_EQ(all_of<ir::AstJoint>(c->ast).size(), 1u);
+  auto bodies = all_of<ir::AstBody>(c->ast);
+  ASSERT_EQ(bodies.size(), 1u);
+  EXPECT_EQ(bodies[0]->attrs[0].key, "point");
+}
+
+TEST(ParseErrors, SettingsNeedTheirValue) {
+  auto c = parse("constraints = 3\ngravity [0, 0]\nR r = 1\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 1u) << c->messages();  // `gravity [` is not a statement's shape: skipped in recovery
+  EXPECT_EQ(e[0].message, "expected a name (the constraint method), found number `3`");
+  EXPECT_EQ(c->diags.all()[0].hint, "write constraints = lagrange");
+  c = parse("gravity\nR r = 1\n");
+  e = errors(*c);
+  ASSERT_EQ(e.size(), 1u) << c->messages();
+  EXPECT_EQ(e[0].message, "expected `=` after `gravity`, found `R`");
+  EXPECT_EQ(e[0].line, 2);
+  EXPECT_EQ(all_of<ir::AstElement>(c->ast).size(), 1u);
+}
+
+TEST(ParseErrors, UnclosedLoopsAreEachReported) {
+  auto c = parse("for i in 1..3 {\n  for j in 1..3 {\n    R r{i}{j} = 1\n");
+  EXPECT_EQ(error_messages(*c), (std::vector<std::string>{
+                                    "missing `}` at the end of the for loop over `j`",
+                                    "missing `}` at the end of the for loop over `i`",
+                                }))
+      << c->messages();
+}
+
+TEST(ParseErrors, DeeplyNestedLoopsAreAnErrorNotACrash) {
+  std::string text;
+  for (int k = 0; k < 2000; ++k) text += "for i in 1..2 {\n";
+  auto c = parse(text);
+  ASSERT_TRUE(c->diags.has_errors());
+  EXPECT_EQ(c->diags.all()[0].message, "for loops nested too deeply");
 }
 
 TEST(ParseErrors, DeeplyNestedExpressionIsAnErrorNotACrash) {
