@@ -118,6 +118,9 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
       ->allow_extra_args(false);
   app.add_option("-o,--out", o.out_path, "CSV output file (default: stdout)")
       ->type_name("FILE.csv");
+  app.add_option("--constraint-report", o.constraint_report_path,
+                 "Write t,max_abs_g,max_abs_gdot (joint constraints at each output time) as CSV")
+      ->type_name("FILE.csv");
   app.add_flag("--quiet", o.quiet, "Do not print the run summary on stderr");
   app.add_flag("--list-parameters", o.list_parameters,
                "Print the parameters as NAME,DEFAULT lines and exit");

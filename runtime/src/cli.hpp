@@ -19,6 +19,7 @@ struct Options {
   Settings settings;
   std::vector<std::pair<std::string, double>> overrides;  ///< --set, in command-line order
   std::string out_path;                                   ///< empty: stdout
+  std::string constraint_report_path;                     ///< --constraint-report; empty: none
   bool quiet = false;
   bool list_parameters = false;
   std::optional<double> linearize_at;

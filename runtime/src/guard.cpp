@@ -17,7 +17,11 @@ const char* value_word(double v) {
 }  // namespace
 
 GuardedModel::GuardedModel(Model& model)
-    : model_(model), n_(model.size()), dae_(model.is_dae()), ids_(n_, 1.0) {
+    : model_(model),
+      n_(model.size()),
+      dae_(model.is_dae()),
+      ids_(n_, 1.0),
+      shape_(mbgrt::detail::constraint_shape(model)) {
   if (dae_) model_.differential_ids(ids_.data());
 }
 
@@ -86,6 +90,11 @@ bool GuardedModel::check_state(double t, const double* y) {
 std::string GuardedModel::describe(const Blame& b) const {
   if (b.site == BlameSite::exception)
     return fmt::format("the model threw an exception: {}", b.detail);
+  // A residual row of a lagrange DAE past the states is a constraint row:
+  // name the constraint rather than the multiplier the row happens to share an index with.
+  if (b.site == BlameSite::residual && shape_.ggl_layout() && b.index >= shape_.ns)
+    return fmt::format("the residual of {} became {}", residual_row_name(model_, shape_, b.index),
+                       value_word(b.value));
   const char* kind = ids_.at(b.index) != 0.0 ? "state" : "algebraic variable";
   std::string text =
       fmt::format("{} '{}' became {}", kind, model_.variable_name(b.index), value_word(b.value));

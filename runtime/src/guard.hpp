@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "constraints.hpp"
 #include "mbgrt/model.hpp"
 
 namespace mbgrt::detail {
@@ -34,6 +35,8 @@ class GuardedModel {
   bool is_dae() const { return dae_; }
   /// 1.0 for differential unknowns, 0.0 for algebraic ones (all 1.0 for ODEs).
   const std::vector<double>& differential_ids() const { return ids_; }
+  /// Sizes of the model's joint constraints (none for most models).
+  const ConstraintShape& constraint_shape() const { return shape_; }
 
   /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
   int derivative(double t, const double* y, double* ydot);
@@ -60,6 +63,7 @@ class GuardedModel {
   std::size_t n_;
   bool dae_;
   std::vector<double> ids_;
+  ConstraintShape shape_;
   std::optional<Blame> blame_;
 };
 

@@ -52,6 +52,11 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   fmt::print(err, "  time         {} s to {} s, interval {} s, reached {} s\n",
              format_time(s.t_start_s), format_time(s.t_end_s), format_time(s.interval_s),
              format_time(integ.t()));
+  if (run.assembly) fmt::print(err, "  assembly: {}\n", describe(*run.assembly));
+  if (run.initial_values)
+    fmt::print(err, "  initial values: {}\n",
+               describe(*run.initial_values, run.constraints ? run.constraints->shape()
+                                                             : constraint_shape(*run.model)));
   fmt::print(err, "  steps        {} (last step {:.3g} s)\n", st.steps, st.last_step);
 
   std::string evals = fmt::format("{} {}", st.rhs_evals, residual ? "residual" : "RHS");
@@ -67,6 +72,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   if (st.warnings > 0)
     fmt::print(err, "  warnings     {} from the solver (first: {})\n", st.warnings,
                st.first_warning);
+  if (run.constraints) fmt::print(err, "  {}\n", describe(*run.constraints));
   fmt::print(err, "  output       {}\n", run.output);
   fmt::print(err, "  wall time    {:.3g} s\n", run.wall_s);
 }
@@ -91,12 +97,19 @@ void print_stop_message(std::FILE* err, const GuardedModel& model, const Integra
 
   if (solver_failed && blame && f.t != blame->t)
     note(err, fmt::format("the last accepted solution is at t = {} s", format_time(f.t)));
-  if (blame && blame->site != BlameSite::exception)
+  if (blame && blame->site != BlameSite::exception) {
+    // A residual row of a lagrange DAE past the states is a joint constraint.
+    const ConstraintShape& shape = model.constraint_shape();
+    const std::string culprit =
+        blame->site == BlameSite::residual && shape.ggl_layout() && blame->index >= shape.ns
+            ? residual_row_name(model.model(), shape, blame->index)
+            : fmt::format("'{}'", model.model().variable_name(blame->index));
     note(err,
          fmt::format("a non-finite value usually comes from a division by zero, the square root or "
                      "logarithm of a negative number, or a state growing without bound; check the "
-                     "equations that involve '{}' near this time",
-                     model.model().variable_name(blame->index)));
+                     "equations that involve {} near this time",
+                     culprit));
+  }
   if (solver_failed) note(err, hint_for(f, integrator.name()));
   if (solver_failed && !f.solver_message.empty())
     note(err, fmt::format("solver message: {}", f.solver_message));

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "constraints.hpp"
 #include "guard.hpp"
 #include "integrator.hpp"
 
@@ -16,6 +17,10 @@ struct RunRecord {
   Settings settings;  ///< as used (t_end_s is the --linearize-at time in that mode)
   double wall_s = 0.0;
   std::string output;  ///< e.g. "101 rows to out.csv"
+  // Constrained models only (null otherwise):
+  const AssemblyReport* assembly = nullptr;
+  const InitialValuesReport* initial_values = nullptr;
+  const ConstraintMonitor* constraints = nullptr;
 };
 
 void print_summary(std::FILE* err, const RunRecord& run);

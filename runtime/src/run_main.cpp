@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "constraints.hpp"
 #include "csv.hpp"
 #include "grid.hpp"
 #include "guard.hpp"
@@ -92,7 +94,51 @@ Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
   return r;
 }
 
-int simulate(Model& model, const Options& o, OutputFile& out) {
+bool all_finite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+/// What the runtime does to the initial values of a model with joint
+/// constraints before the integrator starts: assembly (all models), then y'
+/// and the algebraic unknowns (DAEs). Errors are reported here.
+struct ConstrainedStart {
+  std::optional<AssemblyReport> assembly;
+  std::optional<InitialValuesReport> initial_values;
+  bool ok = true;
+};
+
+ConstrainedStart prepare_constrained_start(Model& model, const GuardedModel& guard, double t0,
+                                           std::vector<double>& y0, std::vector<double>& yp0) {
+  ConstrainedStart start;
+  const ConstraintShape& shape = guard.constraint_shape();
+  if (!shape.any()) return start;
+  if (std::string broken = contract_violation(model, shape, guard.differential_ids());
+      !broken.empty()) {
+    print_error(broken);
+    start.ok = false;
+    return start;
+  }
+  // A non-finite initial value is reported by the run loop, in model terms.
+  if (!all_finite(y0)) return start;
+  start.assembly = assemble(model, shape, t0, y0.data());
+  if (!start.assembly->ok) {
+    print_error(start.assembly->error);
+    start.ok = false;
+    return start;
+  }
+  if (shape.dae) {
+    start.initial_values = consistent_initial_values(model, shape, t0, y0.data(), yp0.data());
+    if (!start.initial_values->ok) {
+      print_error(start.initial_values->error);
+      start.ok = false;
+    }
+  }
+  return start;
+}
+
+int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out) {
   Settings s = o.settings;
   const bool linearize = o.linearize_at.has_value();
   if (linearize) s.t_end_s = *o.linearize_at;  // integrate only as far as the linearization point
@@ -101,21 +147,41 @@ int simulate(Model& model, const Options& o, OutputFile& out) {
   const std::size_t n = model.size();
   std::vector<double> y0(n), yp0(model.is_dae() ? n : 0);
   model.initial(s.t_start_s, y0.data(), model.is_dae() ? yp0.data() : nullptr);
+  const ConstrainedStart start = prepare_constrained_start(model, guard, s.t_start_s, y0, yp0);
+  if (!start.ok) {  // nothing is integrated from a state that violates its joints
+    model.terminal(s.t_start_s, y0.data());
+    return kExitRunFailed;
+  }
   auto integrator = make_integrator(guard, s);
 
   CsvWriter csv(out);
   const std::vector<std::string> names = model.output_names();
   std::vector<double> outputs(names.size());
+  ConstraintMonitor monitor(model, guard.constraint_shape());
+  std::optional<CsvWriter> constraint_csv;
+  if (constraint_out) {
+    constraint_csv.emplace(*constraint_out);
+    const std::vector<std::string> columns{"max_abs_g", "max_abs_gdot"};
+    constraint_csv->header("t", columns);
+  }
+  auto observe_constraints = [&] {
+    monitor.observe(integrator->t(), integrator->y());
+    if (constraint_csv) {
+      const double row[] = {monitor.last_position(), monitor.last_velocity()};
+      constraint_csv->row(integrator->t(), row);
+    }
+  };
   auto write_row = [&] {
     model.outputs(integrator->t(), integrator->y(), integrator->yp(), outputs.data());
     csv.row(integrator->t(), outputs);
+    observe_constraints();
   };
 
   const auto started = std::chrono::steady_clock::now();
   Outcome r;
   std::vector<Mode> modes;
   if (linearize) {
-    r = march(guard, *integrator, s, y0, yp0, [] {});
+    r = march(guard, *integrator, s, y0, yp0, observe_constraints);
     std::vector<double> jac;
     if (r.ok) r.ok = numeric_jacobian(guard, integrator->t(), integrator->y(), jac);
     if (r.ok) {
@@ -138,6 +204,9 @@ int simulate(Model& model, const Options& o, OutputFile& out) {
     RunRecord record{&model, integrator.get(), s, wall_s, {}};
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());
+    if (start.assembly) record.assembly = &*start.assembly;
+    if (start.initial_values) record.initial_values = &*start.initial_values;
+    if (guard.constraint_shape().any()) record.constraints = &monitor;
     print_summary(stderr, record);
   }
   if (!r.ok) print_stop_message(stderr, guard, *integrator, r.solver_failed);
@@ -152,14 +221,15 @@ int run(Model& model, int argc, char** argv) {
   if (o.list_parameters) return list_parameters(model);
   if (!apply_overrides(model, o) || !check_model_fits(model, o)) return kExitUsage;
 
-  std::optional<OutputFile> out;
+  std::optional<OutputFile> out, constraint_out;
   try {
     out.emplace(o.out_path);
+    if (!o.constraint_report_path.empty()) constraint_out.emplace(o.constraint_report_path);
   } catch (const std::runtime_error& e) {
     print_error(e.what());
     return kExitUsage;
   }
-  return simulate(model, o, *out);
+  return simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr);
 }
 
 }  // namespace

@@ -14,8 +14,6 @@
 
 namespace mbgrt::test {
 
-namespace {
-
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
@@ -30,6 +28,8 @@ std::string temp_path(const std::string& stem) {
   return (dir / (stem + "-" + std::to_string(::getpid()) + "-" + std::to_string(++counter)))
       .string();
 }
+
+namespace {
 
 /// Sends file descriptor `fd` to a file until destroyed.
 class Redirect {
@@ -76,6 +76,7 @@ RunResult run(Model& model, const std::vector<std::string>& args, bool with_out_
   }
   r.out = read_file(out_path);
   r.err = read_file(err_path);
+  if (std::getenv("MBGRT_TEST_SHOW_STDERR")) std::cout << r.err << std::flush;  // for debugging
   if (with_out_file && std::filesystem::exists(r.path)) {
     r.csv = read_file(r.path);
     std::filesystem::remove(r.path);
@@ -129,9 +130,11 @@ long summary_number(const std::string& err, const std::string& label) {
 }
 
 double reported_time(const std::string& err) {
-  const auto pos = err.find("at t = ");
+  // The summary may mention times too ("constraint drift: ... at t = 0.5 s").
+  const std::string marker = "error: at t = ";
+  const auto pos = err.find(marker);
   if (pos == std::string::npos) return std::nan("");
-  return std::strtod(err.c_str() + pos + 7, nullptr);
+  return std::strtod(err.c_str() + pos + marker.size(), nullptr);
 }
 
 }  // namespace mbgrt::test

@@ -20,6 +20,11 @@ struct RunResult {
   std::string path;  ///< the --out path used
 };
 
+/// A fresh path in the temporary directory (the file is not created).
+std::string temp_path(const std::string& stem);
+/// The whole file ("" if it does not exist).
+std::string read_file(const std::string& path);
+
 /// Appends `-o <temp file>` unless `with_out_file` is false.
 RunResult run(Model& model, const std::vector<std::string>& args, bool with_out_file = true);
 
@@ -41,7 +46,7 @@ Csv parse_csv(const std::string& text);
 /// The first number after `label` in the run summary (e.g. "steps"), or -1.
 long summary_number(const std::string& err, const std::string& label);
 
-/// The number after "at t = " in an error message, or NaN.
+/// The number after "error: at t = " in a stop message, or NaN.
 double reported_time(const std::string& err);
 
 }  // namespace mbgrt::test

@@ -8,6 +8,23 @@
 //   * ODE:  x' = f(t, x)                         (is_dae() == false)
 //   * DAE:  F(t, y, y') = 0, y = [states; algebraic unknowns]   (is_dae() == true)
 // An ODE model can be integrated by every solver; a DAE model only by IDA.
+//
+// Either shape may carry holonomic joint constraints (multibody models):
+//   * `lagrange`: a DAE in the stabilised index-2 form of Gear-Gupta-Leimkuhler,
+//     y = [states; lambda; mu], residual rows = [x' - f(x, lambda) - G(x)^T mu
+//     for the states; gdot(x) = 0 (the rows of lambda); g(x) = 0 (the rows of
+//     mu)], constraints_enforced() == true. When size() - state_count() equals
+//     the number of constraint rows, residual row state_count() + j is taken
+//     to be gdot_j and the rows after them g_j (only to name them in reports).
+//     The residual must not depend on y' of the algebraic unknowns;
+//   * `penalty`: an ODE with stiff spring-dampers; the constraints are only
+//     monitored, constraints_enforced() == false.
+// For such models the runtime (1) assembles the initial state: it moves the
+// position states so that g = 0, then the velocity states so that gdot = 0,
+// both by minimum-norm Gauss-Newton steps; (2) for DAEs computes y' and the
+// algebraic unknowns itself (IDACalcIC cannot handle rows that depend on
+// neither y' nor an algebraic unknown); (3) evaluates g and gdot at every
+// output point and reports the drift (lagrange) or violation (penalty).
 #pragma once
 
 #include <cstddef>
@@ -92,6 +109,31 @@ class Model {
 
   /// TERMINAL: called once after the run (successful or not).
   virtual void terminal(double t, const double* y) { (void)t; (void)y; }
+
+  // ---- joint constraints (optional; see the top of this file) ---------------
+  /// DAE only: number of differential states; y = [states; algebraic unknowns],
+  /// so differential_ids() must be 1.0 for the first state_count() entries and
+  /// 0.0 after them. For an ODE every unknown is a state.
+  virtual std::size_t state_count() const { return size(); }
+  /// Number of position-level constraints g(x) = 0.
+  virtual std::size_t position_constraint_count() const { return 0; }
+  /// Number of velocity-level constraints gdot(x) = 0 (normally one per g row).
+  virtual std::size_t velocity_constraint_count() const { return 0; }
+  /// CONSTRAINTS: c[0 .. P) = g, then c[P .. P + V) = gdot, where
+  /// P = position_constraint_count() and V = velocity_constraint_count().
+  /// `x` points at y; only its first state_count() entries (the states) may be
+  /// read: for a DAE, lambda and mu are not inputs. Must not throw.
+  virtual void constraints(double t, const double* x, double* c) { (void)t; (void)x; (void)c; }
+  /// Name of entry i of constraints() in model terms, e.g. "j1.g[2]" for
+  /// i < P and "j1.gdot[2]" for i >= P; used in reports.
+  virtual std::string constraint_name(std::size_t i) const {
+    const std::size_t p = position_constraint_count();
+    return i < p ? "g[" + std::to_string(i) + "]" : "gdot[" + std::to_string(i - p) + "]";
+  }
+  /// true (lagrange): the solver enforces the constraints, so what remains is
+  /// reported as "constraint drift"; false (penalty): reported as "largest
+  /// constraint violation".
+  virtual bool constraints_enforced() const { return false; }
 };
 
 /// The simulator's entry point: parse the command line (see DESIGN §9), run,

@@ -1,14 +1,20 @@
 // ida: variable-order BDF for F(t, y, y') = 0 with a dense direct linear
-// solver. DAE models start from consistent values computed by IDACalcIC;
-// ODE models run as r = y' - f(t, y), so IDA can be compared on any model.
+// solver. DAE models start from consistent values computed by IDACalcIC,
+// except DAEs with joint constraints (index-2 GGL form): their g and gdot rows
+// depend on neither y' nor an algebraic unknown, which makes IDACalcIC's
+// Newton matrix singular, so the runtime computes their y' and algebraic
+// unknowns itself (constraints.cpp) and IDA starts from those. ODE models run
+// as r = y' - f(t, y), so IDA can be compared on any model.
 #include <fmt/format.h>
 #include <ida/ida.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
+#include "constraints.hpp"
 #include "solvers/sundials_util.hpp"
 
 namespace mbgrt::detail {
@@ -27,9 +33,17 @@ class Ida final : public Integrator {
 
   const char* name() const override { return "ida"; }
   std::string description() const override {
+    std::string note;
+    if (!m_.is_dae())
+      note = " (ODE as r = y' - f)";
+    else if (m_.constraint_shape().any())
+      note = fmt::format(
+          " (index-2 constraints: algebraic unknowns outside the error test, their Newton "
+          "weights scaled by h / interval; first step {})",
+          h0_ > 0.0 ? fmt::format("{:.2g} s", h0_) : std::string("IDA's own"));
     return fmt::format(
-        "IDA BDF, Newton, dense LU, finite-difference Jacobian{}, rtol {:g}, atol {:g}",
-        m_.is_dae() ? "" : " (ODE as r = y' - f)", s_.rtol, s_.atol);
+        "IDA BDF, Newton, dense LU, finite-difference Jacobian{}, rtol {:g}, atol {:g}", note,
+        s_.rtol, s_.atol);
   }
 
   bool init(double t0, const double* y0, const double* yp0) override {
@@ -112,8 +126,12 @@ class Ida final : public Integrator {
     check_setup(IDASetId(mem_, id_vector().get()), "IDASetId", sink_);
     // Algebraic unknowns of an index-1 DAE are determined by the residual, not
     // integrated: keep them out of the local error test. Otherwise their
-    // first-step derivative (unknown, guessed 0) forces tiny steps.
+    // first-step derivative (unknown, guessed 0) forces tiny steps. For the
+    // index-2 multipliers of a constrained DAE this is required, not just
+    // helpful: their local error estimate does not shrink with the step.
     check_setup(IDASetSuppressAlg(mem_, SUNTRUE), "IDASetSuppressAlg", sink_);
+    // Constrained DAE: y and y' are already consistent (run_main computed them).
+    if (m_.constraint_shape().any()) return setup_index_two(t0);
     // IDACalcIC only uses tout1 for direction and scale (it does not step
     // there), so one interval ahead is right even for a zero-length run.
     const double tout1 = t0 + s_.interval_s;
@@ -122,10 +140,73 @@ class Ida final : public Integrator {
     return true;
   }
 
+  /// Two settings the index-2 (GGL) form needs. Rounding noise in the
+  /// constraint rows (eps times the size of their terms) reaches the
+  /// multipliers amplified by 1/h, and at atol-sized weights that alone fails
+  /// IDA's Newton convergence test once the step is small (below ~1e-5 s for
+  /// a chain of rods at atol 1e-10; runs then died in a cascade of step cuts):
+  ///  * the first step comes from the second derivative (BDF1's local error
+  ///    h^2/2 |y''| at the tolerance) instead of IDA's |y'|-based guess,
+  ///    which for a mechanism released from rest is around 1e-10 s;
+  ///  * the error weights of the algebraic unknowns are scaled by
+  ///    min(1, h / interval), the usual scaling of index-2 variables by the
+  ///    step made dimensionless, so that small steps stay possible. The states
+  ///    keep their weights, and the multipliers are outside the error test.
+  bool setup_index_two(double t0) {
+    h0_ = initial_step(t0);
+    if (h0_ > 0.0) check_setup(IDASetInitStep(mem_, h0_), "IDASetInitStep", sink_);
+    check_setup(IDAWFtolerances(mem_, error_weights), "IDAWFtolerances", sink_);
+    return true;
+  }
+
+  static int error_weights(N_Vector y, N_Vector w, void* user_data) {
+    auto* self = static_cast<Ida*>(user_data);
+    double h = 0.0;  // the step about to be attempted (0 before the first one)
+    IDAGetCurrentStep(self->mem_, &h);
+    if (!(h > 0.0)) h = self->h0_ > 0.0 ? self->h0_ : self->s_.interval_s;
+    const double* yv = N_VGetArrayPointer(y);
+    double* wv = N_VGetArrayPointer(w);
+    const std::vector<double>& ids = self->m_.differential_ids();
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const double tol = self->s_.rtol * std::abs(yv[i]) + self->s_.atol;
+      if (!(tol > 0.0)) return -1;  // IDA then reports IDA_BAD_EWT, as with its own weights
+      wv[i] = 1.0 / tol;
+      if (ids[i] == 0.0) wv[i] *= std::min(1.0, h / self->s_.interval_s);
+    }
+    return 0;
+  }
+
+  /// sqrt(2 / |y''|) in IDA's weighted RMS norm over the states, halved, with
+  /// y'' from consistent y' one thousandth of an interval ahead; 0 (IDA's
+  /// own guess) if that cannot be computed.
+  double initial_step(double t0) {
+    const ConstraintShape& shape = m_.constraint_shape();
+    const std::size_t n = shape.n, ns = shape.ns;
+    if (ns == 0) return 0.0;
+    const double delta = 1e-3 * s_.interval_s;
+    std::vector<double> y1(y_.data(), y_.data() + n), yp1(yp_.data(), yp_.data() + n);
+    for (std::size_t i = 0; i < ns; ++i) y1[i] += delta * yp_.data()[i];
+    if (!detail::consistent_initial_values(m_.model(), shape, t0 + delta, y1.data(), yp1.data()).ok)
+      return 0.0;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < ns; ++i) {
+      const double w = 1.0 / (s_.rtol * std::abs(y_.data()[i]) + s_.atol);
+      const double ypp = (yp1[i] - yp_.data()[i]) / delta;
+      sum += ypp * w * ypp * w;
+    }
+    const double norm = std::sqrt(sum / static_cast<double>(ns));
+    double h = s_.interval_s;
+    if (norm > 0.0 && std::isfinite(norm)) h = std::min(h, 0.5 * std::sqrt(2.0 / norm));
+    if (s_.t_end_s > t0) h = std::min(h, s_.t_end_s - t0);
+    return h;
+  }
+
   const SerialVector& id_vector() {
-    id_ = std::make_unique<SerialVector>(m_.size(), ctx_);
-    const auto& ids = m_.differential_ids();
-    std::copy(ids.begin(), ids.end(), id_->data());
+    if (!id_) {
+      id_ = std::make_unique<SerialVector>(m_.size(), ctx_);
+      const auto& ids = m_.differential_ids();
+      std::copy(ids.begin(), ids.end(), id_->data());
+    }
     return *id_;
   }
 
@@ -134,8 +215,13 @@ class Ida final : public Integrator {
     IDAGetCurrentTime(mem_, &t_now);
     failure_ = make_failure(t_now, IDAGetReturnFlagName(flag), sink_);
     SerialVector ele(m_.size(), ctx_), w(m_.size(), ctx_);
-    if (IDAGetEstLocalErrors(mem_, ele.get()) == 0 && IDAGetErrWeights(mem_, w.get()) == 0)
+    if (IDAGetEstLocalErrors(mem_, ele.get()) == 0 && IDAGetErrWeights(mem_, w.get()) == 0) {
+      // The algebraic unknowns of a DAE are outside the error test
+      // (IDASetSuppressAlg): their estimates did not limit the step, so they
+      // must not be named as the state that forced it down.
+      if (m_.is_dae()) N_VProd(w.get(), id_vector().get(), w.get());
       failure_.suspect = largest_weighted_error(ele.get(), w.get());
+    }
     return false;
   }
 
@@ -150,6 +236,7 @@ class Ida final : public Integrator {
   SUNMatrix A_ = nullptr;
   SUNLinearSolver ls_ = nullptr;
   double t_ = 0.0;
+  double h0_ = 0.0;  ///< first step chosen for an index-2 DAE (0: IDA's own)
   SolverFailure failure_;
 };
 

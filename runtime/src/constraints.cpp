@@ -1,0 +1,493 @@
+#include "constraints.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "report.hpp"
+
+namespace mbgrt::detail {
+
+namespace {
+
+using Vec = Eigen::VectorXd;
+using Mat = Eigen::MatrixXd;
+using Index = Eigen::Index;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Central differences: a step of cbrt(eps) balances truncation against
+/// rounding (relative error about 1e-11 for smooth functions).
+double fd_step(double v) {
+  static const double cbrt_eps = std::cbrt(std::numeric_limits<double>::epsilon());
+  return cbrt_eps * std::max(1.0, std::abs(v));
+}
+
+/// A column of the Newton matrix whose pivot is below this fraction of the
+/// largest (after row equilibration) is treated as dependent: well above the
+/// ~1e-10 relative error of a central-difference Jacobian.
+constexpr double kRankThreshold = 1e-8;
+
+Index ix(std::size_t i) { return static_cast<Index>(i); }
+std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
+
+/// Jacobian of rows [row0, row0 + rows) of f with respect to v[cols], by
+/// central differences around v, plus which entries depend on the column at
+/// all: a row that does not read v[j] gives bit-identical values either side.
+struct Linearization {
+  Mat J;
+  Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> depends;
+  bool finite = true;
+};
+
+template <class Fn>
+Linearization linearize(Fn&& f, Vec v, const Vec& f0, Index row0, Index rows,
+                        const std::vector<Index>& cols) {
+  Linearization L;
+  const auto m = ix(cols.size());
+  L.J = Mat::Zero(rows, m);
+  L.depends = Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(rows, m, false);
+  Vec fp(f0.size()), fm(f0.size());
+  for (Index c = 0; c < m; ++c) {
+    const Index j = cols[sz(c)];
+    const double v0 = v[j], h = fd_step(v0);
+    v[j] = v0 + h;
+    const double up = v[j];
+    bool ok = f(v, fp);
+    v[j] = v0 - h;
+    const double down = v[j];
+    ok = f(v, fm) && ok;
+    v[j] = v0;
+    if (!ok) {
+      L.finite = false;
+      return L;
+    }
+    for (Index i = 0; i < rows; ++i) {
+      const double a = fp[row0 + i], b = fm[row0 + i], base = f0[row0 + i];
+      L.J(i, c) = (a - b) / (up - down);
+      L.depends(i, c) = a != base || b != base;
+    }
+  }
+  return L;
+}
+
+/// Minimum-norm least-squares solution s of J s = -r. Rows are equilibrated
+/// first (which leaves the solution of a consistent system unchanged), so a
+/// row in small units does not look like a dependent one.
+Vec min_norm_step(const Mat& J, const Vec& r, Index* rank = nullptr) {
+  Vec w(J.rows());
+  for (Index i = 0; i < J.rows(); ++i) {
+    const double big = J.cols() > 0 ? J.row(i).cwiseAbs().maxCoeff() : 0.0;
+    w[i] = big > 0.0 ? 1.0 / big : 1.0;
+  }
+  const Mat A = w.asDiagonal() * J;
+  const Vec b = -(w.asDiagonal() * r);
+  Eigen::CompleteOrthogonalDecomposition<Mat> cod;
+  cod.setThreshold(kRankThreshold);
+  cod.compute(A);
+  if (rank) *rank = cod.rank();
+  return cod.solve(b);
+}
+
+/// max_i sum_j |J_ij| |v[cols_j]|: the size of the terms each row balances.
+double term_scale(const Mat& J, const Vec& v, const std::vector<Index>& cols) {
+  double scale = 0.0;
+  for (Index i = 0; i < J.rows(); ++i) {
+    double s = 0.0;
+    for (Index c = 0; c < J.cols(); ++c) s += std::abs(J(i, c)) * std::abs(v[cols[sz(c)]]);
+    scale = std::max(scale, s);
+  }
+  return scale;
+}
+
+double max_abs(const Vec& v, Index* where = nullptr) {
+  double best = 0.0;
+  Index at = 0;
+  for (Index i = 0; i < v.size(); ++i) {
+    const double a = std::isfinite(v[i]) ? std::abs(v[i]) : kInf;
+    if (a > best) {
+      best = a;
+      at = i;
+    }
+  }
+  if (where) *where = at;
+  return best;
+}
+
+/// One Gauss-Newton phase: drives entries [row0, row0 + rows) of the
+/// constraint vector to zero by moving y[cols]. Each step is the minimum-norm
+/// step, halved until the 2-norm of the residual falls; a phase that finds no
+/// such step has stagnated (an inconsistent set of constraints).
+struct Phase {
+  Index row0 = 0, rows = 0;
+  std::vector<Index> cols;
+  double tol = 0.0;
+  // results
+  int iterations = 0;
+  bool converged = false;
+  double residual = 0.0;
+  Index worst = 0;  ///< row (relative to row0) with the largest |residual|
+};
+
+template <class Eval>
+void run_phase(Eval& eval, Vec& y, Vec& c, Phase& ph) {
+  Vec trial_y(y.size()), trial_c(c.size());
+  for (;;) {
+    ph.residual = max_abs(c.segment(ph.row0, ph.rows), &ph.worst);
+    if (ph.residual <= ph.tol) {
+      ph.converged = true;
+      return;
+    }
+    if (ph.iterations >= kAssemblyMaxIterations || ph.cols.empty()) return;
+    Linearization L = linearize(eval, y, c, ph.row0, ph.rows, ph.cols);
+    if (!L.finite) return;
+    const Vec step = min_norm_step(L.J, c.segment(ph.row0, ph.rows));
+    const double norm0 = c.segment(ph.row0, ph.rows).norm();
+    bool accepted = false;
+    double alpha = 1.0;
+    for (int halvings = 0; halvings < 40 && !accepted; ++halvings, alpha *= 0.5) {
+      trial_y = y;
+      for (std::size_t k = 0; k < ph.cols.size(); ++k)
+        trial_y[ph.cols[k]] += alpha * step[ix(k)];
+      accepted = eval(trial_y, trial_c) && trial_c.segment(ph.row0, ph.rows).norm() < norm0;
+    }
+    ++ph.iterations;
+    if (!accepted) return;
+    y = trial_y;
+    c = trial_c;
+  }
+}
+
+std::string quoted_constraint(const Model& model, std::size_t i) {
+  return fmt::format("`{}`", model.constraint_name(i));
+}
+
+std::string g2(double v) { return fmt::format("{:.2g}", v); }
+
+}  // namespace
+
+ConstraintShape constraint_shape(const Model& model) {
+  ConstraintShape s;
+  s.n = model.size();
+  s.dae = model.is_dae();
+  s.ns = s.dae ? model.state_count() : s.n;
+  s.np = model.position_constraint_count();
+  s.nv = model.velocity_constraint_count();
+  s.enforced = model.constraints_enforced();
+  return s;
+}
+
+std::string contract_violation(const Model& model, const ConstraintShape& s,
+                               const std::vector<double>& ids) {
+  if (!s.any()) return {};
+  if (s.ns > s.n)
+    return fmt::format("model '{}' breaks the runtime contract: state_count() = {} exceeds size() = {}",
+                       model.name(), s.ns, s.n);
+  if (!s.dae) return {};
+  for (std::size_t i = 0; i < s.n && i < ids.size(); ++i)
+    if ((ids[i] != 0.0) != (i < s.ns))
+      return fmt::format(
+          "model '{}' breaks the runtime contract: y must be [states; algebraic unknowns] with "
+          "state_count() = {} states first, but differential_ids() marks '{}' (entry {}) as {}",
+          model.name(), s.ns, model.variable_name(i), i, ids[i] != 0.0 ? "differential" : "algebraic");
+  return {};
+}
+
+std::string residual_row_name(const Model& model, const ConstraintShape& s, std::size_t row) {
+  if (s.ggl_layout() && row >= s.ns && row < s.n) {
+    const std::size_t k = row - s.ns;
+    // rows of lambda: gdot (velocity constraints), then rows of mu: g (positions)
+    const std::size_t c = k < s.nv ? s.np + k : k - s.nv;
+    return fmt::format("constraint '{}'", model.constraint_name(c));
+  }
+  return fmt::format("the equation of '{}'", model.variable_name(row));
+}
+
+AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double* y_io) {
+  AssemblyReport rep;
+  const Index n = ix(s.n), np = ix(s.np), nv = ix(s.nv);
+  Vec y = Eigen::Map<const Vec>(y_io, n);
+  const Vec y_start = y;
+  Vec c(np + nv);
+  auto eval = [&](const Vec& yy, Vec& cc) {
+    model.constraints(t, yy.data(), cc.data());
+    return cc.allFinite();
+  };
+
+  if (!eval(y, c)) {
+    Index bad = 0;
+    max_abs(c, &bad);
+    rep.error = fmt::format(
+        "assembly failed: constraint {} is {} at the initial values (t = {} s); check the initial "
+        "joint coordinates",
+        quoted_constraint(model, sz(bad)), std::isnan(c[bad]) ? "NaN" : "infinite", format_time(t));
+    return rep;
+  }
+
+  // Which states are positions: the columns of dg/dx that are not zero at the start.
+  std::vector<Index> all(s.ns), positions, velocities;
+  for (std::size_t j = 0; j < s.ns; ++j) all[j] = ix(j);
+  Linearization structure;
+  if (np > 0) structure = linearize(eval, y, c, 0, np, all);
+  if (!structure.finite) {
+    rep.error = fmt::format(
+        "assembly failed: a position constraint is not finite near the initial values (t = {} "
+        "s); check the initial joint coordinates",
+        format_time(t));
+    return rep;
+  }
+  for (Index j = 0; j < ix(s.ns); ++j)
+    (np > 0 && structure.depends.col(j).any() ? positions : velocities).push_back(j);
+  rep.position_states = positions.size();
+  rep.velocity_states = velocities.size();
+
+  // (a) positions
+  Phase pos;
+  pos.row0 = 0;
+  pos.rows = np;
+  pos.cols = positions;
+  if (np > 0) {
+    Mat Jp(np, ix(positions.size()));
+    for (std::size_t k = 0; k < positions.size(); ++k)
+      Jp.col(ix(k)) = structure.J.col(positions[k]);
+    pos.tol = 1e-12 * (1.0 + term_scale(Jp, y, positions));
+    run_phase(eval, y, c, pos);
+  }
+  rep.position_iterations = pos.iterations;
+  if (np > 0 && !pos.converged) {
+    rep.error = fmt::format(
+        "assembly failed: constraint {} residual {} after {} iterations — the joints cannot all be "
+        "closed from the given joint coordinates; check lengths and initial angles",
+        quoted_constraint(model, sz(pos.worst)), g2(pos.residual), pos.iterations);
+    return rep;
+  }
+
+  // (b) velocities: gdot is affine in the states g does not depend on.
+  Phase vel;
+  vel.row0 = np;
+  vel.rows = nv;
+  vel.cols = velocities;
+  if (nv > 0) {
+    Linearization L = linearize(eval, y, c, np, nv, velocities);
+    vel.tol = 1e-12 * (1.0 + (L.finite ? term_scale(L.J, y, velocities) : 0.0));
+    run_phase(eval, y, c, vel);
+    if (!vel.converged) {
+      rep.velocity_iterations = vel.iterations;
+      rep.error = fmt::format(
+          "assembly failed: velocity constraint {} residual {} after {} iterations — the initial "
+          "velocities cannot be made to satisfy the joints; check the initial rates and any joint "
+          "drivers",
+          quoted_constraint(model, s.np + sz(vel.worst)), g2(vel.residual), vel.iterations);
+      return rep;
+    }
+  }
+  rep.velocity_iterations = vel.iterations;
+
+  rep.g_residual = max_abs(c.segment(0, np));
+  rep.gdot_residual = max_abs(c.segment(np, nv));
+  for (Index j : positions)
+    rep.moved_positions = std::max(rep.moved_positions, std::abs(y[j] - y_start[j]));
+  for (Index j : velocities)
+    rep.moved_velocities = std::max(rep.moved_velocities, std::abs(y[j] - y_start[j]));
+  std::copy(y.data(), y.data() + n, y_io);
+  rep.ok = true;
+  return rep;
+}
+
+InitialValuesReport consistent_initial_values(Model& model, const ConstraintShape& s, double t,
+                                              double* y_io, double* yp_io) {
+  InitialValuesReport rep;
+  const Index n = ix(s.n), ns = ix(s.ns);
+  rep.unknowns = s.n;
+  Vec Y = Eigen::Map<const Vec>(y_io, n), YP = Eigen::Map<const Vec>(yp_io, n);
+  Vec Yw = Y, YPw = YP;
+
+  // z = [y'_states; y_algebraic]
+  Vec z(n);
+  z.head(ns) = YP.head(ns);
+  z.tail(n - ns) = Y.tail(n - ns);
+  auto residual_at_z = [&](const Vec& zz, Vec& r) {
+    YPw.head(ns) = zz.head(ns);
+    Yw.tail(n - ns) = zz.tail(n - ns);
+    model.residual(t, Yw.data(), YPw.data(), r.data());
+    return r.allFinite();
+  };
+  auto fail_row = [&](Index row, const char* what) {
+    rep.error = fmt::format(
+        "consistent initial values: the residual of {} is {} at the assembled initial values (t = {} s)",
+        residual_row_name(model, s, sz(row)), what, format_time(t));
+  };
+
+  Vec r0(n);
+  if (!residual_at_z(z, r0)) {
+    Index bad = 0;
+    max_abs(r0, &bad);
+    fail_row(bad, "not finite");
+    return rep;
+  }
+  std::vector<Index> zcols(s.n);
+  for (std::size_t j = 0; j < s.n; ++j) zcols[j] = ix(j);
+  Linearization Lz = linearize(residual_at_z, z, r0, 0, n, zcols);
+  if (!Lz.finite) {
+    rep.error = fmt::format(
+        "consistent initial values: the residual is not finite near the assembled initial values "
+        "(t = {} s)",
+        format_time(t));
+    return rep;
+  }
+
+  // Rows that depend on neither y' nor an algebraic unknown (g, gdot) are
+  // replaced by their time derivative: dr/dt + (dr/dy_states) y'_states = 0.
+  // Their coefficients do not depend on z, so they are computed once here.
+  std::vector<Index> pure;
+  for (Index k = 0; k < n; ++k)
+    if (!Lz.depends.row(k).any()) pure.push_back(k);
+  rep.differentiated_rows = pure.size();
+  const Index nd = ix(pure.size());
+  Mat A = Mat::Zero(nd, n);  // d r_k / d y_states in the z_states columns
+  Vec b = Vec::Zero(nd);     // d r_k / d t
+  if (nd > 0) {
+    auto residual_at_y = [&](const Vec& yy, Vec& r) {
+      model.residual(t, yy.data(), YP.data(), r.data());
+      return r.allFinite();
+    };
+    std::vector<Index> scols(s.ns);
+    for (std::size_t j = 0; j < s.ns; ++j) scols[j] = ix(j);
+    Linearization Ly = linearize(residual_at_y, Y, r0, 0, n, scols);
+    const double h = fd_step(t);
+    const double up = t + h, down = t - h;
+    Vec rp(n), rm(n);
+    model.residual(up, Y.data(), YP.data(), rp.data());
+    model.residual(down, Y.data(), YP.data(), rm.data());
+    if (!Ly.finite || !rp.allFinite() || !rm.allFinite()) {
+      rep.error = fmt::format(
+          "consistent initial values: a constraint row is not finite near the assembled initial "
+          "values (t = {} s)",
+          format_time(t));
+      return rep;
+    }
+    for (Index d = 0; d < nd; ++d) {
+      A.row(d).head(ns) = Ly.J.row(pure[sz(d)]);
+      b[d] = (rp[pure[sz(d)]] - rm[pure[sz(d)]]) / (up - down);
+    }
+  }
+
+  auto system = [&](const Vec& zz, Vec& F) {
+    if (!residual_at_z(zz, F)) return false;
+    for (Index d = 0; d < nd; ++d) F[pure[sz(d)]] = A.row(d).dot(zz) + b[d];
+    return true;
+  };
+
+  Vec F(n);
+  Index worst = 0;
+  if (!system(z, F)) {
+    max_abs(F, &worst);
+    fail_row(worst, "not finite");
+    return rep;
+  }
+  // The system is affine for multibody models: one step, then a check. The
+  // finite-difference Jacobian is good to ~1e-10, so a second step takes the
+  // residual from there to rounding; steps continue while they pay (each at
+  // least halves the residual) down to kTight, and the result is accepted
+  // below kAccept, both relative to 1 + the size of the terms in the rows.
+  constexpr int kMaxIterations = 10;
+  constexpr double kTight = 1e-14, kAccept = 1e-9;
+  double scale = 0.0;
+  for (;;) {
+    Linearization L = linearize(residual_at_z, z, F, 0, n, zcols);
+    if (!L.finite) break;
+    Mat J = L.J;
+    for (Index d = 0; d < nd; ++d) J.row(pure[sz(d)]) = A.row(d);
+    scale = term_scale(J, z, zcols);
+    const double residual = max_abs(F);
+    Index rank = 0;
+    const Vec step = min_norm_step(J, F, &rank);
+    rep.rank = sz(rank);
+    if (residual <= kTight * (1.0 + scale) || rep.iterations >= kMaxIterations) break;
+    Vec z_new = z + step, F_new(n);
+    if (!system(z_new, F_new)) break;
+    const double new_residual = max_abs(F_new);
+    if (new_residual < residual) {
+      z = z_new;
+      F = F_new;
+      ++rep.iterations;
+    }
+    if (!(new_residual <= 0.5 * residual)) break;
+  }
+  const double tol = kAccept * (1.0 + scale);
+  rep.residual = max_abs(F, &worst);
+  if (!(rep.residual <= tol)) {
+    rep.error = fmt::format(
+        "consistent initial values: the residual of {} is {} after {} Newton iterations: y' and "
+        "the algebraic unknowns cannot be determined at the assembled state (t = {} s){}",
+        residual_row_name(model, s, sz(worst)), g2(rep.residual), rep.iterations, format_time(t),
+        rep.rank < s.n ? fmt::format("; the Newton matrix has rank {} of {} (redundant or "
+                                     "contradictory constraints?)",
+                                     rep.rank, s.n)
+                       : std::string());
+    return rep;
+  }
+
+  for (Index j = 0; j < ns; ++j) yp_io[j] = z[j];
+  for (Index j = ns; j < n; ++j) y_io[j] = z[j];
+  rep.ok = true;
+  return rep;
+}
+
+ConstraintMonitor::ConstraintMonitor(Model& model, const ConstraintShape& shape)
+    : model_(model), shape_(shape), c_(shape.count()) {}
+
+void ConstraintMonitor::observe(double t, const double* y) {
+  ++points_;
+  if (!shape_.any()) return;
+  model_.constraints(t, y, c_.data());
+  auto scan = [&](std::size_t from, std::size_t count, double& last, Peak& peak) {
+    last = 0.0;
+    for (std::size_t i = from; i < from + count; ++i) {
+      const double a = std::isfinite(c_[i]) ? std::abs(c_[i]) : kInf;
+      last = std::max(last, a);
+      if (a > peak.value) peak = Peak{a, i, t};
+    }
+  };
+  scan(0, shape_.np, last_g_, g_);
+  scan(shape_.np, shape_.nv, last_gdot_, gdot_);
+}
+
+std::string describe(const AssemblyReport& a) {
+  return fmt::format(
+      "|g| {}, |gdot| {} after {} iterations ({} position, {} velocity); moved positions by {}, "
+      "velocities by {}",
+      g2(a.g_residual), g2(a.gdot_residual), a.position_iterations + a.velocity_iterations,
+      a.position_iterations, a.velocity_iterations, g2(a.moved_positions), g2(a.moved_velocities));
+}
+
+std::string describe(const InitialValuesReport& r, const ConstraintShape& s) {
+  std::string text = fmt::format(
+      "y' of {} states and {} algebraic unknowns computed by the runtime ({} constraint rows "
+      "differentiated once), residual {} after {} Newton iteration{}",
+      s.ns, s.n - s.ns, r.differentiated_rows, g2(r.residual), r.iterations,
+      r.iterations == 1 ? "" : "s");
+  if (r.rank < r.unknowns)
+    text += fmt::format("; rank {} of {}: the multipliers are not unique (redundant constraints?)",
+                        r.rank, r.unknowns);
+  return text;
+}
+
+std::string describe(const ConstraintMonitor& m) {
+  const ConstraintShape& s = m.shape();
+  auto part = [&](const char* level, const ConstraintMonitor::Peak& p) {
+    if (p.value < 0.0) return std::string();
+    return fmt::format("{} {} ({} at t = {} s)", level, g2(p.value), m.model().constraint_name(p.index),
+                       format_time(p.t));
+  };
+  std::string parts;
+  for (std::string piece : {part("position", m.position()), part("velocity", m.velocity())})
+    if (!piece.empty()) parts += (parts.empty() ? "" : ", ") + piece;
+  return fmt::format("{}: {}", s.enforced ? "constraint drift" : "largest constraint violation",
+                     parts.empty() ? "no output points" : parts);
+}
+
+}  // namespace mbgrt::detail

@@ -1,0 +1,124 @@
+// Joint constraints at run time: assembly of the initial state, consistent
+// initial values for constrained DAEs, and the drift / violation monitor.
+// See the constraint section of mbgrt/model.hpp for what the model provides.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mbgrt/model.hpp"
+
+namespace mbgrt::detail {
+
+/// The sizes the constraint code works with, read once from the model.
+struct ConstraintShape {
+  std::size_t n = 0;   ///< unknowns handed to the integrator (Model::size())
+  std::size_t ns = 0;  ///< states: the leading entries of y that constraints() reads
+  std::size_t np = 0;  ///< position constraints g
+  std::size_t nv = 0;  ///< velocity constraints gdot
+  bool dae = false;
+  bool enforced = false;  ///< lagrange (drift) rather than penalty (violation)
+
+  std::size_t count() const { return np + nv; }
+  bool any() const { return count() > 0; }
+  /// The residual rows follow the lagrange layout [states; gdot rows; g rows].
+  bool ggl_layout() const { return dae && any() && n - ns == np + nv; }
+};
+
+ConstraintShape constraint_shape(const Model& model);
+
+/// Empty when the model keeps the constraint part of the contract; otherwise
+/// what it breaks (a code generator bug, reported before anything runs).
+/// `ids` are the model's differential ids (all 1 for an ODE).
+std::string contract_violation(const Model& model, const ConstraintShape& shape,
+                               const std::vector<double>& ids);
+
+/// "constraint 'j1.gdot[0]'" for a residual row of a lagrange DAE that is a
+/// constraint row, otherwise "the equation of 'name'" (row i belongs to unknown i).
+std::string residual_row_name(const Model& model, const ConstraintShape& shape, std::size_t row);
+
+inline constexpr int kAssemblyMaxIterations = 50;
+
+struct AssemblyReport {
+  bool ok = false;
+  int position_iterations = 0;
+  int velocity_iterations = 0;
+  std::size_t position_states = 0;  ///< states g depends on
+  std::size_t velocity_states = 0;  ///< the others (momenta, velocities, ...)
+  double g_residual = 0.0;          ///< max |g| after assembly
+  double gdot_residual = 0.0;       ///< max |gdot| after assembly
+  double moved_positions = 0.0;     ///< max |change| of a position state
+  double moved_velocities = 0.0;    ///< max |change| of a velocity state
+  std::string error;                ///< the whole message when !ok
+};
+
+/// Moves the states in y (the first shape.ns entries; the rest is untouched)
+/// so that g = 0, then gdot = 0:
+///   (a) positions: Gauss-Newton with the minimum-norm step on g(x) = 0 over
+///       the states g depends on (a column of dg/dx that is zero at the start
+///       marks a momentum or velocity, which this phase does not touch);
+///   (b) velocities: the same on gdot(x) = 0 over those other states (gdot is
+///       affine in them, so one or two steps).
+/// Convergence: max |residual| <= 1e-12 * (1 + scale), where scale is the
+/// size of the terms the rows balance, max_i sum_j |dr_i/dx_j| |x_j| over the
+/// states the phase moves (for g = (x^2 + y^2 - L^2)/2 that is about L^2).
+/// At most kAssemblyMaxIterations steps per phase.
+AssemblyReport assemble(Model& model, const ConstraintShape& shape, double t, double* y);
+
+struct InitialValuesReport {
+  bool ok = false;
+  std::size_t differentiated_rows = 0;  ///< residual rows replaced by their time derivative
+  std::size_t unknowns = 0;             ///< y' of the states plus the algebraic unknowns
+  std::size_t rank = 0;                 ///< of the final Newton matrix
+  int iterations = 0;
+  double residual = 0.0;                ///< max |row| of the system solved, at the solution
+  std::string error;
+};
+
+/// For a constrained DAE at an assembled y: computes y' of the states and the
+/// algebraic unknowns (z = [y'_states; y_algebraic]) from the residual rows,
+/// each row that depends on no entry of z being replaced by its time
+/// derivative dr/dt + (dr/dy_states) y'_states = 0. Newton with a
+/// finite-difference Jacobian. y' of the algebraic unknowns is left as given.
+InitialValuesReport consistent_initial_values(Model& model, const ConstraintShape& shape, double t,
+                                              double* y, double* yp);
+
+/// Largest |g| and |gdot| seen at the output points, and where.
+class ConstraintMonitor {
+ public:
+  struct Peak {
+    double value = -1.0;  ///< < 0: nothing seen yet (a non-finite value is +Inf)
+    std::size_t index = 0;
+    double t = 0.0;
+  };
+
+  ConstraintMonitor(Model& model, const ConstraintShape& shape);
+
+  /// Evaluates the constraints at (t, y) and updates the peaks.
+  void observe(double t, const double* y);
+
+  const ConstraintShape& shape() const { return shape_; }
+  const Model& model() const { return model_; }
+  double last_position() const { return last_g_; }  ///< max |g| at the last point (0 if none)
+  double last_velocity() const { return last_gdot_; }
+  const Peak& position() const { return g_; }
+  const Peak& velocity() const { return gdot_; }
+  long points() const { return points_; }
+
+ private:
+  Model& model_;
+  ConstraintShape shape_;
+  std::vector<double> c_;
+  double last_g_ = 0.0, last_gdot_ = 0.0;
+  Peak g_, gdot_;
+  long points_ = 0;
+};
+
+/// The run-summary lines (without indentation or newline).
+std::string describe(const AssemblyReport& a);
+std::string describe(const InitialValuesReport& r, const ConstraintShape& shape);
+std::string describe(const ConstraintMonitor& m);
+
+}  // namespace mbgrt::detail
