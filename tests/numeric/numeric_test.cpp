@@ -2,6 +2,8 @@
 // CSV against an independent reference. Tolerances are stated per test.
 #include <gtest/gtest.h>
 
+#include "sim_run.hpp"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <complex>
@@ -18,65 +20,7 @@
 
 namespace {
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  std::size_t col(const std::string& name) const {
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return i;
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-  /// Value of `name` in the row at time t (rows are on the communication grid).
-  double at(double t, const std::string& name) const {
-    std::size_t c = col(name);
-    for (const auto& r : rows)
-      if (std::abs(r[0] - t) < 1e-9) return r[c];
-    ADD_FAILURE() << "no row at t = " << t;
-    return NAN;
-  }
-};
-
-struct SimRun {
-  int status = -1;
-  Csv csv;
-  std::string log;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// SimRun a simulator with extra arguments; CSV to a file, summary to a log.
-SimRun run(const std::string& sim, const std::string& args, const std::string& tag) {
-  std::string csv = std::string(WORK_DIR) + "/" + tag + ".csv";
-  std::string log = std::string(WORK_DIR) + "/" + tag + ".log";
-  std::string cmd = "\"" + sim + "\" " + args + " --out \"" + csv + "\" 2> \"" + log + "\"";
-  SimRun r;
-  int raw = std::system(cmd.c_str());
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.log = slurp(log);
-  std::ifstream in(csv);
-  std::string line;
-  if (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) r.csv.header.push_back(cell);
-  }
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(ss, cell, ',')) row.push_back(std::stod(cell));
-    r.csv.rows.push_back(row);
-  }
-  return r;
-}
-
-double rel_err(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+using namespace numeric;
 
 // ---- DC motor: closed form of a linear 2x2 system with a step input ----------
 // x = [i, omega], x' = A x + b V, x(0) = 0  =>  x(t) = A^-1 (e^{At} - I) b V,

@@ -1,0 +1,107 @@
+// sim_run.hpp — shared by the numeric tests: run a generated simulator with
+// options, read its CSV (and any other CSV it writes) back.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace numeric {
+
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  std::size_t col(const std::string& name) const {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) return i;
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+  }
+  /// Value of `name` in the row at time t (rows are on the communication grid).
+  double at(double t, const std::string& name) const {
+    std::size_t c = col(name);
+    for (const auto& r : rows)
+      if (std::abs(r[0] - t) < 1e-9) return r[c];
+    ADD_FAILURE() << "no row at t = " << t;
+    return NAN;
+  }
+  /// Largest |value| of a column over all rows.
+  double max_abs(const std::string& name) const {
+    std::size_t c = col(name);
+    double m = 0;
+    for (const auto& r : rows) m = std::max(m, std::abs(r[c]));
+    return m;
+  }
+  /// Largest |value - first value| of a column over all rows.
+  double max_deviation(const std::string& name) const {
+    std::size_t c = col(name);
+    double m = 0;
+    for (const auto& r : rows) m = std::max(m, std::abs(r[c] - rows.front()[c]));
+    return m;
+  }
+};
+
+struct SimRun {
+  int status = -1;
+  Csv csv;
+  std::string log;
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// A CSV file with a header line and numeric rows (empty if the file is missing).
+inline Csv read_csv(const std::string& path) {
+  Csv csv;
+  std::ifstream in(path);
+  std::string line;
+  if (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) csv.header.push_back(cell);
+  }
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<double> row;
+    while (std::getline(ss, cell, ',')) row.push_back(std::stod(cell));
+    csv.rows.push_back(row);
+  }
+  return csv;
+}
+
+/// Path of a scratch file for test `tag` in the numeric tests' build directory.
+inline std::string work_file(const std::string& tag, const std::string& ext) {
+  return std::string(WORK_DIR) + "/" + tag + ext;
+}
+
+/// Run a simulator with extra arguments; CSV to a file, summary to a log.
+inline SimRun run(const std::string& sim, const std::string& args, const std::string& tag) {
+  std::string csv = work_file(tag, ".csv");
+  std::string log = work_file(tag, ".log");
+  std::remove(csv.c_str());
+  std::string cmd = "\"" + sim + "\" " + args + " --out \"" + csv + "\" 2> \"" + log + "\"";
+  SimRun r;
+  int raw = std::system(cmd.c_str());
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.log = slurp(log);
+  r.csv = read_csv(csv);
+  return r;
+}
+
+inline double rel_err(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+}  // namespace numeric
