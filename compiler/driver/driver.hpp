@@ -8,8 +8,11 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <ostream>
 #include <string>
+
+#include "multibody/expand.hpp"
 
 namespace mbgc::driver {
 
@@ -23,6 +26,7 @@ struct Options {
   bool library = false;       ///< --library: model class without main()
   std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time
+  std::optional<multibody::Strategy> constraints;  ///< --constraints: replaces the model's `constraints = ...`
 };
 
 /// Runs the compiler. Returns the exit status: 0 ok, 1 errors in the model,

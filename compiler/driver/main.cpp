@@ -23,6 +23,11 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   app.add_option("--set", sets, "NAME=VALUE: fix a top-level parameter at compile time (e.g. a chain's N)")
       ->allow_extra_args(false);
+  std::string constraints;
+  app.add_option("--constraints", constraints,
+                 "lagrange|penalty: how joint constraints are enforced, replacing the model's `constraints = ...` "
+                 "(a joint's own `constraint = ...` still wins)")
+      ->check(CLI::IsMember({"lagrange", "penalty", "coordinates"}));
   app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
       ->check(CLI::IsMember({"text", "dot"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
@@ -37,6 +42,13 @@ int main(int argc, char** argv) {
     }
     opt.overrides[s.substr(0, eq)] = v;
   }
+  if (constraints == "coordinates") {
+    std::cerr << "mbgc: error: --constraints coordinates (joint coordinates as states) is not available yet; "
+                 "use lagrange or penalty\n";
+    return 2;
+  }
+  if (constraints == "lagrange") opt.constraints = mbgc::multibody::Strategy::Lagrange;
+  if (constraints == "penalty") opt.constraints = mbgc::multibody::Strategy::Penalty;
   static const std::map<std::string, Dump> dumps = {{"none", Dump::None},           {"ast", Dump::Ast}, {"expanded", Dump::Expanded},
                                                     {"graph", Dump::Graph},         {"causality", Dump::Causality},
                                                     {"equations", Dump::Equations}, {"reduced", Dump::Reduced}};

@@ -43,8 +43,6 @@ class Build {
   SourceLoc loc_;
 };
 
-enum class Strategy { Lagrange, Penalty, Coordinates };
-
 struct Body {
   const AstBody* decl = nullptr;
   bool ground = false;
@@ -74,7 +72,8 @@ bool has_axial_coordinate(const std::string& t) { return t == "prismatic" || t =
 
 class Expander {
  public:
-  explicit Expander(Diagnostics& diags) : diags_(diags) {}
+  Expander(Diagnostics& diags, std::optional<Strategy> strategy_override)
+      : diags_(diags), override_(strategy_override), strategy_(strategy_override.value_or(Strategy::Lagrange)) {}
 
   AstProgram run(const AstProgram& in) {
     collect(in);
@@ -119,7 +118,7 @@ class Expander {
     }
     if (st.key == "constraints") {
       auto s = strategy_of(*st.value);
-      if (s) strategy_ = *s;
+      if (s && !override_) strategy_ = *s;
       return;
     }
     diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty|coordinates`");
@@ -739,14 +738,15 @@ class Expander {
   std::map<std::string, E> quantity_;
   E gravity_;
   SourceLoc gravity_loc_;
-  Strategy strategy_ = Strategy::Lagrange;
+  std::optional<Strategy> override_;  // mbgc --constraints
+  Strategy strategy_;                  // the model-level strategy
   std::vector<AstStmt> generated_;
 };
 
 }  // namespace
 
-AstProgram expand(const AstProgram& program, Diagnostics& diags) {
-  Expander x(diags);
+AstProgram expand(const AstProgram& program, Diagnostics& diags, std::optional<Strategy> strategy_override) {
+  Expander x(diags, strategy_override);
   return x.run(program);
 }
 

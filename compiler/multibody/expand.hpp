@@ -24,11 +24,19 @@
 // definitions. The result is a plain layer-1 program (`mbgc --dump=expanded`).
 #pragma once
 
+#include <optional>
+
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
 
 namespace mbgc::multibody {
 
-ir::AstProgram expand(const ir::AstProgram& program, ir::Diagnostics& diags);
+/// How joint constraints are enforced (the model's `constraints = ...`).
+enum class Strategy { Lagrange, Penalty, Coordinates };
+
+/// `strategy_override` (mbgc --constraints) replaces the model-level setting;
+/// a joint's own `constraint = ...` still wins over both.
+ir::AstProgram expand(const ir::AstProgram& program, ir::Diagnostics& diags,
+                      std::optional<Strategy> strategy_override = std::nullopt);
 
 }  // namespace mbgc::multibody
