@@ -486,6 +486,7 @@ class Emitter {
     names.body.push_back(CppStmt::line(fmt::format("static const char* const kConstraintNames[] = {{{}}};", fmt::join(list, ", "))));
     names.body.push_back(CppStmt::line(fmt::format("return i < {} ? kConstraintNames[i] : \"?\";", 2 * n)));
     c.public_methods.push_back(names);
+    if (s_.dae) multiplier_indices(c);
     const char* y = s_.dae ? "y" : "x";
     CppFunction f{"CONSTRAINTS: g(x) for every CN row, then gdot(x).",
                   fmt::format("void constraints(double t, const double* {}, double* c) override", y),
@@ -495,6 +496,27 @@ class Emitter {
     for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("c[{}]", n + i), s_.constraints[i].gdot});
     section(f.body, s_.for_constraints, results, "g, then gdot");
     c.public_methods.push_back(f);
+  }
+
+  /// Where each CN row's multipliers sit in y (lagrange rows; -1 for penalty
+  /// rows): lambda (its residual row is gdot = 0) and the GGL mu (g = 0). The
+  /// runtime needs them to hold the multipliers of redundant rows at zero.
+  void multiplier_indices(CppClass& c) {
+    std::map<int, std::size_t> index_of;
+    for (std::size_t i = 0; i < s_.algebraic.size(); ++i) index_of[s_.algebraic[i]] = s_.states.size() + i;
+    auto table = [&](const char* method, const char* doc, auto member) {
+      std::vector<std::string> list;
+      for (const ConstraintRow& r : s_.constraints) {
+        auto it = index_of.find(r.*member);
+        list.push_back(it == index_of.end() ? "-1" : std::to_string(it->second));
+      }
+      c.public_methods.push_back(
+          {doc, fmt::format("long {}(std::size_t row) const override", method),
+           {CppStmt::line(fmt::format("static const long kIndex[] = {{{}}};", fmt::join(list, ", "))),
+            CppStmt::line(fmt::format("return row < {} ? kIndex[row] : -1;", list.size()))}});
+    };
+    table("multiplier_index", "index in y of CN row `row`'s multiplier lambda (-1: penalty row)", &ConstraintRow::multiplier);
+    table("stabiliser_index", "index in y of CN row `row`'s GGL multiplier mu (-1: penalty row)", &ConstraintRow::stabiliser);
   }
 
   CppFunction outputs() {

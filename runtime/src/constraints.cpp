@@ -1,6 +1,7 @@
 #include "constraints.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -92,6 +93,12 @@ Vec min_norm_step(const Mat& J, const Vec& r, Index* rank = nullptr) {
   return cod.solve(b);
 }
 
+/// A lagrange row whose unit gradient keeps less than this after projection
+/// onto the rows before it is redundant: far above the ~1e-10 error of a
+/// central-difference gradient, far below the component an independent row
+/// keeps away from singular configurations.
+constexpr double kRedundantRowThreshold = 1e-6;
+
 /// max_i sum_j |J_ij| |v[cols_j]|: the size of the terms each row balances.
 double term_scale(const Mat& J, const Vec& v, const std::vector<Index>& cols) {
   double scale = 0.0;
@@ -177,6 +184,11 @@ ConstraintShape constraint_shape(const Model& model) {
   s.np = model.position_constraint_count();
   s.nv = model.velocity_constraint_count();
   s.enforced = model.constraints_enforced();
+  if (s.dae)
+    for (std::size_t k = 0; k < s.np; ++k) {
+      s.lambda_at.push_back(model.multiplier_index(k));
+      s.mu_at.push_back(model.stabiliser_index(k));
+    }
   return s;
 }
 
@@ -197,6 +209,12 @@ std::string contract_violation(const Model& model, const ConstraintShape& s,
 }
 
 std::string residual_row_name(const Model& model, const ConstraintShape& s, std::size_t row) {
+  for (std::size_t k = 0; k < s.lambda_at.size(); ++k) {
+    if (s.lambda_at[k] == static_cast<long>(row))
+      return fmt::format("constraint '{}'", model.constraint_name(s.np + k));
+    if (s.mu_at[k] == static_cast<long>(row))
+      return fmt::format("constraint '{}'", model.constraint_name(k));
+  }
   if (s.ggl_layout() && row >= s.ns && row < s.n) {
     const std::size_t k = row - s.ns;
     // rows of lambda: gdot (velocity constraints), then rows of mu: g (positions)
@@ -204,6 +222,57 @@ std::string residual_row_name(const Model& model, const ConstraintShape& s, std:
     return fmt::format("constraint '{}'", model.constraint_name(c));
   }
   return fmt::format("the equation of '{}'", model.variable_name(row));
+}
+
+void pin_redundant_multipliers(const ConstraintShape& s, const double* y, double* r) {
+  for (std::size_t k : s.redundant)
+    for (long at : {s.lambda_at[k], s.mu_at[k]})
+      if (at >= 0) r[at] = y[at];
+}
+
+void constrained_residual(Model& model, const ConstraintShape& s, double t, const double* y,
+                          const double* yp, double* r) {
+  model.residual(t, y, yp, r);
+  pin_redundant_multipliers(s, y, r);
+}
+
+RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape& s, double t,
+                                            const double* y_in) {
+  RedundancyReport rep;
+  const Index np = ix(s.np), nv = ix(s.nv);
+  if (s.lambda_at.empty() || np == 0) return rep;
+  Vec y = Eigen::Map<const Vec>(y_in, ix(s.n)), c(np + nv);
+  auto eval = [&](const Vec& yy, Vec& cc) {
+    model.constraints(t, yy.data(), cc.data());
+    return cc.allFinite();
+  };
+  if (!eval(y, c)) return rep;
+  std::vector<Index> all(s.ns);
+  for (std::size_t j = 0; j < s.ns; ++j) all[j] = ix(j);
+  const Linearization G = linearize(eval, y, c, 0, np, all);
+  if (!G.finite) return rep;
+  // Gram-Schmidt over the equilibrated gradients, in row order, so the rows
+  // dropped are the later ones (normally those of the loop-closing joint).
+  Mat basis(ix(s.ns), 0);
+  rep.smallest_kept = kInf;
+  for (Index k = 0; k < np; ++k) {
+    if (s.lambda_at[sz(k)] < 0) continue;  // penalty rows are forces, never singular
+    ++rep.lagrange_rows;
+    Vec v = G.J.row(k).transpose();
+    const double big = v.cwiseAbs().maxCoeff();
+    if (big == 0.0) continue;  // depends on no state: assembly has reported it if violated
+    v /= v.norm();
+    for (int pass = 0; pass < 2; ++pass) v -= basis * (basis.transpose() * v);  // twice: stable
+    const double left = v.norm();
+    if (left < kRedundantRowThreshold) {
+      rep.redundant.push_back(sz(k));
+      continue;
+    }
+    rep.smallest_kept = std::min(rep.smallest_kept, left);
+    basis.conservativeResize(Eigen::NoChange, basis.cols() + 1);
+    basis.col(basis.cols() - 1) = v / left;
+  }
+  return rep;
 }
 
 AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double* y_io) {
@@ -312,7 +381,7 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
   auto residual_at_z = [&](const Vec& zz, Vec& r) {
     YPw.head(ns) = zz.head(ns);
     Yw.tail(n - ns) = zz.tail(n - ns);
-    model.residual(t, Yw.data(), YPw.data(), r.data());
+    constrained_residual(model, s, t, Yw.data(), YPw.data(), r.data());
     return r.allFinite();
   };
   auto fail_row = [&](Index row, const char* what) {
@@ -351,7 +420,7 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
   Vec b = Vec::Zero(nd);     // d r_k / d t
   if (nd > 0) {
     auto residual_at_y = [&](const Vec& yy, Vec& r) {
-      model.residual(t, yy.data(), YP.data(), r.data());
+      constrained_residual(model, s, t, yy.data(), YP.data(), r.data());
       return r.allFinite();
     };
     std::vector<Index> scols(s.ns);
@@ -360,8 +429,8 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
     const double h = fd_step(t);
     const double up = t + h, down = t - h;
     Vec rp(n), rm(n);
-    model.residual(up, Y.data(), YP.data(), rp.data());
-    model.residual(down, Y.data(), YP.data(), rm.data());
+    constrained_residual(model, s, up, Y.data(), YP.data(), rp.data());
+    constrained_residual(model, s, down, Y.data(), YP.data(), rm.data());
     if (!Ly.finite || !rp.allFinite() || !rm.allFinite()) {
       rep.error = fmt::format(
           "consistent initial values: a constraint row is not finite near the assembled initial "
@@ -462,6 +531,23 @@ std::string describe(const AssemblyReport& a) {
       "velocities by {}",
       g2(a.g_residual), g2(a.gdot_residual), a.position_iterations + a.velocity_iterations,
       a.position_iterations, a.velocity_iterations, g2(a.moved_positions), g2(a.moved_velocities));
+}
+
+std::string describe(const RedundancyReport& r, const Model& model) {
+  std::vector<std::string> names;
+  for (std::size_t k : r.redundant) {
+    if (names.size() == 12) {
+      names.push_back(fmt::format("and {} more", r.redundant.size() - 12));
+      break;
+    }
+    std::string name = model.constraint_name(k);
+    if (name.size() > 2 && name.compare(name.size() - 2, 2, " g") == 0) name.resize(name.size() - 2);
+    names.push_back(name);
+  }
+  return fmt::format(
+      "{} of {} lagrange rows implied by the others at the assembled state ({}); their multipliers "
+      "are held at 0, so the other rows carry those reactions",
+      r.redundant.size(), r.lagrange_rows, fmt::join(names, ", "));
 }
 
 std::string describe(const InitialValuesReport& r, const ConstraintShape& s) {

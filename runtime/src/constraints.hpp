@@ -21,6 +21,13 @@ struct ConstraintShape {
   bool dae = false;
   bool enforced = false;  ///< lagrange (drift) rather than penalty (violation)
 
+  /// DAE: per position row, the index in y of its multipliers lambda and mu
+  /// (-1 for a penalty row); empty for an ODE.
+  std::vector<long> lambda_at, mu_at;
+  /// Lagrange rows implied by the others (found after assembly): their
+  /// multipliers are held at 0 (see pin_redundant_multipliers).
+  std::vector<std::size_t> redundant;
+
   std::size_t count() const { return np + nv; }
   bool any() const { return count() > 0; }
   /// The residual rows follow the lagrange layout [states; gdot rows; g rows].
@@ -38,6 +45,14 @@ std::string contract_violation(const Model& model, const ConstraintShape& shape,
 /// "constraint 'j1.gdot[0]'" for a residual row of a lagrange DAE that is a
 /// constraint row, otherwise "the equation of 'name'" (row i belongs to unknown i).
 std::string residual_row_name(const Model& model, const ConstraintShape& shape, std::size_t row);
+
+/// After model.residual(): for each redundant row, its lambda and mu rows
+/// become lambda = 0 and mu = 0, so the Newton matrix stays regular.
+void pin_redundant_multipliers(const ConstraintShape& shape, const double* y, double* r);
+
+/// model.residual() followed by pin_redundant_multipliers().
+void constrained_residual(Model& model, const ConstraintShape& shape, double t, const double* y,
+                          const double* yp, double* r);
 
 inline constexpr int kAssemblyMaxIterations = 50;
 
@@ -66,6 +81,20 @@ struct AssemblyReport {
 /// states the phase moves (for g = (x^2 + y^2 - L^2)/2 that is about L^2).
 /// At most kAssemblyMaxIterations steps per phase.
 AssemblyReport assemble(Model& model, const ConstraintShape& shape, double t, double* y);
+
+struct RedundancyReport {
+  std::size_t lagrange_rows = 0;       ///< rows with multipliers
+  std::vector<std::size_t> redundant;  ///< rows implied by the others
+  double smallest_kept = 0.0;          ///< smallest independent component of a kept row
+};
+
+/// Rows of a planar loop of revolute joints in 3-D (and any over-determined
+/// set) are linearly dependent, which makes the DAE's Newton matrix singular.
+/// At the assembled state this picks, in row order, the lagrange rows whose
+/// gradient dg/dx is a combination of the rows before it (relative residual
+/// below kRedundantRowThreshold after row equilibration).
+RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape& shape, double t,
+                                            const double* y);
 
 struct InitialValuesReport {
   bool ok = false;
@@ -118,6 +147,7 @@ class ConstraintMonitor {
 
 /// The run-summary lines (without indentation or newline).
 std::string describe(const AssemblyReport& a);
+std::string describe(const RedundancyReport& r, const Model& model);
 std::string describe(const InitialValuesReport& r, const ConstraintShape& shape);
 std::string describe(const ConstraintMonitor& m);
 

@@ -69,7 +69,7 @@ int GuardedModel::jacobian(double t, const double* y, double* J) {
 int GuardedModel::residual(double t, const double* y, const double* yp, double* r) {
   if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
   try {
-    model_.residual(t, y, yp, r);
+    constrained_residual(model_, shape_, t, y, yp, r);
   } catch (const std::exception& e) {
     return record(t, BlameSite::exception, 0, 0.0, e.what());
   } catch (...) {
@@ -92,7 +92,8 @@ std::string GuardedModel::describe(const Blame& b) const {
     return fmt::format("the model threw an exception: {}", b.detail);
   // A residual row of a lagrange DAE past the states is a constraint row:
   // name the constraint rather than the multiplier the row happens to share an index with.
-  if (b.site == BlameSite::residual && shape_.ggl_layout() && b.index >= shape_.ns)
+  if (b.site == BlameSite::residual && (shape_.ggl_layout() || !shape_.lambda_at.empty()) &&
+      b.index >= shape_.ns)
     return fmt::format("the residual of {} became {}", residual_row_name(model_, shape_, b.index),
                        value_word(b.value));
   const char* kind = ids_.at(b.index) != 0.0 ? "state" : "algebraic variable";

@@ -37,6 +37,8 @@ class GuardedModel {
   const std::vector<double>& differential_ids() const { return ids_; }
   /// Sizes of the model's joint constraints (none for most models).
   const ConstraintShape& constraint_shape() const { return shape_; }
+  /// Lagrange rows whose multipliers residual() holds at 0 (redundant rows).
+  void set_redundant_constraints(std::vector<std::size_t> rows) { shape_.redundant = std::move(rows); }
 
   /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
   int derivative(double t, const double* y, double* ydot);

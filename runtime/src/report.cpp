@@ -53,6 +53,8 @@ void print_summary(std::FILE* err, const RunRecord& run) {
              format_time(s.t_start_s), format_time(s.t_end_s), format_time(s.interval_s),
              format_time(integ.t()));
   if (run.assembly) fmt::print(err, "  assembly: {}\n", describe(*run.assembly));
+  if (run.redundancy)
+    fmt::print(err, "  redundant constraints: {}\n", describe(*run.redundancy, *run.model));
   if (run.initial_values)
     fmt::print(err, "  initial values: {}\n",
                describe(*run.initial_values, run.constraints ? run.constraints->shape()

@@ -19,6 +19,7 @@ struct RunRecord {
   std::string output;  ///< e.g. "101 rows to out.csv"
   // Constrained models only (null otherwise):
   const AssemblyReport* assembly = nullptr;
+  const RedundancyReport* redundancy = nullptr;
   const InitialValuesReport* initial_values = nullptr;
   const ConstraintMonitor* constraints = nullptr;
 };

@@ -105,11 +105,12 @@ bool all_finite(const std::vector<double>& v) {
 /// and the algebraic unknowns (DAEs). Errors are reported here.
 struct ConstrainedStart {
   std::optional<AssemblyReport> assembly;
+  std::optional<RedundancyReport> redundancy;  ///< only when some rows are redundant
   std::optional<InitialValuesReport> initial_values;
   bool ok = true;
 };
 
-ConstrainedStart prepare_constrained_start(Model& model, const GuardedModel& guard, double t0,
+ConstrainedStart prepare_constrained_start(Model& model, GuardedModel& guard, double t0,
                                            std::vector<double>& y0, std::vector<double>& yp0) {
   ConstrainedStart start;
   const ConstraintShape& shape = guard.constraint_shape();
@@ -129,6 +130,11 @@ ConstrainedStart prepare_constrained_start(Model& model, const GuardedModel& gua
     return start;
   }
   if (shape.dae) {
+    RedundancyReport redundancy = find_redundant_constraints(model, shape, t0, y0.data());
+    if (!redundancy.redundant.empty()) {
+      guard.set_redundant_constraints(redundancy.redundant);
+      start.redundancy = std::move(redundancy);
+    }
     start.initial_values = consistent_initial_values(model, shape, t0, y0.data(), yp0.data());
     if (!start.initial_values->ok) {
       print_error(start.initial_values->error);
@@ -205,6 +211,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());
     if (start.assembly) record.assembly = &*start.assembly;
+    if (start.redundancy) record.redundancy = &*start.redundancy;
     if (start.initial_values) record.initial_values = &*start.initial_values;
     if (guard.constraint_shape().any()) record.constraints = &monitor;
     print_summary(stderr, record);

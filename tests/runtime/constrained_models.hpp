@@ -33,7 +33,7 @@ class PlanarMass : public TestModel {
   std::string constraint_name(std::size_t i) const override {
     const bool velocity = i >= k_;
     const std::size_t row = velocity ? i - k_ : i;
-    return std::string(row == 0 ? "rod" : "wall") + (velocity ? ".gdot[0]" : ".g[0]");
+    return std::string(row == 0 ? "rod" : twin_ ? "twin" : "wall") + (velocity ? ".gdot[0]" : ".g[0]");
   }
   std::size_t position_constraint_count() const override { return k_; }
   std::size_t velocity_constraint_count() const override { return k_; }
@@ -53,6 +53,11 @@ class PlanarMass : public TestModel {
       gy = y;
       return 0.5 * (x * x + y * y - p("L") * p("L"));
     }
+    if (twin_) {  // the rod again, scaled: implied by row 0
+      gx = 2.0 * x;
+      gy = 2.0 * y;
+      return x * x + y * y - p("L") * p("L");
+    }
     gx = 1.0;
     gy = 0.0;
     return x - p("wall");
@@ -68,7 +73,8 @@ class PlanarMass : public TestModel {
     return names[i];
   }
 
-  std::size_t k_;  ///< number of constraints
+  std::size_t k_;       ///< number of constraints
+  bool twin_ = false;   ///< row 1 is 2 x row 0 (a redundant constraint) instead of the wall
 };
 
 /// Lagrange twin: the stabilised index-2 DAE of Gear, Gupta and Leimkuhler,
@@ -102,6 +108,8 @@ class GglPendulum : public PlanarMass {
     const std::size_t row = j % k_;
     return std::string(row == 0 ? "rod" : "wall") + (j < k_ ? ".lambda" : ".mu");
   }
+  long multiplier_index(std::size_t row) const override { return row < k_ ? long(4 + row) : -1; }
+  long stabiliser_index(std::size_t row) const override { return row < k_ ? long(4 + k_ + row) : -1; }
   std::vector<std::string> output_names() const override {
     return {"x", "y", "u", "v", "lambda", "mu", "xdot", "udot", "vdot"};
   }
@@ -137,6 +145,28 @@ class GglPendulum : public PlanarMass {
     out[7] = yp ? yp[2] : std::nan("");
     out[8] = yp ? yp[3] : std::nan("");
   }
+};
+
+/// The pendulum with its rod constraint stated twice (row 1 = 2 x row 0), as
+/// a planar loop of revolute joints in 3-D states some rows twice: the
+/// Newton matrix of the DAE is singular unless the runtime finds row 1
+/// redundant and holds its multipliers at 0. `hide_multipliers` makes the
+/// model withhold where they are (as a model compiled before
+/// multiplier_index() existed), so nothing can be dropped.
+class TwinRodPendulum : public GglPendulum {
+ public:
+  explicit TwinRodPendulum(bool hide_multipliers = false) : GglPendulum(true), hide_(hide_multipliers) {
+    twin_ = true;
+  }
+  long multiplier_index(std::size_t row) const override {
+    return hide_ ? -1 : GglPendulum::multiplier_index(row);
+  }
+  long stabiliser_index(std::size_t row) const override {
+    return hide_ ? -1 : GglPendulum::stabiliser_index(row);
+  }
+
+ private:
+  bool hide_;
 };
 
 /// Penalty twin: an ODE in (x, y, u, v); each constraint is a stiff

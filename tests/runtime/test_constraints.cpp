@@ -230,6 +230,41 @@ TEST(Lagrange, PendulumPeriodMatchesTheAgmClosedForm) {
   EXPECT_EQ(run.r.err.find("violation"), std::string::npos);
 }
 
+TEST(Lagrange, ARedundantRowIsFoundAndItsMultipliersHeldAtZero) {
+  // The rod stated twice: the same motion as with one row, one of the two
+  // rows reported redundant, its multipliers 0 and the tension carried by the
+  // other. The two runs take different steps (different Newton matrices), so
+  // they agree to the integration error: measured 2.9e-9 at rtol 1e-10.
+  const std::vector<std::string> args{"--t-end", "1", "--rtol", "1e-10", "--atol", "1e-12"};
+  GglPendulum single;
+  RunResult one = run(single, args);
+  ASSERT_EQ(one.status, 0) << one.err;
+  TwinRodPendulum twin;
+  ConstrainedRun two = run_with_report(twin, args);
+  ASSERT_EQ(two.r.status, 0) << two.r.err;
+  EXPECT_TRUE(Contains(two.r.err, "  redundant constraints: 1 of 2 lagrange rows implied by the others "
+                                  "at the assembled state (twin.g[0])"))
+      << two.r.err;
+  EXPECT_EQ(one.err.find("redundant"), std::string::npos) << one.err;
+  const Csv a = parse_csv(one.csv), b = parse_csv(two.r.csv);
+  ASSERT_EQ(a.rows.size(), b.rows.size());
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    for (const char* col : {"x", "y", "u", "v"}) EXPECT_NEAR(b.at(i, col), a.at(i, col), 1e-8) << col << " row " << i;
+    EXPECT_NEAR(b.at(i, "lambda"), a.at(i, "lambda"), 1e-6 * (1 + std::abs(a.at(i, "lambda"))));
+  }
+  EXPECT_LT(column_max(two.report, "max_abs_g"), 1e-9);
+}
+
+TEST(Lagrange, RedundantRowsCannotBeDroppedWithoutTheMultiplierIndices) {
+  // The same model hiding where its multipliers are: the Newton matrix is
+  // singular and the run must stop with a report, not produce numbers.
+  TwinRodPendulum twin(/*hide_multipliers=*/true);
+  RunResult r = run(twin, {"--t-end", "1"});
+  EXPECT_NE(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("redundant constraints:"), std::string::npos);
+  EXPECT_TRUE(Contains(r.err, "the multipliers are not unique (redundant constraints?)")) << r.err;
+}
+
 struct ReleaseCase {
   double L, theta0;
 };

@@ -130,6 +130,13 @@ class Model {
     const std::size_t p = position_constraint_count();
     return i < p ? "g[" + std::to_string(i) + "]" : "gdot[" + std::to_string(i - p) + "]";
   }
+  /// DAE only: the index in y of the multiplier lambda of constraint row
+  /// `row` (0 <= row < P), whose residual row (of the same index) is gdot_row
+  /// = 0, and of the GGL multiplier mu, whose residual row is g_row = 0; -1
+  /// for a penalty row. The runtime holds both at 0 for rows it finds
+  /// redundant (implied by the others), replacing their residual rows.
+  virtual long multiplier_index(std::size_t row) const { (void)row; return -1; }
+  virtual long stabiliser_index(std::size_t row) const { (void)row; return -1; }
   /// true (lagrange): the solver enforces the constraints, so what remains is
   /// reported as "constraint drift"; false (penalty): reported as "largest
   /// constraint violation".
