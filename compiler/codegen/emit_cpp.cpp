@@ -105,8 +105,10 @@ class Emitter {
  public:
   Emitter(const ReducedSystem& sys, const SourceManager& sources, const EmitOptions& opt)
       : s_(sys), g_(sys.graph), sources_(sources), opt_(opt) {
-    for (std::size_t i = 0; i < g_.params.size(); ++i) mangle_.get("p" + std::to_string(i), g_.params[i].name);
-    for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get("v" + std::to_string(i), g_.vars[i].name);
+    // fmt::format, not "p" + std::to_string(i): GCC 12 at -O3 reports a false
+    // -Wrestrict on operator+(const char*, std::string&&) (GCC PR 105329).
+    for (std::size_t i = 0; i < g_.params.size(); ++i) mangle_.get(fmt::format("p{}", i), g_.params[i].name);
+    for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get(fmt::format("v{}", i), g_.vars[i].name);
     names_.var = [this](int id) { return mangle_.get("v" + std::to_string(id), ""); };
     names_.param = [this](int id) { return mangle_.get("p" + std::to_string(id), ""); };
     class_name_ = mangle_.get("class", g_.model_name + "_model");
