@@ -260,20 +260,37 @@ class Emitter {
     if (s_.states.empty() && s_.algebraic.empty()) f.body.push_back(CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"));
     if (!s_.dae) f.body.push_back(CppStmt::line("(void)yp;"));
     if (!g_.params.empty()) f.body.push_back(CppStmt::comment("CONSTANTS / PARAMETERS"));
+    // Derived parameters (a joint frame from its axis, an initial pose along a
+    // chain) repeat subexpressions: share them here too. A parameter only
+    // reads earlier ones, so a temporary defined before its first use reads
+    // parameters that are already set (overrides included).
+    const std::unordered_map<Expr, std::string, ExprHash, ExprEqual> none;
+    SharedTemps shared(none);
+    for (const Parameter& p : g_.params) shared.count(p.value);
+    for (const Expr& e : hoisted_order_) shared.count(e);
+    for (const StateVar& st : s_.states) shared.count(st.initial);
+    shared.finish_counting();
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
+      std::string value = print_shared(p.value, shared, f.body, "");
       f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});  // {}", names_.param(static_cast<int>(i)), i,
-                                                 to_cpp(p.value, names_), where(p.loc))));
+                                                 value, where(p.loc))));
     }
     if (!hoisted_order_.empty()) f.body.push_back(CppStmt::comment("DERIVED CONSTANTS: parameter expressions, computed once per run"));
-    for (const Expr& e : hoisted_order_)
-      f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), to_cpp(e, names_))));
+    for (const Expr& e : hoisted_order_) {
+      // a derived constant that recurs whole is reused by its own name
+      bool shared_whole = shared.pending.erase(e) > 0;
+      std::string value = print_shared(e, shared, f.body, "");
+      f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), value)));
+      if (shared_whole) shared.temp[e] = hoisted_.at(e);
+    }
     if (!s_.states.empty()) f.body.push_back(CppStmt::comment("INITIAL STATE"));
     const char* y = s_.dae ? "y" : "x";
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
       const StateVar& st = s_.states[i];
       const Variable& v = g_.vars[static_cast<std::size_t>(st.var)];
-      f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {} ({})", y, i, to_cpp(st.initial, names_), v.name, where(v.loc))));
+      std::string value = print_shared(st.initial, shared, f.body, "");
+      f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {} ({})", y, i, value, v.name, where(v.loc))));
     }
     if (s_.dae) {
       for (std::size_t j = 0; j < s_.algebraic.size(); ++j)
@@ -282,6 +299,46 @@ class Emitter {
       f.body.push_back(CppStmt::line(fmt::format("for (std::size_t i = 0; i < {}; ++i) yp[i] = 0.0;  // first guess", unknown_count())));
     }
     return f;
+  }
+
+  // ---- common subexpressions -------------------------------------------------------------
+  /// Subexpressions used more than once in one function, defined as `const
+  /// double cseN` right before their first use. `temp` starts with the
+  /// derived constants, which are members already.
+  struct SharedTemps {
+    explicit SharedTemps(const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& known)
+        : known_(known), temp(known.begin(), known.end()) {}
+    void count(const Expr& e) {
+      if (e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty())) return;
+      if (known_.count(e)) return;  // computed once in initial()
+      if (++uses_[e] > 1) return;   // children already counted through the first occurrence
+      for (const Expr& a : e->args) count(a);
+    }
+    void finish_counting() {
+      for (const auto& [e, n] : uses_)
+        if (n > 1) pending.insert(e);
+      uses_.clear();
+    }
+    const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& known_;
+    std::unordered_map<Expr, int, ExprHash, ExprEqual> uses_;
+    std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp;
+    std::unordered_set<Expr, ExprHash, ExprEqual> pending;
+  };
+
+  /// `e` in C++, after defining (into `body`) the shared temporaries it needs, innermost first.
+  std::string print_shared(const Expr& e, SharedTemps& shared, std::vector<CppStmt>& body, const std::string& why) {
+    std::function<void(const Expr&)> define = [&](const Expr& x) {
+      if (x->args.empty()) return;
+      for (const Expr& a : x->args) define(a);
+      if (shared.pending.count(x) && !shared.temp.count(x)) {
+        std::string name = fmt::format("cse{}", ++cse_counter_);
+        body.push_back(CppStmt::line(fmt::format("const double {} = {};  // shared by several equations{}", name,
+                                                 cpp_with_temps(x, shared.temp, /*top=*/true), why)));
+        shared.temp[x] = name;
+      }
+    };
+    define(e);
+    return cpp_with_temps(e, shared.temp, false);
   }
 
   // ---- sections with equations ------------------------------------------------------------
@@ -312,13 +369,8 @@ class Emitter {
       body.push_back(CppStmt::line(fmt::format("const double {} = yp[{}];", var_name(v), i)));
     }
     // Common subexpressions: anything non-trivial used twice or more in this section.
-    std::unordered_map<Expr, int, ExprHash, ExprEqual> count;
-    std::function<void(const Expr&)> visit = [&](const Expr& e) {
-      if (e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty())) return;
-      if (hoisted_.count(e)) return;  // computed once in initial()
-      if (++count[e] > 1) return;  // children already counted through the first occurrence
-      for (const Expr& a : e->args) visit(a);
-    };
+    SharedTemps shared(hoisted_);
+    auto visit = [&](const Expr& e) { shared.count(e); };
     std::set<int> blocks_counted;
     for (int i : assignment_indices) {
       const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
@@ -332,25 +384,11 @@ class Emitter {
       for (const Expr& e : lb.b) visit(e);
     }
     for (const auto& [target, e] : results) visit(e);
-    std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp(hoisted_.begin(), hoisted_.end());
-    std::unordered_set<Expr, ExprHash, ExprEqual> pending;
-    for (const auto& [e, n] : count)
-      if (n > 1) pending.insert(e);
-    Namer with_cse = names_;
+    shared.finish_counting();
+    auto& pending = shared.pending;
+    auto& temp = shared.temp;
     auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body, const std::string& why) {
-      // define the temporaries this expression needs, innermost first
-      std::function<void(const Expr&)> define = [&](const Expr& x) {
-        if (x->args.empty()) return;
-        for (const Expr& a : x->args) define(a);
-        if (pending.count(x) && !temp.count(x)) {
-          std::string name = fmt::format("cse{}", ++cse_counter_);
-          out_body.push_back(CppStmt::line(fmt::format("const double {} = {};  // shared by several equations{}", name,
-                                                       cpp_with_temps(x, temp, /*top=*/true), why)));
-          temp[x] = name;
-        }
-      };
-      define(e);
-      return cpp_with_temps(e, temp, false);
+      return print_shared(e, shared, out_body, why);
     };
     std::set<int> blocks_done;
     for (int i : assignment_indices) {

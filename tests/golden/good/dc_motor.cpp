@@ -81,10 +81,12 @@ class dc_motor_model final : public mbgrt::Model {
     J = param(4, 0.57207);  // dc_motor.mbg:10:7
     D = param(5, 0.226);  // dc_motor.mbg:11:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
-    derived1_ = -R_a * (1.0 / L_a);
-    derived2_ = -K_m * (1.0 / J);
-    derived3_ = K_m * (1.0 / L_a);
-    derived4_ = -D * (1.0 / J);
+    const double cse1 = 1.0 / L_a;  // shared by several equations
+    derived1_ = -R_a * cse1;
+    const double cse2 = 1.0 / J;  // shared by several equations
+    derived2_ = -K_m * cse2;
+    derived3_ = K_m * cse1;
+    derived4_ = -D * cse2;
     // INITIAL STATE
     x[0] = 0.0;  // armature_l.p (dc_motor.mbg:15:4)
     x[1] = 0.0;  // rotor.p (dc_motor.mbg:17:4)

@@ -75,9 +75,10 @@ class imports_model final : public mbgrt::Model {
     sd_c = param(2, 2.0);  // lib/spring_damper.mbg:2:54
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / sd_k;
-    derived2_ = -sd_c * (1.0 / m);
-    derived3_ = -1.0 / (1.0 / sd_k);
-    derived4_ = 1.0 / m;
+    const double cse1 = 1.0 / m;  // shared by several equations
+    derived2_ = -sd_c * cse1;
+    derived3_ = -1.0 / derived1_;
+    derived4_ = cse1;
     // INITIAL STATE
     x[0] = m;  // mass.p (imports.mbg:7:3)
     x[1] = 0.0;  // sd.spring.q (lib/spring_damper.mbg:3:5)

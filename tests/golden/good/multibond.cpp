@@ -72,10 +72,11 @@ class multibond_model final : public mbgrt::Model {
     k = param(1, 10.0);  // multibond.mbg:5:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / k;
-    derived2_ = -0.5 * (1.0 / m);
-    derived3_ = -0.1 * (1.0 / m);
-    derived4_ = -1.0 / (1.0 / k);
-    derived5_ = 1.0 / m;
+    const double cse1 = 1.0 / m;  // shared by several equations
+    derived2_ = -0.5 * cse1;
+    derived3_ = -0.1 * cse1;
+    derived4_ = -1.0 / derived1_;
+    derived5_ = cse1;
     // INITIAL STATE
     x[0] = m;  // mass.p[1] (multibond.mbg:7:3)
     x[1] = 0.0;  // mass.p[2] (multibond.mbg:7:3)
