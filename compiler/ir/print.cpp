@@ -77,7 +77,8 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
             if (st.name == "ground") out += fmt::format("{}ground {{ {} }}\n", pad, fmt::join(parts, "; "));
             else out += fmt::format("{}body {} {{ {} }}\n", pad, st.name, fmt::join(parts, "; "));
           } else if constexpr (std::is_same_v<T, AstJoint>) {
-            out += fmt::format("{}joint {} {}({}, {})", pad, st.name, st.type, st.a.path, st.b.path);
+            if (st.type == "force") out += fmt::format("{}force {}({}, {})", pad, st.name, st.a.path, st.b.path);
+            else out += fmt::format("{}joint {} {}({}, {})", pad, st.name, st.type, st.a.path, st.b.path);
             if (!st.attrs.empty()) out += " " + attrs(st.attrs);
             out += "\n";
           } else if constexpr (std::is_same_v<T, AstSetting>) {

@@ -64,6 +64,14 @@ struct Joint {
   Strategy strategy = Strategy::Lagrange;
 };
 
+/// `force NAME(a.P, b.Q) { force; torque; stiffness; damping; length }`: equal
+/// and opposite loads on two body points (a = ground: an applied load).
+struct ForceElement {
+  const AstJoint* decl = nullptr;  // parsed as a joint of type "force"
+  Side a, b;
+  std::map<std::string, const AstAttr*> attrs;
+};
+
 const std::set<std::string> kJointTypes = {"revolute", "spherical", "cylindrical", "prismatic", "screw",
                                            "planar",   "universal", "fixed",       "distance"};
 
@@ -78,13 +86,14 @@ class Expander {
   AstProgram run(const AstProgram& in) {
     collect(in);
     if (diags_.has_errors()) return {};
-    if (bodies_.size() <= 1 && joints_.empty() && !gravity_) return in;  // nothing multibody here
+    if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && !gravity_) return in;  // nothing multibody here
     if (gravity_) param(Build(gravity_loc_), "gravity", gravity_);
     for (const auto& [p, v] : bodies_.at("ground").points) param(Build(v->loc), "ground." + p, v);
     for (const std::string& name : body_order_) emit_body(bodies_.at(name));
     for (Joint& j : joints_) emit_joint(j);
     place_bodies();
     define_quantities();
+    for (const ForceElement& f : forces_) emit_force(f);
     AstProgram out;
     for (const AstStmt& s : in.stmts) {
       if (std::holds_alternative<AstBody>(s) || std::holds_alternative<AstJoint>(s) || std::holds_alternative<AstSetting>(s)) continue;
@@ -106,7 +115,7 @@ class Expander {
       else if (auto* st = std::get_if<AstSetting>(&s)) setting(*st);
     }
     for (const AstStmt& s : in.stmts)
-      if (auto* j = std::get_if<AstJoint>(&s)) add_joint(*j);
+      if (auto* j = std::get_if<AstJoint>(&s)) j->type == "force" ? add_force(*j) : add_joint(*j);
   }
 
   void setting(const AstSetting& st) {
@@ -211,6 +220,42 @@ class Expander {
     return Side{body, point};
   }
 
+  void add_force(const AstJoint& f) {
+    auto a = side(f.a);
+    auto b = side(f.b);
+    if (!a || !b) return;
+    if (a->body == b->body) {
+      diags_.error(f.loc, fmt::format("force `{}` acts between `{}` and itself", f.name, a->body),
+                   "a force element connects two different bodies (ground for an applied load)");
+      return;
+    }
+    ForceElement fe{&f, *a, *b, {}};
+    static const std::vector<std::string> keys = {"force", "torque", "stiffness", "damping", "length"};
+    for (const AstAttr& at : f.attrs) {
+      if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
+        std::string near = closest_name(at.key, keys);
+        diags_.error(at.loc, fmt::format("a force element has no setting `{}`", at.key),
+                     near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+        continue;
+      }
+      fe.attrs[at.key] = &at;
+    }
+    if (fe.attrs.count("stiffness") && !fe.attrs.count("length"))
+      diags_.error(fe.attrs.at("stiffness")->loc, fmt::format("the spring of `{}` has no free length", f.name),
+                   "add length = L0 (m): the spring pushes the points apart below it and pulls them together above it");
+    if (fe.attrs.count("length") && !fe.attrs.count("stiffness"))
+      diags_.error(fe.attrs.at("length")->loc, fmt::format("`length` of `{}` needs a stiffness", f.name),
+                   "add stiffness = k (N/m), or remove length");
+    for (const Side* sd : {&fe.a, &fe.b}) {
+      const Body& body = bodies_.at(sd->body);
+      if (body.particle && fe.attrs.count("torque"))
+        diags_.error(fe.attrs.at("torque")->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
+                     "give the body an inertia, or remove the torque");
+      if (!body.ground) loads_[sd->body].push_back(f.name);
+    }
+    if (!diags_.has_errors()) forces_.push_back(fe);
+  }
+
   void add_joint(const AstJoint& j) {
     if (!kJointTypes.count(j.type)) {
       std::vector<std::string> names(kJointTypes.begin(), kJointTypes.end());
@@ -312,7 +357,15 @@ class Expander {
     param(B, n + ".mass", attr(d, "mass"));
     for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
     // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
-    junction(B, '1', n + ".v", 3, gravity_ ? std::vector<std::string>{n + ".weight"} : std::vector<std::string>{}, {n + ".m", n + ".r"});
+    // applied loads (force elements) push into the body's junctions
+    std::vector<std::string> forces_in, torques_in;
+    if (gravity_) forces_in.push_back(n + ".weight");
+    if (auto it = loads_.find(n); it != loads_.end())
+      for (const std::string& f : it->second) {
+        forces_in.push_back(f + ".on_" + n + "_f");
+        if (!body.particle) torques_in.push_back(f + ".on_" + n + "_t");
+      }
+    junction(B, '1', n + ".v", 3, forces_in, {n + ".m", n + ".r"});
     element(B, "I", n + ".m", B.op('*', B.name(n + ".mass"), B.call("eye", {B.num(3)})), {kv("f0", B.name(n + ".v0"), d.loc)});
     element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
     if (gravity_) element(B, "Se", n + ".weight", B.op('*', B.name(n + ".mass"), B.name("gravity")));
@@ -320,7 +373,7 @@ class Expander {
     E com = attr(d, "com");
     param(B, n + ".com", com ? com : B.vec(0, 0, 0));
     param(B, n + ".inertia", attr(d, "inertia"));
-    junction(B, '1', n + ".w", 3, {}, {n + ".J", n + ".ejs", n + ".qrate.p1"});
+    junction(B, '1', n + ".w", 3, torques_in, {n + ".J", n + ".ejs", n + ".qrate.p1"});
     element(B, "I", n + ".J", B.name(n + ".inertia"), {kv("f0", B.name(n + ".w0"), d.loc)});
     // Euler junction structure: torque omega x h on the body-frame junction, no power.
     element(B, "R", n + ".ejs", nullptr, {kv("e", B.call("cross", {B.name("f"), B.name(n + ".J.p")}), d.loc)});
@@ -636,6 +689,66 @@ class Expander {
   }
 
   // ---- 5. quantities users may name ------------------------------------------------------
+  // ---- 4. force elements ------------------------------------------------------------
+  /// World position and velocity of a force element's point.
+  std::pair<E, E> world_point(const Build& B, const Side& s) {
+    const Body& body = bodies_.at(s.body);
+    E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
+    if (body.ground) return {local, B.vec(0, 0, 0)};
+    E r = B.name(s.body + ".r.q"), v = B.name(s.body + ".v.f");
+    if (body.particle) return {r, v};
+    E R = B.call("rotq", {B.name(s.body + ".q.q")});
+    E arm = B.op('-', local, B.name(s.body + ".com"));
+    return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.name(s.body + ".w.f"), arm})))};
+  }
+
+  /// The load on b (world force F at Q, torque T) and its opposite on a, as
+  /// effort sources on the bodies' junctions: F on the centre-of-mass
+  /// velocity junction, the body-frame moment arm x (R^T F) + R^T T on the
+  /// angular-velocity one. A spring-damper acts along the line P -> Q.
+  void emit_force(const ForceElement& f) {
+    const std::string& fn = f.decl->name;
+    Build B(f.decl->loc);
+    auto user = [&](const char* key) -> E {
+      auto it = f.attrs.find(key);
+      return it == f.attrs.end() ? nullptr : rewrite_expr(it->second->value);
+    };
+    auto [pa, va] = world_point(B, f.a);
+    auto [pb, vb] = world_point(B, f.b);
+    E d = B.op('-', pb, pa);
+    quantity_[fn + ".length"] = B.call("norm", {d});
+    E force = user("force");
+    if (E k = user("stiffness"), c = user("damping"); k || c) {
+      if (k) param(B, fn + ".stiffness", k);
+      if (c) param(B, fn + ".damping", c);
+      if (E l0 = user("length")) param(B, fn + ".length0", l0);
+      E len = B.call("norm", {d}), u = B.op('/', d, len);
+      E tension = B.num(0);
+      if (k) tension = B.op('*', B.name(fn + ".stiffness"), B.op('-', len, B.name(fn + ".length0")));
+      if (c) tension = B.op('+', tension, B.op('*', B.name(fn + ".damping"), B.dot(u, B.op('-', vb, va))));
+      E spring = B.neg(B.op('*', tension, u));
+      force = force ? B.op('+', force, spring) : spring;
+    }
+    if (!force) force = B.vec(0, 0, 0);
+    E torque = user("torque");
+    quantity_[fn + ".force"] = force;
+    if (torque) quantity_[fn + ".torque"] = torque;
+    for (const auto& [s, sign] : {std::pair{&f.a, -1.0}, std::pair{&f.b, 1.0}}) {
+      const Body& body = bodies_.at(s->body);
+      if (body.ground) continue;
+      const std::string base = fn + ".on_" + s->body;
+      auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
+      element(B, "Se", base + "_f", signed_(force));
+      if (body.particle) continue;
+      E Rt = B.call("transpose", {B.call("rotq", {B.name(s->body + ".q.q")})});
+      E local = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
+      E arm = B.op('-', local, B.name(s->body + ".com"));
+      E moment = B.call("cross", {arm, B.op('*', Rt, force)});
+      if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
+      element(B, "Se", base + "_t", signed_(moment));
+    }
+  }
+
   void define_quantities() {
     for (const std::string& n : body_order_) {
       const Body& body = bodies_.at(n);
@@ -733,6 +846,8 @@ class Expander {
   std::map<std::string, Body> bodies_;
   std::vector<std::string> body_order_;
   std::vector<Joint> joints_;
+  std::vector<ForceElement> forces_;
+  std::map<std::string, std::vector<std::string>> loads_;  // body -> force elements acting on it
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
   std::map<std::string, E> quantity_;

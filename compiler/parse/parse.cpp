@@ -26,12 +26,12 @@ using ir::AstExprPtr;
 const std::set<std::string> kElementKinds = {"Se", "Sf", "I", "C", "R", "TF", "GY", "MTF", "MGY", "CN"};
 const std::set<std::string> kKeywords = {"model", "import", "param", "signal", "output", "bond",
                                          "simulate", "component", "instance", "body", "ground",
-                                         "joint", "gravity", "constraints", "for"};
+                                         "joint", "force", "gravity", "constraints", "for"};
 /// The multibody keywords are also ordinary names in bond-graph models
 /// (`I body = m`, `Se gravity = ...`), so they start a statement only in their
 /// statement's shape: followed, on the same line, by this token.
 const std::map<std::string, Tok> kShapedKeywords = {
-    {"body", Tok::Ident},    {"joint", Tok::Ident},   {"for", Tok::Ident},
+    {"body", Tok::Ident},    {"joint", Tok::Ident},   {"for", Tok::Ident},     {"force", Tok::Ident},
     {"ground", Tok::LBrace}, {"gravity", Tok::Assign}, {"constraints", Tok::Assign}};
 /// Statements a `for` loop cannot repeat.
 const std::set<std::string> kNotInLoop = {"model", "import", "component", "simulate"};
@@ -211,6 +211,7 @@ class Parser {
     if (t.text == "instance") return instance();
     if (t.text == "body" || t.text == "ground") return body();
     if (t.text == "joint") return joint();
+    if (t.text == "force") return force_element();
     if (t.text == "gravity" || t.text == "constraints") return setting();
     if (t.text == "for") return for_loop(in_component);
     if (t.text == "point")
@@ -514,6 +515,11 @@ class Parser {
     const Token& type = expect(Tok::Ident, "(the joint's type)", form);
     j.type = type.text;
     j.type_loc = type.loc;
+    if (j.type == "force") {
+      diags_.error(type.loc, "`force` is not a joint type",
+                   "a force element is a statement of its own: force name(body_a.point, body_b.point) { force = [...] }");
+      throw ParseError{};
+    }
     expect(Tok::LParen, fmt::format("after the joint's type `{}`", j.type).c_str(), form);
     j.a = endpoint("(the joint's first endpoint)");
     expect(Tok::Comma, "between the joint's two endpoints", "a joint connects two points: " + std::string(form));
@@ -521,6 +527,26 @@ class Parser {
     expect(Tok::RParen, "after the joint's endpoints", form);
     if (at(Tok::LBrace)) j.attrs = attr_block("");
     return j;
+  }
+
+  /// `force name(a, b) { key = value ... }`: a force element, kept as a joint
+  /// of type "force" (same endpoints and settings shape).
+  ir::AstStmt force_element() {
+    const char* form = "write force name(body_a.point, body_b.point) { force = [fx, fy, fz] }";
+    ir::AstJoint f;
+    f.kind_loc = next().loc;
+    Name n = name("(the force element's name) after `force`", form);
+    f.name = n.text;
+    f.loc = n.loc;
+    f.type = "force";
+    f.type_loc = f.kind_loc;
+    expect(Tok::LParen, "after the force element's name", form);
+    f.a = endpoint("(the first point: the reaction acts here)");
+    expect(Tok::Comma, "between the force element's two points", form);
+    f.b = endpoint("(the second point: the force acts here)");
+    expect(Tok::RParen, "after the force element's points", form);
+    if (at(Tok::LBrace)) f.attrs = attr_block("");
+    return f;
   }
 
   /// `gravity = expression` or `constraints = method`.
