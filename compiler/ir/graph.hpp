@@ -99,6 +99,7 @@ struct Output {
 struct SimSettings {
   std::optional<double> t_end, interval, rtol, atol, step;
   std::optional<std::string> solver;
+  SourceLoc solver_loc;  // of the solver's name, when given
 };
 
 struct BondGraph {

@@ -258,6 +258,7 @@ class Reducer {
     }
     for (const auto& block : blocks) solve_block(block);
     if (out_.dae) finish_dae();
+    if (out_.dae) check_solver_for_dae();
     int linear = 0, nonlinear = 0;
     for (const AlgebraicLoop& l : out_.loops) (l.linear ? linear : nonlinear)++;
     out_.log.push_back(fmt::format("sorting: {} equations in {} blocks; {} linear algebraic loop{} solved symbolically, {} nonlinear left to IDA",
@@ -422,6 +423,30 @@ class Reducer {
     stabilise(state_residuals, have, algebraic_residuals);
     out_.residuals = std::move(state_residuals);
     for (Residual& r : algebraic_residuals) out_.residuals.push_back(std::move(r));
+  }
+
+  /// A DAE only IDA integrates: a `simulate { solver = ... }` that names
+  /// another solver is an error here, with the reason in bond-graph terms,
+  /// rather than a simulator that refuses to run.
+  void check_solver_for_dae() {
+    const SimSettings& ss = out_.graph.settings;
+    if (!ss.solver || *ss.solver == "ida") return;
+    std::vector<std::string> rows;
+    for (const ConstraintRow& row : out_.constraints)
+      if (row.multiplier >= 0) rows.push_back(row.name.substr(0, row.name.find('[')));
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    if (!rows.empty()) {
+      const bool one = rows.size() == 1;
+      std::string list = fmt::format("{}", fmt::join(rows.begin(), rows.begin() + std::min<std::ptrdiff_t>(4, std::ssize(rows)), ", "));
+      if (rows.size() > 4) list += fmt::format(" and {} more", rows.size() - 4);
+      diags_.error(ss.solver_loc, fmt::format("solver `{}` cannot integrate this model: it is a DAE", *ss.solver),
+                   fmt::format("the constraintor{} {} impose{} {} rows through multipliers, efforts that no storage "
+                               "element determines; write solver = ida, or constraints = penalty for an ODE",
+                               one ? "" : "s", list, one ? "s" : "", one ? "its" : "their"));
+      return;
+    }
+    diags_.error(ss.solver_loc, fmt::format("solver `{}` cannot integrate this model: it is a DAE", *ss.solver),
+                 "a nonlinear algebraic loop is left to IDA as residual equations (see --dump=causality); write solver = ida");
   }
 
   /// Gear-Gupta-Leimkuhler stabilisation of the lagrange rows: besides

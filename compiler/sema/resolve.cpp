@@ -137,6 +137,13 @@ class Resolver {
                              "move the simulate { } block to the model file's top level");
                 return;
               }
+              if (simulate_seen_) {
+                diags_.error(st.loc, "a second `simulate` block",
+                             fmt::format("the model already has one at line {}; merge their settings into one block", simulate_line_));
+                return;
+              }
+              simulate_seen_ = true;
+              simulate_line_ = st.loc.line;
               read_settings(st);
             } else if constexpr (std::is_same_v<T, AstInstance>) {
               instantiate(st, scope, depth);
@@ -231,6 +238,9 @@ class Resolver {
     stack_.pop_back();
   }
 
+  bool simulate_seen_ = false;
+  int simulate_line_ = 0;
+
   void read_settings(const AstSimulate& sim) {
     for (const AstAttr& a : sim.settings) {
       if (a.key == "solver") {
@@ -240,6 +250,7 @@ class Resolver {
           continue;
         }
         m_.settings.solver = a.value->name;
+        m_.settings.solver_loc = a.value->loc;
         continue;
       }
       std::optional<double>* slot = nullptr;
