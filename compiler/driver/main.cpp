@@ -43,8 +43,8 @@ int main(int argc, char** argv) {
     opt.overrides[s.substr(0, eq)] = v;
   }
   if (constraints == "coordinates") {
-    std::cerr << "mbgc: error: --constraints coordinates (joint coordinates as states) is not available yet; "
-                 "use lagrange or penalty\n";
+    std::cerr << "mbgc: error: --constraints coordinates (joint coordinates as states) is not implemented yet; "
+                 "use lagrange (multipliers, a DAE for IDA) or penalty (stiff spring-dampers, an ODE)\n";
     return 2;
   }
   if (constraints == "lagrange") opt.constraints = mbgc::multibody::Strategy::Lagrange;

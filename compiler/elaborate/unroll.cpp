@@ -1,10 +1,12 @@
 #include "elaborate/unroll.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <functional>
 #include <optional>
 #include <set>
+#include <tuple>
 
 namespace mbgc::elaborate {
 namespace {
@@ -12,6 +14,8 @@ namespace {
 using namespace mbgc::ir;
 
 constexpr long kMaxIterations = 100000;  // a typo like 1..1e9 must not hang the compiler
+constexpr long kMaxWork = 200000;        // iterations and statements of all loops together (nested loops)
+constexpr double kMaxIndex = 1e9;        // largest loop bound or name index
 
 class Unroller {
  public:
@@ -21,9 +25,13 @@ class Unroller {
     for (const AstStmt& s : p.stmts)
       if (auto* par = std::get_if<AstParam>(&s)) params_[par->name] = par;
     for (const auto& [name, value] : overrides_) {
-      if (!params_.count(name))
-        diags_.error(SourceLoc{}, fmt::format("--set {}: the model has no top-level parameter `{}`", name, name),
-                     "compile-time overrides apply to `param` declarations at the top level of the model");
+      if (params_.count(name)) continue;
+      std::vector<std::string> names;
+      for (const auto& [n, decl] : params_) names.push_back(n);
+      std::string near = closest_name(name, names);
+      diags_.error(SourceLoc{}, fmt::format("--set {}: the model has no top-level parameter `{}`", name, name),
+                   near.empty() ? "compile-time overrides apply to `param` declarations at the top level of the model"
+                                : fmt::format("did you mean --set {}=...?", near));
     }
     AstProgram out;
     std::map<std::string, long> env;
@@ -32,19 +40,40 @@ class Unroller {
   }
 
  private:
+  /// Reports once: a statement inside a loop is instantiated once per iteration.
+  Diagnostic* error(const SourceLoc& loc, const std::string& message, const std::string& hint) {
+    if (!reported_.insert({loc.file, loc.line, loc.col, message}).second) return nullptr;
+    last_ = &diags_.error(loc, message, hint);
+    return last_;
+  }
+
   // ---- compile-time evaluation ---------------------------------------------------
-  std::optional<double> param_value(const std::string& name, const SourceLoc& loc) {
+  bool is_parameter(const std::string& name) const { return overrides_.count(name) || params_.count(name); }
+
+  /// Value of a top-level parameter (is_parameter(name)); errors are reported
+  /// once, where the parameter is defined, with a note at `use`.
+  std::optional<double> param_value(const std::string& name, const SourceLoc& use) {
     if (auto o = overrides_.find(name); o != overrides_.end()) return o->second;
-    auto it = params_.find(name);
-    if (it == params_.end()) return std::nullopt;
-    if (evaluating_.count(name)) {
-      diags_.error(loc, fmt::format("parameter `{}` depends on itself", name), "");
+    if (auto c = cache_.find(name); c != cache_.end()) return c->second;
+    const AstParam& decl = *params_.at(name);
+    if (auto open = std::find(evaluating_.begin(), evaluating_.end(), name); open != evaluating_.end()) {
+      std::string path;
+      for (auto it = open; it != evaluating_.end(); ++it) path += *it + " -> ";
+      error(decl.loc, fmt::format("parameter `{}` depends on itself ({}{})", name, path, name),
+            "a loop bound or a name index needs a number: give one of these parameters a value that does not "
+            "refer back to it, e.g. param N = 8");
       return std::nullopt;
     }
-    evaluating_.insert(name);
+    evaluating_.push_back(name);
+    last_ = nullptr;
     std::map<std::string, long> none;
-    auto v = eval(*it->second->value, none);
-    evaluating_.erase(name);
+    auto v = eval(*decl.value, none);
+    evaluating_.pop_back();
+    // last_ is the most recent diagnostic, so still valid
+    if (!v && last_ && evaluating_.empty() && use.valid())
+      last_->notes.push_back(
+          {use, fmt::format("`{}` is needed at compile time here (loop bounds and name indices are unrolled by mbgc)", name)});
+    cache_[name] = v;
     return v;
   }
 
@@ -54,9 +83,22 @@ class Unroller {
       case AstExpr::Kind::Number: return e.number;
       case AstExpr::Kind::Name: {
         if (auto it = env.find(e.name); it != env.end()) return static_cast<double>(it->second);
-        if (auto v = param_value(e.name, e.loc)) return v;
-        diags_.error(e.loc, fmt::format("`{}` is not known at compile time", e.name),
-                     "loop bounds and name interpolations may use numbers, loop variables and top-level parameters");
+        if (component_params_.count(e.name)) {
+          error(e.loc, fmt::format("a loop inside component `{}` cannot use its parameter `{}` here", component_, e.name),
+                "the loop is unrolled once, when the component is compiled, not per instance: use numbers or "
+                "top-level parameters in loop bounds and name indices");
+          return std::nullopt;
+        }
+        if (is_parameter(e.name)) return param_value(e.name, e.loc);
+        std::vector<std::string> names;
+        for (const auto& [n, decl] : params_) names.push_back(n);
+        for (const auto& [n, v] : env) names.push_back(n);
+        std::string near = closest_name(e.name, names);
+        error(e.loc, fmt::format("`{}` is not known at compile time", e.name),
+              near.empty() ? "loop bounds and name indices may use numbers, loop variables and top-level parameters"
+                           : fmt::format("did you mean `{}`? (loop bounds and name indices may use numbers, loop "
+                                         "variables and top-level parameters)",
+                                         near));
         return std::nullopt;
       }
       case AstExpr::Kind::Unary: {
@@ -72,14 +114,21 @@ class Unroller {
           case '+': return *a + *b;
           case '-': return *a - *b;
           case '*': return *a * *b;
-          case '/': return *a / *b;
+          case '/':
+            if (*b == 0) {
+              error(e.loc, "division by zero in a value needed at compile time",
+                    "a bound or index divided by zero has no value: check the parameters in the divisor");
+              return std::nullopt;
+            }
+            return *a / *b;
           case '^': return std::pow(*a, *b);
         }
         return std::nullopt;
       }
       default:
-        diags_.error(e.loc, "this expression cannot be evaluated at compile time",
-                     "loop bounds may use + - * / ^, numbers, loop variables and top-level parameters");
+        error(e.loc, "this expression cannot be evaluated at compile time",
+              "loop bounds and name indices may use numbers, loop variables, top-level parameters and + - * / ^ "
+              "(no function calls, lists or indexing)");
         return std::nullopt;
     }
   }
@@ -87,25 +136,41 @@ class Unroller {
   std::optional<long> eval_integer(const AstExpr& e, const std::map<std::string, long>& env, const char* what) {
     auto v = eval(e, env);
     if (!v) return std::nullopt;
-    if (!std::isfinite(*v) || std::nearbyint(*v) != *v || std::fabs(*v) > 1e9) {
-      diags_.error(e.loc, fmt::format("{} must be an integer, but it is {}", what, *v), "");
+    if (!std::isfinite(*v) || std::fabs(*v) > kMaxIndex) {
+      error(e.loc, fmt::format("{} is {}, beyond what mbgc can unroll", what, *v),
+            fmt::format("loop bounds are integers between -{:.0f} and {:.0f}", kMaxIndex, kMaxIndex));
+      return std::nullopt;
+    }
+    if (std::nearbyint(*v) != *v) {
+      std::string from_set;
+      if (e.kind == AstExpr::Kind::Name && !env.count(e.name) && overrides_.count(e.name))
+        from_set = fmt::format(" (from --set {}={})", e.name, *v);
+      error(e.loc, fmt::format("{} must be an integer, but it is {}{}", what, *v, from_set),
+            "a loop counts whole steps: write integer bounds, e.g. for i in 1..N with param N = 8");
       return std::nullopt;
     }
     return static_cast<long>(*v);
   }
 
   /// A tiny parser for the text of one interpolation: integers, names, + - * / ( ).
+  /// Every intermediate value stays within kMaxIndex, so nothing overflows.
   std::optional<long> eval_text(const std::string& text, const SourceLoc& loc, const std::map<std::string, long>& env) {
     std::size_t pos = 0;
     bool ok = true;
-    auto fail = [&](const std::string& why) {
-      if (ok) diags_.error(loc, fmt::format("cannot evaluate `{{{}}}` in a name: {}", text, why),
-                           "write an integer expression of loop variables and parameters, e.g. link{i-1}");
+    const std::string usual = "write an integer expression of loop variables and parameters, e.g. link{i-1}";
+    auto fail = [&](const std::string& why, const std::string& hint = {}) {
+      if (ok) error(loc, fmt::format("cannot evaluate `{{{}}}` in a name: {}", text, why), hint.empty() ? usual : hint);
       ok = false;
       return 0L;
     };
+    auto bounded = [&](long v) {
+      if (ok && std::labs(v) > static_cast<long>(kMaxIndex))
+        return fail(fmt::format("the index exceeds {:.0f}", kMaxIndex), "name indices count things: keep them small");
+      return v;
+    };
     std::function<long()> sum;
     std::function<long()> atom = [&]() -> long {
+      if (!ok) return 0;
       if (pos >= text.size()) return fail("it ends too early");
       char c = text[pos];
       if (c == '-') { ++pos; return -atom(); }
@@ -117,27 +182,56 @@ class Unroller {
         return v;
       }
       if (std::isdigit(static_cast<unsigned char>(c))) {
+        std::size_t start = pos;
         long v = 0;
-        while (pos < text.size() && std::isdigit(static_cast<unsigned char>(text[pos]))) v = v * 10 + (text[pos++] - '0');
+        while (pos < text.size() && std::isdigit(static_cast<unsigned char>(text[pos]))) {
+          v = bounded(v * 10 + (text[pos++] - '0'));
+          if (!ok) return 0;
+        }
+        if (pos < text.size() && (text[pos] == '.' || text[pos] == 'e' || text[pos] == 'E')) {
+          std::size_t end = pos + 1;
+          while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '.')) ++end;
+          return fail(fmt::format("`{}` is not an integer", text.substr(start, end - start)),
+                      "a name index is an integer, e.g. link{i+1}");
+        }
         return v;
       }
       if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
         std::string name;
         while (pos < text.size() && (std::isalnum(static_cast<unsigned char>(text[pos])) || text[pos] == '_')) name += text[pos++];
         if (auto it = env.find(name); it != env.end()) return it->second;
+        if (component_params_.count(name))
+          return fail(fmt::format("`{}` is a parameter of component `{}`, not known when the loop is unrolled", name, component_),
+                      "use numbers, loop variables or top-level parameters in name indices");
+        if (!is_parameter(name)) {
+          std::vector<std::string> names;
+          for (const auto& [n, v] : env) names.push_back(n);
+          for (const auto& [n, decl] : params_) names.push_back(n);
+          std::string near = closest_name(name, names);
+          return fail(fmt::format("`{}` is not a loop variable or a top-level parameter", name),
+                      near.empty() ? usual : fmt::format("did you mean `{}`?", near));
+        }
         auto v = param_value(name, loc);
-        if (!v || std::nearbyint(*v) != *v) return fail(fmt::format("`{}` is not an integer known at compile time", name));
+        if (!v) { ok = false; return 0; }  // reported where the parameter is defined
+        if (std::nearbyint(*v) != *v || std::fabs(*v) > kMaxIndex)
+          return fail(fmt::format("`{}` is {}, not an integer", name, *v), "name indices need integer parameters");
         return static_cast<long>(*v);
       }
-      return fail(fmt::format("unexpected `{}`", c));
+      return fail(fmt::format("unexpected `{}`", c), "a name index may use + - * / and ( ), e.g. n{i}_{2*j+1}");
     };
     std::function<long()> product = [&]() -> long {
       long v = atom();
       while (ok && pos < text.size() && (text[pos] == '*' || text[pos] == '/')) {
         char op = text[pos++];
         long w = atom();
-        if (op == '/' && w == 0) return fail("division by zero");
-        v = op == '*' ? v * w : v / w;
+        if (!ok) return 0;
+        if (op == '/' && w == 0) {
+          std::string values;
+          for (const auto& [n, x] : env) values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", n, x);
+          return fail(fmt::format("division by zero{}", values.empty() ? "" : " (for " + values + ")"),
+                      "the divisor must not vanish for any value of the loop variables");
+        }
+        v = bounded(op == '*' ? v * w : v / w);
       }
       return v;
     };
@@ -146,12 +240,14 @@ class Unroller {
       while (ok && pos < text.size() && (text[pos] == '+' || text[pos] == '-')) {
         char op = text[pos++];
         long w = product();
-        v = op == '+' ? v + w : v - w;
+        if (!ok) return 0;
+        v = bounded(op == '+' ? v + w : v - w);
       }
       return v;
     };
     long v = sum();
-    if (ok && pos != text.size()) fail(fmt::format("unexpected `{}`", text[pos]));
+    if (ok && pos != text.size())
+      fail(fmt::format("unexpected `{}`", text[pos]), "a name index may use + - * / and ( ), e.g. n{i}_{2*j+1}");
     if (!ok) return std::nullopt;
     return v;
   }
@@ -245,32 +341,43 @@ class Unroller {
     return out;
   }
 
-  void expand(const std::vector<AstStmt>& stmts, const std::map<std::string, long>& env, std::vector<AstStmt>& out) {
+  void expand(const std::vector<AstStmt>& stmts, const std::map<std::string, long>& env, std::vector<AstStmt>& out,
+              const AstFor* outermost = nullptr) {
     for (const AstStmt& s : stmts) {
+      if (gave_up_) return;
       if (auto* loop = std::get_if<std::shared_ptr<AstFor>>(&s)) {
         const AstFor& f = **loop;
         if (env.count(f.var)) {
-          diags_.error(f.loc, fmt::format("loop variable `{}` hides an outer loop's variable", f.var), "use another name");
+          error(f.loc, fmt::format("loop variable `{}` hides an outer loop's variable", f.var),
+                fmt::format("rename the inner loop's variable, e.g. for {}2 in ...", f.var));
           continue;
         }
         auto from = eval_integer(*f.from, env, "a loop's lower bound");
         auto to = eval_integer(*f.to, env, "a loop's upper bound");
         if (!from || !to) continue;
         if (*to - *from >= kMaxIterations) {
-          diags_.error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
-                       fmt::format("mbgc unrolls loops; at most {} iterations", kMaxIterations));
+          error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
+                fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", kMaxIterations));
           continue;
         }
+        const AstFor* top = outermost ? outermost : &f;
         for (long i = *from; i <= *to; ++i) {
+          if (++work_ > kMaxWork) return give_up(*top);
           std::map<std::string, long> inner = env;
           inner[f.var] = i;
           std::vector<AstStmt> body;
           for (const AstStmt& b : f.body) body.push_back(instantiate(b, inner));
-          expand(body, inner, out);
+          expand(body, inner, out, top);
+          if (gave_up_) return;
         }
         continue;
       }
-      if (auto* par = std::get_if<AstParam>(&s); par && env.empty()) {
+      if (outermost && ++work_ > kMaxWork) return give_up(*outermost);
+      if (auto* comp = std::get_if<std::shared_ptr<AstComponent>>(&s)) {
+        out.push_back(unroll_component(**comp));
+        continue;
+      }
+      if (auto* par = std::get_if<AstParam>(&s); par && env.empty() && component_.empty()) {
         if (auto o = overrides_.find(par->name); o != overrides_.end()) {
           AstParam copy = *par;
           auto num = std::make_shared<AstExpr>();
@@ -286,10 +393,38 @@ class Unroller {
     }
   }
 
+  void give_up(const AstFor& outermost) {
+    if (gave_up_) return;
+    gave_up_ = true;
+    error(outermost.loc, fmt::format("these nested loops unroll into more than {} statements and iterations", kMaxWork),
+          "mbgc writes out every repetition at compile time: make the ranges smaller");
+  }
+
+  /// A component's loops are unrolled once, in its declaration: their bounds
+  /// may use top-level parameters, not the component's own.
+  std::shared_ptr<AstComponent> unroll_component(const AstComponent& c) {
+    auto copy = std::make_shared<AstComponent>(c);
+    component_ = c.name;
+    for (const AstParam& p : c.params) component_params_.insert(p.name);
+    copy->body.clear();
+    std::map<std::string, long> env;
+    expand(c.body, env, copy->body);
+    component_.clear();
+    component_params_.clear();
+    return copy;
+  }
+
   const std::map<std::string, double>& overrides_;
   Diagnostics& diags_;
   std::map<std::string, const AstParam*> params_;
-  std::set<std::string> evaluating_;
+  std::map<std::string, std::optional<double>> cache_;  // parameter values (nullopt: failed, reported)
+  std::vector<std::string> evaluating_;                 // parameters being evaluated (cycle detection)
+  std::set<std::tuple<int, int, int, std::string>> reported_;
+  Diagnostic* last_ = nullptr;                          // the most recent error
+  std::string component_;                               // the component whose loops are unrolled
+  std::set<std::string> component_params_;
+  long work_ = 0;
+  bool gave_up_ = false;
 };
 
 }  // namespace

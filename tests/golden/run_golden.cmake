@@ -6,7 +6,8 @@
 #       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot; mbgc must exit 0 and be
 #       deterministic (two runs, same bytes).
 # bad:  stderr must equal <NAME>.stderr and the exit status <NAME>.status;
-#       no output file may be written.
+#       no output file may be written. Extra mbgc arguments (e.g. --set N=2.5)
+#       may be given in <NAME>.args, one per line.
 # With the environment variable MBGC_BLESS=1 the expected files are rewritten
 # from the actual output instead (review the diff before committing).
 cmake_minimum_required(VERSION 3.20)
@@ -56,7 +57,11 @@ if(KIND STREQUAL "good")
 elseif(KIND STREQUAL "bad")
   set(out_file ${CMAKE_CURRENT_BINARY_DIR}/golden-bad-${NAME}.cpp)
   file(REMOVE ${out_file})
-  execute_process(COMMAND ${MBGC} ${NAME}.mbg -o ${out_file} WORKING_DIRECTORY ${DIR}
+  set(extra_args "")
+  if(EXISTS ${DIR}/${NAME}.args)
+    file(STRINGS ${DIR}/${NAME}.args extra_args)
+  endif()
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg -o ${out_file} ${extra_args} WORKING_DIRECTORY ${DIR}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(rc EQUAL 0)
     message(FATAL_ERROR "mbgc accepted bad model ${NAME}.mbg")
