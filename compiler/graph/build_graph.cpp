@@ -433,6 +433,13 @@ class Builder {
       }
       NameLookup plain = lookup_in(rn.scope);
       NameLookup with_locals = lookup_in(rn.scope, &locals);
+      if (el.value && n.kind == NodeKind::CN) {
+        diags_.error(el.value->loc, fmt::format("CN `{}` takes no value", n.name),
+                     fmt::format("a constraintor is defined by its position constraint, not by a modulus: write CN {} {{ g "
+                                 "= ... }} (add stiffness and damping for a penalty)",
+                                 n.name));
+        continue;
+      }
       if (el.value) {
         auto v = lower(*el.value, plain, diags_);
         if (!v) continue;
@@ -459,9 +466,15 @@ class Builder {
           auto v = lower(*a.value, with_locals, diags_);
           if (!v) continue;
           if (!(v->is_scalar() || (v->is_vector() && v->length() == n.dim))) {
-            diags_.error(a.value->loc, fmt::format("the law of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
-                         n.dim == 1 ? "a scalar element's law is a scalar expression"
-                                    : fmt::format("give a vector of {} components (a scalar applies to every component)", n.dim));
+            if (n.kind == NodeKind::CN)
+              diags_.error(a.value->loc, fmt::format("the constraint g of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
+                           fmt::format("a constraintor holds one row of g per dimension of its bond: give g {} row{}, or "
+                                       "give the CN's junction dimension [{}]",
+                                       n.dim, n.dim == 1 ? "" : "s", v->is_vector() ? v->length() : v->rows));
+            else
+              diags_.error(a.value->loc, fmt::format("the law of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
+                           n.dim == 1 ? "a scalar element's law is a scalar expression"
+                                      : fmt::format("give a vector of {} components (a scalar applies to every component)", n.dim));
             continue;
           }
           n.law_rhs = v->is_scalar() ? std::vector<Expr>(static_cast<std::size_t>(n.dim), v->items[0]) : v->items;
@@ -486,7 +499,8 @@ class Builder {
         }
       }
       if (!el.value && !has_law) {
-        diags_.error(n.loc, fmt::format("{} `{}` has no value or law", el.kind, n.name),
+        diags_.error(n.loc, n.kind == NodeKind::CN ? fmt::format("CN `{}` has no constraint g", n.name)
+                                                   : fmt::format("{} `{}` has no value or law", el.kind, n.name),
                      law_hint(n.kind, n.name));
         continue;
       }
@@ -508,7 +522,9 @@ class Builder {
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
       if (!v->is_scalar() || !only_params(*v)) {
-        diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name), "");
+        diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name),
+                     fmt::format("the penalty effort is e = stiffness * g + damping * f with constant coefficients, e.g. {} = 1e6",
+                                 a.key));
         return;
       }
       (a.key == "stiffness" ? k : d) = v;
