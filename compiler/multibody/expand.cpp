@@ -1,5 +1,7 @@
 #include "multibody/expand.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <deque>
 #include <fmt/format.h>
 #include <functional>
@@ -78,6 +80,59 @@ const std::set<std::string> kJointTypes = {"revolute", "spherical", "cylindrical
 bool has_rotation_coordinate(const std::string& t) { return t == "revolute" || t == "cylindrical" || t == "screw"; }
 bool has_axial_coordinate(const std::string& t) { return t == "prismatic" || t == "cylindrical" || t == "screw"; }
 
+/// Rows and columns of a value, when they can be told from the text alone.
+struct Shape {
+  int rows = 1, cols = 1;
+  bool operator==(const Shape& o) const { return rows == o.rows && cols == o.cols; }
+  bool scalar() const { return rows == 1 && cols == 1; }
+  std::string text() const {
+    if (scalar()) return "a scalar";
+    if (cols == 1) return fmt::format("a {}-vector", rows);
+    return fmt::format("a {}x{} matrix", rows, cols);
+  }
+};
+
+/// What a body or joint setting must be, and how to write it.
+struct Expected {
+  Shape shape;
+  const char* how;
+};
+
+const std::map<std::string, Expected> kBodySettingShapes = {
+    {"mass", {{1, 1}, "the mass is a scalar (kg), e.g. mass = 2"}},
+    {"inertia", {{3, 3}, "the inertia tensor about the centre of mass, in body axes, is a 3x3 matrix, e.g. inertia = diag(Jx, Jy, Jz)"}},
+    {"com", {{3, 1}, "the centre of mass is a body-frame position [x, y, z]"}},
+    {"r0", {{3, 1}, "the initial position of the centre of mass is [x, y, z] (world frame)"}},
+    {"v0", {{3, 1}, "the initial velocity of the centre of mass is [vx, vy, vz] (world frame)"}},
+    {"w0", {{3, 1}, "the initial angular velocity is [wx, wy, wz] (body frame)"}},
+    {"quat0", {{4, 1}, "the initial orientation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.3)"}},
+};
+const std::map<std::string, Expected> kJointSettingShapes = {
+    {"axis", {{3, 1}, "an axis is a direction [x, y, z] in the frames of both bodies"}},
+    {"axis_a", {{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}},
+    {"axis_b", {{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}},
+    {"rot0", {{4, 1}, "the initial relative rotation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.5)"}},
+    {"q0", {{1, 1}, "the initial joint coordinate is a scalar, e.g. q0 = 0.3"}},
+    {"rate0", {{1, 1}, "the initial joint rate is a scalar, e.g. rate0 = 0"}},
+    {"d0", {{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}},
+    {"ddot0", {{1, 1}, "the initial axial rate is a scalar"}},
+    {"pitch", {{1, 1}, "the pitch is a scalar (m per rad)"}},
+    {"length", {{1, 1}, "the length is a scalar (m)"}},
+    {"stiffness", {{1, 1}, "the penalty stiffness is a scalar"}},
+    {"damping", {{1, 1}, "the penalty damping is a scalar"}},
+    {"torque", {{1, 1}, "the drive torque about the joint axis is a scalar (N m)"}},
+    {"force", {{1, 1}, "the drive force along the joint axis is a scalar (N)"}},
+    {"motion", {{1, 1}, "a prescribed motion is a scalar function of t, e.g. motion = 0.5 * sin(t)"}},
+};
+
+/// Quantities `body.NAME` and `joint.NAME` users may read (defined in define_quantities).
+const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
+                                                  "omega", "omega_world", "angular_momentum", "kinetic_energy",
+                                                  "potential_energy"};
+/// Names a body's expansion uses for itself (`bob.mass`, `bob.v`, ...): not free for points.
+const std::set<std::string> kBodyInternalNames = {"mass", "inertia", "com", "r0", "v0", "q0", "w0", "v", "m", "r",
+                                                  "weight", "w", "J", "ejs", "qrate", "q"};
+
 class Expander {
  public:
   Expander(Diagnostics& diags, std::optional<Strategy> strategy_override)
@@ -93,6 +148,10 @@ class Expander {
     for (Joint& j : joints_) emit_joint(j);
     place_bodies();
     define_quantities();
+    for (std::size_t k : applied_) {
+      auto& el = std::get<AstElement>(generated_[k]);
+      el.value = rewrite_expr(el.value);
+    }
     for (const ForceElement& f : forces_) emit_force(f);
     AstProgram out;
     for (const AstStmt& s : in.stmts) {
@@ -111,39 +170,236 @@ class Expander {
     ground.placed = true;
     bodies_["ground"] = ground;
     for (const AstStmt& s : in.stmts) {
+      if (auto* p = std::get_if<AstParam>(&s)) params_[p->name] = p->value;
+      if (auto* i = std::get_if<AstInstance>(&s)) instances_[i->name] = i->loc;
+    }
+    for (const AstStmt& s : in.stmts) {
       if (auto* b = std::get_if<AstBody>(&s)) add_body(*b);
       else if (auto* st = std::get_if<AstSetting>(&s)) setting(*st);
     }
-    for (const AstStmt& s : in.stmts)
-      if (auto* j = std::get_if<AstJoint>(&s)) j->type == "force" ? add_force(*j) : add_joint(*j);
+    std::map<std::string, const AstJoint*> connectors;  // joints and force elements by name
+    for (const AstStmt& s : in.stmts) {
+      auto* j = std::get_if<AstJoint>(&s);
+      if (!j || !connector_name_ok(*j, connectors)) continue;
+      j->type == "force" ? add_force(*j) : add_joint(*j);
+    }
+  }
+
+  /// Joints and force elements name the parts they generate (`j1.cn`, `j1.angle`):
+  /// their names must differ from each other's and from the bodies'.
+  bool connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen) {
+    const char* what = j.type == "force" ? "force element" : "joint";
+    if (j.name == "ground") {
+      diags_.error(j.loc, fmt::format("a {} cannot be named `ground`", what), "`ground` is the fixed frame: choose another name");
+      return false;
+    }
+    if (auto b = bodies_.find(j.name); b != bodies_.end()) {
+      auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a body", what, j.name),
+                             fmt::format("bodies, joints and force elements share one namespace (`{}.angle`, `{}.position`): "
+                                         "rename the {}, e.g. `{}_joint`",
+                                         j.name, j.name, what, j.name));
+      d.notes.push_back({b->second.decl->loc, "the body is declared here"});
+      return false;
+    }
+    if (auto inst = instances_.find(j.name); inst != instances_.end()) {
+      auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of an instance", what, j.name),
+                             fmt::format("the {}'s parts (`{}.c`, `{}.cn`, ...) would mix with the instance's: rename one of them",
+                                         what, j.name, j.name));
+      d.notes.push_back({inst->second, "the instance is declared here"});
+      return false;
+    }
+    auto [it, fresh] = seen.emplace(j.name, &j);
+    if (!fresh) {
+      duplicate(it->second->type == "force" || j.type == "force" ? what : "joint", j.name, j.loc, it->second->loc);
+      return false;
+    }
+    return true;
+  }
+
+  /// A second declaration of `name`; inside a loop (the same statement again) reported once.
+  void duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first) {
+    if (at.file == first.file && at.line == first.line && at.col == first.col) {
+      if (!repeated_.insert(name).second) return;
+      diags_.error(at, fmt::format("{} `{}` is declared again in every iteration of the loop", what, name),
+                   fmt::format("interpolate the loop variable into the name, e.g. {}{{i}}", name));
+      return;
+    }
+    auto& d = diags_.error(at, fmt::format("{} `{}` is declared twice", what, name),
+                           fmt::format("give each {} its own name", what));
+    d.notes.push_back({first, "the first one is declared here"});
+  }
+
+  // ---- shapes and constants known from the text ---------------------------------------
+  /// The shape of `e` if it follows from numbers, lists, parameters and the
+  /// built-in functions; nullopt when it cannot be told here (checked later).
+  std::optional<Shape> shape_of(const AstExpr& e, int depth = 0) const {
+    if (depth > 50) return std::nullopt;
+    auto sub = [&](std::size_t k) { return k < e.args.size() ? shape_of(*e.args[k], depth + 1) : std::nullopt; };
+    switch (e.kind) {
+      case AstExpr::Kind::Number: return Shape{};
+      case AstExpr::Kind::Name: {
+        if (e.name == "t" || e.name == "pi") return Shape{};
+        auto p = params_.find(e.name);
+        if (p == params_.end() || !p->second) return std::nullopt;
+        return shape_of(*p->second, depth + 1);
+      }
+      case AstExpr::Kind::Unary: return sub(0);
+      case AstExpr::Kind::Index: return Shape{};
+      case AstExpr::Kind::Binary: {
+        auto a = sub(0), b = sub(1);
+        if (!a || !b) return std::nullopt;
+        switch (e.op) {
+          case '+':
+          case '-':
+            if (a->scalar()) return b;
+            if (b->scalar() || *a == *b) return a;
+            return std::nullopt;
+          case '*':
+            if (a->scalar()) return b;
+            if (b->scalar()) return a;
+            if (a->cols == b->rows) return Shape{a->rows, b->cols};
+            return std::nullopt;
+          case '/': return a;
+          case '^': return Shape{};
+        }
+        return std::nullopt;
+      }
+      case AstExpr::Kind::List: {
+        if (e.args.empty()) return std::nullopt;
+        auto first = sub(0);
+        if (!first) return std::nullopt;
+        for (std::size_t k = 1; k < e.args.size(); ++k)
+          if (auto s = sub(k); !s || !(*s == *first)) return std::nullopt;
+        if (first->scalar()) return Shape{static_cast<int>(e.args.size()), 1};
+        if (first->cols == 1) return Shape{static_cast<int>(e.args.size()), first->rows};
+        if (first->rows == 1) return Shape{static_cast<int>(e.args.size()), first->cols};
+        return std::nullopt;
+      }
+      case AstExpr::Kind::Call: {
+        static const std::set<std::string> scalar_fns = {
+            "sin", "cos",  "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",      "exp", "log",
+            "sqrt", "abs", "sign", "min", "max",  "step", "ramp",  "sine", "dot",  "heaviside", "norm"};
+        const std::string& f = e.name;
+        if (scalar_fns.count(f)) return Shape{};
+        auto count = [&](std::size_t k) -> std::optional<int> {
+          if (k >= e.args.size() || e.args[k]->kind != AstExpr::Kind::Number) return std::nullopt;
+          double n = e.args[k]->number;
+          if (n < 1 || n > 1000 || n != static_cast<int>(n)) return std::nullopt;
+          return static_cast<int>(n);
+        };
+        if (f == "diag") return Shape{static_cast<int>(e.args.size()), static_cast<int>(e.args.size())};
+        if (f == "eye") {
+          if (auto n = count(0)) return Shape{*n, *n};
+          return std::nullopt;
+        }
+        if (f == "zeros") {
+          auto r = count(0);
+          auto c = e.args.size() > 1 ? count(1) : std::optional<int>(1);
+          if (r && c) return Shape{*r, *c};
+          return std::nullopt;
+        }
+        if (f == "transpose") {
+          auto a = sub(0);
+          if (a) return Shape{a->cols, a->rows};
+          return std::nullopt;
+        }
+        if (f == "cross" || f == "bryant") return Shape{3, 1};
+        if (f == "skew" || f == "rotq") return Shape{3, 3};
+        if (f == "quat_rate") return Shape{4, 3};
+        if (f == "quat_mul" || f == "quat_conj" || f == "quat_axis_angle" || f == "quat_arc") return Shape{4, 1};
+        return std::nullopt;
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// The value of `e` if it is a constant: numbers, parameters and + - * / ^.
+  std::optional<double> constant_of(const AstExpr& e, int depth = 0) const {
+    if (depth > 50) return std::nullopt;
+    switch (e.kind) {
+      case AstExpr::Kind::Number: return e.number;
+      case AstExpr::Kind::Name: {
+        auto p = params_.find(e.name);
+        if (p == params_.end() || !p->second) return std::nullopt;
+        return constant_of(*p->second, depth + 1);
+      }
+      case AstExpr::Kind::Unary: {
+        auto a = constant_of(*e.args[0], depth + 1);
+        if (a && e.op == '-') return -*a;
+        return a;
+      }
+      case AstExpr::Kind::Binary: {
+        auto a = constant_of(*e.args[0], depth + 1), b = constant_of(*e.args[1], depth + 1);
+        if (!a || !b) return std::nullopt;
+        switch (e.op) {
+          case '+': return *a + *b;
+          case '-': return *a - *b;
+          case '*': return *a * *b;
+          case '/': return *b == 0 ? std::nullopt : std::optional<double>(*a / *b);
+          case '^': return std::pow(*a, *b);
+        }
+        return std::nullopt;
+      }
+      default: return std::nullopt;
+    }
+  }
+
+  static bool mentions_time(const AstExpr& e) {
+    if (e.kind == AstExpr::Kind::Name && e.name == "t") return true;
+    for (const E& a : e.args)
+      if (a && mentions_time(*a)) return true;
+    return false;
+  }
+
+  /// Reports a setting whose shape is known and wrong, or that depends on time.
+  void check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant = true) {
+    if (constant && mentions_time(value)) {
+      diags_.error(value.loc, fmt::format("{} depends on time", what),
+                   "body, joint and gravity settings are constants (parameters of the bond graph's elements); a "
+                   "time-varying load is a joint's torque or force, or a force element");
+      return;
+    }
+    auto got = shape_of(value);
+    if (!got || *got == want.shape) return;
+    diags_.error(value.loc, fmt::format("{} is {}, but it must be {}", what, got->text(), want.shape.text()), want.how);
   }
 
   void setting(const AstSetting& st) {
     if (st.key == "gravity") {
-      if (gravity_) diags_.error(st.loc, "gravity is set twice", "keep one `gravity = [gx, gy, gz]`");
+      if (gravity_) {
+        auto& d = diags_.error(st.loc, "gravity is set twice", "keep one `gravity = [gx, gy, gz]`");
+        d.notes.push_back({gravity_loc_, "gravity is first set here"});
+      }
+      check_shape(*st.value, "gravity", {{3, 1}, "gravity is an acceleration in the world frame: gravity = [gx, gy, gz] (m/s^2), e.g. [0, -9.81, 0]"});
       gravity_ = st.value;
       gravity_loc_ = st.loc;
       return;
     }
     if (st.key == "constraints") {
-      auto s = strategy_of(*st.value);
+      auto s = strategy_of(*st.value, "constraints");
       if (s && !override_) strategy_ = *s;
       return;
     }
-    diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty|coordinates`");
+    diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty`");
   }
 
-  std::optional<Strategy> strategy_of(const AstExpr& v) {
+  /// `constraints = ...` (the model's) or `constraint = ...` (a joint's).
+  std::optional<Strategy> strategy_of(const AstExpr& v, const char* key) {
+    const std::string choices = "lagrange (multipliers: a DAE for IDA) or penalty (stiff spring-dampers: an ODE)";
+    const std::string how = fmt::format("write {} = {}", key, choices);
     if (v.kind == AstExpr::Kind::Name) {
       if (v.name == "lagrange") return Strategy::Lagrange;
       if (v.name == "penalty") return Strategy::Penalty;
       if (v.name == "coordinates") {
-        diags_.error(v.loc, "`coordinates` (joint coordinates as states) is not available yet",
-                     "use `lagrange` (multipliers, a DAE for IDA) or `penalty` (stiff spring-dampers, an ODE)");
+        diags_.error(v.loc, "`coordinates` (joint coordinates as states, no constraint rows) is not implemented yet", how);
         return std::nullopt;
       }
+      std::string near = closest_name(v.name, {"lagrange", "penalty"});
+      diags_.error(v.loc, fmt::format("unknown constraint strategy `{}`", v.name),
+                   near.empty() ? how : fmt::format("did you mean `{}`? The strategies are {}", near, choices));
+      return std::nullopt;
     }
-    diags_.error(v.loc, "a constraint strategy is `lagrange`, `penalty` or `coordinates`", "e.g. constraints = lagrange");
+    diags_.error(v.loc, "a constraint strategy is a name: `lagrange` or `penalty`", how);
     return std::nullopt;
   }
 
@@ -155,44 +411,92 @@ class Expander {
       add_points(g, b, "ground");
       return;
     }
-    if (bodies_.count(b.name)) {
-      diags_.error(b.loc, fmt::format("body `{}` is declared twice", b.name), "give each body its own name");
+    if (auto first = bodies_.find(b.name); first != bodies_.end()) {
+      duplicate("body", b.name, b.loc, first->second.decl->loc);
       return;
+    }
+    if (auto inst = instances_.find(b.name); inst != instances_.end()) {
+      auto& d = diags_.error(b.loc, fmt::format("body `{}` has the name of an instance", b.name),
+                             fmt::format("the body's parts (`{}.v`, `{}.m`, ...) would mix with the instance's: rename one of them",
+                                         b.name, b.name));
+      d.notes.push_back({inst->second, "the instance is declared here"});
     }
     Body body;
     body.decl = &b;
     static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0"};
-    bool has_mass = false, has_inertia = false;
+    bool has_mass = false, has_inertia = false, mass_misspelt = false;
+    std::map<std::string, const AstAttr*> given;
     for (const AstAttr& a : b.attrs) {
       if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {
         std::string near = closest_name(a.key, keys);
         diags_.error(a.loc, fmt::format("body `{}` has no setting `{}`", b.name, a.key),
                      near.empty() ? fmt::format("a body takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+        mass_misspelt |= near == "mass";
+        continue;
+      }
+      if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
+        auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
+        d.notes.push_back({first->second->loc, "first given here"});
+        continue;
       }
       has_mass |= a.key == "mass";
       has_inertia |= a.key == "inertia";
+      check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
     }
-    if (!has_mass) diags_.error(b.loc, fmt::format("body `{}` has no mass", b.name), "write body name { mass = ...; inertia = ... }");
+    if (!has_mass && !mass_misspelt)
+      diags_.error(b.loc, fmt::format("body `{}` has no mass", b.name),
+                   fmt::format("the mass is the inertance of the body's translational I element: write body {} {{ mass = ...; "
+                               "inertia = ... }} (no inertia: a particle)",
+                               b.name));
+    if (auto m = given.find("mass"); m != given.end())
+      if (auto v = constant_of(*m->second->value); v && !(*v > 0))
+        diags_.error(m->second->value->loc, fmt::format("the mass of body `{}` is {}", b.name, *v),
+                     "the mass is the inertance of the body's translational I element and must be positive; a massless "
+                     "link between bodies is a joint (e.g. distance)");
+    if (auto in = given.find("inertia"); in != given.end() && in->second->value->kind == AstExpr::Kind::Call &&
+                                         in->second->value->name == "diag")
+      for (const E& x : in->second->value->args)
+        if (auto v = constant_of(*x); v && !(*v > 0))
+          diags_.error(x->loc, fmt::format("a principal moment of inertia of body `{}` is {}", b.name, *v),
+                       "the inertia tensor is the inertance of the body's rotational I element and must be positive definite");
     body.particle = !has_inertia;
     if (body.particle)
       for (const AstAttr& a : b.attrs)
         if (a.key == "com" || a.key == "quat0" || a.key == "w0")
           diags_.error(a.loc, fmt::format("body `{}` has no inertia, so it is a particle: `{}` means nothing", b.name, a.key),
-                       "give an inertia tensor (inertia = diag(Jx, Jy, Jz)) for a rigid body");
+                       fmt::format("a particle is a translational 1-junction only (mass, position, velocity): it has no "
+                                   "orientation, centre-of-mass offset or angular-velocity junction. Give it an inertia "
+                                   "(inertia = diag(Jx, Jy, Jz)) to make it a rigid body, or remove `{}`",
+                                   a.key));
     add_points(body, b, b.name);
     if (body.particle && !body.points.empty())
-      diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name), "a body without inertia is a point mass; give it an inertia to have points");
+      diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name),
+                   "a body without inertia is a point mass: it has no orientation, so a point away from it could not "
+                   "turn with it. Give it an inertia (inertia = diag(Jx, Jy, Jz)) to have points, or join the particle itself");
     bodies_[b.name] = body;
     body_order_.push_back(b.name);
   }
 
   void add_points(Body& body, const AstBody& b, const std::string& owner) {
     for (const AstPoint& p : b.points) {
-      if (body.points.count(p.name)) {
-        diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "");
+      if (auto first = body.points.find(p.name); first != body.points.end()) {
+        auto& d = diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "give each point its own name");
+        d.notes.push_back({point_locs_[owner + "." + p.name], "first declared here"});
         continue;
       }
+      if (!body.ground && (kBodyInternalNames.count(p.name) ||
+                           std::find(kBodyQuantities.begin(), kBodyQuantities.end(), p.name) != kBodyQuantities.end())) {
+        diags_.error(p.loc, fmt::format("a point cannot be named `{}`", p.name),
+                     fmt::format("`{}.{}` already means the body's own {}: rename the point, e.g. `{}_point`", owner, p.name,
+                                 kBodyInternalNames.count(p.name) ? "setting or bond-graph element" : "quantity", p.name));
+        body.points[p.name] = p.value;  // known, so that joints naming it are not reported again
+        continue;
+      }
+      check_shape(*p.value, fmt::format("point `{}` of `{}`", p.name, owner),
+                  {{3, 1}, body.ground ? "a ground point is a world position [x, y, z]"
+                                       : "a point is a body-frame position [x, y, z] (the frame of the body's own axes)"});
       body.points[p.name] = p.value;
+      point_locs_[owner + "." + p.name] = p.loc;
     }
   }
 
@@ -204,8 +508,12 @@ class Expander {
       std::vector<std::string> names;
       for (const auto& [n, x] : bodies_) names.push_back(n);
       std::string near = closest_name(body, names);
-      diags_.error(ep.loc, fmt::format("no body named `{}`", body),
-                   near.empty() ? "declare it with body name { mass = ...; inertia = ... }" : fmt::format("did you mean `{}`?", near));
+      SourceLoc at = ep.loc;
+      at.length = static_cast<int>(body.size());
+      diags_.error(at, fmt::format("no body named `{}`", body),
+                   near.empty() ? fmt::format("declare it: body {} {{ mass = ...; inertia = ... }}, or join one of: {}", body,
+                                              fmt::join(names, ", "))
+                                : fmt::format("did you mean `{}`?", near));
       return std::nullopt;
     }
     if (!point.empty() && !it->second.points.count(point)) {
@@ -256,6 +564,30 @@ class Expander {
     if (!diags_.has_errors()) forces_.push_back(fe);
   }
 
+  /// Settings whose constant value would make the joint degenerate.
+  void check_joint_constant(const AstJoint& j, const AstAttr& at) {
+    if (at.key == "axis" || at.key == "axis_a" || at.key == "axis_b") {
+      if (at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
+      for (const E& x : at.value->args) {
+        auto v = constant_of(*x);
+        if (!v || *v != 0) return;
+      }
+      diags_.error(at.value->loc, fmt::format("`{}` of joint `{}` is the zero vector", at.key, j.name),
+                   "an axis is a direction (it is normalised): give a nonzero vector, e.g. axis = [0, 0, 1]");
+      return;
+    }
+    auto v = constant_of(*at.value);
+    if (!v) return;
+    if (at.key == "length" && !(*v > 0))
+      diags_.error(at.value->loc, fmt::format("the length of distance joint `{}` is {}", j.name, *v),
+                   "a distance joint keeps two points `length` apart and must be positive; points that coincide are a "
+                   "spherical joint: write joint " + j.name + " spherical(...)");
+    if (at.key == "pitch" && *v == 0)
+      diags_.error(at.value->loc, fmt::format("the pitch of screw joint `{}` is 0", j.name),
+                   "a screw advances `pitch` metres per radian; with no advance it is a revolute joint: write joint " +
+                       j.name + " revolute(...)");
+  }
+
   void add_joint(const AstJoint& j) {
     if (!kJointTypes.count(j.type)) {
       std::vector<std::string> names(kJointTypes.begin(), kJointTypes.end());
@@ -268,7 +600,11 @@ class Expander {
     auto b = side(j.b);
     if (!a || !b) return;
     if (a->body == b->body) {
-      diags_.error(j.loc, fmt::format("joint `{}` connects `{}` to itself", j.name, a->body), "a joint connects two different bodies");
+      diags_.error(j.loc, fmt::format("joint `{}` connects `{}` to itself", j.name, a->body),
+                   a->body == "ground"
+                       ? "ground points never move, so a joint between two of them constrains nothing: join a body to ground"
+                       : "both ends would move with the same rigid body, so the joint's constraint rows could never change "
+                         "and its constraintor CN would act on nothing: connect two different bodies (or a body and ground)");
       return;
     }
     Joint joint;
@@ -290,9 +626,18 @@ class Expander {
                      near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
         continue;
       }
+      if (auto first = joint.attrs.find(at.key); first != joint.attrs.end()) {
+        auto& d = diags_.error(at.loc, fmt::format("`{}` of joint `{}` is given twice", at.key, j.name), "keep one of them");
+        d.notes.push_back({first->second->loc, "first given here"});
+        continue;
+      }
+      if (auto want = kJointSettingShapes.find(at.key); want != kJointSettingShapes.end())
+        check_shape(*at.value, fmt::format("`{}` of joint `{}`", at.key, j.name), want->second,
+                    at.key != "torque" && at.key != "force" && at.key != "motion");
+      check_joint_constant(j, at);
       joint.attrs[at.key] = &at;
       if (at.key == "constraint") {
-        if (auto s = strategy_of(*at.value)) joint.strategy = *s;
+        if (auto s = strategy_of(*at.value, "constraint")) joint.strategy = *s;
       }
     }
     for (const char* required : {"pitch", "length"})
@@ -304,7 +649,10 @@ class Expander {
       const Body& body = bodies_.at(s->body);
       if (body.particle && needs_orientation)
         diags_.error(j.loc, fmt::format("a {} joint needs the orientation of `{}`, which is a particle", j.type, s->body),
-                     "give the body an inertia, or use a spherical or distance joint");
+                     fmt::format("a particle (a body without inertia) has a translational 1-junction only, no "
+                                 "angular-velocity junction for the joint's rotational rows to act on: give `{}` an "
+                                 "inertia (inertia = diag(Jx, Jy, Jz)), or use a spherical or distance joint",
+                                 s->body));
     }
     joints_.push_back(std::move(joint));
   }
@@ -316,8 +664,12 @@ class Expander {
     return nullptr;
   }
 
-  void param(const Build& B, const std::string& name, E value) { generated_.push_back(AstParam{name, B.loc(), std::move(value)}); }
+  void param(const Build& B, const std::string& name, E value) {
+    generated_names_.insert(name);
+    generated_.push_back(AstParam{name, B.loc(), std::move(value)});
+  }
   void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {}) {
+    generated_names_.insert(name);
     AstElement el;
     el.kind = kind;
     el.kind_loc = B.loc();
@@ -328,6 +680,7 @@ class Expander {
     generated_.push_back(std::move(el));
   }
   void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out) {
+    generated_names_.insert(name);
     AstJunction j;
     j.type = type;
     j.kind_loc = B.loc();
@@ -466,7 +819,13 @@ class Expander {
     auto on_axis = [&] { r.push_back(B.dot(A.X, d)); r.push_back(B.dot(A.Y, d)); };
     if (t == "spherical") point();
     else if (t == "revolute") { point(); aligned(); }
-    else if (t == "universal") { point(); r.push_back(perp(A.Z, Bf.Z)); }
+    else if (t == "universal") {
+      // The cross's arms are A's x and B's y: perpendicular when the joint
+      // frames coincide (as the tree placement puts them), free to turn about
+      // either arm; the twist about the shafts (the frames' z) is forbidden.
+      point();
+      r.push_back(perp(A.X, Bf.Y));
+    }
     else if (t == "cylindrical") { on_axis(); aligned(); }
     else if (t == "prismatic") { on_axis(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
     else if (t == "screw") {
@@ -569,6 +928,7 @@ class Expander {
       for (const char* key : {"torque", "force"}) {
         if (!j.attrs.count(key)) continue;
         element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
+        applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
         bond(B, jn + ".applied", jn + ".drive");
       }
     }
@@ -610,7 +970,7 @@ class Expander {
           for (const AstAttr& a : d.attrs)
             if (a.key == key)
               diags_.error(a.loc, fmt::format("body `{}` is placed by joint `{}`, so `{}` cannot be given", n, body.placed_by, key),
-                           "give the joint's coordinates instead (q0, rate0), or remove the joint");
+                           placed_hint(body.placed_by));
         continue;
       }
       E r0 = attr(d, "r0"), v0 = attr(d, "v0");
@@ -621,6 +981,24 @@ class Expander {
       param(B, n + ".q0", q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
       param(B, n + ".w0", w0 ? w0 : B.vec(0, 0, 0));
     }
+  }
+
+  /// How to set the initial pose of a body that joint `jn` places.
+  std::string placed_hint(const std::string& jn) const {
+    const std::string* type = nullptr;
+    for (const Joint& j : joints_)
+      if (j.decl->name == jn) type = &j.decl->type;
+    std::string coords;
+    if (type) {
+      if (*type == "revolute" || *type == "screw") coords = "q0 (angle) and rate0";
+      else if (*type == "prismatic") coords = "q0 (displacement) and rate0";
+      else if (*type == "cylindrical") coords = "q0, rate0 (rotation) and d0, ddot0 (sliding)";
+      else if (*type == "spherical") coords = "rot0 (relative rotation)";
+      else if (*type == "distance") coords = "axis (the direction of the rod from the first point)";
+    }
+    std::string start = fmt::format("the initial pose and velocity follow from the parent body along joint `{}`", jn);
+    if (coords.empty()) return start + "; remove the setting, or join the body by another joint";
+    return fmt::format("{}: give the joint's {} instead", start, coords);
   }
 
   /// Pose and velocity names of a placed side (ground: constants).
@@ -808,11 +1186,36 @@ class Expander {
     }
   }
 
+  /// `bob.positon`: a name under a body or joint that is none of its quantities,
+  /// points or generated parts is a typo; say what the body or joint offers.
+  void check_known(const AstExpr& e) {
+    std::size_t dot = e.name.find('.');
+    if (dot == std::string::npos) return;
+    const std::string owner = e.name.substr(0, dot);
+    const bool is_body = owner != "ground" && bodies_.count(owner);
+    const bool is_joint = frames_.count(owner) > 0;
+    if (!is_body && !is_joint) return;
+    if (generated_names_.count(e.name)) return;
+    if (std::size_t last = e.name.rfind('.'); last != dot && generated_names_.count(e.name.substr(0, last))) return;
+    std::vector<std::string> offered;
+    for (const auto& [q, x] : quantity_)
+      if (q.compare(0, owner.size() + 1, owner + ".") == 0) offered.push_back(q.substr(owner.size() + 1));
+    if (is_body)
+      for (const auto& [p, x] : bodies_.at(owner).points) offered.push_back(p);
+    std::string rest = e.name.substr(dot + 1);
+    std::string near = closest_name(rest, offered);
+    diags_.error(e.loc, fmt::format("{} `{}` has no quantity `{}`", is_body ? "body" : "joint", owner, rest),
+                 near.empty() ? fmt::format("`{}` offers {}", owner, fmt::join(offered, ", "))
+                              : fmt::format("did you mean `{}.{}`?", owner, near));
+  }
+
   E rewrite_expr(const E& e) {
     if (!e) return e;
     if (e->kind == AstExpr::Kind::Name) {
       auto it = quantity_.find(e->name);
-      return it == quantity_.end() ? e : it->second;
+      if (it != quantity_.end()) return it->second;
+      check_known(*e);
+      return e;
     }
     bool changed = false;
     std::vector<E> args;
@@ -851,6 +1254,12 @@ class Expander {
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
   std::map<std::string, E> quantity_;
+  std::map<std::string, E> params_;                // the program's top-level parameters
+  std::map<std::string, SourceLoc> point_locs_;    // "body.point" -> declaration
+  std::map<std::string, SourceLoc> instances_;     // component instances (their parts are named `instance.part`)
+  std::set<std::string> repeated_;                 // names reported as declared in every loop iteration
+  std::set<std::string> generated_names_;          // parameters, elements and junctions expand wrote
+  std::vector<std::size_t> applied_;               // generated_ indices of joint drive loads (user expressions)
   E gravity_;
   SourceLoc gravity_loc_;
   std::optional<Strategy> override_;  // mbgc --constraints
