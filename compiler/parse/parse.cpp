@@ -217,9 +217,14 @@ class Parser {
     if (t.text == "point")
       fail("`point` belongs inside a body or ground block",
            "write body name { point p = [x, y, z] } or ground { point p = [x, y, z] }");
+    const std::string starts =
+        "a statement starts with model, import, param, signal, output, bond, simulate, component, instance, "
+        "body, ground, joint, force, gravity, constraints, for, an element kind (Se Sf I C R TF GY MTF MGY CN) "
+        "or a junction (0 or 1)";
+    std::vector<std::string> words(kKeywords.begin(), kKeywords.end());
+    std::string near = ir::closest_name(t.text, words);
     fail(fmt::format("unknown statement `{}`", t.text),
-         "a statement starts with model, import, param, signal, output, bond, simulate, component, "
-         "instance, an element kind (Se Sf I C R TF GY MTF MGY) or a junction (0 or 1)");
+         near.empty() ? starts : fmt::format("did you mean `{}`?", near));
   }
 
   /// `b` starts right where `a` ends: no whitespace between them.
@@ -512,6 +517,9 @@ class Parser {
     Name n = name("(the joint's name) after `joint`", form);
     j.name = n.text;
     j.loc = n.loc;
+    if (at(Tok::LParen))  // `joint revolute(a, b)` or `joint j (a, b)`: the name or the type is missing
+      fail(fmt::format("expected the joint's type after `joint {}`, found `(`", j.name),
+           "a joint has a name and a type: joint NAME TYPE(a, b), e.g. joint j1 revolute(ground.pivot, arm.a)");
     const Token& type = expect(Tok::Ident, "(the joint's type)", form);
     j.type = type.text;
     j.type_loc = type.loc;
@@ -553,7 +561,8 @@ class Parser {
   ir::AstStmt setting() {
     const Token& k = next();
     ir::AstSetting s{k.text, k.loc, nullptr};
-    const char* form = k.text == "gravity" ? "write gravity = [0, -9.81, 0]" : "write constraints = lagrange";
+    const char* form = k.text == "gravity" ? "write gravity = [0, -9.81, 0]"
+                                           : "write constraints = lagrange or constraints = penalty";
     expect(Tok::Assign, fmt::format("after `{}`", k.text).c_str(), form);
     if (k.text == "gravity") {
       s.value = expr();
@@ -574,7 +583,8 @@ class Parser {
     auto f = std::make_shared<ir::AstFor>();
     f->loc = next().loc;
     if (for_depth_ >= kMaxLoopNesting) {
-      diags_.error(f->loc, "for loops nested too deeply", "use fewer levels of loops");
+      diags_.error(f->loc, fmt::format("for loops nested more than {} deep", kMaxLoopNesting),
+                   "use fewer levels of loops");
       throw ParseError{};
     }
     f->var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;

@@ -977,7 +977,7 @@ TEST(ParseErrors, DeeplyNestedLoopsAreAnErrorNotACrash) {
   for (int k = 0; k < 2000; ++k) text += "for i in 1..2 {\n";
   auto c = parse(text);
   ASSERT_TRUE(c->diags.has_errors());
-  EXPECT_EQ(c->diags.all()[0].message, "for loops nested too deeply");
+  EXPECT_EQ(c->diags.all()[0].message, "for loops nested more than 64 deep");
 }
 
 TEST(ParseErrors, DeeplyNestedExpressionIsAnErrorNotACrash) {
