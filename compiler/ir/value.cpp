@@ -320,8 +320,12 @@ class Lowerer {
     const Value& v = args[k];
     if (v.is_scalar() && is_const(v.items[0], &c) && c == std::floor(c) && c >= 1 && c <= kMaxDimension)
       return static_cast<int>(c);
+    std::string got = !v.is_scalar()                     ? fmt::format("this is {}", v.shape())
+                      : !is_const(v.items[0], &c)        ? "this is not a constant: a parameter can change at run time "
+                                                           "(--set), a size cannot"
+                                                         : fmt::format("this is {}", c);
     diags_.error(e.args[k]->loc,
-                 fmt::format("`{}` needs a constant integer from 1 to {} here", e.name, kMaxDimension),
+                 fmt::format("`{}` needs a constant integer from 1 to {} here; {}", e.name, kMaxDimension, got),
                  call_hint(e.name));
     return std::nullopt;
   }
