@@ -954,7 +954,7 @@ TEST(ParseErrors, SettingsNeedTheirValue) {
   auto e = errors(*c);
   ASSERT_EQ(e.size(), 1u) << c->messages();  // `gravity [` is not a statement's shape: skipped in recovery
   EXPECT_EQ(e[0].message, "expected a name (the constraint method), found number `3`");
-  EXPECT_EQ(c->diags.all()[0].hint, "write constraints = lagrange");
+  EXPECT_EQ(c->diags.all()[0].hint, "write constraints = lagrange or constraints = penalty");
   c = parse("gravity\nR r = 1\n");
   e = errors(*c);
   ASSERT_EQ(e.size(), 1u) << c->messages();
