@@ -109,8 +109,8 @@ class Emitter {
     // -Wrestrict on operator+(const char*, std::string&&) (GCC PR 105329).
     for (std::size_t i = 0; i < g_.params.size(); ++i) mangle_.get(fmt::format("p{}", i), g_.params[i].name);
     for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get(fmt::format("v{}", i), g_.vars[i].name);
-    names_.var = [this](int id) { return mangle_.get("v" + std::to_string(id), ""); };
-    names_.param = [this](int id) { return mangle_.get("p" + std::to_string(id), ""); };
+    names_.var = [this](int id) { return mangle_.get(fmt::format("v{}", id), ""); };
+    names_.param = [this](int id) { return mangle_.get(fmt::format("p{}", id), ""); };
     class_name_ = mangle_.get("class", g_.model_name + "_model");
   }
 
@@ -198,7 +198,7 @@ class Emitter {
     for (const Parameter& p : g_.params)
       infos.push_back(fmt::format("{{{}, {}, {}}}", cpp_string(p.name),
                                   p.literal ? cpp_double(p.literal_value) : "std::numeric_limits<double>::quiet_NaN()",
-                                  cpp_string(p.literal ? "" : "= " + to_string(p.value, names_for_dump()))));
+                                  cpp_string(p.literal ? "" : computed_doc(p))));
     if (infos.empty()) params.body.push_back(CppStmt::line("return {};"));
     else {
       params.body.push_back(CppStmt::line("return {"));
@@ -243,6 +243,25 @@ class Emitter {
       set.body.push_back(CppStmt::line("return false;"));
     }
     c.public_methods.push_back(set);
+  }
+
+  /// "= FORMULA" of a computed parameter (sim --list-parameters prints it); a
+  /// long one (a joint frame from its axis) as the parameters it is computed from.
+  std::string computed_doc(const Parameter& p) const {
+    std::string formula = to_string(p.value, names_for_dump());
+    if (formula.size() <= 80) return "= " + formula;
+    std::unordered_set<int> ids;
+    collect_params(p.value, ids);
+    std::vector<int> order(ids.begin(), ids.end());
+    std::sort(order.begin(), order.end());
+    std::vector<std::string> from;
+    for (int id : order) {
+      const std::string& full = g_.params[static_cast<std::size_t>(id)].name;
+      std::string base = full.substr(0, full.find('['));  // link.axis_a[2] -> link.axis_a
+      if (std::find(from.begin(), from.end(), base) == from.end()) from.push_back(base);
+    }
+    if (from.empty()) return "= a long constant expression";
+    return fmt::format("= a function of {}", fmt::join(from, ", "));
   }
 
   Namer names_for_dump() const {

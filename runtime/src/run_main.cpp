@@ -27,9 +27,17 @@ namespace detail {
 
 namespace {
 
+/// NAME,DEFAULT lines. A parameter computed from others (a body's r0 from its
+/// joint, say) has no default of its own: `(computed: FORMULA)`, not `nan`.
 int list_parameters(const Model& model) {
-  for (const ParameterInfo& p : model.parameters())
-    fmt::print(stdout, "{},{}\n", p.name, p.default_value);
+  for (const ParameterInfo& p : model.parameters()) {
+    if (!std::isnan(p.default_value)) {
+      fmt::print(stdout, "{},{}\n", p.name, p.default_value);
+      continue;
+    }
+    std::string formula = p.unit_or_doc.rfind("= ", 0) == 0 ? p.unit_or_doc.substr(2) : p.unit_or_doc;
+    fmt::print(stdout, "{},(computed{}{})\n", p.name, formula.empty() ? "" : ": ", formula);
+  }
   std::fflush(stdout);
   return kExitSuccess;
 }

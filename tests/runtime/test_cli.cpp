@@ -96,6 +96,24 @@ TEST(Cli, ListParametersPrintsNameCommaDefault) {
   EXPECT_EQ(r.out, "k,0.5\nx0,2\n");
 }
 
+/// Decay with a parameter computed from another, as mbgc emits it.
+class DecayWithComputedParameter : public Decay {
+ public:
+  std::vector<ParameterInfo> parameters() const override {
+    auto out = Decay::parameters();
+    out.push_back({"tau", std::nan(""), "= 1/k"});
+    out.push_back({"other", std::nan(""), ""});
+    return out;
+  }
+};
+
+TEST(Cli, ListParametersShowsComputedOnesByFormulaNotNan) {
+  DecayWithComputedParameter m;
+  RunResult r = run(m, {"--list-parameters"}, false);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "k,0.5\nx0,2\ntau,(computed: 1/k)\nother,(computed)\n");
+}
+
 TEST(Cli, DaeModelRejectsNonIdaSolvers) {
   for (const char* solver : {"rk4", "dopri5", "cvode"}) {
     SmallDae m;

@@ -175,6 +175,17 @@ TEST(Emit, ParametersAreInitialisedWithTheirLocations) {
   EXPECT_NE(std::find(body.begin(), body.end(), "x[1] = 0.0;  // c.q (test.mbg:5:3)"), body.end());
 }
 
+TEST(Emit, ComputedParametersCarryTheirFormulaNotAValue) {
+  auto c = compile("param a = 2\nparam b = 3 * a\nparam v = [1, 2, 3]\nparam n = v / norm(v) / norm(v) / norm(v)\n"
+                   "Se src = b\nR r = n[1]\n1 j : src -> r\n");
+  std::string code = emit(*c);
+  EXPECT_NE(code.find(R"({"a", 2.0, ""})"), std::string::npos) << code;
+  EXPECT_NE(code.find(R"({"b", std::numeric_limits<double>::quiet_NaN(), "= 3*a"})"), std::string::npos) << code;
+  // a long formula is summarised by the parameters it reads
+  EXPECT_NE(code.find(R"({"n[1]", std::numeric_limits<double>::quiet_NaN(), "= a function of v"})"), std::string::npos)
+      << code;
+}
+
 TEST(Emit, SimulateBlockBecomesDefaultSettings) {
   auto c = compile(kSeriesRlc);
   ASSERT_TRUE(c->ok()) << c->messages();

@@ -51,8 +51,8 @@ struct Settings {
 /// A named, overridable model parameter (`--set NAME=VALUE`).
 struct ParameterInfo {
   std::string name;
-  double default_value;      ///< value from the model text (NaN if it is an expression)
-  std::string unit_or_doc;   ///< free text from the model (may be empty)
+  double default_value;      ///< value from the model text (NaN if it is computed from other parameters)
+  std::string unit_or_doc;   ///< free text from the model (may be empty); "= FORMULA" for a computed one
 };
 
 class Model {
