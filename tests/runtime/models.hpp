@@ -99,7 +99,10 @@ class ThreeModes : public TestModel {
   ThreeModes() { settings.t_end_s = 1.0; }
   const char* name() const override { return "three_modes"; }
   std::size_t size() const override { return 5; }
-  std::string variable_name(std::size_t i) const override { return "s" + std::to_string(i); }
+  std::string variable_name(std::size_t i) const override {
+    std::string s(1, 's');  // not "s" + std::to_string(i): a false -Wrestrict from GCC 12 at -O3 (PR 105329)
+    return s += std::to_string(i);
+  }
   std::vector<std::string> output_names() const override { return {"s0"}; }
   void initial(double, double* y, double*) override {
     for (int i = 0; i < 5; ++i) y[i] = 0.1 * (i + 1);
