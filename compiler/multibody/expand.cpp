@@ -196,8 +196,8 @@ class Expander {
     if (auto b = bodies_.find(j.name); b != bodies_.end()) {
       auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a body", what, j.name),
                              fmt::format("bodies, joints and force elements share one namespace (`{}.angle`, `{}.position`): "
-                                         "rename the {}, e.g. `{}_joint`",
-                                         j.name, j.name, what, j.name));
+                                         "rename the {}, e.g. `{}_{}`",
+                                         j.name, j.name, what, j.name, j.type == "force" ? "force" : "joint"));
       d.notes.push_back({b->second.decl->loc, "the body is declared here"});
       return false;
     }
@@ -210,7 +210,15 @@ class Expander {
     }
     auto [it, fresh] = seen.emplace(j.name, &j);
     if (!fresh) {
-      duplicate(it->second->type == "force" || j.type == "force" ? what : "joint", j.name, j.loc, it->second->loc);
+      const char* first = it->second->type == "force" ? "force element" : "joint";
+      if (std::string(first) != what) {
+        auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a {}", what, j.name, first),
+                               fmt::format("joints and force elements share one namespace (`{}.force`): rename one of them",
+                                           j.name));
+        d.notes.push_back({it->second->loc, fmt::format("the {} is declared here", first)});
+        return false;
+      }
+      duplicate(what, j.name, j.loc, it->second->loc);
       return false;
     }
     return true;
