@@ -530,7 +530,10 @@ class Emitter {
   /// row, then gdot (velocity level) for every row.
   void constraint_functions(CppClass& c) {
     std::size_t n = s_.constraints.size();
-    bool enforced = s_.constraints.front().multiplier >= 0;
+    // A model may mix strategies per joint: any lagrange row makes it a DAE
+    // whose drift is what the runtime reports.
+    bool enforced = std::any_of(s_.constraints.begin(), s_.constraints.end(),
+                                [](const ConstraintRow& r) { return r.multiplier >= 0; });
     if (s_.dae)
       c.public_methods.push_back({"", "std::size_t state_count() const override", {CppStmt::line(fmt::format("return {};", s_.states.size()))}});
     c.public_methods.push_back({"", "std::size_t position_constraint_count() const override", {CppStmt::line(fmt::format("return {};", n))}});

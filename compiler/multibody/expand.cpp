@@ -648,6 +648,14 @@ class Expander {
         if (auto s = strategy_of(*at.value, "constraint")) joint.strategy = *s;
       }
     }
+    if (joint.attrs.count("motion"))
+      for (const char* drive : {"torque", "force"})
+        if (auto it = joint.attrs.find(drive); it != joint.attrs.end())
+          diags_.error(it->second->loc, fmt::format("joint `{}` has both a prescribed motion and a {}", j.name, drive),
+                       fmt::format("with motion = f(t) a constraint row fixes the joint coordinate, so the {} only "
+                                   "changes that row's multiplier and never the motion: remove it, or remove "
+                                   "motion to let the {} drive the joint",
+                                   drive, drive));
     for (const char* required : {"pitch", "length"})
       if (std::find(keys.begin(), keys.end(), required) != keys.end() && !joint.attrs.count(required))
         diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required),
