@@ -324,9 +324,9 @@ TEST(Andrews, AnglesMatchTheTestSetReference) {
   // equations, the run has that lead after its first 0.1 ms from rest and
   // carries it: the first steps move positions by less than atol (the crank
   // tip by 2e-12 m in the first step), so they are resolved only roughly.
-  // It is smaller at atol 1e-12 (with --interval 1e-3: 9.6e-10 s), but this
-  // model's multipliers make IDA's Newton iteration fail at atol <= 1e-11 with
-  // the default 0.1 ms interval. An earlier build of the same model (another
+  // It is smaller at atol 1e-12 (with --interval 1e-3: 9.6e-10 s); at
+  // atol <= 1e-11 with the default 0.1 ms interval IDA's Newton iteration
+  // fails at t = 0 and the runtime restarts it (see TightAtolRestarts). An earlier build of the same model (another
   // round-off in initial()) led by 6.3e-10 s. So the tolerance is a time:
   // |error_i| <= 1e-8 s * |q_i'(0.03)| (beta: 1.1e-5 rad, gamma: 1.1e-7 rad).
   std::array<double, 7> err{};
@@ -350,9 +350,27 @@ TEST(Andrews, AnglesMatchTheTestSetReference) {
   EXPECT_LT(c.max_abs("max_abs_gdot"), 1e-6);
 }
 
+TEST(Andrews, TightAtolRestarts) {
+  // At atol 1e-11 rounding noise in the constraint rows (mu h ~ 1.6e-14)
+  // weighs ~16 in IDA's Newton test with the multipliers' weights scaled by
+  // h / interval, so Newton fails at t = 0 whatever the step (it used to
+  // stop there with IDA_CONV_FAIL at h = 2.6e-13 s). The runtime restarts
+  // with the weights scaled by h / 1 s and reaches the end, as accurate as
+  // the model's tolerances.
+  SimRun r = run(ANDREWS_SIM, "--atol 1e-11", "andrews_atol11");
+  ASSERT_EQ(r.status, 0) << r.log;
+  ASSERT_EQ(r.csv.rows.size(), 301u);
+  EXPECT_NE(r.log.find("after a Newton failure at t = 0 s, restarted"), std::string::npos) << r.log;
+  std::array<double, 7> err{};
+  andrews_time_shift(r.csv, &err);
+  for (std::size_t i = 0; i < 7; ++i)
+    EXPECT_LE(err[i], 1e-8 * std::abs(kAndrewsQdot[i])) << kAndrewsAngles[i];
+  EXPECT_LT(summary_position_drift(r.log), 1e-8) << r.log;
+}
+
 TEST(Andrews, ConvergesUnderToleranceRefinement) {
   // rtol 1e-5 ... 1e-8 with atol = rtol / 100 (atol 1e-10 is the model's;
-  // tighter fails, see above). Measured largest change of an angle at
+  // tighter needs a restart, see above). Measured largest change of an angle at
   // t = 0.03 between successive runs: 1.5e-3, 3.8e-4, 2.7e-6 rad; largest
   // error against the reference: 1.1e-3, 3.8e-4, 8.1e-6, 5.4e-6 rad; position
   // drift 5.1e-9, 6.8e-9, 1.9e-10, 1.8e-11 m. (The earlier build: changes

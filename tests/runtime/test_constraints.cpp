@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <tuple>
 
 #include "constrained_models.hpp"
 #include "harness.hpp"
@@ -228,6 +229,33 @@ TEST(Lagrange, PendulumPeriodMatchesTheAgmClosedForm) {
   EXPECT_TRUE(Contains(run.r.err, "(rod.g[0] at t = "));
   EXPECT_TRUE(Contains(run.r.err, "(rod.gdot[0] at t = "));
   EXPECT_EQ(run.r.err.find("violation"), std::string::npos);
+}
+
+TEST(Lagrange, ShortIntervalsAndTightAtolStillConverge) {
+  // Rounding noise delta in the g rows reaches mu as delta / h; with the
+  // multipliers' Newton weights scaled by h / interval it weighs
+  // delta / (interval atol) whatever the step. At interval * atol of 1e-18
+  // s (1e-5 s and 1e-13, 1e-6 s and 1e-12) IDA's steps collapsed (to 1e-21 s)
+  // and it stopped with IDA_TOO_MUCH_WORK. The runtime then restarts with
+  // the weights scaled by h / 1 s, and the run completes.
+  GglPendulum m;
+  for (auto [interval, atol, rows] : {std::tuple{"1e-5", "1e-13", 30001u},
+                                      std::tuple{"1e-6", "1e-12", 501u}}) {
+    const std::string t_end = num(std::strtod(interval, nullptr) * (rows - 1));
+    ConstrainedRun run = run_with_report(
+        m, {"--t-end", t_end, "--interval", interval, "--rtol", "1e-10", "--atol", atol});
+    ASSERT_EQ(run.r.status, 0) << "interval " << interval << "\n" << run.r.err;
+    EXPECT_TRUE(Contains(run.r.err, "restarted with those weights scaled by h / 1 s")) << run.r.err;
+    const Csv csv = parse_csv(run.r.csv);
+    ASSERT_EQ(csv.rows.size(), rows) << interval;
+    // Released from rest at y = 0: energy per unit mass u^2/2 + v^2/2 + g0 y stays 0.
+    for (std::size_t i = 0; i < csv.rows.size(); ++i) {
+      const double u = csv.at(i, "u"), v = csv.at(i, "v");
+      EXPECT_NEAR(0.5 * (u * u + v * v) + kG0 * csv.at(i, "y"), 0.0, 1e-10) << interval;
+    }
+    EXPECT_LT(column_max(run.report, "max_abs_g"), 1e-11) << interval;
+    EXPECT_LT(column_max(run.report, "max_abs_gdot"), 1e-9) << interval;
+  }
 }
 
 TEST(Lagrange, ARedundantRowIsFoundAndItsMultipliersHeldAtZero) {

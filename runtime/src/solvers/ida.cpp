@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "constraints.hpp"
@@ -39,8 +40,12 @@ class Ida final : public Integrator {
     else if (m_.constraint_shape().any())
       note = fmt::format(
           " (index-2 constraints: algebraic unknowns outside the error test, their Newton "
-          "weights scaled by h / interval; first step {})",
-          h0_ > 0.0 ? fmt::format("{:.2g} s", h0_) : std::string("IDA's own"));
+          "weights scaled by h / interval; first step {}{})",
+          h0_ > 0.0 ? fmt::format("{:.2g} s", h0_) : std::string("IDA's own"),
+          relaxed_at_ ? fmt::format("; after a Newton failure at t = {:.9g} s, restarted with "
+                                    "those weights scaled by h / 1 s",
+                                    *relaxed_at_)
+                      : std::string());
     return fmt::format(
         "IDA BDF, Newton, dense LU, finite-difference Jacobian{}, rtol {:g}, atol {:g}", note,
         s_.rtol, s_.atol);
@@ -84,6 +89,8 @@ class Ida final : public Integrator {
 
   bool advance_to(double t_out) override {
     int flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+    if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two())
+      flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
     if (flag < 0) return fail(flag);
     return true;
   }
@@ -152,6 +159,16 @@ class Ida final : public Integrator {
   ///    min(1, h / interval), the usual scaling of index-2 variables by the
   ///    step made dimensionless, so that small steps stay possible. The states
   ///    keep their weights, and the multipliers are outside the error test.
+  ///    Rounding noise delta in the g rows moves mu by delta / h, which then
+  ///    weighs delta / (interval atol) whatever the step (and IDA keeps a
+  ///    step's weights through its retries, so cutting h only makes it
+  ///    worse): at atol * interval near delta (1e-11 * 1e-4 s for Andrews'
+  ///    squeezer) Newton never converges (IDA_CONV_FAIL), or the steps
+  ///    collapse (IDA_TOO_MUCH_WORK). relax_index_two() then restarts with
+  ///    the reference time 1 s instead of the interval. (Not from the start:
+  ///    h / interval keeps the multipliers, and through them the states,
+  ///    converged tighter, which the energy balance of the crank-rocker and
+  ///    the drift of Andrews' squeezer at loose tolerances measurably need.)
   bool setup_index_two(double t0) {
     h0_ = initial_step(t0);
     if (h0_ > 0.0) check_setup(IDASetInitStep(mem_, h0_), "IDASetInitStep", sink_);
@@ -171,7 +188,7 @@ class Ida final : public Integrator {
       const double tol = self->s_.rtol * std::abs(yv[i]) + self->s_.atol;
       if (!(tol > 0.0)) return -1;  // IDA then reports IDA_BAD_EWT, as with its own weights
       wv[i] = 1.0 / tol;
-      if (ids[i] == 0.0) wv[i] *= std::min(1.0, h / self->s_.interval_s);
+      if (ids[i] == 0.0) wv[i] *= std::min(1.0, h / self->h_ref_);
     }
     return 0;
   }
@@ -199,6 +216,33 @@ class Ida final : public Integrator {
     if (norm > 0.0 && std::isfinite(norm)) h = std::min(h, 0.5 * std::sqrt(2.0 / norm));
     if (s_.t_end_s > t0) h = std::min(h, s_.t_end_s - t0);
     return h;
+  }
+
+  /// After IDA_CONV_FAIL or IDA_TOO_MUCH_WORK on an index-2 DAE: scale the
+  /// multipliers' weights by h / 1 s (the RADAU5 scaling of index-2
+  /// variables, under which their rounding noise weighs delta / atol, as in
+  /// a state) instead of h / interval, and restart from the last step IDA
+  /// completed, with y' and the multipliers made consistent there. Once per
+  /// run; false (nothing changed) if not applicable.
+  bool relax_index_two() {
+    if (!m_.is_dae() || !m_.constraint_shape().any() || relaxed_at_) return false;
+    if (s_.interval_s >= 1.0) return false;  // already the weaker scaling
+    // IDA's y' at its last step is the BDF formula's, not the DAE's: the
+    // order-1 restart needs the consistent one (as at the start).
+    std::vector<double> y(y_.data(), y_.data() + m_.size()), yp(yp_.data(), yp_.data() + m_.size());
+    if (!detail::consistent_initial_values(m_.model(), m_.constraint_shape(), t_, y.data(),
+                                           yp.data())
+             .ok)
+      return false;
+    std::copy(y.begin(), y.end(), y_.data());
+    std::copy(yp.begin(), yp.end(), yp_.data());
+    if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return false;
+    relaxed_at_ = t_;
+    h_ref_ = 1.0;
+    h0_ = initial_step(t_);
+    if (h0_ > 0.0) IDASetInitStep(mem_, h0_);
+    IDASetStopTime(mem_, s_.t_end_s);
+    return true;
   }
 
   const SerialVector& id_vector() {
@@ -237,6 +281,8 @@ class Ida final : public Integrator {
   SUNLinearSolver ls_ = nullptr;
   double t_ = 0.0;
   double h0_ = 0.0;  ///< first step chosen for an index-2 DAE (0: IDA's own)
+  double h_ref_ = s_.interval_s;  ///< multipliers' weights scaled by min(1, h / h_ref_)
+  std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
   SolverFailure failure_;
 };
 
