@@ -112,6 +112,14 @@ class Ida final : public Integrator {
     IDAGetNumNonlinSolvConvFails(mem_, &st.nonlin_conv_fails);
     IDAGetNumErrTestFails(mem_, &st.err_test_fails);
     IDAGetLastStep(mem_, &st.last_step);
+    // IDAReInit (relax_index_two) zeroes IDA's counters: add what came before.
+    st.steps += before_restart_.steps;
+    st.rhs_evals += before_restart_.rhs_evals;
+    st.fd_jac_evals += before_restart_.fd_jac_evals;
+    st.jac_evals += before_restart_.jac_evals;
+    st.nonlin_iters += before_restart_.nonlin_iters;
+    st.nonlin_conv_fails += before_restart_.nonlin_conv_fails;
+    st.err_test_fails += before_restart_.err_test_fails;
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
@@ -236,7 +244,9 @@ class Ida final : public Integrator {
       return false;
     std::copy(y.begin(), y.end(), y_.data());
     std::copy(yp.begin(), yp.end(), yp_.data());
+    SolverStats counted = stats();
     if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return false;
+    before_restart_ = counted;
     relaxed_at_ = t_;
     h_ref_ = 1.0;
     h0_ = initial_step(t_);
@@ -283,6 +293,8 @@ class Ida final : public Integrator {
   double h0_ = 0.0;  ///< first step chosen for an index-2 DAE (0: IDA's own)
   double h_ref_ = s_.interval_s;  ///< multipliers' weights scaled by min(1, h / h_ref_)
   std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
+  /// IDA's counters up to the restart (zero until then).
+  SolverStats before_restart_{0, 0, 0, 0, 0, 0, 0, 0.0, 0, {}};
   SolverFailure failure_;
 };
 
