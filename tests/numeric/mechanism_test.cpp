@@ -100,15 +100,7 @@ struct CrankRockerState {
 CrankRockerState crank_rocker_reference(double t, double dt = 1e-4) {
   std::array<double, 3> y{0, 0, 0};
   const long steps = std::lround(t / dt);
-  auto add = [](std::array<double, 3> a, const std::array<double, 3>& b, double h) {
-    for (int i = 0; i < 3; ++i) a[i] += h * b[i];
-    return a;
-  };
-  for (long n = 0; n < steps; ++n) {
-    auto k1 = crank_rocker_rates(y), k2 = crank_rocker_rates(add(y, k1, dt / 2));
-    auto k3 = crank_rocker_rates(add(y, k2, dt / 2)), k4 = crank_rocker_rates(add(y, k3, dt));
-    for (int i = 0; i < 3; ++i) y[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-  }
+  for (long n = 0; n < steps; ++n) y = rk4_step(y, dt, crank_rocker_rates);
   FourBar k(y[0]);
   const double w = y[1], a1 = crank_rocker_rates(y)[1];
   const double a2 = k.g2 * w * w + k.h2 * a1, a3 = k.g3 * w * w + k.h3 * a1;

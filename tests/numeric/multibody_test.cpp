@@ -232,15 +232,7 @@ std::array<double, 2> double_pendulum_reference(double T) {
   std::array<double, 4> y{0.3, 0.3, 0, 0};
   const double dt = 1e-5;
   const long steps = std::lround(T / dt);
-  auto add = [](std::array<double, 4> a, const std::array<double, 4>& b, double h) {
-    for (int i = 0; i < 4; ++i) a[i] += h * b[i];
-    return a;
-  };
-  for (long n = 0; n < steps; ++n) {
-    auto k1 = double_pendulum_rates(y), k2 = double_pendulum_rates(add(y, k1, dt / 2));
-    auto k3 = double_pendulum_rates(add(y, k2, dt / 2)), k4 = double_pendulum_rates(add(y, k3, dt));
-    for (int i = 0; i < 4; ++i) y[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-  }
+  for (long n = 0; n < steps; ++n) y = rk4_step(y, dt, double_pendulum_rates);
   return {y[0], y[1]};
 }
 
@@ -258,13 +250,7 @@ TEST(DoublePendulumReference, ConservesEnergy) {
   const double E0 = energy(y), dt = 1e-5;
   double worst = 0;
   for (int n = 0; n < 100000; ++n) {
-    auto add = [](std::array<double, 4> a, const std::array<double, 4>& b, double h) {
-      for (int i = 0; i < 4; ++i) a[i] += h * b[i];
-      return a;
-    };
-    auto k1 = double_pendulum_rates(y), k2 = double_pendulum_rates(add(y, k1, dt / 2));
-    auto k3 = double_pendulum_rates(add(y, k2, dt / 2)), k4 = double_pendulum_rates(add(y, k3, dt));
-    for (int i = 0; i < 4; ++i) y[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    y = rk4_step(y, dt, double_pendulum_rates);
     worst = std::max(worst, std::abs(energy(y) - E0));
   }
   EXPECT_LT(worst, 1e-12);

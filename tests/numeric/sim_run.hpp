@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -103,5 +104,21 @@ inline SimRun run(const std::string& sim, const std::string& args, const std::st
 }
 
 inline double rel_err(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+
+/// One classical RK4 step of y' = rates(y) (references written by hand in
+/// the tests, independent of mbgc and SUNDIALS).
+template <std::size_t N, class Rates>
+std::array<double, N> rk4_step(const std::array<double, N>& y, double dt, Rates&& rates) {
+  auto add = [](std::array<double, N> a, const std::array<double, N>& b, double h) {
+    for (std::size_t i = 0; i < N; ++i) a[i] += h * b[i];
+    return a;
+  };
+  const auto k1 = rates(y), k2 = rates(add(y, k1, dt / 2));
+  const auto k3 = rates(add(y, k2, dt / 2)), k4 = rates(add(y, k3, dt));
+  std::array<double, N> next = y;
+  for (std::size_t i = 0; i < N; ++i) next[i] += dt / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+  return next;
+}
 
 }  // namespace numeric
