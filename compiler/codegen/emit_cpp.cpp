@@ -346,8 +346,9 @@ class Emitter {
 
   /// `e` in C++, after defining (into `body`) the shared temporaries it needs, innermost first.
   std::string print_shared(const Expr& e, SharedTemps& shared, std::vector<CppStmt>& body, const std::string& why) {
+    std::unordered_set<const Node*> seen;
     std::function<void(const Expr&)> define = [&](const Expr& x) {
-      if (x->args.empty()) return;
+      if (x->args.empty() || !seen.insert(x.get()).second) return;
       for (const Expr& a : x->args) define(a);
       if (shared.pending.count(x) && !shared.temp.count(x)) {
         std::string name = fmt::format("cse{}", ++cse_counter_);
@@ -366,7 +367,12 @@ class Emitter {
                const std::vector<std::pair<std::string, Expr>>& results, const std::string& results_comment) {
     // Which variables does this section touch?
     std::unordered_set<int> used;
-    for (int i : assignment_indices) assignment_inputs(s_, s_.assignments[static_cast<std::size_t>(i)], used);
+    std::set<int> blocks_read;  // a block's unknowns share its inputs: read them once
+    for (int i : assignment_indices) {
+      const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
+      if (a.block >= 0 && !blocks_read.insert(a.block).second) continue;
+      assignment_inputs(s_, a, used);
+    }
     for (const auto& [target, e] : results) collect_vars(e, used);
     const char* y = s_.dae ? "y" : "x";
     bool any_read = false;
@@ -595,21 +601,28 @@ class Emitter {
   /// Largest subexpressions that depend on parameters only (1/J, m*g, ...):
   /// they are computed once in initial() instead of at every derivative call.
   void find_parameter_expressions() {
+    // Expressions are DAGs (derivatives and torn loops share sub-trees):
+    // every walk here remembers the nodes it has seen.
+    std::unordered_map<const Node*, bool> param_memo, costly_memo;
     std::function<bool(const Expr&)> param_only = [&](const Expr& e) {
-      if (e->op == Op::Var || e->op == Op::Time || e->op == Op::Der) return false;
+      if (auto it = param_memo.find(e.get()); it != param_memo.end()) return it->second;
+      bool r = !(e->op == Op::Var || e->op == Op::Time || e->op == Op::Der);
       for (const Expr& a : e->args)
-        if (!param_only(a)) return false;
-      return true;
+        if (r && !param_only(a)) r = false;
+      return param_memo[e.get()] = r;
     };
     // Only what costs something at run time (a division, a power, a function
     // call) is worth a member: -m * g reads better where it is used.
     std::function<bool(const Expr&)> costly = [&](const Expr& e) {
-      if (e->op == Op::Div || e->op == Op::Pow || e->op == Op::Call) return true;
+      if (auto it = costly_memo.find(e.get()); it != costly_memo.end()) return it->second;
+      bool r = e->op == Op::Div || e->op == Op::Pow || e->op == Op::Call;
       for (const Expr& a : e->args)
-        if (costly(a)) return true;
-      return false;
+        if (!r && costly(a)) r = true;
+      return costly_memo[e.get()] = r;
     };
+    std::unordered_set<const Node*> scanned;
     std::function<void(const Expr&)> scan = [&](const Expr& e) {
+      if (!scanned.insert(e.get()).second) return;
       bool trivial = e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty());
       if (!trivial && param_only(e) && costly(e)) {
         if (!hoisted_.count(e)) {

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   std::string constraints;
   app.add_option("--constraints", constraints,
-                 "lagrange|penalty: how joint constraints are enforced, replacing the model's `constraints = ...` "
+                 "lagrange|penalty|coordinates: how joint constraints are enforced, replacing the model's `constraints = ...` "
                  "(a joint's own `constraint = ...` still wins)")
       ->check(CLI::IsMember({"lagrange", "penalty", "coordinates"}));
   app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
@@ -42,11 +42,7 @@ int main(int argc, char** argv) {
     }
     opt.overrides[s.substr(0, eq)] = v;
   }
-  if (constraints == "coordinates") {
-    std::cerr << "mbgc: error: --constraints coordinates (joint coordinates as states) is not implemented yet; "
-                 "use lagrange (multipliers, a DAE for IDA) or penalty (stiff spring-dampers, an ODE)\n";
-    return 2;
-  }
+  if (constraints == "coordinates") opt.constraints = mbgc::multibody::Strategy::Coordinates;
   if (constraints == "lagrange") opt.constraints = mbgc::multibody::Strategy::Lagrange;
   if (constraints == "penalty") opt.constraints = mbgc::multibody::Strategy::Penalty;
   static const std::map<std::string, Dump> dumps = {{"none", Dump::None},           {"ast", Dump::Ast}, {"expanded", Dump::Expanded},

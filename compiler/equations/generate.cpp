@@ -86,6 +86,19 @@ class Generator {
     const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
     int b = nd.bonds[0];
     int s = sign(n, b);
+    if (nd.law == LawForm::FreeRate) {
+      // An independent rate (Bos' independent-coordinate junction, thesis §8.4):
+      // the flow is a state; the source must deliver no effort, and that
+      // equation determines the state's derivative (an acceleration).
+      for (int k = 0; k < nd.dim; ++k) {
+        int x = nd.state_vars[static_cast<std::size_t>(k)];
+        int dx = g_.add_var("der(" + g_.vars[static_cast<std::size_t>(x)].name + ")", VarKind::Derivative, nd.loc, x);
+        s_.states.push_back({x, dx, n, nd.initial.items[static_cast<std::size_t>(k)]});
+        emit(signed_(s, f(b, k)), var(x), f_id(b, k), nd.loc, label(nd, "f = rate (a state)"));
+        emit(e(b, k), constant(0), dx, nd.loc, label(nd, "e = 0, solved for der(rate)"));
+      }
+      return;
+    }
     for (int k = 0; k < nd.dim; ++k) {
       Expr v = nd.value.is_scalar() ? nd.value.items[0] : nd.value.items[static_cast<std::size_t>(k)];
       if (nd.kind == NodeKind::Se) emit(e(b, k), v, e_id(b, k), nd.loc, label(nd, "e = value"));

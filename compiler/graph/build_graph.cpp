@@ -287,8 +287,14 @@ class Builder {
         bond.flow_vars.push_back(g_.add_var(component_name(base[b], f.c_str(), k, bond.dim), VarKind::Flow, bond.loc, static_cast<int>(b)));
       }
     }
-    for (GraphNode& n : g_.nodes) {
-      if (!is_storage(n.kind) || n.bonds.empty()) continue;
+    for (std::size_t i = 0; i < g_.nodes.size(); ++i) {
+      GraphNode& n = g_.nodes[i];
+      if (n.bonds.empty()) continue;
+      if (is_free_rate(m_.nodes[i])) {
+        for (int k = 0; k < n.dim; ++k) n.state_vars.push_back(g_.add_var(component_name(n.name, "rate", k, n.dim), VarKind::State, n.loc));
+        continue;
+      }
+      if (!is_storage(n.kind)) continue;
       const char* q = n.kind == NodeKind::I ? "p" : "q";
       for (int k = 0; k < n.dim; ++k)
         n.state_vars.push_back(g_.add_var(component_name(n.name, q, k, n.dim), VarKind::State, n.loc));
@@ -404,6 +410,14 @@ class Builder {
     };
   }
 
+  /// `Sf name { rate0 = ... }` without a value: a free rate (LawForm::FreeRate).
+  static bool is_free_rate(const ResolvedNode& rn) {
+    if (!rn.element || rn.element->kind != "Sf" || rn.element->value) return false;
+    for (const AstAttr& a : rn.element->attrs)
+      if (a.key == "rate0") return true;
+    return false;
+  }
+
   // ---- element laws ---------------------------------------------------------------------
   static bool only_params(const Value& v) {
     for (const Expr& e : v.items) {
@@ -498,6 +512,11 @@ class Builder {
                                       : fmt::format("did you mean `{}`?", near));
         }
       }
+      if (is_free_rate(rn)) {
+        n.law = LawForm::FreeRate;
+        lower_initial(n, el, plain);
+        continue;
+      }
       if (!el.value && !has_law) {
         diags_.error(n.loc, n.kind == NodeKind::CN ? fmt::format("CN `{}` has no constraint g", n.name)
                                                    : fmt::format("{} `{}` has no value or law", el.kind, n.name),
@@ -585,6 +604,7 @@ class Builder {
   static bool is_initial_key(NodeKind k, const std::string& key) {
     if (k == NodeKind::I) return key == "p0" || key == "f0";
     if (k == NodeKind::C) return key == "q0" || key == "e0";
+    if (k == NodeKind::Sf) return key == "rate0";
     return false;
   }
   static std::vector<std::string> allowed_keys(NodeKind k) {
@@ -593,6 +613,7 @@ class Builder {
       case NodeKind::C: return {"e", "q0", "e0"};
       case NodeKind::I: return {"f", "p0", "f0"};
       case NodeKind::CN: return {"g", "stiffness", "damping"};
+      case NodeKind::Sf: return {"rate0"};
       default: return {};
     }
   }
@@ -647,7 +668,7 @@ class Builder {
         diags_.error(a.value->loc, fmt::format("initial value is {}, but `{}` has dimension {}", v->shape(), n.name, n.dim), "");
         return;
       }
-      bool given_as_state = a.key == "p0" || a.key == "q0";
+      bool given_as_state = a.key == "p0" || a.key == "q0" || a.key == "rate0";
       if (given_as_state) {
         n.initial.items = v->items;
         continue;

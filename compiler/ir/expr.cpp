@@ -642,6 +642,20 @@ void collect_vars(const Expr& e, std::unordered_set<int>& out) {
   });
 }
 
+void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out) {
+  // One walk over the union: the roots (a torn loop's matrix entries) share most nodes.
+  std::unordered_set<const Node*> seen;
+  std::vector<const Node*> stack;
+  for (const Expr& r : roots) stack.push_back(r.get());
+  while (!stack.empty()) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
+    if (n->op == Op::Var) out.insert(n->id);
+    for (const Expr& a : n->args) stack.push_back(a.get());
+  }
+}
+
 void collect_params(const Expr& e, std::unordered_set<int>& out) {
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Param) out.insert(n->id);

@@ -88,6 +88,7 @@ struct ExprEqual { bool operator()(const Expr& a, const Expr& b) const { return 
 
 /// Ids of the Var leaves in e (inside Der too).
 void collect_vars(const Expr& e, std::unordered_set<int>& out);
+void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out);  // of all roots, one walk
 void collect_params(const Expr& e, std::unordered_set<int>& out);
 bool depends_on_time(const Expr& e);
 bool contains_der(const Expr& e);

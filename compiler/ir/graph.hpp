@@ -36,6 +36,8 @@ enum class LawForm {
   Source,          // Se/Sf: value is the imposed effort/flow (any expression)
   Constraint,      // CN, lagrange: f = 0, e is an unknown multiplier
   Penalty,         // CN, penalty: e = stiffness * g + damping * f
+  FreeRate,        // Sf { rate0 = ... }: the flow is a state (an independent joint rate) and
+                   // the effort must vanish; the rate's derivative is found from e = 0
 };
 
 struct GraphNode {

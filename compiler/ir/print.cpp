@@ -247,14 +247,20 @@ std::string print_reduced(const ReducedSystem& s) {
     out += fmt::format("  {} := {}    ; {}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, value, a.origin,
                        d ? " [derivative]" : "", o ? " [outputs]" : "");
   }
+  // A torn loop's entries are DAGs whose printed trees can be huge (a long
+  // chain's mass matrix): past this size an entry prints as its node count.
+  auto entry = [&](const Expr& e) {
+    std::size_t nodes = size(e);
+    return nodes > 4000 ? fmt::format("<expression of {} nodes as a tree>", nodes) : to_string(e, n);
+  };
   for (std::size_t k = 0; k < s.linear_blocks.size(); ++k) {
     const LinearBlock& lb = s.linear_blocks[k];
     std::size_t m = lb.unknowns.size();
     out += fmt::format("linear block {} (A x = b, solved at run time with partial pivoting):\n", k + 1);
     for (std::size_t r = 0; r < m; ++r) {
       std::vector<std::string> row;
-      for (std::size_t c = 0; c < m; ++c) row.push_back(to_string(lb.a[r * m + c], n));
-      out += fmt::format("  [{}] * x = {}\n", fmt::join(row, ", "), to_string(lb.b[r], n));
+      for (std::size_t c = 0; c < m; ++c) row.push_back(entry(lb.a[r * m + c]));
+      out += fmt::format("  [{}] * x = {}\n", fmt::join(row, ", "), entry(lb.b[r]));
     }
     std::vector<std::string> xs;
     for (int u : lb.unknowns) xs.push_back(g.vars[static_cast<std::size_t>(u)].name);

@@ -52,6 +52,7 @@ struct Body {
   std::map<std::string, E> points;       // name -> body-frame coordinates (ground: inertial)
   bool placed = false;                   // initial pose known (ground, or from a tree joint)
   std::string placed_by;                 // joint that placed it
+  bool by_coordinates = false;           // its pose is a function of joint coordinates (no states of its own)
 };
 
 struct Side {
@@ -64,6 +65,8 @@ struct Joint {
   Side a, b;
   std::map<std::string, const AstAttr*> attrs;
   Strategy strategy = Strategy::Lagrange;
+  bool tree = false;       // places its child (a spanning-tree joint from ground)
+  bool a_is_parent = true; // tree joints: which side is the parent
 };
 
 /// `force NAME(a.P, b.Q) { force; torque; stiffness; damping; length }`: equal
@@ -144,6 +147,9 @@ class Expander {
     if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && !gravity_) return in;  // nothing multibody here
     if (gravity_) param(Build(gravity_loc_), "gravity", gravity_);
     for (const auto& [p, v] : bodies_.at("ground").points) param(Build(v->loc), "ground." + p, v);
+    find_tree();
+    check_coordinates();
+    if (diags_.has_errors()) return {};
     for (const std::string& name : body_order_) emit_body(bodies_.at(name));
     for (Joint& j : joints_) emit_joint(j);
     place_bodies();
@@ -388,26 +394,25 @@ class Expander {
       if (s && !override_) strategy_ = *s;
       return;
     }
-    diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty`");
+    diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty|coordinates`");
   }
 
   /// `constraints = ...` (the model's) or `constraint = ...` (a joint's).
   std::optional<Strategy> strategy_of(const AstExpr& v, const char* key) {
-    const std::string choices = "lagrange (multipliers: a DAE for IDA) or penalty (stiff spring-dampers: an ODE)";
+    const std::string choices =
+        "lagrange (multipliers: a DAE for IDA), penalty (stiff spring-dampers: an ODE) or coordinates (joint "
+        "coordinates as states, for trees: an ODE)";
     const std::string how = fmt::format("write {} = {}", key, choices);
     if (v.kind == AstExpr::Kind::Name) {
       if (v.name == "lagrange") return Strategy::Lagrange;
       if (v.name == "penalty") return Strategy::Penalty;
-      if (v.name == "coordinates") {
-        diags_.error(v.loc, "`coordinates` (joint coordinates as states, no constraint rows) is not implemented yet", how);
-        return std::nullopt;
-      }
-      std::string near = closest_name(v.name, {"lagrange", "penalty"});
+      if (v.name == "coordinates") return Strategy::Coordinates;
+      std::string near = closest_name(v.name, {"lagrange", "penalty", "coordinates"});
       diags_.error(v.loc, fmt::format("unknown constraint strategy `{}`", v.name),
                    near.empty() ? how : fmt::format("did you mean `{}`? The strategies are {}", near, choices));
       return std::nullopt;
     }
-    diags_.error(v.loc, "a constraint strategy is a name: `lagrange` or `penalty`", how);
+    diags_.error(v.loc, "a constraint strategy is a name: `lagrange`, `penalty` or `coordinates`", how);
     return std::nullopt;
   }
 
@@ -734,21 +739,66 @@ class Expander {
         forces_in.push_back(f + ".on_" + n + "_f");
         if (!body.particle) torques_in.push_back(f + ".on_" + n + "_t");
       }
-    junction(B, '1', n + ".v", 3, forces_in, {n + ".m", n + ".r"});
-    element(B, "I", n + ".m", B.op('*', B.name(n + ".mass"), B.call("eye", {B.num(3)})), {kv("f0", B.name(n + ".v0"), d.loc)});
-    element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
+    // A body moved by joint coordinates has no states of its own: its inertias
+    // take derivative causality and its pose is a function of the coordinates.
+    const bool own_states = !body.by_coordinates;
+    std::vector<std::string> v_out = {n + ".m"};
+    if (own_states) v_out.push_back(n + ".r");
+    junction(B, '1', n + ".v", 3, forces_in, v_out);
+    std::vector<AstAttr> m_init, J_init;
+    if (own_states) m_init.push_back(kv("f0", B.name(n + ".v0"), d.loc)), J_init.push_back(kv("f0", B.name(n + ".w0"), d.loc));
+    element(B, "I", n + ".m", B.op('*', B.name(n + ".mass"), B.call("eye", {B.num(3)})), m_init);
+    if (own_states) element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
     if (gravity_) element(B, "Se", n + ".weight", B.op('*', B.name(n + ".mass"), B.name("gravity")));
     if (body.particle) return;
     E com = attr(d, "com");
     param(B, n + ".com", com ? com : B.vec(0, 0, 0));
     param(B, n + ".inertia", attr(d, "inertia"));
-    junction(B, '1', n + ".w", 3, torques_in, {n + ".J", n + ".ejs", n + ".qrate.p1"});
-    element(B, "I", n + ".J", B.name(n + ".inertia"), {kv("f0", B.name(n + ".w0"), d.loc)});
+    std::vector<std::string> w_out = {n + ".J", n + ".ejs"};
+    if (own_states) w_out.push_back(n + ".qrate.p1");
+    junction(B, '1', n + ".w", 3, torques_in, w_out);
+    element(B, "I", n + ".J", B.name(n + ".inertia"), J_init);
     // Euler junction structure: torque omega x h on the body-frame junction, no power.
     element(B, "R", n + ".ejs", nullptr, {kv("e", B.call("cross", {B.name("f"), B.name(n + ".J.p")}), d.loc)});
+    if (!own_states) return;
     element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
     element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
     bond(B, n + ".qrate.p2", n + ".q", 4);
+  }
+
+  // ---- pose of a body: its states, or (joint coordinates) signals of its tree joint ----
+  /// Centre-of-mass position, world frame.
+  E position(const Build& B, const std::string& body) const {
+    const Body& b = bodies_.at(body);
+    if (b.ground) return B.vec(0, 0, 0);
+    if (!b.by_coordinates) return B.name(body + ".r.q");
+    return B.list({B.name(body + ".pose.r1"), B.name(body + ".pose.r2"), B.name(body + ".pose.r3")});
+  }
+  /// Orientation quaternion [w, x, y, z], body -> world.
+  E quaternion(const Build& B, const std::string& body) const {
+    const Body& b = bodies_.at(body);
+    if (b.ground || b.particle) return B.list({B.num(1), B.num(0), B.num(0), B.num(0)});
+    if (!b.by_coordinates) return B.name(body + ".q.q");
+    std::vector<E> q;
+    for (int k = 1; k <= 4; ++k) q.push_back(B.name(fmt::format("{}.pose.q{}", body, k)));
+    return B.list(q);
+  }
+  /// Rotation matrix body -> world (computed once per body in coordinates).
+  E rotation(const Build& B, const std::string& body) const {
+    const Body& b = bodies_.at(body);
+    if (b.ground || b.particle) return B.call("eye", {B.num(3)});
+    if (!b.by_coordinates) return B.call("rotq", {B.name(body + ".q.q")});
+    std::vector<E> rows_;
+    for (int r = 1; r <= 3; ++r) {
+      std::vector<E> row;
+      for (int c = 1; c <= 3; ++c) row.push_back(B.name(fmt::format("{}.pose.R{}{}", body, r, c)));
+      rows_.push_back(B.list(row));
+    }
+    return B.list(rows_);
+  }
+  void signal(const Build& B, const std::string& name, E value) {
+    generated_names_.insert(name);
+    generated_.push_back(AstSignal{name, B.loc(), std::move(value)});
   }
 
   // ---- 3. joints -------------------------------------------------------------------------
@@ -768,11 +818,11 @@ class Expander {
     f.particle = body.particle;
     f.body = s.body;
     const std::string jn = j.decl->name;
-    f.R = body.ground || body.particle ? B.call("eye", {B.num(3)}) : B.call("rotq", {B.name(s.body + ".q.q")});
+    f.R = rotation(B, s.body);
     E local = B.name(jn + ".p" + tag);  // the point in CoM-relative body coordinates (ground: absolute)
     if (body.ground) f.p = local;
-    else if (body.particle) f.p = B.name(s.body + ".r.q");
-    else f.p = B.op('+', B.name(s.body + ".r.q"), B.op('*', f.R, local));
+    else if (body.particle) f.p = position(B, s.body);
+    else f.p = B.op('+', position(B, s.body), B.op('*', f.R, local));
     E F = B.op('*', f.R, B.name(jn + ".F" + tag));
     f.X = B.op('*', F, B.vec(1, 0, 0));
     f.Y = B.op('*', F, B.vec(0, 1, 0));
@@ -906,6 +956,10 @@ class Expander {
     Frame A = frame(B, j, j.a, "a");
     Frame Bf = frame(B, j, j.b, "b");
     frames_[jn] = {A, Bf};
+    if (j.strategy == Strategy::Coordinates) {
+      emit_coordinate_joint(B, j);
+      return;
+    }
     std::vector<E> g = rows(B, j, A, Bf);
     int k = static_cast<int>(g.size());
     E gvec = B.list(g);
@@ -950,6 +1004,116 @@ class Expander {
     }
   }
 
+  // ---- 3b. joints in joint coordinates (constraints = coordinates) ----------------------
+  /// The joint's free directions as independent rates (thesis §8.4, the
+  /// minimal-variable form): per coordinate a 1-junction whose flow is a free
+  /// rate source `Sf { rate0 }` (a state), with a zero-effort C integrating it
+  /// into the coordinate. The child's velocity junctions get their flows from
+  /// the parent's and these rates through MTFs summed on 0-junctions, so the
+  /// child's inertias take derivative causality; reduce differentiates their
+  /// momenta and solves the accelerations (a mass-matrix system) from the
+  /// rate sources' zero-effort equations.
+  void emit_coordinate_joint(const Build& B, const Joint& j) {
+    const AstJoint& d = *j.decl;
+    const std::string jn = d.name;
+    const std::string& t = d.type;
+    const bool fwd = j.a_is_parent;
+    const std::string& parent = fwd ? j.a.body : j.b.body;
+    const std::string& child = fwd ? j.b.body : j.a.body;
+    const Body& P = bodies_.at(parent);
+    E zero = B.num(0);
+    const AstAttr* motion = j.attrs.count("motion") ? j.attrs.at("motion") : nullptr;
+    // coordinate k: junction, value (state or prescribed), flow
+    struct Coord { std::string junction; E value; E rate; };
+    std::vector<Coord> coords;
+    auto coordinate = [&](const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) {
+      Coord k{junction, nullptr, nullptr};
+      if (prescribed) {
+        element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion->value}));
+        junction_(B, junction, {jn + "." + c + "_rate"});
+        k.value = motion->value;
+      } else {
+        element(B, "Sf", jn + "." + c + "_rate", nullptr, {kv("rate0", rate0, d.loc)});
+        element(B, "C", jn + "." + c, nullptr, {kv("e", zero, d.loc), kv("q0", q0, d.loc)});
+        junction_(B, junction, {jn + "." + c + "_rate"}, {jn + "." + c});
+        k.value = B.name(jn + "." + c + ".q");
+      }
+      k.rate = B.name(jn + "." + c + "_rate.f");
+      coords.push_back(k);
+      return coords.size() - 1;
+    };
+    std::optional<std::size_t> rot, ax;
+    if (has_rotation_coordinate(t))
+      rot = coordinate(jn + ".drive", "theta", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr);
+    if (t == "prismatic")
+      ax = coordinate(jn + ".drive", "s", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr);
+    if (t == "cylindrical") ax = coordinate(jn + ".slide", "s", attr_or(j, "d0", zero), attr_or(j, "ddot0", zero), false);
+    for (const char* key : {"torque", "force"}) {
+      if (!j.attrs.count(key)) continue;
+      element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
+      applied_.push_back(generated_.size() - 1);
+      bond(B, jn + ".applied", jn + ".drive");
+    }
+    // pose of the child as signals of the coordinates
+    E angle = rot ? coords[*rot].value : zero;
+    E axial = ax ? coords[*ax].value : zero;
+    if (t == "screw") axial = B.op('*', B.name(jn + ".pitch"), angle);
+    E axis_a = B.name(jn + ".axis_a");
+    E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
+    E pb = B.name(jn + ".pb");
+    E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
+    E qrel = B.call("quat_axis_angle", {B.vec(0, 0, 1), angle});
+    auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
+    auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
+    E qP = quaternion(B, parent), RP = rotation(B, parent);
+    E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
+    for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
+    E Rq = B.call("rotq", {quaternion(B, child)});
+    for (int r = 1; r <= 3; ++r)
+      for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rq, r, c));
+    E RC = rotation(B, child);
+    E joint_point = fwd ? B.op('+', position(B, parent), B.op('*', RP, pa)) : B.op('+', position(B, parent), B.op('*', RP, pb));
+    if (P.ground) joint_point = fwd ? pa : pb;  // ground points are absolute
+    E rC = B.op('-', joint_point, B.op('*', RC, fwd ? pb : pa));
+    for (int k = 0; k < 3; ++k) signal(B, fmt::format("{}.pose.r{}", child, k + 1), B.at(rC, k + 1));
+    // velocities: child omega (body frame) and CoM velocity (world) as sums of MTF flows
+    auto T = [&](E m) { return B.call("transpose", {std::move(m)}); };
+    auto skew = [&](E x) { return B.call("skew", {std::move(x)}); };
+    auto feed = [&](const std::string& from, const std::string& mtf, E modulus, const std::string& sum) {
+      element(B, "MTF", mtf, std::move(modulus));
+      bond(B, from, mtf + ".p1");
+      bond(B, mtf + ".p2", sum);
+    };
+    const std::string wsum = jn + ".wsum", vsum = jn + ".vsum";
+    junction(B, '0', wsum, 3, {}, {});
+    junction(B, '0', vsum, 3, {}, {});
+    E RCt_RP = B.op('*', T(RC), RP);
+    if (!P.ground) feed(parent + ".w", jn + ".pw", RCt_RP, wsum);
+    if (rot) feed(coords[*rot].junction, jn + ".rw", fwd ? B.op('*', RCt_RP, axis_a) : B.neg(axis_a), wsum);
+    if (!P.ground) {
+      feed(parent + ".v", jn + ".pv", B.call("eye", {B.num(3)}), vsum);
+      feed(parent + ".w", jn + ".pwv", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
+    }
+    E slide = fwd ? B.op('*', RP, axis_a) : B.neg(B.op('*', RC, axis_a));
+    if (ax) feed(coords[*ax].junction, jn + ".sv", slide, vsum);
+    if (t == "screw") feed(coords[*rot].junction, jn + ".sv", B.op('*', B.name(jn + ".pitch"), slide), vsum);
+    feed(child + ".w", jn + ".cwv", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
+    named_bond(B, jn + ".reaction_t", wsum, child + ".w");
+    named_bond(B, jn + ".reaction_f", vsum, child + ".v");
+    coordinate_values_[jn] = {angle, rot ? coords[*rot].rate : zero, axial,
+                              ax ? coords[*ax].rate : (t == "screw" ? B.op('*', B.name(jn + ".pitch"), coords[*rot].rate) : zero)};
+  }
+
+  /// A 1-junction with the given elements bonded into / out of it.
+  void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {}) {
+    junction(B, '1', name, 1, std::move(in), std::move(out));
+  }
+  void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to) {
+    bond(B, from, to);
+    std::get<AstBond>(generated_.back()).name = name;
+    generated_names_.insert(name);
+  }
+
   std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
     const std::string& t = j.decl->type;
     if (t == "prismatic") return B.dot(A.Z, B.op('-', Bf.p, A.p));
@@ -958,25 +1122,84 @@ class Expander {
   }
 
   // ---- 4. initial conditions along a spanning tree from ground ----------------------------
-  void place_bodies() {
+  /// A spanning tree from ground, breadth first: each body is placed by the
+  /// first joint that reaches it; the other joints close loops.
+  void find_tree() {
     std::deque<std::string> queue{"ground"};
-    std::set<const Joint*> used;
     while (!queue.empty()) {
       std::string from = queue.front();
       queue.pop_front();
-      for (const Joint& j : joints_) {
-        if (used.count(&j)) continue;
+      for (Joint& j : joints_) {
+        if (j.tree) continue;
         bool forward = j.a.body == from, backward = j.b.body == from;
         if (!forward && !backward) continue;
         const std::string& child = forward ? j.b.body : j.a.body;
         if (bodies_.at(child).placed) continue;  // closes a loop: the runtime assembles it
-        used.insert(&j);
-        place(j, forward);
-        bodies_.at(child).placed = true;
-        bodies_.at(child).placed_by = j.decl->name;
+        j.tree = true;
+        j.a_is_parent = forward;
+        Body& c = bodies_.at(child);
+        c.placed = true;
+        c.placed_by = j.decl->name;
+        c.by_coordinates = j.strategy == Strategy::Coordinates;
+        tree_order_.push_back(&j);
         queue.push_back(child);
       }
     }
+  }
+
+  /// The tree joints from `body` up to ground.
+  std::vector<std::string> path_to_ground(std::string body) const {
+    std::vector<std::string> path;
+    while (body != "ground" && bodies_.at(body).placed) {
+      const std::string& jn = bodies_.at(body).placed_by;
+      path.push_back(jn);
+      for (const Joint& j : joints_)
+        if (j.decl->name == jn) body = j.a_is_parent ? j.a.body : j.b.body;
+    }
+    return path;
+  }
+
+  /// Joint coordinates need a tree of supported joints, and constraint rows
+  /// (a CN) need the position states that coordinate-driven bodies lack.
+  void check_coordinates() {
+    const std::set<std::string> supported = {"revolute", "prismatic", "cylindrical", "screw", "fixed"};
+    for (const Joint& j : joints_) {
+      const AstJoint& d = *j.decl;
+      if (j.strategy == Strategy::Coordinates && !j.tree) {
+        std::vector<std::string> pa = path_to_ground(j.a.body), pb = path_to_ground(j.b.body);
+        // the loop: both paths without their common part near ground
+        while (!pa.empty() && !pb.empty() && pa.back() == pb.back()) pa.pop_back(), pb.pop_back();
+        std::vector<std::string> loop(pa.begin(), pa.end());
+        loop.insert(loop.end(), pb.rbegin(), pb.rend());
+        diags_.error(d.loc, fmt::format("joint `{}` closes a kinematic loop, so its motion cannot be given by joint coordinates", d.name),
+                     fmt::format("with constraints = coordinates the tree joints ({}) already set the flows of `{}` and `{}`; "
+                                 "`{}` would impose a second, dependent flow on those junctions, a causal conflict no "
+                                 "storage element can take. A closed loop needs constraint rows: write constraints = "
+                                 "lagrange or penalty",
+                                 fmt::join(loop, ", "), j.a.body, j.b.body, d.name));
+        continue;
+      }
+      if (j.strategy == Strategy::Coordinates && !supported.count(d.type)) {
+        diags_.error(d.type_loc, fmt::format("a {} joint has no joint-coordinate form in mbgc yet", d.type),
+                     "joint coordinates are implemented for revolute, prismatic, cylindrical, screw and fixed joints; "
+                     "write constraints = lagrange or penalty for this model");
+        continue;
+      }
+      if (j.strategy != Strategy::Coordinates)
+        for (const Side* s : {&j.a, &j.b})
+          if (bodies_.at(s->body).by_coordinates) {
+            diags_.error(d.loc, fmt::format("joint `{}` uses constraint rows, but `{}` moves by joint coordinates", d.name, s->body),
+                         fmt::format("a constraintor CN acts through the rates of a body's position states, and `{}` has "
+                                     "none (its pose is a function of joint `{}`'s coordinates): use one strategy for the "
+                                     "whole model (constraints = lagrange, penalty or coordinates)",
+                                     s->body, bodies_.at(s->body).placed_by));
+            break;
+          }
+    }
+  }
+
+  void place_bodies() {
+    for (const Joint* j : tree_order_) place(*j, j->a_is_parent);
     for (const std::string& n : body_order_) {
       Body& body = bodies_.at(n);
       const AstBody& d = *body.decl;
@@ -1089,9 +1312,9 @@ class Expander {
     const Body& body = bodies_.at(s.body);
     E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
     if (body.ground) return {local, B.vec(0, 0, 0)};
-    E r = B.name(s.body + ".r.q"), v = B.name(s.body + ".v.f");
+    E r = position(B, s.body), v = B.name(s.body + ".v.f");
     if (body.particle) return {r, v};
-    E R = B.call("rotq", {B.name(s.body + ".q.q")});
+    E R = rotation(B, s.body);
     E arm = B.op('-', local, B.name(s.body + ".com"));
     return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.name(s.body + ".w.f"), arm})))};
   }
@@ -1134,7 +1357,7 @@ class Expander {
       auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
       element(B, "Se", base + "_f", signed_(force));
       if (body.particle) continue;
-      E Rt = B.call("transpose", {B.call("rotq", {B.name(s->body + ".q.q")})});
+      E Rt = B.call("transpose", {rotation(B, s->body)});
       E local = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
       E arm = B.op('-', local, B.name(s->body + ".com"));
       E moment = B.call("cross", {arm, B.op('*', Rt, force)});
@@ -1147,13 +1370,13 @@ class Expander {
     for (const std::string& n : body_order_) {
       const Body& body = bodies_.at(n);
       Build B(body.decl->loc);
-      E r = B.name(n + ".r.q"), v = B.name(n + ".v.f");
+      E r = position(B, n), v = B.name(n + ".v.f");
       quantity_[n + ".position"] = r;
       quantity_[n + ".velocity"] = v;
       quantity_[n + ".momentum"] = B.name(n + ".m.p");
       E ke = B.op('*', B.num(0.5), B.dot(v, B.name(n + ".m.p")));
       if (!body.particle) {
-        E q = B.name(n + ".q.q"), R = B.call("rotq", {q}), w = B.name(n + ".w.f");
+        E q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
         quantity_[n + ".quaternion"] = q;
         quantity_[n + ".rotation"] = R;
         quantity_[n + ".bryant"] = B.call("bryant", {q});
@@ -1176,6 +1399,22 @@ class Expander {
       Build B(j.decl->loc);
       const auto& [A, Bf] = frames_.at(jn);
       const Frame& body_side = Bf.ground ? A : Bf;
+      quantity_[jn + ".violation"] = B.list(rows(B, j, A, Bf));
+      if (auto cv = coordinate_values_.find(jn); cv != coordinate_values_.end()) {
+        // joint coordinates: the reaction is the effort on the bonds into the
+        // child's junctions (force world, torque body frame); on b, by Newton's third law
+        const std::string child = j.a_is_parent ? j.b.body : j.a.body;
+        E sign = B.num(j.a_is_parent ? 1 : -1);
+        quantity_[jn + ".force"] = B.op('*', sign, B.name(jn + ".reaction_f.e"));
+        quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
+        const std::string& t = j.decl->type;
+        if (has_rotation_coordinate(t)) {
+          quantity_[jn + ".angle"] = cv->second.angle;
+          quantity_[jn + ".rate"] = cv->second.rate;
+        }
+        if (has_axial_coordinate(t)) quantity_[jn + ".displacement"] = cv->second.displacement;
+        continue;
+      }
       // reaction on the second body (on the first, negated, if the second is ground)
       std::string side = Bf.ground ? "ca" : "cb";
       E force = Bf.ground ? B.name(jn + "." + side + "t.e1") : B.neg(B.name(jn + "." + side + "t.e1"));
@@ -1269,6 +1508,9 @@ class Expander {
   std::map<std::string, std::vector<std::string>> loads_;  // body -> force elements acting on it
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
+  struct CoordinateValues { E angle, rate, displacement, displacement_rate; };
+  std::map<std::string, CoordinateValues> coordinate_values_;  // coordinates joints
+  std::vector<const Joint*> tree_order_;                        // tree joints, breadth first from ground
   std::map<std::string, E> quantity_;
   std::map<std::string, E> params_;                // the program's top-level parameters
   std::map<std::string, SourceLoc> point_locs_;    // "body.point" -> declaration

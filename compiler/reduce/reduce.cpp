@@ -117,73 +117,90 @@ class Reducer {
     return div(neg(rest), coeff[0]);
   }
 
-  /// `e` with every non-state variable replaced by its explicit solution.
-  std::optional<Expr> in_terms_of_states(const Expr& e, std::vector<int>& path) {
-    std::unordered_set<int> vars;
-    collect_vars(e, vars);
-    std::unordered_map<int, Expr> subst;
-    for (int id : vars) {
-      if (is_state_.count(id)) continue;
-      if (auto it = expanded_.find(id); it != expanded_.end()) {
-        subst[id] = it->second;
-        continue;
-      }
-      auto eq = eq_of_.find(id);
-      if (eq == eq_of_.end() || std::count(path.begin(), path.end(), id)) return std::nullopt;
-      auto sol = solve_single(eqs_[static_cast<std::size_t>(eq->second)]);
-      if (!sol || contains_der(*sol)) return std::nullopt;
-      path.push_back(id);
-      auto inner = in_terms_of_states(*sol, path);
-      path.pop_back();
-      if (!inner) return std::nullopt;
-      expanded_[id] = *inner;
-      subst[id] = *inner;
-    }
-    return substitute(e, subst);
+  /// d/dt of variable `id`, as an expression: a state's derivative is what the
+  /// integrator gets; any other variable gets a derivative variable of its own,
+  /// defined by differentiating its (explicit) equation by the chain rule. Each
+  /// new equation is local, so the work and the code grow with the graph, not
+  /// with the depth of the kinematic chain. nullopt: the variable's equation
+  /// is not explicit or sits in an algebraic loop.
+  std::optional<Expr> derivative_of_var(int id, std::vector<int>& path, std::vector<Equation>& added) {
+    if (auto s = state_index_.find(id); s != state_index_.end()) return out_.state_derivative[s->second];
+    if (auto it = der_var_.find(id); it != der_var_.end()) return var(it->second);
+    auto eq = eq_of_.find(id);
+    if (eq == eq_of_.end() || std::count(path.begin(), path.end(), id)) return std::nullopt;
+    const Equation& def = eqs_[static_cast<std::size_t>(eq->second)];
+    auto sol = solve_single(def);
+    if (!sol || contains_der(*sol)) return std::nullopt;
+    path.push_back(id);
+    auto d = derivative_of_expr(*sol, path, added);
+    path.pop_back();
+    if (!d) return std::nullopt;
+    int dx = out_.graph.add_var("der(" + v(id).name + ")", VarKind::Auxiliary, v(id).loc);
+    der_var_[id] = dx;
+    added.push_back({var(dx), *d, dx, def.loc, "d/dt of [" + def.origin + "]"});
+    return var(dx);
   }
 
-  /// d/dt of an expression in states and time: sum_i dX/dx_i * der(x_i) + dX/dt.
-  Expr time_derivative(const Expr& x) {
+  /// d/dt of an expression: its explicit time dependence plus, per variable,
+  /// the partial derivative times that variable's rate.
+  std::optional<Expr> derivative_of_expr(const Expr& x, std::vector<int>& path, std::vector<Equation>& added) {
     Expr d = diff_time(x);
     std::unordered_set<int> vars;
     collect_vars(x, vars);
-    // der(x_i) is whatever the integrator gets for state i (after alias elimination).
-    for (std::size_t i = 0; i < out_.states.size(); ++i)
-      if (vars.count(out_.states[i].var)) d = add(d, mul(diff_var(x, out_.states[i].var), out_.state_derivative[i]));
+    std::vector<int> sorted(vars.begin(), vars.end());
+    std::sort(sorted.begin(), sorted.end());  // deterministic output
+    for (int id : sorted) {
+      Expr partial = diff_var(x, id);
+      if (is_zero(partial)) continue;
+      auto rate = derivative_of_var(id, path, added);
+      if (!rate) return std::nullopt;
+      d = add(d, mul(partial, *rate));
+    }
     return d;
   }
 
+  /// Derivative causality (§8.4): a storage element whose input is imposed
+  /// reads `e = der(p)`; the derivative is taken symbolically through the
+  /// equations that compute p from the states, leaving the state derivatives
+  /// (accelerations) to the algebraic loop they form with the junction balances.
   bool expand_derivatives() {
     for (std::size_t i = 0; i < eqs_.size(); ++i) eq_of_[eqs_[i].unknown] = static_cast<int>(i);
+    for (std::size_t i = 0; i < out_.states.size(); ++i) state_index_[out_.states[i].var] = i;
     int expanded = 0;
-    for (Equation& eq : eqs_) {
-      if (!contains_der(eq.lhs) && !contains_der(eq.rhs)) continue;
+    std::vector<Equation> added;
+    for (std::size_t i = 0; i < eqs_.size(); ++i) {
+      if (!contains_der(eqs_[i].lhs) && !contains_der(eqs_[i].rhs)) continue;
       bool ok = true;
       auto expand = [&](const Expr& side) {
         return rewrite(side, [&](const Expr& n) -> Expr {
           if (n->op != Op::Der || !ok) return nullptr;
           std::vector<int> path;
-          auto x = in_terms_of_states(n->args[0], path);
-          if (!x) {
+          auto d = derivative_of_expr(n->args[0], path, added);
+          if (!d) {
             ok = false;
             return nullptr;
           }
-          return time_derivative(*x);
+          return *d;
         });
       };
-      eq.lhs = expand(eq.lhs);
-      eq.rhs = expand(eq.rhs);
+      Expr lhs = expand(eqs_[i].lhs);
+      Expr rhs = expand(eqs_[i].rhs);
+      Equation& eq = eqs_[i];
       if (!ok) {
         diags_.error(eq.loc, fmt::format("cannot eliminate the derivative causality in `{}`", eq.origin),
                      "the dependent storage's input comes through an algebraic loop or a nonlinear relation; "
                      "break the rigid coupling with a stiff C or a small R");
         return false;
       }
+      eq.lhs = lhs;
+      eq.rhs = rhs;
       ++expanded;
       out_.derivative_causality.push_back(fmt::format("{}: state eliminated, derivative taken symbolically", eq.origin));
     }
+    for (Equation& e : added) eqs_.push_back(std::move(e));
     if (expanded)
-      out_.log.push_back(fmt::format("derivative causality: {} equation{} differentiated symbolically", expanded, expanded == 1 ? "" : "s"));
+      out_.log.push_back(fmt::format("derivative causality: {} equation{} differentiated symbolically ({} derivative variable{})",
+                                     expanded, expanded == 1 ? "" : "s", der_var_.size(), der_var_.size() == 1 ? "" : "s"));
     return true;
   }
 
@@ -289,6 +306,7 @@ class Reducer {
         }
       }
     }
+    if (block.size() > kTearAbove && tear_block(block)) return;
     std::vector<int> unknowns;
     for (int i : block) unknowns.push_back(eqs_[static_cast<std::size_t>(i)].unknown);
     AlgebraicLoop loop;
@@ -329,6 +347,115 @@ class Reducer {
       dae_block_eqs_.push_back(i);
       dae_unknowns_.insert(eq.unknown);
     }
+  }
+
+  /// Loops larger than this are torn before Gaussian elimination is tried.
+  static constexpr std::size_t kTearAbove = 12;
+
+  /// Tearing: the state derivatives in a loop (the accelerations of a chain in
+  /// joint coordinates) are chosen as tear variables. If the rest of the loop
+  /// then follows equation by equation, every other unknown is affine in them,
+  /// and the tear variables' own equations become a small dense system
+  /// M a = b (the mass matrix, when the loop comes from derivative causality)
+  /// solved at run time; the other unknowns are plain assignments after it.
+  bool tear_block(const std::vector<int>& block) {
+    std::vector<int> tears, tear_eqs, rest_eqs;
+    for (int i : block) {
+      int u = eqs_[static_cast<std::size_t>(i)].unknown;
+      if (v(u).kind == VarKind::Derivative) {
+        tears.push_back(u);
+        tear_eqs.push_back(i);
+      } else {
+        rest_eqs.push_back(i);
+      }
+    }
+    if (tears.empty() || tears.size() * 2 > block.size()) return false;
+    std::unordered_set<int> tear_set(tears.begin(), tears.end());
+    // Order the rest so each equation only reads tears and earlier unknowns.
+    std::unordered_map<int, int> eq_of_unknown;
+    for (int i : rest_eqs) eq_of_unknown[eqs_[static_cast<std::size_t>(i)].unknown] = i;
+    std::unordered_map<int, Expr> solution;
+    std::vector<int> order;
+    std::unordered_map<int, int> state;  // 0 new, 1 visiting, 2 done
+    bool acyclic = true;
+    std::function<void(int)> visit = [&](int u) {
+      int& st = state[u];
+      if (st == 2 || !acyclic) return;
+      if (st == 1) { acyclic = false; return; }
+      st = 1;
+      const Equation& eq = eqs_[static_cast<std::size_t>(eq_of_unknown.at(u))];
+      auto sol = solve_single(eq);
+      std::unordered_set<int> vars;
+      if (sol) collect_vars(*sol, vars);
+      if (!sol || vars.count(u)) { acyclic = false; return; }
+      solution[u] = *sol;
+      std::vector<int> inputs(vars.begin(), vars.end());
+      std::sort(inputs.begin(), inputs.end());
+      for (int w : inputs)
+        if (eq_of_unknown.count(w)) visit(w);
+      state[u] = 2;
+      order.push_back(u);
+    };
+    for (int i : rest_eqs) visit(eqs_[static_cast<std::size_t>(i)].unknown);
+    if (!acyclic) return false;
+    // Each torn unknown as rest + sum_k coeff[k] * tear_k.
+    struct Affine { Expr rest; std::vector<Expr> coeff; };
+    std::unordered_map<int, Affine> affine;
+    auto to_affine = [&](const Expr& e, Affine& out) {
+      std::unordered_set<int> vars;
+      collect_vars(e, vars);
+      std::vector<int> in_loop(tears);
+      for (int w : vars)
+        if (affine.count(w)) in_loop.push_back(w);
+      std::vector<Expr> c;
+      Expr rest;
+      if (!affine_in(e, in_loop, c, rest)) return false;
+      out.rest = rest;
+      out.coeff.assign(tears.size(), constant(0));
+      for (std::size_t k = 0; k < tears.size(); ++k) out.coeff[k] = c[k];
+      for (std::size_t j = tears.size(); j < in_loop.size(); ++j) {
+        if (is_zero(c[j])) continue;
+        const Affine& w = affine.at(in_loop[j]);
+        out.rest = add(out.rest, mul(c[j], w.rest));
+        for (std::size_t k = 0; k < tears.size(); ++k)
+          if (!is_zero(w.coeff[k])) out.coeff[k] = add(out.coeff[k], mul(c[j], w.coeff[k]));
+      }
+      return true;
+    };
+    for (int u : order) {
+      Affine a;
+      if (!to_affine(solution.at(u), a)) return false;
+      affine[u] = std::move(a);
+    }
+    LinearBlock lb;
+    lb.unknowns = tears;
+    for (int i : tear_eqs) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(i)];
+      Affine r;
+      if (!to_affine(sub(eq.lhs, eq.rhs), r)) return false;
+      for (const Expr& c : r.coeff) lb.a.push_back(c);
+      lb.b.push_back(neg(r.rest));
+    }
+    const Equation& first = eqs_[static_cast<std::size_t>(tear_eqs[0])];
+    int index = static_cast<int>(out_.linear_blocks.size());
+    out_.linear_blocks.push_back(std::move(lb));
+    for (int u : tears)
+      out_.assignments.push_back({u, nullptr, first.loc,
+                                  fmt::format("algebraic loop ({} unknowns) torn at {} state derivative{}: dense {}x{} system solved at run time",
+                                              block.size(), tears.size(), tears.size() == 1 ? "" : "s", tears.size(), tears.size()),
+                                  index});
+    for (int u : order) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(eq_of_unknown.at(u))];
+      out_.assignments.push_back({u, solution.at(u), eq.loc, eq.origin});
+    }
+    AlgebraicLoop loop;
+    loop.vars = tears;
+    loop.linear = true;
+    loop.resolution = fmt::format("linear: torn at the {} state derivative{}, the other {} unknowns follow in order; "
+                                  "the {}x{} system is solved at run time with partial pivoting",
+                                  tears.size(), tears.size() == 1 ? "" : "s", order.size(), tears.size(), tears.size());
+    out_.loops.push_back(loop);
+    return true;
   }
 
   /// Symbolic Gaussian elimination, preferring constant pivots. If every pivot
@@ -544,11 +671,14 @@ class Reducer {
         }
       };
       for (const Expr& r : roots) visit(r);
+      std::set<int> blocks_read;
       while (!work.empty()) {
         int i = work.back();
         work.pop_back();
+        const Assignment& a = out_.assignments[static_cast<std::size_t>(i)];
+        if (a.block >= 0 && !blocks_read.insert(a.block).second) continue;  // same inputs as its first unknown
         std::unordered_set<int> inputs;
-        assignment_inputs(out_, out_.assignments[static_cast<std::size_t>(i)], inputs);
+        assignment_inputs(out_, a, inputs);
         for (int id : inputs) {
           auto it = assignment_of.find(id);
           if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
@@ -594,7 +724,8 @@ class Reducer {
   std::unordered_set<int> is_state_;
   std::unordered_map<int, Expr> alias_;
   std::unordered_map<int, int> eq_of_;
-  std::unordered_map<int, Expr> expanded_;
+  std::unordered_map<int, std::size_t> state_index_;  // state variable -> index in out_.states
+  std::unordered_map<int, int> der_var_;               // variable -> its derivative variable
   std::vector<int> dae_block_eqs_;
   std::unordered_set<int> dae_unknowns_;
   int aliases_ = 0;
@@ -611,8 +742,9 @@ void assignment_inputs(const ReducedSystem& s, const Assignment& a, std::unorder
     return;
   }
   const LinearBlock& lb = s.linear_blocks[static_cast<std::size_t>(a.block)];
-  for (const Expr& e : lb.a) collect_vars(e, out);
-  for (const Expr& e : lb.b) collect_vars(e, out);
+  std::vector<Expr> all(lb.a);
+  all.insert(all.end(), lb.b.begin(), lb.b.end());
+  collect_vars(all, out);
   for (int u : lb.unknowns) out.erase(u);
 }
 }  // namespace mbgc::ir

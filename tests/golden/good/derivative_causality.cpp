@@ -73,7 +73,8 @@ class derivative_causality_model final : public mbgrt::Model {
     m1 = param(1, 1.0);  // derivative_causality.mbg:4:7
     m2 = param(2, 3.0);  // derivative_causality.mbg:5:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
-    derived1_ = -1.0 - m2 * (1.0 / m1);
+    derived1_ = 1.0 / m1;
+    derived2_ = 1.0 + m2 * derived1_;
     // INITIAL STATE
     x[0] = 0.0;  // mass1.p (derivative_causality.mbg:7:3)
   }
@@ -84,8 +85,10 @@ class derivative_causality_model final : public mbgrt::Model {
     (void)x;
     // derivative_causality.mbg:6:4  Se force: e = value
     const double force_e = F;
-    // derivative_causality.mbg:8:3  algebraic loop (2 unknowns), solved for mass1.e
-    const double mass1_e = -force_e / derived1_;
+    // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for der(mass2.p)
+    const double der_mass2_p = m2 * (derived1_ * force_e) / derived2_;
+    // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for mass1.e
+    const double mass1_e = -(-force_e + der_mass2_p);
     // state derivatives
     xdot[0] = mass1_e;
   }
@@ -112,8 +115,10 @@ class derivative_causality_model final : public mbgrt::Model {
     const double force_e = F;
     // derivative_causality.mbg:7:3  I mass1: p = I f
     const double mass1_f = mass1_p / m1;
-    // derivative_causality.mbg:8:3  algebraic loop (2 unknowns), solved for mass1.e
-    const double mass1_e = -force_e / derived1_;
+    // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for der(mass2.p)
+    const double der_mass2_p = m2 * (derived1_ * force_e) / derived2_;
+    // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for mass1.e
+    const double mass1_e = -(-force_e + der_mass2_p);
     // outputs, in declaration order
     out[0] = mass1_f;
     out[1] = mass1_e;
@@ -131,7 +136,8 @@ class derivative_causality_model final : public mbgrt::Model {
   }
 
   // derived constants (set in initial())
-  double derived1_ = 0.0;  // = -1 - m2*(1/m1)
+  double derived1_ = 0.0;  // = 1/m1
+  double derived2_ = 0.0;  // = 1 + m2*(1/m1)
   // parameters (set in initial())
   double F = 0.0;  // derivative_causality.mbg:3:7
   double m1 = 0.0;  // derivative_causality.mbg:4:7

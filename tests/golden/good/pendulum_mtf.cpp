@@ -80,7 +80,7 @@ class pendulum_mtf_model final : public mbgrt::Model {
     theta0 = param(4, 0.5);  // pendulum_mtf.mbg:19:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 0.5 * (J_hub + m * (L*L));
-    derived2_ = 1.0 / J_hub;
+    derived2_ = -1.0 / J_hub;
     // INITIAL STATE
     x[0] = 0.0;  // hub.p (pendulum_mtf.mbg:21:3)
     x[1] = theta0;  // angle.q (pendulum_mtf.mbg:22:3)
@@ -97,20 +97,27 @@ class pendulum_mtf_model final : public mbgrt::Model {
     const double hub_f = hub_p / J_hub;
     // pendulum_mtf.mbg:25:4  Se gravity: e = value
     const double gravity_e_2 = -m * g;
-    // pendulum_mtf.mbg:23:5  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
-    // A x = b for x = (arm.e1, bob.e[1], bob.e[2], hub.e, arm.e2[1], arm.e2[2])
+    // pendulum_mtf.mbg:23:5  algebraic loop (11 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (arm.e1, bob.e[1], bob.e[2], hub.e, arm.e2[1], arm.e2[2], der(hub.f), der(arm.f2[1]), der(bob.p[1]), der(arm.f2[2]), der(bob.p[2]))
     const double cse1 = L * std::cos(angle_q);  // shared by several equations
-    const double cse2 = L * std::sin(angle_q);  // shared by several equations
-    double blk1_a[36] = {
-        1.0, 0.0, 0.0, 0.0, -cse1, -cse2,
-        0.0, 1.0, 0.0, -m * (cse1 * derived2_), 0.0, 0.0,
-        0.0, 0.0, 1.0, -m * (cse2 * derived2_), 0.0, 0.0,
-        -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, -1.0, 0.0, 0.0, 1.0, 0.0,
-        0.0, 0.0, -1.0, 0.0, 0.0, 1.0,
+    const double cse2 = -cse1;  // shared by several equations
+    const double cse3 = L * std::sin(angle_q);  // shared by several equations
+    const double cse4 = -cse3;  // shared by several equations
+    double blk1_a[121] = {
+        1.0, 0.0, 0.0, 0.0, cse2, cse4, 0.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0,
+        0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0,
+        -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, -1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, -1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, derived2_, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse2, 1.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -m, 1.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse4, 0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -m, 1.0,
     };
-    double blk1_x[6] = {0.0, -m * (cse2 * hub_f) * hub_f, m * (cse1 * hub_f) * hub_f, 0.0, 0.0, -gravity_e_2};
-    mbgrt::solve_linear(6, blk1_a, blk1_x);
+    double blk1_x[11] = {0.0, 0.0, 0.0, 0.0, 0.0, -gravity_e_2, 0.0, -cse3 * hub_f * hub_f, 0.0, cse1 * hub_f * hub_f, 0.0};
+    mbgrt::solve_linear(11, blk1_a, blk1_x);
     const double hub_e = blk1_x[3];
     // state derivatives
     xdot[0] = hub_e;
@@ -128,13 +135,13 @@ class pendulum_mtf_model final : public mbgrt::Model {
     // pendulum_mtf.mbg:21:3  I hub: p = I f
     const double hub_f = hub_p / J_hub;
     // pendulum_mtf.mbg:30:8  signal energy
-    const double cse3 = std::cos(angle_q);  // shared by several equations
-    const double energy = derived1_ * (hub_f*hub_f) - m * g * L * cse3;
+    const double cse5 = std::cos(angle_q);  // shared by several equations
+    const double energy = derived1_ * (hub_f*hub_f) - m * g * L * cse5;
     // outputs, in declaration order
     out[0] = angle_q;
     out[1] = hub_f;
     out[2] = L * std::sin(angle_q);
-    out[3] = -L * cse3;
+    out[3] = -L * cse5;
     out[4] = energy;
   }
 
@@ -151,7 +158,7 @@ class pendulum_mtf_model final : public mbgrt::Model {
 
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 0.5*(J_hub + m*L^2)
-  double derived2_ = 0.0;  // = 1/J_hub
+  double derived2_ = 0.0;  // = -1/J_hub
   // parameters (set in initial())
   double m = 0.0;  // pendulum_mtf.mbg:15:7
   double L = 0.0;  // pendulum_mtf.mbg:16:7
