@@ -1023,11 +1023,14 @@ class Expander {
     const Body& P = bodies_.at(parent);
     E zero = B.num(0);
     const AstAttr* motion = j.attrs.count("motion") ? j.attrs.at("motion") : nullptr;
-    // coordinate k: junction, value (state or prescribed), flow
-    struct Coord { std::string junction; E value; E rate; };
-    std::vector<Coord> coords;
-    auto coordinate = [&](const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) {
-      Coord k{junction, nullptr, nullptr};
+    // The relative motion of B's joint frame in A's: a translation d (A's
+    // axes) and a rotation qrel. Each rate junction k adds W_k u_k to the
+    // relative angular velocity and V_k u_k to the rate of d (A's axes).
+    struct Rate { std::string junction; E value, rate, W, V; };
+    std::vector<Rate> rates;
+    rates.reserve(4);  // references returned by rate() stay valid (at most three rate junctions)
+    auto rate = [&](const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) -> Rate& {
+      Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr};
       if (prescribed) {
         element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion->value}));
         junction_(B, junction, {jn + "." + c + "_rate"});
@@ -1038,16 +1041,68 @@ class Expander {
         junction_(B, junction, {jn + "." + c + "_rate"}, {jn + "." + c});
         k.value = B.name(jn + "." + c + ".q");
       }
-      k.rate = B.name(jn + "." + c + "_rate.f");
-      coords.push_back(k);
-      return coords.size() - 1;
+      rates.push_back(k);
+      return rates.back();
     };
-    std::optional<std::size_t> rot, ax;
-    if (has_rotation_coordinate(t))
-      rot = coordinate(jn + ".drive", "theta", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr);
-    if (t == "prismatic")
-      ax = coordinate(jn + ".drive", "s", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr);
-    if (t == "cylindrical") ax = coordinate(jn + ".slide", "s", attr_or(j, "d0", zero), attr_or(j, "ddot0", zero), false);
+    E ex = B.vec(1, 0, 0), ey = B.vec(0, 1, 0), ez = B.vec(0, 0, 1);
+    auto qaxis = [&](E axis, E angle) { return B.call("quat_axis_angle", {std::move(axis), std::move(angle)}); };
+    auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
+    auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
+    E disp = B.vec(0, 0, 0);
+    E qrel = B.list({B.num(1), B.num(0), B.num(0), B.num(0)});
+    E angle = zero, angle_rate = zero, axial = zero, axial_rate = zero;  // J.angle, J.displacement
+    if (t == "revolute" || t == "cylindrical" || t == "screw") {
+      Rate& r = rate(jn + ".drive", "theta", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr);
+      r.W = ez;
+      angle = r.value, angle_rate = r.rate;
+      qrel = qaxis(ez, angle);
+      if (t == "screw") {
+        E h = B.name(jn + ".pitch");
+        r.V = B.op('*', h, ez);
+        axial = B.op('*', h, angle), axial_rate = B.op('*', h, angle_rate);
+        disp = B.op('*', ez, axial);
+      }
+    }
+    if (t == "prismatic" || t == "cylindrical") {
+      bool prismatic = t == "prismatic";
+      Rate& r = prismatic ? rate(jn + ".drive", "s", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr)
+                          : rate(jn + ".slide", "s", attr_or(j, "d0", zero), attr_or(j, "ddot0", zero), false);
+      r.V = ez;
+      axial = r.value, axial_rate = r.rate;
+      disp = B.op('*', ez, axial);
+    }
+    if (t == "planar") {  // translation in A's x-y plane, rotation about its z
+      Rate& x = rate(jn + ".xdot", "x", zero, zero, false);
+      x.V = ex;
+      Rate& y = rate(jn + ".ydot", "y", zero, zero, false);
+      y.V = ey;
+      Rate& r = rate(jn + ".turn", "theta", zero, zero, false);
+      r.W = ez;
+      disp = B.list({x.value, y.value, zero});
+      qrel = qaxis(ez, r.value);
+    }
+    if (t == "universal") {  // about A's x (the cross's first arm), then about the turned y (B's y)
+      Rate& a = rate(jn + ".alphadot", "alpha", zero, zero, false);
+      a.W = ex;
+      Rate& b = rate(jn + ".betadot", "beta", zero, zero, false);
+      E qa = qaxis(ex, a.value);
+      b.W = B.op('*', B.call("rotq", {qa}), ey);
+      qrel = qmul(qa, qaxis(ey, b.value));
+    }
+    if (t == "spherical") {
+      // three rates: the relative angular velocity in B's joint frame,
+      // integrated into the relative quaternion as a body's orientation is
+      const std::string spin = jn + ".spin";
+      element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", B.vec(0, 0, 0), d.loc)});
+      element(B, "C", jn + ".rot", nullptr,
+              {kv("e", B.list({zero, zero, zero, zero}), d.loc),
+               kv("q0", attr_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), d.loc)});
+      element(B, "MTF", jn + ".rotrate", B.call("quat_rate", {B.name(jn + ".rot.q")}));
+      junction(B, '1', spin, 3, {jn + ".spin_rate"}, {jn + ".rotrate.p1"});
+      bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
+      qrel = B.name(jn + ".rot.q");
+      rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr});
+    }
     for (const char* key : {"torque", "force"}) {
       if (!j.attrs.count(key)) continue;
       element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
@@ -1055,16 +1110,10 @@ class Expander {
       bond(B, jn + ".applied", jn + ".drive");
     }
     // pose of the child as signals of the coordinates
-    E angle = rot ? coords[*rot].value : zero;
-    E axial = ax ? coords[*ax].value : zero;
-    if (t == "screw") axial = B.op('*', B.name(jn + ".pitch"), angle);
-    E axis_a = B.name(jn + ".axis_a");
-    E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
+    E Fa = B.name(jn + ".Fa");
+    E pa = B.op('+', B.name(jn + ".pa"), B.op('*', Fa, disp));  // A's point, moved by d
     E pb = B.name(jn + ".pb");
     E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
-    E qrel = B.call("quat_axis_angle", {B.vec(0, 0, 1), angle});
-    auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
-    auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
     E qP = quaternion(B, parent), RP = rotation(B, parent);
     E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
     for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
@@ -1072,14 +1121,16 @@ class Expander {
     for (int r = 1; r <= 3; ++r)
       for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rq, r, c));
     E RC = rotation(B, child);
-    E joint_point = fwd ? B.op('+', position(B, parent), B.op('*', RP, pa)) : B.op('+', position(B, parent), B.op('*', RP, pb));
+    E joint_point = B.op('+', position(B, parent), B.op('*', RP, fwd ? pa : pb));
     if (P.ground) joint_point = fwd ? pa : pb;  // ground points are absolute
     E rC = B.op('-', joint_point, B.op('*', RC, fwd ? pb : pa));
     for (int k = 0; k < 3; ++k) signal(B, fmt::format("{}.pose.r{}", child, k + 1), B.at(rC, k + 1));
     // velocities: child omega (body frame) and CoM velocity (world) as sums of MTF flows
     auto T = [&](E m) { return B.call("transpose", {std::move(m)}); };
     auto skew = [&](E x) { return B.call("skew", {std::move(x)}); };
-    auto feed = [&](const std::string& from, const std::string& mtf, E modulus, const std::string& sum) {
+    int fed = 0;
+    auto feed = [&](const std::string& from, E modulus, const std::string& sum) {
+      const std::string mtf = fmt::format("{}.m{}", jn, ++fed);
       element(B, "MTF", mtf, std::move(modulus));
       bond(B, from, mtf + ".p1");
       bond(B, mtf + ".p2", sum);
@@ -1088,20 +1139,19 @@ class Expander {
     junction(B, '0', wsum, 3, {}, {});
     junction(B, '0', vsum, 3, {}, {});
     E RCt_RP = B.op('*', T(RC), RP);
-    if (!P.ground) feed(parent + ".w", jn + ".pw", RCt_RP, wsum);
-    if (rot) feed(coords[*rot].junction, jn + ".rw", fwd ? B.op('*', RCt_RP, axis_a) : B.neg(axis_a), wsum);
+    if (!P.ground) feed(parent + ".w", RCt_RP, wsum);
+    for (const Rate& r : rates)
+      if (r.W) feed(r.junction, fwd ? B.op('*', B.op('*', RCt_RP, Fa), r.W) : B.neg(B.op('*', Fa, r.W)), wsum);
     if (!P.ground) {
-      feed(parent + ".v", jn + ".pv", B.call("eye", {B.num(3)}), vsum);
-      feed(parent + ".w", jn + ".pwv", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
+      feed(parent + ".v", B.call("eye", {B.num(3)}), vsum);
+      feed(parent + ".w", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
     }
-    E slide = fwd ? B.op('*', RP, axis_a) : B.neg(B.op('*', RC, axis_a));
-    if (ax) feed(coords[*ax].junction, jn + ".sv", slide, vsum);
-    if (t == "screw") feed(coords[*rot].junction, jn + ".sv", B.op('*', B.name(jn + ".pitch"), slide), vsum);
-    feed(child + ".w", jn + ".cwv", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
+    for (const Rate& r : rates)
+      if (r.V) feed(r.junction, fwd ? B.op('*', B.op('*', RP, Fa), r.V) : B.neg(B.op('*', B.op('*', RC, Fa), r.V)), vsum);
+    feed(child + ".w", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
     named_bond(B, jn + ".reaction_t", wsum, child + ".w");
     named_bond(B, jn + ".reaction_f", vsum, child + ".v");
-    coordinate_values_[jn] = {angle, rot ? coords[*rot].rate : zero, axial,
-                              ax ? coords[*ax].rate : (t == "screw" ? B.op('*', B.name(jn + ".pitch"), coords[*rot].rate) : zero)};
+    coordinate_values_[jn] = {angle, angle_rate, axial, axial_rate};
   }
 
   /// A 1-junction with the given elements bonded into / out of it.
@@ -1162,7 +1212,8 @@ class Expander {
   /// Joint coordinates need a tree of supported joints, and constraint rows
   /// (a CN) need the position states that coordinate-driven bodies lack.
   void check_coordinates() {
-    const std::set<std::string> supported = {"revolute", "prismatic", "cylindrical", "screw", "fixed"};
+    const std::set<std::string> supported = {"revolute", "prismatic", "cylindrical", "screw",
+                                             "planar",   "universal", "spherical",   "fixed"};
     for (const Joint& j : joints_) {
       const AstJoint& d = *j.decl;
       if (j.strategy == Strategy::Coordinates && !j.tree) {
@@ -1181,10 +1232,21 @@ class Expander {
       }
       if (j.strategy == Strategy::Coordinates && !supported.count(d.type)) {
         diags_.error(d.type_loc, fmt::format("a {} joint has no joint-coordinate form in mbgc yet", d.type),
-                     "joint coordinates are implemented for revolute, prismatic, cylindrical, screw and fixed joints; "
+                     "joint coordinates are implemented for every joint but the distance rod (a massless link, which has "
+                     "no coordinates of its own); "
                      "write constraints = lagrange or penalty for this model");
         continue;
       }
+      if (j.strategy == Strategy::Coordinates)
+        for (const Side* s : {&j.a, &j.b})
+          if (bodies_.at(s->body).particle) {
+            diags_.error(d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
+                         fmt::format("a particle has no angular-velocity junction for the joint's rotation rates to "
+                                     "drive, so they would carry no inertia: give `{}` an inertia, or write "
+                                     "constraints = lagrange or penalty for this model",
+                                     s->body));
+            break;
+          }
       if (j.strategy != Strategy::Coordinates)
         for (const Side* s : {&j.a, &j.b})
           if (bodies_.at(s->body).by_coordinates) {

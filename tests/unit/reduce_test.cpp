@@ -495,6 +495,29 @@ TEST(ReduceLoops, StateDependentPivotsGiveANumericBlock) {
   }
 }
 
+// A free rate `Sf { rate0 }` makes its flow a state whose derivative follows
+// from e = 0: the same pendulum with the hub's rate as the state and a
+// massless hub. The bob's inertia takes derivative causality; reduce must
+// give the angular acceleration -g sin(theta) / L, independent of the rate.
+TEST(ReduceFreeRate, PendulumAccelerationFromZeroEffort) {
+  auto c = reduce(
+      "param m = 1\nparam L = 1\nparam g = 9.81\n"
+      "Sf hub { rate0 = 0 }\nC angle { e = 0 }\n1 omega : hub -> angle, arm\n"
+      "MTF arm = [[L*cos(angle.q)], [L*sin(angle.q)]]\nI bob = diag(m, m)\nSe gravity = [0, -m*g]\n"
+      "1 v : arm, gravity -> bob\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const ir::ReducedSystem& r = c->reduced;
+  ASSERT_EQ(r.states.size(), 2u);  // hub.rate and angle.q
+  EXPECT_FALSE(r.dae);
+  std::size_t rate = r.graph.vars[static_cast<std::size_t>(r.states[0].var)].name == "hub.rate" ? 0 : 1;
+  for (double theta : {0.0, 0.3, 1.5707963267948966, 2.5})
+    for (double w : {0.0, 0.7}) {
+      Env env = evaluate(r, {{"hub.rate", w}, {"angle.q", theta}});
+      EXPECT_NEAR(eval(r.state_derivative[rate], env), -9.81 * std::sin(theta), 1e-12) << theta << " " << w;
+      EXPECT_NEAR(eval(r.state_derivative[1 - rate], env), w, 1e-15);
+    }
+}
+
 // The symbolic Jacobian handed to CVODE equals central finite differences of
 // the reduced state derivatives, on linear, nonlinear, modulated, multibond
 // and derivative-causality models.
