@@ -1,0 +1,122 @@
+// Beam modes and modal integrals (flex/beam_modes.hpp) against closed forms:
+// the characteristic roots, the boundary conditions, orthonormality, the
+// bending stiffness beta^4 L, and the integrals of the pinned–pinned sines
+// and the cantilever's classical results.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "flex/beam_modes.hpp"
+
+namespace {
+
+using mbgc::flex::BeamModes;
+using mbgc::flex::Supports;
+constexpr double kPi = 3.14159265358979323846;
+constexpr Supports kAll[] = {Supports::ClampedFree, Supports::PinnedPinned, Supports::ClampedPinned, Supports::FreeFree};
+
+TEST(BeamModes, RootsMatchTheTabulatedValues) {
+  // Blevins, Formulas for natural frequency and mode shape, Table 8-1 (beta L)
+  const BeamModes cf(Supports::ClampedFree, 1.0, 3), cp(Supports::ClampedPinned, 1.0, 2), ff(Supports::FreeFree, 1.0, 2);
+  EXPECT_NEAR(cf.beta_L(0), 1.87510406871196, 1e-12);
+  EXPECT_NEAR(cf.beta_L(1), 4.69409113297418, 1e-12);
+  EXPECT_NEAR(cf.beta_L(2), 7.85475743823761, 1e-12);
+  EXPECT_NEAR(cp.beta_L(0), 3.92660231204792, 1e-12);
+  EXPECT_NEAR(cp.beta_L(1), 7.06858274562873, 1e-12);
+  EXPECT_NEAR(ff.beta_L(0), 4.73004074486270, 1e-12);
+  EXPECT_NEAR(ff.beta_L(1), 7.85320462409584, 1e-12);
+  EXPECT_NEAR(BeamModes(Supports::PinnedPinned, 2.0, 3).beta(2), 3 * kPi / 2, 1e-15);
+}
+
+TEST(BeamModes, ShapesMeetTheirBoundaryConditions) {
+  const double L = 0.61;
+  for (Supports s : kAll) {
+    const BeamModes m(s, L, 8);
+    for (int i = 0; i < m.count(); ++i) {
+      // each derivative scaled by beta^k so the conditions compare with O(1)
+      auto d = [&](double x, int k) { return m.shape(i, x, k) / std::pow(m.beta(i), k); };
+      const double tol = 1e-10;
+      switch (s) {
+        case Supports::ClampedFree:
+          EXPECT_NEAR(d(0, 0), 0, tol); EXPECT_NEAR(d(0, 1), 0, tol);
+          EXPECT_NEAR(d(L, 2), 0, tol); EXPECT_NEAR(d(L, 3), 0, tol);
+          EXPECT_NEAR(d(L, 0), i % 2 == 0 ? 2 : -2, tol);  // the classical tip value
+          break;
+        case Supports::PinnedPinned:
+        case Supports::ClampedPinned:
+          if (s == Supports::PinnedPinned) EXPECT_NEAR(d(0, 2), 0, tol);
+          else EXPECT_NEAR(d(0, 1), 0, tol);
+          EXPECT_NEAR(d(0, 0), 0, tol);
+          EXPECT_NEAR(d(L, 0), 0, tol); EXPECT_NEAR(d(L, 2), 0, tol);
+          break;
+        case Supports::FreeFree:
+          EXPECT_NEAR(d(0, 2), 0, tol); EXPECT_NEAR(d(0, 3), 0, tol);
+          EXPECT_NEAR(d(L, 2), 0, tol); EXPECT_NEAR(d(L, 3), 0, tol);
+          break;
+      }
+    }
+  }
+}
+
+TEST(BeamModes, MassIsOrthonormalAndBendingIsBetaToTheFourth) {
+  // int phi_i phi_j = L delta_ij and int phi_i'' phi_j'' = beta_i^4 L delta_ij
+  // hold for the exact modes; the quadrature must reproduce them.
+  const double L = 8.0;
+  for (Supports s : kAll) {
+    const BeamModes m(s, L, 6);
+    const auto I = mbgc::flex::modal_integrals(m);
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j) {
+        const std::size_t a = static_cast<std::size_t>(i), b = static_cast<std::size_t>(j);
+        const double b4 = std::pow(m.beta(i), 4);
+        EXPECT_NEAR(I.mass[a][b], i == j ? L : 0, 1e-12 * L) << mbgc::flex::supports_name(s) << " " << i << "," << j;
+        EXPECT_NEAR(I.bending[a][b], i == j ? b4 * L : 0, 1e-11 * b4 * L) << mbgc::flex::supports_name(s) << " " << i << "," << j;
+      }
+  }
+}
+
+TEST(BeamModes, PinnedPinnedIntegralsMatchClosedForms) {
+  const double L = 0.61;
+  const BeamModes m(Supports::PinnedPinned, L, 5);
+  const auto I = mbgc::flex::modal_integrals(m);
+  for (int i = 0; i < 5; ++i) {
+    const std::size_t a = static_cast<std::size_t>(i);
+    const double n = i + 1, k = n * kPi / L, c = std::cos(n * kPi);
+    EXPECT_NEAR(I.mean[a], std::sqrt(2.0) * L * (1 - c) / (n * kPi), 1e-15);        // sqrt2 int sin kx
+    EXPECT_NEAR(I.moment[a], -std::sqrt(2.0) * L * L * c / (n * kPi), 1e-15);       // sqrt2 int x sin kx
+    EXPECT_NEAR(I.axial[a][a], k * k * L, 1e-12 * k * k * L);                         // 2 k^2 int cos^2 kx
+    EXPECT_NEAR(I.spin[a][a], k * k * L * L * L / 3 - L / 4, 1e-12 * k * k * L * L * L);  // k^2 int (L^2 - x^2) cos^2 kx
+    for (int j = 0; j < 5; ++j)
+      if (j != i) EXPECT_NEAR(I.axial[a][static_cast<std::size_t>(j)], 0, 1e-12 * k * k * L);
+  }
+}
+
+TEST(BeamModes, CantileverMeanMatchesTheClassicalForm) {
+  // int_0^L phi_i dx = 2 sigma_i / beta_i for the cantilever modes
+  const double L = 8.0;
+  const BeamModes m(Supports::ClampedFree, L, 6);
+  const auto I = mbgc::flex::modal_integrals(m);
+  for (int i = 0; i < 6; ++i) {
+    const double B = m.beta_L(i);
+    const double sigma = (std::cosh(B) + std::cos(B)) / (std::sinh(B) + std::sin(B));
+    EXPECT_NEAR(I.mean[static_cast<std::size_t>(i)], 2 * sigma / m.beta(i), 1e-13 * L) << i;
+  }
+}
+
+TEST(BeamModes, QuadratureIsExactForPolynomialsAndAccurateForSmoothFunctions) {
+  EXPECT_NEAR(mbgc::flex::integrate(2.0, [](double x) { return std::pow(x, 39); }, 1), std::pow(2.0, 40) / 40, 1e-15 * std::pow(2.0, 40));
+  EXPECT_NEAR(mbgc::flex::integrate(kPi, [](double x) { return std::sin(x); }), 2.0, 1e-15);
+  EXPECT_NEAR(mbgc::flex::integrate(3.0, [](double x) { return std::exp(x); }), std::exp(3.0) - 1, 1e-13);
+}
+
+TEST(BeamModes, SupportNamesRoundTrip) {
+  for (Supports s : kAll) {
+    Supports back{};
+    ASSERT_TRUE(mbgc::flex::supports_from_name(mbgc::flex::supports_name(s), &back));
+    EXPECT_EQ(back, s);
+  }
+  Supports unused{};
+  EXPECT_FALSE(mbgc::flex::supports_from_name("clamped_clamped", &unused));
+}
+
+}  // namespace
