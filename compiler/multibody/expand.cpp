@@ -1089,9 +1089,23 @@ class Expander {
       b.W = B.op('*', B.call("rotq", {qa}), ey);
       qrel = qmul(qa, qaxis(ey, b.value));
     }
-    if (t == "spherical") {
+    const Body& C = bodies_.at(child);
+    if (t == "distance") {
+      // the rod's direction: two angles as a universal joint's (about A's x,
+      // then the turned y); the rod starts along A's z, the joint axis. B's
+      // point moves by d = L R(alpha, beta) z; its rates are w x d.
+      Rate& a = rate(jn + ".alphadot", "alpha", zero, zero, false);
+      Rate& b = rate(jn + ".betadot", "beta", zero, zero, false);
+      E qa = qaxis(ex, a.value);
+      E arm_b = B.op('*', B.call("rotq", {qa}), ey);
+      disp = B.op('*', B.op('*', B.call("rotq", {qmul(qa, qaxis(ey, b.value))}), ez), B.name(jn + ".length"));
+      a.V = B.call("cross", {ex, disp});
+      b.V = B.call("cross", {arm_b, disp});
+    }
+    if (t == "spherical" || (t == "distance" && !C.particle)) {
       // three rates: the relative angular velocity in B's joint frame,
       // integrated into the relative quaternion as a body's orientation is
+      // (behind a distance rod the body turns freely as on a ball joint)
       const std::string spin = jn + ".spin";
       element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", B.vec(0, 0, 0), d.loc)});
       element(B, "C", jn + ".rot", nullptr,
@@ -1111,15 +1125,18 @@ class Expander {
     }
     // pose of the child as signals of the coordinates
     E Fa = B.name(jn + ".Fa");
-    E pa = B.op('+', B.name(jn + ".pa"), B.op('*', Fa, disp));  // A's point, moved by d
-    E pb = B.name(jn + ".pb");
+    // A's point, moved by d; a particle's joint point is its position
+    E pa = B.op('+', bodies_.at(j.a.body).particle ? B.vec(0, 0, 0) : B.name(jn + ".pa"), B.op('*', Fa, disp));
+    E pb = bodies_.at(j.b.body).particle ? B.vec(0, 0, 0) : B.name(jn + ".pb");
     E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
     E qP = quaternion(B, parent), RP = rotation(B, parent);
     E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
-    for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
-    E Rq = B.call("rotq", {quaternion(B, child)});
-    for (int r = 1; r <= 3; ++r)
-      for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rq, r, c));
+    if (!C.particle) {
+      for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
+      E Rq = B.call("rotq", {quaternion(B, child)});
+      for (int r = 1; r <= 3; ++r)
+        for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rq, r, c));
+    }
     E RC = rotation(B, child);
     E joint_point = B.op('+', position(B, parent), B.op('*', RP, fwd ? pa : pb));
     if (P.ground) joint_point = fwd ? pa : pb;  // ground points are absolute
@@ -1135,21 +1152,25 @@ class Expander {
       bond(B, from, mtf + ".p1");
       bond(B, mtf + ".p2", sum);
     };
+    // (a particle has no angular-velocity junction: nothing turns it, nothing reads it)
     const std::string wsum = jn + ".wsum", vsum = jn + ".vsum";
-    junction(B, '0', wsum, 3, {}, {});
-    junction(B, '0', vsum, 3, {}, {});
+    const bool parent_turns = !P.ground && !P.particle;
     E RCt_RP = B.op('*', T(RC), RP);
-    if (!P.ground) feed(parent + ".w", RCt_RP, wsum);
-    for (const Rate& r : rates)
-      if (r.W) feed(r.junction, fwd ? B.op('*', B.op('*', RCt_RP, Fa), r.W) : B.neg(B.op('*', Fa, r.W)), wsum);
-    if (!P.ground) {
-      feed(parent + ".v", B.call("eye", {B.num(3)}), vsum);
-      feed(parent + ".w", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
+    if (!C.particle) {
+      junction(B, '0', wsum, 3, {}, {});
+      if (parent_turns) feed(parent + ".w", RCt_RP, wsum);
+      for (const Rate& r : rates)
+        if (r.W) feed(r.junction, fwd ? B.op('*', B.op('*', RCt_RP, Fa), r.W) : B.neg(B.op('*', Fa, r.W)), wsum);
     }
+    junction(B, '0', vsum, 3, {}, {});
+    if (!P.ground) feed(parent + ".v", B.call("eye", {B.num(3)}), vsum);
+    if (parent_turns) feed(parent + ".w", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
     for (const Rate& r : rates)
       if (r.V) feed(r.junction, fwd ? B.op('*', B.op('*', RP, Fa), r.V) : B.neg(B.op('*', B.op('*', RC, Fa), r.V)), vsum);
-    feed(child + ".w", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
-    named_bond(B, jn + ".reaction_t", wsum, child + ".w");
+    if (!C.particle) {
+      feed(child + ".w", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
+      named_bond(B, jn + ".reaction_t", wsum, child + ".w");
+    }
     named_bond(B, jn + ".reaction_f", vsum, child + ".v");
     coordinate_values_[jn] = {angle, angle_rate, axial, axial_rate};
   }
@@ -1209,11 +1230,9 @@ class Expander {
     return path;
   }
 
-  /// Joint coordinates need a tree of supported joints, and constraint rows
+  /// Joint coordinates need a tree without particles turned by joints, and constraint rows
   /// (a CN) need the position states that coordinate-driven bodies lack.
   void check_coordinates() {
-    const std::set<std::string> supported = {"revolute", "prismatic", "cylindrical", "screw",
-                                             "planar",   "universal", "spherical",   "fixed"};
     for (const Joint& j : joints_) {
       const AstJoint& d = *j.decl;
       if (j.strategy == Strategy::Coordinates && !j.tree) {
@@ -1230,14 +1249,7 @@ class Expander {
                                  fmt::join(loop, ", "), j.a.body, j.b.body, d.name));
         continue;
       }
-      if (j.strategy == Strategy::Coordinates && !supported.count(d.type)) {
-        diags_.error(d.type_loc, fmt::format("a {} joint has no joint-coordinate form in mbgc yet", d.type),
-                     "joint coordinates are implemented for every joint but the distance rod (a massless link, which has "
-                     "no coordinates of its own); "
-                     "write constraints = lagrange or penalty for this model");
-        continue;
-      }
-      if (j.strategy == Strategy::Coordinates)
+      if (j.strategy == Strategy::Coordinates && d.type != "distance")
         for (const Side* s : {&j.a, &j.b})
           if (bodies_.at(s->body).particle) {
             diags_.error(d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
@@ -1467,9 +1479,11 @@ class Expander {
         // child's junctions (force world, torque body frame); on b, by Newton's third law
         const std::string child = j.a_is_parent ? j.b.body : j.a.body;
         E sign = B.num(j.a_is_parent ? 1 : -1);
-        quantity_[jn + ".force"] = B.op('*', sign, B.name(jn + ".reaction_f.e"));
-        quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
         const std::string& t = j.decl->type;
+        quantity_[jn + ".force"] = B.op('*', sign, B.name(jn + ".reaction_f.e"));
+        if (!bodies_.at(child).particle)
+          quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
+        if (t == "distance") quantity_[jn + ".displacement"] = B.name(jn + ".length");
         if (has_rotation_coordinate(t)) {
           quantity_[jn + ".angle"] = cv->second.angle;
           quantity_[jn + ".rate"] = cv->second.rate;
