@@ -450,6 +450,12 @@ class Reducer {
     }
     AlgebraicLoop loop;
     loop.vars = tears;
+    for (int i : block) {  // the bonds of every unknown in the loop, as for an untorn one
+      const Variable& var_info = v(eqs_[static_cast<std::size_t>(i)].unknown);
+      if (var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) loop.bonds.push_back(var_info.of);
+    }
+    std::sort(loop.bonds.begin(), loop.bonds.end());
+    loop.bonds.erase(std::unique(loop.bonds.begin(), loop.bonds.end()), loop.bonds.end());
     loop.linear = true;
     loop.resolution = fmt::format("linear: torn at the {} state derivative{}, the other {} unknowns follow in order; "
                                   "the {}x{} system is solved at run time with partial pivoting",
