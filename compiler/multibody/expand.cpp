@@ -1273,7 +1273,10 @@ class Expander {
   }
 
   void place_bodies() {
-    for (const Joint* j : tree_order_) place(*j, j->a_is_parent);
+    // A body moved by joint coordinates has its pose as signals of them
+    // (emit_coordinate_joint): no initial-pose parameters to compute.
+    for (const Joint* j : tree_order_)
+      if (j->strategy != Strategy::Coordinates) place(*j, j->a_is_parent);
     for (const std::string& n : body_order_) {
       Body& body = bodies_.at(n);
       const AstBody& d = *body.decl;
