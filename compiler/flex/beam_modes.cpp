@@ -170,7 +170,29 @@ ModalIntegrals modal_integrals(const BeamModes& modes) {
   m.bending = square([&](int i, int j, double x) { return modes.shape(i, x, 2) * modes.shape(j, x, 2); });
   m.axial = square([&](int i, int j, double x) { return modes.shape(i, x, 1) * modes.shape(j, x, 1); });
   m.spin = square([&](int i, int j, double x) { return 0.5 * (L * L - x * x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
+  m.load = square([&](int i, int j, double x) { return (L - x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
   return m;
+}
+
+Matrix axial_up_to(const BeamModes& modes, double x) {
+  const auto n = static_cast<std::size_t>(modes.count());
+  Matrix out(n, std::vector<double>(n, 0.0));
+  if (x <= 0) return out;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      out[i][j] = out[j][i] = integrate(x, [&](double s) {
+        return modes.shape(static_cast<int>(i), s, 1) * modes.shape(static_cast<int>(j), s, 1);
+      });
+  return out;
+}
+
+Matrix cross_mass(const BeamModes& a, const BeamModes& b) {
+  Matrix out(static_cast<std::size_t>(a.count()), std::vector<double>(static_cast<std::size_t>(b.count())));
+  for (int i = 0; i < a.count(); ++i)
+    for (int j = 0; j < b.count(); ++j)
+      out[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] =
+          integrate(a.length(), [&](double x) { return a.shape(i, x) * b.shape(j, x); });
+  return out;
 }
 
 }  // namespace mbgc::flex

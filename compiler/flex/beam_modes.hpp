@@ -65,10 +65,23 @@ double integrate(double length_m, const std::function<double(double)>& f, int pa
 ///   spin_ij     = int (L^2 - x^2) / 2 phi_i' phi_j' dx
 ///                 (geometric stiffness of the centrifugal axial force per unit rho A Omega^2,
 ///                  for a beam spinning about an axis through x = 0, thesis eq. 3.50)
+///   load_ij     = int (L - x) phi_i' phi_j' dx
+///                 (per unit rho A of an axial acceleration of the frame: thesis eq. 3.30's R_x term)
+/// The last three are also integrals of the foreshortening a(x) = int_0^x phi' phi'^T:
+/// axial = a(L), load = int a dx, spin = int x a dx.
+using Matrix = std::vector<std::vector<double>>;
 struct ModalIntegrals {
   std::vector<double> mean, moment;
-  std::vector<std::vector<double>> mass, bending, axial, spin;
+  Matrix mass, bending, axial, spin, load;
 };
 ModalIntegrals modal_integrals(const BeamModes& modes);
+
+/// int_0^x phi_i' phi_j' dx: the foreshortening of the point x per unit
+/// eta_i eta_j (the axial shortening is -1/2 eta^T a(x) eta).
+Matrix axial_up_to(const BeamModes& modes, double x);
+
+/// int_0^L phi_i phi_j dx between two mode sets of the same length (the
+/// two bending planes of one beam).
+Matrix cross_mass(const BeamModes& a, const BeamModes& b);
 
 }  // namespace mbgc::flex

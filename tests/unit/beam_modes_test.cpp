@@ -86,6 +86,7 @@ TEST(BeamModes, PinnedPinnedIntegralsMatchClosedForms) {
     EXPECT_NEAR(I.moment[a], -std::sqrt(2.0) * L * L * c / (n * kPi), 1e-15);       // sqrt2 int x sin kx
     EXPECT_NEAR(I.axial[a][a], k * k * L, 1e-12 * k * k * L);                         // 2 k^2 int cos^2 kx
     EXPECT_NEAR(I.spin[a][a], k * k * L * L * L / 3 - L / 4, 1e-12 * k * k * L * L * L);  // k^2 int (L^2 - x^2) cos^2 kx
+    EXPECT_NEAR(I.load[a][a], k * k * L * L / 2, 1e-12 * k * k * L * L);                   // 2 k^2 int (L - x) cos^2 kx
     for (int j = 0; j < 5; ++j)
       if (j != i) EXPECT_NEAR(I.axial[a][static_cast<std::size_t>(j)], 0, 1e-12 * k * k * L);
   }
@@ -101,6 +102,36 @@ TEST(BeamModes, CantileverMeanMatchesTheClassicalForm) {
     const double sigma = (std::cosh(B) + std::cos(B)) / (std::sinh(B) + std::sin(B));
     EXPECT_NEAR(I.mean[static_cast<std::size_t>(i)], 2 * sigma / m.beta(i), 1e-13 * L) << i;
   }
+}
+
+TEST(BeamModes, ForeshorteningIntegralsAreConsistent) {
+  // axial, load and spin are a(L), int a dx and int x a dx of the
+  // foreshortening a(x) = int_0^x phi' phi'^T: checked by integrating a(x) again.
+  const double L = 8.0;
+  for (Supports s : kAll) {
+    const BeamModes m(s, L, 3);
+    const auto I = mbgc::flex::modal_integrals(m);
+    const auto aL = mbgc::flex::axial_up_to(m, L);
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j) {
+        const double scale = std::abs(I.axial[i][i]) + std::abs(I.axial[j][j]);
+        EXPECT_NEAR(aL[i][j], I.axial[i][j], 1e-12 * scale);
+        const double load = mbgc::flex::integrate(L, [&](double x) { return mbgc::flex::axial_up_to(m, x)[i][j]; }, 4);
+        const double spin = mbgc::flex::integrate(L, [&](double x) { return x * mbgc::flex::axial_up_to(m, x)[i][j]; }, 4);
+        EXPECT_NEAR(load, I.load[i][j], 1e-11 * scale * L) << mbgc::flex::supports_name(s);
+        EXPECT_NEAR(spin, I.spin[i][j], 1e-11 * scale * L * L) << mbgc::flex::supports_name(s);
+      }
+    EXPECT_EQ(mbgc::flex::axial_up_to(m, 0)[1][1], 0.0);
+  }
+}
+
+TEST(BeamModes, CrossMassOfTwoPlanesWithTheSameModesIsTheMassMatrix) {
+  const BeamModes a(Supports::ClampedFree, 2.0, 3), b(Supports::ClampedFree, 2.0, 2);
+  const auto c = mbgc::flex::cross_mass(a, b);
+  ASSERT_EQ(c.size(), 3u);
+  ASSERT_EQ(c[0].size(), 2u);
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 2; ++j) EXPECT_NEAR(c[i][j], i == j ? 2.0 : 0.0, 1e-12);
 }
 
 TEST(BeamModes, QuadratureIsExactForPolynomialsAndAccurateForSmoothFunctions) {
