@@ -34,12 +34,12 @@ const std::set<std::string> kReserved = {
     "UNDERFLOW", "TLOSS", "PLOSS", "CHAR_BIT", "INT_MAX", "INT_MIN", "stdin", "stdout", "stderr",
     "unix", "linux", "i386",
     // names the generated code uses itself
-    "t", "x", "xdot", "xp", "y", "yp", "r", "out", "id", "i", "s", "value", "std", "mbgrt", "mbgc_model",
+    "t", "x", "xdot", "xp", "y", "yp", "r", "jac_out", "rows_out", "out", "id", "i", "s", "value", "std", "mbgrt", "mbgc_model",
     "main", "model", "argc", "argv", "param", "overrides_", "overridden_", "kNames", "kParams",
     "name", "source_file", "size", "variable_name", "output_names", "parameters", "is_dae",
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
     "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
-    "constraints_enforced", "constraint_name", "constraints", "kConstraintNames"};
+    "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian"};
 
 /// Reserved by the C++ implementation or by the standard library's macros.
 bool reserved(const std::string& id) {
@@ -511,12 +511,12 @@ class Emitter {
   CppFunction jacobian() {
     std::size_t n = s_.states.size();
     CppFunction f{"JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.",
-                  "void jacobian(double t, const double* x, double* J) override",
+                  "void jacobian(double t, const double* x, double* jac_out) override",
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)x;"),
-                   CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) J[k] = 0.0;", n * n))}};
+                   CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) jac_out[k] = 0.0;", n * n))}};
     std::vector<std::pair<std::string, Expr>> results;
     for (std::size_t k = 0; k < s_.jacobian.size(); ++k)
-      if (!is_zero(s_.jacobian[k])) results.push_back({fmt::format("J[{}]", k), s_.jacobian[k]});
+      if (!is_zero(s_.jacobian[k])) results.push_back({fmt::format("jac_out[{}]", k), s_.jacobian[k]});
     section(f.body, s_.for_jacobian, results, "nonzero entries");
     return f;
   }
@@ -557,11 +557,11 @@ class Emitter {
     if (s_.dae) multiplier_indices(c);
     const char* y = s_.dae ? "y" : "x";
     CppFunction f{"CONSTRAINTS: g(x) for every CN row, then gdot(x).",
-                  fmt::format("void constraints(double t, const double* {}, double* c) override", y),
+                  fmt::format("void constraints(double t, const double* {}, double* rows_out) override", y),
                   {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
     std::vector<std::pair<std::string, Expr>> results;
-    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("c[{}]", i), s_.constraints[i].g});
-    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("c[{}]", n + i), s_.constraints[i].gdot});
+    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", i), s_.constraints[i].g});
+    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", n + i), s_.constraints[i].gdot});
     section(f.body, s_.for_constraints, results, "g, then gdot");
     c.public_methods.push_back(f);
   }

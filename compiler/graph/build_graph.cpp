@@ -460,7 +460,9 @@ class Builder {
         n.value = *v;
         if (!check_value_shape(n, el)) continue;
         n.law = (n.kind == NodeKind::Se || n.kind == NodeKind::Sf) ? LawForm::Source : LawForm::Linear;
-        if ((n.kind == NodeKind::I || n.kind == NodeKind::C || n.kind == NodeKind::TF || n.kind == NodeKind::GY) && !only_params(n.value)) {
+        bool fixed_modulus = n.kind == NodeKind::C || n.kind == NodeKind::TF || n.kind == NodeKind::GY ||
+                             (n.kind == NodeKind::I && !el.configuration_dependent);
+        if (fixed_modulus && !only_params(n.value)) {
           diags_.error(el.value->loc,
                        fmt::format("the value of {} `{}` must be constant (parameters only)", el.kind, n.name),
                        n.kind == NodeKind::TF   ? "use MTF for a modulus that depends on states, time or signals"

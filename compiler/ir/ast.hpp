@@ -60,6 +60,11 @@ struct AstElement {
   SourceLoc loc;      // of the name
   AstExprPtr value;   // may be null (nonlinear law given in attrs)
   std::vector<AstAttr> attrs;
+  // An I whose matrix depends on the configuration (a flexible body's mass
+  // matrix M(eta)). Only the multibody expansion sets it, and only together
+  // with the efforts dT/deta that keep the field's energy balance; a user's I
+  // must stay constant.
+  bool configuration_dependent = false;
 };
 
 /// `1 loop [n] : a, b -> c, d` — a junction and, optionally, the bonds into

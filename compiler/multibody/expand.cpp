@@ -1,11 +1,14 @@
 #include "multibody/expand.hpp"
 
+#include "flex/beam_modes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
 #include <fmt/format.h>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 
 namespace mbgc::multibody {
@@ -45,8 +48,23 @@ class Build {
   SourceLoc loc_;
 };
 
+/// A flexible beam (`flexible = beam`): a floating frame at the beam's start
+/// (x = 0, the body frame origin; x along the beam) and assumed modes of
+/// bending with deflections along the body's y (the x-y plane) and z (the
+/// x-z plane). Lengths and point positions are compile-time numbers (the
+/// compiler integrates the modes); material and section may be parameters.
+struct Beam {
+  double length_m = 0;
+  std::optional<flex::BeamModes> y, z;   // mode sets per bending plane
+  bool geometric_stiffness = true;
+  int count() const { return (y ? y->count() : 0) + (z ? z->count() : 0); }
+  int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z]
+  std::map<std::string, double> point_x;               // point name -> x along the beam
+};
+
 struct Body {
   const AstBody* decl = nullptr;
+  std::shared_ptr<Beam> beam;            // flexible beam (null: rigid)
   bool ground = false;
   bool particle = false;                 // no inertia: translation only
   std::map<std::string, E> points;       // name -> body-frame coordinates (ground: inertial)
@@ -436,6 +454,11 @@ class Expander {
     }
     Body body;
     body.decl = &b;
+    for (const AstAttr& a : b.attrs)
+      if (a.key == "flexible") {
+        add_flexible_body(body, b, a);
+        return;
+      }
     static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0"};
     bool has_mass = false, has_inertia = false, mass_misspelt = false;
     std::map<std::string, const AstAttr*> given;
@@ -488,6 +511,149 @@ class Expander {
                    "turn with it. Give it an inertia (inertia = diag(Jx, Jy, Jz)) to have points, or join the particle itself");
     bodies_[b.name] = body;
     body_order_.push_back(b.name);
+  }
+
+  // ---- 1b. flexible bodies -------------------------------------------------------------
+  /// Settings of `flexible = beam`; what each one must be.
+  static const std::map<std::string, std::string>& beam_settings() {
+    static const std::map<std::string, std::string> keys = {
+        {"flexible", "beam"},
+        {"length", "the beam's length (m), a number or constant parameter"},
+        {"density", "the material density (kg/m^3)"},
+        {"E", "Young's modulus (Pa)"},
+        {"section", "rectangle(width_y, height_z), circle(diameter) or tube(outer, inner) (m)"},
+        {"area", "the section area (m^2), with Iy and Iz instead of `section`"},
+        {"Iy", "the second moment of area about the body y axis (m^4): bending in the x-z plane"},
+        {"Iz", "the second moment of area about the body z axis (m^4): bending in the x-y plane"},
+        {"modes_xy", "the mode set of bending in the x-y plane, e.g. clamped_free(3)"},
+        {"modes_xz", "the mode set of bending in the x-z plane, e.g. pinned_pinned(2)"},
+        {"damping", "the modal damping ratio (0.01 = 1 % of critical in every mode)"},
+        {"geometric_stiffness", "on or off"},
+        {"frame", "joint (the floating frame is fixed to the beam at x = 0)"},
+        {"r0", "the initial position of the frame origin (world)"},
+        {"quat0", "the initial orientation"},
+        {"v0", "the initial velocity of the frame origin (world)"},
+        {"w0", "the initial angular velocity (body frame)"}};
+    return keys;
+  }
+
+  void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
+    const auto& keys = beam_settings();
+    if (kind.value->kind != AstExpr::Kind::Name || kind.value->name != "beam") {
+      diags_.error(kind.value->loc, "unknown kind of flexible body",
+                   "write flexible = beam (a uniform Euler-Bernoulli beam along the body's x axis)");
+      return;
+    }
+    auto beam = std::make_shared<Beam>();
+    std::map<std::string, const AstAttr*> given;
+    std::vector<std::string> names;
+    for (const auto& [k, what] : keys) names.push_back(k);
+    for (const AstAttr& a : b.attrs) {
+      if (!keys.count(a.key)) {
+        std::string near = closest_name(a.key, names);
+        const char* computed = (a.key == "mass" || a.key == "inertia" || a.key == "com")
+                                   ? "a beam's mass, inertia and centre of mass follow from its length, density and section; remove it"
+                                   : nullptr;
+        diags_.error(a.loc, fmt::format("flexible body `{}` has no setting `{}`", b.name, a.key),
+                     computed ? std::string(computed)
+                     : near.empty() ? fmt::format("a beam takes {}", fmt::join(names, ", "))
+                                    : fmt::format("did you mean `{}`?", near));
+        continue;
+      }
+      if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
+        auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
+        d.notes.push_back({first->second->loc, "first given here"});
+      }
+      if (kBodySettingShapes.count(a.key))
+        check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
+    }
+    auto need = [&](const char* key) -> const AstAttr* {
+      auto it = given.find(key);
+      if (it != given.end()) return it->second;
+      diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, key), fmt::format("give {}", keys.at(key)));
+      return nullptr;
+    };
+    if (const AstAttr* len = need("length")) {
+      auto v = constant_of(*len->value);
+      if (!v || !(*v > 0))
+        diags_.error(len->value->loc, fmt::format("the length of beam `{}` must be a positive constant", b.name),
+                     "the compiler integrates the mode shapes over the length: write a number or a constant parameter");
+      else beam->length_m = *v;
+    }
+    need("density");
+    need("E");
+    if (given.count("section") && (given.count("area") || given.count("Iy") || given.count("Iz")))
+      diags_.error(given.at("section")->loc, fmt::format("beam `{}` has both `section` and section properties", b.name),
+                   "give either section = rectangle(...)/circle(...)/tube(...) or area, Iy and Iz");
+    else if (!given.count("section")) {
+      need("area");
+      need("Iy");
+      need("Iz");
+    } else check_section(*given.at("section")->value);
+    for (const char* plane : {"modes_xy", "modes_xz"}) {
+      auto it = given.find(plane);
+      if (it == given.end() || beam->length_m <= 0) continue;
+      const AstExpr& v = *it->second->value;
+      flex::Supports sup{};
+      double n = 0;
+      if (v.kind == AstExpr::Kind::Call && v.args.size() == 1)
+        if (auto c = constant_of(*v.args[0])) n = *c;
+      if (v.kind != AstExpr::Kind::Call || !flex::supports_from_name(v.name, &sup) || n < 1 || n > 12 || n != std::floor(n)) {
+        diags_.error(v.loc, fmt::format("`{}` of beam `{}` is not a mode set", plane, b.name),
+                     "write supports(number of modes): clamped_free(3), pinned_pinned(2), clamped_pinned(2) or free_free(2); "
+                     "1 to 12 modes");
+        continue;
+      }
+      (plane[7] == 'y' ? beam->y : beam->z).emplace(sup, beam->length_m, static_cast<int>(n));
+    }
+    if (!given.count("modes_xy") && !given.count("modes_xz"))
+      diags_.error(b.loc, fmt::format("beam `{}` has no modes", b.name),
+                   "give the assumed modes of at least one bending plane, e.g. modes_xy = clamped_free(3)");
+    if (auto g = given.find("geometric_stiffness"); g != given.end()) {
+      const AstExpr& v = *g->second->value;
+      auto flag = constant_of(v);  // 1 or 0: a parameter, so that `mbgc --set` can switch it
+      if (v.kind == AstExpr::Kind::Name && (v.name == "on" || v.name == "off")) beam->geometric_stiffness = v.name == "on";
+      else if (flag && (*flag == 0 || *flag == 1)) beam->geometric_stiffness = *flag == 1;
+      else diags_.error(v.loc, "geometric_stiffness is `on` or `off` (or a constant 1 or 0)",
+                        "on: the dynamic geometric stiffness of the axial load (spin stiffening, buckling); off: the linear "
+                        "model the thesis compares against");
+    }
+    if (auto f = given.find("frame"); f != given.end()) {
+      const AstExpr& v = *f->second->value;
+      bool known = v.kind == AstExpr::Kind::Name;
+      if (known && v.name != "joint")
+        diags_.error(v.loc, fmt::format("frame = {} is not implemented yet", v.name),
+                     "only frame = joint (body-fixed at x = 0) exists so far; see README known limits");
+      else if (!known) diags_.error(v.loc, "a floating frame is a name", "write frame = joint");
+    }
+    body.beam = beam;
+    add_points(body, b, b.name);
+    for (const AstPoint& p : b.points) {
+      bool on_axis = false;
+      if (p.value->kind == AstExpr::Kind::List && p.value->args.size() == 3) {
+        auto x = constant_of(*p.value->args[0]), y = constant_of(*p.value->args[1]), z = constant_of(*p.value->args[2]);
+        if (x && y && z && *y == 0 && *z == 0 && *x >= 0 && *x <= beam->length_m) {
+          on_axis = true;
+          beam->point_x[p.name] = *x;
+        }
+      }
+      if (!on_axis && beam->length_m > 0)
+        diags_.error(p.value->loc, fmt::format("point `{}` is not on the axis of beam `{}`", p.name, b.name),
+                     fmt::format("points of a beam are [x, 0, 0] with x a constant from 0 to its length {} m: the joint "
+                                 "there sees the beam's deflection and slope at x",
+                                 beam->length_m));
+    }
+    bodies_[b.name] = body;
+    body_order_.push_back(b.name);
+  }
+
+  void check_section(const AstExpr& v) {
+    static const std::map<std::string, std::size_t> arity = {{"rectangle", 2}, {"circle", 1}, {"tube", 2}};
+    auto it = v.kind == AstExpr::Kind::Call ? arity.find(v.name) : arity.end();
+    if (it == arity.end() || it->second != v.args.size())
+      diags_.error(v.loc, "unknown beam section",
+                   "write rectangle(width_y, height_z), circle(diameter) or tube(outer_diameter, inner_diameter), in m; "
+                   "or give area, Iy and Iz instead of section");
   }
 
   void add_points(Body& body, const AstBody& b, const std::string& owner) {
@@ -550,6 +716,12 @@ class Expander {
                    "a force element connects two different bodies (ground for an applied load)");
       return;
     }
+    for (const Side* sd : {&*a, &*b})
+      if (bodies_.at(sd->body).beam) {
+        diags_.error(f.loc, fmt::format("force `{}` acts on the flexible body `{}`, which is not implemented yet", f.name, sd->body),
+                     "loads on a beam enter through joints for now: a joint's torque or force, or a rigid body joined to it");
+        return;
+      }
     ForceElement fe{&f, *a, *b, {}};
     static const std::vector<std::string> keys = {"force", "torque", "stiffness", "damping", "length"};
     for (const AstAttr& at : f.attrs) {
@@ -728,6 +900,10 @@ class Expander {
     const AstBody& d = *body.decl;
     const std::string& n = d.name;
     Build B(d.loc);
+    if (body.beam) {
+      emit_beam(body);
+      return;
+    }
     param(B, n + ".mass", attr(d, "mass"));
     for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
     // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
@@ -764,6 +940,331 @@ class Expander {
     element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
     element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
     bond(B, n + ".qrate.p2", n + ".q", 4);
+  }
+
+  // ---- 2b. flexible beams ----------------------------------------------------------------
+  // The floating frame formulation of thesis Ch. 4 in Kirchhoff form: one
+  // 1-junction `n.nu` carries nu = [V; omega; eta'] (V: velocity of the frame
+  // origin in body axes), an I field holds p = M(eta) nu, and R `n.ejs`
+  // supplies the velocity terms of the body-frame equations
+  //   P' + w x P = F,   H' + w x H + V x P = T,   p_eta' - dT/deta = Q.
+  // The kinetic energy T = 1/2 nu^T M(eta) nu is that of the deflected beam
+  // with the foreshortening of bending, u_x = x - 1/2 eta^T a(x) eta, kept
+  // to the order that gives linear equations in eta: this is what produces
+  // the dynamic geometric stiffness (thesis eqs. 3.30, 4.97) of spin, axial
+  // acceleration, gravity and, through the joints' points, end loads, as
+  // terms of one energy, so the model conserves it. Selector MTFs hand V (as
+  // R V, world), omega and eta' to the 1-junctions `n.v`, `n.w`, `n.etadot`
+  // that position, orientation, elasticity and joints attach to, as on a
+  // rigid body.
+
+  /// eta_k of beam n as an AST expression (1-based component of the modal C's state).
+  static E eta_of(const Build& B, const std::string& n, int k) { return B.at(B.name(n + ".eta.q"), k + 1); }
+
+  /// sum_ij P[i][j] x_i y_j for a parameter matrix P (1-based indexing).
+  static E quadratic(const Build& B, const std::string& P, const std::vector<E>& x, const std::vector<E>& y) {
+    E sum = nullptr;
+    for (std::size_t i = 0; i < x.size(); ++i)
+      for (std::size_t j = 0; j < y.size(); ++j) {
+        E term = B.op('*', B.op('*', idx2(B, B.name(P), static_cast<int>(i) + 1, static_cast<int>(j) + 1), x[i]), y[j]);
+        sum = sum ? B.op('+', sum, term) : term;
+      }
+    return sum ? sum : B.num(0);
+  }
+  /// (P x)_i, or (P^T x)_i, for a parameter matrix P.
+  static E row_dot(const Build& B, const std::string& P, int i, const std::vector<E>& x, bool transposed = false) {
+    E sum = nullptr;
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      int r = transposed ? static_cast<int>(j) + 1 : i + 1, c = transposed ? i + 1 : static_cast<int>(j) + 1;
+      E term = B.op('*', idx2(B, B.name(P), r, c), x[j]);
+      sum = sum ? B.op('+', sum, term) : term;
+    }
+    return sum ? sum : B.num(0);
+  }
+  static E sum_of(const Build& B, const std::vector<E>& terms) {
+    E sum = nullptr;
+    for (const E& t : terms)
+      if (t) sum = sum ? B.op('+', sum, t) : t;
+    return sum ? sum : B.num(0);
+  }
+  static E matrix_param(const Build& B, const flex::Matrix& m) {
+    std::vector<E> rows_;
+    for (const auto& r : m) {
+      std::vector<E> row;
+      for (double x : r) row.push_back(B.num(x));
+      rows_.push_back(B.list(row));
+    }
+    return B.list(rows_);
+  }
+  static E vector_param(const Build& B, const std::vector<double>& v) {
+    std::vector<E> items;
+    for (double x : v) items.push_back(B.num(x));
+    return B.list(items);
+  }
+
+  /// The modal coordinates of each plane, as expressions (given an accessor).
+  struct Eta { std::vector<E> y, z; };
+  Eta split_eta(const Beam& beam, const std::function<E(int)>& eta) const {
+    Eta out;
+    for (int i = 0; i < (beam.y ? beam.y->count() : 0); ++i) out.y.push_back(eta(i));
+    for (int i = 0; i < (beam.z ? beam.z->count() : 0); ++i) out.z.push_back(eta(beam.offset_z() + i));
+    return out;
+  }
+
+  /// s(eta) = int u dm: the first moment about the frame origin, body axes.
+  E first_moment(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
+    E sx = B.op('*', B.name(n + ".mass"), B.op('/', B.name(n + ".length"), B.num(2)));
+    if (beam.geometric_stiffness) {
+      E shortening = B.op('+', quadratic(B, n + ".y.load", eta.y, eta.y), quadratic(B, n + ".z.load", eta.z, eta.z));
+      sx = B.op('-', sx, B.op('*', B.num(0.5), shortening));
+    }
+    std::vector<E> sy, sz;
+    for (std::size_t i = 0; i < eta.y.size(); ++i) sy.push_back(B.op('*', B.at(B.name(n + ".y.mean"), static_cast<int>(i) + 1), eta.y[i]));
+    for (std::size_t i = 0; i < eta.z.size(); ++i) sz.push_back(B.op('*', B.at(B.name(n + ".z.mean"), static_cast<int>(i) + 1), eta.z[i]));
+    return B.list({sx, sum_of(B, sy), sum_of(B, sz)});
+  }
+
+  /// d s / d eta (3 x n): the translational coupling M_V,eta, rows of scalars.
+  std::vector<std::vector<E>> translation_coupling(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
+    const int ny = static_cast<int>(eta.y.size()), nz = static_cast<int>(eta.z.size());
+    std::vector<std::vector<E>> m(3, std::vector<E>(static_cast<std::size_t>(ny + nz), B.num(0)));
+    for (int i = 0; i < ny; ++i) {
+      if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(i)] = B.neg(row_dot(B, n + ".y.load", i, eta.y));
+      m[1][static_cast<std::size_t>(i)] = B.at(B.name(n + ".y.mean"), i + 1);
+    }
+    for (int i = 0; i < nz; ++i) {
+      if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(ny + i)] = B.neg(row_dot(B, n + ".z.load", i, eta.z));
+      m[2][static_cast<std::size_t>(ny + i)] = B.at(B.name(n + ".z.mean"), i + 1);
+    }
+    return m;
+  }
+
+  /// The generalised mass matrix M(eta), (6 + n) x (6 + n), as rows of scalars.
+  std::vector<std::vector<E>> mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
+    const std::size_t ne = eta.y.size() + eta.z.size(), N = 6 + ne, ny = eta.y.size();
+    std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
+    E zero = B.num(0);
+    E m = B.name(n + ".mass");
+    for (int k = 0; k < 3; ++k) M[k][k] = m;
+    // V-omega: -skew(s), omega-V: skew(s)
+    E s = first_moment(B, n, beam, eta);
+    std::vector<E> sc = {B.at(s, 1), B.at(s, 2), B.at(s, 3)};
+    auto put_skew = [&](int r0, int c0, double sign) {  // sign * skew(s) at (r0, c0)
+      auto v = [&](int k) { return sign > 0 ? sc[static_cast<std::size_t>(k)] : B.neg(sc[static_cast<std::size_t>(k)]); };
+      M[r0 + 0][c0 + 1] = B.neg(v(2)), M[r0 + 0][c0 + 2] = v(1);
+      M[r0 + 1][c0 + 0] = v(2), M[r0 + 1][c0 + 2] = B.neg(v(0));
+      M[r0 + 2][c0 + 0] = B.neg(v(1)), M[r0 + 2][c0 + 1] = v(0);
+    };
+    put_skew(0, 3, -1);
+    put_skew(3, 0, +1);
+    // omega-omega: J(eta) = J0 + J1(eta) + J2(eta)
+    E qy = quadratic(B, n + ".y.mass", eta.y, eta.y), qz = quadratic(B, n + ".z.mass", eta.z, eta.z);
+    E qyz = quadratic(B, n + ".yz.mass", eta.y, eta.z);
+    E spin = beam.geometric_stiffness ? B.op('+', quadratic(B, n + ".y.spin", eta.y, eta.y), quadratic(B, n + ".z.spin", eta.z, eta.z))
+                                      : zero;
+    E dy = zero, dz = zero;
+    for (std::size_t i = 0; i < eta.y.size(); ++i) dy = B.op('+', dy, B.op('*', B.at(B.name(n + ".y.moment"), static_cast<int>(i) + 1), eta.y[i]));
+    for (std::size_t i = 0; i < eta.z.size(); ++i) dz = B.op('+', dz, B.op('*', B.at(B.name(n + ".z.moment"), static_cast<int>(i) + 1), eta.z[i]));
+    E J0 = B.name(n + ".J0");
+    M[3][3] = B.op('+', idx2(B, J0, 1, 1), B.op('+', qy, qz));
+    M[4][4] = B.op('+', idx2(B, J0, 2, 2), B.op('-', qz, spin));
+    M[5][5] = B.op('+', idx2(B, J0, 3, 3), B.op('-', qy, spin));
+    M[3][4] = M[4][3] = B.neg(dy);
+    M[3][5] = M[5][3] = B.neg(dz);
+    M[4][5] = M[5][4] = B.neg(qyz);
+    // V-eta and omega-eta couplings, and the modal mass
+    auto tc = translation_coupling(B, n, beam, eta);
+    for (std::size_t r = 0; r < 3; ++r)
+      for (std::size_t c = 0; c < ne; ++c) M[r][6 + c] = M[6 + c][r] = tc[r][c];
+    for (std::size_t j = 0; j < eta.y.size(); ++j) {
+      E cx = B.neg(row_dot(B, n + ".yz.mass", static_cast<int>(j), eta.z));
+      M[3][6 + j] = M[6 + j][3] = cx;
+      M[5][6 + j] = M[6 + j][5] = B.at(B.name(n + ".y.moment"), static_cast<int>(j) + 1);
+    }
+    for (std::size_t j = 0; j < eta.z.size(); ++j) {
+      E cx = row_dot(B, n + ".yz.mass", static_cast<int>(j), eta.y, /*transposed=*/true);
+      M[3][6 + ny + j] = M[6 + ny + j][3] = cx;
+      M[4][6 + ny + j] = M[6 + ny + j][4] = B.neg(B.at(B.name(n + ".z.moment"), static_cast<int>(j) + 1));
+    }
+    for (std::size_t i = 0; i < eta.y.size(); ++i)
+      for (std::size_t j = 0; j < eta.y.size(); ++j) M[6 + i][6 + j] = idx2(B, B.name(n + ".y.mass"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
+    for (std::size_t i = 0; i < eta.z.size(); ++i)
+      for (std::size_t j = 0; j < eta.z.size(); ++j)
+        M[6 + ny + i][6 + ny + j] = idx2(B, B.name(n + ".z.mass"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
+    return M;
+  }
+
+  E rows_to_matrix(const Build& B, const std::vector<std::vector<E>>& m) const {
+    std::vector<E> rows_;
+    for (const auto& r : m) rows_.push_back(B.list(r));
+    return B.list(rows_);
+  }
+
+  /// Parameters of a beam: section, material and the modal integrals (constants).
+  void beam_params(const Build& B, const Body& body) {
+    const AstBody& d = *body.decl;
+    const std::string& n = d.name;
+    const Beam& beam = *body.beam;
+    param(B, n + ".length", B.num(beam.length_m));
+    param(B, n + ".density", attr(d, "density"));
+    param(B, n + ".E", attr(d, "E"));
+    if (E sec = attr(d, "section")) {
+      const std::string& kind = sec->name;
+      E a = sec->args[0], b = sec->args.size() > 1 ? sec->args[1] : nullptr;
+      auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
+      E pi = B.name("pi");
+      if (kind == "rectangle") {  // width along y, height along z
+        param(B, n + ".area", B.op('*', a, b));
+        param(B, n + ".Iy", B.op('/', B.op('*', a, pw(b, 3)), B.num(12)));
+        param(B, n + ".Iz", B.op('/', B.op('*', b, pw(a, 3)), B.num(12)));
+      } else if (kind == "circle") {
+        param(B, n + ".area", B.op('/', B.op('*', pi, pw(a, 2)), B.num(4)));
+        param(B, n + ".Iy", B.op('/', B.op('*', pi, pw(a, 4)), B.num(64)));
+        param(B, n + ".Iz", B.name(n + ".Iy"));
+      } else {  // tube(outer, inner)
+        param(B, n + ".area", B.op('/', B.op('*', pi, B.op('-', pw(a, 2), pw(b, 2))), B.num(4)));
+        param(B, n + ".Iy", B.op('/', B.op('*', pi, B.op('-', pw(a, 4), pw(b, 4))), B.num(64)));
+        param(B, n + ".Iz", B.name(n + ".Iy"));
+      }
+    } else {
+      param(B, n + ".area", attr(d, "area"));
+      param(B, n + ".Iy", attr(d, "Iy"));
+      param(B, n + ".Iz", attr(d, "Iz"));
+    }
+    E rho = B.name(n + ".density"), L = B.name(n + ".length");
+    param(B, n + ".mu", B.op('*', rho, B.name(n + ".area")));  // mass per length, kg/m
+    param(B, n + ".mass", B.op('*', B.name(n + ".mu"), L));
+    // about the frame origin, undeformed: the line's x^2 moment plus the sections' own inertia
+    E line = B.op('/', B.op('*', B.name(n + ".mu"), B.op('^', L, B.num(3))), B.num(3));
+    E Iy = B.op('*', B.op('*', rho, L), B.name(n + ".Iy")), Iz = B.op('*', B.op('*', rho, L), B.name(n + ".Iz"));
+    param(B, n + ".J0", B.call("diag", {B.op('+', Iy, Iz), B.op('+', line, Iy), B.op('+', line, Iz)}));
+    // what the joints' code reads of every body: the reference point is the frame origin
+    param(B, n + ".com", B.vec(0, 0, 0));
+    param(B, n + ".inertia", B.name(n + ".J0"));
+    E damping = attr(d, "damping");
+    for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
+      if (!*modes) continue;
+      const flex::ModalIntegrals I = flex::modal_integrals(**modes);
+      const std::string p = n + "." + plane;
+      E mu = B.name(n + ".mu");
+      E EI = B.op('*', B.name(n + ".E"), B.name(n + (plane[0] == 'y' ? ".Iz" : ".Iy")));  // deflection along y bends about z
+      param(B, p + ".mean", B.op('*', mu, vector_param(B, I.mean)));
+      param(B, p + ".moment", B.op('*', mu, vector_param(B, I.moment)));
+      param(B, p + ".mass", B.op('*', mu, matrix_param(B, I.mass)));
+      param(B, p + ".stiffness", B.op('*', EI, matrix_param(B, I.bending)));
+      if (beam.geometric_stiffness) {
+        param(B, p + ".load", B.op('*', mu, matrix_param(B, I.load)));
+        param(B, p + ".spin", B.op('*', mu, matrix_param(B, I.spin)));
+      }
+      // modal damping: 2 zeta omega_i m_i per mode, omega_i of the free beam
+      std::vector<E> c;
+      for (int i = 1; i <= (*modes)->count(); ++i)
+        c.push_back(B.op('*', B.op('*', B.num(2), damping ? damping : B.num(0)),
+                         B.call("sqrt", {B.op('*', idx2(B, B.name(p + ".stiffness"), i, i), idx2(B, B.name(p + ".mass"), i, i))})));
+      param(B, p + ".damping", c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c));
+    }
+    if (beam.y && beam.z) param(B, n + ".yz.mass", B.op('*', B.name(n + ".mu"), matrix_param(B, flex::cross_mass(*beam.y, *beam.z))));
+    for (const auto& [pt, x] : beam.point_x) {
+      for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
+        if (!*modes) continue;
+        std::vector<double> phi, slope;
+        for (int i = 0; i < (*modes)->count(); ++i) phi.push_back((*modes)->shape(i, x)), slope.push_back((*modes)->shape(i, x, 1));
+        const std::string p = n + "." + pt + "." + plane;
+        param(B, p + ".shape", vector_param(B, phi));
+        param(B, p + ".slope", vector_param(B, slope));
+        if (beam.geometric_stiffness) param(B, p + ".shortening", matrix_param(B, flex::axial_up_to(**modes, x)));
+      }
+    }
+  }
+
+  /// The body-frame position of a point of a beam, deflected: [x - 1/2 eta^T a(x) eta, w_y, w_z].
+  E beam_point(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const {
+    E x = B.num(beam.point_x.at(pt));
+    std::vector<E> wy, wz;
+    for (std::size_t i = 0; i < eta.y.size(); ++i) wy.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.shape"), static_cast<int>(i) + 1), eta.y[i]));
+    for (std::size_t i = 0; i < eta.z.size(); ++i) wz.push_back(B.op('*', B.at(B.name(n + "." + pt + ".z.shape"), static_cast<int>(i) + 1), eta.z[i]));
+    if (beam.geometric_stiffness) {
+      E a = B.op('+', quadratic(B, n + "." + pt + ".y.shortening", eta.y, eta.y), quadratic(B, n + "." + pt + ".z.shortening", eta.z, eta.z));
+      x = B.op('-', x, B.op('*', B.num(0.5), a));
+    }
+    return B.list({x, sum_of(B, wy), sum_of(B, wz)});
+  }
+  /// The small rotation of the section at a point (body axes): [0, -w_z', w_y'].
+  E beam_slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
+    std::vector<E> ty, tz;
+    for (std::size_t i = 0; i < eta.y.size(); ++i) ty.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.slope"), static_cast<int>(i) + 1), eta.y[i]));
+    for (std::size_t i = 0; i < eta.z.size(); ++i) tz.push_back(B.op('*', B.at(B.name(n + "." + pt + ".z.slope"), static_cast<int>(i) + 1), eta.z[i]));
+    return B.list({B.num(0), B.neg(sum_of(B, tz)), sum_of(B, ty)});
+  }
+  Eta state_eta(const Build& B, const std::string& n, const Beam& beam) const {
+    return split_eta(beam, [&](int k) { return eta_of(B, n, k); });
+  }
+
+  void emit_beam(const Body& body) {
+    const AstBody& d = *body.decl;
+    const std::string& n = d.name;
+    const Beam& beam = *body.beam;
+    Build B(d.loc);
+    beam_params(B, body);
+    for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
+    const int ne = beam.count(), N = 6 + ne;
+    Eta eta = state_eta(B, n, beam);
+    Eta rest = split_eta(beam, [&](int) { return B.num(0); });
+    // the I field and its velocity terms on the common junction nu = [V; omega; eta']
+    std::vector<std::string> nu_in;
+    if (gravity_) nu_in.push_back(n + ".weight");
+    junction(B, '1', n + ".nu", N, nu_in, {n + ".M", n + ".ejs", n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
+    E R0 = B.call("rotq", {B.name(n + ".q0")});
+    E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
+    element(B, "I", n + ".M", rows_to_matrix(B, mass_matrix(B, n, beam, eta)),
+            {kv("p0", B.op('*', rows_to_matrix(B, mass_matrix(B, n, beam, rest)), nu0), d.loc)});
+    std::get<AstElement>(generated_.back()).configuration_dependent = true;
+    E f = B.name("f"), p = B.name(n + ".M.p");
+    auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
+    E V = part(f, 1), w = part(f, 4), P = part(p, 1), H = part(p, 4);
+    auto cross = [&](E a, E b) { return B.call("cross", {std::move(a), std::move(b)}); };
+    // dT/deta at constant nu (Kirchhoff): the kinetic energy's change with the beam's shape
+    E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, mass_matrix(B, n, beam, eta)), f)));
+    E dT = B.call("transpose", {B.call("jacobian", {T, B.name(n + ".eta.q")})});
+    element(B, "R", n + ".ejs", nullptr,
+            {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
+    if (gravity_) {
+      // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
+      E g = B.op('*', B.call("transpose", {B.call("rotq", {B.name(n + ".q.q")})}), B.name("gravity"));
+      E coupling = rows_to_matrix(B, translation_coupling(B, n, beam, eta));
+      element(B, "Se", n + ".weight",
+              B.call("vcat", {B.op('*', B.name(n + ".mass"), g), cross(first_moment(B, n, beam, eta), g),
+                              B.op('*', B.call("transpose", {coupling}), g)}));
+    }
+    // selectors: V (turned to world axes), omega, eta'
+    E Rq = B.call("rotq", {B.name(n + ".q.q")});
+    element(B, "MTF", n + ".sv", B.call("hcat", {Rq, B.call("zeros", {B.num(3), B.num(3 + ne)})}));
+    element(B, "MTF", n + ".sw", B.call("hcat", {B.call("zeros", {B.num(3), B.num(3)}), B.call("eye", {B.num(3)}), B.call("zeros", {B.num(3), B.num(ne)})}));
+    element(B, "MTF", n + ".se", B.call("hcat", {B.call("zeros", {B.num(ne), B.num(6)}), B.call("eye", {B.num(ne)})}));
+    // position and orientation, as on a rigid body
+    junction(B, '1', n + ".v", 3, {n + ".sv.p2"}, {n + ".r"});
+    element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
+    junction(B, '1', n + ".w", 3, {n + ".sw.p2"}, {n + ".qrate.p1"});
+    element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
+    element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
+    bond(B, n + ".qrate.p2", n + ".q", 4);
+    // elasticity and modal damping on eta'
+    std::vector<std::string> modal_out = {n + ".eta"};
+    if (attr(d, "damping")) modal_out.push_back(n + ".damp");
+    junction(B, '1', n + ".etadot", ne, {n + ".se.p2"}, modal_out);
+    std::vector<std::vector<E>> K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
+    std::vector<std::vector<E>> D = K;
+    for (const auto& [plane, modes, off] : {std::tuple{"y", &beam.y, 0}, std::tuple{"z", &beam.z, beam.offset_z()}}) {
+      if (!*modes) continue;
+      for (int i = 0; i < (*modes)->count(); ++i)
+        for (int j = 0; j < (*modes)->count(); ++j) {
+          K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".stiffness"), i + 1, j + 1);
+          D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".damping"), i + 1, j + 1);
+        }
+    }
+    element(B, "C", n + ".eta", nullptr,
+            {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
+    if (attr(d, "damping")) element(B, "R", n + ".damp", rows_to_matrix(B, D));
   }
 
   // ---- pose of a body: its states, or (joint coordinates) signals of its tree joint ----
@@ -808,6 +1309,7 @@ class Expander {
     std::string body;
     E R;         // rotation body -> world (eye(3) for ground and particles)
     E p;         // joint point, world
+    E local;     // joint point, body frame relative to the reference point (a beam's: deflected)
     E X, Y, Z;   // joint-frame axes, world
   };
 
@@ -820,10 +1322,17 @@ class Expander {
     const std::string jn = j.decl->name;
     f.R = rotation(B, s.body);
     E local = B.name(jn + ".p" + tag);  // the point in CoM-relative body coordinates (ground: absolute)
+    E turn = f.R;                       // the joint frame's rotation (a beam's section turns with its slope)
+    if (body.beam && !s.point.empty()) {
+      Eta eta = state_eta(B, s.body, *body.beam);
+      local = beam_point(B, s.body, *body.beam, s.point, eta);
+      turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {beam_slope(B, s.body, s.point, eta)})));
+    }
     if (body.ground) f.p = local;
     else if (body.particle) f.p = position(B, s.body);
     else f.p = B.op('+', position(B, s.body), B.op('*', f.R, local));
-    E F = B.op('*', f.R, B.name(jn + ".F" + tag));
+    f.local = local;
+    E F = B.op('*', turn, B.name(jn + ".F" + tag));
     f.X = B.op('*', F, B.vec(1, 0, 0));
     f.Y = B.op('*', F, B.vec(0, 1, 0));
     f.Z = B.op('*', F, B.vec(0, 0, 1));
@@ -934,6 +1443,10 @@ class Expander {
       element(B, "MTF", prefix + "r",
               B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
       parts.push_back({prefix + "r", b + ".w"});
+    }
+    if (bodies_.at(b).beam) {  // the joint's point moves with the beam's deflection
+      element(B, "MTF", prefix + "e", B.call("jacobian", {rows_vec, B.name(b + ".eta.q")}));
+      parts.push_back({prefix + "e", b + ".etadot"});
     }
     for (const auto& [mtf, junc] : parts) {
       if (towards_sum) {
@@ -1249,6 +1762,17 @@ class Expander {
                                  fmt::join(loop, ", "), j.a.body, j.b.body, d.name));
         continue;
       }
+      if (j.strategy == Strategy::Coordinates) {
+        bool reported = false;
+        for (const Side* s : {&j.a, &j.b})
+          if (!reported && bodies_.at(s->body).beam) {
+            diags_.error(d.loc, fmt::format("joint `{}` joins the flexible body `{}` by joint coordinates, which is not implemented yet", d.name, s->body),
+                         "a beam's inertia field couples its frame and modal velocities; give this joint constraint rows: "
+                         "constraint = lagrange or penalty (see README known limits)");
+            reported = true;
+          }
+        if (reported) continue;
+      }
       if (j.strategy == Strategy::Coordinates && d.type != "distance")
         for (const Side* s : {&j.a, &j.b})
           if (bodies_.at(s->body).particle) {
@@ -1447,6 +1971,10 @@ class Expander {
     for (const std::string& n : body_order_) {
       const Body& body = bodies_.at(n);
       Build B(body.decl->loc);
+      if (body.beam) {
+        beam_quantities(B, body);
+        continue;
+      }
       E r = position(B, n), v = B.name(n + ".v.f");
       quantity_[n + ".position"] = r;
       quantity_[n + ".velocity"] = v;
@@ -1501,7 +2029,7 @@ class Expander {
         quantity_[jn + ".force"] = force;
       } else {
         E torque_body = Bf.ground ? B.name(jn + "." + side + "r.e1") : B.neg(B.name(jn + "." + side + "r.e1"));
-        E lever = B.op('*', body_side.R, B.name(jn + (Bf.ground ? ".pa" : ".pb")));
+        E lever = B.op('*', body_side.R, body_side.local);
         quantity_[jn + ".force"] = force;
         quantity_[jn + ".torque"] = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
       }
@@ -1517,6 +2045,41 @@ class Expander {
         E dvec = B.op('-', Bf.p, A.p);
         quantity_[jn + ".displacement"] = t == "distance" ? B.call("norm", {dvec}) : B.dot(A.Z, dvec);
       }
+    }
+  }
+
+  /// A beam's quantities: those of a rigid body, for its frame origin (x = 0),
+  /// plus its modal coordinates, elastic energy and the deflection of its points.
+  void beam_quantities(const Build& B, const Body& body) {
+    const std::string& n = body.decl->name;
+    const Beam& beam = *body.beam;
+    Eta eta = state_eta(B, n, beam);
+    E r = position(B, n), v = B.name(n + ".v.f"), q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
+    E p = B.name(n + ".M.p");
+    auto part = [&](E x, int from) { return B.list({B.at(x, from), B.at(x, from + 1), B.at(x, from + 2)}); };
+    quantity_[n + ".position"] = r;
+    quantity_[n + ".velocity"] = v;
+    quantity_[n + ".momentum"] = B.op('*', R, part(p, 1));
+    quantity_[n + ".quaternion"] = q;
+    quantity_[n + ".rotation"] = R;
+    quantity_[n + ".bryant"] = B.call("bryant", {q});
+    quantity_[n + ".omega"] = w;
+    quantity_[n + ".omega_world"] = B.op('*', R, w);
+    quantity_[n + ".angular_momentum"] = B.op('*', R, part(p, 4));  // about the frame origin
+    quantity_[n + ".modes"] = B.name(n + ".eta.q");
+    quantity_[n + ".kinetic_energy"] = B.op('*', B.num(0.5), B.dot(B.name(n + ".nu.f"), p));
+    E elastic = B.op('*', B.num(0.5), B.dot(B.name(n + ".eta.q"), B.name(n + ".eta.e")));
+    quantity_[n + ".elastic_energy"] = elastic;
+    E gravity = gravity_ ? B.neg(B.dot(B.name("gravity"), B.op('+', B.op('*', B.name(n + ".mass"), r),
+                                                                 B.op('*', R, first_moment(B, n, beam, eta)))))
+                         : B.num(0);
+    quantity_[n + ".potential_energy"] = B.op('+', gravity, elastic);
+    for (const auto& [pt, x] : beam.point_x) {
+      E local = beam_point(B, n, beam, pt, eta);
+      E rate = B.op('+', B.call("cross", {w, local}), B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
+      quantity_[n + "." + pt + ".position"] = B.op('+', r, B.op('*', R, local));
+      quantity_[n + "." + pt + ".velocity"] = B.op('+', v, B.op('*', R, rate));
+      quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(x, 0, 0));  // body axes
     }
   }
 

@@ -57,13 +57,6 @@ bool apply_overrides(Model& model, const Options& o) {
 /// Rejects solver/model combinations that cannot work, before any output is written.
 bool check_model_fits(const Model& model, const Options& o) {
   if (!model.is_dae()) return true;
-  if (o.linearize_at) {
-    print_error(
-        fmt::format("--linearize-at: model '{}' is a DAE; linearization is only "
-                    "implemented for ODE models",
-                    model.name()));
-    return false;
-  }
   if (o.settings.solver != Solver::ida) {
     print_error(
         fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has "
@@ -196,12 +189,16 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   std::vector<Mode> modes;
   if (linearize) {
     r = march(guard, *integrator, s, y0, yp0, observe_constraints);
-    std::vector<double> jac;
-    if (r.ok) r.ok = numeric_jacobian(guard, integrator->t(), integrator->y(), jac);
-    if (r.ok) {
-      modes = modes_of(jac, n);
-      write_modes(out, modes);
+    if (model.is_dae()) {
+      std::vector<double> a, b;
+      if (r.ok) r.ok = numeric_pencil(guard, integrator->t(), integrator->y(), integrator->yp(), a, b);
+      if (r.ok) modes = modes_of_pencil(a, b, n);
+    } else {
+      std::vector<double> jac;
+      if (r.ok) r.ok = numeric_jacobian(guard, integrator->t(), integrator->y(), jac);
+      if (r.ok) modes = modes_of(jac, n);
     }
+    if (r.ok) write_modes(out, modes);
   } else {
     csv.header("t", names);
     r = march(guard, *integrator, s, y0, yp0, write_row);

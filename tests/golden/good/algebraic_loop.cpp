@@ -84,12 +84,12 @@ class algebraic_loop_model final : public mbgrt::Model {
   }
 
   // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
-  void jacobian(double t, const double* x, double* J) override {
+  void jacobian(double t, const double* x, double* jac_out) override {
     (void)t;
     (void)x;
-    for (std::size_t k = 0; k < 1; ++k) J[k] = 0.0;
+    for (std::size_t k = 0; k < 1; ++k) jac_out[k] = 0.0;
     // nonzero entries
-    J[0] = -0.5454545454545454;
+    jac_out[0] = -0.5454545454545454;
   }
 
   // OUTPUT: the declared outputs at (t, y).

@@ -111,13 +111,13 @@ class components_model final : public mbgrt::Model {
   }
 
   // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
-  void jacobian(double t, const double* x, double* J) override {
+  void jacobian(double t, const double* x, double* jac_out) override {
     (void)t;
     (void)x;
-    for (std::size_t k = 0; k < 4; ++k) J[k] = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) jac_out[k] = 0.0;
     // nonzero entries
-    J[0] = derived1_;
-    J[3] = derived2_;
+    jac_out[0] = derived1_;
+    jac_out[3] = derived2_;
   }
 
   // OUTPUT: the declared outputs at (t, y).

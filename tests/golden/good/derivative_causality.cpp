@@ -98,10 +98,10 @@ class derivative_causality_model final : public mbgrt::Model {
   }
 
   // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
-  void jacobian(double t, const double* x, double* J) override {
+  void jacobian(double t, const double* x, double* jac_out) override {
     (void)t;
     (void)x;
-    for (std::size_t k = 0; k < 1; ++k) J[k] = 0.0;
+    for (std::size_t k = 0; k < 1; ++k) jac_out[k] = 0.0;
   }
 
   // OUTPUT: the declared outputs at (t, y).

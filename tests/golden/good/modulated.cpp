@@ -105,10 +105,10 @@ class modulated_model final : public mbgrt::Model {
   }
 
   // JACOBIAN: d xdot_i / d x_j (row-major), derived symbolically, for the implicit solvers.
-  void jacobian(double t, const double* x, double* J) override {
+  void jacobian(double t, const double* x, double* jac_out) override {
     (void)t;
     (void)x;
-    for (std::size_t k = 0; k < 4; ++k) J[k] = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) jac_out[k] = 0.0;
     // states
     const double m_p = x[0];
     const double c_q = x[1];
@@ -117,10 +117,10 @@ class modulated_model final : public mbgrt::Model {
     // modulated.mbg:8:8  signal theta
     const double theta = 0.5 * t;
     // nonzero entries
-    J[0] = -0.5 * (0.1 * std::fabs(m_f) + 0.1 * m_f * ((m_f) > 0.0 ? 1.0 : ((m_f) < 0.0 ? -1.0 : 0.0)));
+    jac_out[0] = -0.5 * (0.1 * std::fabs(m_f) + 0.1 * m_f * ((m_f) > 0.0 ? 1.0 : ((m_f) < 0.0 ? -1.0 : 0.0)));
     const double cse2 = std::cos(theta);  // shared by several equations
-    J[1] = -cse2 * (100.0 + 30.0 * (c_q*c_q));
-    J[2] = 0.5 * cse2;
+    jac_out[1] = -cse2 * (100.0 + 30.0 * (c_q*c_q));
+    jac_out[2] = 0.5 * cse2;
   }
 
   // OUTPUT: the declared outputs at (t, y).
