@@ -39,7 +39,7 @@ const std::set<std::string> kReserved = {
     "name", "source_file", "size", "variable_name", "output_names", "parameters", "is_dae",
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
     "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
-    "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian"};
+    "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason"};
 
 /// Reserved by the C++ implementation or by the standard library's macros.
 bool reserved(const std::string& id) {
@@ -170,6 +170,32 @@ class Emitter {
 
   std::string var_name(int id) const { return names_.var(id); }
 
+  /// Bounds beyond which a state's model no longer holds (a beam's modal
+  /// coordinates): the runtime stops the run there and prints the reason.
+  void state_limits(CppClass& c) {
+    std::vector<std::string> bounds, reasons;
+    for (std::size_t i = 0; i < s_.states.size(); ++i) {
+      const GraphNode& nd = g_.nodes[static_cast<std::size_t>(s_.states[i].node)];
+      const auto& vars = nd.state_vars;
+      auto k = static_cast<std::size_t>(std::find(vars.begin(), vars.end(), s_.states[i].var) - vars.begin());
+      if (k >= nd.state_limits.size()) continue;
+      bounds.push_back(fmt::format("case {}: return {};", i, cpp_double(nd.state_limits[k].first)));
+      reasons.push_back(fmt::format("case {}: return {};", i, cpp_string(nd.state_limits[k].second)));
+    }
+    if (bounds.empty()) return;
+    CppFunction limit{"LIMITS: where a state's model stops being valid (the run stops there, with the reason).",
+                      "double state_limit(std::size_t i) const override", {CppStmt::line("switch (i) {")}};
+    CppFunction why{"", "std::string state_limit_reason(std::size_t i) const override", {CppStmt::line("switch (i) {")}};
+    for (const auto& b : bounds) limit.body.push_back(CppStmt::line("  " + b));
+    for (const auto& r : reasons) why.body.push_back(CppStmt::line("  " + r));
+    limit.body.push_back(CppStmt::line("  default: return HUGE_VAL;"));
+    why.body.push_back(CppStmt::line("  default: return {};"));
+    limit.body.push_back(CppStmt::line("}"));
+    why.body.push_back(CppStmt::line("}"));
+    c.public_methods.push_back(limit);
+    c.public_methods.push_back(why);
+  }
+
   std::size_t unknown_count() const { return s_.states.size() + s_.algebraic.size(); }
 
   // ---- identity and metadata -----------------------------------------------------------
@@ -189,6 +215,7 @@ class Emitter {
       vn.body.push_back(CppStmt::line(fmt::format("return i < {} ? kNames[i] : \"?\";", unknown_names.size())));
     }
     c.public_methods.push_back(vn);
+    state_limits(c);
     std::vector<std::string> outs;
     for (const Output& o : g_.outputs) outs.push_back(cpp_string(o.name));
     c.public_methods.push_back({"", "std::vector<std::string> output_names() const override",

@@ -434,6 +434,7 @@ class Builder {
       const ResolvedNode& rn = m_.nodes[i];
       if (!rn.element || n.bonds.empty() || (is_two_port(n.kind) && (n.bonds[0] < 0 || n.bonds[1] < 0))) continue;
       const AstElement& el = *rn.element;
+      n.state_limits = el.state_limits;
       std::map<std::string, Value> locals;  // the element's own e, f, p/q inside { } laws
       if (!is_two_port(n.kind)) {
         int sign = flow_sign(g_, static_cast<int>(i), n.bonds[0]);

@@ -65,6 +65,10 @@ struct AstElement {
   // with the efforts dT/deta that keep the field's energy balance; a user's I
   // must stay constant.
   bool configuration_dependent = false;
+  // Storage elements: per state component, the magnitude beyond which the
+  // model stops being valid, and why (a beam's modal coordinates: half its
+  // length of deflection). The simulator stops there with the reason.
+  std::vector<std::pair<double, std::string>> state_limits;
 };
 
 /// `1 loop [n] : a, b -> c, d` — a junction and, optionally, the bonds into

@@ -54,6 +54,7 @@ struct GraphNode {
   Value constraint_g;      // CN: the position-level constraint g(states), dim x 1 (f = dg/dt)
   Value initial;           // initial state (storage elements), shaped dim x 1
   std::vector<int> state_vars;  // storage: one variable per component
+  std::vector<std::pair<double, std::string>> state_limits;  // per component: |state| bound and why (may be empty)
 };
 
 struct Bond {

@@ -1200,6 +1200,28 @@ class Expander {
     return split_eta(beam, [&](int k) { return eta_of(B, n, k); });
   }
 
+  /// Per modal coordinate: the value at which that mode alone deflects the
+  /// beam by half its length, far outside the small-deflection model. The
+  /// simulator stops there and says why (an instability, usually).
+  static std::vector<std::pair<double, std::string>> modal_limits(const std::string& n, const Beam& beam) {
+    std::vector<std::pair<double, std::string>> limits;
+    for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
+      if (!*modes) continue;
+      for (int i = 0; i < (*modes)->count(); ++i) {
+        double peak = 0;
+        for (int k = 0; k <= 1000; ++k) peak = std::max(peak, std::abs((*modes)->shape(i, beam.length_m * k / 1000)));
+        limits.push_back(
+            {0.5 * beam.length_m / peak,
+             fmt::format("mode {} of beam `{}` ({}, bending along body {}) deflects it by more than half its length ({:g} m), "
+                         "where the small-deflection modal model no longer holds. Likely cause: an instability - a beam "
+                         "spinning faster than its first natural frequency without geometric stiffness, or a beam "
+                         "compressed beyond its buckling load",
+                         i + 1, n, flex::supports_name((*modes)->supports()), plane, 0.5 * beam.length_m)});
+      }
+    }
+    return limits;
+  }
+
   void emit_beam(const Body& body) {
     const AstBody& d = *body.decl;
     const std::string& n = d.name;
@@ -1264,6 +1286,7 @@ class Expander {
     }
     element(B, "C", n + ".eta", nullptr,
             {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
+    std::get<AstElement>(generated_.back()).state_limits = modal_limits(n, beam);
     if (attr(d, "damping")) element(B, "R", n + ".damp", rows_to_matrix(B, D));
   }
 

@@ -23,6 +23,8 @@ GuardedModel::GuardedModel(Model& model)
       ids_(n_, 1.0),
       shape_(mbgrt::detail::constraint_shape(model)) {
   if (dae_) model_.differential_ids(ids_.data());
+  limits_.reserve(n_);
+  for (std::size_t i = 0; i < n_; ++i) limits_.push_back(model_.state_limit(i));
 }
 
 std::size_t GuardedModel::first_non_finite(const double* v) const {
@@ -84,12 +86,20 @@ bool GuardedModel::check_state(double t, const double* y) {
     record(t, BlameSite::state, i, y[i]);
     return false;
   }
+  for (std::size_t i = 0; i < n_; ++i)
+    if (std::abs(y[i]) > limits_[i]) {
+      record(t, BlameSite::limit, i, y[i]);
+      return false;
+    }
   return true;
 }
 
 std::string GuardedModel::describe(const Blame& b) const {
   if (b.site == BlameSite::exception)
     return fmt::format("the model threw an exception: {}", b.detail);
+  if (b.site == BlameSite::limit)
+    return fmt::format("state '{}' = {:.6g} is beyond its limit {:.6g}: {}", model_.variable_name(b.index), b.value,
+                       limits_.at(b.index), model_.state_limit_reason(b.index));
   // A residual row of a lagrange DAE past the states is a constraint row:
   // name the constraint rather than the multiplier the row happens to share an index with.
   if (b.site == BlameSite::residual && (shape_.ggl_layout() || !shape_.lambda_at.empty()) &&

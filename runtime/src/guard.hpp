@@ -15,7 +15,7 @@
 namespace mbgrt::detail {
 
 /// Where the first non-finite value was seen.
-enum class BlameSite { derivative, residual, state, exception };
+enum class BlameSite { derivative, residual, state, exception, limit };
 
 struct Blame {
   double t = 0.0;
@@ -47,7 +47,8 @@ class GuardedModel {
   int jacobian(double t, const double* y, double* J);
   bool has_jacobian() const { return model_.has_jacobian() && !dae_; }
 
-  /// Checks y after a step; false (and a recorded blame) if any entry is non-finite.
+  /// Checks y after a step; false (and a recorded blame) if any entry is
+  /// non-finite or a state is beyond the limit of its model's validity.
   bool check_state(double t, const double* y);
 
   /// The first recorded problem; later ones are consequences and are ignored.
@@ -65,6 +66,7 @@ class GuardedModel {
   std::size_t n_;
   bool dae_;
   std::vector<double> ids_;
+  std::vector<double> limits_;  ///< Model::state_limit per unknown (HUGE_VAL: none)
   ConstraintShape shape_;
   std::optional<Blame> blame_;
 };

@@ -99,7 +99,7 @@ void print_stop_message(std::FILE* err, const GuardedModel& model, const Integra
 
   if (solver_failed && blame && f.t != blame->t)
     note(err, fmt::format("the last accepted solution is at t = {} s", format_time(f.t)));
-  if (blame && blame->site != BlameSite::exception) {
+  if (blame && blame->site != BlameSite::exception && blame->site != BlameSite::limit) {
     // A residual row of a lagrange DAE past the states is a joint constraint.
     const ConstraintShape& shape = model.constraint_shape();
     const std::string culprit =

@@ -27,6 +27,7 @@
 // output point and reports the drift (lagrange) or violation (penalty).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -100,6 +101,11 @@ class Model {
   /// JACOBIAN (ODE, optional): J[i * size() + j] = d ydot_i / d y_j at (t, y),
   /// row-major. A model that provides it returns true from has_jacobian(); the
   /// implicit solvers then use it instead of finite differences.
+  /// |state i| beyond which the model no longer holds (HUGE_VAL: no limit),
+  /// and why; the run stops there with the reason (a beam's modal coordinates).
+  virtual double state_limit(std::size_t i) const { (void)i; return HUGE_VAL; }
+  virtual std::string state_limit_reason(std::size_t i) const { (void)i; return {}; }
+
   virtual bool has_jacobian() const { return false; }
   virtual void jacobian(double t, const double* y, double* J) { (void)t; (void)y; (void)J; }
 
