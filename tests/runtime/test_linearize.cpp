@@ -74,11 +74,35 @@ TEST(Linearize, UndampedModeHasZeroNotNegativeZeroDamping) {
   EXPECT_NEAR(parse_csv(r.csv).at(0, "omega_rad_s"), 3.0, kLinearTol);
 }
 
-TEST(Linearize, DaeModelIsRejected) {
+TEST(Linearize, DaeModelGivesTheEigenvaluesOnItsConstraints) {
+  // x' = -x + z with 0 = z + 2 x: on the constraint x' = -3 x. The pencil
+  // (dF/dy, dF/dy') also has an infinite eigenvalue (the algebraic row): dropped.
   SmallDae m;
   RunResult r = run(m, {"--linearize-at", "0.1"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(Contains(r.err, "DAE"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  Csv csv = parse_csv(r.csv);
+  ASSERT_EQ(csv.rows.size(), 1u);
+  EXPECT_NEAR(csv.at(0, "omega_rad_s"), 3.0, kLinearTol);
+  EXPECT_EQ(csv.at(0, "f_hz"), 0.0);
+  EXPECT_NEAR(csv.at(0, "damping_ratio"), 1.0, kLinearTol);
+}
+
+/// x' = x from 1, with |x| valid up to 2: the run stops at t = ln 2 with the reason.
+class LimitedGrowth : public CubicDecay {
+ public:
+  const char* name() const override { return "limited_growth"; }
+  void derivative(double, const double* y, double* dy) override { dy[0] = y[0]; }
+  double state_limit(std::size_t) const override { return 2.0; }
+  std::string state_limit_reason(std::size_t) const override { return "the tank overflows"; }
+};
+
+TEST(StateLimit, RunStopsWhereAStateLeavesItsModelsRangeAndSaysWhy) {
+  LimitedGrowth m;
+  RunResult r = run(m, {"--interval", "0.01", "--rtol", "1e-10", "--atol", "1e-12"});
+  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(Contains(r.err, "state 'x' = 2.0")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "is beyond its limit 2: the tank overflows")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "at t = 0.7 s")) << r.err;  // the first output point past ln 2 = 0.693
 }
 
 TEST(Linearize, FailureBeforeTheLinearizationTimeExitsOne) {
