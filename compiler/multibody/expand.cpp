@@ -1786,15 +1786,13 @@ class Expander {
         continue;
       }
       if (j.strategy == Strategy::Coordinates) {
-        bool reported = false;
-        for (const Side* s : {&j.a, &j.b})
-          if (!reported && bodies_.at(s->body).beam) {
-            diags_.error(d.loc, fmt::format("joint `{}` joins the flexible body `{}` by joint coordinates, which is not implemented yet", d.name, s->body),
-                         "a beam's inertia field couples its frame and modal velocities; give this joint constraint rows: "
-                         "constraint = lagrange or penalty (see README known limits)");
-            reported = true;
-          }
-        if (reported) continue;
+        const Side* beam = bodies_.at(j.a.body).beam ? &j.a : bodies_.at(j.b.body).beam ? &j.b : nullptr;
+        if (beam) {
+          diags_.error(d.loc, fmt::format("joint `{}` joins the flexible body `{}` by joint coordinates, which is not implemented yet", d.name, beam->body),
+                       "a beam's inertia field couples its frame and modal velocities; give this joint constraint rows: "
+                       "constraint = lagrange or penalty (see README known limits)");
+          continue;
+        }
       }
       if (j.strategy == Strategy::Coordinates && d.type != "distance")
         for (const Side* s : {&j.a, &j.b})
