@@ -57,6 +57,7 @@ struct Beam {
   double length_m = 0;
   std::optional<flex::BeamModes> y, z;   // mode sets per bending plane
   bool geometric_stiffness = true;
+  double slope_limit_rad = 0.3;          // the run stops where one mode alone tilts the beam further
   int count() const { return (y ? y->count() : 0) + (z ? z->count() : 0); }
   int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z]
   std::map<std::string, double> point_x;               // point name -> x along the beam
@@ -529,6 +530,7 @@ class Expander {
         {"modes_xz", "the mode set of bending in the x-z plane, e.g. pinned_pinned(2)"},
         {"damping", "the modal damping ratio (0.01 = 1 % of critical in every mode)"},
         {"geometric_stiffness", "on or off"},
+        {"slope_limit", "the largest slope (rad) one mode may give the beam before the run stops; default 0.3"},
         {"frame", "joint (the floating frame is fixed to the beam at x = 0)"},
         {"r0", "the initial position of the frame origin (world)"},
         {"quat0", "the initial orientation"},
@@ -625,6 +627,14 @@ class Expander {
         diags_.error(v.loc, fmt::format("frame = {} is not implemented yet", v.name),
                      "only frame = joint (body-fixed at x = 0) exists so far; see README known limits");
       else if (!known) diags_.error(v.loc, "a floating frame is a name", "write frame = joint");
+    }
+    if (auto s = given.find("slope_limit"); s != given.end()) {
+      auto v = constant_of(*s->second->value);
+      if (!v || !(*v > 0) || *v > 1.5)
+        diags_.error(s->second->value->loc, fmt::format("the slope limit of beam `{}` must be a constant in (0, 1.5] rad", b.name),
+                     "the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by more "
+                     "than 14 %; the default is 0.3");
+      else beam->slope_limit_rad = *v;
     }
     body.beam = beam;
     add_points(body, b, b.name);
@@ -1200,23 +1210,25 @@ class Expander {
     return split_eta(beam, [&](int k) { return eta_of(B, n, k); });
   }
 
-  /// Per modal coordinate: the value at which that mode alone deflects the
-  /// beam by half its length, far outside the small-deflection model. The
-  /// simulator stops there and says why (an instability, usually).
+  /// Where a modal coordinate leaves the model's range: the value at which
+  /// that mode alone tilts the beam by its slope limit somewhere (the
+  /// kinematics keep slopes to second order). A mode growing that far is
+  /// almost always an instability: the run stops and says which.
   static std::vector<std::pair<double, std::string>> modal_limits(const std::string& n, const Beam& beam) {
     std::vector<std::pair<double, std::string>> limits;
     for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
       if (!*modes) continue;
       for (int i = 0; i < (*modes)->count(); ++i) {
-        double peak = 0;
-        for (int k = 0; k <= 1000; ++k) peak = std::max(peak, std::abs((*modes)->shape(i, beam.length_m * k / 1000)));
+        double peak_slope = 0;
+        for (int k = 0; k <= 1000; ++k)
+          peak_slope = std::max(peak_slope, std::abs((*modes)->shape(i, beam.length_m * k / 1000, 1)));
         limits.push_back(
-            {0.5 * beam.length_m / peak,
-             fmt::format("mode {} of beam `{}` ({}, bending along body {}) deflects it by more than half its length ({:g} m), "
-                         "where the small-deflection modal model no longer holds. Likely cause: an instability - a beam "
-                         "spinning faster than its first natural frequency without geometric stiffness, or a beam "
-                         "compressed beyond its buckling load",
-                         i + 1, n, flex::supports_name((*modes)->supports()), plane, 0.5 * beam.length_m)});
+            {beam.slope_limit_rad / peak_slope,
+             fmt::format("mode {} of beam `{}` ({}, bending along body {}) tilts it by more than {:g} rad, beyond the "
+                         "moderate slopes the modal model holds for (`slope_limit`). Likely cause: an instability - the "
+                         "beam compressed beyond its buckling load, or spinning faster than its first natural frequency "
+                         "without geometric stiffness",
+                         i + 1, n, flex::supports_name((*modes)->supports()), plane, beam.slope_limit_rad)});
       }
     }
     return limits;
