@@ -426,5 +426,22 @@ TEST(Lagrange, OtherSolversAreRejectedForTheDae) {
   EXPECT_TRUE(Contains(r.err, "--solver ida"));
 }
 
+TEST(Lagrange, InitialValuesDoNotCallAFullRankSystemRedundantBecauseOfItsUnits) {
+  // A pendulum bob of 1e12 kg: its multiplier's column carries 1 / m beside
+  // the accelerations' 1 and, without column scaling, the rank test took it
+  // for a dependent one ("the multipliers are not unique"). The motion does
+  // not depend on the mass: the bob still passes the bottom at a quarter period.
+  const double period = pendulum_period(1.0, kG0, std::numbers::pi / 2);
+  GglPendulum m;
+  ConstrainedRun run = run_with_report(m, {"--set", "m=1e12", "--t-end", num(period / 4), "--interval",
+                                           num(period / 40), "--rtol", "1e-10", "--atol", "1e-12"});
+  ASSERT_EQ(run.r.status, 0) << run.r.err;
+  EXPECT_TRUE(Contains(run.r.err, "initial values: ")) << run.r.err;
+  EXPECT_FALSE(Contains(run.r.err, "not unique")) << run.r.err;
+  const Csv csv = parse_csv(run.r.csv);
+  EXPECT_NEAR(csv.at(10, "x"), 0.0, 1e-6);
+  EXPECT_NEAR(csv.at(10, "y"), -1.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace mbgrt::test
