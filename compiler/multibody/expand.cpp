@@ -726,12 +726,6 @@ class Expander {
                    "a force element connects two different bodies (ground for an applied load)");
       return;
     }
-    for (const Side* sd : {&*a, &*b})
-      if (bodies_.at(sd->body).beam) {
-        diags_.error(f.loc, fmt::format("force `{}` acts on the flexible body `{}`, which is not implemented yet", f.name, sd->body),
-                     "loads on a beam enter through joints for now: a joint's torque or force, or a rigid body joined to it");
-        return;
-      }
     ForceElement fe{&f, *a, *b, {}};
     static const std::vector<std::string> keys = {"force", "torque", "stiffness", "damping", "length"};
     for (const AstAttr& at : f.attrs) {
@@ -1247,6 +1241,8 @@ class Expander {
     // the I field and its velocity terms on the common junction nu = [V; omega; eta']
     std::vector<std::string> nu_in;
     if (gravity_) nu_in.push_back(n + ".weight");
+    if (auto it = loads_.find(n); it != loads_.end())
+      for (const std::string& f : it->second) nu_in.push_back(f + ".on_" + n);
     junction(B, '1', n + ".nu", N, nu_in, {n + ".M", n + ".ejs", n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
     E R0 = B.call("rotq", {B.name(n + ".q0")});
     E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
@@ -1948,6 +1944,13 @@ class Expander {
     if (body.ground) return {local, B.vec(0, 0, 0)};
     E r = position(B, s.body), v = B.name(s.body + ".v.f");
     if (body.particle) return {r, v};
+    if (body.beam) {  // the deflected point, moving with the frame and the modes
+      Eta eta = state_eta(B, s.body, *body.beam);
+      E at = s.point.empty() ? B.vec(0, 0, 0) : beam_point(B, s.body, *body.beam, s.point, eta);
+      E rate = B.op('+', B.call("cross", {B.name(s.body + ".w.f"), at}),
+                    B.op('*', B.call("jacobian", {at, B.name(s.body + ".eta.q")}), B.name(s.body + ".etadot.f")));
+      return {B.op('+', r, B.op('*', rotation(B, s.body), at)), B.op('+', v, B.op('*', rotation(B, s.body), rate))};
+    }
     E R = rotation(B, s.body);
     E arm = B.op('-', local, B.name(s.body + ".com"));
     return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.name(s.body + ".w.f"), arm})))};
@@ -1957,6 +1960,25 @@ class Expander {
   /// effort sources on the bodies' junctions: F on the centre-of-mass
   /// velocity junction, the body-frame moment arm x (R^T F) + R^T T on the
   /// angular-velocity one. A spring-damper acts along the line P -> Q.
+  /// A force F (and torque T), world axes, at a beam's point as an effort on
+  /// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
+  /// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
+  E beam_load(const Build& B, const std::string& n, const std::string& point, E force, E torque) {
+    const Beam& beam = *bodies_.at(n).beam;
+    Eta eta = state_eta(B, n, beam);
+    E at = point.empty() ? B.vec(0, 0, 0) : beam_point(B, n, beam, point, eta);
+    E Rt = B.call("transpose", {rotation(B, n)}), F = B.op('*', Rt, force), q = B.name(n + ".eta.q");
+    E moment = B.call("cross", {at, F});
+    E modal = B.op('*', B.call("transpose", {B.call("jacobian", {at, q})}), F);
+    if (torque) {
+      E T = B.op('*', Rt, torque);
+      moment = B.op('+', moment, T);
+      if (!point.empty())
+        modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam_slope(B, n, point, eta), q})}), T));
+    }
+    return B.call("vcat", {F, moment, modal});
+  }
+
   void emit_force(const ForceElement& f) {
     const std::string& fn = f.decl->name;
     Build B(f.decl->loc);
@@ -1989,6 +2011,10 @@ class Expander {
       if (body.ground) continue;
       const std::string base = fn + ".on_" + s->body;
       auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
+      if (body.beam) {
+        element(B, "Se", base, signed_(beam_load(B, s->body, s->point, force, torque)));
+        continue;
+      }
       element(B, "Se", base + "_f", signed_(force));
       if (body.particle) continue;
       E Rt = B.call("transpose", {rotation(B, s->body)});

@@ -25,7 +25,7 @@ constexpr double kPi = 3.14159265358979323846;
 /// classical closed form (Craig 1981; thesis eq. 9.14), unnormalised.
 struct Cantilever {
   double beta, sigma;
-  explicit Cantilever(int i) {
+  explicit Cantilever(int i, double length = kLength) {
     // root of cos b cosh b + 1 = 0 near (2 i + 1) pi / 2, by Newton's method
     double b = (2 * i + 1) * kPi / 2 + (i == 0 ? 0.3 : 0.0);
     for (int k = 0; k < 50; ++k) {
@@ -33,7 +33,7 @@ struct Cantilever {
       b -= f / df;
     }
     sigma = (std::cosh(b) + std::cos(b)) / (std::sinh(b) + std::sin(b));
-    beta = b / kLength;
+    beta = b / length;
   }
   double at(double x, int d) const {
     const double z = beta * x, s = std::pow(beta, d);
@@ -47,10 +47,10 @@ struct Cantilever {
 
 /// Composite Simpson rule on [0, L] with 4000 intervals.
 template <class F>
-double simpson(F f) {
+double simpson(F f, double L = kLength) {
   const int n = 4000;
-  const double h = kLength / n;
-  double s = f(0.0) + f(kLength);
+  const double h = L / n;
+  double s = f(0.0) + f(L);
   for (int k = 1; k < n; ++k) s += (k % 2 ? 4 : 2) * f(k * h);
   return s * h / 3;
 }
@@ -312,6 +312,69 @@ TEST(SpaceManipulator, RigidJointTorquesAreThePlanarInverseDynamicsAndFlexibleLi
   EXPECT_GT(deviation[0], 0.05) << "m: the aluminium links bend visibly (measured 0.165 m)";
   EXPECT_LT(deviation[1], 0.2 * deviation[0]) << deviation[0] << " then " << deviation[1];
   EXPECT_GT(deviation[1], 0.05 * deviation[0]) << deviation[0] << " then " << deviation[1];
+}
+
+// The clamped tube of tests/numeric/models/cantilever.mbg.
+constexpr double kTubeLength = 2.0, kTubeE = 7e10, kTubeDensity = 2700;
+const double kTubeI = kPi * (std::pow(0.05, 4) - std::pow(0.04, 4)) / 64;
+const double kTubeArea = kPi * (0.05 * 0.05 - 0.04 * 0.04) / 4;
+
+TEST(BeamLoads, TipForceOnAForceElementGivesTheStaticDeflectionAsModesAreAdded) {
+  // F L^3 / (3 E I) for a cantilever; an assumed-modes model approaches it
+  // from below (1 mode: 97 %), here at the end of a damped 2 s run.
+  const double F = 100, exact = F * std::pow(kTubeLength, 3) / (3 * kTubeE * kTubeI);
+  double last_gap = 1;
+  for (const char* sim : {CANTILEVER_1_SIM, CANTILEVER_3_SIM, CANTILEVER_4_SIM}) {
+    auto r = run(sim, "--set F=100", std::string("cantilever_static_") + std::to_string(last_gap));
+    ASSERT_EQ(r.status, 0) << r.log;
+    const double tip = -r.csv.rows.back()[r.csv.col("tip")];
+    const double gap = (exact - tip) / exact;
+    EXPECT_GT(gap, 0) << tip << " vs " << exact;   // a Ritz model is too stiff
+    EXPECT_LT(gap, last_gap) << tip << " vs " << exact;
+    last_gap = gap;
+  }
+  EXPECT_LT(last_gap, 2e-3) << "4 modes";
+}
+
+TEST(BeamLoads, AxialTipLoadLowersTheFrequenciesAsTheRayleighRitzProblemSays) {
+  // A compressive dead load P at the tip, through the tip's foreshortening,
+  // adds -P G to the modal stiffness, G = int phi' phi'^T dx: the frequencies
+  // solve (K - P G) a = w^2 M a (cantilever buckling: P -> pi^2 EI / (4 L^2)).
+  // Without geometric stiffness the load changes nothing.
+  const int n = 3;
+  const double P_cr = kPi * kPi * kTubeE * kTubeI / (4 * kTubeLength * kTubeLength);
+  Eigen::MatrixXd K(n, n), G(n, n), M(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Cantilever a(i, kTubeLength), b(j, kTubeLength);
+      K(i, j) = kTubeE * kTubeI * simpson([&](double x) { return a.at(x, 2) * b.at(x, 2); }, kTubeLength);
+      G(i, j) = simpson([&](double x) { return a.at(x, 1) * b.at(x, 1); }, kTubeLength);
+      M(i, j) = kTubeDensity * kTubeArea * simpson([&](double x) { return a.at(x, 0) * b.at(x, 0); }, kTubeLength);
+    }
+  double w0 = 0;
+  for (double fraction : {0.0, 0.5, 0.9}) {
+    const double P = fraction * P_cr;
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(K - P * G, M);
+    const double expected = std::sqrt(solver.eigenvalues()(0));
+    std::ostringstream args;
+    args.precision(17);
+    args << "--set zeta=0 --set P=" << P << " --t-end 0 --linearize-at 0";
+    for (const char* sim : {CANTILEVER_3_SIM, CANTILEVER_LINEAR_SIM}) {
+      auto r = run(sim, args.str(), "cantilever_axial_" + std::to_string(int(10 * fraction)));
+      ASSERT_EQ(r.status, 0) << r.log;
+      std::vector<double> w;
+      for (const auto& row : r.csv.rows)
+        if (row[1] > 1e-3) w.push_back(row[1]);
+      ASSERT_FALSE(w.empty()) << r.log;
+      if (sim == std::string(CANTILEVER_3_SIM)) {
+        EXPECT_NEAR(w[0], expected, 1e-6 * expected) << "P = " << fraction << " P_cr";
+      } else {
+        if (fraction == 0.0) w0 = w[0];
+        EXPECT_NEAR(w[0], w0, 1e-9 * w0) << "without geometric stiffness, P = " << fraction << " P_cr";
+      }
+    }
+    if (fraction == 0.9) EXPECT_LT(expected, 0.4 * w0);  // sqrt(1 - 0.9) would be 0.32
+  }
 }
 
 }  // namespace
