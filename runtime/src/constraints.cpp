@@ -77,32 +77,35 @@ Linearization linearize(Fn&& f, Vec v, const Vec& f0, Index row0, Index rows,
 
 /// Minimum-norm least-squares solution s of J s = -r. Rows are equilibrated
 /// first (which leaves the solution of a consistent system unchanged), so a
-/// row in small units does not look like a dependent one. With scale_columns
-/// the columns are equilibrated too, so that the rank test does not depend on
-/// units (a body of 1e-3 kg m^2 beside one of 200 kg would otherwise make its
-/// columns look dependent); the step is then least-norm in the scaled
-/// unknowns, which changes nothing where J has full rank. Assembly keeps
-/// unscaled columns: there the least-norm step is the smallest move in metres
-/// and radians.
-Vec min_norm_step(const Mat& J, const Vec& r, Index* rank = nullptr, bool scale_columns = false) {
+/// row in small units does not look like a dependent one. `rank`, if asked
+/// for, is that of J with its columns equilibrated too, so that it does not
+/// depend on units either (a 0.005 kg m^2 base beside a 200 kg payload made
+/// its columns look dependent). The step itself stays least-norm in the
+/// unknowns as they are: scaling its columns would pick another solution
+/// wherever the system is nearly singular.
+Vec min_norm_step(const Mat& J, const Vec& r, Index* rank = nullptr) {
   Vec w(J.rows());
   for (Index i = 0; i < J.rows(); ++i) {
     const double big = J.cols() > 0 ? J.row(i).cwiseAbs().maxCoeff() : 0.0;
     w[i] = big > 0.0 ? 1.0 / big : 1.0;
   }
-  Mat A = w.asDiagonal() * J;
-  Vec u = Vec::Ones(J.cols());
-  for (Index j = 0; scale_columns && j < J.cols(); ++j) {
-    const double big = J.rows() > 0 ? A.col(j).cwiseAbs().maxCoeff() : 0.0;
-    u[j] = big > 0.0 ? 1.0 / big : 1.0;
-  }
-  A = A * u.asDiagonal();
+  const Mat A = w.asDiagonal() * J;
   const Vec b = -(w.asDiagonal() * r);
   Eigen::CompleteOrthogonalDecomposition<Mat> cod;
   cod.setThreshold(kRankThreshold);
   cod.compute(A);
-  if (rank) *rank = cod.rank();
-  return u.asDiagonal() * cod.solve(b);
+  if (rank) {
+    Vec u(A.cols());
+    for (Index j = 0; j < A.cols(); ++j) {
+      const double big = A.rows() > 0 ? A.col(j).cwiseAbs().maxCoeff() : 0.0;
+      u[j] = big > 0.0 ? 1.0 / big : 1.0;
+    }
+    Eigen::CompleteOrthogonalDecomposition<Mat> scaled;
+    scaled.setThreshold(kRankThreshold);
+    scaled.compute(A * u.asDiagonal());
+    *rank = scaled.rank();
+  }
+  return cod.solve(b);
 }
 
 /// A lagrange row whose unit gradient keeps less than this after projection
@@ -485,7 +488,7 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
     scale = term_scale(J, z, zcols);
     const double residual = max_abs(F);
     Index rank = 0;
-    const Vec step = min_norm_step(J, F, &rank, /*scale_columns=*/true);
+    const Vec step = min_norm_step(J, F, &rank);
     rep.rank = sz(rank);
     if (residual <= kTight * (1.0 + scale) || rep.iterations >= kMaxIterations) break;
     Vec z_new = z + step, F_new(n);
