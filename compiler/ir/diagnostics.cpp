@@ -43,6 +43,11 @@ Diagnostic& Diagnostics::warning(SourceLoc loc, std::string message, std::string
   return list_.back();
 }
 
+Diagnostic& Diagnostics::note(SourceLoc loc, std::string message, std::string hint) {
+  list_.push_back({Severity::Note, loc, std::move(message), std::move(hint), {}});
+  return list_.back();
+}
+
 static const char* severity_name(Severity s) {
   switch (s) {
     case Severity::Error: return "error";

@@ -59,6 +59,8 @@ class Diagnostics {
 
   Diagnostic& error(SourceLoc loc, std::string message, std::string hint = {});
   Diagnostic& warning(SourceLoc loc, std::string message, std::string hint = {});
+  /// Information about a deliberate choice (what the compiler did with it); never fails a build.
+  Diagnostic& note(SourceLoc loc, std::string message, std::string hint = {});
 
   bool has_errors() const { return errors_ > 0; }
   int error_count() const { return errors_; }

@@ -58,6 +58,7 @@ struct Beam {
   std::optional<flex::BeamModes> y, z;   // mode sets per bending plane
   bool geometric_stiffness = true;
   double slope_limit_rad = 0.3;          // the run stops where one mode alone tilts the beam further
+  bool mean_axes = false;                // frame = buckens: the couplings int phi dm, int x phi dm are left out
   int count() const { return (y ? y->count() : 0) + (z ? z->count() : 0); }
   int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z]
   std::map<std::string, double> point_x;               // point name -> x along the beam
@@ -531,12 +532,61 @@ class Expander {
         {"damping", "the modal damping ratio (0.01 = 1 % of critical in every mode)"},
         {"geometric_stiffness", "on or off"},
         {"slope_limit", "the largest slope (rad) one mode may give the beam before the run stops; default 0.3"},
-        {"frame", "joint (the floating frame is fixed to the beam at x = 0)"},
+        {"frame", "joint (fixed to the beam at x = 0) or buckens (the mean axes of free-free modes)"},
         {"r0", "the initial position of the frame origin (world)"},
         {"quat0", "the initial orientation"},
         {"v0", "the initial velocity of the frame origin (world)"},
         {"w0", "the initial angular velocity (body frame)"}};
     return keys;
+  }
+
+  /// The floating frame (thesis Ch. 5). `joint`: attached to the beam at
+  /// x = 0, which the mode set must leave in place (every set but free_free).
+  /// `buckens`: the mean axes, whose conditions int u dm = 0 and
+  /// int r0 x u dm = 0 free-free modes satisfy (they are orthogonal to the
+  /// rigid motions); those two couplings then drop out of M(eta), and the
+  /// compiler says so. The default is the one the mode sets allow.
+  void check_frame(Beam& beam, const AstBody& b, const AstAttr* given) {
+    bool any_free = false, all_free = true;
+    for (const auto* modes : {&beam.y, &beam.z})
+      if (*modes) {
+        const bool free = (*modes)->supports() == flex::Supports::FreeFree;
+        any_free = any_free || free;
+        all_free = all_free && free;
+      }
+    std::string frame = all_free && any_free ? "buckens" : "joint";
+    SourceLoc loc = b.loc;
+    if (given) {
+      const AstExpr& v = *given->value;
+      loc = v.loc;
+      if (v.kind != AstExpr::Kind::Name) {
+        diags_.error(v.loc, "a floating frame is a name", "write frame = joint or frame = buckens");
+        return;
+      }
+      frame = v.name;
+      if (frame == "tisserand" || frame == "centre" || frame == "principal") {
+        diags_.error(v.loc, fmt::format("frame = {} is not implemented yet", frame),
+                     "frame = joint (fixed to the beam at x = 0) and frame = buckens (the mean axes of free-free "
+                     "modes, Tisserand's frame to first order) exist so far; see README known limits");
+        return;
+      }
+      if (frame != "joint" && frame != "buckens") {
+        diags_.error(v.loc, fmt::format("unknown floating frame `{}`", frame), "write frame = joint or frame = buckens");
+        return;
+      }
+    }
+    if (frame == "joint" && any_free) {
+      diags_.error(loc, fmt::format("free-free modes move the end x = 0 of beam `{}`, so its frame cannot be fixed there", b.name),
+                   all_free ? "write frame = buckens: the mean axes the free-free modes define"
+                            : "give every plane free_free modes with frame = buckens, or no plane free_free modes");
+      return;
+    }
+    if (frame == "buckens" && !all_free) {
+      diags_.error(loc, fmt::format("the mean axes (frame = buckens) of beam `{}` need modes orthogonal to its rigid motions", b.name),
+                   "give every bending plane free_free(n) modes, or use frame = joint");
+      return;
+    }
+    beam.mean_axes = frame == "buckens";
   }
 
   void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
@@ -620,14 +670,7 @@ class Expander {
                         "on: the dynamic geometric stiffness of the axial load (spin stiffening, buckling); off: the linear "
                         "model the thesis compares against");
     }
-    if (auto f = given.find("frame"); f != given.end()) {
-      const AstExpr& v = *f->second->value;
-      bool known = v.kind == AstExpr::Kind::Name;
-      if (known && v.name != "joint")
-        diags_.error(v.loc, fmt::format("frame = {} is not implemented yet", v.name),
-                     "only frame = joint (body-fixed at x = 0) exists so far; see README known limits");
-      else if (!known) diags_.error(v.loc, "a floating frame is a name", "write frame = joint");
-    }
+    check_frame(*beam, b, given.count("frame") ? given.at("frame") : nullptr);
     if (auto s = given.find("slope_limit"); s != given.end()) {
       auto v = constant_of(*s->second->value);
       if (!v || !(*v > 0) || *v > 1.5)
@@ -1022,9 +1065,9 @@ class Expander {
       E shortening = B.op('+', quadratic(B, n + ".y.load", eta.y, eta.y), quadratic(B, n + ".z.load", eta.z, eta.z));
       sx = B.op('-', sx, B.op('*', B.num(0.5), shortening));
     }
-    std::vector<E> sy, sz;
-    for (std::size_t i = 0; i < eta.y.size(); ++i) sy.push_back(B.op('*', B.at(B.name(n + ".y.mean"), static_cast<int>(i) + 1), eta.y[i]));
-    for (std::size_t i = 0; i < eta.z.size(); ++i) sz.push_back(B.op('*', B.at(B.name(n + ".z.mean"), static_cast<int>(i) + 1), eta.z[i]));
+    std::vector<E> sy, sz;  // int phi dm eta: zero in mean axes
+    for (std::size_t i = 0; i < eta.y.size() && !beam.mean_axes; ++i) sy.push_back(B.op('*', B.at(B.name(n + ".y.mean"), static_cast<int>(i) + 1), eta.y[i]));
+    for (std::size_t i = 0; i < eta.z.size() && !beam.mean_axes; ++i) sz.push_back(B.op('*', B.at(B.name(n + ".z.mean"), static_cast<int>(i) + 1), eta.z[i]));
     return B.list({sx, sum_of(B, sy), sum_of(B, sz)});
   }
 
@@ -1034,11 +1077,11 @@ class Expander {
     std::vector<std::vector<E>> m(3, std::vector<E>(static_cast<std::size_t>(ny + nz), B.num(0)));
     for (int i = 0; i < ny; ++i) {
       if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(i)] = B.neg(row_dot(B, n + ".y.load", i, eta.y));
-      m[1][static_cast<std::size_t>(i)] = B.at(B.name(n + ".y.mean"), i + 1);
+      if (!beam.mean_axes) m[1][static_cast<std::size_t>(i)] = B.at(B.name(n + ".y.mean"), i + 1);
     }
     for (int i = 0; i < nz; ++i) {
       if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(ny + i)] = B.neg(row_dot(B, n + ".z.load", i, eta.z));
-      m[2][static_cast<std::size_t>(ny + i)] = B.at(B.name(n + ".z.mean"), i + 1);
+      if (!beam.mean_axes) m[2][static_cast<std::size_t>(ny + i)] = B.at(B.name(n + ".z.mean"), i + 1);
     }
     return m;
   }
@@ -1067,8 +1110,8 @@ class Expander {
     E spin = beam.geometric_stiffness ? B.op('+', quadratic(B, n + ".y.spin", eta.y, eta.y), quadratic(B, n + ".z.spin", eta.z, eta.z))
                                       : zero;
     E dy = zero, dz = zero;
-    for (std::size_t i = 0; i < eta.y.size(); ++i) dy = B.op('+', dy, B.op('*', B.at(B.name(n + ".y.moment"), static_cast<int>(i) + 1), eta.y[i]));
-    for (std::size_t i = 0; i < eta.z.size(); ++i) dz = B.op('+', dz, B.op('*', B.at(B.name(n + ".z.moment"), static_cast<int>(i) + 1), eta.z[i]));
+    for (std::size_t i = 0; i < eta.y.size() && !beam.mean_axes; ++i) dy = B.op('+', dy, B.op('*', B.at(B.name(n + ".y.moment"), static_cast<int>(i) + 1), eta.y[i]));
+    for (std::size_t i = 0; i < eta.z.size() && !beam.mean_axes; ++i) dz = B.op('+', dz, B.op('*', B.at(B.name(n + ".z.moment"), static_cast<int>(i) + 1), eta.z[i]));
     E J0 = B.name(n + ".J0");
     M[3][3] = B.op('+', idx2(B, J0, 1, 1), B.op('+', qy, qz));
     M[4][4] = B.op('+', idx2(B, J0, 2, 2), B.op('-', qz, spin));
@@ -1083,12 +1126,12 @@ class Expander {
     for (std::size_t j = 0; j < eta.y.size(); ++j) {
       E cx = B.neg(row_dot(B, n + ".yz.mass", static_cast<int>(j), eta.z));
       M[3][6 + j] = M[6 + j][3] = cx;
-      M[5][6 + j] = M[6 + j][5] = B.at(B.name(n + ".y.moment"), static_cast<int>(j) + 1);
+      if (!beam.mean_axes) M[5][6 + j] = M[6 + j][5] = B.at(B.name(n + ".y.moment"), static_cast<int>(j) + 1);
     }
     for (std::size_t j = 0; j < eta.z.size(); ++j) {
       E cx = row_dot(B, n + ".yz.mass", static_cast<int>(j), eta.y, /*transposed=*/true);
       M[3][6 + ny + j] = M[6 + ny + j][3] = cx;
-      M[4][6 + ny + j] = M[6 + ny + j][4] = B.neg(B.at(B.name(n + ".z.moment"), static_cast<int>(j) + 1));
+      if (!beam.mean_axes) M[4][6 + ny + j] = M[6 + ny + j][4] = B.neg(B.at(B.name(n + ".z.moment"), static_cast<int>(j) + 1));
     }
     for (std::size_t i = 0; i < eta.y.size(); ++i)
       for (std::size_t j = 0; j < eta.y.size(); ++j) M[6 + i][6 + j] = idx2(B, B.name(n + ".y.mass"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
@@ -1152,8 +1195,20 @@ class Expander {
       const std::string p = n + "." + plane;
       E mu = B.name(n + ".mu");
       E EI = B.op('*', B.name(n + ".E"), B.name(n + (plane[0] == 'y' ? ".Iz" : ".Iy")));  // deflection along y bends about z
-      param(B, p + ".mean", B.op('*', mu, vector_param(B, I.mean)));
-      param(B, p + ".moment", B.op('*', mu, vector_param(B, I.moment)));
+      if (beam.mean_axes) {
+        // what the mean axes remove, and how small it is for these modes (per unit mass and length)
+        double largest = 0;
+        for (double x : I.mean) largest = std::max(largest, std::abs(x) / beam.length_m);
+        for (double x : I.moment) largest = std::max(largest, std::abs(x) / (beam.length_m * beam.length_m));
+        diags_.note(d.loc, fmt::format("beam `{}` in mean axes (frame = buckens): its free-free modes along body {} are "
+                                       "orthogonal to the rigid motions (int phi dm and int x phi dm are {:.1e} of m L "
+                                       "and m L^2), so the compiler leaves the translational coupling `{}.mean` and the "
+                                       "rotational coupling `{}.moment` out of the mass matrix",
+                                       n, plane, largest, p, p));
+      } else {
+        param(B, p + ".mean", B.op('*', mu, vector_param(B, I.mean)));
+        param(B, p + ".moment", B.op('*', mu, vector_param(B, I.moment)));
+      }
       param(B, p + ".mass", B.op('*', mu, matrix_param(B, I.mass)));
       param(B, p + ".stiffness", B.op('*', EI, matrix_param(B, I.bending)));
       if (beam.geometric_stiffness) {

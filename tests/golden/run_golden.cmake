@@ -4,7 +4,8 @@
 #
 # good: the generated C++ and every stage dump must equal the blessed files
 #       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot; mbgc must exit 0 and be
-#       deterministic (two runs, same bytes).
+#       deterministic (two runs, same bytes); what it prints to stderr (notes,
+#       warnings) must equal <NAME>.stderr if either is non-empty.
 # bad:  stderr must equal <NAME>.stderr and the exit status <NAME>.status;
 #       no output file may be written. Extra mbgc arguments (e.g. --set N=2.5)
 #       may be given in <NAME>.args, one per line.
@@ -44,6 +45,10 @@ if(KIND STREQUAL "good")
     message(FATAL_ERROR "mbgc is not deterministic on ${NAME}.mbg: two runs gave different C++")
   endif()
   check(${NAME}.cpp "${cpp}")
+  # notes and warnings on a good model (e.g. what a floating frame removed) are part of its golden
+  if(NOT err STREQUAL "" OR EXISTS ${DIR}/${NAME}.stderr)
+    check(${NAME}.stderr "${err}")
+  endif()
   foreach(stage ast graph causality equations reduced)
     execute_process(COMMAND ${MBGC} ${NAME}.mbg --dump=${stage} WORKING_DIRECTORY ${DIR}
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
