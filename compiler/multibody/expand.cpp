@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <tuple>
 
 namespace mbgc::multibody {
 namespace {
@@ -1999,12 +2000,9 @@ class Expander {
     if (body.ground) return {local, B.vec(0, 0, 0)};
     E r = position(B, s.body), v = B.name(s.body + ".v.f");
     if (body.particle) return {r, v};
-    if (body.beam) {  // the deflected point, moving with the frame and the modes
+    if (body.beam) {
       Eta eta = state_eta(B, s.body, *body.beam);
-      E at = s.point.empty() ? B.vec(0, 0, 0) : beam_point(B, s.body, *body.beam, s.point, eta);
-      E rate = B.op('+', B.call("cross", {B.name(s.body + ".w.f"), at}),
-                    B.op('*', B.call("jacobian", {at, B.name(s.body + ".eta.q")}), B.name(s.body + ".etadot.f")));
-      return {B.op('+', r, B.op('*', rotation(B, s.body), at)), B.op('+', v, B.op('*', rotation(B, s.body), rate))};
+      return beam_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : beam_point(B, s.body, *body.beam, s.point, eta));
     }
     E R = rotation(B, s.body);
     E arm = B.op('-', local, B.name(s.body + ".com"));
@@ -2015,6 +2013,15 @@ class Expander {
   /// effort sources on the bodies' junctions: F on the centre-of-mass
   /// velocity junction, the body-frame moment arm x (R^T F) + R^T T on the
   /// angular-velocity one. A spring-damper acts along the line P -> Q.
+  /// World position and velocity of a beam's point at `local` (body axes,
+  /// deflected): it moves with the frame and, through the modes, on it.
+  std::pair<E, E> beam_point_motion(const Build& B, const std::string& n, E local) const {
+    E R = rotation(B, n);
+    E rate = B.op('+', B.call("cross", {B.name(n + ".w.f"), local}),
+                  B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
+    return {B.op('+', position(B, n), B.op('*', R, local)), B.op('+', B.name(n + ".v.f"), B.op('*', R, rate))};
+  }
+
   /// A force F (and torque T), world axes, at a beam's point as an effort on
   /// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
   /// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
@@ -2190,9 +2197,7 @@ class Expander {
     quantity_[n + ".potential_energy"] = B.op('+', gravity, elastic);
     for (const auto& [pt, x] : beam.point_x) {
       E local = beam_point(B, n, beam, pt, eta);
-      E rate = B.op('+', B.call("cross", {w, local}), B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
-      quantity_[n + "." + pt + ".position"] = B.op('+', r, B.op('*', R, local));
-      quantity_[n + "." + pt + ".velocity"] = B.op('+', v, B.op('*', R, rate));
+      std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = beam_point_motion(B, n, local);
       quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(x, 0, 0));  // body axes
     }
   }
