@@ -1,13 +1,16 @@
 # mbgcFunctions.cmake — compile .mbg models at build time.
 #
-#   mbgc_add_simulation(<target> MODEL <file.mbg> [OPTIONS <mbgc options>...])
-#       a simulator executable (generated C++ with main()).
-#   mbgc_add_model(<target> MODEL <file.mbg> [OPTIONS ...])
+#   mbgc_add_simulation(<target> MODEL <file.mbg> [OPTIONS <mbgc options>...]
+#                       [DEPENDS <files or targets>...])
+#       a simulator executable (generated C++ with main()). DEPENDS names files
+#       the model reads that the build itself makes (a modal-data file written
+#       by a custom command, found with OPTIONS -I <its directory>).
+#   mbgc_add_model(<target> MODEL <file.mbg> [OPTIONS ...] [DEPENDS ...])
 #       an INTERFACE library whose header <target>.hpp holds the model class
 #       (mbgc --library), for embedding a model in your own program.
 #
-# The generated source is rebuilt when the model, any file it imports, or the
-# compiler changes (add_custom_command with DEPENDS and a depfile).
+# The generated source is rebuilt when the model, any file it imports or reads
+# (modal-data files), or the compiler changes (add_custom_command with DEPENDS and a depfile).
 # MBGC_COMPILER_TARGET names the mbgc executable target: `mbgc` inside this
 # project, `mbgc::mbgc` after find_package(mbgc).
 include_guard(GLOBAL)
@@ -20,7 +23,7 @@ if(NOT DEFINED MBGC_RUNTIME_TARGET)
 endif()
 
 function(_mbgc_generate target model_in out_file)
-  cmake_parse_arguments(ARG "" "" "OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "OPTIONS;DEPENDS" ${ARGN})
   get_filename_component(model ${model_in} ABSOLUTE)
   if(NOT EXISTS ${model})
     message(FATAL_ERROR "mbgc: model file ${model_in} not found (for target ${target})")
@@ -34,32 +37,32 @@ function(_mbgc_generate target model_in out_file)
   add_custom_command(
     OUTPUT ${out_file}
     COMMAND ${MBGC_COMPILER_TARGET} ${model} -o ${out_file} ${ARG_OPTIONS}
-    DEPENDS ${model} ${MBGC_COMPILER_TARGET}
+    DEPENDS ${model} ${MBGC_COMPILER_TARGET} ${ARG_DEPENDS}
     ${depfile_args}
     COMMENT "mbgc: compiling model ${model_in}"
     VERBATIM)
 endfunction()
 
 function(mbgc_add_simulation target)
-  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbgc_add_simulation(${target}): MODEL <file.mbg> is required")
   endif()
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}.cpp)
-  _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS ${ARG_OPTIONS})
+  _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS ${ARG_OPTIONS} DEPENDS ${ARG_DEPENDS})
   add_executable(${target} ${out})
   target_link_libraries(${target} PRIVATE ${MBGC_RUNTIME_TARGET})
 endfunction()
 
 function(mbgc_add_model target)
-  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS" ${ARGN})
+  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbgc_add_model(${target}): MODEL <file.mbg> is required")
   endif()
   set(dir ${CMAKE_CURRENT_BINARY_DIR}/${target}_include)
   set(out ${dir}/${target}.hpp)
   file(MAKE_DIRECTORY ${dir})
-  _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS --library ${ARG_OPTIONS})
+  _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS --library ${ARG_OPTIONS} DEPENDS ${ARG_DEPENDS})
   add_custom_target(${target}_generate DEPENDS ${out})
   add_library(${target} INTERFACE)
   add_dependencies(${target} ${target}_generate)

@@ -74,7 +74,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
 
   ast = elaborate::unroll_loops(ast, opt.overrides, diags);
   if (failed()) return 1;
-  ast = multibody::expand(ast, diags, opt.constraints);
+  ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs});
   if (failed()) return 1;
   if (opt.dump == Dump::Expanded) return finish(ir::print_ast(ast));
 

@@ -26,6 +26,7 @@ struct Options {
   bool library = false;       ///< --library: model class without main()
   std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time
+  std::vector<std::string> search_dirs;              ///< -I: where modal-data files are looked for
   std::optional<multibody::Strategy> constraints;  ///< --constraints: replaces the model's `constraints = ...`
 };
 

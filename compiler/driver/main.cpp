@@ -28,6 +28,9 @@ int main(int argc, char** argv) {
                  "lagrange|penalty|coordinates: how joint constraints are enforced, replacing the model's `constraints = ...` "
                  "(a joint's own `constraint = ...` still wins)")
       ->check(CLI::IsMember({"lagrange", "penalty", "coordinates"}));
+  app.add_option("-I,--include-dir", opt.search_dirs,
+                 "a directory where modal-data files (flexible = modal(\"file.mbm\")) are looked for, after the model's own")
+      ->allow_extra_args(false);
   app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
       ->check(CLI::IsMember({"text", "dot"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);

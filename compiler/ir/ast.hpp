@@ -24,6 +24,7 @@ struct AstExpr {
     Call,    // name(args...)
     Index,   // args[0] [ args[1] (, args[2]) ]   1-based
     List,    // [ args... ]  (a vector; a list of lists is a matrix)
+    String,  // "text" in name: only a file name, as in flexible = modal("arm.mbm")
   };
   Kind kind = Kind::Number;
   SourceLoc loc;

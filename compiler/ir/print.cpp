@@ -17,6 +17,7 @@ static std::string ast_expr(const AstExpr& e) {
   switch (e.kind) {
     case AstExpr::Kind::Number: return fmt::format("{}", e.number);
     case AstExpr::Kind::Name: return e.name;
+    case AstExpr::Kind::String: return fmt::format("\"{}\"", e.name);
     case AstExpr::Kind::Unary: return fmt::format("({}{})", e.op, ast_expr(*e.args[0]));
     case AstExpr::Kind::Binary: return fmt::format("({} {} {})", ast_expr(*e.args[0]), e.op, ast_expr(*e.args[1]));
     case AstExpr::Kind::Call:

@@ -131,6 +131,10 @@ class Lowerer {
       case AstExpr::Kind::Call: return call_fn(e);
       case AstExpr::Kind::Index: return index(e);
       case AstExpr::Kind::List: return list(e);
+      case AstExpr::Kind::String:
+        diags_.error(e.loc, fmt::format("the string \"{}\" is not a value", e.name),
+                     "strings name files, as in flexible = modal(\"arm.mbm\")");
+        return std::nullopt;
     }
     return std::nullopt;
   }

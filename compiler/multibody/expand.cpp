@@ -1,14 +1,18 @@
 #include "multibody/expand.hpp"
 
 #include "flex/beam_modes.hpp"
+#include "flex/modal_file.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <fmt/format.h>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
+#include <ranges>
 #include <set>
 #include <tuple>
 
@@ -60,9 +64,21 @@ struct Beam {
   bool geometric_stiffness = true;
   double slope_limit_rad = 0.3;          // the run stops where one mode alone tilts the beam further
   bool mean_axes = false;                // frame = buckens: the couplings int phi dm, int x phi dm are left out
-  int count() const { return (y ? y->count() : 0) + (z ? z->count() : 0); }
+  int count() const { return modal ? modal->count : (y ? y->count() : 0) + (z ? z->count() : 0); }
   int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z]
   std::map<std::string, double> point_x;               // point name -> x along the beam
+  /// `flexible = modal("file")`: a reduced body from a modal-data file
+  /// instead of a built-in beam (then y, z are empty, and its coordinates
+  /// travel in Eta::y). Its points are the file's nodes.
+  std::shared_ptr<const flex::ModalData> modal;
+  /// Undeformed body-frame position of each point.
+  std::map<std::string, std::array<double, 3>> points() const {
+    std::map<std::string, std::array<double, 3>> out;
+    if (modal)
+      for (const auto& [name, p] : modal->points) out[name] = p.position;
+    for (const auto& [name, x] : point_x) out[name] = {x, 0, 0};
+    return out;
+  }
 };
 
 struct Body {
@@ -74,6 +90,7 @@ struct Body {
   bool placed = false;                   // initial pose known (ground, or from a tree joint)
   std::string placed_by;                 // joint that placed it
   bool by_coordinates = false;           // its pose is a function of joint coordinates (no states of its own)
+  bool points_unknown = false;           // a modal body whose file could not be read (its error is out already)
 };
 
 struct Side {
@@ -153,14 +170,19 @@ const std::map<std::string, Expected> kJointSettingShapes = {
 const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
                                                   "omega", "omega_world", "angular_momentum", "kinetic_energy",
                                                   "potential_energy"};
+/// Names a flexible body's expansion adds (`arm.eta`, `arm.nu`, ...): not free for a modal body's nodes.
+const std::set<std::string> kFlexibleInternalNames = {"eta", "nu", "M", "sv", "sw", "se", "etadot", "damp", "modes",
+                                                      "J0", "first_moment", "mean", "stiffness", "damping",
+                                                      "modal_mass", "J1", "J2", "Hw", "elastic_energy"};
 /// Names a body's expansion uses for itself (`bob.mass`, `bob.v`, ...): not free for points.
 const std::set<std::string> kBodyInternalNames = {"mass", "inertia", "com", "r0", "v0", "q0", "w0", "v", "m", "r",
                                                   "weight", "w", "J", "ejs", "qrate", "q"};
 
 class Expander {
  public:
-  Expander(Diagnostics& diags, std::optional<Strategy> strategy_override)
-      : diags_(diags), override_(strategy_override), strategy_(strategy_override.value_or(Strategy::Lagrange)) {}
+  Expander(ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options)
+      : sources_(sources), diags_(diags), search_dirs_(options.search_dirs), override_(options.constraints),
+        strategy_(options.constraints.value_or(Strategy::Lagrange)) {}
 
   AstProgram run(const AstProgram& in) {
     collect(in);
@@ -279,6 +301,7 @@ class Expander {
         return shape_of(*p->second, depth + 1);
       }
       case AstExpr::Kind::Unary: return sub(0);
+      case AstExpr::Kind::String: return std::nullopt;
       case AstExpr::Kind::Index: return Shape{};
       case AstExpr::Kind::Binary: {
         auto a = sub(0), b = sub(1);
@@ -592,9 +615,15 @@ class Expander {
 
   void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
     const auto& keys = beam_settings();
-    if (kind.value->kind != AstExpr::Kind::Name || kind.value->name != "beam") {
-      diags_.error(kind.value->loc, "unknown kind of flexible body",
-                   "write flexible = beam (a uniform Euler-Bernoulli beam along the body's x axis)");
+    const AstExpr& v = *kind.value;
+    if (v.kind == AstExpr::Kind::Call && v.name == "modal") {
+      add_modal_body(body, b, v);
+      return;
+    }
+    if (v.kind != AstExpr::Kind::Name || v.name != "beam") {
+      diags_.error(v.loc, "unknown kind of flexible body",
+                   "write flexible = beam (a uniform Euler-Bernoulli beam along the body's x axis) or flexible = "
+                   "modal(\"file.mbm\") (a reduced body from an FE program, docs/modal_format.md)");
       return;
     }
     auto beam = std::make_shared<Beam>();
@@ -613,12 +642,7 @@ class Expander {
                                     : fmt::format("did you mean `{}`?", near));
         continue;
       }
-      if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
-        auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
-        d.notes.push_back({first->second->loc, "first given here"});
-      }
-      if (kBodySettingShapes.count(a.key))
-        check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
+      record_setting(given, a, b);
     }
     auto need = [&](const char* key) -> const AstAttr* {
       auto it = given.find(key);
@@ -672,14 +696,7 @@ class Expander {
                         "model the thesis compares against");
     }
     check_frame(*beam, b, given.count("frame") ? given.at("frame") : nullptr);
-    if (auto s = given.find("slope_limit"); s != given.end()) {
-      auto v = constant_of(*s->second->value);
-      if (!v || !(*v > 0) || *v > 1.5)
-        diags_.error(s->second->value->loc, fmt::format("the slope limit of beam `{}` must be a constant in (0, 1.5] rad", b.name),
-                     "the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by more "
-                     "than 14 %; the default is 0.3");
-      else beam->slope_limit_rad = *v;
-    }
+    if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(*beam, b, *s->second);
     body.beam = beam;
     add_points(body, b, b.name);
     for (const AstPoint& p : b.points) {
@@ -697,6 +714,84 @@ class Expander {
                                  "there sees the beam's deflection and slope at x",
                                  beam->length_m));
     }
+    bodies_[b.name] = body;
+    body_order_.push_back(b.name);
+  }
+
+  /// A flexible body's known setting: reported if given twice, its shape checked.
+  void record_setting(std::map<std::string, const AstAttr*>& given, const AstAttr& a, const AstBody& b) {
+    if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
+      auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
+      d.notes.push_back({first->second->loc, "first given here"});
+    }
+    if (kBodySettingShapes.count(a.key))
+      check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
+  }
+
+  void read_slope_limit(Beam& beam, const AstBody& b, const AstAttr& a) {
+    auto v = constant_of(*a.value);
+    if (!v || !(*v > 0) || *v > 1.5)
+      diags_.error(a.value->loc, fmt::format("the slope limit of flexible body `{}` must be a constant in (0, 1.5] rad", b.name),
+                   "the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by more "
+                   "than 14 %; the default is 0.3");
+    else beam.slope_limit_rad = *v;
+  }
+
+  /// `flexible = modal("file.mbm")`: a reduced body whose mass, stiffness and
+  /// nodes come from a modal-data file (docs/modal_format.md). The model
+  /// adds only its damping ratio, slope limit and initial state.
+  void add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
+    if (v.args.size() != 1 || v.args[0]->kind != AstExpr::Kind::String) {
+      diags_.error(v.loc, "modal(...) takes the name of a modal-data file", "write flexible = modal(\"arm.mbm\")");
+      body.points_unknown = true;
+      bodies_[b.name] = body;
+      body_order_.push_back(b.name);
+      return;
+    }
+    static const std::vector<std::string> keys = {"flexible", "damping", "slope_limit", "r0", "quat0", "v0", "w0"};
+    auto beam = std::make_shared<Beam>();
+    beam->geometric_stiffness = false;  // a linear displacement field (format version 1)
+    std::map<std::string, const AstAttr*> given;
+    for (const AstAttr& a : b.attrs) {
+      if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {
+        const bool from_file = a.key == "mass" || a.key == "inertia" || a.key == "com" || a.key == "length" ||
+                               a.key == "E" || a.key == "density" || a.key.rfind("modes", 0) == 0 || a.key == "section";
+        diags_.error(a.loc, fmt::format("flexible body `{}` from a modal-data file has no setting `{}`", b.name, a.key),
+                     a.key == "geometric_stiffness"
+                         ? std::string("a modal-data body is linear in its modal coordinates (format version 1): no "
+                                       "geometric stiffness; use flexible = beam where stress stiffening matters")
+                     : a.key == "frame" ? std::string("its frame is the one its file is written in")
+                     : from_file ? std::string("its mass, inertia, stiffness and modes come from the file; remove it")
+                                 : fmt::format("a modal body takes {}", fmt::join(keys, ", ")));
+        continue;
+      }
+      record_setting(given, a, b);
+    }
+    for (const AstPoint& p : b.points)
+      diags_.error(p.loc, fmt::format("point `{}`: the points of modal body `{}` are the nodes of its file", p.name, b.name),
+                   "add the node to the file (records point, shape and slope) and attach joints to it by name");
+    if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(*beam, b, *s->second);
+    const AstExpr& file = *v.args[0];
+    auto data = flex::read_modal_file(file.name, file.loc, search_dirs_, sources_, diags_);
+    if (!data) {
+      body.points_unknown = true;  // registered all the same: joints to it are not reported again
+      bodies_[b.name] = body;
+      body_order_.push_back(b.name);
+      return;
+    }
+    Build B(file.loc);
+    for (const auto& [name, pt] : data->points) {
+      if (kBodyInternalNames.count(name) || kFlexibleInternalNames.count(name) ||
+          std::find(kBodyQuantities.begin(), kBodyQuantities.end(), name) != kBodyQuantities.end()) {
+        diags_.error(file.loc, fmt::format("the modal-data file names a point `{}`, which body `{}` uses for itself", name, b.name),
+                     "rename the node in the file");
+        continue;
+      }
+      body.points[name] = B.vec(pt.position[0], pt.position[1], pt.position[2]);
+      point_locs_[b.name + "." + name] = file.loc;
+    }
+    beam->modal = std::make_shared<const flex::ModalData>(std::move(*data));
+    body.beam = beam;
     bodies_[b.name] = body;
     body_order_.push_back(b.name);
   }
@@ -749,7 +844,14 @@ class Expander {
                                 : fmt::format("did you mean `{}`?", near));
       return std::nullopt;
     }
+    if (!point.empty() && it->second.points_unknown) return Side{body, point};
     if (!point.empty() && !it->second.points.count(point)) {
+      if (it->second.beam && it->second.beam->modal) {
+        diags_.error(ep.loc, fmt::format("modal body `{}` has no point `{}`", body, point),
+                     fmt::format("its points are the nodes of {}: {}", it->second.beam->modal->path,
+                                 fmt::join(std::views::keys(it->second.points), ", ")));
+        return std::nullopt;
+      }
       std::vector<std::string> names;
       for (const auto& [n, x] : it->second.points) names.push_back(n);
       std::string near = closest_name(point, names);
@@ -1054,6 +1156,10 @@ class Expander {
   struct Eta { std::vector<E> y, z; };
   Eta split_eta(const Beam& beam, const std::function<E(int)>& eta) const {
     Eta out;
+    if (beam.modal) {  // no planes: every coordinate in y
+      for (int i = 0; i < beam.count(); ++i) out.y.push_back(eta(i));
+      return out;
+    }
     for (int i = 0; i < (beam.y ? beam.y->count() : 0); ++i) out.y.push_back(eta(i));
     for (int i = 0; i < (beam.z ? beam.z->count() : 0); ++i) out.z.push_back(eta(beam.offset_z() + i));
     return out;
@@ -1061,6 +1167,7 @@ class Expander {
 
   /// s(eta) = int u dm: the first moment about the frame origin, body axes.
   E first_moment(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
+    if (beam.modal) return modal_first_moment(B, n, eta.y);
     E sx = B.op('*', B.name(n + ".mass"), B.op('/', B.name(n + ".length"), B.num(2)));
     if (beam.geometric_stiffness) {
       E shortening = B.op('+', quadratic(B, n + ".y.load", eta.y, eta.y), quadratic(B, n + ".z.load", eta.z, eta.z));
@@ -1074,6 +1181,7 @@ class Expander {
 
   /// d s / d eta (3 x n): the translational coupling M_V,eta, rows of scalars.
   std::vector<std::vector<E>> translation_coupling(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
+    if (beam.modal) return modal_translation_coupling(B, n, *beam.modal);
     const int ny = static_cast<int>(eta.y.size()), nz = static_cast<int>(eta.z.size());
     std::vector<std::vector<E>> m(3, std::vector<E>(static_cast<std::size_t>(ny + nz), B.num(0)));
     for (int i = 0; i < ny; ++i) {
@@ -1087,15 +1195,8 @@ class Expander {
     return m;
   }
 
-  /// The generalised mass matrix M(eta), (6 + n) x (6 + n), as rows of scalars.
-  std::vector<std::vector<E>> mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
-    const std::size_t ne = eta.y.size() + eta.z.size(), N = 6 + ne, ny = eta.y.size();
-    std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
-    E zero = B.num(0);
-    E m = B.name(n + ".mass");
-    for (int k = 0; k < 3; ++k) M[k][k] = m;
-    // V-omega: -skew(s), omega-V: skew(s)
-    E s = first_moment(B, n, beam, eta);
+  /// The V-omega blocks of M: -skew(s) at (V, omega), skew(s) at (omega, V).
+  static void put_first_moment(const Build& B, std::vector<std::vector<E>>& M, E s) {
     std::vector<E> sc = {B.at(s, 1), B.at(s, 2), B.at(s, 3)};
     auto put_skew = [&](int r0, int c0, double sign) {  // sign * skew(s) at (r0, c0)
       auto v = [&](int k) { return sign > 0 ? sc[static_cast<std::size_t>(k)] : B.neg(sc[static_cast<std::size_t>(k)]); };
@@ -1105,6 +1206,17 @@ class Expander {
     };
     put_skew(0, 3, -1);
     put_skew(3, 0, +1);
+  }
+
+  /// The generalised mass matrix M(eta), (6 + n) x (6 + n), as rows of scalars.
+  std::vector<std::vector<E>> mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
+    if (beam.modal) return modal_mass_matrix(B, n, *beam.modal, eta.y);
+    const std::size_t ne = eta.y.size() + eta.z.size(), N = 6 + ne, ny = eta.y.size();
+    std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
+    E zero = B.num(0);
+    E m = B.name(n + ".mass");
+    for (int k = 0; k < 3; ++k) M[k][k] = m;
+    put_first_moment(B, M, first_moment(B, n, beam, eta));
     // omega-omega: J(eta) = J0 + J1(eta) + J2(eta)
     E qy = quadratic(B, n + ".y.mass", eta.y, eta.y), qz = quadratic(B, n + ".z.mass", eta.z, eta.z);
     E qyz = quadratic(B, n + ".yz.mass", eta.y, eta.z);
@@ -1153,6 +1265,7 @@ class Expander {
     const AstBody& d = *body.decl;
     const std::string& n = d.name;
     const Beam& beam = *body.beam;
+    if (beam.modal) return modal_params(B, body);
     param(B, n + ".length", B.num(beam.length_m));
     param(B, n + ".density", attr(d, "density"));
     param(B, n + ".E", attr(d, "E"));
@@ -1237,8 +1350,139 @@ class Expander {
     }
   }
 
+  // ---- 2c. bodies from modal-data files ---------------------------------------------------
+  // The same floating-frame equations as a beam, with M(eta) built from the
+  // file's inertia invariants (docs/modal_format.md) for the linear field
+  // u = Phi(r0) eta: every coefficient is a constant the compiler computes
+  // here and writes as a parameter, so the generated code reads
+  // J(eta)_xy = J0_xy + J1.xy . eta + eta' J2.xy eta.
+
+  static constexpr const char* kAxes[3] = {"x", "y", "z"};
+  static bool all_zero(const flex::Matrix& m) {
+    for (const auto& r : m)
+      for (double x : r)
+        if (x != 0) return false;
+    return true;
+  }
+  using ModalTerms = flex::ModalMassTerms;
+  static ModalTerms modal_terms(const flex::ModalData& d) { return flex::modal_mass_terms(d); }
+  static std::string axes(std::size_t i, std::size_t j) { return std::string(kAxes[i]) + kAxes[j]; }
+
+  void modal_params(const Build& B, const Body& body) {
+    const std::string& n = body.decl->name;
+    const flex::ModalData& d = *body.beam->modal;
+    const ModalTerms t = modal_terms(d);
+    param(B, n + ".mass", B.num(d.mass_kg));
+    param(B, n + ".first_moment", B.vec(d.first_moment_kg_m[0], d.first_moment_kg_m[1], d.first_moment_kg_m[2]));
+    param(B, n + ".J0", matrix_param(B, d.inertia_kg_m2));
+    // what the joints' code reads of every body: the reference point is the frame origin
+    param(B, n + ".com", B.vec(0, 0, 0));
+    param(B, n + ".inertia", B.name(n + ".J0"));
+    param(B, n + ".mean", matrix_param(B, d.mean_kg));
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i; j < 3; ++j) {
+        if (!all_zero(t.J1[i][j])) param(B, n + ".J1." + axes(i, j), vector_param(B, t.J1[i][j][0]));
+        if (!all_zero(t.J2[i][j])) param(B, n + ".J2." + axes(i, j), matrix_param(B, t.J2[i][j]));
+      }
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!all_zero(t.coupling[i])) param(B, n + ".coupling." + kAxes[i], vector_param(B, t.coupling[i][0]));
+      if (!all_zero(t.coupling_eta[i])) param(B, n + ".coupling_eta." + kAxes[i], matrix_param(B, t.coupling_eta[i]));
+    }
+    param(B, n + ".modal_mass", matrix_param(B, t.modal_mass));
+    param(B, n + ".stiffness", matrix_param(B, d.stiffness));
+    // modal damping: 2 zeta omega_k m_k per mode
+    E zeta = attr(*body.decl, "damping");
+    std::vector<E> c;
+    for (int k = 1; k <= d.count; ++k)
+      c.push_back(B.op('*', B.op('*', B.num(2), zeta ? zeta : B.num(0)),
+                       B.call("sqrt", {B.op('*', idx2(B, B.name(n + ".stiffness"), k, k), idx2(B, B.name(n + ".modal_mass"), k, k))})));
+    param(B, n + ".damping", c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c));
+    for (const auto& [pt, node] : d.points) {
+      param(B, n + "." + pt + ".shape", matrix_param(B, node.shape));
+      param(B, n + "." + pt + ".slope", matrix_param(B, node.slope));
+    }
+  }
+
+  /// s(eta) = int r0 dm + C eta.
+  E modal_first_moment(const Build& B, const std::string& n, const std::vector<E>& eta) const {
+    std::vector<E> s;
+    for (int i = 0; i < 3; ++i) s.push_back(B.op('+', B.at(B.name(n + ".first_moment"), i + 1), row_dot(B, n + ".mean", i, eta)));
+    return B.list(s);
+  }
+  std::vector<std::vector<E>> modal_translation_coupling(const Build& B, const std::string& n, const flex::ModalData& d) const {
+    std::vector<std::vector<E>> m(3);
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < d.count; ++k) m[static_cast<std::size_t>(i)].push_back(idx2(B, B.name(n + ".mean"), i + 1, k + 1));
+    return m;
+  }
+  std::vector<std::vector<E>> modal_mass_matrix(const Build& B, const std::string& n, const flex::ModalData& d,
+                                                const std::vector<E>& eta) const {
+    const std::size_t ne = eta.size(), N = 6 + ne;
+    const ModalTerms t = modal_terms(d);
+    std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
+    for (std::size_t k = 0; k < 3; ++k) M[k][k] = B.name(n + ".mass");
+    put_first_moment(B, M, modal_first_moment(B, n, eta));
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i; j < 3; ++j) {
+        E J = idx2(B, B.name(n + ".J0"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
+        const std::string ij = axes(i, j);
+        if (!all_zero(t.J1[i][j])) J = B.op('+', J, B.dot(B.name(n + ".J1." + ij), B.list(eta)));
+        if (!all_zero(t.J2[i][j])) J = B.op('+', J, quadratic(B, n + ".J2." + ij, eta, eta));
+        M[3 + i][3 + j] = M[3 + j][3 + i] = J;
+      }
+    auto tc = modal_translation_coupling(B, n, d);
+    for (std::size_t l = 0; l < ne; ++l) {
+      for (std::size_t i = 0; i < 3; ++i) {
+        M[i][6 + l] = M[6 + l][i] = tc[i][l];
+        const std::string axis = kAxes[i];
+        E c = nullptr;
+        if (!all_zero(t.coupling[i])) c = B.at(B.name(n + ".coupling." + axis), static_cast<int>(l) + 1);
+        if (!all_zero(t.coupling_eta[i])) {
+          E more = row_dot(B, n + ".coupling_eta." + axis, static_cast<int>(l), eta, /*transposed=*/true);
+          c = c ? B.op('+', c, more) : more;
+        }
+        if (c) M[3 + i][6 + l] = M[6 + l][3 + i] = c;
+      }
+      for (std::size_t k = 0; k < ne; ++k)
+        M[6 + k][6 + l] = idx2(B, B.name(n + ".modal_mass"), static_cast<int>(k) + 1, static_cast<int>(l) + 1);
+    }
+    return M;
+  }
+  /// A node's deflected position (what = "shape", at = its undeformed position) or small rotation ("slope").
+  E modal_point(const Build& B, const std::string& n, const std::string& pt, const char* what, std::array<double, 3> at,
+                const std::vector<E>& eta) const {
+    std::vector<E> v;
+    for (int i = 0; i < 3; ++i) {
+      E moved = row_dot(B, n + "." + pt + "." + what, i, eta);
+      v.push_back(at[static_cast<std::size_t>(i)] == 0 ? moved : B.op('+', B.num(at[static_cast<std::size_t>(i)]), moved));
+    }
+    return B.list(v);
+  }
+  /// A mode's limit: where it alone turns one of the file's nodes by the slope limit.
+  static std::vector<std::pair<double, std::string>> modal_file_limits(const std::string& n, const Beam& beam) {
+    const flex::ModalData& d = *beam.modal;
+    std::vector<std::pair<double, std::string>> limits;
+    for (int k = 0; k < d.count; ++k) {
+      double peak = 0;
+      for (const auto& [pt, node] : d.points) {
+        double r2 = 0;
+        for (const auto& row : node.slope) r2 += row[static_cast<std::size_t>(k)] * row[static_cast<std::size_t>(k)];
+        peak = std::max(peak, std::sqrt(r2));
+      }
+      limits.push_back(
+          {peak > 0 ? beam.slope_limit_rad / peak : std::numeric_limits<double>::max(),
+           fmt::format("mode {} of modal body `{}` (from {}) turns one of its nodes by more than {:g} rad, beyond the "
+                       "small rotations of a linear modal model (`slope_limit`). Likely cause: an instability - a load "
+                       "beyond what the linear model holds, or a spin faster than the body's first natural frequency "
+                       "(a modal-data body has no geometric stiffness)",
+                       k + 1, n, d.path, beam.slope_limit_rad)});
+    }
+    return limits;
+  }
+
   /// The body-frame position of a point of a beam, deflected: [x - 1/2 eta^T a(x) eta, w_y, w_z].
   E beam_point(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const {
+    if (beam.modal) return modal_point(B, n, pt, "shape", beam.modal->points.at(pt).position, eta.y);
     E x = B.num(beam.point_x.at(pt));
     std::vector<E> wy, wz;
     for (std::size_t i = 0; i < eta.y.size(); ++i) wy.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.shape"), static_cast<int>(i) + 1), eta.y[i]));
@@ -1250,7 +1494,8 @@ class Expander {
     return B.list({x, sum_of(B, wy), sum_of(B, wz)});
   }
   /// The small rotation of the section at a point (body axes): [0, -w_z', w_y'].
-  E beam_slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
+  E beam_slope(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const {
+    if (beam.modal) return modal_point(B, n, pt, "slope", {0, 0, 0}, eta.y);
     std::vector<E> ty, tz;
     for (std::size_t i = 0; i < eta.y.size(); ++i) ty.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.slope"), static_cast<int>(i) + 1), eta.y[i]));
     for (std::size_t i = 0; i < eta.z.size(); ++i) tz.push_back(B.op('*', B.at(B.name(n + "." + pt + ".z.slope"), static_cast<int>(i) + 1), eta.z[i]));
@@ -1265,6 +1510,7 @@ class Expander {
   /// kinematics keep slopes to second order). A mode growing that far is
   /// almost always an instability: the run stops and says which.
   static std::vector<std::pair<double, std::string>> modal_limits(const std::string& n, const Beam& beam) {
+    if (beam.modal) return modal_file_limits(n, beam);
     std::vector<std::pair<double, std::string>> limits;
     for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
       if (!*modes) continue;
@@ -1340,6 +1586,11 @@ class Expander {
     junction(B, '1', n + ".etadot", ne, {n + ".se.p2"}, modal_out);
     std::vector<std::vector<E>> K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
     std::vector<std::vector<E>> D = K;
+    for (int i = 0; i < (beam.modal ? ne : 0); ++i)
+      for (int j = 0; j < ne; ++j) {
+        K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".stiffness"), i + 1, j + 1);
+        D[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".damping"), i + 1, j + 1);
+      }
     for (const auto& [plane, modes, off] : {std::tuple{"y", &beam.y, 0}, std::tuple{"z", &beam.z, beam.offset_z()}}) {
       if (!*modes) continue;
       for (int i = 0; i < (*modes)->count(); ++i)
@@ -1413,7 +1664,7 @@ class Expander {
     if (body.beam && !s.point.empty()) {
       Eta eta = state_eta(B, s.body, *body.beam);
       local = beam_point(B, s.body, *body.beam, s.point, eta);
-      turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {beam_slope(B, s.body, s.point, eta)})));
+      turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {beam_slope(B, s.body, *body.beam, s.point, eta)})));
     }
     if (body.ground) f.p = local;
     else if (body.particle) f.p = position(B, s.body);
@@ -2036,7 +2287,7 @@ class Expander {
       E T = B.op('*', Rt, torque);
       moment = B.op('+', moment, T);
       if (!point.empty())
-        modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam_slope(B, n, point, eta), q})}), T));
+        modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam_slope(B, n, beam, point, eta), q})}), T));
     }
     return B.call("vcat", {F, moment, modal});
   }
@@ -2195,10 +2446,10 @@ class Expander {
                                                                  B.op('*', R, first_moment(B, n, beam, eta)))))
                          : B.num(0);
     quantity_[n + ".potential_energy"] = B.op('+', gravity, elastic);
-    for (const auto& [pt, x] : beam.point_x) {
+    for (const auto& [pt, at] : beam.points()) {
       E local = beam_point(B, n, beam, pt, eta);
       std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = beam_point_motion(B, n, local);
-      quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(x, 0, 0));  // body axes
+      quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
     }
   }
 
@@ -2261,7 +2512,9 @@ class Expander {
     return out;
   }
 
+  ir::SourceManager& sources_;                // modal-data files join it (diagnostics, depfile)
   Diagnostics& diags_;
+  std::vector<std::string> search_dirs_;     // mbgc -I: where modal-data files are looked for
   std::map<std::string, Body> bodies_;
   std::vector<std::string> body_order_;
   std::vector<Joint> joints_;
@@ -2288,8 +2541,8 @@ class Expander {
 
 }  // namespace
 
-AstProgram expand(const AstProgram& program, Diagnostics& diags, std::optional<Strategy> strategy_override) {
-  Expander x(diags, strategy_override);
+AstProgram expand(const AstProgram& program, ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options) {
+  Expander x(sources, diags, options);
   return x.run(program);
 }
 

@@ -25,6 +25,8 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
@@ -34,9 +36,17 @@ namespace mbgc::multibody {
 /// How joint constraints are enforced (the model's `constraints = ...`).
 enum class Strategy { Lagrange, Penalty, Coordinates };
 
-/// `strategy_override` (mbgc --constraints) replaces the model-level setting;
-/// a joint's own `constraint = ...` still wins over both.
-ir::AstProgram expand(const ir::AstProgram& program, ir::Diagnostics& diags,
-                      std::optional<Strategy> strategy_override = std::nullopt);
+struct ExpandOptions {
+  /// mbgc --constraints: replaces the model-level setting; a joint's own
+  /// `constraint = ...` still wins over both.
+  std::optional<Strategy> constraints;
+  /// mbgc -I: directories searched for modal-data files after the model's own.
+  std::vector<std::string> search_dirs;
+};
+
+/// Modal-data files a model names (`flexible = modal("arm.mbm")`) are read
+/// here and join `sources`.
+ir::AstProgram expand(const ir::AstProgram& program, ir::SourceManager& sources, ir::Diagnostics& diags,
+                      const ExpandOptions& options = {});
 
 }  // namespace mbgc::multibody

@@ -683,6 +683,14 @@ class Parser {
   }
   AstExprPtr primary() {
     const Token& t = peek();
+    if (t.kind == Tok::String) {  // a file name; the passes that read one take it, others reject it
+      next();
+      auto e = std::make_shared<AstExpr>();
+      e->kind = AstExpr::Kind::String;
+      e->loc = t.loc;
+      e->name = t.text;
+      return e;
+    }
     if (t.kind == Tok::Number) {
       next();
       auto e = std::make_shared<AstExpr>();
