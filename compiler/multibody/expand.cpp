@@ -2,6 +2,7 @@
 
 #include "flex/beam_modes.hpp"
 #include "flex/modal_file.hpp"
+#include "flex/rod_modes.hpp"
 
 #include <algorithm>
 #include <array>
@@ -61,11 +62,15 @@ class Build {
 struct Beam {
   double length_m = 0;
   std::optional<flex::BeamModes> y, z;   // mode sets per bending plane
+  std::optional<flex::RodModes> axial;   // stretch along x (modes_axial)
+  std::optional<flex::RodModes> torsion; // twist about x (modes_torsion)
   bool geometric_stiffness = true;
   double slope_limit_rad = 0.3;          // the run stops where one mode alone tilts the beam further
   bool mean_axes = false;                // frame = buckens: the couplings int phi dm, int x phi dm are left out
-  int count() const { return modal ? modal->count : (y ? y->count() : 0) + (z ? z->count() : 0); }
-  int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z]
+  int count() const { return modal ? modal->count : offset_torsion() + (torsion ? torsion->count() : 0); }
+  int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z; eta_axial; eta_torsion]
+  int offset_axial() const { return offset_z() + (z ? z->count() : 0); }
+  int offset_torsion() const { return offset_axial() + (axial ? axial->count() : 0); }
   std::map<std::string, double> point_x;               // point name -> x along the beam
   /// `flexible = modal("file")`: a reduced body from a modal-data file
   /// instead of a built-in beam (then y, z are empty, and its coordinates
@@ -553,6 +558,10 @@ class Expander {
         {"Iz", "the second moment of area about the body z axis (m^4): bending in the x-y plane"},
         {"modes_xy", "the mode set of bending in the x-y plane, e.g. clamped_free(3)"},
         {"modes_xz", "the mode set of bending in the x-z plane, e.g. pinned_pinned(2)"},
+        {"modes_axial", "the mode set of stretch along x, e.g. fixed_free(2)"},
+        {"modes_torsion", "the mode set of twist about x, e.g. fixed_free(1)"},
+        {"G", "the shear modulus (Pa), for torsion"},
+        {"torsion_constant", "the section's torsion constant (m^4); circle and tube: the polar moment, rectangle: Roark's formula"},
         {"damping", "the modal damping ratio (0.01 = 1 % of critical in every mode)"},
         {"geometric_stiffness", "on or off"},
         {"slope_limit", "the largest slope (rad) one mode may give the beam before the run stops; default 0.3"},
@@ -572,12 +581,14 @@ class Expander {
   /// compiler says so. The default is the one the mode sets allow.
   void check_frame(Beam& beam, const AstBody& b, const AstAttr* given) {
     bool any_free = false, all_free = true;
+    auto count_set = [&](bool free) {
+      any_free = any_free || free;
+      all_free = all_free && free;
+    };
     for (const auto* modes : {&beam.y, &beam.z})
-      if (*modes) {
-        const bool free = (*modes)->supports() == flex::Supports::FreeFree;
-        any_free = any_free || free;
-        all_free = all_free && free;
-      }
+      if (*modes) count_set((*modes)->supports() == flex::Supports::FreeFree);
+    for (const auto* modes : {&beam.axial, &beam.torsion})
+      if (*modes) count_set((*modes)->ends() == flex::RodEnds::FreeFree);
     std::string frame = all_free && any_free ? "buckens" : "joint";
     SourceLoc loc = b.loc;
     if (given) {
@@ -602,12 +613,12 @@ class Expander {
     if (frame == "joint" && any_free) {
       diags_.error(loc, fmt::format("free-free modes move the end x = 0 of beam `{}`, so its frame cannot be fixed there", b.name),
                    all_free ? "write frame = buckens: the mean axes the free-free modes define"
-                            : "give every plane free_free modes with frame = buckens, or no plane free_free modes");
+                            : "give every mode set free_free modes with frame = buckens, or none");
       return;
     }
     if (frame == "buckens" && !all_free) {
       diags_.error(loc, fmt::format("the mean axes (frame = buckens) of beam `{}` need modes orthogonal to its rigid motions", b.name),
-                   "give every bending plane free_free(n) modes, or use frame = joint");
+                   "give every mode set free_free(n) modes, or use frame = joint");
       return;
     }
     beam.mean_axes = frame == "buckens";
@@ -672,20 +683,43 @@ class Expander {
       if (it == given.end() || beam->length_m <= 0) continue;
       const AstExpr& v = *it->second->value;
       flex::Supports sup{};
-      double n = 0;
-      if (v.kind == AstExpr::Kind::Call && v.args.size() == 1)
-        if (auto c = constant_of(*v.args[0])) n = *c;
-      if (v.kind != AstExpr::Kind::Call || !flex::supports_from_name(v.name, &sup) || n < 1 || n > 12 || n != std::floor(n)) {
+      const int n = mode_count(v);
+      if (!n || !flex::supports_from_name(v.name, &sup)) {
         diags_.error(v.loc, fmt::format("`{}` of beam `{}` is not a mode set", plane, b.name),
                      "write supports(number of modes): clamped_free(3), pinned_pinned(2), clamped_pinned(2) or free_free(2); "
                      "1 to 12 modes");
         continue;
       }
-      (plane[7] == 'y' ? beam->y : beam->z).emplace(sup, beam->length_m, static_cast<int>(n));
+      (plane[7] == 'y' ? beam->y : beam->z).emplace(sup, beam->length_m, n);
     }
-    if (!given.count("modes_xy") && !given.count("modes_xz"))
+    for (const char* key : {"modes_axial", "modes_torsion"}) {
+      auto it = given.find(key);
+      if (it == given.end() || beam->length_m <= 0) continue;
+      const AstExpr& v = *it->second->value;
+      flex::RodEnds ends{};
+      const int n = mode_count(v);
+      if (!n || !flex::rod_ends_from_name(v.name, &ends)) {
+        diags_.error(v.loc, fmt::format("`{}` of beam `{}` is not a mode set", key, b.name),
+                     "write ends(number of modes): fixed_free(2), fixed_fixed(2) or free_free(2); 1 to 12 modes");
+        continue;
+      }
+      (key[6] == 'a' ? beam->axial : beam->torsion).emplace(ends, beam->length_m, n);
+    }
+    if (given.count("modes_torsion")) {
+      need("G");
+      if (!given.count("section") && !given.count("torsion_constant"))
+        diags_.error(given.at("modes_torsion")->loc, fmt::format("beam `{}` twists but has no torsion constant", b.name),
+                     "give torsion_constant (m^4), or a section = rectangle(...)/circle(...)/tube(...) to compute it from");
+    } else {
+      for (const char* key : {"G", "torsion_constant"})
+        if (given.count(key))
+          diags_.error(given.at(key)->loc, fmt::format("`{}` of beam `{}` is for torsion, which it has no modes of", key, b.name),
+                       "give modes_torsion = fixed_free(1) (or another mode set), or remove it");
+    }
+    if (!given.count("modes_xy") && !given.count("modes_xz") && !given.count("modes_axial") && !given.count("modes_torsion"))
       diags_.error(b.loc, fmt::format("beam `{}` has no modes", b.name),
-                   "give the assumed modes of at least one bending plane, e.g. modes_xy = clamped_free(3)");
+                   "give the assumed modes of at least one bending plane, e.g. modes_xy = clamped_free(3), or of "
+                   "stretch or twist (modes_axial, modes_torsion)");
     if (auto g = given.find("geometric_stiffness"); g != given.end()) {
       const AstExpr& v = *g->second->value;
       auto flag = constant_of(v);  // 1 or 0: a parameter, so that `mbgc --set` can switch it
@@ -716,6 +750,13 @@ class Expander {
     }
     bodies_[b.name] = body;
     body_order_.push_back(b.name);
+  }
+
+  /// The n of a mode set `name(n)` (n a whole constant, 1 to 12); 0 if it is not one.
+  int mode_count(const AstExpr& v) const {
+    if (v.kind != AstExpr::Kind::Call || v.args.size() != 1) return 0;
+    auto n = constant_of(*v.args[0]);
+    return n && *n >= 1 && *n <= 12 && *n == std::floor(*n) ? static_cast<int>(*n) : 0;
   }
 
   /// A flexible body's known setting: reported if given twice, its shape checked.
@@ -1153,7 +1194,7 @@ class Expander {
   }
 
   /// The modal coordinates of each plane, as expressions (given an accessor).
-  struct Eta { std::vector<E> y, z; };
+  struct Eta { std::vector<E> y, z, axial, torsion; };
   Eta split_eta(const Beam& beam, const std::function<E(int)>& eta) const {
     Eta out;
     if (beam.modal) {  // no planes: every coordinate in y
@@ -1162,7 +1203,15 @@ class Expander {
     }
     for (int i = 0; i < (beam.y ? beam.y->count() : 0); ++i) out.y.push_back(eta(i));
     for (int i = 0; i < (beam.z ? beam.z->count() : 0); ++i) out.z.push_back(eta(beam.offset_z() + i));
+    for (int i = 0; i < (beam.axial ? beam.axial->count() : 0); ++i) out.axial.push_back(eta(beam.offset_axial() + i));
+    for (int i = 0; i < (beam.torsion ? beam.torsion->count() : 0); ++i) out.torsion.push_back(eta(beam.offset_torsion() + i));
     return out;
+  }
+  /// sum_k P[k] x_k for a parameter vector P (0 for no x).
+  static E vec_dot(const Build& B, const std::string& P, const std::vector<E>& x) {
+    std::vector<E> terms;
+    for (std::size_t k = 0; k < x.size(); ++k) terms.push_back(B.op('*', B.at(B.name(P), static_cast<int>(k) + 1), x[k]));
+    return sum_of(B, terms);
   }
 
   /// s(eta) = int u dm: the first moment about the frame origin, body axes.
@@ -1173,6 +1222,7 @@ class Expander {
       E shortening = B.op('+', quadratic(B, n + ".y.load", eta.y, eta.y), quadratic(B, n + ".z.load", eta.z, eta.z));
       sx = B.op('-', sx, B.op('*', B.num(0.5), shortening));
     }
+    if (!eta.axial.empty() && !beam.mean_axes) sx = B.op('+', sx, vec_dot(B, n + ".a.mean", eta.axial));
     std::vector<E> sy, sz;  // int phi dm eta: zero in mean axes
     for (std::size_t i = 0; i < eta.y.size() && !beam.mean_axes; ++i) sy.push_back(B.op('*', B.at(B.name(n + ".y.mean"), static_cast<int>(i) + 1), eta.y[i]));
     for (std::size_t i = 0; i < eta.z.size() && !beam.mean_axes; ++i) sz.push_back(B.op('*', B.at(B.name(n + ".z.mean"), static_cast<int>(i) + 1), eta.z[i]));
@@ -1183,7 +1233,9 @@ class Expander {
   std::vector<std::vector<E>> translation_coupling(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
     if (beam.modal) return modal_translation_coupling(B, n, *beam.modal);
     const int ny = static_cast<int>(eta.y.size()), nz = static_cast<int>(eta.z.size());
-    std::vector<std::vector<E>> m(3, std::vector<E>(static_cast<std::size_t>(ny + nz), B.num(0)));
+    std::vector<std::vector<E>> m(3, std::vector<E>(static_cast<std::size_t>(beam.count()), B.num(0)));
+    for (int i = 0; i < static_cast<int>(eta.axial.size()) && !beam.mean_axes; ++i)
+      m[0][static_cast<std::size_t>(beam.offset_axial() + i)] = B.at(B.name(n + ".a.mean"), i + 1);
     for (int i = 0; i < ny; ++i) {
       if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(i)] = B.neg(row_dot(B, n + ".y.load", i, eta.y));
       if (!beam.mean_axes) m[1][static_cast<std::size_t>(i)] = B.at(B.name(n + ".y.mean"), i + 1);
@@ -1211,7 +1263,7 @@ class Expander {
   /// The generalised mass matrix M(eta), (6 + n) x (6 + n), as rows of scalars.
   std::vector<std::vector<E>> mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
     if (beam.modal) return modal_mass_matrix(B, n, *beam.modal, eta.y);
-    const std::size_t ne = eta.y.size() + eta.z.size(), N = 6 + ne, ny = eta.y.size();
+    const std::size_t ne = static_cast<std::size_t>(beam.count()), N = 6 + ne, ny = eta.y.size();
     std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
     E zero = B.num(0);
     E m = B.name(n + ".mass");
@@ -1251,13 +1303,108 @@ class Expander {
     for (std::size_t i = 0; i < eta.z.size(); ++i)
       for (std::size_t j = 0; j < eta.z.size(); ++j)
         M[6 + ny + i][6 + ny + j] = idx2(B, B.name(n + ".z.mass"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
+    add_stretch_and_twist(B, n, beam, eta, M);
     return M;
+  }
+
+  /// Axial and torsion modes in M(eta): the linear fields u = [chi zeta, 0, 0]
+  /// (stretch) and a section turned by psi theta about x (twist), with the
+  /// inertia invariants of docs/modal_format.md. Stretch changes J_yy, J_zz
+  /// by 2 int x u dm + int u^2 dm, couples with bending through int u w dm,
+  /// and with omega through int r x u' dm; twist couples with omega_x through
+  /// the sections' polar inertia and turns a non-circular section's
+  /// principal axes (J_yz). Its second-order inertia terms are left out: a
+  /// linearised rotation field gets them wrong.
+  void add_stretch_and_twist(const Build& B, const std::string& n, const Beam& beam, const Eta& eta,
+                             std::vector<std::vector<E>>& M) const {
+    const std::size_t ny = eta.y.size(), nz = eta.z.size();
+    const auto oa = static_cast<std::size_t>(6 + beam.offset_axial()), ot = static_cast<std::size_t>(6 + beam.offset_torsion());
+    auto plus = [&](E a, E b) { return B.op('+', a, b); };
+    auto minus = [&](E a, E b) { return B.op('-', a, b); };
+    if (!eta.axial.empty()) {
+      E stretch = plus(B.op('*', B.num(2), vec_dot(B, n + ".a.moment", eta.axial)), quadratic(B, n + ".a.mass", eta.axial, eta.axial));
+      M[4][4] = plus(M[4][4], stretch);
+      M[5][5] = plus(M[5][5], stretch);
+      if (ny) M[3][4] = M[4][3] = minus(M[3][4], quadratic(B, n + ".ay.mass", eta.axial, eta.y));
+      if (nz) M[3][5] = M[5][3] = minus(M[3][5], quadratic(B, n + ".az.mass", eta.axial, eta.z));
+      for (std::size_t k = 0; k < eta.axial.size(); ++k) {
+        // omega - stretch rate: int r x [chi, 0, 0] dm = [0, int w_z chi, -int w_y chi]
+        if (nz) M[4][oa + k] = M[oa + k][4] = row_dot(B, n + ".az.mass", static_cast<int>(k), eta.z);
+        if (ny) M[5][oa + k] = M[oa + k][5] = B.neg(row_dot(B, n + ".ay.mass", static_cast<int>(k), eta.y));
+        for (std::size_t l = 0; l < eta.axial.size(); ++l)
+          M[oa + k][oa + l] = idx2(B, B.name(n + ".a.mass"), static_cast<int>(k) + 1, static_cast<int>(l) + 1);
+      }
+      // omega - bending rate, through the stretched position: [u, 0, 0] x phi
+      for (std::size_t l = 0; l < ny; ++l)
+        M[5][6 + l] = M[6 + l][5] = plus(M[5][6 + l], row_dot(B, n + ".ay.mass", static_cast<int>(l), eta.axial, /*transposed=*/true));
+      for (std::size_t l = 0; l < nz; ++l)
+        M[4][6 + ny + l] = M[6 + ny + l][4] = minus(M[4][6 + ny + l], row_dot(B, n + ".az.mass", static_cast<int>(l), eta.axial, /*transposed=*/true));
+    }
+    if (!eta.torsion.empty()) {
+      M[4][5] = M[5][4] = minus(M[4][5], vec_dot(B, n + ".t.product", eta.torsion));
+      for (std::size_t k = 0; k < eta.torsion.size(); ++k) {
+        M[3][ot + k] = M[ot + k][3] = B.at(B.name(n + ".t.mean"), static_cast<int>(k) + 1);
+        for (std::size_t l = 0; l < eta.torsion.size(); ++l)
+          M[ot + k][ot + l] = idx2(B, B.name(n + ".t.mass"), static_cast<int>(k) + 1, static_cast<int>(l) + 1);
+      }
+    }
   }
 
   E rows_to_matrix(const Build& B, const std::vector<std::vector<E>>& m) const {
     std::vector<E> rows_;
     for (const auto& r : m) rows_.push_back(B.list(r));
     return B.list(rows_);
+  }
+
+  /// Modal damping 2 zeta omega_i m_i = 2 zeta sqrt(K_ii M_ii) per mode (zeta: the body's `damping`, or none).
+  void modal_damping(const Build& B, const std::string& name, E zeta, int count, const std::string& K, const std::string& M) {
+    std::vector<E> c;
+    for (int i = 1; i <= count; ++i)
+      c.push_back(B.op('*', B.op('*', B.num(2), zeta ? zeta : B.num(0)),
+                       B.call("sqrt", {B.op('*', idx2(B, B.name(K), i, i), idx2(B, B.name(M), i, i))})));
+    param(B, name, c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c));
+  }
+
+  /// Parameters of stretch and twist: the rod modes' integrals times mu (stretch) or the sections' rho Ip (twist).
+  void rod_params(const Build& B, const Body& body) {
+    const AstBody& d = *body.decl;
+    const std::string& n = d.name;
+    const Beam& beam = *body.beam;
+    E damping = attr(d, "damping"), mu = B.name(n + ".mu"), rho = B.name(n + ".density");
+    if (beam.axial) {
+      const flex::RodIntegrals I = flex::rod_integrals(*beam.axial);
+      param(B, n + ".a.mean", B.op('*', mu, vector_param(B, I.mean)));
+      param(B, n + ".a.moment", B.op('*', mu, vector_param(B, I.moment)));
+      param(B, n + ".a.mass", B.op('*', mu, matrix_param(B, I.mass)));
+      param(B, n + ".a.stiffness", B.op('*', B.op('*', B.name(n + ".E"), B.name(n + ".area")), matrix_param(B, I.stiffness)));
+      modal_damping(B, n + ".a.damping", damping, beam.axial->count(), n + ".a.stiffness", n + ".a.mass");
+      if (beam.y) param(B, n + ".ay.mass", B.op('*', mu, matrix_param(B, flex::cross_mass(*beam.axial, *beam.y))));
+      if (beam.z) param(B, n + ".az.mass", B.op('*', mu, matrix_param(B, flex::cross_mass(*beam.axial, *beam.z))));
+    }
+    if (beam.torsion) {
+      const flex::RodIntegrals I = flex::rod_integrals(*beam.torsion);
+      param(B, n + ".G", attr(d, "G"));
+      param(B, n + ".Ip", B.op('+', B.name(n + ".Iy"), B.name(n + ".Iz")));  // polar moment of the section
+      if (E J = attr(d, "torsion_constant")) param(B, n + ".torsion_constant", J);
+      else param(B, n + ".torsion_constant", torsion_constant(B, *attr(d, "section"), n));
+      E rhoIp = B.op('*', rho, B.name(n + ".Ip"));
+      param(B, n + ".t.mean", B.op('*', rhoIp, vector_param(B, I.mean)));
+      param(B, n + ".t.mass", B.op('*', rhoIp, matrix_param(B, I.mass)));
+      // a twisted section turns its principal axes: J_yz changes by -rho (Iz - Iy) theta per length
+      param(B, n + ".t.product", B.op('*', B.op('*', rho, B.op('-', B.name(n + ".Iz"), B.name(n + ".Iy"))), vector_param(B, I.mean)));
+      param(B, n + ".t.stiffness", B.op('*', B.op('*', B.name(n + ".G"), B.name(n + ".torsion_constant")), matrix_param(B, I.stiffness)));
+      modal_damping(B, n + ".t.damping", damping, beam.torsion->count(), n + ".t.stiffness", n + ".t.mass");
+    }
+  }
+  /// Saint-Venant torsion constant: the polar moment for circle and tube (exact);
+  /// a rectangle a x b, a >= b: a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4))) (Roark, within 0.5 %).
+  E torsion_constant(const Build& B, const AstExpr& section, const std::string& n) const {
+    if (section.name != "rectangle") return B.name(n + ".Ip");
+    E a = B.call("max", {section.args[0], section.args[1]}), b = B.call("min", {section.args[0], section.args[1]});
+    auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
+    E bracket = B.op('-', B.num(1.0 / 3.0),
+                     B.op('*', B.op('*', B.num(0.21), B.op('/', b, a)), B.op('-', B.num(1), B.op('/', pw(b, 4), B.op('*', B.num(12), pw(a, 4))))));
+    return B.op('*', B.op('*', a, pw(b, 3)), bracket);
   }
 
   /// Parameters of a beam: section, material and the modal integrals (constants).
@@ -1329,14 +1476,10 @@ class Expander {
         param(B, p + ".load", B.op('*', mu, matrix_param(B, I.load)));
         param(B, p + ".spin", B.op('*', mu, matrix_param(B, I.spin)));
       }
-      // modal damping: 2 zeta omega_i m_i per mode, omega_i of the free beam
-      std::vector<E> c;
-      for (int i = 1; i <= (*modes)->count(); ++i)
-        c.push_back(B.op('*', B.op('*', B.num(2), damping ? damping : B.num(0)),
-                         B.call("sqrt", {B.op('*', idx2(B, B.name(p + ".stiffness"), i, i), idx2(B, B.name(p + ".mass"), i, i))})));
-      param(B, p + ".damping", c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c));
+      modal_damping(B, p + ".damping", damping, (*modes)->count(), p + ".stiffness", p + ".mass");
     }
     if (beam.y && beam.z) param(B, n + ".yz.mass", B.op('*', B.name(n + ".mu"), matrix_param(B, flex::cross_mass(*beam.y, *beam.z))));
+    rod_params(B, body);
     for (const auto& [pt, x] : beam.point_x) {
       for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
         if (!*modes) continue;
@@ -1346,6 +1489,12 @@ class Expander {
         param(B, p + ".shape", vector_param(B, phi));
         param(B, p + ".slope", vector_param(B, slope));
         if (beam.geometric_stiffness) param(B, p + ".shortening", matrix_param(B, flex::axial_up_to(**modes, x)));
+      }
+      for (const auto& [group, modes] : {std::pair{"a", &beam.axial}, std::pair{"t", &beam.torsion}}) {
+        if (!*modes) continue;
+        std::vector<double> chi;
+        for (int i = 0; i < (*modes)->count(); ++i) chi.push_back((*modes)->shape(i, x));
+        param(B, n + "." + pt + "." + group + ".shape", vector_param(B, chi));
       }
     }
   }
@@ -1390,13 +1539,7 @@ class Expander {
     }
     param(B, n + ".modal_mass", matrix_param(B, t.modal_mass));
     param(B, n + ".stiffness", matrix_param(B, d.stiffness));
-    // modal damping: 2 zeta omega_k m_k per mode
-    E zeta = attr(*body.decl, "damping");
-    std::vector<E> c;
-    for (int k = 1; k <= d.count; ++k)
-      c.push_back(B.op('*', B.op('*', B.num(2), zeta ? zeta : B.num(0)),
-                       B.call("sqrt", {B.op('*', idx2(B, B.name(n + ".stiffness"), k, k), idx2(B, B.name(n + ".modal_mass"), k, k))})));
-    param(B, n + ".damping", c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c));
+    modal_damping(B, n + ".damping", attr(*body.decl, "damping"), d.count, n + ".stiffness", n + ".modal_mass");
     for (const auto& [pt, node] : d.points) {
       param(B, n + "." + pt + ".shape", matrix_param(B, node.shape));
       param(B, n + "." + pt + ".slope", matrix_param(B, node.slope));
@@ -1491,6 +1634,7 @@ class Expander {
       E a = B.op('+', quadratic(B, n + "." + pt + ".y.shortening", eta.y, eta.y), quadratic(B, n + "." + pt + ".z.shortening", eta.z, eta.z));
       x = B.op('-', x, B.op('*', B.num(0.5), a));
     }
+    if (!eta.axial.empty()) x = B.op('+', x, vec_dot(B, n + "." + pt + ".a.shape", eta.axial));  // stretch
     return B.list({x, sum_of(B, wy), sum_of(B, wz)});
   }
   /// The small rotation of the section at a point (body axes): [0, -w_z', w_y'].
@@ -1499,7 +1643,8 @@ class Expander {
     std::vector<E> ty, tz;
     for (std::size_t i = 0; i < eta.y.size(); ++i) ty.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.slope"), static_cast<int>(i) + 1), eta.y[i]));
     for (std::size_t i = 0; i < eta.z.size(); ++i) tz.push_back(B.op('*', B.at(B.name(n + "." + pt + ".z.slope"), static_cast<int>(i) + 1), eta.z[i]));
-    return B.list({B.num(0), B.neg(sum_of(B, tz)), sum_of(B, ty)});
+    E twist = eta.torsion.empty() ? B.num(0) : vec_dot(B, n + "." + pt + ".t.shape", eta.torsion);
+    return B.list({twist, B.neg(sum_of(B, tz)), sum_of(B, ty)});
   }
   Eta state_eta(const Build& B, const std::string& n, const Beam& beam) const {
     return split_eta(beam, [&](int k) { return eta_of(B, n, k); });
@@ -1512,6 +1657,28 @@ class Expander {
   static std::vector<std::pair<double, std::string>> modal_limits(const std::string& n, const Beam& beam) {
     if (beam.modal) return modal_file_limits(n, beam);
     std::vector<std::pair<double, std::string>> limits;
+    add_bending_limits(n, beam, limits);
+    // stretch: the linear strain model holds to small strains; twist: to the slope limit, as bending
+    for (const auto& [what, modes] : {std::pair{"stretch", &beam.axial}, std::pair{"twist", &beam.torsion}}) {
+      if (!*modes) continue;
+      for (int i = 0; i < (*modes)->count(); ++i) {
+        const bool stretch = what[0] == 's';
+        const double k = (*modes)->k_L(i) / beam.length_m, peak = std::sqrt(2.0) * (stretch ? k : 1.0);
+        limits.push_back(
+            {(stretch ? kStrainLimit : beam.slope_limit_rad) / peak,
+             stretch ? fmt::format("axial mode {} of beam `{}` ({}) strains it by more than {:g}, beyond the small strains of "
+                                   "its linear model. Likely cause: an instability, or a load far beyond the material's",
+                                   i + 1, n, flex::rod_ends_name((*modes)->ends()), kStrainLimit)
+                     : fmt::format("torsion mode {} of beam `{}` ({}) twists it by more than {:g} rad, beyond the small "
+                                   "rotations of its linear model (`slope_limit`). Likely cause: an instability, or a torque "
+                                   "far beyond the section's",
+                                   i + 1, n, flex::rod_ends_name((*modes)->ends()), beam.slope_limit_rad)});
+      }
+    }
+    return limits;
+  }
+  static constexpr double kStrainLimit = 0.01;
+  static void add_bending_limits(const std::string& n, const Beam& beam, std::vector<std::pair<double, std::string>>& limits) {
     for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
       if (!*modes) continue;
       for (int i = 0; i < (*modes)->count(); ++i) {
@@ -1527,7 +1694,6 @@ class Expander {
                          i + 1, n, flex::supports_name((*modes)->supports()), plane, beam.slope_limit_rad)});
       }
     }
-    return limits;
   }
 
   void emit_beam(const Body& body) {
@@ -1599,6 +1765,13 @@ class Expander {
           D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".damping"), i + 1, j + 1);
         }
     }
+    for (const auto& [group, count, off] : {std::tuple{"a", beam.axial ? beam.axial->count() : 0, beam.offset_axial()},
+                                            std::tuple{"t", beam.torsion ? beam.torsion->count() : 0, beam.offset_torsion()}})
+      for (int i = 0; i < count; ++i)
+        for (int j = 0; j < count; ++j) {
+          K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".stiffness"), i + 1, j + 1);
+          D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".damping"), i + 1, j + 1);
+        }
     element(B, "C", n + ".eta", nullptr,
             {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
     std::get<AstElement>(generated_.back()).state_limits = modal_limits(n, beam);
@@ -2450,6 +2623,7 @@ class Expander {
       E local = beam_point(B, n, beam, pt, eta);
       std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = beam_point_motion(B, n, local);
       quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
+      quantity_[n + "." + pt + ".rotation_vector"] = beam_slope(B, n, beam, pt, eta);            // small, body axes
     }
   }
 
