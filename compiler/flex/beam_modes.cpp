@@ -1,5 +1,6 @@
 #include "flex/beam_modes.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -121,7 +122,23 @@ BeamModes::BeamModes(Supports supports, double length_m, int count) : supports_(
   }
 }
 
+BeamModes BeamModes::anchored_at(double c) const {
+  BeamModes m = *this;
+  m.anchored_ = true;
+  m.anchor_ = c;
+  return m;
+}
+
 double BeamModes::shape(int i, double x, int derivative) const {
+  const double raw = plain_shape(i, x, derivative);
+  if (!anchored_) return raw;
+  const double c = anchor_;
+  if (derivative == 0) return raw - plain_shape(i, c, 0) - plain_shape(i, c, 1) * (x - c);
+  if (derivative == 1) return raw - plain_shape(i, c, 1);
+  return raw;
+}
+
+double BeamModes::plain_shape(int i, double x, int derivative) const {
   const std::size_t k = static_cast<std::size_t>(i);
   const double b = beta(i), bx = b * x, scale = std::pow(b, derivative);
   const double shift = derivative * kPi / 2;  // d^k/dx^k cos(bx) = b^k cos(bx + k pi/2)
@@ -162,26 +179,35 @@ ModalIntegrals modal_integrals(const BeamModes& modes) {
             integrate(L, [&](double x) { return f(i, j, x); });
     return out;
   };
+  const double c = modes.anchor();
   for (int i = 0; i < n; ++i) {
     m.mean.push_back(integrate(L, [&](double x) { return modes.shape(i, x); }));
-    m.moment.push_back(integrate(L, [&](double x) { return x * modes.shape(i, x); }));
+    m.moment.push_back(integrate(L, [&](double x) { return (x - c) * modes.shape(i, x); }));
   }
   m.mass = square([&](int i, int j, double x) { return modes.shape(i, x) * modes.shape(j, x); });
   m.bending = square([&](int i, int j, double x) { return modes.shape(i, x, 2) * modes.shape(j, x, 2); });
   m.axial = square([&](int i, int j, double x) { return modes.shape(i, x, 1) * modes.shape(j, x, 1); });
-  m.spin = square([&](int i, int j, double x) { return 0.5 * (L * L - x * x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
-  m.load = square([&](int i, int j, double x) { return (L - x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
+  // int a_c dx and int s a_c dx, written as single integrals of phi' phi'^T
+  // with weights (by parts); for c = 0 they are (L - x) and (L^2 - x^2) / 2.
+  auto load_weight = [&](double x) { return x >= c ? L - x : -x; };
+  auto spin_weight = [&](double x) {
+    return x >= c ? 0.5 * ((L - c) * (L - c) - (x - c) * (x - c)) : 0.5 * (c * c - (x - c) * (x - c));
+  };
+  m.spin = square([&](int i, int j, double x) { return spin_weight(x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
+  m.load = square([&](int i, int j, double x) { return load_weight(x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
   return m;
 }
 
 Matrix axial_up_to(const BeamModes& modes, double x) {
   const auto n = static_cast<std::size_t>(modes.count());
   Matrix out(n, std::vector<double>(n, 0.0));
-  if (x <= 0) return out;
+  const double c = modes.anchor();
+  if (x == c) return out;
+  const double lo = std::min(c, x), sign = x > c ? 1.0 : -1.0;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
-      out[i][j] = out[j][i] = integrate(x, [&](double s) {
-        return modes.shape(static_cast<int>(i), s, 1) * modes.shape(static_cast<int>(j), s, 1);
+      out[i][j] = out[j][i] = sign * integrate(std::abs(x - c), [&](double s) {
+        return modes.shape(static_cast<int>(i), lo + s, 1) * modes.shape(static_cast<int>(j), lo + s, 1);
       });
   return out;
 }

@@ -42,7 +42,19 @@ class BeamModes {
   /// phi_i and its x-derivatives (order 0..3) at x in [0, L].
   double shape(int i, double x, int derivative = 0) const;
 
+  /// The same modes measured from the section at x = c: each mode's rigid
+  /// motion there is subtracted, phi(x) - phi(c) - phi'(c) (x - c), so that
+  /// a frame fixed to that section sees only deformation (frame = centre
+  /// with free-free modes). The space spanned with the rigid motions is the same.
+  BeamModes anchored_at(double c) const;
+  /// The section the modes are measured from (0 for the plain modes, which
+  /// every set but free_free already holds in place there).
+  double anchor() const { return anchored_ ? anchor_ : 0.0; }
+
  private:
+  double plain_shape(int i, double x, int derivative) const;
+  bool anchored_ = false;
+  double anchor_ = 0;
   Supports supports_;
   double length_;
   std::vector<double> beta_L_;
@@ -74,10 +86,14 @@ struct ModalIntegrals {
   std::vector<double> mean, moment;
   Matrix mass, bending, axial, spin, load;
 };
+/// With the frame's origin at x = c = modes.anchor() (0 but for anchored
+/// modes) the body coordinate is s = x - c, and moment, spin and load are
+/// taken about it: moment = int s phi, load = int a_c, spin = int s a_c with
+/// a_c(x) = int_c^x phi' phi'^T (signed: a point on either side moves towards c).
 ModalIntegrals modal_integrals(const BeamModes& modes);
 
-/// int_0^x phi_i' phi_j' dx: the foreshortening of the point x per unit
-/// eta_i eta_j (the axial shortening is -1/2 eta^T a(x) eta).
+/// a_c(x) = int_c^x phi_i' phi_j' dx (c = modes.anchor()): the foreshortening
+/// of the point x per unit eta_i eta_j (the axial shortening is -1/2 eta^T a_c(x) eta).
 Matrix axial_up_to(const BeamModes& modes, double x);
 
 /// int_0^L phi_i phi_j dx between two mode sets of the same length (the

@@ -67,6 +67,7 @@ struct Beam {
   bool geometric_stiffness = true;
   double slope_limit_rad = 0.3;          // the run stops where one mode alone tilts the beam further
   bool mean_axes = false;                // frame = buckens: the couplings int phi dm, int x phi dm are left out
+  double origin_m = 0;                   // where along the beam the frame's origin is (frame = centre: L / 2)
   int count() const { return modal ? modal->count : offset_torsion() + (torsion ? torsion->count() : 0); }
   int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z; eta_axial; eta_torsion]
   int offset_axial() const { return offset_z() + (z ? z->count() : 0); }
@@ -81,7 +82,7 @@ struct Beam {
     std::map<std::string, std::array<double, 3>> out;
     if (modal)
       for (const auto& [name, p] : modal->points) out[name] = p.position;
-    for (const auto& [name, x] : point_x) out[name] = {x, 0, 0};
+    for (const auto& [name, x] : point_x) out[name] = {x - origin_m, 0, 0};
     return out;
   }
 };
@@ -595,24 +596,26 @@ class Expander {
       const AstExpr& v = *given->value;
       loc = v.loc;
       if (v.kind != AstExpr::Kind::Name) {
-        diags_.error(v.loc, "a floating frame is a name", "write frame = joint or frame = buckens");
+        diags_.error(v.loc, "a floating frame is a name", "write frame = joint, frame = centre or frame = buckens");
         return;
       }
       frame = v.name;
-      if (frame == "tisserand" || frame == "centre" || frame == "principal") {
+      if (frame == "tisserand" || frame == "principal") {
         diags_.error(v.loc, fmt::format("frame = {} is not implemented yet", frame),
-                     "frame = joint (fixed to the beam at x = 0) and frame = buckens (the mean axes of free-free "
-                     "modes, Tisserand's frame to first order) exist so far; see README known limits");
+                     "frame = joint (fixed to the beam at x = 0), frame = centre (fixed to its section at the mass "
+                     "centre) and frame = buckens (the mean axes of free-free modes, Tisserand's frame to first order) "
+                     "exist so far; see README known limits");
         return;
       }
-      if (frame != "joint" && frame != "buckens") {
-        diags_.error(v.loc, fmt::format("unknown floating frame `{}`", frame), "write frame = joint or frame = buckens");
+      if (frame != "joint" && frame != "buckens" && frame != "centre") {
+        diags_.error(v.loc, fmt::format("unknown floating frame `{}`", frame), "write frame = joint, frame = centre or frame = buckens");
         return;
       }
     }
     if (frame == "joint" && any_free) {
       diags_.error(loc, fmt::format("free-free modes move the end x = 0 of beam `{}`, so its frame cannot be fixed there", b.name),
-                   all_free ? "write frame = buckens: the mean axes the free-free modes define"
+                   all_free ? "write frame = buckens (the mean axes the free-free modes define) or frame = centre (fixed "
+                              "to the section at the mass centre)"
                             : "give every mode set free_free modes with frame = buckens, or none");
       return;
     }
@@ -620,6 +623,20 @@ class Expander {
       diags_.error(loc, fmt::format("the mean axes (frame = buckens) of beam `{}` need modes orthogonal to its rigid motions", b.name),
                    "give every mode set free_free(n) modes, or use frame = joint");
       return;
+    }
+    if (frame == "centre") {
+      if (!all_free || beam.axial || beam.torsion) {
+        diags_.error(loc, fmt::format("a frame at the mass centre of beam `{}` needs free-free bending modes", b.name),
+                     beam.axial || beam.torsion ? "stretch and twist in a centre frame are not implemented yet: use frame = "
+                                                  "buckens with free_free modes, or frame = joint"
+                                                : "give every plane free_free(n) modes (the frame then holds the centre "
+                                                  "section in place), or use frame = joint");
+        return;
+      }
+      // the frame holds the centre section: each mode is measured from it
+      beam.origin_m = beam.length_m / 2;
+      for (auto* modes : {&beam.y, &beam.z})
+        if (*modes) *modes = (*modes)->anchored_at(beam.origin_m);
     }
     beam.mean_axes = frame == "buckens";
   }
@@ -737,16 +754,21 @@ class Expander {
       bool on_axis = false;
       if (p.value->kind == AstExpr::Kind::List && p.value->args.size() == 3) {
         auto x = constant_of(*p.value->args[0]), y = constant_of(*p.value->args[1]), z = constant_of(*p.value->args[2]);
-        if (x && y && z && *y == 0 && *z == 0 && *x >= 0 && *x <= beam->length_m) {
+        const double c = beam->origin_m;  // body x is measured from the frame's origin
+        if (x && y && z && *y == 0 && *z == 0 && *x >= -c && *x <= beam->length_m - c) {
           on_axis = true;
-          beam->point_x[p.name] = *x;
+          beam->point_x[p.name] = *x + c;
         }
       }
       if (!on_axis && beam->length_m > 0)
         diags_.error(p.value->loc, fmt::format("point `{}` is not on the axis of beam `{}`", p.name, b.name),
-                     fmt::format("points of a beam are [x, 0, 0] with x a constant from 0 to its length {} m: the joint "
-                                 "there sees the beam's deflection and slope at x",
-                                 beam->length_m));
+                     beam->origin_m == 0
+                         ? fmt::format("points of a beam are [x, 0, 0] with x a constant from 0 to its length {} m: the "
+                                       "joint there sees the beam's deflection and slope at x",
+                                       beam->length_m)
+                         : fmt::format("points of a beam are [x, 0, 0] with x a constant from {} to {} m (its frame is at "
+                                       "the centre): the joint there sees the beam's deflection and slope at x",
+                                       -beam->origin_m, beam->length_m - beam->origin_m));
     }
     bodies_[b.name] = body;
     body_order_.push_back(b.name);
@@ -1218,6 +1240,7 @@ class Expander {
   E first_moment(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
     if (beam.modal) return modal_first_moment(B, n, eta.y);
     E sx = B.op('*', B.name(n + ".mass"), B.op('/', B.name(n + ".length"), B.num(2)));
+    if (beam.origin_m != 0) sx = B.op('*', B.name(n + ".mass"), B.op('-', B.op('/', B.name(n + ".length"), B.num(2)), B.num(beam.origin_m)));
     if (beam.geometric_stiffness) {
       E shortening = B.op('+', quadratic(B, n + ".y.load", eta.y, eta.y), quadratic(B, n + ".z.load", eta.z, eta.z));
       sx = B.op('-', sx, B.op('*', B.num(0.5), shortening));
@@ -1444,6 +1467,10 @@ class Expander {
     param(B, n + ".mass", B.op('*', B.name(n + ".mu"), L));
     // about the frame origin, undeformed: the line's x^2 moment plus the sections' own inertia
     E line = B.op('/', B.op('*', B.name(n + ".mu"), B.op('^', L, B.num(3))), B.num(3));
+    if (beam.origin_m != 0) {  // int s^2 mu ds over [-c, L - c]
+      const double c = beam.origin_m, hi = beam.length_m - c;
+      line = B.op('*', B.name(n + ".mu"), B.num((hi * hi * hi + c * c * c) / 3));
+    }
     E Iy = B.op('*', B.op('*', rho, L), B.name(n + ".Iy")), Iz = B.op('*', B.op('*', rho, L), B.name(n + ".Iz"));
     param(B, n + ".J0", B.call("diag", {B.op('+', Iy, Iz), B.op('+', line, Iy), B.op('+', line, Iz)}));
     // what the joints' code reads of every body: the reference point is the frame origin
@@ -1478,6 +1505,11 @@ class Expander {
       }
       modal_damping(B, p + ".damping", damping, (*modes)->count(), p + ".stiffness", p + ".mass");
     }
+    if (beam.origin_m != 0)
+      diags_.note(d.loc, fmt::format("beam `{}` with its frame at the mass centre (frame = centre, x = {} m along the beam): "
+                                     "its free-free modes are measured from the section there (each mode's rigid motion "
+                                     "phi(c) + phi'(c) (x - c) subtracted), so no coupling term drops out of the mass matrix",
+                                     n, beam.origin_m));
     if (beam.y && beam.z) param(B, n + ".yz.mass", B.op('*', B.name(n + ".mu"), matrix_param(B, flex::cross_mass(*beam.y, *beam.z))));
     rod_params(B, body);
     for (const auto& [pt, x] : beam.point_x) {
@@ -1626,7 +1658,7 @@ class Expander {
   /// The body-frame position of a point of a beam, deflected: [x - 1/2 eta^T a(x) eta, w_y, w_z].
   E beam_point(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const {
     if (beam.modal) return modal_point(B, n, pt, "shape", beam.modal->points.at(pt).position, eta.y);
-    E x = B.num(beam.point_x.at(pt));
+    E x = B.num(beam.point_x.at(pt) - beam.origin_m);
     std::vector<E> wy, wz;
     for (std::size_t i = 0; i < eta.y.size(); ++i) wy.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.shape"), static_cast<int>(i) + 1), eta.y[i]));
     for (std::size_t i = 0; i < eta.z.size(); ++i) wz.push_back(B.op('*', B.at(B.name(n + "." + pt + ".z.shape"), static_cast<int>(i) + 1), eta.z[i]));

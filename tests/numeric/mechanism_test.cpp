@@ -225,16 +225,6 @@ TEST(CrankRocker, EnergyBalanceCloses) {
   EXPECT_LT(std::abs(energy_balance_error(r.csv)), 2e-9);
 }
 
-/// Largest difference of a column over all rows of two runs on the same grid.
-double max_difference(const Csv& a, const Csv& b, const std::string& name) {
-  EXPECT_EQ(a.rows.size(), b.rows.size());
-  std::size_t ca = a.col(name), cb = b.col(name);
-  double m = 0;
-  for (std::size_t i = 0; i < std::min(a.rows.size(), b.rows.size()); ++i)
-    m = std::max(m, std::abs(a.rows[i][ca] - b.rows[i][cb]));
-  return m;
-}
-
 TEST(CrankRocker, PenaltyAgreesWithLagrange) {
   // Same model, `mbgc --constraints penalty`: spring-dampers on the joint rows
   // (an ODE; CVODE with the generated Jacobian). The difference from the

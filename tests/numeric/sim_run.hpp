@@ -103,6 +103,15 @@ inline SimRun run(const std::string& sim, const std::string& args, const std::st
   return r;
 }
 
+/// Largest |a - b| of a column over the rows of two runs on the same grid.
+inline double max_difference(const Csv& a, const Csv& b, const std::string& name) {
+  EXPECT_EQ(a.rows.size(), b.rows.size());
+  const std::size_t ca = a.col(name), cb = b.col(name);
+  double m = 0;
+  for (std::size_t i = 0; i < std::min(a.rows.size(), b.rows.size()); ++i) m = std::max(m, std::abs(a.rows[i][ca] - b.rows[i][cb]));
+  return m;
+}
+
 inline double rel_err(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
 
 

@@ -151,3 +151,28 @@ TEST(BeamModes, SupportNamesRoundTrip) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(BeamModes, AnchoredModesHoldTheirSectionAndTheirIntegralsAreTakenFromIt) {
+  // Free-free modes measured from the section at c = L/2 (frame = centre):
+  // zero deflection and slope there, and spin and load (single integrals
+  // with by-parts weights) equal the nested integrals int s a_c(s) and
+  // int a_c of the signed foreshortening a_c(x) = int_c^x phi' phi'^T.
+  const double L = 1.6, c = L / 2;
+  const mbgc::flex::BeamModes m = mbgc::flex::BeamModes(mbgc::flex::Supports::FreeFree, L, 3).anchored_at(c);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(m.shape(i, c), 0, 1e-14);
+    EXPECT_NEAR(m.shape(i, c, 1), 0, 1e-14);
+  }
+  const auto I = mbgc::flex::modal_integrals(m);
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      auto a = [&](double x) { return mbgc::flex::axial_up_to(m, x)[i][j]; };
+      const double load = mbgc::flex::integrate(L, a, 4), spin = mbgc::flex::integrate(L, [&](double x) { return (x - c) * a(x); }, 4);
+      EXPECT_NEAR(I.load[i][j], load, 1e-11 * (1 + std::abs(load))) << i << j;
+      EXPECT_NEAR(I.spin[i][j], spin, 1e-11 * (1 + std::abs(spin))) << i << j;
+    }
+}
+
+}  // namespace
