@@ -126,6 +126,14 @@ BeamModes BeamModes::anchored_at(double c) const {
   BeamModes m = *this;
   m.anchored_ = true;
   m.anchor_ = c;
+  m.origin_ = c;
+  return m;
+}
+
+BeamModes BeamModes::in_tisserand_frame() const {
+  BeamModes m = *this;
+  m.origin_ = length_ / 2;
+  m.mean_free_shortening_ = true;
   return m;
 }
 
@@ -167,48 +175,85 @@ double integrate(double length_m, const std::function<double(double)>& f, int pa
   return sum;
 }
 
+namespace {
+
+Matrix square_integrals(const BeamModes& modes, const std::function<double(int, int, double)>& f) {
+  const auto n = static_cast<std::size_t>(modes.count());
+  Matrix out(n, std::vector<double>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      out[i][j] = out[j][i] = integrate(modes.length(), [&](double x) { return f(static_cast<int>(i), static_cast<int>(j), x); });
+  return out;
+}
+
+/// int a_c dx, written as a single integral of phi' phi'^T with the weight
+/// (by parts) L - x on the far side of c and -x on the near one.
+Matrix shortening_integral(const BeamModes& modes) {
+  const double c = modes.origin(), L = modes.length();
+  return square_integrals(modes, [&](int i, int j, double x) {
+    return (x >= c ? L - x : -x) * modes.shape(i, x, 1) * modes.shape(j, x, 1);
+  });
+}
+
+/// abar = (1/L) int a_c dx, what Tisserand's frame subtracts from a_c.
+Matrix shortening_mean(const BeamModes& modes) {
+  Matrix m = shortening_integral(modes);
+  for (auto& row : m)
+    for (double& x : row) x /= modes.length();
+  return m;
+}
+
+}  // namespace
+
 ModalIntegrals modal_integrals(const BeamModes& modes) {
   const int n = modes.count();
-  const double L = modes.length();
+  const double L = modes.length(), c = modes.origin();
   ModalIntegrals m;
-  auto square = [&](auto f) {
-    std::vector<std::vector<double>> out(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
-    for (int i = 0; i < n; ++i)
-      for (int j = i; j < n; ++j)
-        out[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = out[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)] =
-            integrate(L, [&](double x) { return f(i, j, x); });
-    return out;
-  };
-  const double c = modes.anchor();
   for (int i = 0; i < n; ++i) {
     m.mean.push_back(integrate(L, [&](double x) { return modes.shape(i, x); }));
     m.moment.push_back(integrate(L, [&](double x) { return (x - c) * modes.shape(i, x); }));
   }
-  m.mass = square([&](int i, int j, double x) { return modes.shape(i, x) * modes.shape(j, x); });
-  m.bending = square([&](int i, int j, double x) { return modes.shape(i, x, 2) * modes.shape(j, x, 2); });
-  m.axial = square([&](int i, int j, double x) { return modes.shape(i, x, 1) * modes.shape(j, x, 1); });
-  // int a_c dx and int s a_c dx, written as single integrals of phi' phi'^T
-  // with weights (by parts); for c = 0 they are (L - x) and (L^2 - x^2) / 2.
-  auto load_weight = [&](double x) { return x >= c ? L - x : -x; };
+  m.mass = square_integrals(modes, [&](int i, int j, double x) { return modes.shape(i, x) * modes.shape(j, x); });
+  m.bending = square_integrals(modes, [&](int i, int j, double x) { return modes.shape(i, x, 2) * modes.shape(j, x, 2); });
+  m.axial = square_integrals(modes, [&](int i, int j, double x) { return modes.shape(i, x, 1) * modes.shape(j, x, 1); });
+  // int s a_c dx as a single integral (by parts); for c = 0 the weight is (L^2 - x^2) / 2.
   auto spin_weight = [&](double x) {
     return x >= c ? 0.5 * ((L - c) * (L - c) - (x - c) * (x - c)) : 0.5 * (c * c - (x - c) * (x - c));
   };
-  m.spin = square([&](int i, int j, double x) { return spin_weight(x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
-  m.load = square([&](int i, int j, double x) { return load_weight(x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
+  m.spin = square_integrals(modes, [&](int i, int j, double x) { return spin_weight(x) * modes.shape(i, x, 1) * modes.shape(j, x, 1); });
+  m.load = shortening_integral(modes);
+  if (modes.mean_free_shortening()) {
+    // a_c - abar: its integral vanishes by construction, and int s (a_c - abar) dx loses abar int s dx
+    const double s_integral = L * L / 2 - c * L;
+    const std::size_t k = static_cast<std::size_t>(n);
+    for (std::size_t i = 0; i < k; ++i)
+      for (std::size_t j = 0; j < k; ++j) {
+        m.spin[i][j] -= m.load[i][j] / L * s_integral;
+        m.load[i][j] = 0;
+      }
+  }
   return m;
 }
 
 Matrix axial_up_to(const BeamModes& modes, double x) {
   const auto n = static_cast<std::size_t>(modes.count());
   Matrix out(n, std::vector<double>(n, 0.0));
-  const double c = modes.anchor();
+  if (modes.mean_free_shortening()) {
+    out = shortening_mean(modes);
+    for (auto& row : out)
+      for (double& v : row) v = -v;
+  }
+  const double c = modes.origin();
   if (x == c) return out;
   const double lo = std::min(c, x), sign = x > c ? 1.0 : -1.0;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j)
-      out[i][j] = out[j][i] = sign * integrate(std::abs(x - c), [&](double s) {
+    for (std::size_t j = i; j < n; ++j) {
+      const double a = sign * integrate(std::abs(x - c), [&](double s) {
         return modes.shape(static_cast<int>(i), lo + s, 1) * modes.shape(static_cast<int>(j), lo + s, 1);
       });
+      out[i][j] += a;
+      if (j != i) out[j][i] += a;
+    }
   return out;
 }
 

@@ -51,10 +51,24 @@ class BeamModes {
   /// every set but free_free already holds in place there).
   double anchor() const { return anchored_ ? anchor_ : 0.0; }
 
+  /// The same (free-free) modes in Tisserand's frame (thesis §5.2.4): the
+  /// origin at the mass centre c = L/2, and the foreshortening of bending
+  /// measured so that it moves no mass along the beam, a_T(x) = a_c(x) - abar
+  /// with abar = (1/L) int a_c dx. The relative linear momentum then vanishes
+  /// to the order the model keeps (int u' dm = 0, eq. 5.30), so the load
+  /// integral is zero; moment and spin are taken about the centre.
+  BeamModes in_tisserand_frame() const;
+  /// The section the integrals (moment, spin, load) and the foreshortening are measured from.
+  double origin() const { return origin_; }
+  /// true in Tisserand's frame: the foreshortening's mean over the mass is subtracted.
+  bool mean_free_shortening() const { return mean_free_shortening_; }
+
  private:
   double plain_shape(int i, double x, int derivative) const;
   bool anchored_ = false;
   double anchor_ = 0;
+  double origin_ = 0;
+  bool mean_free_shortening_ = false;
   Supports supports_;
   double length_;
   std::vector<double> beta_L_;
@@ -86,14 +100,17 @@ struct ModalIntegrals {
   std::vector<double> mean, moment;
   Matrix mass, bending, axial, spin, load;
 };
-/// With the frame's origin at x = c = modes.anchor() (0 but for anchored
-/// modes) the body coordinate is s = x - c, and moment, spin and load are
-/// taken about it: moment = int s phi, load = int a_c, spin = int s a_c with
-/// a_c(x) = int_c^x phi' phi'^T (signed: a point on either side moves towards c).
+/// With the frame's origin at x = c = modes.origin() (0 but for anchored
+/// modes and Tisserand's frame) the body coordinate is s = x - c, and moment,
+/// spin and load are taken about it: moment = int s phi, load = int a_c,
+/// spin = int s a_c with a_c(x) = int_c^x phi' phi'^T (signed: a point on
+/// either side moves towards c). In Tisserand's frame a_c - abar replaces
+/// a_c: load is zero, and spin loses abar int s dx (zero about the centre).
 ModalIntegrals modal_integrals(const BeamModes& modes);
 
-/// a_c(x) = int_c^x phi_i' phi_j' dx (c = modes.anchor()): the foreshortening
-/// of the point x per unit eta_i eta_j (the axial shortening is -1/2 eta^T a_c(x) eta).
+/// a_c(x) = int_c^x phi_i' phi_j' dx (c = modes.origin()), minus its mean in
+/// Tisserand's frame: the foreshortening of the point x per unit eta_i eta_j
+/// (the axial shortening is -1/2 eta^T a_c(x) eta).
 Matrix axial_up_to(const BeamModes& modes, double x);
 
 /// int_0^L phi_i phi_j dx between two mode sets of the same length (the

@@ -66,7 +66,8 @@ struct Beam {
   std::optional<flex::RodModes> torsion; // twist about x (modes_torsion)
   bool geometric_stiffness = true;
   double slope_limit_rad = 0.3;          // the run stops where one mode alone tilts the beam further
-  bool mean_axes = false;                // frame = buckens: the couplings int phi dm, int x phi dm are left out
+  bool mean_axes = false;                // frame = buckens or tisserand: the couplings int phi dm, int x phi dm are left out
+  bool tisserand = false;                // frame = tisserand: origin at the mass centre, the foreshortening moves no mass
   double origin_m = 0;                   // where along the beam the frame's origin is (frame = centre: L / 2)
   int count() const { return modal ? modal->count : offset_torsion() + (torsion ? torsion->count() : 0); }
   int offset_z() const { return y ? y->count() : 0; }  // eta = [eta_y; eta_z; eta_axial; eta_torsion]
@@ -566,7 +567,7 @@ class Expander {
         {"damping", "the modal damping ratio (0.01 = 1 % of critical in every mode)"},
         {"geometric_stiffness", "on or off"},
         {"slope_limit", "the largest slope (rad) one mode may give the beam before the run stops; default 0.3"},
-        {"frame", "joint (fixed to the beam at x = 0) or buckens (the mean axes of free-free modes)"},
+        {"frame", "joint (fixed to the beam at x = 0), centre (to its centre section), buckens or tisserand (mean axes of free-free modes)"},
         {"r0", "the initial position of the frame origin (world)"},
         {"quat0", "the initial orientation"},
         {"v0", "the initial velocity of the frame origin (world)"},
@@ -596,19 +597,19 @@ class Expander {
       const AstExpr& v = *given->value;
       loc = v.loc;
       if (v.kind != AstExpr::Kind::Name) {
-        diags_.error(v.loc, "a floating frame is a name", "write frame = joint, frame = centre or frame = buckens");
+        diags_.error(v.loc, "a floating frame is a name", "write frame = joint, frame = centre, frame = buckens or frame = tisserand");
         return;
       }
       frame = v.name;
-      if (frame == "tisserand" || frame == "principal") {
-        diags_.error(v.loc, fmt::format("frame = {} is not implemented yet", frame),
-                     "frame = joint (fixed to the beam at x = 0), frame = centre (fixed to its section at the mass "
-                     "centre) and frame = buckens (the mean axes of free-free modes, Tisserand's frame to first order) "
-                     "exist so far; see README known limits");
+      if (frame == "principal") {
+        diags_.error(v.loc, "frame = principal is not implemented",
+                     "the principal-axis frame only diagonalises the inertia and makes the modal coordinates "
+                     "dependent (thesis §5.2.2); write frame = joint, centre, buckens or tisserand");
         return;
       }
-      if (frame != "joint" && frame != "buckens" && frame != "centre") {
-        diags_.error(v.loc, fmt::format("unknown floating frame `{}`", frame), "write frame = joint, frame = centre or frame = buckens");
+      if (frame != "joint" && frame != "buckens" && frame != "centre" && frame != "tisserand") {
+        diags_.error(v.loc, fmt::format("unknown floating frame `{}`", frame),
+                     "write frame = joint, frame = centre, frame = buckens or frame = tisserand");
         return;
       }
     }
@@ -638,7 +639,53 @@ class Expander {
       for (auto* modes : {&beam.y, &beam.z})
         if (*modes) *modes = (*modes)->anchored_at(beam.origin_m);
     }
-    beam.mean_axes = frame == "buckens";
+    if (frame == "tisserand" && !tisserand_allowed(beam, b, loc)) return;
+    beam.mean_axes = frame == "buckens" || frame == "tisserand";
+    beam.tisserand = frame == "tisserand";
+    if (beam.tisserand) {
+      beam.origin_m = beam.length_m / 2;
+      for (auto* modes : {&beam.y, &beam.z})
+        if (*modes) *modes = (*modes)->in_tisserand_frame();
+    }
+  }
+
+  /// Tisserand's frame (thesis §5.2.4) asks that the deformation carry no
+  /// linear and no angular momentum relative to the frame. With free-free
+  /// bending modes in one plane both hold identically (5.30 with the origin
+  /// at the mass centre and the foreshortening measured from its mean; 5.34
+  /// because int phi_k x phi_l dm = 0 for deflections along one axis).
+  /// Any other mode set makes 5.34 the nonholonomic constraint
+  /// eta^T G eta' = 0, whose row G^T eta vanishes at the undeformed shape:
+  /// a multiplier for it is undefined where every run starts.
+  bool tisserand_allowed(const Beam& beam, const AstBody& b, const SourceLoc& loc) {
+    const bool free_y = beam.y && beam.y->supports() == flex::Supports::FreeFree;
+    const bool free_z = beam.z && beam.z->supports() == flex::Supports::FreeFree;
+    if (beam.torsion) {
+      diags_.error(loc, fmt::format("twist in Tisserand's frame of beam `{}` is not implemented", b.name),
+                   "use frame = buckens (the same mean axes to first order), or leave out modes_torsion");
+      return false;
+    }
+    std::string why;
+    if (beam.axial)
+      why = "stretch couples with bending in int phi_k x phi_l dm (u along x, w along y: their cross product is not zero)";
+    else if (beam.y && beam.z)
+      why = "with bending in two planes int phi_y,k x phi_z,l dm is not zero (a whirling beam carries angular momentum "
+            "about its axis)";
+    if (!why.empty()) {
+      diags_.error(loc, fmt::format("Tisserand's frame of beam `{}` would be a nonholonomic constraint", b.name),
+                   fmt::format("{}, so the frame's condition eta^T G eta' = 0 (thesis eq. 5.34) constrains the modes, and "
+                               "its row G^T eta vanishes at the undeformed shape; use frame = buckens (the same mean "
+                               "axes to first order), or free_free bending in one plane only",
+                               why));
+      return false;
+    }
+    if (!free_y && !free_z) {
+      diags_.error(loc, fmt::format("Tisserand's frame (mean axes) of beam `{}` needs free-free modes", b.name),
+                   "its modes must be orthogonal to the rigid motions: give the beam free_free(n) bending modes in "
+                   "one plane, or use frame = joint");
+      return false;
+    }
+    return true;
   }
 
   void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
@@ -1241,7 +1288,8 @@ class Expander {
     if (beam.modal) return modal_first_moment(B, n, eta.y);
     E sx = B.op('*', B.name(n + ".mass"), B.op('/', B.name(n + ".length"), B.num(2)));
     if (beam.origin_m != 0) sx = B.op('*', B.name(n + ".mass"), B.op('-', B.op('/', B.name(n + ".length"), B.num(2)), B.num(beam.origin_m)));
-    if (beam.geometric_stiffness) {
+    if (beam.tisserand) sx = B.num(0);  // the origin is the mass centre
+    if (beam.geometric_stiffness && !beam.tisserand) {  // Tisserand: the foreshortening moves no mass
       E shortening = B.op('+', quadratic(B, n + ".y.load", eta.y, eta.y), quadratic(B, n + ".z.load", eta.z, eta.z));
       sx = B.op('-', sx, B.op('*', B.num(0.5), shortening));
     }
@@ -1260,11 +1308,11 @@ class Expander {
     for (int i = 0; i < static_cast<int>(eta.axial.size()) && !beam.mean_axes; ++i)
       m[0][static_cast<std::size_t>(beam.offset_axial() + i)] = B.at(B.name(n + ".a.mean"), i + 1);
     for (int i = 0; i < ny; ++i) {
-      if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(i)] = B.neg(row_dot(B, n + ".y.load", i, eta.y));
+      if (beam.geometric_stiffness && !beam.tisserand) m[0][static_cast<std::size_t>(i)] = B.neg(row_dot(B, n + ".y.load", i, eta.y));
       if (!beam.mean_axes) m[1][static_cast<std::size_t>(i)] = B.at(B.name(n + ".y.mean"), i + 1);
     }
     for (int i = 0; i < nz; ++i) {
-      if (beam.geometric_stiffness) m[0][static_cast<std::size_t>(ny + i)] = B.neg(row_dot(B, n + ".z.load", i, eta.z));
+      if (beam.geometric_stiffness && !beam.tisserand) m[0][static_cast<std::size_t>(ny + i)] = B.neg(row_dot(B, n + ".z.load", i, eta.z));
       if (!beam.mean_axes) m[2][static_cast<std::size_t>(ny + i)] = B.at(B.name(n + ".z.mean"), i + 1);
     }
     return m;
@@ -1488,11 +1536,18 @@ class Expander {
         double largest = 0;
         for (double x : I.mean) largest = std::max(largest, std::abs(x) / beam.length_m);
         for (double x : I.moment) largest = std::max(largest, std::abs(x) / (beam.length_m * beam.length_m));
-        diags_.note(d.loc, fmt::format("beam `{}` in mean axes (frame = buckens): its free-free modes along body {} are "
+        diags_.note(d.loc, fmt::format("beam `{}` in mean axes (frame = {}): its free-free modes along body {} are "
                                        "orthogonal to the rigid motions (int phi dm and int x phi dm are {:.1e} of m L "
                                        "and m L^2), so the compiler leaves the translational coupling `{}.mean` and the "
                                        "rotational coupling `{}.moment` out of the mass matrix",
-                                       n, plane, largest, p, p));
+                                       n, beam.tisserand ? "tisserand" : "buckens", plane, largest, p, p));
+        if (beam.tisserand)
+          diags_.note(d.loc, fmt::format("beam `{}` in Tisserand's frame: its origin is the mass centre (x = {} m along "
+                                         "the beam), the foreshortening of bending is measured from its mean so it moves "
+                                         "no mass (thesis eq. 5.30), and int phi x phi dm is zero for one bending plane "
+                                         "(5.34): the axial-acceleration coupling `{}.load` drops out too, and the frame's "
+                                         "translation decouples from rotation and modes (eqs. 5.35-5.38)",
+                                         n, beam.origin_m, p));
       } else {
         param(B, p + ".mean", B.op('*', mu, vector_param(B, I.mean)));
         param(B, p + ".moment", B.op('*', mu, vector_param(B, I.moment)));
@@ -1500,12 +1555,12 @@ class Expander {
       param(B, p + ".mass", B.op('*', mu, matrix_param(B, I.mass)));
       param(B, p + ".stiffness", B.op('*', EI, matrix_param(B, I.bending)));
       if (beam.geometric_stiffness) {
-        param(B, p + ".load", B.op('*', mu, matrix_param(B, I.load)));
+        if (!beam.tisserand) param(B, p + ".load", B.op('*', mu, matrix_param(B, I.load)));
         param(B, p + ".spin", B.op('*', mu, matrix_param(B, I.spin)));
       }
       modal_damping(B, p + ".damping", damping, (*modes)->count(), p + ".stiffness", p + ".mass");
     }
-    if (beam.origin_m != 0)
+    if (beam.origin_m != 0 && !beam.tisserand)
       diags_.note(d.loc, fmt::format("beam `{}` with its frame at the mass centre (frame = centre, x = {} m along the beam): "
                                      "its free-free modes are measured from the section there (each mode's rigid motion "
                                      "phi(c) + phi'(c) (x - c) subtracted), so no coupling term drops out of the mass matrix",

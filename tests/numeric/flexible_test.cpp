@@ -8,6 +8,7 @@
 // dynamics written here, and its tip deviation as the links stiffen.
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <array>
 
 #include "sim_run.hpp"
@@ -534,6 +535,109 @@ TEST(CentreFrame, AFreeRodStruckAtItsEndMovesAsInMeanAxes) {
   for (const char* out : {"end_world[1]", "end_world[2]", "start_world[1]", "start_world[2]"}) {
     const double worst = max_difference(centre.csv, mean_axes.csv, out);
     EXPECT_LT(worst, 1e-4 * peak) << out << " (the end moves by " << peak << " m); measured 1.6e-5 of it";
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// Tisserand's frame (frame = tisserand, thesis §5.2.4) of the free steel rod
+// of MeanAxes.* (tests/numeric/models/free_beam_tisserand.mbg): the mean axes
+// with the origin at the mass centre and the foreshortening measured from its
+// mean, so that the deformation carries no momentum relative to the frame.
+constexpr double kRodLength = 1, kSteelRho = 7850, kSteelE = 2.1e11;
+
+/// Free-free mode i (0-based) of a uniform beam of length L, unnormalised, and its derivatives.
+struct FreeFree {
+  double beta, sigma;
+  explicit FreeFree(int i, double length = kRodLength) {
+    double b = (2 * i + 3) * kPi / 2;  // root of cos b cosh b = 1
+    for (int k = 0; k < 50; ++k) b -= (std::cos(b) * std::cosh(b) - 1) / (-std::sin(b) * std::cosh(b) + std::cos(b) * std::sinh(b));
+    sigma = (std::cosh(b) - std::cos(b)) / (std::sinh(b) - std::sin(b));
+    beta = b / length;
+  }
+  double at(double x, int d) const {
+    const double z = beta * x, s = std::pow(beta, d);
+    switch (d) {
+      case 0: return std::cosh(z) + std::cos(z) - sigma * (std::sinh(z) + std::sin(z));
+      case 1: return s * (std::sinh(z) - std::sin(z) - sigma * (std::cosh(z) + std::cos(z)));
+      default: return s * (std::cosh(z) - std::cos(z) - sigma * (std::sinh(z) - std::sin(z)));
+    }
+  }
+};
+
+TEST(TisserandFrame, AStruckRodMovesAsInBuckensMeanAxes) {
+  // Both frames are the mean axes of the same modes; they differ in where the
+  // origin sits and how the foreshortening is measured, i.e. by a rigid
+  // translation of second order in the deflection. The rod's ends must move alike.
+  for (double spin : {0.0, 50.0}) {
+    const std::string args = "--set d=0.003 --set spin=" + std::to_string(spin);
+    auto buckens = run(FREE_BEAM_SIM, args, "free_beam_spin_" + std::to_string(int(spin)));
+    auto tisserand = run(FREE_BEAM_TISSERAND_SIM, args, "free_beam_tisserand_spin_" + std::to_string(int(spin)));
+    ASSERT_EQ(buckens.status, 0) << buckens.log;
+    ASSERT_EQ(tisserand.status, 0) << tisserand.log;
+    ASSERT_EQ(buckens.csv.rows.size(), tisserand.csv.rows.size());
+    const double deflection = buckens.csv.max_abs("end_y");
+    EXPECT_GT(deflection, 1e-5) << "the strike must bend the rod";
+    EXPECT_LT(max_difference(tisserand.csv, buckens.csv, "end_y"), 1e-5 * deflection) << "spin " << spin;
+    for (const char* out : {"end_world[1]", "end_world[2]", "start_world[1]", "start_world[2]"}) {
+      const double worst = max_difference(tisserand.csv, buckens.csv, out);
+      EXPECT_LT(worst, 1e-5 * deflection) << out << ", spin " << spin << " rad/s; measured 2.9e-6 of it";
+    }
+  }
+}
+
+TEST(TisserandFrame, ItsOriginIsTheMassCentreSoItMovesWithTheImpulseOverTheMass) {
+  // Spinning at 50 rad/s and struck sideways, the rod vibrates, its
+  // foreshortening pulses, and the spin stiffens it; its mass centre moves
+  // at J / m all the same. In Tisserand's frame that is the frame's origin:
+  // the model's linear momentum is m V, exactly, so V must stay J / m (world y)
+  // after the pulse, and the energy must stay what the strike put in.
+  const double J = 1e-4, tau = 1e-5, d = 0.003, mass = kSteelRho * kPi * d * d / 4 * kRodLength;
+  auto r = run(FREE_BEAM_TISSERAND_SIM, "--set d=0.003 --set spin=50", "free_beam_tisserand_momentum");
+  ASSERT_EQ(r.status, 0) << r.log;
+  EXPECT_GT(r.csv.max_abs("end_y"), 1e-5);
+  double worst_v = 0, e_min = 1e300, e_max = -1e300;
+  for (const auto& row : r.csv.rows) {
+    if (row[0] < 2 * tau) continue;
+    worst_v = std::max({worst_v, std::abs(row[r.csv.col("frame_velocity[1]")]), std::abs(row[r.csv.col("frame_velocity[2]")] - J / mass),
+                        std::abs(row[r.csv.col("frame_velocity[3]")])});
+    e_min = std::min(e_min, row[r.csv.col("energy")]);
+    e_max = std::max(e_max, row[r.csv.col("energy")]);
+  }
+  // measured 1.5e-9 of it; a mass centre off the origin by the foreshortening's
+  // mean (about 1e-9 m here) would move it by 3e-5 of it at this spin
+  EXPECT_LT(worst_v, 1e-8 * J / mass) << "m/s, of " << J / mass;
+  EXPECT_LT(e_max - e_min, 1e-8 * e_max) << "J";
+}
+
+TEST(TisserandFrame, ASpinningFreeRodsFrequenciesAreTheRitzEigenproblemAboutItsCentre) {
+  // A free rod spinning at W about body z (its mass centre) bends in the plane
+  // of the spin with [K + W^2 (Ks - M)] a = w^2 M a, Ks from the centrifugal
+  // axial force mu W^2 ((L/2)^2 - s^2) / 2 (thesis eq. 3.50 about the centre),
+  // computed here with the test's own modes and quadrature.
+  const double d = 0.01, spin = 150, A = kPi * d * d / 4, I = kPi * std::pow(d, 4) / 64, mu = kSteelRho * A;
+  const int n = 3;
+  Eigen::MatrixXd K(n, n), Ks(n, n), M(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const FreeFree a(i), b(j);
+      const double c = kRodLength / 2;
+      K(i, j) = kSteelE * I * simpson([&](double x) { return a.at(x, 2) * b.at(x, 2); }, kRodLength);
+      Ks(i, j) = mu * simpson([&](double x) { return 0.5 * (c * c - (x - c) * (x - c)) * a.at(x, 1) * b.at(x, 1); }, kRodLength);
+      M(i, j) = mu * simpson([&](double x) { return a.at(x, 0) * b.at(x, 0); }, kRodLength);
+    }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> spinning(K + spin * spin * (Ks - M), M), still(K, M);
+  auto r = run(FREE_BEAM_TISSERAND_SIM, "--set J=0 --set spin=150 --t-end 0.001 --linearize-at 0.001", "free_beam_tisserand_lin");
+  ASSERT_EQ(r.status, 0) << r.log;
+  for (int k = 0; k < n; ++k) {
+    const double expected = std::sqrt(spinning.eigenvalues()(k));
+    double nearest = 0;
+    for (const auto& row : r.csv.rows)
+      if (std::abs(row[1] - expected) < std::abs(nearest - expected)) nearest = row[1];
+    EXPECT_NEAR(nearest, expected, 1e-6 * expected) << "mode " << k + 1 << "\n" << r.log;
+    EXPECT_GT(std::abs(expected - std::sqrt(still.eigenvalues()(k))), 1e-3 * expected) << "the spin must move mode " << k + 1;
   }
 }
 

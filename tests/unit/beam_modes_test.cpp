@@ -176,3 +176,36 @@ TEST(BeamModes, AnchoredModesHoldTheirSectionAndTheirIntegralsAreTakenFromIt) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(BeamModes, InTisserandsFrameTheForeshorteningMovesNoMassAndSpinIsTakenAboutTheCentre) {
+  // Free-free modes in Tisserand's frame: unchanged shapes, origin at the
+  // mass centre c = L/2, foreshortening a_T(x) = a_c(x) - abar. Its integral
+  // (the load, the mass it moves along the beam) must vanish, a_T must differ
+  // from a_c by one constant matrix, and spin must be int s a_T(s) ds by
+  // nested quadrature; the plain modes' spin about x = 0 must differ from it.
+  const double L = 1.6, c = L / 2;
+  const BeamModes plain(Supports::FreeFree, L, 3);
+  const BeamModes m = plain.in_tisserand_frame();
+  EXPECT_EQ(m.origin(), c);
+  EXPECT_TRUE(m.mean_free_shortening());
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(m.shape(i, 0.3), plain.shape(i, 0.3));
+  const auto I = mbgc::flex::modal_integrals(m), P = mbgc::flex::modal_integrals(plain);
+  const auto at_quarter = mbgc::flex::axial_up_to(m, L / 4), at_end = mbgc::flex::axial_up_to(m, L);
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t j = 0; j < 3; ++j) {
+      auto a = [&](double x) { return mbgc::flex::axial_up_to(m, x)[i][j]; };
+      const double load = mbgc::flex::integrate(L, a, 4), spin = mbgc::flex::integrate(L, [&](double x) { return (x - c) * a(x); }, 4);
+      const double scale = 1 + std::abs(P.load[i][j]);
+      EXPECT_EQ(I.load[i][j], 0.0);
+      EXPECT_NEAR(load, 0.0, 1e-11 * scale) << i << j;
+      EXPECT_NEAR(I.spin[i][j], spin, 1e-11 * (1 + std::abs(spin))) << i << j;
+      // a point's shortening between two sections is that of the plain modes (a_T - a_0 is constant)
+      const double plain_between = mbgc::flex::axial_up_to(plain, L)[i][j] - mbgc::flex::axial_up_to(plain, L / 4)[i][j];
+      EXPECT_NEAR(at_end[i][j] - at_quarter[i][j], plain_between, 1e-12 * scale) << i << j;
+      if (i == j) EXPECT_GT(std::abs(P.spin[i][j] - I.spin[i][j]), 1e-3 * std::abs(I.spin[i][j]));
+    }
+}
+
+}  // namespace
