@@ -68,6 +68,8 @@ void validate(const Options& o, bool step_given) {
                         solver_name(s.solver)));
     require(s.step_s > 0, "--step must be positive");
   }
+  require(!(o.linearize_at && o.work_precision),
+          "--linearize-at and --work-precision are two different runs: give one of them");
   if (o.linearize_at)
     require(std::isfinite(*o.linearize_at) && *o.linearize_at >= s.t_start_s,
             fmt::format("--linearize-at {} is before the start time {} s", *o.linearize_at,
@@ -128,6 +130,11 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                              "Integrate to this time [s], then write the eigenvalues of the "
                              "Jacobian as CSV (index,omega_rad_s,f_hz,damping_ratio)")
                   ->type_name("SECONDS");
+  app.add_flag("--work-precision", o.work_precision,
+               "Run every integrator that fits the model over a range of tolerances (rk4: "
+               "steps) and write CSV of cost against error (solver,rtol,atol,step_s,wall_s,"
+               "steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status); the error "
+               "is against a reference run at rtol 1e-12");
 
   try {
     app.parse(argc, argv);

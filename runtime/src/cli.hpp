@@ -23,6 +23,7 @@ struct Options {
   bool quiet = false;
   bool list_parameters = false;
   std::optional<double> linearize_at;
+  bool work_precision = false;  ///< --work-precision: sweep solvers and tolerances, CSV of cost and error
 };
 
 /// Options to run with, or the exit status to return at once (after --help,

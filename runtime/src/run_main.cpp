@@ -18,8 +18,10 @@
 #include "guard.hpp"
 #include "integrator.hpp"
 #include "linearize.hpp"
+#include "march.hpp"
 #include "mbgrt/model.hpp"
 #include "report.hpp"
+#include "work_precision.hpp"
 
 namespace mbgrt {
 
@@ -65,84 +67,6 @@ bool check_model_fits(const Model& model, const Options& o) {
     return false;
   }
   return true;
-}
-
-struct Outcome {
-  bool ok = true;
-  bool started = false;        ///< init() was reached: the integrator holds the state
-  bool solver_failed = false;  ///< the integrator gave up (vs. the runtime stopping it)
-};
-
-/// Starts the integrator at t_start and marches it over the output grid,
-/// calling `on_point` at every communication point reached.
-template <class OnPoint>
-Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
-              const std::vector<double>& y0, const std::vector<double>& yp0, OnPoint on_point) {
-  Outcome r;
-  // A NaN in the initial values would otherwise surface as an obscure first-step failure.
-  if (!guard.check_state(s.t_start_s, y0.data())) return {false, false, false};
-  r.started = true;
-  r.solver_failed = !integrator.init(s.t_start_s, y0.data(), yp0.data());
-  r.ok = !r.solver_failed;
-  if (r.ok) on_point();
-
-  const OutputGrid grid(s.t_start_s, s.t_end_s, s.interval_s);
-  for (std::size_t k = 1; r.ok && k < grid.size(); ++k) {
-    r.solver_failed = !integrator.advance_to(grid[k]);
-    r.ok = !r.solver_failed && guard.check_state(integrator.t(), integrator.y());
-    if (r.ok) on_point();
-  }
-  return r;
-}
-
-bool all_finite(const std::vector<double>& v) {
-  for (double x : v)
-    if (!std::isfinite(x)) return false;
-  return true;
-}
-
-/// What the runtime does to the initial values of a model with joint
-/// constraints before the integrator starts: assembly (all models), then y'
-/// and the algebraic unknowns (DAEs). Errors are reported here.
-struct ConstrainedStart {
-  std::optional<AssemblyReport> assembly;
-  std::optional<RedundancyReport> redundancy;  ///< only when some rows are redundant
-  std::optional<InitialValuesReport> initial_values;
-  bool ok = true;
-};
-
-ConstrainedStart prepare_constrained_start(Model& model, GuardedModel& guard, double t0,
-                                           std::vector<double>& y0, std::vector<double>& yp0) {
-  ConstrainedStart start;
-  const ConstraintShape& shape = guard.constraint_shape();
-  if (!shape.any()) return start;
-  if (std::string broken = contract_violation(model, shape, guard.differential_ids());
-      !broken.empty()) {
-    print_error(broken);
-    start.ok = false;
-    return start;
-  }
-  // A non-finite initial value is reported by the run loop, in model terms.
-  if (!all_finite(y0)) return start;
-  start.assembly = assemble(model, shape, t0, y0.data());
-  if (!start.assembly->ok) {
-    print_error(start.assembly->error);
-    start.ok = false;
-    return start;
-  }
-  if (shape.dae) {
-    RedundancyReport redundancy = find_redundant_constraints(model, shape, t0, y0.data());
-    if (!redundancy.redundant.empty()) {
-      guard.set_redundant_constraints(redundancy.redundant);
-      start.redundancy = std::move(redundancy);
-    }
-    start.initial_values = consistent_initial_values(model, shape, t0, y0.data(), yp0.data());
-    if (!start.initial_values->ok) {
-      print_error(start.initial_values->error);
-      start.ok = false;
-    }
-  }
-  return start;
 }
 
 int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out) {
@@ -241,6 +165,7 @@ int run(Model& model, int argc, char** argv) {
     print_error(e.what());
     return kExitUsage;
   }
+  if (o.work_precision) return work_precision(model, o, *out);
   return simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr);
 }
 

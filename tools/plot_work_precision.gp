@@ -1,0 +1,21 @@
+# plot_work_precision.gp — error against wall time, one line per integrator,
+# from a simulator's --work-precision CSV (columns: solver,rtol,atol,step_s,
+# wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status).
+#   gnuplot -e "csv='wp.csv'; png='wp.png'; name='dc_motor'; solvers='rk4 dopri5 cvode'" tools/plot_work_precision.gp
+set datafile separator ','
+set terminal pngcairo size 800, 560 font 'DejaVu Sans,10'
+set output png
+set termoption noenhanced
+set title sprintf('%s: work-precision (simulator --work-precision)', name) noenhanced
+set logscale xy
+set format x '10^{%L}'
+set format y '10^{%L}'
+set termoption enhanced
+set xlabel 'wall time per run [s]'
+set ylabel 'max relative error of the outputs'
+set grid
+set key outside right top
+# failed runs have error inf: gnuplot skips them
+if (!exists('solvers')) solvers = 'rk4 dopri5 cvode ida'
+plot for [s in solvers] csv every ::1 using (strcol(1) eq s ? $5 : NaN):($10 > 0 ? $10 : NaN) \
+     with linespoints linewidth 2 pointtype 7 title s
