@@ -4,7 +4,9 @@
 # --work-precision (every integrator that fits, rtol 1e-3 ... 1e-10, rk4 steps
 # interval/1 ... interval/128, errors against a reference at rtol 1e-12) and
 # writes examples/NAME/work_precision.csv and a log-log plot of error against
-# wall time, examples/NAME/work_precision.png.
+# wall time, examples/NAME/work_precision.png. WP_DIR=examples/chain puts a
+# simulator whose name is not its folder's (chain_8) there as
+# work_precision_chain_8.{csv,png}.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 name="${1:?usage: tools/work_precision.sh NAME [simulator options]}"
@@ -12,8 +14,11 @@ shift
 build="${BUILD_DIR:-$here/build}"
 sim="$build/examples/$name"
 [ -x "$sim" ] || { echo "no simulator $sim: build first (tools/demo.sh or cmake --build $build)" >&2; exit 1; }
-csv="$here/examples/$name/work_precision.csv"
+dir="${WP_DIR:-$here/examples/$name}"
+stem=work_precision
+[ "$(basename "$dir")" = "$name" ] || stem="work_precision_$name"
+csv="$dir/$stem.csv"
 "$sim" --work-precision "$@" --out "$csv"
 solvers=$(tail -n +2 "$csv" | cut -d, -f1 | grep -v reference | uniq | tr '\n' ' ')
-gnuplot -e "csv='$csv'; png='$here/examples/$name/work_precision.png'; name='$name'; solvers='$solvers'" "$here/tools/plot_work_precision.gp"
-echo "wrote examples/$name/work_precision.{csv,png}"
+gnuplot -e "csv='$csv'; png='$dir/$stem.png'; name='$name'; solvers='$solvers'" "$here/tools/plot_work_precision.gp"
+echo "wrote $dir/$stem.{csv,png}"

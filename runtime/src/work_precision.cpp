@@ -73,12 +73,14 @@ TrialRun run_timed(Model& model, const Settings& s) {
   return best;
 }
 
-/// max over outputs and times of |y - y_ref| / max_t |y_ref| (inf if the
-/// run stopped early or produced a non-finite value).
-double max_rel_error(const TrialRun& run, const TrialRun& ref, std::size_t outputs) {
+/// max over outputs and times of |y - y_ref| / max(max_t |y_ref|, noise_scale)
+/// (inf if the run stopped early or produced a non-finite value). The floor
+/// keeps an output that stays near zero (a drift, a conserved component)
+/// from being measured relative to its own rounding noise.
+double max_rel_error(const TrialRun& run, const TrialRun& ref, std::size_t outputs, double noise_scale) {
   if (!run.ok || run.outputs.size() != ref.outputs.size() || outputs == 0)
     return run.ok && outputs == 0 ? 0.0 : std::numeric_limits<double>::infinity();
-  std::vector<double> scale(outputs, 0.0);
+  std::vector<double> scale(outputs, noise_scale);
   for (std::size_t k = 0; k < ref.outputs.size(); ++k)
     scale[k % outputs] = std::max(scale[k % outputs], std::abs(ref.outputs[k]));
   double worst = 0;
@@ -138,7 +140,7 @@ int work_precision(Model& model, const Options& o, OutputFile& out) {
     if (!ref.ok) continue;
     Settings looser = ref_settings;
     looser.rtol *= 10, looser.atol *= 10;
-    floor = max_rel_error(run_once(model, looser), ref, outputs);
+    floor = max_rel_error(run_once(model, looser), ref, outputs, ratio);
     break;
   }
   if (!ref.ok) {
@@ -167,7 +169,7 @@ int work_precision(Model& model, const Options& o, OutputFile& out) {
     if (trial.solver == Solver::rk4) s.step_s = trial.step_s;
     else s.rtol = trial.rtol, s.atol = trial.atol;
     const TrialRun run = run_timed(model, s);
-    const double error = max_rel_error(run, ref, outputs);
+    const double error = max_rel_error(run, ref, outputs, ratio);
     std::string status = run.ok ? "ok" : run.failure;
     std::replace(status.begin(), status.end(), '"', '\'');  // it is written as one quoted CSV field
     out.write(fmt::format("{},{},{},{},{:.6g},{},{},{},{},{},\"{}\"\n", solver_name(trial.solver), field(trial.rtol),

@@ -7,7 +7,8 @@
 //   solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status
 //
 // max_rel_error is the largest |y - y_ref| over every output and output time,
-// each output scaled by its largest |y_ref| (1 for an output that stays 0).
+// each output scaled by its largest |y_ref|, but by no less than the model's
+// atol / rtol (an output that stays near zero is measured at that scale).
 // A run that fails has error `inf` and the reason in `status`; no row holds NaN.
 #pragma once
 

@@ -128,6 +128,26 @@ TEST(WorkPrecision, AnExplicitMethodOnAStiffModelIsReportedAsFailedOrWrongNeverN
   for (const Row& row : of(rows, "cvode")) EXPECT_LT(row.error, 1e-2) << "BDF is stable here, rtol " << row.rtol;
 }
 
+/// Decay with a second output that stays near zero: its own error against the closed form.
+class DecayAndItsError : public Decay {
+ public:
+  std::vector<std::string> output_names() const override { return {"x", "error"}; }
+  void outputs(double t, const double* y, const double*, double* out) override {
+    out[0] = y[0];
+    out[1] = y[0] - exact(t);
+  }
+};
+
+TEST(WorkPrecision, AnOutputThatStaysNearZeroIsMeasuredAtTheModelsAbsoluteScale) {
+  // `error` is ~1e-13 in the reference; scaled by that, every trial would be
+  // off by 1e5 and more. Scaled by atol / rtol (1e-2 here) every trial stays below 1.
+  DecayAndItsError m;
+  RunResult r = run(m, {"--work-precision", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::string header;
+  for (const Row& row : parse_sweep(r.csv, &header)) EXPECT_LT(row.error, 1.0) << row.solver << " " << row.rtol << " " << row.step_s;
+}
+
 TEST(WorkPrecision, CannotBeCombinedWithLinearisation) {
   Oscillator m;
   RunResult r = run(m, {"--work-precision", "--linearize-at", "1"});
