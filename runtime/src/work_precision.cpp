@@ -78,8 +78,8 @@ TrialRun run_timed(Model& model, const Settings& s) {
 /// keeps an output that stays near zero (a drift, a conserved component)
 /// from being measured relative to its own rounding noise.
 double max_rel_error(const TrialRun& run, const TrialRun& ref, std::size_t outputs, double noise_scale) {
-  if (!run.ok || run.outputs.size() != ref.outputs.size() || outputs == 0)
-    return run.ok && outputs == 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  if (!run.ok || run.outputs.size() != ref.outputs.size()) return std::numeric_limits<double>::infinity();
+  if (outputs == 0) return 0.0;
   std::vector<double> scale(outputs, noise_scale);
   for (std::size_t k = 0; k < ref.outputs.size(); ++k)
     scale[k % outputs] = std::max(scale[k % outputs], std::abs(ref.outputs[k]));
@@ -92,13 +92,17 @@ double max_rel_error(const TrialRun& run, const TrialRun& ref, std::size_t outpu
   return worst;
 }
 
+/// The model's own atol / rtol: every run keeps it, and it is the scale below
+/// which an output counts as near zero.
+double atol_per_rtol(const Settings& s) { return s.rtol > 0 ? s.atol / s.rtol : 1.0; }
+
 std::string field(double x) { return x > 0 ? fmt::format("{:.3g}", x) : std::string(); }
 std::string count(long x) { return x >= 0 ? fmt::format("{}", x) : std::string(); }
 
 }  // namespace
 
 std::vector<Trial> sweep_for(const Model& model, const Settings& base) {
-  const double ratio = base.rtol > 0 ? base.atol / base.rtol : 1.0;  // keep the model's atol/rtol ratio
+  const double ratio = atol_per_rtol(base);
   std::vector<Trial> trials;
   auto adaptive = [&](Solver solver) {
     for (double rtol = kLoosestRtol; rtol >= kTightestRtol * 0.99; rtol /= 10)
@@ -117,7 +121,7 @@ std::vector<Trial> sweep_for(const Model& model, const Settings& base) {
 int work_precision(Model& model, const Options& o, OutputFile& out) {
   const Settings base = o.settings;
   const std::size_t outputs = model.output_names().size();
-  const double ratio = base.rtol > 0 ? base.atol / base.rtol : 1.0;
+  const double ratio = atol_per_rtol(base);
 
   // The reference: the most accurate run that goes through (Dormand-Prince
   // at rtol 1e-13 for an ODE: a BDF method's global error on a long
