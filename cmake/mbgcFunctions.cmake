@@ -34,6 +34,12 @@ function(_mbgc_generate target model_in out_file)
     set(depfile_args DEPFILE ${depfile})
     list(APPEND ARG_OPTIONS --depfile ${depfile})
   endif()
+  # Ninja re-checks a custom command's outputs (restat): when a new mbgc
+  # generates the same C++, the simulator is not recompiled. (Make would
+  # rerun mbgc on every build instead, so only under Ninja.)
+  if(CMAKE_GENERATOR MATCHES "Ninja")
+    list(APPEND ARG_OPTIONS --keep-unchanged)
+  endif()
   add_custom_command(
     OUTPUT ${out_file}
     COMMAND ${MBGC_COMPILER_TARGET} ${model} -o ${out_file} ${ARG_OPTIONS}

@@ -1,6 +1,7 @@
 #include "codegen/emit_cpp.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 #include <map>
@@ -139,11 +140,16 @@ class Emitter {
         opt_.version, opt_.source_display, g_.model_name, s_.states.size(), s_.states.size() == 1 ? "" : "s",
         g_.outputs.size(), g_.outputs.size() == 1 ? "" : "s", g_.params.size(), g_.params.size() == 1 ? "" : "s",
         s_.dae ? fmt::format(", DAE with {} algebraic unknown{} (IDA)", s_.algebraic.size(), s_.algebraic.size() == 1 ? "" : "s") : "");
+    if (!opt_.scene.empty())
+      banner += fmt::format("\n// Scene `{0}` (mbgc --scene {0}): only what its outputs need; mbgc --explain-scene {0} "
+                            "lists what was removed.",
+                            opt_.scene);
     std::string body;
     std::string entry;
     if (opt_.library) {
-      banner += "\n// Library form (mbgc --library): include this file and instantiate mbgc_model::" + class_name_ + ".\n#pragma once";
-      body = "namespace mbgc_model {\n\n" + print(c) + "\n}  // namespace mbgc_model\n";
+      const std::string& ns = opt_.library_namespace;
+      banner += "\n// Library form (mbgc --library): include this file and instantiate " + ns + "::" + class_name_ + ".\n#pragma once";
+      body = "namespace " + ns + " {\n\n" + print(c) + "\n}  // namespace " + ns + "\n";
     } else {
       body = "namespace {\n\n" + print(c) + "\n}  // namespace\n";
       entry = fmt::format("int main(int argc, char** argv) {{\n  {} model;\n  return mbgrt::run_main(model, argc, argv);\n}}\n", class_name_);
@@ -707,6 +713,17 @@ class Emitter {
 std::string emit_cpp(const ReducedSystem& system, const SourceManager& sources, const EmitOptions& options) {
   Emitter e(system, sources, options);
   return e.run();
+}
+
+std::string namespace_problem(const std::string& name) {
+  const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+                          std::all_of(name.begin(), name.end(), [](char c) {
+                            return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                          });
+  if (!identifier) return "`" + name + "` is not a C++ identifier (letters, digits and _, not starting with a digit)";
+  if (name != "mbgc_model" && reserved(name))
+    return "`" + name + "` is reserved in the generated C++ (a keyword, a standard macro or a name the class uses)";
+  return {};
 }
 
 }  // namespace mbgc::codegen

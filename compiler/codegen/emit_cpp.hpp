@@ -18,9 +18,14 @@ namespace mbgc::codegen {
 
 struct EmitOptions {
   bool library = false;          ///< emit the model class only (no main), for embedding
+  std::string library_namespace = "mbgc_model";  ///< namespace of the class in the library form
   std::string source_display;    ///< source path shown in the banner
+  std::string scene;             ///< the scene compiled (mbgc --scene), if any
   std::string version = MBGC_VERSION;
 };
+
+/// Empty if `name` can be the namespace of --library's class, else why not.
+std::string namespace_problem(const std::string& name);
 
 std::string emit_cpp(const ir::ReducedSystem& system, const ir::SourceManager& sources,
                      const EmitOptions& options);

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "causality/scap.hpp"
 #include "codegen/emit_cpp.hpp"
@@ -13,13 +14,29 @@
 #include "ir/print.hpp"
 #include "parse/parse.hpp"
 #include "reduce/reduce.hpp"
+#include "scene/scene.hpp"
 #include "sema/resolve.hpp"
+#include <fmt/format.h>
+#include <map>
+#include <optional>
 
 namespace mbgc::driver {
 namespace {
 
 /// Write via a temporary file and rename, so a failed write never leaves a partial file.
-bool write_atomically(const std::string& path, const std::string& text) {
+/// Writes `text` to `path` through a temporary file. With `keep_unchanged`
+/// an existing file with the same text is left untouched: a build system
+/// that checks outputs after a command (Ninja's restat, which CMake sets for
+/// custom commands) then skips recompiling a simulator when a new mbgc
+/// generates the same C++.
+bool write_atomically(const std::string& path, const std::string& text, bool keep_unchanged) {
+  if (keep_unchanged) {
+    std::ifstream existing(path, std::ios::binary);
+    if (existing) {
+      const std::string old((std::istreambuf_iterator<char>(existing)), std::istreambuf_iterator<char>());
+      if (old == text) return true;
+    }
+  }
   std::string tmp = path + ".mbgc-tmp";
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
@@ -53,14 +70,14 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
       out << text;
       return 0;
     }
-    if (!write_atomically(opt.output, text)) {
+    if (!write_atomically(opt.output, text, opt.keep_unchanged)) {
       err << "mbgc: error: cannot write `" << opt.output << "`\n";
       return 3;
     }
     if (!opt.depfile.empty()) {
       std::string deps = opt.output + ":";
       for (int f = 0; f < sources.count(); ++f) deps += " " + sources.file(f).display_path;
-      if (!write_atomically(opt.depfile, deps + "\n")) {
+      if (!write_atomically(opt.depfile, deps + "\n", opt.keep_unchanged)) {
         err << "mbgc: error: cannot write `" << opt.depfile << "`\n";
         return 3;
       }
@@ -72,7 +89,28 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   if (opt.dump == Dump::Ast) return finish(ir::print_ast(ast));
 
-  ast = elaborate::unroll_loops(ast, opt.overrides, diags);
+  // Scenes leave the program here; the chosen one fixes parameters like --set
+  // (an explicit --set still wins) and prunes the graph below.
+  const std::vector<ir::AstScene> scenes = scene::take_scenes(ast, diags);
+  if (failed()) return 1;
+  std::optional<scene::SelectedScene> selected;
+  std::map<std::string, double> overrides = opt.overrides;
+  if (!opt.scene.empty()) {
+    selected = scene::select_scene(scenes, opt.scene, ast, diags);
+    if (failed()) return 1;
+    if (!selected) {
+      std::vector<std::string> names;
+      for (const ir::AstScene& s : scenes) names.push_back("`" + s.name + "`");
+      err << "mbgc: error: the model declares no scene `" << opt.scene << "`"
+          << (names.empty() ? std::string(" (it declares none: write scene NAME { outputs = [a, b] })")
+                            : " (its scenes: " + fmt::format("{}", fmt::join(names, ", ")) + ")")
+          << "\n";
+      return 1;
+    }
+    for (const auto& [name, value] : selected->overrides) overrides.emplace(name, value);
+  }
+
+  ast = elaborate::unroll_loops(ast, overrides, diags);
   if (failed()) return 1;
   ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs});
   if (failed()) return 1;
@@ -82,6 +120,11 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   ir::BondGraph graph = graph::build_graph(resolved, sources, diags);
   if (failed()) return 1;
+  if (selected) {
+    const scene::SceneReport report = scene::prune_graph(graph, *selected, diags);
+    if (failed()) return 1;
+    if (opt.explain_scene) return finish(scene::explain(report));
+  }
   if (opt.dump == Dump::Graph && !opt.dot) return finish(ir::print_graph(graph));
 
   ir::CausalGraph causal = causality::assign_causality(std::move(graph), diags);
@@ -116,6 +159,8 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
 
   codegen::EmitOptions emit;
   emit.library = opt.library;
+  emit.library_namespace = opt.library_namespace;
+  if (selected) emit.scene = selected->name;
   emit.source_display = opt.input;
   return finish(codegen::emit_cpp(reduced, sources, emit));
 }

@@ -24,6 +24,10 @@ struct Options {
   Dump dump = Dump::None;
   bool dot = false;           ///< --format=dot (graph and causality dumps)
   bool library = false;       ///< --library: model class without main()
+  std::string library_namespace = "mbgc_model";  ///< --namespace: where --library puts the class
+  std::string scene;          ///< --scene: compile only what this scene's outputs need
+  bool explain_scene = false;  ///< --explain-scene: print what the scene removes instead of C++
+  bool keep_unchanged = false;  ///< --keep-unchanged: do not rewrite an output whose text is the same
   std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time
   std::vector<std::string> search_dirs;              ///< -I: where modal-data files are looked for

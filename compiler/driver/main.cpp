@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "codegen/emit_cpp.hpp"
 #include "driver/driver.hpp"
 
 int main(int argc, char** argv) {
@@ -17,6 +18,17 @@ int main(int argc, char** argv) {
   app.add_option("model", opt.input, "the .mbg model file")->required();
   app.add_option("-o,--output", opt.output, "output file (default: standard output)");
   app.add_flag("--library", opt.library, "emit the model class without main(), to include in your own program");
+  app.add_option("--namespace", opt.library_namespace,
+                 "with --library: the C++ namespace of the model class (default mbgc_model), so that one program can "
+                 "embed two builds of one model (a chain of 2 and of 32 rods)")
+      ->check(mbgc::codegen::namespace_problem, "C++ identifier");
+  app.add_option("--scene", opt.scene, "compile only what this scene's outputs need (scene NAME { outputs = [...] })");
+  std::string explain;
+  app.add_option("--explain-scene", explain,
+                 "print what scene NAME keeps and removes (bodies, elements, signals, outputs) instead of C++");
+  app.add_flag("--keep-unchanged", opt.keep_unchanged,
+               "leave -o's file (and the depfile) untouched when its text would not change, so that Ninja's "
+               "restat skips recompiling it (mbgc_add_simulation passes it under Ninja)");
   app.add_option("--depfile", opt.depfile, "also write a Makefile-style dependency file (model and imports)");
   app.add_option("--dump", dump, "print a compiler stage instead of C++")
       ->check(CLI::IsMember({"none", "ast", "expanded", "graph", "causality", "equations", "reduced"}));
@@ -35,6 +47,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "dot"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
   CLI11_PARSE(app, argc, argv);
+  if (!explain.empty()) {
+    if (!opt.scene.empty() && opt.scene != explain) {
+      std::cerr << "mbgc: error: --scene " << opt.scene << " and --explain-scene " << explain << " name different scenes\n";
+      return 2;
+    }
+    opt.scene = explain;
+    opt.explain_scene = true;
+  }
   for (const std::string& s : sets) {
     auto eq = s.find('=');
     char* end = nullptr;

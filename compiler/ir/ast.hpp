@@ -96,6 +96,10 @@ struct AstBond {
 };
 
 struct AstSimulate { SourceLoc loc; std::vector<AstAttr> settings; };
+/// `scene name { outputs = [a, b]; modes = 2 }`: the outputs a run needs and
+/// parameters it fixes (as `mbgc --set`). Chosen with `mbgc --scene name`;
+/// the driver takes scenes out of the program before elaboration.
+struct AstScene { std::string name; SourceLoc loc; std::vector<AstAttr> attrs; };
 
 struct AstComponent;
 /// `instance m1 = dc_motor(shaft = speed, V = 48)`
@@ -144,7 +148,7 @@ struct AstSetting { std::string key; SourceLoc loc; AstExprPtr value; };
 struct AstFor;
 
 using AstStmt = std::variant<AstModel, AstImport, AstParam, AstSignal, AstOutput, AstElement,
-                             AstJunction, AstBond, AstSimulate, AstInstance,
+                             AstJunction, AstBond, AstSimulate, AstScene, AstInstance,
                              std::shared_ptr<AstComponent>, AstBody, AstJoint, AstSetting,
                              std::shared_ptr<AstFor>>;
 

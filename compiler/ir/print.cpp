@@ -67,6 +67,8 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
                                st.dim ? fmt::format(" [{}]", *st.dim) : "");
           } else if constexpr (std::is_same_v<T, AstSimulate>) {
             out += fmt::format("{}simulate {}\n", pad, attrs(st.settings));
+          } else if constexpr (std::is_same_v<T, AstScene>) {
+            out += fmt::format("{}scene {} {}\n", pad, st.name, attrs(st.attrs));
           } else if constexpr (std::is_same_v<T, AstInstance>) {
             std::vector<std::string> a;
             for (const AstAttr& x : st.args) a.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));

@@ -26,15 +26,15 @@ using ir::AstExprPtr;
 const std::set<std::string> kElementKinds = {"Se", "Sf", "I", "C", "R", "TF", "GY", "MTF", "MGY", "CN"};
 const std::set<std::string> kKeywords = {"model", "import", "param", "signal", "output", "bond",
                                          "simulate", "component", "instance", "body", "ground",
-                                         "joint", "force", "gravity", "constraints", "for"};
+                                         "joint", "force", "gravity", "constraints", "for", "scene"};
 /// The multibody keywords are also ordinary names in bond-graph models
 /// (`I body = m`, `Se gravity = ...`), so they start a statement only in their
 /// statement's shape: followed, on the same line, by this token.
 const std::map<std::string, Tok> kShapedKeywords = {
     {"body", Tok::Ident},    {"joint", Tok::Ident},   {"for", Tok::Ident},     {"force", Tok::Ident},
-    {"ground", Tok::LBrace}, {"gravity", Tok::Assign}, {"constraints", Tok::Assign}};
+    {"ground", Tok::LBrace}, {"gravity", Tok::Assign}, {"constraints", Tok::Assign}, {"scene", Tok::Ident}};
 /// Statements a `for` loop cannot repeat.
-const std::set<std::string> kNotInLoop = {"model", "import", "component", "simulate"};
+const std::set<std::string> kNotInLoop = {"model", "import", "component", "simulate", "scene"};
 constexpr int kMaxLoopNesting = 64;
 
 /// A name as written, with its interpolations (`link{i-1}`), and its span.
@@ -203,6 +203,11 @@ class Parser {
     }
     if (t.text == "bond") return bond();
     if (t.text == "simulate") return simulate();
+    if (t.text == "scene") {
+      if (in_component)
+        fail("a scene cannot be declared inside a component", "declare scenes at the top level of the model");
+      return scene();
+    }
     if (t.text == "component") {
       if (in_component)
         fail("components cannot be declared inside a component", "declare it at the top level and instantiate it here");
@@ -218,7 +223,7 @@ class Parser {
       fail("`point` belongs inside a body or ground block",
            "write body name { point p = [x, y, z] } or ground { point p = [x, y, z] }");
     const std::string starts =
-        "a statement starts with model, import, param, signal, output, bond, simulate, component, instance, "
+        "a statement starts with model, import, param, signal, output, bond, simulate, scene, component, instance, "
         "body, ground, joint, force, gravity, constraints, for, an element kind (Se Sf I C R TF GY MTF MGY CN) "
         "or a junction (0 or 1)";
     std::vector<std::string> words(kKeywords.begin(), kKeywords.end());
@@ -399,6 +404,17 @@ class Parser {
     if (accept(Tok::Assign)) e.value = expr();
     if (at(Tok::LBrace)) e.attrs = attr_block("");
     return e;
+  }
+
+  ir::AstStmt scene() {
+    next();
+    ir::AstScene s;
+    const Token& n = expect(Tok::Ident, "(the scene's name) after `scene`",
+                            "write scene name { outputs = [a, b] }");
+    s.name = n.text;
+    s.loc = n.loc;
+    s.attrs = attr_block("after the scene's name");
+    return s;
   }
 
   ir::AstStmt simulate() {

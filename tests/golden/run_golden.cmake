@@ -3,12 +3,14 @@
 #   -DMBGC=<mbgc> -DDIR=<golden dir> -DNAME=<model name without .mbg> -DKIND=good|bad
 #
 # good: the generated C++ and every stage dump must equal the blessed files
-#       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot; mbgc must exit 0 and be
+#       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot (and <NAME>.scene.txt,
+#       from --explain-scene, when the arguments choose a scene); mbgc must exit 0 and be
 #       deterministic (two runs, same bytes); what it prints to stderr (notes,
 #       warnings) must equal <NAME>.stderr if either is non-empty.
 # bad:  stderr must equal <NAME>.stderr and the exit status <NAME>.status;
-#       no output file may be written. Extra mbgc arguments (e.g. --set N=2.5)
-#       may be given in <NAME>.args, one per line.
+#       no output file may be written.
+# Both: extra mbgc arguments (e.g. --set N=2.5, --scene tip) may be given in
+#       <NAME>.args, one per line.
 # With the environment variable MBGC_BLESS=1 the expected files are rewritten
 # from the actual output instead (review the diff before committing).
 cmake_minimum_required(VERSION 3.20)
@@ -34,13 +36,18 @@ function(check expected_file actual)
   endif()
 endfunction()
 
+set(extra_args "")
+if(EXISTS ${DIR}/${NAME}.args)
+  file(STRINGS ${DIR}/${NAME}.args extra_args)
+endif()
+
 if(KIND STREQUAL "good")
-  execute_process(COMMAND ${MBGC} ${NAME}.mbg WORKING_DIRECTORY ${DIR}
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg ${extra_args} WORKING_DIRECTORY ${DIR}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE cpp ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "mbgc failed on good model ${NAME}.mbg (status ${rc}):\n${err}")
   endif()
-  execute_process(COMMAND ${MBGC} ${NAME}.mbg WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE cpp2)
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg ${extra_args} WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE cpp2)
   if(NOT cpp STREQUAL cpp2)
     message(FATAL_ERROR "mbgc is not deterministic on ${NAME}.mbg: two runs gave different C++")
   endif()
@@ -50,22 +57,30 @@ if(KIND STREQUAL "good")
     check(${NAME}.stderr "${err}")
   endif()
   foreach(stage ast graph causality equations reduced)
-    execute_process(COMMAND ${MBGC} ${NAME}.mbg --dump=${stage} WORKING_DIRECTORY ${DIR}
+    execute_process(COMMAND ${MBGC} ${NAME}.mbg ${extra_args} --dump=${stage} WORKING_DIRECTORY ${DIR}
                     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
     if(NOT rc EQUAL 0)
       message(FATAL_ERROR "mbgc --dump=${stage} failed on ${NAME}.mbg:\n${err}")
     endif()
     check(${NAME}.${stage}.txt "${out}")
   endforeach()
-  execute_process(COMMAND ${MBGC} ${NAME}.mbg --dump=graph --format=dot WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE dot)
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg ${extra_args} --dump=graph --format=dot WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE dot)
   check(${NAME}.dot "${dot}")
+  # A scene's golden also holds what --explain-scene says it removed.
+  list(FIND extra_args --scene at)
+  if(at GREATER_EQUAL 0)
+    math(EXPR at "${at} + 1")
+    list(GET extra_args ${at} scene)
+    execute_process(COMMAND ${MBGC} ${NAME}.mbg --explain-scene ${scene} WORKING_DIRECTORY ${DIR}
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE explained ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "mbgc --explain-scene ${scene} failed on ${NAME}.mbg:\n${err}")
+    endif()
+    check(${NAME}.scene.txt "${explained}")
+  endif()
 elseif(KIND STREQUAL "bad")
   set(out_file ${CMAKE_CURRENT_BINARY_DIR}/golden-bad-${NAME}.cpp)
   file(REMOVE ${out_file})
-  set(extra_args "")
-  if(EXISTS ${DIR}/${NAME}.args)
-    file(STRINGS ${DIR}/${NAME}.args extra_args)
-  endif()
   execute_process(COMMAND ${MBGC} ${NAME}.mbg -o ${out_file} ${extra_args} WORKING_DIRECTORY ${DIR}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(rc EQUAL 0)

@@ -71,7 +71,8 @@ TEST(Grammar, StatementKeywordsMatchTheParser) {
   // Keywords are the first terminal of each statement rule.
   std::set<std::string> keywords;
   for (const char* rule : {"model decl", "import", "parameter", "signal", "output", "bond", "simulate", "component",
-                           "instance", "body", "ground", "joint", "force element", "gravity", "constraints", "for loop"}) {
+                           "instance", "body", "ground", "joint", "force element", "gravity", "constraints", "for loop",
+                           "scene"}) {
     std::smatch m;
     std::regex first(std::string("\\n") + rule + "\\s*=\\s*\"([^\"]+)\"");
     ASSERT_TRUE(std::regex_search(ebnf, m, first)) << rule;
