@@ -60,6 +60,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
                describe(*run.initial_values, run.constraints ? run.constraints->shape()
                                                              : constraint_shape(*run.model)));
   fmt::print(err, "  steps        {} (last step {:.3g} s)\n", st.steps, st.last_step);
+  if (!run.stability.empty()) fmt::print(err, "  stability    {}\n", run.stability);
 
   std::string evals = fmt::format("{} {}", st.rhs_evals, residual ? "residual" : "RHS");
   if (st.fd_jac_evals >= 0)
@@ -80,7 +81,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
 }
 
 void print_stop_message(std::FILE* err, const GuardedModel& model, const Integrator& integrator,
-                        bool solver_failed) {
+                        bool solver_failed, const std::string& stiffness_note) {
   const auto& blame = model.blame();
   const SolverFailure& f = integrator.failure();
   const double t = blame ? blame->t : f.t;
@@ -113,6 +114,7 @@ void print_stop_message(std::FILE* err, const GuardedModel& model, const Integra
                      culprit));
   }
   if (solver_failed) note(err, hint_for(f, integrator.name()));
+  note(err, stiffness_note);
   if (solver_failed && !f.solver_message.empty())
     note(err, fmt::format("solver message: {}", f.solver_message));
 }

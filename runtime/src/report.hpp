@@ -17,6 +17,7 @@ struct RunRecord {
   Settings settings;  ///< as used (t_end_s is the --linearize-at time in that mode)
   double wall_s = 0.0;
   std::string output;  ///< e.g. "101 rows to out.csv"
+  std::string stability;  ///< non-empty if an explicit solver's steps were bounded by stability
   // Constrained models only (null otherwise):
   const AssemblyReport* assembly = nullptr;
   const RedundancyReport* redundancy = nullptr;
@@ -28,8 +29,9 @@ void print_summary(std::FILE* err, const RunRecord& run);
 
 /// `solver_failed` says whether the integrator itself gave up (its failure()
 /// is meaningful) or the runtime stopped it (a non-finite state after a step).
+/// `stiffness_note` (describe_stiffness) is printed as a note when non-empty.
 void print_stop_message(std::FILE* err, const GuardedModel& model, const Integrator& integrator,
-                        bool solver_failed);
+                        bool solver_failed, const std::string& stiffness_note = {});
 
 /// Times in messages: enough digits to tell steps apart, no more.
 std::string format_time(double t);

@@ -2,6 +2,7 @@
 // stop message. The order of events here is the behaviour DESIGN §9 promises.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "march.hpp"
 #include "mbgrt/model.hpp"
 #include "report.hpp"
+#include "stiffness.hpp"
 #include "work_precision.hpp"
 
 namespace mbgrt {
@@ -102,7 +104,13 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
       constraint_csv->row(integrator->t(), row);
     }
   };
+  // The state at the last row written: where a stop message estimates how
+  // stiff the model was (the state the run stopped at may be garbage).
+  std::vector<double> last_row_y = y0;
+  double last_row_t = s.t_start_s;
   auto write_row = [&] {
+    std::copy(integrator->y(), integrator->y() + n, last_row_y.begin());
+    last_row_t = integrator->t();
     model.outputs(integrator->t(), integrator->y(), integrator->yp(), outputs.data());
     csv.row(integrator->t(), outputs);
     observe_constraints();
@@ -135,8 +143,53 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   else
     model.terminal(s.t_start_s, y0.data());
 
+  // Stiffness (ODEs): why an explicit run stopped or crept, in model terms.
+  const bool penalty_joints = model.position_constraint_count() > 0 && !model.constraints_enforced();
+  const double bound = explicit_stability_bound(integrator->name());
+  const double step_s = s.solver == Solver::rk4 ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0;
+  std::string stop_note, stability;
+  if (!model.is_dae() && !linearize) {
+    const auto& blame = guard.blame();
+    const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception;
+    if (!r.ok && r.started && (r.solver_failed || blew_up)) {
+      stop_note = describe_stiffness(estimate_stiffness(model, last_row_t, last_row_y.data()), integrator->name(),
+                                     step_s, penalty_joints);
+    } else if (r.ok && bound > 0 && integrator->stats().steps > 0) {
+      const StiffnessEstimate e = estimate_stiffness(model, integrator->t(), integrator->y());
+      const double mean_step_s = (integrator->t() - s.t_start_s) / static_cast<double>(integrator->stats().steps);
+      // Near the limit: well below it the steps were set by accuracy; far above
+      // it the fast mode cannot have been excited (the run would have blown up).
+      const double h_rate = e.rate_per_s * mean_step_s;
+      if (e.valid && h_rate > 0.25 * bound && h_rate < 2 * bound)
+        stability = fmt::format("steps limited by stability, not accuracy (mean step {:.2g} s): {}", mean_step_s,
+                                describe_stiffness(e, integrator->name(), 0.0, penalty_joints));
+    }
+  }
+
+  // Joint rows that became (nearly) dependent: a dead point or aligned links.
+  if (!r.ok && r.started && !guard.constraint_shape().lambda_at.empty()) {
+    const RedundancyReport then = find_redundant_constraints(model, guard.constraint_shape(), s.t_start_s, y0.data());
+    // Where the solver gave up (its last accepted state), else the last row.
+    const double* y_end = integrator->y();
+    double t_end = integrator->t();
+    if (!std::all_of(y_end, y_end + n, [](double v) { return std::isfinite(v); }))
+      y_end = last_row_y.data(), t_end = last_row_t;
+    const RedundancyReport now = find_redundant_constraints(model, guard.constraint_shape(), t_end, y_end);
+    if (now.redundant.size() > then.redundant.size() || now.smallest_kept < 0.05 * then.smallest_kept)
+      stop_note += fmt::format(
+          "{}at t = {:.6g} s the joints' constraint rows are close to losing rank (the least independent row "
+          "kept {:.2g} of its norm, {:.2g} at the start): the mechanism is at or near a singular configuration - "
+          "a dead point, or links aligned - where the joints alone do not determine the motion",
+          stop_note.empty() ? "" : "; ", t_end, now.smallest_kept, then.smallest_kept);
+  }
+
   if (!o.quiet) {
-    RunRecord record{&model, integrator.get(), s, wall_s, {}};
+    RunRecord record;
+    record.model = &model;
+    record.integrator = integrator.get();
+    record.settings = s;
+    record.wall_s = wall_s;
+    record.stability = stability;
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());
     if (start.assembly) record.assembly = &*start.assembly;
@@ -145,7 +198,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     if (guard.constraint_shape().any()) record.constraints = &monitor;
     print_summary(stderr, record);
   }
-  if (!r.ok) print_stop_message(stderr, guard, *integrator, r.solver_failed);
+  if (!r.ok) print_stop_message(stderr, guard, *integrator, r.solver_failed, stop_note);
   return r.ok ? kExitSuccess : kExitRunFailed;
 }
 
