@@ -595,7 +595,12 @@ class Reducer {
       row.stabiliser = out_.graph.add_var("mu(" + row.name + ")", VarKind::Auxiliary, row.loc);
       out_.algebraic.push_back(row.stabiliser);
       algebraic_residuals.push_back({row.g, row.loc, "CN " + row.name + ": g = 0 (position level, GGL)"});
+      // Only the states g reads have a nonzero partial: a row of a chain's
+      // joint reads two bodies, so this stays linear in the number of bodies.
+      std::unordered_set<int> read;
+      collect_vars(row.g, read);
       for (std::size_t i = 0; i < out_.states.size(); ++i) {
+        if (!read.count(out_.states[i].var)) continue;
         Expr dg = diff_var(row.g, out_.states[i].var);
         if (is_zero(dg)) continue;
         if (have[i]) {
