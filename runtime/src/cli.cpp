@@ -130,6 +130,9 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                              "Integrate to this time [s], then write the eigenvalues of the "
                              "Jacobian as CSV (index,omega_rad_s,f_hz,damping_ratio)")
                   ->type_name("SECONDS");
+  app.add_flag("--fd-jacobian", o.fd_jacobian,
+               "Implicit solvers: use finite-difference Jacobians even where the model generates one "
+               "(to measure what the generated Jacobian saves)");
   app.add_flag("--work-precision", o.work_precision,
                "Run every integrator that fits the model over a range of tolerances (rk4: "
                "steps) and write CSV of cost against error (solver,rtol,atol,step_s,wall_s,"

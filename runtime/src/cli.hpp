@@ -24,6 +24,7 @@ struct Options {
   bool list_parameters = false;
   std::optional<double> linearize_at;
   bool work_precision = false;  ///< --work-precision: sweep solvers and tolerances, CSV of cost and error
+  bool fd_jacobian = false;     ///< --fd-jacobian: finite differences even where the model has a Jacobian
 };
 
 /// Options to run with, or the exit status to return at once (after --help,

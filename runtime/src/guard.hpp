@@ -45,7 +45,9 @@ class GuardedModel {
   int residual(double t, const double* y, const double* yp, double* r);
   /// The model's own Jacobian (row-major n x n); -1 after recording a blame.
   int jacobian(double t, const double* y, double* J);
-  bool has_jacobian() const { return model_.has_jacobian() && !dae_; }
+  bool has_jacobian() const { return model_.has_jacobian() && !dae_ && !finite_differences_; }
+  /// --fd-jacobian: ignore the model's Jacobian (to measure what it saves).
+  void use_finite_differences() { finite_differences_ = true; }
 
   /// Checks y after a step; false (and a recorded blame) if any entry is
   /// non-finite or a state is beyond the limit of its model's validity.
@@ -69,6 +71,7 @@ class GuardedModel {
   std::vector<double> limits_;  ///< Model::state_limit per unknown (HUGE_VAL: none)
   ConstraintShape shape_;
   std::optional<Blame> blame_;
+  bool finite_differences_ = false;
 };
 
 }  // namespace mbgrt::detail

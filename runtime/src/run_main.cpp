@@ -77,6 +77,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   if (linearize) s.t_end_s = *o.linearize_at;  // integrate only as far as the linearization point
 
   GuardedModel guard(model);
+  if (o.fd_jacobian) guard.use_finite_differences();
   const std::size_t n = model.size();
   std::vector<double> y0(n), yp0(model.is_dae() ? n : 0);
   model.initial(s.t_start_s, y0.data(), model.is_dae() ? yp0.data() : nullptr);

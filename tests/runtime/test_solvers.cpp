@@ -170,3 +170,37 @@ TEST(Terminal, IsCalledOnceAtTheEnd) {
 
 }  // namespace
 }  // namespace mbgrt::test
+
+namespace mbgrt::test {
+namespace {
+
+/// The oscillator with its Jacobian, as mbgc generates one for ODEs.
+class OscillatorWithJacobian : public Oscillator {
+ public:
+  OscillatorWithJacobian() : Oscillator(2.0, 0.1) {}
+  bool has_jacobian() const override { return true; }
+  void jacobian(double, const double*, double* J) override {
+    const double w = p("omega"), z = p("zeta");
+    J[0] = 0, J[1] = 1, J[2] = -w * w, J[3] = -2 * z * w;
+  }
+};
+
+TEST(Jacobian, CvodeUsesTheModelsJacobianUnlessToldToUseFiniteDifferences) {
+  OscillatorWithJacobian generated, fd;
+  RunResult a = run(generated, {"--solver", "cvode", "--rtol", "1e-9", "--atol", "1e-11"});
+  RunResult b = run(fd, {"--solver", "cvode", "--rtol", "1e-9", "--atol", "1e-11", "--fd-jacobian"});
+  ASSERT_EQ(a.status, 0) << a.err;
+  ASSERT_EQ(b.status, 0) << b.err;
+  EXPECT_TRUE(Contains(a.err, "generated")) << a.err;
+  EXPECT_TRUE(Contains(b.err, "finite-difference")) << b.err;
+  EXPECT_TRUE(Contains(a.err, "(+ 0 for finite-difference Jacobians)")) << a.err;
+  EXPECT_TRUE(Contains(b.err, "for finite-difference Jacobians")) << b.err;
+  EXPECT_FALSE(Contains(b.err, "(+ 0 for finite-difference Jacobians)")) << b.err;
+  // the same solution either way, to the tolerance
+  const Csv ca = parse_csv(a.csv), cb = parse_csv(b.csv);
+  ASSERT_EQ(ca.rows.size(), cb.rows.size());
+  for (std::size_t i = 0; i < ca.rows.size(); ++i) EXPECT_NEAR(ca.rows[i][1], cb.rows[i][1], 1e-7);
+}
+
+}  // namespace
+}  // namespace mbgrt::test
