@@ -45,7 +45,12 @@ struct Sim {
 
 }  // namespace
 
+/// MuJoCo warns (and writes MUJOCO_LOG.TXT into the working directory) when
+/// a step too large for the chain blows up; the step search expects that.
+void ignore_warning(const char*) {}
+
 Engine mujoco_engine(int n) {
+  mju_user_warning = ignore_warning;
   char path[] = "/tmp/mbgc_bench_chain_XXXXXX.xml";
   const int fd = mkstemps(path, 4);
   if (fd < 0) throw std::runtime_error("mujoco_engine: cannot create a temporary MJCF file");
