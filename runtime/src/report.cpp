@@ -61,6 +61,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
                                                              : constraint_shape(*run.model)));
   fmt::print(err, "  steps        {} (last step {:.3g} s)\n", st.steps, st.last_step);
   if (!run.stability.empty()) fmt::print(err, "  stability    {}\n", run.stability);
+  if (!run.small_states.empty()) fmt::print(err, "  tolerance    {}\n", run.small_states);
 
   std::string evals = fmt::format("{} {}", st.rhs_evals, residual ? "residual" : "RHS");
   if (st.fd_jac_evals >= 0)

@@ -18,6 +18,7 @@ struct RunRecord {
   double wall_s = 0.0;
   std::string output;  ///< e.g. "101 rows to out.csv"
   std::string stability;  ///< non-empty if an explicit solver's steps were bounded by stability
+  std::string small_states;  ///< non-empty if states moved but stayed within a few atol
   // Constrained models only (null otherwise):
   const AssemblyReport* assembly = nullptr;
   const RedundancyReport* redundancy = nullptr;

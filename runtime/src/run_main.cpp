@@ -71,6 +71,24 @@ bool check_model_fits(const Model& model, const Options& o) {
   return true;
 }
 
+/// States that moved but never rose far above atol: one absolute tolerance
+/// for every unknown resolves them only to atol / |value| (a 1e-9 kg body's
+/// momenta at atol 1e-10: 10%). Empty if there are none.
+std::string describe_small_states(const Model& model, const std::vector<double>& peak, double atol) {
+  constexpr double kFactor = 100;
+  std::size_t count = 0, worst = 0;
+  for (std::size_t i = 0; i < peak.size(); ++i) {
+    if (!(peak[i] > atol && peak[i] <= kFactor * atol)) continue;
+    if (count == 0 || peak[i] < peak[worst]) worst = i;
+    ++count;
+  }
+  if (count == 0) return {};
+  return fmt::format("{} state{} peaked within {}x atol (smallest: '{}', {:.2g}); their relative error may reach "
+                     "atol / |value| ({:.0f}%): lower --atol if they matter",
+                     count, count == 1 ? "" : "s", kFactor, model.variable_name(worst), peak[worst],
+                     100 * atol / peak[worst]);
+}
+
 int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out) {
   Settings s = o.settings;
   const bool linearize = o.linearize_at.has_value();
@@ -108,9 +126,12 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   // The state at the last row written: where a stop message estimates how
   // stiff the model was (the state the run stopped at may be garbage).
   std::vector<double> last_row_y = y0;
+  std::vector<double> state_peak(model.state_count(), 0.0);  // largest |state| over the rows
   double last_row_t = s.t_start_s;
   auto write_row = [&] {
     std::copy(integrator->y(), integrator->y() + n, last_row_y.begin());
+    for (std::size_t i = 0; i < state_peak.size(); ++i)
+      state_peak[i] = std::max(state_peak[i], std::abs(integrator->y()[i]));
     last_row_t = integrator->t();
     model.outputs(integrator->t(), integrator->y(), integrator->yp(), outputs.data());
     csv.row(integrator->t(), outputs);
@@ -191,6 +212,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.settings = s;
     record.wall_s = wall_s;
     record.stability = stability;
+    record.small_states = describe_small_states(model, state_peak, s.atol);
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());
     if (start.assembly) record.assembly = &*start.assembly;
