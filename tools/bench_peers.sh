@@ -7,9 +7,10 @@
 # in build-bench/ (BUILD_DIR=... for another), and writes
 # bench/peers/chain_peers.{csv,png} and bench/modal/rotating_beam.txt.
 set -euo pipefail
+# Before common.sh, which defaults BUILD_DIR to the test build (build/).
+BUILD_DIR=${BUILD_DIR:-build-bench}
 # shellcheck source=tools/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
-BUILD_DIR=${BUILD_DIR:-build-bench}
 BUILD_TYPE=Release
 # libqhull-dev: Debian's mujoco::mujoco target names /usr/include/libqhull_r, which only it provides.
 MBGC_PACKAGES+=(libmujoco-dev libsimbody-dev libqhull-dev)
