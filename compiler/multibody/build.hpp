@@ -1,0 +1,59 @@
+// multibody/build.hpp — building AST expressions for the multibond-graph
+// fragments the multibody layer writes (every one carries the location of
+// the declaration it came from, so generated code points back at the model).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ir/ast.hpp"
+
+namespace mbgc::multibody::detail {
+
+using E = ir::AstExprPtr;
+
+// ---- building AST expressions (all carry the location of the declaration) ----------
+class Build {
+ public:
+  explicit Build(ir::SourceLoc loc) : loc_(loc) {}
+  E num(double v) const { return make(ir::AstExpr::Kind::Number, [&](ir::AstExpr& e) { e.number = v; }); }
+  E name(const std::string& n) const { return make(ir::AstExpr::Kind::Name, [&](ir::AstExpr& e) { e.name = n; }); }
+  E op(char o, E a, E b) const {
+    return make(ir::AstExpr::Kind::Binary, [&](ir::AstExpr& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });
+  }
+  E neg(E a) const { return make(ir::AstExpr::Kind::Unary, [&](ir::AstExpr& e) { e.op = '-'; e.args = {std::move(a)}; }); }
+  E call(const std::string& fn, std::vector<E> args) const {
+    return make(ir::AstExpr::Kind::Call, [&](ir::AstExpr& e) { e.name = fn; e.args = std::move(args); });
+  }
+  E list(std::vector<E> items) const { return make(ir::AstExpr::Kind::List, [&](ir::AstExpr& e) { e.args = std::move(items); }); }
+  E vec(double x, double y, double z) const { return list({num(x), num(y), num(z)}); }
+  E at(E a, int i) const { return make(ir::AstExpr::Kind::Index, [&](ir::AstExpr& e) { e.args = {std::move(a), num(i)}; }); }
+  E dot(E a, E b) const { return call("dot", {std::move(a), std::move(b)}); }
+  const ir::SourceLoc& loc() const { return loc_; }
+
+ private:
+  template <class F>
+  E make(ir::AstExpr::Kind k, F fill) const {
+    auto e = std::make_shared<ir::AstExpr>();
+    e->kind = k;
+    e->loc = loc_;
+    fill(*e);
+    return e;
+  }
+  ir::SourceLoc loc_;
+};
+
+/// m[r, c] (1-based), for a matrix-valued expression.
+inline E idx2(const Build& B, E m, int r, int c) {
+  auto e = std::make_shared<ir::AstExpr>();
+  e->kind = ir::AstExpr::Kind::Index;
+  e->loc = B.loc();
+  e->args = {std::move(m), B.num(r), B.num(c)};
+  return e;
+}
+
+/// A `key = value` setting of a generated element.
+inline ir::AstAttr kv(const std::string& key, E value, const ir::SourceLoc& loc) { return ir::AstAttr{key, loc, std::move(value)}; }
+
+}  // namespace mbgc::multibody::detail

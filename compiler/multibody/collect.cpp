@@ -1,0 +1,402 @@
+// multibody/collect.cpp — collect and check bodies, joints, force elements and settings.
+#include "multibody/expander.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <ranges>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+// ---- 1. collect and check ------------------------------------------------------------
+void Expander::collect(const AstProgram& in) {
+  Body ground;
+  ground.ground = true;
+  ground.placed = true;
+  bodies_["ground"] = ground;
+  for (const AstStmt& s : in.stmts) {
+    if (auto* p = std::get_if<AstParam>(&s)) params_[p->name] = p->value;
+    if (auto* i = std::get_if<AstInstance>(&s)) instances_[i->name] = i->loc;
+  }
+  for (const AstStmt& s : in.stmts) {
+    if (auto* b = std::get_if<AstBody>(&s)) add_body(*b);
+    else if (auto* st = std::get_if<AstSetting>(&s)) setting(*st);
+  }
+  std::map<std::string, const AstJoint*> connectors;  // joints and force elements by name
+  for (const AstStmt& s : in.stmts) {
+    auto* j = std::get_if<AstJoint>(&s);
+    if (!j || !connector_name_ok(*j, connectors)) continue;
+    j->type == "force" ? add_force(*j) : add_joint(*j);
+  }
+}
+
+/// Joints and force elements name the parts they generate (`j1.cn`, `j1.angle`):
+/// their names must differ from each other's and from the bodies'.
+bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen) {
+  const char* what = j.type == "force" ? "force element" : "joint";
+  if (j.name == "ground") {
+    diags_.error(j.loc, fmt::format("a {} cannot be named `ground`", what), "`ground` is the fixed frame: choose another name");
+    return false;
+  }
+  if (auto b = bodies_.find(j.name); b != bodies_.end()) {
+    auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a body", what, j.name),
+                           fmt::format("bodies, joints and force elements share one namespace (`{}.angle`, `{}.position`): "
+                                       "rename the {}, e.g. `{}_{}`",
+                                       j.name, j.name, what, j.name, j.type == "force" ? "force" : "joint"));
+    d.notes.push_back({b->second.decl->loc, "the body is declared here"});
+    return false;
+  }
+  if (auto inst = instances_.find(j.name); inst != instances_.end()) {
+    auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of an instance", what, j.name),
+                           fmt::format("the {}'s parts (`{}.c`, `{}.cn`, ...) would mix with the instance's: rename one of them",
+                                       what, j.name, j.name));
+    d.notes.push_back({inst->second, "the instance is declared here"});
+    return false;
+  }
+  auto [it, fresh] = seen.emplace(j.name, &j);
+  if (!fresh) {
+    const char* first = it->second->type == "force" ? "force element" : "joint";
+    if (std::string(first) != what) {
+      auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a {}", what, j.name, first),
+                             fmt::format("joints and force elements share one namespace (`{}.force`): rename one of them",
+                                         j.name));
+      d.notes.push_back({it->second->loc, fmt::format("the {} is declared here", first)});
+      return false;
+    }
+    duplicate(what, j.name, j.loc, it->second->loc);
+    return false;
+  }
+  return true;
+}
+
+/// A second declaration of `name`; inside a loop (the same statement again) reported once.
+void Expander::duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first) {
+  if (at.file == first.file && at.line == first.line && at.col == first.col) {
+    if (!repeated_.insert(name).second) return;
+    diags_.error(at, fmt::format("{} `{}` is declared again in every iteration of the loop", what, name),
+                 fmt::format("interpolate the loop variable into the name, e.g. {}{{i}}", name));
+    return;
+  }
+  auto& d = diags_.error(at, fmt::format("{} `{}` is declared twice", what, name),
+                         fmt::format("give each {} its own name", what));
+  d.notes.push_back({first, "the first one is declared here"});
+}
+
+void Expander::setting(const AstSetting& st) {
+  if (st.key == "gravity") {
+    if (gravity_) {
+      auto& d = diags_.error(st.loc, "gravity is set twice", "keep one `gravity = [gx, gy, gz]`");
+      d.notes.push_back({gravity_loc_, "gravity is first set here"});
+    }
+    check_shape(*st.value, "gravity", {{3, 1}, "gravity is an acceleration in the world frame: gravity = [gx, gy, gz] (m/s^2), e.g. [0, -9.81, 0]"});
+    gravity_ = st.value;
+    gravity_loc_ = st.loc;
+    return;
+  }
+  if (st.key == "constraints") {
+    auto s = strategy_of(*st.value, "constraints");
+    if (s && !override_) strategy_ = *s;
+    return;
+  }
+  diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty|coordinates`");
+}
+
+/// `constraints = ...` (the model's) or `constraint = ...` (a joint's).
+std::optional<Strategy> Expander::strategy_of(const AstExpr& v, const char* key) {
+  const std::string choices =
+      "lagrange (multipliers: a DAE for IDA), penalty (stiff spring-dampers: an ODE) or coordinates (joint "
+      "coordinates as states, for trees: an ODE)";
+  const std::string how = fmt::format("write {} = {}", key, choices);
+  if (v.kind == AstExpr::Kind::Name) {
+    if (v.name == "lagrange") return Strategy::Lagrange;
+    if (v.name == "penalty") return Strategy::Penalty;
+    if (v.name == "coordinates") return Strategy::Coordinates;
+    std::string near = closest_name(v.name, {"lagrange", "penalty", "coordinates"});
+    diags_.error(v.loc, fmt::format("unknown constraint strategy `{}`", v.name),
+                 near.empty() ? how : fmt::format("did you mean `{}`? The strategies are {}", near, choices));
+    return std::nullopt;
+  }
+  diags_.error(v.loc, "a constraint strategy is a name: `lagrange`, `penalty` or `coordinates`", how);
+  return std::nullopt;
+}
+
+void Expander::add_body(const AstBody& b) {
+  if (b.name == "ground") {
+    Body& g = bodies_["ground"];
+    for (const AstAttr& a : b.attrs)
+      diags_.error(a.loc, fmt::format("ground has no setting `{}`", a.key), "ground only declares points: ground { point pivot = [x, y, z] }");
+    add_points(g, b, "ground");
+    return;
+  }
+  if (auto first = bodies_.find(b.name); first != bodies_.end()) {
+    duplicate("body", b.name, b.loc, first->second.decl->loc);
+    return;
+  }
+  if (auto inst = instances_.find(b.name); inst != instances_.end()) {
+    auto& d = diags_.error(b.loc, fmt::format("body `{}` has the name of an instance", b.name),
+                           fmt::format("the body's parts (`{}.v`, `{}.m`, ...) would mix with the instance's: rename one of them",
+                                       b.name, b.name));
+    d.notes.push_back({inst->second, "the instance is declared here"});
+  }
+  Body body;
+  body.decl = &b;
+  for (const AstAttr& a : b.attrs)
+    if (a.key == "flexible") {
+      add_flexible_body(body, b, a);
+      return;
+    }
+  static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0"};
+  bool has_mass = false, has_inertia = false, mass_misspelt = false;
+  std::map<std::string, const AstAttr*> given;
+  for (const AstAttr& a : b.attrs) {
+    if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {
+      std::string near = closest_name(a.key, keys);
+      diags_.error(a.loc, fmt::format("body `{}` has no setting `{}`", b.name, a.key),
+                   near.empty() ? fmt::format("a body takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+      mass_misspelt |= near == "mass";
+      continue;
+    }
+    if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
+      auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
+      d.notes.push_back({first->second->loc, "first given here"});
+      continue;
+    }
+    has_mass |= a.key == "mass";
+    has_inertia |= a.key == "inertia";
+    check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
+  }
+  if (!has_mass && !mass_misspelt)
+    diags_.error(b.loc, fmt::format("body `{}` has no mass", b.name),
+                 fmt::format("the mass is the inertance of the body's translational I element: write body {} {{ mass = ...; "
+                             "inertia = ... }} (no inertia: a particle)",
+                             b.name));
+  if (auto m = given.find("mass"); m != given.end())
+    if (auto v = constant_of(*m->second->value); v && !(*v > 0))
+      diags_.error(m->second->value->loc, fmt::format("the mass of body `{}` is {}", b.name, *v),
+                   "the mass is the inertance of the body's translational I element and must be positive; a massless "
+                   "link between bodies is a joint (e.g. distance)");
+  if (auto in = given.find("inertia"); in != given.end() && in->second->value->kind == AstExpr::Kind::Call &&
+                                       in->second->value->name == "diag")
+    for (const E& x : in->second->value->args)
+      if (auto v = constant_of(*x); v && !(*v > 0))
+        diags_.error(x->loc, fmt::format("a principal moment of inertia of body `{}` is {}", b.name, *v),
+                     "the inertia tensor is the inertance of the body's rotational I element and must be positive definite");
+  body.particle = !has_inertia;
+  if (body.particle)
+    for (const AstAttr& a : b.attrs)
+      if (a.key == "com" || a.key == "quat0" || a.key == "w0")
+        diags_.error(a.loc, fmt::format("body `{}` has no inertia, so it is a particle: `{}` means nothing", b.name, a.key),
+                     fmt::format("a particle is a translational 1-junction only (mass, position, velocity): it has no "
+                                 "orientation, centre-of-mass offset or angular-velocity junction. Give it an inertia "
+                                 "(inertia = diag(Jx, Jy, Jz)) to make it a rigid body, or remove `{}`",
+                                 a.key));
+  add_points(body, b, b.name);
+  if (body.particle && !body.points.empty())
+    diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name),
+                 "a body without inertia is a point mass: it has no orientation, so a point away from it could not "
+                 "turn with it. Give it an inertia (inertia = diag(Jx, Jy, Jz)) to have points, or join the particle itself");
+  bodies_[b.name] = body;
+  body_order_.push_back(b.name);
+}
+
+void Expander::add_points(Body& body, const AstBody& b, const std::string& owner) {
+  for (const AstPoint& p : b.points) {
+    if (auto first = body.points.find(p.name); first != body.points.end()) {
+      auto& d = diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "give each point its own name");
+      d.notes.push_back({point_locs_[owner + "." + p.name], "first declared here"});
+      continue;
+    }
+    if (!body.ground && (kBodyInternalNames.count(p.name) ||
+                         std::find(kBodyQuantities.begin(), kBodyQuantities.end(), p.name) != kBodyQuantities.end())) {
+      diags_.error(p.loc, fmt::format("a point cannot be named `{}`", p.name),
+                   fmt::format("`{}.{}` already means the body's own {}: rename the point, e.g. `{}_point`", owner, p.name,
+                               kBodyInternalNames.count(p.name) ? "setting or bond-graph element" : "quantity", p.name));
+      body.points[p.name] = p.value;  // known, so that joints naming it are not reported again
+      continue;
+    }
+    check_shape(*p.value, fmt::format("point `{}` of `{}`", p.name, owner),
+                {{3, 1}, body.ground ? "a ground point is a world position [x, y, z]"
+                                     : "a point is a body-frame position [x, y, z] (the frame of the body's own axes)"});
+    body.points[p.name] = p.value;
+    point_locs_[owner + "." + p.name] = p.loc;
+  }
+}
+
+std::optional<Side> Expander::side(const AstEndpoint& ep) {
+  std::string body = ep.path.substr(0, ep.path.find('.'));
+  std::string point = body.size() < ep.path.size() ? ep.path.substr(body.size() + 1) : "";
+  auto it = bodies_.find(body);
+  if (it == bodies_.end()) {
+    std::vector<std::string> names;
+    for (const auto& [n, x] : bodies_) names.push_back(n);
+    std::string near = closest_name(body, names);
+    SourceLoc at = ep.loc;
+    at.length = static_cast<int>(body.size());
+    diags_.error(at, fmt::format("no body named `{}`", body),
+                 near.empty() ? fmt::format("declare it: body {} {{ mass = ...; inertia = ... }}, or join one of: {}", body,
+                                            fmt::join(names, ", "))
+                              : fmt::format("did you mean `{}`?", near));
+    return std::nullopt;
+  }
+  if (!point.empty() && it->second.points_unknown) return Side{body, point};
+  if (!point.empty() && !it->second.points.count(point)) {
+    if (it->second.beam && it->second.beam->modal) {
+      diags_.error(ep.loc, fmt::format("modal body `{}` has no point `{}`", body, point),
+                   fmt::format("its points are the nodes of {}: {}", it->second.beam->modal->path,
+                               fmt::join(std::views::keys(it->second.points), ", ")));
+      return std::nullopt;
+    }
+    std::vector<std::string> names;
+    for (const auto& [n, x] : it->second.points) names.push_back(n);
+    std::string near = closest_name(point, names);
+    diags_.error(ep.loc, fmt::format("`{}` has no point `{}`", body, point),
+                 near.empty() ? fmt::format("declare it: point {} = [x, y, z] inside {}", point, body == "ground" ? "ground { }" : "the body") 
+                              : fmt::format("did you mean `{}`?", near));
+    return std::nullopt;
+  }
+  return Side{body, point};
+}
+
+void Expander::add_force(const AstJoint& f) {
+  auto a = side(f.a);
+  auto b = side(f.b);
+  if (!a || !b) return;
+  if (a->body == b->body) {
+    diags_.error(f.loc, fmt::format("force `{}` acts between `{}` and itself", f.name, a->body),
+                 "a force element connects two different bodies (ground for an applied load)");
+    return;
+  }
+  ForceElement fe{&f, *a, *b, {}};
+  static const std::vector<std::string> keys = {"force", "torque", "stiffness", "damping", "length"};
+  for (const AstAttr& at : f.attrs) {
+    if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
+      std::string near = closest_name(at.key, keys);
+      diags_.error(at.loc, fmt::format("a force element has no setting `{}`", at.key),
+                   near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+      continue;
+    }
+    fe.attrs[at.key] = &at;
+  }
+  if (fe.attrs.count("stiffness") && !fe.attrs.count("length"))
+    diags_.error(fe.attrs.at("stiffness")->loc, fmt::format("the spring of `{}` has no free length", f.name),
+                 "add length = L0 (m): the spring pushes the points apart below it and pulls them together above it");
+  if (fe.attrs.count("length") && !fe.attrs.count("stiffness"))
+    diags_.error(fe.attrs.at("length")->loc, fmt::format("`length` of `{}` needs a stiffness", f.name),
+                 "add stiffness = k (N/m), or remove length");
+  for (const Side* sd : {&fe.a, &fe.b}) {
+    const Body& body = bodies_.at(sd->body);
+    if (body.particle && fe.attrs.count("torque"))
+      diags_.error(fe.attrs.at("torque")->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
+                   "give the body an inertia, or remove the torque");
+    if (!body.ground) loads_[sd->body].push_back(f.name);
+  }
+  if (!diags_.has_errors()) forces_.push_back(fe);
+}
+
+/// Settings whose constant value would make the joint degenerate.
+void Expander::check_joint_constant(const AstJoint& j, const AstAttr& at) {
+  if (at.key == "axis" || at.key == "axis_a" || at.key == "axis_b") {
+    if (at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
+    for (const E& x : at.value->args) {
+      auto v = constant_of(*x);
+      if (!v || *v != 0) return;
+    }
+    diags_.error(at.value->loc, fmt::format("`{}` of joint `{}` is the zero vector", at.key, j.name),
+                 "an axis is a direction (it is normalised): give a nonzero vector, e.g. axis = [0, 0, 1]");
+    return;
+  }
+  auto v = constant_of(*at.value);
+  if (!v) return;
+  if (at.key == "length" && !(*v > 0))
+    diags_.error(at.value->loc, fmt::format("the length of distance joint `{}` is {}", j.name, *v),
+                 "a distance joint keeps two points `length` apart and must be positive; points that coincide are a "
+                 "spherical joint: write joint " + j.name + " spherical(...)");
+  if (at.key == "pitch" && *v == 0)
+    diags_.error(at.value->loc, fmt::format("the pitch of screw joint `{}` is 0", j.name),
+                 "a screw advances `pitch` metres per radian; with no advance it is a revolute joint: write joint " +
+                     j.name + " revolute(...)");
+}
+
+void Expander::add_joint(const AstJoint& j) {
+  if (!kJointTypes.count(j.type)) {
+    std::vector<std::string> names(kJointTypes.begin(), kJointTypes.end());
+    std::string near = closest_name(j.type, names);
+    diags_.error(j.type_loc, fmt::format("unknown joint type `{}`", j.type),
+                 near.empty() ? fmt::format("joint types: {}", fmt::join(names, ", ")) : fmt::format("did you mean `{}`?", near));
+    return;
+  }
+  auto a = side(j.a);
+  auto b = side(j.b);
+  if (!a || !b) return;
+  if (a->body == b->body) {
+    diags_.error(j.loc, fmt::format("joint `{}` connects `{}` to itself", j.name, a->body),
+                 a->body == "ground"
+                     ? "ground points never move, so a joint between two of them constrains nothing: join a body to ground"
+                     : "both ends would move with the same rigid body, so the joint's constraint rows could never change "
+                       "and its constraintor CN would act on nothing: connect two different bodies (or a body and ground)");
+    return;
+  }
+  Joint joint;
+  joint.decl = &j;
+  joint.a = *a;
+  joint.b = *b;
+  joint.strategy = strategy_;
+  std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping"};
+  if (has_rotation_coordinate(j.type)) keys.insert(keys.end(), {"q0", "rate0", "torque", "motion"});
+  if (j.type == "prismatic") keys.insert(keys.end(), {"q0", "rate0", "force", "motion"});
+  if (j.type == "cylindrical") keys.insert(keys.end(), {"d0", "ddot0"});
+  if (j.type == "spherical") keys.push_back("rot0");
+  if (j.type == "screw") keys.push_back("pitch");
+  if (j.type == "distance") keys.push_back("length");
+  for (const AstAttr& at : j.attrs) {
+    if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
+      std::string near = closest_name(at.key, keys);
+      diags_.error(at.loc, fmt::format("a {} joint has no setting `{}`", j.type, at.key),
+                   near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+      continue;
+    }
+    if (auto first = joint.attrs.find(at.key); first != joint.attrs.end()) {
+      auto& d = diags_.error(at.loc, fmt::format("`{}` of joint `{}` is given twice", at.key, j.name), "keep one of them");
+      d.notes.push_back({first->second->loc, "first given here"});
+      continue;
+    }
+    if (auto want = kJointSettingShapes.find(at.key); want != kJointSettingShapes.end())
+      check_shape(*at.value, fmt::format("`{}` of joint `{}`", at.key, j.name), want->second,
+                  at.key != "torque" && at.key != "force" && at.key != "motion");
+    check_joint_constant(j, at);
+    joint.attrs[at.key] = &at;
+    if (at.key == "constraint") {
+      if (auto s = strategy_of(*at.value, "constraint")) joint.strategy = *s;
+    }
+  }
+  if (joint.attrs.count("motion"))
+    for (const char* drive : {"torque", "force"})
+      if (auto it = joint.attrs.find(drive); it != joint.attrs.end())
+        diags_.error(it->second->loc, fmt::format("joint `{}` has both a prescribed motion and a {}", j.name, drive),
+                     fmt::format("with motion = f(t) a constraint row fixes the joint coordinate, so the {} only "
+                                 "changes that row's multiplier and never the motion: remove it, or remove "
+                                 "motion to let the {} drive the joint",
+                                 drive, drive));
+  for (const char* required : {"pitch", "length"})
+    if (std::find(keys.begin(), keys.end(), required) != keys.end() && !joint.attrs.count(required))
+      diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required),
+                   fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required));
+  bool needs_orientation = j.type != "spherical" && j.type != "distance";
+  for (const Side* s : {&joint.a, &joint.b}) {
+    const Body& body = bodies_.at(s->body);
+    if (body.particle && needs_orientation)
+      diags_.error(j.loc, fmt::format("a {} joint needs the orientation of `{}`, which is a particle", j.type, s->body),
+                   fmt::format("a particle (a body without inertia) has a translational 1-junction only, no "
+                               "angular-velocity junction for the joint's rotational rows to act on: give `{}` an "
+                               "inertia (inertia = diag(Jx, Jy, Jz)), or use a spherical or distance joint",
+                               s->body));
+  }
+  joints_.push_back(std::move(joint));
+}
+
+}  // namespace mbgc::multibody::detail

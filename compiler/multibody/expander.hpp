@@ -1,0 +1,256 @@
+// multibody/expander.hpp — the multibody pass's working state (private to
+// compiler/multibody). One Expander runs once per model: it collects bodies,
+// joints and force elements, then writes each as multibond-graph fragments
+// (layer-1 statements). Its member functions live in one file per topic,
+// named in the section comments below; expand.hpp is the pass's interface.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "ir/ast.hpp"
+#include "ir/diagnostics.hpp"
+#include "multibody/build.hpp"
+#include "multibody/expand.hpp"
+#include "multibody/model.hpp"
+
+namespace mbgc::multibody::detail {
+
+using namespace mbgc::ir;  // the multibody layer builds the AST's statements throughout
+
+inline const std::set<std::string> kJointTypes = {"revolute", "spherical", "cylindrical", "prismatic", "screw",
+                                           "planar",   "universal", "fixed",       "distance"};
+
+inline bool has_rotation_coordinate(const std::string& t) { return t == "revolute" || t == "cylindrical" || t == "screw"; }
+inline bool has_axial_coordinate(const std::string& t) { return t == "prismatic" || t == "cylindrical" || t == "screw"; }
+
+/// Rows and columns of a value, when they can be told from the text alone.
+struct Shape {
+  int rows = 1, cols = 1;
+  bool operator==(const Shape& o) const { return rows == o.rows && cols == o.cols; }
+  bool scalar() const { return rows == 1 && cols == 1; }
+  std::string text() const {
+    if (scalar()) return "a scalar";
+    if (cols == 1) return fmt::format("a {}-vector", rows);
+    return fmt::format("a {}x{} matrix", rows, cols);
+  }
+};
+
+/// What a body or joint setting must be, and how to write it.
+struct Expected {
+  Shape shape;
+  const char* how;
+};
+
+inline const std::map<std::string, Expected> kBodySettingShapes = {
+    {"mass", {{1, 1}, "the mass is a scalar (kg), e.g. mass = 2"}},
+    {"inertia", {{3, 3}, "the inertia tensor about the centre of mass, in body axes, is a 3x3 matrix, e.g. inertia = diag(Jx, Jy, Jz)"}},
+    {"com", {{3, 1}, "the centre of mass is a body-frame position [x, y, z]"}},
+    {"r0", {{3, 1}, "the initial position of the centre of mass is [x, y, z] (world frame)"}},
+    {"v0", {{3, 1}, "the initial velocity of the centre of mass is [vx, vy, vz] (world frame)"}},
+    {"w0", {{3, 1}, "the initial angular velocity is [wx, wy, wz] (body frame)"}},
+    {"quat0", {{4, 1}, "the initial orientation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.3)"}},
+};
+inline const std::map<std::string, Expected> kJointSettingShapes = {
+    {"axis", {{3, 1}, "an axis is a direction [x, y, z] in the frames of both bodies"}},
+    {"axis_a", {{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}},
+    {"axis_b", {{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}},
+    {"rot0", {{4, 1}, "the initial relative rotation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.5)"}},
+    {"q0", {{1, 1}, "the initial joint coordinate is a scalar, e.g. q0 = 0.3"}},
+    {"rate0", {{1, 1}, "the initial joint rate is a scalar, e.g. rate0 = 0"}},
+    {"d0", {{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}},
+    {"ddot0", {{1, 1}, "the initial axial rate is a scalar"}},
+    {"pitch", {{1, 1}, "the pitch is a scalar (m per rad)"}},
+    {"length", {{1, 1}, "the length is a scalar (m)"}},
+    {"stiffness", {{1, 1}, "the penalty stiffness is a scalar"}},
+    {"damping", {{1, 1}, "the penalty damping is a scalar"}},
+    {"torque", {{1, 1}, "the drive torque about the joint axis is a scalar (N m)"}},
+    {"force", {{1, 1}, "the drive force along the joint axis is a scalar (N)"}},
+    {"motion", {{1, 1}, "a prescribed motion is a scalar function of t, e.g. motion = 0.5 * sin(t)"}},
+};
+
+/// Quantities `body.NAME` and `joint.NAME` users may read (defined in define_quantities).
+inline const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
+                                                  "omega", "omega_world", "angular_momentum", "kinetic_energy",
+                                                  "potential_energy"};
+/// Names a flexible body's expansion adds (`arm.eta`, `arm.nu`, ...): not free for a modal body's nodes.
+inline const std::set<std::string> kFlexibleInternalNames = {"eta", "nu", "M", "sv", "sw", "se", "etadot", "damp", "modes",
+                                                      "J0", "first_moment", "mean", "stiffness", "damping",
+                                                      "modal_mass", "J1", "J2", "Hw", "elastic_energy"};
+/// Names a body's expansion uses for itself (`bob.mass`, `bob.v`, ...): not free for points.
+inline const std::set<std::string> kBodyInternalNames = {"mass", "inertia", "com", "r0", "v0", "q0", "w0", "v", "m", "r",
+                                                  "weight", "w", "J", "ejs", "qrate", "q"};
+
+using ModalTerms = flex::ModalMassTerms;
+
+class Expander {
+ public:
+  Expander(ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options)
+      : sources_(sources), diags_(diags), search_dirs_(options.search_dirs), override_(options.constraints),
+        strategy_(options.constraints.value_or(Strategy::Lagrange)) {}
+
+  AstProgram run(const AstProgram& in);
+
+ private:
+  // ---- the pass: run(), and the statements it writes (expand.cpp)
+  E attr(const AstBody& b, const std::string& key) const;
+  void param(const Build& B, const std::string& name, E value);
+  void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
+  void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
+  void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt);
+  void signal(const Build& B, const std::string& name, E value);
+  E attr_or(const Joint& j, const std::string& key, E fallback) const;
+  void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {});
+  void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to);
+
+  // ---- 1. collect and check bodies, joints, force elements and settings (collect.cpp)
+  void collect(const AstProgram& in);
+  bool connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen);
+  void duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first);
+  void setting(const AstSetting& st);
+  std::optional<Strategy> strategy_of(const AstExpr& v, const char* key);
+  void add_body(const AstBody& b);
+  void add_points(Body& body, const AstBody& b, const std::string& owner);
+  std::optional<Side> side(const AstEndpoint& ep);
+  void add_force(const AstJoint& f);
+  void check_joint_constant(const AstJoint& j, const AstAttr& at);
+  void add_joint(const AstJoint& j);
+
+  // ---- shapes and constants known from the text (shapes.cpp)
+  std::optional<Shape> shape_of(const AstExpr& e, int depth = 0) const;
+  std::optional<double> constant_of(const AstExpr& e, int depth = 0) const;
+  static bool mentions_time(const AstExpr& e);
+  void check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant = true);
+
+  // ---- 1b. settings of flexible bodies: beams and modal-data files (flexible_settings.cpp)
+  static const std::map<std::string, std::string>& beam_settings();
+  void check_frame(Beam& beam, const AstBody& b, const AstAttr* given);
+  bool tisserand_allowed(const Beam& beam, const AstBody& b, const SourceLoc& loc);
+  void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind);
+  int mode_count(const AstExpr& v) const;
+  void record_setting(std::map<std::string, const AstAttr*>& given, const AstAttr& a, const AstBody& b);
+  void read_slope_limit(Beam& beam, const AstBody& b, const AstAttr& a);
+  void add_modal_body(Body& body, const AstBody& b, const AstExpr& v);
+  void check_section(const AstExpr& v);
+
+  // ---- 2. rigid bodies and particles; the pose of any body (rigid_body.cpp)
+  void emit_body(const Body& body);
+  E position(const Build& B, const std::string& body) const;
+  E quaternion(const Build& B, const std::string& body) const;
+  E rotation(const Build& B, const std::string& body) const;
+
+  // ---- 2b. beams: modal integrals, M(eta), points and limits (beam.cpp)
+  static E eta_of(const Build& B, const std::string& n, int k);
+  static E quadratic(const Build& B, const std::string& P, const std::vector<E>& x, const std::vector<E>& y);
+  static E row_dot(const Build& B, const std::string& P, int i, const std::vector<E>& x, bool transposed = false);
+  static E sum_of(const Build& B, const std::vector<E>& terms);
+  static E matrix_param(const Build& B, const flex::Matrix& m);
+  static E vector_param(const Build& B, const std::vector<double>& v);
+  Eta split_eta(const Beam& beam, const std::function<E(int)>& eta) const;
+  static E vec_dot(const Build& B, const std::string& P, const std::vector<E>& x);
+  E first_moment(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const;
+  std::vector<std::vector<E>> translation_coupling(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const;
+  static void put_first_moment(const Build& B, std::vector<std::vector<E>>& M, E s);
+  std::vector<std::vector<E>> mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const;
+  void add_stretch_and_twist(const Build& B, const std::string& n, const Beam& beam, const Eta& eta,
+                             std::vector<std::vector<E>>& M) const;
+  E rows_to_matrix(const Build& B, const std::vector<std::vector<E>>& m) const;
+  void modal_damping(const Build& B, const std::string& name, E zeta, int count, const std::string& K, const std::string& M);
+  void rod_params(const Build& B, const Body& body);
+  E torsion_constant(const Build& B, const AstExpr& section, const std::string& n) const;
+  void beam_params(const Build& B, const Body& body);
+  E beam_point(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const;
+  E beam_slope(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const;
+  Eta state_eta(const Build& B, const std::string& n, const Beam& beam) const;
+  static std::vector<std::pair<double, std::string>> modal_limits(const std::string& n, const Beam& beam);
+  static void add_bending_limits(const std::string& n, const Beam& beam, std::vector<std::pair<double, std::string>>& limits);
+
+  // ---- 2c. bodies from modal-data files (modal_body.cpp)
+  static bool all_zero(const flex::Matrix& m);
+  static ModalTerms modal_terms(const flex::ModalData& d);
+  static std::string axes(std::size_t i, std::size_t j);
+  void modal_params(const Build& B, const Body& body);
+  E modal_first_moment(const Build& B, const std::string& n, const std::vector<E>& eta) const;
+  std::vector<std::vector<E>> modal_translation_coupling(const Build& B, const std::string& n, const flex::ModalData& d) const;
+  std::vector<std::vector<E>> modal_mass_matrix(const Build& B, const std::string& n, const flex::ModalData& d,
+                                                const std::vector<E>& eta) const;
+  E modal_point(const Build& B, const std::string& n, const std::string& pt, const char* what, std::array<double, 3> at,
+                const std::vector<E>& eta) const;
+  static std::vector<std::pair<double, std::string>> modal_file_limits(const std::string& n, const Beam& beam);
+
+  // ---- 2d. the floating-frame body both flexible kinds share (flexible_body.cpp)
+  void emit_beam(const Body& body);
+  std::pair<E, E> beam_point_motion(const Build& B, const std::string& n, E local) const;
+  E beam_load(const Build& B, const std::string& n, const std::string& point, E force, E torque);
+  void beam_quantities(const Build& B, const Body& body);
+
+  // ---- 3. joints as constraint rows: lagrange and penalty (joint_rows.cpp)
+  Frame frame(const Build& B, const Joint& j, const Side& s, const std::string& tag);
+  void joint_params(const Build& B, const Joint& j);
+  std::vector<E> rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
+  void rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
+                  bool towards_sum, bool translational);
+  void emit_joint(Joint& j);
+  std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
+
+  // ---- 3b. joints in joint coordinates (joint_coordinates.cpp)
+  void emit_coordinate_joint(const Build& B, const Joint& j);
+
+  // ---- 4. the spanning tree and initial conditions along it (tree.cpp)
+  void find_tree();
+  std::vector<std::string> path_to_ground(std::string body) const;
+  void check_coordinates();
+  void place_bodies();
+  std::string placed_hint(const std::string& jn) const;
+  Pose pose(const Build& B, const std::string& body);
+  void place(const Joint& j, bool a_is_parent);
+
+  // ---- 5. force elements (forces.cpp)
+  std::pair<E, E> world_point(const Build& B, const Side& s);
+  void emit_force(const ForceElement& f);
+
+  // ---- 6. quantities users may name (quantities.cpp)
+  void define_quantities();
+  void check_known(const AstExpr& e);
+  E rewrite_expr(const E& e);
+  AstStmt rewrite_user(const AstStmt& s);
+
+  static constexpr const char* kAxes[3] = {"x", "y", "z"};
+  static constexpr double kStrainLimit = 0.01;
+
+  ir::SourceManager& sources_;                // modal-data files join it (diagnostics, depfile)
+  Diagnostics& diags_;
+  std::vector<std::string> search_dirs_;     // mbgc -I: where modal-data files are looked for
+  std::map<std::string, Body> bodies_;
+  std::vector<std::string> body_order_;
+  std::vector<Joint> joints_;
+  std::vector<ForceElement> forces_;
+  std::map<std::string, std::vector<std::string>> loads_;  // body -> force elements acting on it
+  std::map<std::string, std::pair<Frame, Frame>> frames_;
+  std::map<std::string, E> coordinates_;
+  struct CoordinateValues { E angle, rate, displacement, displacement_rate; };
+  std::map<std::string, CoordinateValues> coordinate_values_;  // coordinates joints
+  std::vector<const Joint*> tree_order_;                        // tree joints, breadth first from ground
+  std::map<std::string, E> quantity_;
+  std::map<std::string, E> params_;                // the program's top-level parameters
+  std::map<std::string, SourceLoc> point_locs_;    // "body.point" -> declaration
+  std::map<std::string, SourceLoc> instances_;     // component instances (their parts are named `instance.part`)
+  std::set<std::string> repeated_;                 // names reported as declared in every loop iteration
+  std::set<std::string> generated_names_;          // parameters, elements and junctions expand wrote
+  std::vector<std::size_t> applied_;               // generated_ indices of joint drive loads (user expressions)
+  E gravity_;
+  SourceLoc gravity_loc_;
+  std::optional<Strategy> override_;  // mbgc --constraints
+  Strategy strategy_;                  // the model-level strategy
+  std::vector<AstStmt> generated_;
+};
+
+}  // namespace mbgc::multibody::detail

@@ -1,0 +1,164 @@
+// multibody/flexible_body.cpp — the floating-frame body both flexible kinds share.
+#include "multibody/expander.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <ranges>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+void Expander::emit_beam(const Body& body) {
+  const AstBody& d = *body.decl;
+  const std::string& n = d.name;
+  const Beam& beam = *body.beam;
+  Build B(d.loc);
+  beam_params(B, body);
+  for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
+  const int ne = beam.count(), N = 6 + ne;
+  Eta eta = state_eta(B, n, beam);
+  Eta rest = split_eta(beam, [&](int) { return B.num(0); });
+  // the I field and its velocity terms on the common junction nu = [V; omega; eta']
+  std::vector<std::string> nu_in;
+  if (gravity_) nu_in.push_back(n + ".weight");
+  if (auto it = loads_.find(n); it != loads_.end())
+    for (const std::string& f : it->second) nu_in.push_back(f + ".on_" + n);
+  junction(B, '1', n + ".nu", N, nu_in, {n + ".M", n + ".ejs", n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
+  E R0 = B.call("rotq", {B.name(n + ".q0")});
+  E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
+  element(B, "I", n + ".M", rows_to_matrix(B, mass_matrix(B, n, beam, eta)),
+          {kv("p0", B.op('*', rows_to_matrix(B, mass_matrix(B, n, beam, rest)), nu0), d.loc)});
+  std::get<AstElement>(generated_.back()).configuration_dependent = true;
+  E f = B.name("f"), p = B.name(n + ".M.p");
+  auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
+  E V = part(f, 1), w = part(f, 4), P = part(p, 1), H = part(p, 4);
+  auto cross = [&](E a, E b) { return B.call("cross", {std::move(a), std::move(b)}); };
+  // dT/deta at constant nu (Kirchhoff): the kinetic energy's change with the beam's shape
+  E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, mass_matrix(B, n, beam, eta)), f)));
+  E dT = B.call("transpose", {B.call("jacobian", {T, B.name(n + ".eta.q")})});
+  element(B, "R", n + ".ejs", nullptr,
+          {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
+  if (gravity_) {
+    // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
+    E g = B.op('*', B.call("transpose", {B.call("rotq", {B.name(n + ".q.q")})}), B.name("gravity"));
+    E coupling = rows_to_matrix(B, translation_coupling(B, n, beam, eta));
+    element(B, "Se", n + ".weight",
+            B.call("vcat", {B.op('*', B.name(n + ".mass"), g), cross(first_moment(B, n, beam, eta), g),
+                            B.op('*', B.call("transpose", {coupling}), g)}));
+  }
+  // selectors: V (turned to world axes), omega, eta'
+  E Rq = B.call("rotq", {B.name(n + ".q.q")});
+  element(B, "MTF", n + ".sv", B.call("hcat", {Rq, B.call("zeros", {B.num(3), B.num(3 + ne)})}));
+  element(B, "MTF", n + ".sw", B.call("hcat", {B.call("zeros", {B.num(3), B.num(3)}), B.call("eye", {B.num(3)}), B.call("zeros", {B.num(3), B.num(ne)})}));
+  element(B, "MTF", n + ".se", B.call("hcat", {B.call("zeros", {B.num(ne), B.num(6)}), B.call("eye", {B.num(ne)})}));
+  // position and orientation, as on a rigid body
+  junction(B, '1', n + ".v", 3, {n + ".sv.p2"}, {n + ".r"});
+  element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
+  junction(B, '1', n + ".w", 3, {n + ".sw.p2"}, {n + ".qrate.p1"});
+  element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
+  element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
+  bond(B, n + ".qrate.p2", n + ".q", 4);
+  // elasticity and modal damping on eta'
+  std::vector<std::string> modal_out = {n + ".eta"};
+  if (attr(d, "damping")) modal_out.push_back(n + ".damp");
+  junction(B, '1', n + ".etadot", ne, {n + ".se.p2"}, modal_out);
+  std::vector<std::vector<E>> K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
+  std::vector<std::vector<E>> D = K;
+  for (int i = 0; i < (beam.modal ? ne : 0); ++i)
+    for (int j = 0; j < ne; ++j) {
+      K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".stiffness"), i + 1, j + 1);
+      D[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".damping"), i + 1, j + 1);
+    }
+  for (const auto& [plane, modes, off] : {std::tuple{"y", &beam.y, 0}, std::tuple{"z", &beam.z, beam.offset_z()}}) {
+    if (!*modes) continue;
+    for (int i = 0; i < (*modes)->count(); ++i)
+      for (int j = 0; j < (*modes)->count(); ++j) {
+        K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".stiffness"), i + 1, j + 1);
+        D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".damping"), i + 1, j + 1);
+      }
+  }
+  for (const auto& [group, count, off] : {std::tuple{"a", beam.axial ? beam.axial->count() : 0, beam.offset_axial()},
+                                          std::tuple{"t", beam.torsion ? beam.torsion->count() : 0, beam.offset_torsion()}})
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < count; ++j) {
+        K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".stiffness"), i + 1, j + 1);
+        D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".damping"), i + 1, j + 1);
+      }
+  element(B, "C", n + ".eta", nullptr,
+          {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
+  std::get<AstElement>(generated_.back()).state_limits = modal_limits(n, beam);
+  if (attr(d, "damping")) element(B, "R", n + ".damp", rows_to_matrix(B, D));
+}
+
+/// The load on b (world force F at Q, torque T) and its opposite on a, as
+/// effort sources on the bodies' junctions: F on the centre-of-mass
+/// velocity junction, the body-frame moment arm x (R^T F) + R^T T on the
+/// angular-velocity one. A spring-damper acts along the line P -> Q.
+/// World position and velocity of a beam's point at `local` (body axes,
+/// deflected): it moves with the frame and, through the modes, on it.
+std::pair<E, E> Expander::beam_point_motion(const Build& B, const std::string& n, E local) const {
+  E R = rotation(B, n);
+  E rate = B.op('+', B.call("cross", {B.name(n + ".w.f"), local}),
+                B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
+  return {B.op('+', position(B, n), B.op('*', R, local)), B.op('+', B.name(n + ".v.f"), B.op('*', R, rate))};
+}
+
+/// A force F (and torque T), world axes, at a beam's point as an effort on
+/// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
+/// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
+E Expander::beam_load(const Build& B, const std::string& n, const std::string& point, E force, E torque) {
+  const Beam& beam = *bodies_.at(n).beam;
+  Eta eta = state_eta(B, n, beam);
+  E at = point.empty() ? B.vec(0, 0, 0) : beam_point(B, n, beam, point, eta);
+  E Rt = B.call("transpose", {rotation(B, n)}), F = B.op('*', Rt, force), q = B.name(n + ".eta.q");
+  E moment = B.call("cross", {at, F});
+  E modal = B.op('*', B.call("transpose", {B.call("jacobian", {at, q})}), F);
+  if (torque) {
+    E T = B.op('*', Rt, torque);
+    moment = B.op('+', moment, T);
+    if (!point.empty())
+      modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam_slope(B, n, beam, point, eta), q})}), T));
+  }
+  return B.call("vcat", {F, moment, modal});
+}
+
+/// A beam's quantities: those of a rigid body, for its frame origin (x = 0),
+/// plus its modal coordinates, elastic energy and the deflection of its points.
+void Expander::beam_quantities(const Build& B, const Body& body) {
+  const std::string& n = body.decl->name;
+  const Beam& beam = *body.beam;
+  Eta eta = state_eta(B, n, beam);
+  E r = position(B, n), v = B.name(n + ".v.f"), q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
+  E p = B.name(n + ".M.p");
+  auto part = [&](E x, int from) { return B.list({B.at(x, from), B.at(x, from + 1), B.at(x, from + 2)}); };
+  quantity_[n + ".position"] = r;
+  quantity_[n + ".velocity"] = v;
+  quantity_[n + ".momentum"] = B.op('*', R, part(p, 1));
+  quantity_[n + ".quaternion"] = q;
+  quantity_[n + ".rotation"] = R;
+  quantity_[n + ".bryant"] = B.call("bryant", {q});
+  quantity_[n + ".omega"] = w;
+  quantity_[n + ".omega_world"] = B.op('*', R, w);
+  quantity_[n + ".angular_momentum"] = B.op('*', R, part(p, 4));  // about the frame origin
+  quantity_[n + ".modes"] = B.name(n + ".eta.q");
+  quantity_[n + ".kinetic_energy"] = B.op('*', B.num(0.5), B.dot(B.name(n + ".nu.f"), p));
+  E elastic = B.op('*', B.num(0.5), B.dot(B.name(n + ".eta.q"), B.name(n + ".eta.e")));
+  quantity_[n + ".elastic_energy"] = elastic;
+  E gravity = gravity_ ? B.neg(B.dot(B.name("gravity"), B.op('+', B.op('*', B.name(n + ".mass"), r),
+                                                               B.op('*', R, first_moment(B, n, beam, eta)))))
+                       : B.num(0);
+  quantity_[n + ".potential_energy"] = B.op('+', gravity, elastic);
+  for (const auto& [pt, at] : beam.points()) {
+    E local = beam_point(B, n, beam, pt, eta);
+    std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = beam_point_motion(B, n, local);
+    quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
+    quantity_[n + "." + pt + ".rotation_vector"] = beam_slope(B, n, beam, pt, eta);            // small, body axes
+  }
+}
+
+}  // namespace mbgc::multibody::detail

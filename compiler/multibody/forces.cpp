@@ -1,0 +1,81 @@
+// multibody/forces.cpp — force elements.
+#include "multibody/expander.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <ranges>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+// ---- 5. quantities users may name ------------------------------------------------------
+// ---- 4. force elements ------------------------------------------------------------
+/// World position and velocity of a force element's point.
+std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
+  const Body& body = bodies_.at(s.body);
+  E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
+  if (body.ground) return {local, B.vec(0, 0, 0)};
+  E r = position(B, s.body), v = B.name(s.body + ".v.f");
+  if (body.particle) return {r, v};
+  if (body.beam) {
+    Eta eta = state_eta(B, s.body, *body.beam);
+    return beam_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : beam_point(B, s.body, *body.beam, s.point, eta));
+  }
+  E R = rotation(B, s.body);
+  E arm = B.op('-', local, B.name(s.body + ".com"));
+  return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.name(s.body + ".w.f"), arm})))};
+}
+
+void Expander::emit_force(const ForceElement& f) {
+  const std::string& fn = f.decl->name;
+  Build B(f.decl->loc);
+  auto user = [&](const char* key) -> E {
+    auto it = f.attrs.find(key);
+    return it == f.attrs.end() ? nullptr : rewrite_expr(it->second->value);
+  };
+  auto [pa, va] = world_point(B, f.a);
+  auto [pb, vb] = world_point(B, f.b);
+  E d = B.op('-', pb, pa);
+  quantity_[fn + ".length"] = B.call("norm", {d});
+  E force = user("force");
+  if (E k = user("stiffness"), c = user("damping"); k || c) {
+    if (k) param(B, fn + ".stiffness", k);
+    if (c) param(B, fn + ".damping", c);
+    if (E l0 = user("length")) param(B, fn + ".length0", l0);
+    E len = B.call("norm", {d}), u = B.op('/', d, len);
+    E tension = B.num(0);
+    if (k) tension = B.op('*', B.name(fn + ".stiffness"), B.op('-', len, B.name(fn + ".length0")));
+    if (c) tension = B.op('+', tension, B.op('*', B.name(fn + ".damping"), B.dot(u, B.op('-', vb, va))));
+    E spring = B.neg(B.op('*', tension, u));
+    force = force ? B.op('+', force, spring) : spring;
+  }
+  if (!force) force = B.vec(0, 0, 0);
+  E torque = user("torque");
+  quantity_[fn + ".force"] = force;
+  if (torque) quantity_[fn + ".torque"] = torque;
+  for (const auto& [s, sign] : {std::pair{&f.a, -1.0}, std::pair{&f.b, 1.0}}) {
+    const Body& body = bodies_.at(s->body);
+    if (body.ground) continue;
+    const std::string base = fn + ".on_" + s->body;
+    auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
+    if (body.beam) {
+      element(B, "Se", base, signed_(beam_load(B, s->body, s->point, force, torque)));
+      continue;
+    }
+    element(B, "Se", base + "_f", signed_(force));
+    if (body.particle) continue;
+    E Rt = B.call("transpose", {rotation(B, s->body)});
+    E local = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
+    E arm = B.op('-', local, B.name(s->body + ".com"));
+    E moment = B.call("cross", {arm, B.op('*', Rt, force)});
+    if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
+    element(B, "Se", base + "_t", signed_(moment));
+  }
+}
+
+}  // namespace mbgc::multibody::detail

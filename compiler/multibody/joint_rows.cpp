@@ -1,0 +1,214 @@
+// multibody/joint_rows.cpp — joints as constraint rows: lagrange and penalty.
+#include "multibody/expander.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <ranges>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+Frame Expander::frame(const Build& B, const Joint& j, const Side& s, const std::string& tag) {
+  const Body& body = bodies_.at(s.body);
+  Frame f;
+  f.ground = body.ground;
+  f.particle = body.particle;
+  f.body = s.body;
+  const std::string jn = j.decl->name;
+  f.R = rotation(B, s.body);
+  E local = B.name(jn + ".p" + tag);  // the point in CoM-relative body coordinates (ground: absolute)
+  E turn = f.R;                       // the joint frame's rotation (a beam's section turns with its slope)
+  if (body.beam && !s.point.empty()) {
+    Eta eta = state_eta(B, s.body, *body.beam);
+    local = beam_point(B, s.body, *body.beam, s.point, eta);
+    turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {beam_slope(B, s.body, *body.beam, s.point, eta)})));
+  }
+  if (body.ground) f.p = local;
+  else if (body.particle) f.p = position(B, s.body);
+  else f.p = B.op('+', position(B, s.body), B.op('*', f.R, local));
+  f.local = local;
+  E F = B.op('*', turn, B.name(jn + ".F" + tag));
+  f.X = B.op('*', F, B.vec(1, 0, 0));
+  f.Y = B.op('*', F, B.vec(0, 1, 0));
+  f.Z = B.op('*', F, B.vec(0, 0, 1));
+  return f;
+}
+
+void Expander::joint_params(const Build& B, const Joint& j) {
+  const std::string jn = j.decl->name;
+  for (const auto& [s, tag] : {std::pair{&j.a, "a"}, std::pair{&j.b, "b"}}) {
+    const Body& body = bodies_.at(s->body);
+    E point = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
+    if (body.ground || body.particle) param(B, jn + ".p" + tag, point);
+    else param(B, jn + ".p" + tag, B.op('-', point, B.name(s->body + ".com")));
+    const AstAttr* ax = j.attrs.count(std::string("axis_") + tag) ? j.attrs.at(std::string("axis_") + tag)
+                        : j.attrs.count("axis")                     ? j.attrs.at("axis")
+                                                                    : nullptr;
+    E axis = ax ? ax->value : B.vec(0, 0, 1);
+    param(B, jn + ".axis_" + tag, B.op('/', axis, B.call("norm", {axis})));
+    param(B, jn + ".f" + tag, B.call("quat_arc", {B.name(jn + ".axis_" + tag)}));
+    param(B, jn + ".F" + tag, B.call("rotq", {B.name(jn + ".f" + tag)}));
+  }
+  // Length scale that turns the angular rows (dot products) into metres: the
+  // radius of gyration of the lighter body, so one stiffness suits all rows.
+  std::vector<E> radii;
+  for (const Side* s : {&j.a, &j.b}) {
+    const Body& body = bodies_.at(s->body);
+    if (body.ground || body.particle) continue;
+    E I = B.name(s->body + ".inertia");
+    E trace = B.op('+', B.op('+', idx2(B, I, 1, 1), idx2(B, I, 2, 2)), idx2(B, I, 3, 3));
+    radii.push_back(B.call("sqrt", {B.op('/', trace, B.op('*', B.num(3), B.name(s->body + ".mass")))}));
+  }
+  E scale = radii.empty() ? B.num(1) : radii.size() == 1 ? radii[0] : B.call("min", {radii[0], radii[1]});
+  param(B, jn + ".scale", scale);
+}
+
+/// The constraint rows g (each a scalar AST expression) of a joint.
+std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
+  const std::string& t = j.decl->type;
+  const std::string jn = j.decl->name;
+  E d = B.op('-', Bf.p, A.p);
+  E scale = B.name(jn + ".scale");
+  auto perp = [&](E u, E v) { return B.op('*', scale, B.dot(u, v)); };
+  std::vector<E> r;
+  auto point = [&] { for (int k = 1; k <= 3; ++k) r.push_back(B.at(d, k)); };
+  auto aligned = [&] { r.push_back(perp(A.Z, Bf.X)); r.push_back(perp(A.Z, Bf.Y)); };
+  auto on_axis = [&] { r.push_back(B.dot(A.X, d)); r.push_back(B.dot(A.Y, d)); };
+  if (t == "spherical") point();
+  else if (t == "revolute") { point(); aligned(); }
+  else if (t == "universal") {
+    // The cross's arms are A's x and B's y: perpendicular when the joint
+    // frames coincide (as the tree placement puts them), free to turn about
+    // either arm; the twist about the shafts (the frames' z) is forbidden.
+    point();
+    r.push_back(perp(A.X, Bf.Y));
+  }
+  else if (t == "cylindrical") { on_axis(); aligned(); }
+  else if (t == "prismatic") { on_axis(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
+  else if (t == "screw") {
+    on_axis();
+    aligned();
+    // s = pitch * theta, written without atan2 (no wrap): pitch * sin(theta - s/pitch) = 0
+    E h = B.name(jn + ".pitch");
+    E phase = B.op('/', B.dot(A.Z, d), h);
+    r.push_back(B.op('*', h, B.op('-', B.op('*', B.dot(A.Y, Bf.X), B.call("cos", {phase})),
+                                         B.op('*', B.dot(A.X, Bf.X), B.call("sin", {phase})))));
+  } else if (t == "planar") { r.push_back(B.dot(A.Z, d)); aligned(); }
+  else if (t == "fixed") { point(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
+  else if (t == "distance") {
+    E L = B.name(jn + ".length");
+    r.push_back(B.op('/', B.op('-', B.dot(d, d), B.op('^', L, B.num(2))), B.op('*', B.num(2), L)));
+  }
+  if (auto m = j.attrs.find("motion"); m != j.attrs.end()) {
+    E f = m->second->value;
+    if (t == "prismatic") r.push_back(B.op('-', B.dot(A.Z, d), f));
+    else  // scale * sin(theta - f(t)), again without atan2
+      r.push_back(B.op('*', scale, B.op('-', B.op('*', B.dot(A.Y, Bf.X), B.call("cos", {f})),
+                                            B.op('*', B.dot(A.X, Bf.X), B.call("sin", {f})))));
+  }
+  return r;
+}
+
+/// The rate of `rows` (a k-vector of position-level expressions) collected on
+/// 0-junction `sum`: one MTF per body junction, modulus d(rows)/d(position) times
+/// the map from the junction's flow to that position's rate.
+void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
+                bool towards_sum, bool translational) {
+  if (f.ground) return;
+  const std::string& b = f.body;
+  std::vector<std::pair<std::string, std::string>> parts;  // (MTF name, body junction)
+  if (translational) {
+    element(B, "MTF", prefix + "t", B.call("jacobian", {rows_vec, B.name(b + ".r.q")}));
+    parts.push_back({prefix + "t", b + ".v"});
+  }
+  if (!f.particle) {
+    element(B, "MTF", prefix + "r",
+            B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
+    parts.push_back({prefix + "r", b + ".w"});
+  }
+  if (bodies_.at(b).beam) {  // the joint's point moves with the beam's deflection
+    element(B, "MTF", prefix + "e", B.call("jacobian", {rows_vec, B.name(b + ".eta.q")}));
+    parts.push_back({prefix + "e", b + ".etadot"});
+  }
+  for (const auto& [mtf, junc] : parts) {
+    if (towards_sum) {
+      bond(B, junc, mtf + ".p1");
+      bond(B, mtf + ".p2", sum);
+    } else {
+      bond(B, sum, mtf + ".p2");
+      bond(B, mtf + ".p1", junc);
+    }
+  }
+}
+
+void Expander::emit_joint(Joint& j) {
+  const AstJoint& d = *j.decl;
+  const std::string jn = d.name;
+  Build B(d.loc);
+  joint_params(B, j);
+  if (d.type == "screw") param(B, jn + ".pitch", j.attrs.at("pitch")->value);
+  if (d.type == "distance") param(B, jn + ".length", j.attrs.at("length")->value);
+  Frame A = frame(B, j, j.a, "a");
+  Frame Bf = frame(B, j, j.b, "b");
+  frames_[jn] = {A, Bf};
+  if (j.strategy == Strategy::Coordinates) {
+    emit_coordinate_joint(B, j);
+    return;
+  }
+  std::vector<E> g = rows(B, j, A, Bf);
+  int k = static_cast<int>(g.size());
+  E gvec = B.list(g);
+  // constraint fragment: body junctions -> MTFs -> 0-junction -> CN
+  junction(B, '0', jn + ".c", k, {}, {jn + ".cn"});
+  rates_into(B, jn + ".ca", gvec, A, jn + ".c", true, true);
+  rates_into(B, jn + ".cb", gvec, Bf, jn + ".c", true, true);
+  std::vector<AstAttr> cn = {kv("g", gvec, d.loc)};
+  if (j.strategy == Strategy::Penalty) {
+    // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
+    std::vector<E> masses;
+    for (const Frame* f : {&A, &Bf})
+      if (!f->ground) masses.push_back(B.name(f->body + ".mass"));
+    E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
+    param(B, jn + ".stiffness", attr_or(j, "stiffness", B.op('*', m, B.num(1e6))));
+    param(B, jn + ".damping", attr_or(j, "damping", B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
+    cn.push_back(kv("stiffness", B.name(jn + ".stiffness"), d.loc));
+    cn.push_back(kv("damping", B.name(jn + ".damping"), d.loc));
+  }
+  element(B, "CN", jn + ".cn", nullptr, cn);
+  if (j.attrs.count("motion")) {
+    // the prescribed motion's explicit time dependence enters the rate as a flow source
+    element(B, "Sf", jn + ".motion", B.call("partial_t", {gvec}));
+    bond(B, jn + ".motion", jn + ".c");
+  }
+  // drive port: a 1-junction whose flow is the joint coordinate's rate
+  std::optional<E> coordinate = joint_coordinate(B, j, A, Bf);
+  if (coordinate) {
+    coordinates_[jn] = *coordinate;
+    bool translational = d.type == "prismatic";
+    junction(B, '1', jn + ".drive", 1, {}, {jn + ".dsum"});
+    junction(B, '0', jn + ".dsum", 1, {}, {});
+    E cvec = B.list({*coordinate});
+    rates_into(B, jn + ".da", cvec, A, jn + ".dsum", false, translational);
+    rates_into(B, jn + ".db", cvec, Bf, jn + ".dsum", false, translational);
+    for (const char* key : {"torque", "force"}) {
+      if (!j.attrs.count(key)) continue;
+      element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
+      applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
+      bond(B, jn + ".applied", jn + ".drive");
+    }
+  }
+}
+
+std::optional<E> Expander::joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
+  const std::string& t = j.decl->type;
+  if (t == "prismatic") return B.dot(A.Z, B.op('-', Bf.p, A.p));
+  if (has_rotation_coordinate(t)) return B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
+  return std::nullopt;
+}
+
+}  // namespace mbgc::multibody::detail

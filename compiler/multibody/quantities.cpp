@@ -1,0 +1,156 @@
+// multibody/quantities.cpp — quantities users may name.
+#include "multibody/expander.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <ranges>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+void Expander::define_quantities() {
+  for (const std::string& n : body_order_) {
+    const Body& body = bodies_.at(n);
+    Build B(body.decl->loc);
+    if (body.beam) {
+      beam_quantities(B, body);
+      continue;
+    }
+    E r = position(B, n), v = B.name(n + ".v.f");
+    quantity_[n + ".position"] = r;
+    quantity_[n + ".velocity"] = v;
+    quantity_[n + ".momentum"] = B.name(n + ".m.p");
+    E ke = B.op('*', B.num(0.5), B.dot(v, B.name(n + ".m.p")));
+    if (!body.particle) {
+      E q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
+      quantity_[n + ".quaternion"] = q;
+      quantity_[n + ".rotation"] = R;
+      quantity_[n + ".bryant"] = B.call("bryant", {q});
+      quantity_[n + ".omega"] = w;
+      quantity_[n + ".omega_world"] = B.op('*', R, w);
+      quantity_[n + ".angular_momentum"] = B.op('*', R, B.name(n + ".J.p"));
+      ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.name(n + ".J.p"))));
+      for (const auto& [p, x] : body.points) {
+        E local = B.op('-', B.name(n + "." + p), B.name(n + ".com"));
+        quantity_[n + "." + p + ".position"] = B.op('+', r, B.op('*', R, local));
+        quantity_[n + "." + p + ".velocity"] = B.op('+', v, B.op('*', R, B.call("cross", {w, local})));
+      }
+    }
+    quantity_[n + ".kinetic_energy"] = ke;
+    quantity_[n + ".potential_energy"] =
+        gravity_ ? B.neg(B.op('*', B.name(n + ".mass"), B.dot(B.name("gravity"), r))) : B.num(0);
+  }
+  for (const Joint& j : joints_) {
+    const std::string jn = j.decl->name;
+    Build B(j.decl->loc);
+    const auto& [A, Bf] = frames_.at(jn);
+    const Frame& body_side = Bf.ground ? A : Bf;
+    quantity_[jn + ".violation"] = B.list(rows(B, j, A, Bf));
+    if (auto cv = coordinate_values_.find(jn); cv != coordinate_values_.end()) {
+      // joint coordinates: the reaction is the effort on the bonds into the
+      // child's junctions (force world, torque body frame); on b, by Newton's third law
+      const std::string child = j.a_is_parent ? j.b.body : j.a.body;
+      E sign = B.num(j.a_is_parent ? 1 : -1);
+      const std::string& t = j.decl->type;
+      quantity_[jn + ".force"] = B.op('*', sign, B.name(jn + ".reaction_f.e"));
+      if (!bodies_.at(child).particle)
+        quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
+      if (t == "distance") quantity_[jn + ".displacement"] = B.name(jn + ".length");
+      if (has_rotation_coordinate(t)) {
+        quantity_[jn + ".angle"] = cv->second.angle;
+        quantity_[jn + ".rate"] = cv->second.rate;
+      }
+      if (has_axial_coordinate(t)) quantity_[jn + ".displacement"] = cv->second.displacement;
+      continue;
+    }
+    // reaction on the second body (on the first, negated, if the second is ground)
+    std::string side = Bf.ground ? "ca" : "cb";
+    E force = Bf.ground ? B.name(jn + "." + side + "t.e1") : B.neg(B.name(jn + "." + side + "t.e1"));
+    if (body_side.particle) {
+      quantity_[jn + ".force"] = force;
+    } else {
+      E torque_body = Bf.ground ? B.name(jn + "." + side + "r.e1") : B.neg(B.name(jn + "." + side + "r.e1"));
+      E lever = B.op('*', body_side.R, body_side.local);
+      quantity_[jn + ".force"] = force;
+      quantity_[jn + ".torque"] = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
+    }
+    quantity_[jn + ".violation"] = B.list(rows(B, j, A, Bf));
+    const std::string& t = j.decl->type;
+    E wrel = B.op('-', Bf.ground || Bf.particle ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.name(Bf.body + ".w.f")),
+                  A.ground || A.particle ? B.vec(0, 0, 0) : B.op('*', A.R, B.name(A.body + ".w.f")));
+    if (has_rotation_coordinate(t)) {
+      quantity_[jn + ".angle"] = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
+      quantity_[jn + ".rate"] = B.dot(A.Z, wrel);
+    }
+    if (has_axial_coordinate(t) || t == "distance") {
+      E dvec = B.op('-', Bf.p, A.p);
+      quantity_[jn + ".displacement"] = t == "distance" ? B.call("norm", {dvec}) : B.dot(A.Z, dvec);
+    }
+  }
+}
+
+/// `bob.positon`: a name under a body or joint that is none of its quantities,
+/// points or generated parts is a typo; say what the body or joint offers.
+void Expander::check_known(const AstExpr& e) {
+  std::size_t dot = e.name.find('.');
+  if (dot == std::string::npos) return;
+  const std::string owner = e.name.substr(0, dot);
+  const bool is_body = owner != "ground" && bodies_.count(owner);
+  const bool is_joint = frames_.count(owner) > 0;
+  if (!is_body && !is_joint) return;
+  if (generated_names_.count(e.name)) return;
+  if (std::size_t last = e.name.rfind('.'); last != dot && generated_names_.count(e.name.substr(0, last))) return;
+  std::vector<std::string> offered;
+  for (const auto& [q, x] : quantity_)
+    if (q.compare(0, owner.size() + 1, owner + ".") == 0) offered.push_back(q.substr(owner.size() + 1));
+  if (is_body)
+    for (const auto& [p, x] : bodies_.at(owner).points) offered.push_back(p);
+  std::string rest = e.name.substr(dot + 1);
+  std::string near = closest_name(rest, offered);
+  diags_.error(e.loc, fmt::format("{} `{}` has no quantity `{}`", is_body ? "body" : "joint", owner, rest),
+               near.empty() ? fmt::format("`{}` offers {}", owner, fmt::join(offered, ", "))
+                            : fmt::format("did you mean `{}.{}`?", owner, near));
+}
+
+E Expander::rewrite_expr(const E& e) {
+  if (!e) return e;
+  if (e->kind == AstExpr::Kind::Name) {
+    auto it = quantity_.find(e->name);
+    if (it != quantity_.end()) return it->second;
+    check_known(*e);
+    return e;
+  }
+  bool changed = false;
+  std::vector<E> args;
+  for (const E& a : e->args) {
+    args.push_back(rewrite_expr(a));
+    changed |= args.back() != a;
+  }
+  if (!changed) return e;
+  auto copy = std::make_shared<AstExpr>(*e);
+  copy->args = std::move(args);
+  return copy;
+}
+
+AstStmt Expander::rewrite_user(const AstStmt& s) {
+  AstStmt out = s;
+  std::visit(
+      [&](auto& st) {
+        using T = std::decay_t<decltype(st)>;
+        if constexpr (std::is_same_v<T, AstSignal> || std::is_same_v<T, AstOutput>) {
+          st.value = rewrite_expr(st.value);
+        } else if constexpr (std::is_same_v<T, AstElement>) {
+          st.value = rewrite_expr(st.value);
+          for (AstAttr& a : st.attrs) a.value = rewrite_expr(a.value);
+        }
+      },
+      out);
+  return out;
+}
+
+}  // namespace mbgc::multibody::detail

@@ -1,0 +1,213 @@
+// multibody/tree.cpp — the spanning tree and initial conditions along it.
+#include "multibody/expander.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <ranges>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+// ---- 4. initial conditions along a spanning tree from ground ----------------------------
+/// A spanning tree from ground, breadth first: each body is placed by the
+/// first joint that reaches it; the other joints close loops.
+void Expander::find_tree() {
+  std::deque<std::string> queue{"ground"};
+  while (!queue.empty()) {
+    std::string from = queue.front();
+    queue.pop_front();
+    for (Joint& j : joints_) {
+      if (j.tree) continue;
+      bool forward = j.a.body == from, backward = j.b.body == from;
+      if (!forward && !backward) continue;
+      const std::string& child = forward ? j.b.body : j.a.body;
+      if (bodies_.at(child).placed) continue;  // closes a loop: the runtime assembles it
+      j.tree = true;
+      j.a_is_parent = forward;
+      Body& c = bodies_.at(child);
+      c.placed = true;
+      c.placed_by = j.decl->name;
+      c.by_coordinates = j.strategy == Strategy::Coordinates;
+      tree_order_.push_back(&j);
+      queue.push_back(child);
+    }
+  }
+}
+
+/// The tree joints from `body` up to ground.
+std::vector<std::string> Expander::path_to_ground(std::string body) const {
+  std::vector<std::string> path;
+  while (body != "ground" && bodies_.at(body).placed) {
+    const std::string& jn = bodies_.at(body).placed_by;
+    path.push_back(jn);
+    for (const Joint& j : joints_)
+      if (j.decl->name == jn) body = j.a_is_parent ? j.a.body : j.b.body;
+  }
+  return path;
+}
+
+/// Joint coordinates need a tree without particles turned by joints, and constraint rows
+/// (a CN) need the position states that coordinate-driven bodies lack.
+void Expander::check_coordinates() {
+  for (const Joint& j : joints_) {
+    const AstJoint& d = *j.decl;
+    if (j.strategy == Strategy::Coordinates && !j.tree) {
+      std::vector<std::string> pa = path_to_ground(j.a.body), pb = path_to_ground(j.b.body);
+      // the loop: both paths without their common part near ground
+      while (!pa.empty() && !pb.empty() && pa.back() == pb.back()) pa.pop_back(), pb.pop_back();
+      std::vector<std::string> loop(pa.begin(), pa.end());
+      loop.insert(loop.end(), pb.rbegin(), pb.rend());
+      diags_.error(d.loc, fmt::format("joint `{}` closes a kinematic loop, so its motion cannot be given by joint coordinates", d.name),
+                   fmt::format("with constraints = coordinates the tree joints ({}) already set the flows of `{}` and `{}`; "
+                               "`{}` would impose a second, dependent flow on those junctions, a causal conflict no "
+                               "storage element can take. A closed loop needs constraint rows: write constraints = "
+                               "lagrange or penalty",
+                               fmt::join(loop, ", "), j.a.body, j.b.body, d.name));
+      continue;
+    }
+    if (j.strategy == Strategy::Coordinates) {
+      const Side* beam = bodies_.at(j.a.body).beam ? &j.a : bodies_.at(j.b.body).beam ? &j.b : nullptr;
+      if (beam) {
+        diags_.error(d.loc, fmt::format("joint `{}` joins the flexible body `{}` by joint coordinates, which is not implemented yet", d.name, beam->body),
+                     "a beam's inertia field couples its frame and modal velocities; give this joint constraint rows: "
+                     "constraint = lagrange or penalty (see README known limits)");
+        continue;
+      }
+    }
+    if (j.strategy == Strategy::Coordinates && d.type != "distance")
+      for (const Side* s : {&j.a, &j.b})
+        if (bodies_.at(s->body).particle) {
+          diags_.error(d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
+                       fmt::format("a particle has no angular-velocity junction for the joint's rotation rates to "
+                                   "drive, so they would carry no inertia: give `{}` an inertia, or write "
+                                   "constraints = lagrange or penalty for this model",
+                                   s->body));
+          break;
+        }
+    if (j.strategy != Strategy::Coordinates)
+      for (const Side* s : {&j.a, &j.b})
+        if (bodies_.at(s->body).by_coordinates) {
+          diags_.error(d.loc, fmt::format("joint `{}` uses constraint rows, but `{}` moves by joint coordinates", d.name, s->body),
+                       fmt::format("a constraintor CN acts through the rates of a body's position states, and `{}` has "
+                                   "none (its pose is a function of joint `{}`'s coordinates): use one strategy for the "
+                                   "whole model (constraints = lagrange, penalty or coordinates)",
+                                   s->body, bodies_.at(s->body).placed_by));
+          break;
+        }
+  }
+}
+
+void Expander::place_bodies() {
+  // A body moved by joint coordinates has its pose as signals of them
+  // (emit_coordinate_joint): no initial-pose parameters to compute.
+  for (const Joint* j : tree_order_)
+    if (j->strategy != Strategy::Coordinates) place(*j, j->a_is_parent);
+  for (const std::string& n : body_order_) {
+    Body& body = bodies_.at(n);
+    const AstBody& d = *body.decl;
+    Build B(d.loc);
+    if (body.placed) {
+      for (const char* key : {"r0", "quat0", "v0", "w0"})
+        for (const AstAttr& a : d.attrs)
+          if (a.key == key)
+            diags_.error(a.loc, fmt::format("body `{}` is placed by joint `{}`, so `{}` cannot be given", n, body.placed_by, key),
+                         placed_hint(body.placed_by));
+      continue;
+    }
+    E r0 = attr(d, "r0"), v0 = attr(d, "v0");
+    param(B, n + ".r0", r0 ? r0 : B.vec(0, 0, 0));
+    param(B, n + ".v0", v0 ? v0 : B.vec(0, 0, 0));
+    if (body.particle) continue;
+    E q0 = attr(d, "quat0"), w0 = attr(d, "w0");
+    param(B, n + ".q0", q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    param(B, n + ".w0", w0 ? w0 : B.vec(0, 0, 0));
+  }
+}
+
+/// How to set the initial pose of a body that joint `jn` places.
+std::string Expander::placed_hint(const std::string& jn) const {
+  const std::string* type = nullptr;
+  for (const Joint& j : joints_)
+    if (j.decl->name == jn) type = &j.decl->type;
+  std::string coords;
+  if (type) {
+    if (*type == "revolute" || *type == "screw") coords = "q0 (angle) and rate0";
+    else if (*type == "prismatic") coords = "q0 (displacement) and rate0";
+    else if (*type == "cylindrical") coords = "q0, rate0 (rotation) and d0, ddot0 (sliding)";
+    else if (*type == "spherical") coords = "rot0 (relative rotation)";
+    else if (*type == "distance") coords = "axis (the direction of the rod from the first point)";
+  }
+  std::string start = fmt::format("the initial pose and velocity follow from the parent body along joint `{}`", jn);
+  if (coords.empty()) return start + "; remove the setting, or join the body by another joint";
+  return fmt::format("{}: give the joint's {} instead", start, coords);
+}
+
+Pose Expander::pose(const Build& B, const std::string& body) {
+  const Body& b = bodies_.at(body);
+  if (b.ground) return {B.list({B.num(1), B.num(0), B.num(0), B.num(0)}), B.call("eye", {B.num(3)}), B.vec(0, 0, 0), B.vec(0, 0, 0), B.vec(0, 0, 0)};
+  E q = b.particle ? B.list({B.num(1), B.num(0), B.num(0), B.num(0)}) : B.name(body + ".q0");
+  E w = b.particle ? B.vec(0, 0, 0) : B.name(body + ".w0");
+  return {q, B.call("rotq", {q}), B.name(body + ".r0"), B.name(body + ".v0"), w};
+}
+
+/// Initial pose of the child of a tree joint from its parent and the joint coordinates.
+void Expander::place(const Joint& j, bool a_is_parent) {
+  const std::string jn = j.decl->name;
+  const std::string& t = j.decl->type;
+  Build B(j.decl->loc);
+  E zero = B.num(0);
+  E angle = has_rotation_coordinate(t) ? attr_or(j, "q0", zero) : zero;
+  E angle_rate = has_rotation_coordinate(t) ? attr_or(j, "rate0", zero) : zero;
+  E axial = zero, axial_rate = zero;
+  if (t == "prismatic") axial = attr_or(j, "q0", zero), axial_rate = attr_or(j, "rate0", zero);
+  if (t == "cylindrical") axial = attr_or(j, "d0", zero), axial_rate = attr_or(j, "ddot0", zero);
+  if (t == "distance") axial = B.name(jn + ".length");  // the rod starts along the joint axis
+  if (t == "screw") {
+    axial = B.op('*', B.name(jn + ".pitch"), angle);
+    axial_rate = B.op('*', B.name(jn + ".pitch"), angle_rate);
+  }
+  E qrel = t == "spherical" ? attr_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}))
+                            : B.call("quat_axis_angle", {B.vec(0, 0, 1), angle});
+  E axis_a = B.name(jn + ".axis_a");
+  E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
+  E pb = B.name(jn + ".pb");
+  E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
+  const std::string& child = a_is_parent ? j.b.body : j.a.body;
+  const std::string& parent = a_is_parent ? j.a.body : j.b.body;
+  const Body& cb = bodies_.at(child);
+  Pose P = pose(B, parent);
+  auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
+  auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
+  if (!cb.particle) {
+    E q = a_is_parent ? qmul(qmul(qmul(P.q, fa), qrel), conj(fb)) : qmul(qmul(qmul(P.q, fb), conj(qrel)), conj(fa));
+    param(B, child + ".q0", q);
+  }
+  Pose C = pose(B, child);
+  auto cross = [&](E x, E y) { return B.call("cross", {std::move(x), std::move(y)}); };
+  auto T = [&](E m) { return B.call("transpose", {std::move(m)}); };
+  E rel_w = B.op('*', axis_a, angle_rate);   // in A's frame
+  E rel_v = B.op('*', axis_a, axial_rate);   // in A's frame
+  // Ground points are absolute: their "local" coordinates already are world positions.
+  auto world_point = [&](const Pose& X, E local, bool ground) { return ground ? local : B.op('+', X.r, B.op('*', X.R, local)); };
+  bool parent_ground = bodies_.at(parent).ground;
+  if (a_is_parent) {
+    E pa_world = world_point(P, pa, parent_ground);
+    param(B, child + ".r0", B.op('-', pa_world, B.op('*', C.R, pb)));
+    if (!cb.particle) param(B, child + ".w0", B.op('*', B.op('*', T(C.R), P.R), B.op('+', P.w, rel_w)));
+    E v = B.op('+', B.op('+', P.v, B.op('*', P.R, cross(P.w, pa))), B.op('*', P.R, rel_v));
+    param(B, child + ".v0", B.op('-', v, B.op('*', C.R, cross(C.w, pb))));
+  } else {
+    E pb_world = world_point(P, pb, parent_ground);
+    param(B, child + ".r0", B.op('-', pb_world, B.op('*', C.R, pa)));
+    if (!cb.particle) param(B, child + ".w0", B.op('-', B.op('*', B.op('*', T(C.R), P.R), P.w), rel_w));
+    E v = B.op('+', P.v, B.op('*', P.R, cross(P.w, pb)));
+    param(B, child + ".v0", B.op('-', B.op('-', v, B.op('*', C.R, cross(C.w, pa))), B.op('*', C.R, rel_v)));
+  }
+}
+
+}  // namespace mbgc::multibody::detail
