@@ -299,7 +299,7 @@ void Expander::add_force(const AstJoint& f) {
 }
 
 /// Settings whose constant value would make the joint degenerate.
-void Expander::check_joint_constant(const AstJoint& j, const AstAttr& at) {
+void Expander::check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at) {
   if (at.key == "axis" || at.key == "axis_a" || at.key == "axis_b") {
     if (at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
     for (const E& x : at.value->args) {
@@ -310,21 +310,13 @@ void Expander::check_joint_constant(const AstJoint& j, const AstAttr& at) {
                  "an axis is a direction (it is normalised): give a nonzero vector, e.g. axis = [0, 0, 1]");
     return;
   }
-  auto v = constant_of(*at.value);
-  if (!v) return;
-  if (at.key == "length" && !(*v > 0))
-    diags_.error(at.value->loc, fmt::format("the length of distance joint `{}` is {}", j.name, *v),
-                 "a distance joint keeps two points `length` apart and must be positive; points that coincide are a "
-                 "spherical joint: write joint " + j.name + " spherical(...)");
-  if (at.key == "pitch" && *v == 0)
-    diags_.error(at.value->loc, fmt::format("the pitch of screw joint `{}` is 0", j.name),
-                 "a screw advances `pitch` metres per radian; with no advance it is a revolute joint: write joint " +
-                     j.name + " revolute(...)");
+  if (auto v = constant_of(*at.value)) kind.check_constant(j, at, *v, diags_);
 }
 
 void Expander::add_joint(const AstJoint& j) {
-  if (!kJointTypes.count(j.type)) {
-    std::vector<std::string> names(kJointTypes.begin(), kJointTypes.end());
+  const JointKind* kind = find_joint_kind(j.type);
+  if (!kind) {
+    std::vector<std::string> names = joint_kind_names();
     std::string near = closest_name(j.type, names);
     diags_.error(j.type_loc, fmt::format("unknown joint type `{}`", j.type),
                  near.empty() ? fmt::format("joint types: {}", fmt::join(names, ", ")) : fmt::format("did you mean `{}`?", near));
@@ -343,16 +335,12 @@ void Expander::add_joint(const AstJoint& j) {
   }
   Joint joint;
   joint.decl = &j;
+  joint.kind = kind;
   joint.a = *a;
   joint.b = *b;
   joint.strategy = strategy_;
   std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping"};
-  if (has_rotation_coordinate(j.type)) keys.insert(keys.end(), {"q0", "rate0", "torque", "motion"});
-  if (j.type == "prismatic") keys.insert(keys.end(), {"q0", "rate0", "force", "motion"});
-  if (j.type == "cylindrical") keys.insert(keys.end(), {"d0", "ddot0"});
-  if (j.type == "spherical") keys.push_back("rot0");
-  if (j.type == "screw") keys.push_back("pitch");
-  if (j.type == "distance") keys.push_back("length");
+  for (std::string& key : kind->settings()) keys.push_back(std::move(key));
   for (const AstAttr& at : j.attrs) {
     if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
       std::string near = closest_name(at.key, keys);
@@ -368,7 +356,7 @@ void Expander::add_joint(const AstJoint& j) {
     if (auto want = kJointSettingShapes.find(at.key); want != kJointSettingShapes.end())
       check_shape(*at.value, fmt::format("`{}` of joint `{}`", at.key, j.name), want->second,
                   at.key != "torque" && at.key != "force" && at.key != "motion");
-    check_joint_constant(j, at);
+    check_joint_constant(*kind, j, at);
     joint.attrs[at.key] = &at;
     if (at.key == "constraint") {
       if (auto s = strategy_of(*at.value, "constraint")) joint.strategy = *s;
@@ -382,14 +370,13 @@ void Expander::add_joint(const AstJoint& j) {
                                  "changes that row's multiplier and never the motion: remove it, or remove "
                                  "motion to let the {} drive the joint",
                                  drive, drive));
-  for (const char* required : {"pitch", "length"})
-    if (std::find(keys.begin(), keys.end(), required) != keys.end() && !joint.attrs.count(required))
+  for (const std::string& required : kind->required())
+    if (!joint.attrs.count(required))
       diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required),
                    fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required));
-  bool needs_orientation = j.type != "spherical" && j.type != "distance";
   for (const Side* s : {&joint.a, &joint.b}) {
     const Body& body = bodies_.at(s->body);
-    if (body.particle && needs_orientation)
+    if (body.particle && kind->needs_orientation())
       diags_.error(j.loc, fmt::format("a {} joint needs the orientation of `{}`, which is a particle", j.type, s->body),
                    fmt::format("a particle (a body without inertia) has a translational 1-junction only, no "
                                "angular-velocity junction for the joint's rotational rows to act on: give `{}` an "

@@ -87,11 +87,6 @@ void Expander::signal(const Build& B, const std::string& name, E value) {
   generated_.push_back(AstSignal{name, B.loc(), std::move(value)});
 }
 
-E Expander::attr_or(const Joint& j, const std::string& key, E fallback) const {
-  auto it = j.attrs.find(key);
-  return it == j.attrs.end() ? fallback : it->second->value;
-}
-
 /// A 1-junction with the given elements bonded into / out of it.
 void Expander::junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out) {
   junction(B, '1', name, 1, std::move(in), std::move(out));

@@ -20,17 +20,12 @@
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
 #include "multibody/expand.hpp"
+#include "multibody/joint_kind.hpp"
 #include "multibody/model.hpp"
 
 namespace mbgc::multibody::detail {
 
 using namespace mbgc::ir;  // the multibody layer builds the AST's statements throughout
-
-inline const std::set<std::string> kJointTypes = {"revolute", "spherical", "cylindrical", "prismatic", "screw",
-                                           "planar",   "universal", "fixed",       "distance"};
-
-inline bool has_rotation_coordinate(const std::string& t) { return t == "revolute" || t == "cylindrical" || t == "screw"; }
-inline bool has_axial_coordinate(const std::string& t) { return t == "prismatic" || t == "cylindrical" || t == "screw"; }
 
 /// Rows and columns of a value, when they can be told from the text alone.
 struct Shape {
@@ -107,7 +102,6 @@ class Expander {
   void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
   void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt);
   void signal(const Build& B, const std::string& name, E value);
-  E attr_or(const Joint& j, const std::string& key, E fallback) const;
   void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {});
   void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to);
 
@@ -121,7 +115,7 @@ class Expander {
   void add_points(Body& body, const AstBody& b, const std::string& owner);
   std::optional<Side> side(const AstEndpoint& ep);
   void add_force(const AstJoint& f);
-  void check_joint_constant(const AstJoint& j, const AstAttr& at);
+  void check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at);
   void add_joint(const AstJoint& j);
 
   // ---- shapes and constants known from the text (shapes.cpp)

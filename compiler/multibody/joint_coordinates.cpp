@@ -25,107 +25,63 @@ namespace mbgc::multibody::detail {
 void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const AstJoint& d = *j.decl;
   const std::string jn = d.name;
-  const std::string& t = d.type;
   const bool fwd = j.a_is_parent;
   const std::string& parent = fwd ? j.a.body : j.b.body;
   const std::string& child = fwd ? j.b.body : j.a.body;
   const Body& P = bodies_.at(parent);
-  E zero = B.num(0);
-  const AstAttr* motion = j.attrs.count("motion") ? j.attrs.at("motion") : nullptr;
-  // The relative motion of B's joint frame in A's: a translation d (A's
-  // axes) and a rotation qrel. Each rate junction k adds W_k u_k to the
-  // relative angular velocity and V_k u_k to the rate of d (A's axes).
-  struct Rate { std::string junction; E value, rate, W, V; };
-  std::vector<Rate> rates;
-  rates.reserve(4);  // references returned by rate() stay valid (at most three rate junctions)
-  auto rate = [&](const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) -> Rate& {
-    Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr};
-    if (prescribed) {
-      element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion->value}));
-      junction_(B, junction, {jn + "." + c + "_rate"});
-      k.value = motion->value;
-    } else {
-      element(B, "Sf", jn + "." + c + "_rate", nullptr, {kv("rate0", rate0, d.loc)});
-      element(B, "C", jn + "." + c, nullptr, {kv("e", zero, d.loc), kv("q0", q0, d.loc)});
-      junction_(B, junction, {jn + "." + c + "_rate"}, {jn + "." + c});
-      k.value = B.name(jn + "." + c + ".q");
+  const Body& C = bodies_.at(child);
+  // The relative motion of B's joint frame in A's: a translation disp (A's
+  // axes) and a rotation qrel, from the kind. Each rate junction k adds
+  // W_k u_k to the relative angular velocity and V_k u_k to the rate of disp.
+  class Rates final : public Mobilizer {
+   public:
+    Rates(Expander& x, const Build& b, const Joint& j, bool child_particle) : Mobilizer(b, j, child_particle), x_(x) {}
+    Rate& rate(const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) override {
+      const std::string jn = joint.decl->name;
+      const SourceLoc& at = joint.decl->loc;
+      Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr};
+      if (prescribed) {
+        E motion = joint.attrs.at("motion")->value;
+        x_.element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion}));
+        x_.junction_(B, junction, {jn + "." + c + "_rate"});
+        k.value = motion;
+      } else {
+        x_.element(B, "Sf", jn + "." + c + "_rate", nullptr, {kv("rate0", rate0, at)});
+        x_.element(B, "C", jn + "." + c, nullptr, {kv("e", zero, at), kv("q0", q0, at)});
+        x_.junction_(B, junction, {jn + "." + c + "_rate"}, {jn + "." + c});
+        k.value = B.name(jn + "." + c + ".q");
+      }
+      rates.push_back(k);
+      return rates.back();
     }
-    rates.push_back(k);
-    return rates.back();
+    /// The relative angular velocity in B's joint frame, integrated into the
+    /// relative quaternion as a body's orientation is.
+    void ball() override {
+      const std::string jn = joint.decl->name;
+      const SourceLoc& at = joint.decl->loc;
+      const std::string spin = jn + ".spin";
+      x_.element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", B.vec(0, 0, 0), at)});
+      x_.element(B, "C", jn + ".rot", nullptr,
+                 {kv("e", B.list({zero, zero, zero, zero}), at),
+                  kv("q0", setting_or("rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), at)});
+      x_.element(B, "MTF", jn + ".rotrate", B.call("quat_rate", {B.name(jn + ".rot.q")}));
+      x_.junction(B, '1', spin, 3, {jn + ".spin_rate"}, {jn + ".rotrate.p1"});
+      x_.bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
+      qrel = B.name(jn + ".rot.q");
+      rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr});
+    }
+    std::deque<Rate> rates;  // a deque: references rate() returned stay valid
+
+   private:
+    Expander& x_;
   };
-  E ex = B.vec(1, 0, 0), ey = B.vec(0, 1, 0), ez = B.vec(0, 0, 1);
-  auto qaxis = [&](E axis, E angle) { return B.call("quat_axis_angle", {std::move(axis), std::move(angle)}); };
+  Rates m(*this, B, j, C.particle);
+  j.kind->mobilize(m);
+  const std::deque<Mobilizer::Rate>& rates = m.rates;
+  const E& disp = m.disp;
+  const E& qrel = m.qrel;
   auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
-  E disp = B.vec(0, 0, 0);
-  E qrel = B.list({B.num(1), B.num(0), B.num(0), B.num(0)});
-  E angle = zero, angle_rate = zero, axial = zero, axial_rate = zero;  // J.angle, J.displacement
-  if (t == "revolute" || t == "cylindrical" || t == "screw") {
-    Rate& r = rate(jn + ".drive", "theta", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr);
-    r.W = ez;
-    angle = r.value, angle_rate = r.rate;
-    qrel = qaxis(ez, angle);
-    if (t == "screw") {
-      E h = B.name(jn + ".pitch");
-      r.V = B.op('*', h, ez);
-      axial = B.op('*', h, angle), axial_rate = B.op('*', h, angle_rate);
-      disp = B.op('*', ez, axial);
-    }
-  }
-  if (t == "prismatic" || t == "cylindrical") {
-    bool prismatic = t == "prismatic";
-    Rate& r = prismatic ? rate(jn + ".drive", "s", attr_or(j, "q0", zero), attr_or(j, "rate0", zero), motion != nullptr)
-                        : rate(jn + ".slide", "s", attr_or(j, "d0", zero), attr_or(j, "ddot0", zero), false);
-    r.V = ez;
-    axial = r.value, axial_rate = r.rate;
-    disp = B.op('*', ez, axial);
-  }
-  if (t == "planar") {  // translation in A's x-y plane, rotation about its z
-    Rate& x = rate(jn + ".xdot", "x", zero, zero, false);
-    x.V = ex;
-    Rate& y = rate(jn + ".ydot", "y", zero, zero, false);
-    y.V = ey;
-    Rate& r = rate(jn + ".turn", "theta", zero, zero, false);
-    r.W = ez;
-    disp = B.list({x.value, y.value, zero});
-    qrel = qaxis(ez, r.value);
-  }
-  if (t == "universal") {  // about A's x (the cross's first arm), then about the turned y (B's y)
-    Rate& a = rate(jn + ".alphadot", "alpha", zero, zero, false);
-    a.W = ex;
-    Rate& b = rate(jn + ".betadot", "beta", zero, zero, false);
-    E qa = qaxis(ex, a.value);
-    b.W = B.op('*', B.call("rotq", {qa}), ey);
-    qrel = qmul(qa, qaxis(ey, b.value));
-  }
-  const Body& C = bodies_.at(child);
-  if (t == "distance") {
-    // the rod's direction: two angles as a universal joint's (about A's x,
-    // then the turned y); the rod starts along A's z, the joint axis. B's
-    // point moves by d = L R(alpha, beta) z; its rates are w x d.
-    Rate& a = rate(jn + ".alphadot", "alpha", zero, zero, false);
-    Rate& b = rate(jn + ".betadot", "beta", zero, zero, false);
-    E qa = qaxis(ex, a.value);
-    E arm_b = B.op('*', B.call("rotq", {qa}), ey);
-    disp = B.op('*', B.op('*', B.call("rotq", {qmul(qa, qaxis(ey, b.value))}), ez), B.name(jn + ".length"));
-    a.V = B.call("cross", {ex, disp});
-    b.V = B.call("cross", {arm_b, disp});
-  }
-  if (t == "spherical" || (t == "distance" && !C.particle)) {
-    // three rates: the relative angular velocity in B's joint frame,
-    // integrated into the relative quaternion as a body's orientation is
-    // (behind a distance rod the body turns freely as on a ball joint)
-    const std::string spin = jn + ".spin";
-    element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", B.vec(0, 0, 0), d.loc)});
-    element(B, "C", jn + ".rot", nullptr,
-            {kv("e", B.list({zero, zero, zero, zero}), d.loc),
-             kv("q0", attr_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), d.loc)});
-    element(B, "MTF", jn + ".rotrate", B.call("quat_rate", {B.name(jn + ".rot.q")}));
-    junction(B, '1', spin, 3, {jn + ".spin_rate"}, {jn + ".rotrate.p1"});
-    bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
-    qrel = B.name(jn + ".rot.q");
-    rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr});
-  }
   for (const char* key : {"torque", "force"}) {
     if (!j.attrs.count(key)) continue;
     element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
@@ -152,7 +108,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   E rC = B.op('-', joint_point, B.op('*', RC, fwd ? pb : pa));
   for (int k = 0; k < 3; ++k) signal(B, fmt::format("{}.pose.r{}", child, k + 1), B.at(rC, k + 1));
   // velocities: child omega (body frame) and CoM velocity (world) as sums of MTF flows
-  auto T = [&](E m) { return B.call("transpose", {std::move(m)}); };
+  auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
   auto skew = [&](E x) { return B.call("skew", {std::move(x)}); };
   int fed = 0;
   auto feed = [&](const std::string& from, E modulus, const std::string& sum) {
@@ -168,20 +124,20 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (!C.particle) {
     junction(B, '0', wsum, 3, {}, {});
     if (parent_turns) feed(parent + ".w", RCt_RP, wsum);
-    for (const Rate& r : rates)
+    for (const Mobilizer::Rate& r : rates)
       if (r.W) feed(r.junction, fwd ? B.op('*', B.op('*', RCt_RP, Fa), r.W) : B.neg(B.op('*', Fa, r.W)), wsum);
   }
   junction(B, '0', vsum, 3, {}, {});
   if (!P.ground) feed(parent + ".v", B.call("eye", {B.num(3)}), vsum);
   if (parent_turns) feed(parent + ".w", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
-  for (const Rate& r : rates)
+  for (const Mobilizer::Rate& r : rates)
     if (r.V) feed(r.junction, fwd ? B.op('*', B.op('*', RP, Fa), r.V) : B.neg(B.op('*', B.op('*', RC, Fa), r.V)), vsum);
   if (!C.particle) {
     feed(child + ".w", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
     named_bond(B, jn + ".reaction_t", wsum, child + ".w");
   }
   named_bond(B, jn + ".reaction_f", vsum, child + ".v");
-  coordinate_values_[jn] = {angle, angle_rate, axial, axial_rate};
+  coordinate_values_[jn] = {m.angle, m.angle_rate, m.axial, m.axial_rate};
 }
 
 }  // namespace mbgc::multibody::detail

@@ -68,48 +68,16 @@ void Expander::joint_params(const Build& B, const Joint& j) {
   param(B, jn + ".scale", scale);
 }
 
-/// The constraint rows g (each a scalar AST expression) of a joint.
+/// The constraint rows g (each a scalar AST expression) of a joint: its
+/// kind's, then a prescribed motion's.
 std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
-  const std::string& t = j.decl->type;
-  const std::string jn = j.decl->name;
-  E d = B.op('-', Bf.p, A.p);
-  E scale = B.name(jn + ".scale");
-  auto perp = [&](E u, E v) { return B.op('*', scale, B.dot(u, v)); };
+  const JointFrames f{B, j, A, Bf, B.op('-', Bf.p, A.p), B.name(j.decl->name + ".scale")};
   std::vector<E> r;
-  auto point = [&] { for (int k = 1; k <= 3; ++k) r.push_back(B.at(d, k)); };
-  auto aligned = [&] { r.push_back(perp(A.Z, Bf.X)); r.push_back(perp(A.Z, Bf.Y)); };
-  auto on_axis = [&] { r.push_back(B.dot(A.X, d)); r.push_back(B.dot(A.Y, d)); };
-  if (t == "spherical") point();
-  else if (t == "revolute") { point(); aligned(); }
-  else if (t == "universal") {
-    // The cross's arms are A's x and B's y: perpendicular when the joint
-    // frames coincide (as the tree placement puts them), free to turn about
-    // either arm; the twist about the shafts (the frames' z) is forbidden.
-    point();
-    r.push_back(perp(A.X, Bf.Y));
-  }
-  else if (t == "cylindrical") { on_axis(); aligned(); }
-  else if (t == "prismatic") { on_axis(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
-  else if (t == "screw") {
-    on_axis();
-    aligned();
-    // s = pitch * theta, written without atan2 (no wrap): pitch * sin(theta - s/pitch) = 0
-    E h = B.name(jn + ".pitch");
-    E phase = B.op('/', B.dot(A.Z, d), h);
-    r.push_back(B.op('*', h, B.op('-', B.op('*', B.dot(A.Y, Bf.X), B.call("cos", {phase})),
-                                         B.op('*', B.dot(A.X, Bf.X), B.call("sin", {phase})))));
-  } else if (t == "planar") { r.push_back(B.dot(A.Z, d)); aligned(); }
-  else if (t == "fixed") { point(); aligned(); r.push_back(perp(A.X, Bf.Y)); }
-  else if (t == "distance") {
-    E L = B.name(jn + ".length");
-    r.push_back(B.op('/', B.op('-', B.dot(d, d), B.op('^', L, B.num(2))), B.op('*', B.num(2), L)));
-  }
+  j.kind->rows(f, r);
   if (auto m = j.attrs.find("motion"); m != j.attrs.end()) {
-    E f = m->second->value;
-    if (t == "prismatic") r.push_back(B.op('-', B.dot(A.Z, d), f));
-    else  // scale * sin(theta - f(t)), again without atan2
-      r.push_back(B.op('*', scale, B.op('-', B.op('*', B.dot(A.Y, Bf.X), B.call("cos", {f})),
-                                            B.op('*', B.dot(A.X, Bf.X), B.call("sin", {f})))));
+    E motion = m->second->value;
+    if (j.kind->drives_along_axis()) r.push_back(B.op('-', B.dot(A.Z, f.d), motion));
+    else r.push_back(B.op('*', f.scale, f.turned_by(motion)));  // scale * sin(theta - f(t)), without atan2
   }
   return r;
 }
@@ -151,8 +119,7 @@ void Expander::emit_joint(Joint& j) {
   const std::string jn = d.name;
   Build B(d.loc);
   joint_params(B, j);
-  if (d.type == "screw") param(B, jn + ".pitch", j.attrs.at("pitch")->value);
-  if (d.type == "distance") param(B, jn + ".length", j.attrs.at("length")->value);
+  j.kind->params(j, [&](const std::string& name, E value) { param(B, name, std::move(value)); });
   Frame A = frame(B, j, j.a, "a");
   Frame Bf = frame(B, j, j.b, "b");
   frames_[jn] = {A, Bf};
@@ -174,8 +141,8 @@ void Expander::emit_joint(Joint& j) {
     for (const Frame* f : {&A, &Bf})
       if (!f->ground) masses.push_back(B.name(f->body + ".mass"));
     E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
-    param(B, jn + ".stiffness", attr_or(j, "stiffness", B.op('*', m, B.num(1e6))));
-    param(B, jn + ".damping", attr_or(j, "damping", B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
+    param(B, jn + ".stiffness", setting_or(j, "stiffness", B.op('*', m, B.num(1e6))));
+    param(B, jn + ".damping", setting_or(j, "damping", B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
     cn.push_back(kv("stiffness", B.name(jn + ".stiffness"), d.loc));
     cn.push_back(kv("damping", B.name(jn + ".damping"), d.loc));
   }
@@ -189,7 +156,7 @@ void Expander::emit_joint(Joint& j) {
   std::optional<E> coordinate = joint_coordinate(B, j, A, Bf);
   if (coordinate) {
     coordinates_[jn] = *coordinate;
-    bool translational = d.type == "prismatic";
+    const bool translational = j.kind->drives_along_axis();
     junction(B, '1', jn + ".drive", 1, {}, {jn + ".dsum"});
     junction(B, '0', jn + ".dsum", 1, {}, {});
     E cvec = B.list({*coordinate});
@@ -204,10 +171,10 @@ void Expander::emit_joint(Joint& j) {
   }
 }
 
+/// The drive coordinate measured from the frames: the angle about the axis, or the slide along it.
 std::optional<E> Expander::joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
-  const std::string& t = j.decl->type;
-  if (t == "prismatic") return B.dot(A.Z, B.op('-', Bf.p, A.p));
-  if (has_rotation_coordinate(t)) return B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
+  if (j.kind->drives_along_axis()) return B.dot(A.Z, B.op('-', Bf.p, A.p));
+  if (j.kind->has_angle()) return B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
   return std::nullopt;
 }
 

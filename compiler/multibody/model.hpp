@@ -75,6 +75,7 @@ struct Side {
 
 struct Joint {
   const ir::AstJoint* decl = nullptr;
+  const JointKind* kind = nullptr;  // its type (joint_kind.hpp)
   Side a, b;
   std::map<std::string, const ir::AstAttr*> attrs;
   Strategy strategy = Strategy::Lagrange;
@@ -89,6 +90,12 @@ struct ForceElement {
   Side a, b;
   std::map<std::string, const ir::AstAttr*> attrs;
 };
+
+/// A joint's setting `key`, or `fallback`.
+inline E setting_or(const Joint& j, const std::string& key, E fallback) {
+  auto it = j.attrs.find(key);
+  return it == j.attrs.end() ? fallback : it->second->value;
+}
 
 /// The modal coordinates of a flexible body, split by plane and kind, as expressions.
 struct Eta { std::vector<E> y, z, axial, torsion; };

@@ -56,16 +56,14 @@ void Expander::define_quantities() {
       // child's junctions (force world, torque body frame); on b, by Newton's third law
       const std::string child = j.a_is_parent ? j.b.body : j.a.body;
       E sign = B.num(j.a_is_parent ? 1 : -1);
-      const std::string& t = j.decl->type;
       quantity_[jn + ".force"] = B.op('*', sign, B.name(jn + ".reaction_f.e"));
       if (!bodies_.at(child).particle)
         quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
-      if (t == "distance") quantity_[jn + ".displacement"] = B.name(jn + ".length");
-      if (has_rotation_coordinate(t)) {
+      if (j.kind->has_angle()) {
         quantity_[jn + ".angle"] = cv->second.angle;
         quantity_[jn + ".rate"] = cv->second.rate;
       }
-      if (has_axial_coordinate(t)) quantity_[jn + ".displacement"] = cv->second.displacement;
+      if (j.kind->has_displacement()) quantity_[jn + ".displacement"] = cv->second.displacement;
       continue;
     }
     // reaction on the second body (on the first, negated, if the second is ground)
@@ -79,18 +77,14 @@ void Expander::define_quantities() {
       quantity_[jn + ".force"] = force;
       quantity_[jn + ".torque"] = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
     }
-    quantity_[jn + ".violation"] = B.list(rows(B, j, A, Bf));
-    const std::string& t = j.decl->type;
     E wrel = B.op('-', Bf.ground || Bf.particle ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.name(Bf.body + ".w.f")),
                   A.ground || A.particle ? B.vec(0, 0, 0) : B.op('*', A.R, B.name(A.body + ".w.f")));
-    if (has_rotation_coordinate(t)) {
+    if (j.kind->has_angle()) {
       quantity_[jn + ".angle"] = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
       quantity_[jn + ".rate"] = B.dot(A.Z, wrel);
     }
-    if (has_axial_coordinate(t) || t == "distance") {
-      E dvec = B.op('-', Bf.p, A.p);
-      quantity_[jn + ".displacement"] = t == "distance" ? B.call("norm", {dvec}) : B.dot(A.Z, dvec);
-    }
+    if (j.kind->has_displacement())
+      quantity_[jn + ".displacement"] = j.kind->displacement({B, j, A, Bf, B.op('-', Bf.p, A.p), B.name(jn + ".scale")});
   }
 }
 

@@ -79,7 +79,7 @@ void Expander::check_coordinates() {
         continue;
       }
     }
-    if (j.strategy == Strategy::Coordinates && d.type != "distance")
+    if (j.strategy == Strategy::Coordinates && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).particle) {
           diags_.error(d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
@@ -131,17 +131,9 @@ void Expander::place_bodies() {
 
 /// How to set the initial pose of a body that joint `jn` places.
 std::string Expander::placed_hint(const std::string& jn) const {
-  const std::string* type = nullptr;
-  for (const Joint& j : joints_)
-    if (j.decl->name == jn) type = &j.decl->type;
   std::string coords;
-  if (type) {
-    if (*type == "revolute" || *type == "screw") coords = "q0 (angle) and rate0";
-    else if (*type == "prismatic") coords = "q0 (displacement) and rate0";
-    else if (*type == "cylindrical") coords = "q0, rate0 (rotation) and d0, ddot0 (sliding)";
-    else if (*type == "spherical") coords = "rot0 (relative rotation)";
-    else if (*type == "distance") coords = "axis (the direction of the rod from the first point)";
-  }
+  for (const Joint& j : joints_)
+    if (j.decl->name == jn) coords = j.kind->initial_settings();
   std::string start = fmt::format("the initial pose and velocity follow from the parent body along joint `{}`", jn);
   if (coords.empty()) return start + "; remove the setting, or join the body by another joint";
   return fmt::format("{}: give the joint's {} instead", start, coords);
@@ -158,21 +150,8 @@ Pose Expander::pose(const Build& B, const std::string& body) {
 /// Initial pose of the child of a tree joint from its parent and the joint coordinates.
 void Expander::place(const Joint& j, bool a_is_parent) {
   const std::string jn = j.decl->name;
-  const std::string& t = j.decl->type;
   Build B(j.decl->loc);
-  E zero = B.num(0);
-  E angle = has_rotation_coordinate(t) ? attr_or(j, "q0", zero) : zero;
-  E angle_rate = has_rotation_coordinate(t) ? attr_or(j, "rate0", zero) : zero;
-  E axial = zero, axial_rate = zero;
-  if (t == "prismatic") axial = attr_or(j, "q0", zero), axial_rate = attr_or(j, "rate0", zero);
-  if (t == "cylindrical") axial = attr_or(j, "d0", zero), axial_rate = attr_or(j, "ddot0", zero);
-  if (t == "distance") axial = B.name(jn + ".length");  // the rod starts along the joint axis
-  if (t == "screw") {
-    axial = B.op('*', B.name(jn + ".pitch"), angle);
-    axial_rate = B.op('*', B.name(jn + ".pitch"), angle_rate);
-  }
-  E qrel = t == "spherical" ? attr_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}))
-                            : B.call("quat_axis_angle", {B.vec(0, 0, 1), angle});
+  const auto [angle, angle_rate, axial, axial_rate, qrel] = j.kind->initial(B, j);
   E axis_a = B.name(jn + ".axis_a");
   E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
   E pb = B.name(jn + ".pb");

@@ -1,0 +1,156 @@
+// multibody/joint_kind.hpp — the whole surface of one joint type.
+//
+// A joint kind (revolute, prismatic, spherical, ...; one file each under
+// joints/) says, for the two joint frames F on the first body A and M on the
+// second body B:
+//
+//   settings()       what it takes besides axis, axis_a, axis_b, constraint,
+//                    stiffness and damping; which of them are required;
+//   rows()           its holonomic constraint rows g(X_WF, X_WM) = 0, written
+//                    with the frames' world-frame expressions (thesis §7.2):
+//                    what the `lagrange` and `penalty` strategies enforce;
+//   mobilize()       its relative pose X_FM(q) and velocity directions: per
+//                    joint coordinate a rate u_k with W_k u_k added to M's
+//                    angular velocity in F and V_k u_k to the rate of M's
+//                    origin in F (Drake's H_FM(q) column by column): what the
+//                    `coordinates` strategy builds the tree from;
+//   initial()        the relative motion its settings give at the start
+//                    (q0, rate0, d0, rot0, ...), placing the child body;
+//   has_angle(),     the coordinates users may read (`j.angle`, `j.rate`,
+//   has_axial()      `j.displacement`) and a drive may act on.
+//
+// The strategies (joint_rows.cpp, joint_coordinates.cpp) and the tree
+// (tree.cpp) are written once over this interface. Adding a joint type is a
+// new file under joints/ and one line in joint_kind.cpp's registry.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ir/ast.hpp"
+#include "ir/diagnostics.hpp"
+#include "multibody/build.hpp"
+#include "multibody/model.hpp"
+
+namespace mbgc::multibody::detail {
+
+/// A joint's two frames in world axes, and the row shapes every kind is built from.
+struct JointFrames {
+  const Build& B;
+  const Joint& joint;
+  const Frame& A;   // the first body's joint frame
+  const Frame& Bf;  // the second body's
+  E d;              // Bf.p - A.p: from A's joint point to B's
+  E scale;          // `j.scale`: turns dot products of axes into metres
+
+  std::string name() const { return joint.decl->name; }
+  E param(const std::string& suffix) const { return B.name(name() + "." + suffix); }
+  /// scale * u . v: zero when u and v are perpendicular.
+  E perp(const E& u, const E& v) const;
+  /// The joint points coincide (3 rows).
+  void point(std::vector<E>& r) const;
+  /// B's joint z axis stays along A's (2 rows).
+  void aligned(std::vector<E>& r) const;
+  /// B's joint point stays on A's z axis (2 rows).
+  void on_axis(std::vector<E>& r) const;
+  /// sin(theta - angle) written without atan2 (no wrap), theta the rotation of
+  /// B's x about A's z: (A.Y . B.X) cos(angle) - (A.X . B.X) sin(angle).
+  E turned_by(const E& angle) const;
+};
+
+/// What a kind's mobilize() builds for the `coordinates` strategy. The
+/// strategy supplies rate(): per joint coordinate a 1-junction whose flow is
+/// a free rate source `Sf { rate0 }` (a state) integrated by a zero-effort C
+/// into the coordinate, or, prescribed, the motion's time derivative.
+class Mobilizer {
+ public:
+  struct Rate {
+    std::string junction;  // the 1-junction carrying the rate
+    E value;               // the coordinate (or the prescribed motion f(t))
+    E rate;                // its rate
+    E W, V;                // angular and linear velocity per unit rate, A's joint axes (null: none)
+  };
+  Mobilizer(const Build& b, const Joint& j, bool child_particle);
+  virtual ~Mobilizer() = default;
+
+  /// A scalar coordinate `c` with its rate on 1-junction `junction`, starting
+  /// at q0 with rate rate0; `prescribed`: driven by the joint's motion = f(t).
+  virtual Rate& rate(const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) = 0;
+  /// Three rates: the relative angular velocity in B's joint frame,
+  /// integrated into a relative quaternion (a ball joint); sets qrel.
+  virtual void ball() = 0;
+
+  /// The joint's setting `key`, or `fallback`.
+  E setting_or(const std::string& key, E fallback) const;
+  E param(const std::string& suffix) const { return B.name(joint.decl->name + "." + suffix); }
+  bool prescribed() const;  // the joint has motion = f(t)
+
+  const Build& B;
+  const Joint& joint;
+  const bool child_particle;  // the child body has no orientation
+  E zero, ex, ey, ez;
+  // The relative pose of B's joint frame in A's: the translation disp (A's
+  // axes) and the rotation qrel; and the coordinates users read.
+  E disp, qrel;
+  E angle, angle_rate, axial, axial_rate;
+};
+
+/// The relative motion of a tree joint at the start, from its settings.
+struct InitialMotion {
+  E angle, angle_rate;  // about A's joint z
+  E axial, axial_rate;  // along A's joint z
+  E qrel;               // rotation of B's joint frame in A's
+};
+
+class JointKind {
+ public:
+  virtual ~JointKind() = default;
+  virtual std::string_view name() const = 0;
+  /// Settings besides the common ones, in the order diagnostics list them.
+  virtual std::vector<std::string> settings() const { return {}; }
+  /// Settings without a default.
+  virtual std::vector<std::string> required() const { return {}; }
+  /// A rotation coordinate about the joint axis (`j.angle`, `j.rate`, torque, motion).
+  virtual bool has_angle() const { return false; }
+  /// A translation along the joint axis (`j.displacement`).
+  virtual bool has_axial() const { return false; }
+  /// `j.displacement` exists (the axial coordinate, or a rod's length).
+  virtual bool has_displacement() const { return has_axial(); }
+  /// The drive acts along the axis (a force), not about it (a torque).
+  bool drives_along_axis() const { return has_axial() && !has_angle(); }
+  /// Its rows turn with the bodies' orientations (no particles).
+  virtual bool needs_orientation() const { return true; }
+  /// In joint coordinates it may move a particle (a distance rod).
+  virtual bool moves_particles() const { return false; }
+  /// How to set the child's initial pose through the joint (a diagnostic's hint); empty: no way.
+  virtual std::string initial_settings() const { return {}; }
+
+  /// Reports a constant setting that makes the joint degenerate.
+  virtual void check_constant(const ir::AstJoint& /*joint*/, const ir::AstAttr& /*setting*/, double /*value*/,
+                              ir::Diagnostics& /*diags*/) const {}
+  /// Writes the kind's own parameters (a screw's pitch, a rod's length).
+  virtual void params(const Joint& /*joint*/, const std::function<void(const std::string&, E)>& /*param*/) const {}
+
+  /// The constraint rows g = 0, appended to `rows`.
+  virtual void rows(const JointFrames& f, std::vector<E>& rows) const = 0;
+  /// `j.displacement` measured from the frames (rows strategy).
+  virtual E displacement(const JointFrames& f) const;
+  /// The relative motion in joint coordinates.
+  virtual void mobilize(Mobilizer& m) const = 0;
+  /// The relative motion at the start.
+  virtual InitialMotion initial(const Build& B, const Joint& joint) const;
+};
+
+/// The kind named `name` (nullptr: no such joint type).
+const JointKind* find_joint_kind(std::string_view name);
+/// Every joint type's name, sorted.
+std::vector<std::string> joint_kind_names();
+
+/// The rotation about A's joint z axis by the joint's q0 / rate0 (or its
+/// prescribed motion), on junction `j.drive`: revolute, cylindrical, screw.
+Mobilizer::Rate& turn_about_axis(Mobilizer& m);
+
+}  // namespace mbgc::multibody::detail

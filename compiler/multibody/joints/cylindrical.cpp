@@ -1,0 +1,42 @@
+// joints/cylindrical.cpp — rotation about and sliding along the joint axis: two coordinates.
+#include "multibody/joint_kind.hpp"
+
+namespace mbgc::multibody::detail {
+namespace {
+
+class Cylindrical final : public JointKind {
+ public:
+  std::string_view name() const override { return "cylindrical"; }
+  std::vector<std::string> settings() const override { return {"q0", "rate0", "torque", "motion", "d0", "ddot0"}; }
+  bool has_angle() const override { return true; }
+  bool has_axial() const override { return true; }
+  std::string initial_settings() const override { return "q0, rate0 (rotation) and d0, ddot0 (sliding)"; }
+  /// B's point stays on A's axis and the axes stay aligned: 4 rows.
+  void rows(const JointFrames& f, std::vector<E>& r) const override {
+    f.on_axis(r);
+    f.aligned(r);
+  }
+  /// The angle on `j.drive` (the drive's torque acts on it), the slide on `j.slide`.
+  void mobilize(Mobilizer& m) const override {
+    turn_about_axis(m);
+    Mobilizer::Rate& s = m.rate(m.joint.decl->name + ".slide", "s", m.setting_or("d0", m.zero),
+                                m.setting_or("ddot0", m.zero), false);
+    s.V = m.ez;
+    m.axial = s.value, m.axial_rate = s.rate;
+    m.disp = m.B.op('*', m.ez, m.axial);
+  }
+  InitialMotion initial(const Build& B, const Joint& j) const override {
+    InitialMotion m = JointKind::initial(B, j);
+    m.axial = setting_or(j, "d0", m.axial), m.axial_rate = setting_or(j, "ddot0", m.axial_rate);
+    return m;
+  }
+};
+
+}  // namespace
+
+const JointKind& cylindrical_joint() {
+  static const Cylindrical kind;
+  return kind;
+}
+
+}  // namespace mbgc::multibody::detail

@@ -1,0 +1,40 @@
+// joints/prismatic.cpp — a slider: translation along the joint axis, one coordinate.
+#include "multibody/joint_kind.hpp"
+
+namespace mbgc::multibody::detail {
+namespace {
+
+class Prismatic final : public JointKind {
+ public:
+  std::string_view name() const override { return "prismatic"; }
+  std::vector<std::string> settings() const override { return {"q0", "rate0", "force", "motion"}; }
+  bool has_axial() const override { return true; }
+  std::string initial_settings() const override { return "q0 (displacement) and rate0"; }
+  /// B's point on A's axis, the axes aligned and not turned about it: 5 rows.
+  void rows(const JointFrames& f, std::vector<E>& r) const override {
+    f.on_axis(r);
+    f.aligned(r);
+    r.push_back(f.perp(f.A.X, f.Bf.Y));
+  }
+  void mobilize(Mobilizer& m) const override {
+    Mobilizer::Rate& s = m.rate(m.joint.decl->name + ".drive", "s", m.setting_or("q0", m.zero),
+                                m.setting_or("rate0", m.zero), m.prescribed());
+    s.V = m.ez;
+    m.axial = s.value, m.axial_rate = s.rate;
+    m.disp = m.B.op('*', m.ez, m.axial);
+  }
+  InitialMotion initial(const Build& B, const Joint& j) const override {
+    InitialMotion m = JointKind::initial(B, j);
+    m.axial = setting_or(j, "q0", m.axial), m.axial_rate = setting_or(j, "rate0", m.axial_rate);
+    return m;
+  }
+};
+
+}  // namespace
+
+const JointKind& prismatic_joint() {
+  static const Prismatic kind;
+  return kind;
+}
+
+}  // namespace mbgc::multibody::detail

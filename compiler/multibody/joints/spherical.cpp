@@ -1,0 +1,30 @@
+// joints/spherical.cpp — a ball joint: the points coincide, any relative rotation.
+#include "multibody/joint_kind.hpp"
+
+namespace mbgc::multibody::detail {
+namespace {
+
+class Spherical final : public JointKind {
+ public:
+  std::string_view name() const override { return "spherical"; }
+  std::vector<std::string> settings() const override { return {"rot0"}; }
+  bool needs_orientation() const override { return false; }
+  std::string initial_settings() const override { return "rot0 (relative rotation)"; }
+  void rows(const JointFrames& f, std::vector<E>& r) const override { f.point(r); }
+  void mobilize(Mobilizer& m) const override { m.ball(); }
+  /// The relative rotation rot0 (default: none).
+  InitialMotion initial(const Build& B, const Joint& j) const override {
+    InitialMotion m = JointKind::initial(B, j);
+    m.qrel = setting_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    return m;
+  }
+};
+
+}  // namespace
+
+const JointKind& spherical_joint() {
+  static const Spherical kind;
+  return kind;
+}
+
+}  // namespace mbgc::multibody::detail
