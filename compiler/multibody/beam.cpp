@@ -1,5 +1,6 @@
-// multibody/beam.cpp — beams: modal integrals, M(eta), points and limits.
-#include "multibody/expander.hpp"
+// multibody/beam.cpp — the built-in beam: modal integrals, M(eta), points and limits.
+#include "multibody/beam.hpp"
+#include "multibody/model.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,60 +14,30 @@
 
 namespace mbgc::multibody::detail {
 
-/// eta_k of beam n as an AST expression (1-based component of the modal C's state).
-E Expander::eta_of(const Build& B, const std::string& n, int k) { return B.at(B.name(n + ".eta.q"), k + 1); }
+using namespace mbgc::ir;
 
-/// sum_ij P[i][j] x_i y_j for a parameter matrix P (1-based indexing).
-E Expander::quadratic(const Build& B, const std::string& P, const std::vector<E>& x, const std::vector<E>& y) {
-  E sum = nullptr;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    for (std::size_t j = 0; j < y.size(); ++j) {
-      E term = B.op('*', B.op('*', idx2(B, B.name(P), static_cast<int>(i) + 1, static_cast<int>(j) + 1), x[i]), y[j]);
-      sum = sum ? B.op('+', sum, term) : term;
-    }
-  return sum ? sum : B.num(0);
+namespace {
+/// Saint-Venant torsion constant: the polar moment for circle and tube (exact);
+/// a rectangle a x b, a >= b: a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4))) (Roark, within 0.5 %).
+E torsion_constant(const Build& B, const AstExpr& section, const std::string& n) {
+  if (section.name != "rectangle") return B.name(n + ".Ip");
+  E a = B.call("max", {section.args[0], section.args[1]}), b = B.call("min", {section.args[0], section.args[1]});
+  auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
+  E bracket = B.op('-', B.num(1.0 / 3.0),
+                   B.op('*', B.op('*', B.num(0.21), B.op('/', b, a)), B.op('-', B.num(1), B.op('/', pw(b, 4), B.op('*', B.num(12), pw(a, 4))))));
+  return B.op('*', B.op('*', a, pw(b, 3)), bracket);
+}
+}  // namespace
+
+std::map<std::string, std::array<double, 3>> Beam::points() const {
+  std::map<std::string, std::array<double, 3>> out;
+  for (const auto& [name, x] : point_x) out[name] = {x - origin_m, 0, 0};
+  return out;
 }
 
-/// (P x)_i, or (P^T x)_i, for a parameter matrix P.
-E Expander::row_dot(const Build& B, const std::string& P, int i, const std::vector<E>& x, bool transposed) {
-  E sum = nullptr;
-  for (std::size_t j = 0; j < x.size(); ++j) {
-    int r = transposed ? static_cast<int>(j) + 1 : i + 1, c = transposed ? i + 1 : static_cast<int>(j) + 1;
-    E term = B.op('*', idx2(B, B.name(P), r, c), x[j]);
-    sum = sum ? B.op('+', sum, term) : term;
-  }
-  return sum ? sum : B.num(0);
-}
-
-E Expander::sum_of(const Build& B, const std::vector<E>& terms) {
-  E sum = nullptr;
-  for (const E& t : terms)
-    if (t) sum = sum ? B.op('+', sum, t) : t;
-  return sum ? sum : B.num(0);
-}
-
-E Expander::matrix_param(const Build& B, const flex::Matrix& m) {
-  std::vector<E> rows_;
-  for (const auto& r : m) {
-    std::vector<E> row;
-    for (double x : r) row.push_back(B.num(x));
-    rows_.push_back(B.list(row));
-  }
-  return B.list(rows_);
-}
-
-E Expander::vector_param(const Build& B, const std::vector<double>& v) {
-  std::vector<E> items;
-  for (double x : v) items.push_back(B.num(x));
-  return B.list(items);
-}
-
-Eta Expander::split_eta(const Beam& beam, const std::function<E(int)>& eta) const {
+Eta Beam::split(const std::function<E(int)>& eta) const {
+  const Beam& beam = *this;
   Eta out;
-  if (beam.modal) {  // no planes: every coordinate in y
-    for (int i = 0; i < beam.count(); ++i) out.y.push_back(eta(i));
-    return out;
-  }
   for (int i = 0; i < (beam.y ? beam.y->count() : 0); ++i) out.y.push_back(eta(i));
   for (int i = 0; i < (beam.z ? beam.z->count() : 0); ++i) out.z.push_back(eta(beam.offset_z() + i));
   for (int i = 0; i < (beam.axial ? beam.axial->count() : 0); ++i) out.axial.push_back(eta(beam.offset_axial() + i));
@@ -74,16 +45,9 @@ Eta Expander::split_eta(const Beam& beam, const std::function<E(int)>& eta) cons
   return out;
 }
 
-/// sum_k P[k] x_k for a parameter vector P (0 for no x).
-E Expander::vec_dot(const Build& B, const std::string& P, const std::vector<E>& x) {
-  std::vector<E> terms;
-  for (std::size_t k = 0; k < x.size(); ++k) terms.push_back(B.op('*', B.at(B.name(P), static_cast<int>(k) + 1), x[k]));
-  return sum_of(B, terms);
-}
-
 /// s(eta) = int u dm: the first moment about the frame origin, body axes.
-E Expander::first_moment(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
-  if (beam.modal) return modal_first_moment(B, n, eta.y);
+E Beam::first_moment(const Build& B, const std::string& n, const Eta& eta) const {
+  const Beam& beam = *this;
   E sx = B.op('*', B.name(n + ".mass"), B.op('/', B.name(n + ".length"), B.num(2)));
   if (beam.origin_m != 0) sx = B.op('*', B.name(n + ".mass"), B.op('-', B.op('/', B.name(n + ".length"), B.num(2)), B.num(beam.origin_m)));
   if (beam.tisserand) sx = B.num(0);  // the origin is the mass centre
@@ -99,8 +63,8 @@ E Expander::first_moment(const Build& B, const std::string& n, const Beam& beam,
 }
 
 /// d s / d eta (3 x n): the translational coupling M_V,eta, rows of scalars.
-std::vector<std::vector<E>> Expander::translation_coupling(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
-  if (beam.modal) return modal_translation_coupling(B, n, *beam.modal);
+Rows Beam::translation_coupling(const Build& B, const std::string& n, const Eta& eta) const {
+  const Beam& beam = *this;
   const int ny = static_cast<int>(eta.y.size()), nz = static_cast<int>(eta.z.size());
   std::vector<std::vector<E>> m(3, std::vector<E>(static_cast<std::size_t>(beam.count()), B.num(0)));
   for (int i = 0; i < static_cast<int>(eta.axial.size()) && !beam.mean_axes; ++i)
@@ -116,28 +80,15 @@ std::vector<std::vector<E>> Expander::translation_coupling(const Build& B, const
   return m;
 }
 
-/// The V-omega blocks of M: -skew(s) at (V, omega), skew(s) at (omega, V).
-void Expander::put_first_moment(const Build& B, std::vector<std::vector<E>>& M, E s) {
-  std::vector<E> sc = {B.at(s, 1), B.at(s, 2), B.at(s, 3)};
-  auto put_skew = [&](int r0, int c0, double sign) {  // sign * skew(s) at (r0, c0)
-    auto v = [&](int k) { return sign > 0 ? sc[static_cast<std::size_t>(k)] : B.neg(sc[static_cast<std::size_t>(k)]); };
-    M[r0 + 0][c0 + 1] = B.neg(v(2)), M[r0 + 0][c0 + 2] = v(1);
-    M[r0 + 1][c0 + 0] = v(2), M[r0 + 1][c0 + 2] = B.neg(v(0));
-    M[r0 + 2][c0 + 0] = B.neg(v(1)), M[r0 + 2][c0 + 1] = v(0);
-  };
-  put_skew(0, 3, -1);
-  put_skew(3, 0, +1);
-}
-
 /// The generalised mass matrix M(eta), (6 + n) x (6 + n), as rows of scalars.
-std::vector<std::vector<E>> Expander::mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const {
-  if (beam.modal) return modal_mass_matrix(B, n, *beam.modal, eta.y);
+Rows Beam::mass_matrix(const Build& B, const std::string& n, const Eta& eta) const {
+  const Beam& beam = *this;
   const std::size_t ne = static_cast<std::size_t>(beam.count()), N = 6 + ne, ny = eta.y.size();
   std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
   E zero = B.num(0);
   E m = B.name(n + ".mass");
   for (int k = 0; k < 3; ++k) M[k][k] = m;
-  put_first_moment(B, M, first_moment(B, n, beam, eta));
+  put_first_moment(B, M, first_moment(B, n, eta));
   // omega-omega: J(eta) = J0 + J1(eta) + J2(eta)
   E qy = quadratic(B, n + ".y.mass", eta.y, eta.y), qz = quadratic(B, n + ".z.mass", eta.z, eta.z);
   E qyz = quadratic(B, n + ".yz.mass", eta.y, eta.z);
@@ -154,7 +105,7 @@ std::vector<std::vector<E>> Expander::mass_matrix(const Build& B, const std::str
   M[3][5] = M[5][3] = B.neg(dz);
   M[4][5] = M[5][4] = B.neg(qyz);
   // V-eta and omega-eta couplings, and the modal mass
-  auto tc = translation_coupling(B, n, beam, eta);
+  auto tc = translation_coupling(B, n, eta);
   for (std::size_t r = 0; r < 3; ++r)
     for (std::size_t c = 0; c < ne; ++c) M[r][6 + c] = M[6 + c][r] = tc[r][c];
   for (std::size_t j = 0; j < eta.y.size(); ++j) {
@@ -172,7 +123,7 @@ std::vector<std::vector<E>> Expander::mass_matrix(const Build& B, const std::str
   for (std::size_t i = 0; i < eta.z.size(); ++i)
     for (std::size_t j = 0; j < eta.z.size(); ++j)
       M[6 + ny + i][6 + ny + j] = idx2(B, B.name(n + ".z.mass"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
-  add_stretch_and_twist(B, n, beam, eta, M);
+  add_stretch_and_twist(B, n, eta, M);
   return M;
 }
 
@@ -184,8 +135,8 @@ std::vector<std::vector<E>> Expander::mass_matrix(const Build& B, const std::str
 /// the sections' polar inertia and turns a non-circular section's
 /// principal axes (J_yz). Its second-order inertia terms are left out: a
 /// linearised rotation field gets them wrong.
-void Expander::add_stretch_and_twist(const Build& B, const std::string& n, const Beam& beam, const Eta& eta,
-                           std::vector<std::vector<E>>& M) const {
+void Beam::add_stretch_and_twist(const Build& B, const std::string& n, const Eta& eta, Rows& M) const {
+  const Beam& beam = *this;
   const std::size_t ny = eta.y.size(), nz = eta.z.size();
   const auto oa = static_cast<std::size_t>(6 + beam.offset_axial()), ot = static_cast<std::size_t>(6 + beam.offset_torsion());
   auto plus = [&](E a, E b) { return B.op('+', a, b); };
@@ -219,99 +170,75 @@ void Expander::add_stretch_and_twist(const Build& B, const std::string& n, const
   }
 }
 
-E Expander::rows_to_matrix(const Build& B, const std::vector<std::vector<E>>& m) const {
-  std::vector<E> rows_;
-  for (const auto& r : m) rows_.push_back(B.list(r));
-  return B.list(rows_);
-}
-
-/// Modal damping 2 zeta omega_i m_i = 2 zeta sqrt(K_ii M_ii) per mode (zeta: the body's `damping`, or none).
-void Expander::modal_damping(const Build& B, const std::string& name, E zeta, int count, const std::string& K, const std::string& M) {
-  std::vector<E> c;
-  for (int i = 1; i <= count; ++i)
-    c.push_back(B.op('*', B.op('*', B.num(2), zeta ? zeta : B.num(0)),
-                     B.call("sqrt", {B.op('*', idx2(B, B.name(K), i, i), idx2(B, B.name(M), i, i))})));
-  param(B, name, c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c));
-}
-
 /// Parameters of stretch and twist: the rod modes' integrals times mu (stretch) or the sections' rho Ip (twist).
-void Expander::rod_params(const Build& B, const Body& body) {
-  const AstBody& d = *body.decl;
+void Beam::rod_params(const FieldParams& fp) const {
+  const Build& B = fp.B;
+  const AstBody& d = fp.decl;
   const std::string& n = d.name;
-  const Beam& beam = *body.beam;
+  const Beam& beam = *this;
   E damping = attr(d, "damping"), mu = B.name(n + ".mu"), rho = B.name(n + ".density");
   if (beam.axial) {
     const flex::RodIntegrals I = flex::rod_integrals(*beam.axial);
-    param(B, n + ".a.mean", B.op('*', mu, vector_param(B, I.mean)));
-    param(B, n + ".a.moment", B.op('*', mu, vector_param(B, I.moment)));
-    param(B, n + ".a.mass", B.op('*', mu, matrix_param(B, I.mass)));
-    param(B, n + ".a.stiffness", B.op('*', B.op('*', B.name(n + ".E"), B.name(n + ".area")), matrix_param(B, I.stiffness)));
-    modal_damping(B, n + ".a.damping", damping, beam.axial->count(), n + ".a.stiffness", n + ".a.mass");
-    if (beam.y) param(B, n + ".ay.mass", B.op('*', mu, matrix_param(B, flex::cross_mass(*beam.axial, *beam.y))));
-    if (beam.z) param(B, n + ".az.mass", B.op('*', mu, matrix_param(B, flex::cross_mass(*beam.axial, *beam.z))));
+    fp.param(n + ".a.mean", B.op('*', mu, vector_param(B, I.mean)));
+    fp.param(n + ".a.moment", B.op('*', mu, vector_param(B, I.moment)));
+    fp.param(n + ".a.mass", B.op('*', mu, matrix_param(B, I.mass)));
+    fp.param(n + ".a.stiffness", B.op('*', B.op('*', B.name(n + ".E"), B.name(n + ".area")), matrix_param(B, I.stiffness)));
+    fp.param(n + ".a.damping", modal_damping(B, damping, beam.axial->count(), n + ".a.stiffness", n + ".a.mass"));
+    if (beam.y) fp.param(n + ".ay.mass", B.op('*', mu, matrix_param(B, flex::cross_mass(*beam.axial, *beam.y))));
+    if (beam.z) fp.param(n + ".az.mass", B.op('*', mu, matrix_param(B, flex::cross_mass(*beam.axial, *beam.z))));
   }
   if (beam.torsion) {
     const flex::RodIntegrals I = flex::rod_integrals(*beam.torsion);
-    param(B, n + ".G", attr(d, "G"));
-    param(B, n + ".Ip", B.op('+', B.name(n + ".Iy"), B.name(n + ".Iz")));  // polar moment of the section
-    if (E J = attr(d, "torsion_constant")) param(B, n + ".torsion_constant", J);
-    else param(B, n + ".torsion_constant", torsion_constant(B, *attr(d, "section"), n));
+    fp.param(n + ".G", attr(d, "G"));
+    fp.param(n + ".Ip", B.op('+', B.name(n + ".Iy"), B.name(n + ".Iz")));  // polar moment of the section
+    if (E J = attr(d, "torsion_constant")) fp.param(n + ".torsion_constant", J);
+    else fp.param(n + ".torsion_constant", torsion_constant(B, *attr(d, "section"), n));
     E rhoIp = B.op('*', rho, B.name(n + ".Ip"));
-    param(B, n + ".t.mean", B.op('*', rhoIp, vector_param(B, I.mean)));
-    param(B, n + ".t.mass", B.op('*', rhoIp, matrix_param(B, I.mass)));
+    fp.param(n + ".t.mean", B.op('*', rhoIp, vector_param(B, I.mean)));
+    fp.param(n + ".t.mass", B.op('*', rhoIp, matrix_param(B, I.mass)));
     // a twisted section turns its principal axes: J_yz changes by -rho (Iz - Iy) theta per length
-    param(B, n + ".t.product", B.op('*', B.op('*', rho, B.op('-', B.name(n + ".Iz"), B.name(n + ".Iy"))), vector_param(B, I.mean)));
-    param(B, n + ".t.stiffness", B.op('*', B.op('*', B.name(n + ".G"), B.name(n + ".torsion_constant")), matrix_param(B, I.stiffness)));
-    modal_damping(B, n + ".t.damping", damping, beam.torsion->count(), n + ".t.stiffness", n + ".t.mass");
+    fp.param(n + ".t.product", B.op('*', B.op('*', rho, B.op('-', B.name(n + ".Iz"), B.name(n + ".Iy"))), vector_param(B, I.mean)));
+    fp.param(n + ".t.stiffness", B.op('*', B.op('*', B.name(n + ".G"), B.name(n + ".torsion_constant")), matrix_param(B, I.stiffness)));
+    fp.param(n + ".t.damping", modal_damping(B, damping, beam.torsion->count(), n + ".t.stiffness", n + ".t.mass"));
   }
 }
 
-/// Saint-Venant torsion constant: the polar moment for circle and tube (exact);
-/// a rectangle a x b, a >= b: a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4))) (Roark, within 0.5 %).
-E Expander::torsion_constant(const Build& B, const AstExpr& section, const std::string& n) const {
-  if (section.name != "rectangle") return B.name(n + ".Ip");
-  E a = B.call("max", {section.args[0], section.args[1]}), b = B.call("min", {section.args[0], section.args[1]});
-  auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
-  E bracket = B.op('-', B.num(1.0 / 3.0),
-                   B.op('*', B.op('*', B.num(0.21), B.op('/', b, a)), B.op('-', B.num(1), B.op('/', pw(b, 4), B.op('*', B.num(12), pw(a, 4))))));
-  return B.op('*', B.op('*', a, pw(b, 3)), bracket);
-}
 
 /// Parameters of a beam: section, material and the modal integrals (constants).
-void Expander::beam_params(const Build& B, const Body& body) {
-  const AstBody& d = *body.decl;
+void Beam::params(const FieldParams& fp) const {
+  const Build& B = fp.B;
+  const AstBody& d = fp.decl;
   const std::string& n = d.name;
-  const Beam& beam = *body.beam;
-  if (beam.modal) return modal_params(B, body);
-  param(B, n + ".length", B.num(beam.length_m));
-  param(B, n + ".density", attr(d, "density"));
-  param(B, n + ".E", attr(d, "E"));
+  const Beam& beam = *this;
+  fp.param(n + ".length", B.num(beam.length_m));
+  fp.param(n + ".density", attr(d, "density"));
+  fp.param(n + ".E", attr(d, "E"));
   if (E sec = attr(d, "section")) {
     const std::string& kind = sec->name;
     E a = sec->args[0], b = sec->args.size() > 1 ? sec->args[1] : nullptr;
     auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
     E pi = B.name("pi");
     if (kind == "rectangle") {  // width along y, height along z
-      param(B, n + ".area", B.op('*', a, b));
-      param(B, n + ".Iy", B.op('/', B.op('*', a, pw(b, 3)), B.num(12)));
-      param(B, n + ".Iz", B.op('/', B.op('*', b, pw(a, 3)), B.num(12)));
+      fp.param(n + ".area", B.op('*', a, b));
+      fp.param(n + ".Iy", B.op('/', B.op('*', a, pw(b, 3)), B.num(12)));
+      fp.param(n + ".Iz", B.op('/', B.op('*', b, pw(a, 3)), B.num(12)));
     } else if (kind == "circle") {
-      param(B, n + ".area", B.op('/', B.op('*', pi, pw(a, 2)), B.num(4)));
-      param(B, n + ".Iy", B.op('/', B.op('*', pi, pw(a, 4)), B.num(64)));
-      param(B, n + ".Iz", B.name(n + ".Iy"));
+      fp.param(n + ".area", B.op('/', B.op('*', pi, pw(a, 2)), B.num(4)));
+      fp.param(n + ".Iy", B.op('/', B.op('*', pi, pw(a, 4)), B.num(64)));
+      fp.param(n + ".Iz", B.name(n + ".Iy"));
     } else {  // tube(outer, inner)
-      param(B, n + ".area", B.op('/', B.op('*', pi, B.op('-', pw(a, 2), pw(b, 2))), B.num(4)));
-      param(B, n + ".Iy", B.op('/', B.op('*', pi, B.op('-', pw(a, 4), pw(b, 4))), B.num(64)));
-      param(B, n + ".Iz", B.name(n + ".Iy"));
+      fp.param(n + ".area", B.op('/', B.op('*', pi, B.op('-', pw(a, 2), pw(b, 2))), B.num(4)));
+      fp.param(n + ".Iy", B.op('/', B.op('*', pi, B.op('-', pw(a, 4), pw(b, 4))), B.num(64)));
+      fp.param(n + ".Iz", B.name(n + ".Iy"));
     }
   } else {
-    param(B, n + ".area", attr(d, "area"));
-    param(B, n + ".Iy", attr(d, "Iy"));
-    param(B, n + ".Iz", attr(d, "Iz"));
+    fp.param(n + ".area", attr(d, "area"));
+    fp.param(n + ".Iy", attr(d, "Iy"));
+    fp.param(n + ".Iz", attr(d, "Iz"));
   }
   E rho = B.name(n + ".density"), L = B.name(n + ".length");
-  param(B, n + ".mu", B.op('*', rho, B.name(n + ".area")));  // mass per length, kg/m
-  param(B, n + ".mass", B.op('*', B.name(n + ".mu"), L));
+  fp.param(n + ".mu", B.op('*', rho, B.name(n + ".area")));  // mass per length, kg/m
+  fp.param(n + ".mass", B.op('*', B.name(n + ".mu"), L));
   // about the frame origin, undeformed: the line's x^2 moment plus the sections' own inertia
   E line = B.op('/', B.op('*', B.name(n + ".mu"), B.op('^', L, B.num(3))), B.num(3));
   if (beam.origin_m != 0) {  // int s^2 mu ds over [-c, L - c]
@@ -319,10 +246,10 @@ void Expander::beam_params(const Build& B, const Body& body) {
     line = B.op('*', B.name(n + ".mu"), B.num((hi * hi * hi + c * c * c) / 3));
   }
   E Iy = B.op('*', B.op('*', rho, L), B.name(n + ".Iy")), Iz = B.op('*', B.op('*', rho, L), B.name(n + ".Iz"));
-  param(B, n + ".J0", B.call("diag", {B.op('+', Iy, Iz), B.op('+', line, Iy), B.op('+', line, Iz)}));
+  fp.param(n + ".J0", B.call("diag", {B.op('+', Iy, Iz), B.op('+', line, Iy), B.op('+', line, Iz)}));
   // what the joints' code reads of every body: the reference point is the frame origin
-  param(B, n + ".com", B.vec(0, 0, 0));
-  param(B, n + ".inertia", B.name(n + ".J0"));
+  fp.param(n + ".com", B.vec(0, 0, 0));
+  fp.param(n + ".inertia", B.name(n + ".J0"));
   E damping = attr(d, "damping");
   for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
     if (!*modes) continue;
@@ -335,59 +262,59 @@ void Expander::beam_params(const Build& B, const Body& body) {
       double largest = 0;
       for (double x : I.mean) largest = std::max(largest, std::abs(x) / beam.length_m);
       for (double x : I.moment) largest = std::max(largest, std::abs(x) / (beam.length_m * beam.length_m));
-      diags_.note(d.loc, fmt::format("beam `{}` in mean axes (frame = {}): its free-free modes along body {} are "
+      fp.diags.note(d.loc, fmt::format("beam `{}` in mean axes (frame = {}): its free-free modes along body {} are "
                                      "orthogonal to the rigid motions (int phi dm and int x phi dm are {:.1e} of m L "
                                      "and m L^2), so the compiler leaves the translational coupling `{}.mean` and the "
                                      "rotational coupling `{}.moment` out of the mass matrix",
                                      n, beam.tisserand ? "tisserand" : "buckens", plane, largest, p, p));
       if (beam.tisserand)
-        diags_.note(d.loc, fmt::format("beam `{}` in Tisserand's frame: its origin is the mass centre (x = {} m along "
+        fp.diags.note(d.loc, fmt::format("beam `{}` in Tisserand's frame: its origin is the mass centre (x = {} m along "
                                        "the beam), the foreshortening of bending is measured from its mean so it moves "
                                        "no mass (thesis eq. 5.30), and int phi x phi dm is zero for one bending plane "
                                        "(5.34): the axial-acceleration coupling `{}.load` drops out too, and the frame's "
                                        "translation decouples from rotation and modes (eqs. 5.35-5.38)",
                                        n, beam.origin_m, p));
     } else {
-      param(B, p + ".mean", B.op('*', mu, vector_param(B, I.mean)));
-      param(B, p + ".moment", B.op('*', mu, vector_param(B, I.moment)));
+      fp.param(p + ".mean", B.op('*', mu, vector_param(B, I.mean)));
+      fp.param(p + ".moment", B.op('*', mu, vector_param(B, I.moment)));
     }
-    param(B, p + ".mass", B.op('*', mu, matrix_param(B, I.mass)));
-    param(B, p + ".stiffness", B.op('*', EI, matrix_param(B, I.bending)));
+    fp.param(p + ".mass", B.op('*', mu, matrix_param(B, I.mass)));
+    fp.param(p + ".stiffness", B.op('*', EI, matrix_param(B, I.bending)));
     if (beam.geometric_stiffness) {
-      if (!beam.tisserand) param(B, p + ".load", B.op('*', mu, matrix_param(B, I.load)));
-      param(B, p + ".spin", B.op('*', mu, matrix_param(B, I.spin)));
+      if (!beam.tisserand) fp.param(p + ".load", B.op('*', mu, matrix_param(B, I.load)));
+      fp.param(p + ".spin", B.op('*', mu, matrix_param(B, I.spin)));
     }
-    modal_damping(B, p + ".damping", damping, (*modes)->count(), p + ".stiffness", p + ".mass");
+    fp.param(p + ".damping", modal_damping(B, damping, (*modes)->count(), p + ".stiffness", p + ".mass"));
   }
   if (beam.origin_m != 0 && !beam.tisserand)
-    diags_.note(d.loc, fmt::format("beam `{}` with its frame at the mass centre (frame = centre, x = {} m along the beam): "
+    fp.diags.note(d.loc, fmt::format("beam `{}` with its frame at the mass centre (frame = centre, x = {} m along the beam): "
                                    "its free-free modes are measured from the section there (each mode's rigid motion "
                                    "phi(c) + phi'(c) (x - c) subtracted), so no coupling term drops out of the mass matrix",
                                    n, beam.origin_m));
-  if (beam.y && beam.z) param(B, n + ".yz.mass", B.op('*', B.name(n + ".mu"), matrix_param(B, flex::cross_mass(*beam.y, *beam.z))));
-  rod_params(B, body);
+  if (beam.y && beam.z) fp.param(n + ".yz.mass", B.op('*', B.name(n + ".mu"), matrix_param(B, flex::cross_mass(*beam.y, *beam.z))));
+  rod_params(fp);
   for (const auto& [pt, x] : beam.point_x) {
     for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
       if (!*modes) continue;
       std::vector<double> phi, slope;
       for (int i = 0; i < (*modes)->count(); ++i) phi.push_back((*modes)->shape(i, x)), slope.push_back((*modes)->shape(i, x, 1));
       const std::string p = n + "." + pt + "." + plane;
-      param(B, p + ".shape", vector_param(B, phi));
-      param(B, p + ".slope", vector_param(B, slope));
-      if (beam.geometric_stiffness) param(B, p + ".shortening", matrix_param(B, flex::axial_up_to(**modes, x)));
+      fp.param(p + ".shape", vector_param(B, phi));
+      fp.param(p + ".slope", vector_param(B, slope));
+      if (beam.geometric_stiffness) fp.param(p + ".shortening", matrix_param(B, flex::axial_up_to(**modes, x)));
     }
     for (const auto& [group, modes] : {std::pair{"a", &beam.axial}, std::pair{"t", &beam.torsion}}) {
       if (!*modes) continue;
       std::vector<double> chi;
       for (int i = 0; i < (*modes)->count(); ++i) chi.push_back((*modes)->shape(i, x));
-      param(B, n + "." + pt + "." + group + ".shape", vector_param(B, chi));
+      fp.param(n + "." + pt + "." + group + ".shape", vector_param(B, chi));
     }
   }
 }
 
 /// The body-frame position of a point of a beam, deflected: [x - 1/2 eta^T a(x) eta, w_y, w_z].
-E Expander::beam_point(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const {
-  if (beam.modal) return modal_point(B, n, pt, "shape", beam.modal->points.at(pt).position, eta.y);
+E Beam::point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
+  const Beam& beam = *this;
   E x = B.num(beam.point_x.at(pt) - beam.origin_m);
   std::vector<E> wy, wz;
   for (std::size_t i = 0; i < eta.y.size(); ++i) wy.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.shape"), static_cast<int>(i) + 1), eta.y[i]));
@@ -401,8 +328,7 @@ E Expander::beam_point(const Build& B, const std::string& n, const Beam& beam, c
 }
 
 /// The small rotation of the section at a point (body axes): [0, -w_z', w_y'].
-E Expander::beam_slope(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const {
-  if (beam.modal) return modal_point(B, n, pt, "slope", {0, 0, 0}, eta.y);
+E Beam::slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
   std::vector<E> ty, tz;
   for (std::size_t i = 0; i < eta.y.size(); ++i) ty.push_back(B.op('*', B.at(B.name(n + "." + pt + ".y.slope"), static_cast<int>(i) + 1), eta.y[i]));
   for (std::size_t i = 0; i < eta.z.size(); ++i) tz.push_back(B.op('*', B.at(B.name(n + "." + pt + ".z.slope"), static_cast<int>(i) + 1), eta.z[i]));
@@ -410,18 +336,14 @@ E Expander::beam_slope(const Build& B, const std::string& n, const Beam& beam, c
   return B.list({twist, B.neg(sum_of(B, tz)), sum_of(B, ty)});
 }
 
-Eta Expander::state_eta(const Build& B, const std::string& n, const Beam& beam) const {
-  return split_eta(beam, [&](int k) { return eta_of(B, n, k); });
-}
-
 /// Where a modal coordinate leaves the model's range: the value at which
 /// that mode alone tilts the beam by its slope limit somewhere (the
 /// kinematics keep slopes to second order). A mode growing that far is
 /// almost always an instability: the run stops and says which.
-std::vector<std::pair<double, std::string>> Expander::modal_limits(const std::string& n, const Beam& beam) {
-  if (beam.modal) return modal_file_limits(n, beam);
-  std::vector<std::pair<double, std::string>> limits;
-  add_bending_limits(n, beam, limits);
+Limits Beam::limits(const std::string& n) const {
+  const Beam& beam = *this;
+  Limits limits;
+  add_bending_limits(n, limits);
   // stretch: the linear strain model holds to small strains; twist: to the slope limit, as bending
   for (const auto& [what, modes] : {std::pair{"stretch", &beam.axial}, std::pair{"twist", &beam.torsion}}) {
     if (!*modes) continue;
@@ -442,7 +364,8 @@ std::vector<std::pair<double, std::string>> Expander::modal_limits(const std::st
   return limits;
 }
 
-void Expander::add_bending_limits(const std::string& n, const Beam& beam, std::vector<std::pair<double, std::string>>& limits) {
+void Beam::add_bending_limits(const std::string& n, Limits& limits) const {
+  const Beam& beam = *this;
   for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
     if (!*modes) continue;
     for (int i = 0; i < (*modes)->count(); ++i) {
@@ -458,6 +381,26 @@ void Expander::add_bending_limits(const std::string& n, const Beam& beam, std::v
                        i + 1, n, flex::supports_name((*modes)->supports()), plane, beam.slope_limit_rad)});
     }
   }
+}
+
+/// K and D block-diagonal by group: bending along y and z, stretch, twist.
+void Beam::stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const {
+  const Beam& beam = *this;
+  for (const auto& [plane, modes, off] : {std::tuple{"y", &beam.y, 0}, std::tuple{"z", &beam.z, beam.offset_z()}}) {
+    if (!*modes) continue;
+    for (int i = 0; i < (*modes)->count(); ++i)
+      for (int j = 0; j < (*modes)->count(); ++j) {
+        K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".stiffness"), i + 1, j + 1);
+        D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".damping"), i + 1, j + 1);
+      }
+  }
+  for (const auto& [group, count, off] : {std::tuple{"a", beam.axial ? beam.axial->count() : 0, beam.offset_axial()},
+                                          std::tuple{"t", beam.torsion ? beam.torsion->count() : 0, beam.offset_torsion()}})
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < count; ++j) {
+        K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".stiffness"), i + 1, j + 1);
+        D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".damping"), i + 1, j + 1);
+      }
 }
 
 }  // namespace mbgc::multibody::detail

@@ -245,9 +245,9 @@ std::optional<Side> Expander::side(const AstEndpoint& ep) {
   }
   if (!point.empty() && it->second.points_unknown) return Side{body, point};
   if (!point.empty() && !it->second.points.count(point)) {
-    if (it->second.beam && it->second.beam->modal) {
+    if (it->second.flex && !it->second.flex->point_file().empty()) {
       diags_.error(ep.loc, fmt::format("modal body `{}` has no point `{}`", body, point),
-                   fmt::format("its points are the nodes of {}: {}", it->second.beam->modal->path,
+                   fmt::format("its points are the nodes of {}: {}", it->second.flex->point_file(),
                                fmt::join(std::views::keys(it->second.points), ", ")));
       return std::nullopt;
     }

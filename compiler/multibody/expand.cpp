@@ -35,12 +35,6 @@ AstProgram Expander::run(const AstProgram& in) {
 }
 
 // ---- 2. bodies -------------------------------------------------------------------------
-E Expander::attr(const AstBody& b, const std::string& key) const {
-  for (const AstAttr& a : b.attrs)
-    if (a.key == key) return a.value;
-  return nullptr;
-}
-
 void Expander::param(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
   generated_.push_back(AstParam{name, B.loc(), std::move(value)});

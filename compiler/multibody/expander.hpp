@@ -84,7 +84,7 @@ inline const std::set<std::string> kFlexibleInternalNames = {"eta", "nu", "M", "
 inline const std::set<std::string> kBodyInternalNames = {"mass", "inertia", "com", "r0", "v0", "q0", "w0", "v", "m", "r",
                                                   "weight", "w", "J", "ejs", "qrate", "q"};
 
-using ModalTerms = flex::ModalMassTerms;
+class Beam;
 
 class Expander {
  public:
@@ -96,7 +96,6 @@ class Expander {
 
  private:
   // ---- the pass: run(), and the statements it writes (expand.cpp)
-  E attr(const AstBody& b, const std::string& key) const;
   void param(const Build& B, const std::string& name, E value);
   void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
   void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
@@ -131,7 +130,7 @@ class Expander {
   void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind);
   int mode_count(const AstExpr& v) const;
   void record_setting(std::map<std::string, const AstAttr*>& given, const AstAttr& a, const AstBody& b);
-  void read_slope_limit(Beam& beam, const AstBody& b, const AstAttr& a);
+  void read_slope_limit(double& limit_rad, const AstBody& b, const AstAttr& a);
   void add_modal_body(Body& body, const AstBody& b, const AstExpr& v);
   void check_section(const AstExpr& v);
 
@@ -141,50 +140,13 @@ class Expander {
   E quaternion(const Build& B, const std::string& body) const;
   E rotation(const Build& B, const std::string& body) const;
 
-  // ---- 2b. beams: modal integrals, M(eta), points and limits (beam.cpp)
-  static E eta_of(const Build& B, const std::string& n, int k);
-  static E quadratic(const Build& B, const std::string& P, const std::vector<E>& x, const std::vector<E>& y);
-  static E row_dot(const Build& B, const std::string& P, int i, const std::vector<E>& x, bool transposed = false);
-  static E sum_of(const Build& B, const std::vector<E>& terms);
-  static E matrix_param(const Build& B, const flex::Matrix& m);
-  static E vector_param(const Build& B, const std::vector<double>& v);
-  Eta split_eta(const Beam& beam, const std::function<E(int)>& eta) const;
-  static E vec_dot(const Build& B, const std::string& P, const std::vector<E>& x);
-  E first_moment(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const;
-  std::vector<std::vector<E>> translation_coupling(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const;
-  static void put_first_moment(const Build& B, std::vector<std::vector<E>>& M, E s);
-  std::vector<std::vector<E>> mass_matrix(const Build& B, const std::string& n, const Beam& beam, const Eta& eta) const;
-  void add_stretch_and_twist(const Build& B, const std::string& n, const Beam& beam, const Eta& eta,
-                             std::vector<std::vector<E>>& M) const;
-  E rows_to_matrix(const Build& B, const std::vector<std::vector<E>>& m) const;
-  void modal_damping(const Build& B, const std::string& name, E zeta, int count, const std::string& K, const std::string& M);
-  void rod_params(const Build& B, const Body& body);
-  E torsion_constant(const Build& B, const AstExpr& section, const std::string& n) const;
-  void beam_params(const Build& B, const Body& body);
-  E beam_point(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const;
-  E beam_slope(const Build& B, const std::string& n, const Beam& beam, const std::string& pt, const Eta& eta) const;
-  Eta state_eta(const Build& B, const std::string& n, const Beam& beam) const;
-  static std::vector<std::pair<double, std::string>> modal_limits(const std::string& n, const Beam& beam);
-  static void add_bending_limits(const std::string& n, const Beam& beam, std::vector<std::pair<double, std::string>>& limits);
-
-  // ---- 2c. bodies from modal-data files (modal_body.cpp)
-  static bool all_zero(const flex::Matrix& m);
-  static ModalTerms modal_terms(const flex::ModalData& d);
-  static std::string axes(std::size_t i, std::size_t j);
-  void modal_params(const Build& B, const Body& body);
-  E modal_first_moment(const Build& B, const std::string& n, const std::vector<E>& eta) const;
-  std::vector<std::vector<E>> modal_translation_coupling(const Build& B, const std::string& n, const flex::ModalData& d) const;
-  std::vector<std::vector<E>> modal_mass_matrix(const Build& B, const std::string& n, const flex::ModalData& d,
-                                                const std::vector<E>& eta) const;
-  E modal_point(const Build& B, const std::string& n, const std::string& pt, const char* what, std::array<double, 3> at,
-                const std::vector<E>& eta) const;
-  static std::vector<std::pair<double, std::string>> modal_file_limits(const std::string& n, const Beam& beam);
-
-  // ---- 2d. the floating-frame body both flexible kinds share (flexible_body.cpp)
-  void emit_beam(const Body& body);
-  std::pair<E, E> beam_point_motion(const Build& B, const std::string& n, E local) const;
-  E beam_load(const Build& B, const std::string& n, const std::string& point, E force, E torque);
-  void beam_quantities(const Build& B, const Body& body);
+  // ---- 2b. flexible bodies: the floating-frame fragment every deformation kind shares (flexible_body.cpp;
+  //      the kinds: beam.hpp, modal_body.hpp)
+  Eta state_eta(const Build& B, const std::string& n, const Deformation& field) const;
+  void emit_flexible(const Body& body);
+  std::pair<E, E> flexible_point_motion(const Build& B, const std::string& n, E local) const;
+  E flexible_load(const Build& B, const std::string& n, const std::string& point, E force, E torque);
+  void flexible_quantities(const Build& B, const Body& body);
 
   // ---- 3. joints as constraint rows: lagrange and penalty (joint_rows.cpp)
   Frame frame(const Build& B, const Joint& j, const Side& s, const std::string& tag);
@@ -216,9 +178,6 @@ class Expander {
   void check_known(const AstExpr& e);
   E rewrite_expr(const E& e);
   AstStmt rewrite_user(const AstStmt& s);
-
-  static constexpr const char* kAxes[3] = {"x", "y", "z"};
-  static constexpr double kStrainLimit = 0.01;
 
   ir::SourceManager& sources_;                // modal-data files join it (diagnostics, depfile)
   Diagnostics& diags_;

@@ -1,4 +1,4 @@
-// multibody/flexible_body.cpp — the floating-frame body both flexible kinds share.
+// multibody/flexible_body.cpp — the floating-frame fragment every deformation kind shares (beam.hpp, modal_body.hpp).
 #include "multibody/expander.hpp"
 
 #include <algorithm>
@@ -13,16 +13,21 @@
 
 namespace mbgc::multibody::detail {
 
-void Expander::emit_beam(const Body& body) {
+/// eta of body n's state, split by group.
+Eta Expander::state_eta(const Build& B, const std::string& n, const Deformation& field) const {
+  return field.split([&](int k) { return eta_of(B, n, k); });
+}
+
+void Expander::emit_flexible(const Body& body) {
   const AstBody& d = *body.decl;
   const std::string& n = d.name;
-  const Beam& beam = *body.beam;
+  const Deformation& beam = *body.flex;
   Build B(d.loc);
-  beam_params(B, body);
+  beam.params({B, d, [&](const std::string& name, E value) { param(B, name, std::move(value)); }, diags_});
   for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
   const int ne = beam.count(), N = 6 + ne;
   Eta eta = state_eta(B, n, beam);
-  Eta rest = split_eta(beam, [&](int) { return B.num(0); });
+  Eta rest = beam.split([&](int) { return B.num(0); });
   // the I field and its velocity terms on the common junction nu = [V; omega; eta']
   std::vector<std::string> nu_in;
   if (gravity_) nu_in.push_back(n + ".weight");
@@ -31,24 +36,24 @@ void Expander::emit_beam(const Body& body) {
   junction(B, '1', n + ".nu", N, nu_in, {n + ".M", n + ".ejs", n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
   E R0 = B.call("rotq", {B.name(n + ".q0")});
   E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
-  element(B, "I", n + ".M", rows_to_matrix(B, mass_matrix(B, n, beam, eta)),
-          {kv("p0", B.op('*', rows_to_matrix(B, mass_matrix(B, n, beam, rest)), nu0), d.loc)});
+  element(B, "I", n + ".M", rows_to_matrix(B, beam.mass_matrix(B, n, eta)),
+          {kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc)});
   std::get<AstElement>(generated_.back()).configuration_dependent = true;
   E f = B.name("f"), p = B.name(n + ".M.p");
   auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
   E V = part(f, 1), w = part(f, 4), P = part(p, 1), H = part(p, 4);
   auto cross = [&](E a, E b) { return B.call("cross", {std::move(a), std::move(b)}); };
   // dT/deta at constant nu (Kirchhoff): the kinetic energy's change with the beam's shape
-  E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, mass_matrix(B, n, beam, eta)), f)));
+  E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, eta)), f)));
   E dT = B.call("transpose", {B.call("jacobian", {T, B.name(n + ".eta.q")})});
   element(B, "R", n + ".ejs", nullptr,
           {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
   if (gravity_) {
     // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
     E g = B.op('*', B.call("transpose", {B.call("rotq", {B.name(n + ".q.q")})}), B.name("gravity"));
-    E coupling = rows_to_matrix(B, translation_coupling(B, n, beam, eta));
+    E coupling = rows_to_matrix(B, beam.translation_coupling(B, n, eta));
     element(B, "Se", n + ".weight",
-            B.call("vcat", {B.op('*', B.name(n + ".mass"), g), cross(first_moment(B, n, beam, eta), g),
+            B.call("vcat", {B.op('*', B.name(n + ".mass"), g), cross(beam.first_moment(B, n, eta), g),
                             B.op('*', B.call("transpose", {coupling}), g)}));
   }
   // selectors: V (turned to world axes), omega, eta'
@@ -67,31 +72,12 @@ void Expander::emit_beam(const Body& body) {
   std::vector<std::string> modal_out = {n + ".eta"};
   if (attr(d, "damping")) modal_out.push_back(n + ".damp");
   junction(B, '1', n + ".etadot", ne, {n + ".se.p2"}, modal_out);
-  std::vector<std::vector<E>> K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
-  std::vector<std::vector<E>> D = K;
-  for (int i = 0; i < (beam.modal ? ne : 0); ++i)
-    for (int j = 0; j < ne; ++j) {
-      K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".stiffness"), i + 1, j + 1);
-      D[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".damping"), i + 1, j + 1);
-    }
-  for (const auto& [plane, modes, off] : {std::tuple{"y", &beam.y, 0}, std::tuple{"z", &beam.z, beam.offset_z()}}) {
-    if (!*modes) continue;
-    for (int i = 0; i < (*modes)->count(); ++i)
-      for (int j = 0; j < (*modes)->count(); ++j) {
-        K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".stiffness"), i + 1, j + 1);
-        D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + plane + ".damping"), i + 1, j + 1);
-      }
-  }
-  for (const auto& [group, count, off] : {std::tuple{"a", beam.axial ? beam.axial->count() : 0, beam.offset_axial()},
-                                          std::tuple{"t", beam.torsion ? beam.torsion->count() : 0, beam.offset_torsion()}})
-    for (int i = 0; i < count; ++i)
-      for (int j = 0; j < count; ++j) {
-        K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".stiffness"), i + 1, j + 1);
-        D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".damping"), i + 1, j + 1);
-      }
+  Rows K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
+  Rows D = K;
+  beam.stiffness_and_damping(B, n, K, D);
   element(B, "C", n + ".eta", nullptr,
           {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
-  std::get<AstElement>(generated_.back()).state_limits = modal_limits(n, beam);
+  std::get<AstElement>(generated_.back()).state_limits = beam.limits(n);
   if (attr(d, "damping")) element(B, "R", n + ".damp", rows_to_matrix(B, D));
 }
 
@@ -101,7 +87,7 @@ void Expander::emit_beam(const Body& body) {
 /// angular-velocity one. A spring-damper acts along the line P -> Q.
 /// World position and velocity of a beam's point at `local` (body axes,
 /// deflected): it moves with the frame and, through the modes, on it.
-std::pair<E, E> Expander::beam_point_motion(const Build& B, const std::string& n, E local) const {
+std::pair<E, E> Expander::flexible_point_motion(const Build& B, const std::string& n, E local) const {
   E R = rotation(B, n);
   E rate = B.op('+', B.call("cross", {B.name(n + ".w.f"), local}),
                 B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
@@ -111,10 +97,10 @@ std::pair<E, E> Expander::beam_point_motion(const Build& B, const std::string& n
 /// A force F (and torque T), world axes, at a beam's point as an effort on
 /// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
 /// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
-E Expander::beam_load(const Build& B, const std::string& n, const std::string& point, E force, E torque) {
-  const Beam& beam = *bodies_.at(n).beam;
+E Expander::flexible_load(const Build& B, const std::string& n, const std::string& point, E force, E torque) {
+  const Deformation& beam = *bodies_.at(n).flex;
   Eta eta = state_eta(B, n, beam);
-  E at = point.empty() ? B.vec(0, 0, 0) : beam_point(B, n, beam, point, eta);
+  E at = point.empty() ? B.vec(0, 0, 0) : beam.point(B, n, point, eta);
   E Rt = B.call("transpose", {rotation(B, n)}), F = B.op('*', Rt, force), q = B.name(n + ".eta.q");
   E moment = B.call("cross", {at, F});
   E modal = B.op('*', B.call("transpose", {B.call("jacobian", {at, q})}), F);
@@ -122,16 +108,16 @@ E Expander::beam_load(const Build& B, const std::string& n, const std::string& p
     E T = B.op('*', Rt, torque);
     moment = B.op('+', moment, T);
     if (!point.empty())
-      modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam_slope(B, n, beam, point, eta), q})}), T));
+      modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam.slope(B, n, point, eta), q})}), T));
   }
   return B.call("vcat", {F, moment, modal});
 }
 
 /// A beam's quantities: those of a rigid body, for its frame origin (x = 0),
 /// plus its modal coordinates, elastic energy and the deflection of its points.
-void Expander::beam_quantities(const Build& B, const Body& body) {
+void Expander::flexible_quantities(const Build& B, const Body& body) {
   const std::string& n = body.decl->name;
-  const Beam& beam = *body.beam;
+  const Deformation& beam = *body.flex;
   Eta eta = state_eta(B, n, beam);
   E r = position(B, n), v = B.name(n + ".v.f"), q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
   E p = B.name(n + ".M.p");
@@ -150,14 +136,14 @@ void Expander::beam_quantities(const Build& B, const Body& body) {
   E elastic = B.op('*', B.num(0.5), B.dot(B.name(n + ".eta.q"), B.name(n + ".eta.e")));
   quantity_[n + ".elastic_energy"] = elastic;
   E gravity = gravity_ ? B.neg(B.dot(B.name("gravity"), B.op('+', B.op('*', B.name(n + ".mass"), r),
-                                                               B.op('*', R, first_moment(B, n, beam, eta)))))
+                                                               B.op('*', R, beam.first_moment(B, n, eta)))))
                        : B.num(0);
   quantity_[n + ".potential_energy"] = B.op('+', gravity, elastic);
   for (const auto& [pt, at] : beam.points()) {
-    E local = beam_point(B, n, beam, pt, eta);
-    std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = beam_point_motion(B, n, local);
+    E local = beam.point(B, n, pt, eta);
+    std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = flexible_point_motion(B, n, local);
     quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
-    quantity_[n + "." + pt + ".rotation_vector"] = beam_slope(B, n, beam, pt, eta);            // small, body axes
+    quantity_[n + "." + pt + ".rotation_vector"] = beam.slope(B, n, pt, eta);            // small, body axes
   }
 }
 

@@ -1,6 +1,9 @@
 // multibody/flexible_settings.cpp — settings of flexible bodies: beams and modal-data files.
 #include "multibody/expander.hpp"
 
+#include "multibody/beam.hpp"
+#include "multibody/modal_body.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -261,8 +264,8 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                       "model the thesis compares against");
   }
   check_frame(*beam, b, given.count("frame") ? given.at("frame") : nullptr);
-  if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(*beam, b, *s->second);
-  body.beam = beam;
+  if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(beam->slope_limit_rad, b, *s->second);
+  body.flex = beam;
   add_points(body, b, b.name);
   for (const AstPoint& p : b.points) {
     bool on_axis = false;
@@ -305,13 +308,13 @@ void Expander::record_setting(std::map<std::string, const AstAttr*>& given, cons
     check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
 }
 
-void Expander::read_slope_limit(Beam& beam, const AstBody& b, const AstAttr& a) {
+void Expander::read_slope_limit(double& limit_rad, const AstBody& b, const AstAttr& a) {
   auto v = constant_of(*a.value);
   if (!v || !(*v > 0) || *v > 1.5)
     diags_.error(a.value->loc, fmt::format("the slope limit of flexible body `{}` must be a constant in (0, 1.5] rad", b.name),
                  "the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by more "
                  "than 14 %; the default is 0.3");
-  else beam.slope_limit_rad = *v;
+  else limit_rad = *v;
 }
 
 /// `flexible = modal("file.mbm")`: a reduced body whose mass, stiffness and
@@ -326,8 +329,7 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     return;
   }
   static const std::vector<std::string> keys = {"flexible", "damping", "slope_limit", "r0", "quat0", "v0", "w0"};
-  auto beam = std::make_shared<Beam>();
-  beam->geometric_stiffness = false;  // a linear displacement field (format version 1)
+  double slope_limit_rad = Deformation::kDefaultSlopeLimit;
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {
     if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {
@@ -347,7 +349,7 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   for (const AstPoint& p : b.points)
     diags_.error(p.loc, fmt::format("point `{}`: the points of modal body `{}` are the nodes of its file", p.name, b.name),
                  "add the node to the file (records point, shape and slope) and attach joints to it by name");
-  if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(*beam, b, *s->second);
+  if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(slope_limit_rad, b, *s->second);
   const AstExpr& file = *v.args[0];
   auto data = flex::read_modal_file(file.name, file.loc, search_dirs_, sources_, diags_);
   if (!data) {
@@ -367,8 +369,9 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     body.points[name] = B.vec(pt.position[0], pt.position[1], pt.position[2]);
     point_locs_[b.name + "." + name] = file.loc;
   }
-  beam->modal = std::make_shared<const flex::ModalData>(std::move(*data));
-  body.beam = beam;
+  auto modal = std::make_shared<ModalBody>(std::make_shared<const flex::ModalData>(std::move(*data)));
+  modal->slope_limit_rad = slope_limit_rad;
+  body.flex = modal;
   bodies_[b.name] = body;
   body_order_.push_back(b.name);
 }

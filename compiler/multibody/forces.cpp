@@ -22,9 +22,9 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
   if (body.ground) return {local, B.vec(0, 0, 0)};
   E r = position(B, s.body), v = B.name(s.body + ".v.f");
   if (body.particle) return {r, v};
-  if (body.beam) {
-    Eta eta = state_eta(B, s.body, *body.beam);
-    return beam_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : beam_point(B, s.body, *body.beam, s.point, eta));
+  if (body.flex) {
+    Eta eta = state_eta(B, s.body, *body.flex);
+    return flexible_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : body.flex->point(B, s.body, s.point, eta));
   }
   E R = rotation(B, s.body);
   E arm = B.op('-', local, B.name(s.body + ".com"));
@@ -63,8 +63,8 @@ void Expander::emit_force(const ForceElement& f) {
     if (body.ground) continue;
     const std::string base = fn + ".on_" + s->body;
     auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
-    if (body.beam) {
-      element(B, "Se", base, signed_(beam_load(B, s->body, s->point, force, torque)));
+    if (body.flex) {
+      element(B, "Se", base, signed_(flexible_load(B, s->body, s->point, force, torque)));
       continue;
     }
     element(B, "Se", base + "_f", signed_(force));

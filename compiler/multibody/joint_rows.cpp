@@ -23,10 +23,10 @@ Frame Expander::frame(const Build& B, const Joint& j, const Side& s, const std::
   f.R = rotation(B, s.body);
   E local = B.name(jn + ".p" + tag);  // the point in CoM-relative body coordinates (ground: absolute)
   E turn = f.R;                       // the joint frame's rotation (a beam's section turns with its slope)
-  if (body.beam && !s.point.empty()) {
-    Eta eta = state_eta(B, s.body, *body.beam);
-    local = beam_point(B, s.body, *body.beam, s.point, eta);
-    turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {beam_slope(B, s.body, *body.beam, s.point, eta)})));
+  if (body.flex && !s.point.empty()) {
+    Eta eta = state_eta(B, s.body, *body.flex);
+    local = body.flex->point(B, s.body, s.point, eta);
+    turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {body.flex->slope(B, s.body, s.point, eta)})));
   }
   if (body.ground) f.p = local;
   else if (body.particle) f.p = position(B, s.body);
@@ -99,7 +99,7 @@ void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec,
             B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
     parts.push_back({prefix + "r", b + ".w"});
   }
-  if (bodies_.at(b).beam) {  // the joint's point moves with the beam's deflection
+  if (bodies_.at(b).flex) {  // the joint's point moves with the beam's deflection
     element(B, "MTF", prefix + "e", B.call("jacobian", {rows_vec, B.name(b + ".eta.q")}));
     parts.push_back({prefix + "e", b + ".etadot"});
   }

@@ -1,5 +1,6 @@
 // multibody/modal_body.cpp — bodies from modal-data files.
-#include "multibody/expander.hpp"
+#include "multibody/modal_body.hpp"
+#include "multibody/model.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,67 +14,77 @@
 
 namespace mbgc::multibody::detail {
 
-bool Expander::all_zero(const flex::Matrix& m) {
-  for (const auto& r : m)
-    for (double x : r)
-      if (x != 0) return false;
-  return true;
+namespace {
+constexpr const char* kAxes[3] = {"x", "y", "z"};
+std::string axes(std::size_t i, std::size_t j) { return std::string(kAxes[i]) + kAxes[j]; }
+}  // namespace
+
+
+std::map<std::string, std::array<double, 3>> ModalBody::points() const {
+  std::map<std::string, std::array<double, 3>> out;
+  for (const auto& [name, p] : data_->points) out[name] = p.position;
+  return out;
 }
 
-ModalTerms Expander::modal_terms(const flex::ModalData& d) { return flex::modal_mass_terms(d); }
+Eta ModalBody::split(const std::function<E(int)>& eta) const {
+  Eta out;
+  for (int i = 0; i < count(); ++i) out.y.push_back(eta(i));
+  return out;
+}
 
-std::string Expander::axes(std::size_t i, std::size_t j) { return std::string(kAxes[i]) + kAxes[j]; }
-
-void Expander::modal_params(const Build& B, const Body& body) {
-  const std::string& n = body.decl->name;
-  const flex::ModalData& d = *body.beam->modal;
-  const ModalTerms t = modal_terms(d);
-  param(B, n + ".mass", B.num(d.mass_kg));
-  param(B, n + ".first_moment", B.vec(d.first_moment_kg_m[0], d.first_moment_kg_m[1], d.first_moment_kg_m[2]));
-  param(B, n + ".J0", matrix_param(B, d.inertia_kg_m2));
+void ModalBody::params(const FieldParams& fp) const {
+  const Build& B = fp.B;
+  const std::string& n = fp.decl.name;
+  const flex::ModalData& d = *data_;
+  const flex::ModalMassTerms t = flex::modal_mass_terms(d);
+  fp.param(n + ".mass", B.num(d.mass_kg));
+  fp.param(n + ".first_moment", B.vec(d.first_moment_kg_m[0], d.first_moment_kg_m[1], d.first_moment_kg_m[2]));
+  fp.param(n + ".J0", matrix_param(B, d.inertia_kg_m2));
   // what the joints' code reads of every body: the reference point is the frame origin
-  param(B, n + ".com", B.vec(0, 0, 0));
-  param(B, n + ".inertia", B.name(n + ".J0"));
-  param(B, n + ".mean", matrix_param(B, d.mean_kg));
+  fp.param(n + ".com", B.vec(0, 0, 0));
+  fp.param(n + ".inertia", B.name(n + ".J0"));
+  fp.param(n + ".mean", matrix_param(B, d.mean_kg));
   for (std::size_t i = 0; i < 3; ++i)
     for (std::size_t j = i; j < 3; ++j) {
-      if (!all_zero(t.J1[i][j])) param(B, n + ".J1." + axes(i, j), vector_param(B, t.J1[i][j][0]));
-      if (!all_zero(t.J2[i][j])) param(B, n + ".J2." + axes(i, j), matrix_param(B, t.J2[i][j]));
+      if (!all_zero(t.J1[i][j])) fp.param(n + ".J1." + axes(i, j), vector_param(B, t.J1[i][j][0]));
+      if (!all_zero(t.J2[i][j])) fp.param(n + ".J2." + axes(i, j), matrix_param(B, t.J2[i][j]));
     }
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!all_zero(t.coupling[i])) param(B, n + ".coupling." + kAxes[i], vector_param(B, t.coupling[i][0]));
-    if (!all_zero(t.coupling_eta[i])) param(B, n + ".coupling_eta." + kAxes[i], matrix_param(B, t.coupling_eta[i]));
+    if (!all_zero(t.coupling[i])) fp.param(n + ".coupling." + kAxes[i], vector_param(B, t.coupling[i][0]));
+    if (!all_zero(t.coupling_eta[i])) fp.param(n + ".coupling_eta." + kAxes[i], matrix_param(B, t.coupling_eta[i]));
   }
-  param(B, n + ".modal_mass", matrix_param(B, t.modal_mass));
-  param(B, n + ".stiffness", matrix_param(B, d.stiffness));
-  modal_damping(B, n + ".damping", attr(*body.decl, "damping"), d.count, n + ".stiffness", n + ".modal_mass");
+  fp.param(n + ".modal_mass", matrix_param(B, t.modal_mass));
+  fp.param(n + ".stiffness", matrix_param(B, d.stiffness));
+  fp.param(n + ".damping", modal_damping(B, attr(fp.decl, "damping"), d.count, n + ".stiffness", n + ".modal_mass"));
   for (const auto& [pt, node] : d.points) {
-    param(B, n + "." + pt + ".shape", matrix_param(B, node.shape));
-    param(B, n + "." + pt + ".slope", matrix_param(B, node.slope));
+    fp.param(n + "." + pt + ".shape", matrix_param(B, node.shape));
+    fp.param(n + "." + pt + ".slope", matrix_param(B, node.slope));
   }
 }
 
 /// s(eta) = int r0 dm + C eta.
-E Expander::modal_first_moment(const Build& B, const std::string& n, const std::vector<E>& eta) const {
+E ModalBody::first_moment(const Build& B, const std::string& n, const Eta& modes) const {
+  const std::vector<E>& eta = modes.y;
   std::vector<E> s;
   for (int i = 0; i < 3; ++i) s.push_back(B.op('+', B.at(B.name(n + ".first_moment"), i + 1), row_dot(B, n + ".mean", i, eta)));
   return B.list(s);
 }
 
-std::vector<std::vector<E>> Expander::modal_translation_coupling(const Build& B, const std::string& n, const flex::ModalData& d) const {
+Rows ModalBody::translation_coupling(const Build& B, const std::string& n, const Eta&) const {
+  const flex::ModalData& d = *data_;
   std::vector<std::vector<E>> m(3);
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < d.count; ++k) m[static_cast<std::size_t>(i)].push_back(idx2(B, B.name(n + ".mean"), i + 1, k + 1));
   return m;
 }
 
-std::vector<std::vector<E>> Expander::modal_mass_matrix(const Build& B, const std::string& n, const flex::ModalData& d,
-                                              const std::vector<E>& eta) const {
+Rows ModalBody::mass_matrix(const Build& B, const std::string& n, const Eta& modes) const {
+  const std::vector<E>& eta = modes.y;
   const std::size_t ne = eta.size(), N = 6 + ne;
-  const ModalTerms t = modal_terms(d);
+  const flex::ModalMassTerms t = flex::modal_mass_terms(*data_);
   std::vector<std::vector<E>> M(N, std::vector<E>(N, B.num(0)));
   for (std::size_t k = 0; k < 3; ++k) M[k][k] = B.name(n + ".mass");
-  put_first_moment(B, M, modal_first_moment(B, n, eta));
+  put_first_moment(B, M, first_moment(B, n, modes));
   for (std::size_t i = 0; i < 3; ++i)
     for (std::size_t j = i; j < 3; ++j) {
       E J = idx2(B, B.name(n + ".J0"), static_cast<int>(i) + 1, static_cast<int>(j) + 1);
@@ -82,7 +93,7 @@ std::vector<std::vector<E>> Expander::modal_mass_matrix(const Build& B, const st
       if (!all_zero(t.J2[i][j])) J = B.op('+', J, quadratic(B, n + ".J2." + ij, eta, eta));
       M[3 + i][3 + j] = M[3 + j][3 + i] = J;
     }
-  auto tc = modal_translation_coupling(B, n, d);
+  auto tc = translation_coupling(B, n, modes);
   for (std::size_t l = 0; l < ne; ++l) {
     for (std::size_t i = 0; i < 3; ++i) {
       M[i][6 + l] = M[6 + l][i] = tc[i][l];
@@ -102,8 +113,8 @@ std::vector<std::vector<E>> Expander::modal_mass_matrix(const Build& B, const st
 }
 
 /// A node's deflected position (what = "shape", at = its undeformed position) or small rotation ("slope").
-E Expander::modal_point(const Build& B, const std::string& n, const std::string& pt, const char* what, std::array<double, 3> at,
-              const std::vector<E>& eta) const {
+E ModalBody::node(const Build& B, const std::string& n, const std::string& pt, const char* what, std::array<double, 3> at,
+                  const std::vector<E>& eta) const {
   std::vector<E> v;
   for (int i = 0; i < 3; ++i) {
     E moved = row_dot(B, n + "." + pt + "." + what, i, eta);
@@ -113,9 +124,9 @@ E Expander::modal_point(const Build& B, const std::string& n, const std::string&
 }
 
 /// A mode's limit: where it alone turns one of the file's nodes by the slope limit.
-std::vector<std::pair<double, std::string>> Expander::modal_file_limits(const std::string& n, const Beam& beam) {
-  const flex::ModalData& d = *beam.modal;
-  std::vector<std::pair<double, std::string>> limits;
+Limits ModalBody::limits(const std::string& n) const {
+  const flex::ModalData& d = *data_;
+  Limits limits;
   for (int k = 0; k < d.count; ++k) {
     double peak = 0;
     for (const auto& [pt, node] : d.points) {
@@ -124,14 +135,32 @@ std::vector<std::pair<double, std::string>> Expander::modal_file_limits(const st
       peak = std::max(peak, std::sqrt(r2));
     }
     limits.push_back(
-        {peak > 0 ? beam.slope_limit_rad / peak : std::numeric_limits<double>::max(),
+        {peak > 0 ? slope_limit_rad / peak : std::numeric_limits<double>::max(),
          fmt::format("mode {} of modal body `{}` (from {}) turns one of its nodes by more than {:g} rad, beyond the "
                      "small rotations of a linear modal model (`slope_limit`). Likely cause: an instability - a load "
                      "beyond what the linear model holds, or a spin faster than the body's first natural frequency "
                      "(a modal-data body has no geometric stiffness)",
-                     k + 1, n, d.path, beam.slope_limit_rad)});
+                     k + 1, n, d.path, slope_limit_rad)});
   }
   return limits;
+}
+
+E ModalBody::point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
+  return node(B, n, pt, "shape", data_->points.at(pt).position, eta.y);
+}
+
+E ModalBody::slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
+  return node(B, n, pt, "slope", {0, 0, 0}, eta.y);
+}
+
+/// The file's full matrices.
+void ModalBody::stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const {
+  const int ne = count();
+  for (int i = 0; i < ne; ++i)
+    for (int j = 0; j < ne; ++j) {
+      K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".stiffness"), i + 1, j + 1);
+      D[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".damping"), i + 1, j + 1);
+    }
 }
 
 }  // namespace mbgc::multibody::detail

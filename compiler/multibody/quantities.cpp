@@ -17,8 +17,8 @@ void Expander::define_quantities() {
   for (const std::string& n : body_order_) {
     const Body& body = bodies_.at(n);
     Build B(body.decl->loc);
-    if (body.beam) {
-      beam_quantities(B, body);
+    if (body.flex) {
+      flexible_quantities(B, body);
       continue;
     }
     E r = position(B, n), v = B.name(n + ".v.f");

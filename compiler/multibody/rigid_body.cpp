@@ -17,8 +17,8 @@ void Expander::emit_body(const Body& body) {
   const AstBody& d = *body.decl;
   const std::string& n = d.name;
   Build B(d.loc);
-  if (body.beam) {
-    emit_beam(body);
+  if (body.flex) {
+    emit_flexible(body);
     return;
   }
   param(B, n + ".mass", attr(d, "mass"));

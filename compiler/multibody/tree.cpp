@@ -71,7 +71,7 @@ void Expander::check_coordinates() {
       continue;
     }
     if (j.strategy == Strategy::Coordinates) {
-      const Side* beam = bodies_.at(j.a.body).beam ? &j.a : bodies_.at(j.b.body).beam ? &j.b : nullptr;
+      const Side* beam = bodies_.at(j.a.body).flex ? &j.a : bodies_.at(j.b.body).flex ? &j.b : nullptr;
       if (beam) {
         diags_.error(d.loc, fmt::format("joint `{}` joins the flexible body `{}` by joint coordinates, which is not implemented yet", d.name, beam->body),
                      "a beam's inertia field couples its frame and modal velocities; give this joint constraint rows: "
