@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <tuple>
+#include <utility>
 
 namespace mbgc::elaborate {
 namespace {
@@ -322,7 +323,7 @@ class Unroller {
           } else if constexpr (std::is_same_v<T, AstBody>) {
             st.name = interpolate(st.name, st.loc, env);
             subst_attrs(st.attrs, env);
-            for (AstPoint& p : st.points) p.value = subst(p.value, env);
+            for (AstPoint& p : st.points) p = instantiate_point(p, env);  // the loops inside: by flatten_points
           } else if constexpr (std::is_same_v<T, AstJoint>) {
             st.name = interpolate(st.name, st.loc, env);
             subst_end(st.a, env);
@@ -339,6 +340,86 @@ class Unroller {
         },
         out);
     return out;
+  }
+
+  AstPoint instantiate_point(const AstPoint& p, const std::map<std::string, long>& env) {
+    return {interpolate(p.name, p.loc, env), p.loc, subst(p.value, env)};
+  }
+
+  /// The points of a body or ground block with its `for` loops unrolled, each
+  /// loop's points where the loop stands. `env` is already substituted into `points`.
+  std::vector<AstPoint> flatten_points(const std::vector<AstPoint>& points,
+                                       const std::vector<std::shared_ptr<AstPointFor>>& loops,
+                                       const std::map<std::string, long>& env, const SourceLoc* outermost) {
+    std::vector<AstPoint> out;
+    std::size_t next_loop = 0;
+    for (std::size_t k = 0; k <= points.size(); ++k) {
+      for (; next_loop < loops.size() && loops[next_loop]->position == k; ++next_loop) {
+        const AstPointFor& f = *loops[next_loop];
+        if (env.count(f.var)) {
+          error(f.loc, fmt::format("loop variable `{}` hides an outer loop's variable", f.var),
+                fmt::format("rename the inner loop's variable, e.g. for {}2 in ...", f.var));
+          continue;
+        }
+        auto from = eval_integer(*f.from, env, "a loop's lower bound");
+        auto to = eval_integer(*f.to, env, "a loop's upper bound");
+        if (!from || !to) continue;
+        const SourceLoc& top = outermost ? *outermost : f.loc;
+        if (*to - *from >= kMaxIterations) {
+          error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
+                fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", kMaxIterations));
+          continue;
+        }
+        for (long i = *from; i <= *to; ++i) {
+          if (++work_ > kMaxWork) {
+            give_up(top);
+            return out;
+          }
+          std::map<std::string, long> inner = env;
+          inner[f.var] = i;
+          std::vector<AstPoint> body;
+          for (const AstPoint& p : f.points) {
+            body.push_back(instantiate_point(p, inner));
+            point_loop_var_[{p.loc.file, p.loc.line, p.loc.col}] = f.var;
+          }
+          work_ += static_cast<long>(body.size());
+          for (AstPoint& p : flatten_points(body, f.loops, inner, &top)) out.push_back(std::move(p));
+          if (gave_up_) return out;
+        }
+      }
+      if (k < points.size()) out.push_back(points[k]);
+    }
+    return out;
+  }
+
+  /// A body or ground block: its loops unrolled; a point that one statement
+  /// declares again with the same name (a loop's name without the loop
+  /// variable) is reported here, where the loop can be named.
+  AstBody flatten_body(const AstBody& b, const std::map<std::string, long>& env, const AstFor* outermost) {
+    AstBody out = b;
+    out.loops.clear();
+    out.points = flatten_points(b.points, b.loops, env, outermost ? &outermost->loc : nullptr);
+    std::map<std::string, const AstPoint*> seen;
+    for (const AstPoint& p : out.points) {
+      const AstPoint* first = seen.emplace(p.name, &p).first->second;
+      if (first != &p && same_place(first->loc, p.loc)) repeated_point(p, out.name);
+    }
+    if (out.name == "ground") {  // ground blocks add up: a loop may repeat the whole block
+      for (const AstPoint& p : out.points) {
+        auto [it, fresh] = ground_points_.emplace(p.name, p.loc);
+        if (!fresh && same_place(it->second, p.loc)) repeated_point(p, "ground");
+      }
+    }
+    return out;
+  }
+  static bool same_place(const SourceLoc& a, const SourceLoc& b) {
+    return a.file == b.file && a.line == b.line && a.col == b.col;
+  }
+  void repeated_point(const AstPoint& p, const std::string& owner) {
+    auto var = point_loop_var_.find({p.loc.file, p.loc.line, p.loc.col});
+    error(p.loc, fmt::format("point `{}` of `{}` is declared again in every iteration of the loop", p.name, owner),
+          fmt::format("interpolate the loop variable into the name, e.g. {}{{{}}}", p.name,
+                      var != point_loop_var_.end() ? var->second : loop_var_));
   }
 
   void expand(const std::vector<AstStmt>& stmts, const std::map<std::string, long>& env, std::vector<AstStmt>& out,
@@ -362,17 +443,23 @@ class Unroller {
         }
         const AstFor* top = outermost ? outermost : &f;
         for (long i = *from; i <= *to; ++i) {
-          if (++work_ > kMaxWork) return give_up(*top);
+          if (++work_ > kMaxWork) return give_up(top->loc);
           std::map<std::string, long> inner = env;
           inner[f.var] = i;
+          const std::string outer_var = std::exchange(loop_var_, f.var);
           std::vector<AstStmt> body;
           for (const AstStmt& b : f.body) body.push_back(instantiate(b, inner));
           expand(body, inner, out, top);
+          loop_var_ = outer_var;
           if (gave_up_) return;
         }
         continue;
       }
-      if (outermost && ++work_ > kMaxWork) return give_up(*outermost);
+      if (outermost && ++work_ > kMaxWork) return give_up(outermost->loc);
+      if (auto* b = std::get_if<AstBody>(&s)) {
+        out.push_back(flatten_body(*b, env, outermost));
+        continue;
+      }
       if (auto* comp = std::get_if<std::shared_ptr<AstComponent>>(&s)) {
         out.push_back(unroll_component(**comp));
         continue;
@@ -393,10 +480,10 @@ class Unroller {
     }
   }
 
-  void give_up(const AstFor& outermost) {
+  void give_up(const SourceLoc& outermost) {
     if (gave_up_) return;
     gave_up_ = true;
-    error(outermost.loc, fmt::format("these nested loops unroll into more than {} statements and iterations", kMaxWork),
+    error(outermost, fmt::format("these nested loops unroll into more than {} statements and iterations", kMaxWork),
           "mbgc writes out every repetition at compile time: make the ranges smaller");
   }
 
@@ -423,6 +510,9 @@ class Unroller {
   Diagnostic* last_ = nullptr;                          // the most recent error
   std::string component_;                               // the component whose loops are unrolled
   std::set<std::string> component_params_;
+  std::map<std::string, SourceLoc> ground_points_;      // every ground point so far, where declared
+  std::map<std::tuple<int, int, int>, std::string> point_loop_var_;  // a body loop's points: the loop's variable
+  std::string loop_var_ = "i";                          // the innermost statement loop's variable
   long work_ = 0;
   bool gave_up_ = false;
 };

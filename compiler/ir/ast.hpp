@@ -117,15 +117,29 @@ struct AstInstance {
 /// in body-frame coordinates.
 struct AstPoint { std::string name; SourceLoc loc; AstExprPtr value; };
 
+/// `for i in 1..N { point p{i} = [...] }` inside a body or ground block: the
+/// points repeated for i = from..to (loops may nest). Unroll flattens it into
+/// the block's points, at `position` (the number of the enclosing list's
+/// points declared before the loop), so later passes never see one.
+struct AstPointFor {
+  std::string var;
+  SourceLoc loc;          // of `for`
+  AstExprPtr from, to;
+  std::size_t position = 0;
+  std::vector<AstPoint> points;
+  std::vector<std::shared_ptr<AstPointFor>> loops;
+};
+
 /// `body link { mass = 1; inertia = diag(...); com = [...]; point tip = [...] }`,
 /// and `ground { point pivot = [...] }` (name "ground", no attrs): a rigid body.
-/// Names inside `for` loops may carry interpolations, e.g. "link{i}".
+/// Names inside `for` loops may carry interpolations, e.g. "link{i}", "tip{i}".
 struct AstBody {
   std::string name;
   SourceLoc loc;          // of the name
   SourceLoc kind_loc;     // of `body` / `ground`
   std::vector<AstAttr> attrs;
   std::vector<AstPoint> points;
+  std::vector<std::shared_ptr<AstPointFor>> loops;  // empty after unroll
 };
 
 /// `joint j1 revolute(ground.pivot, crank.a) { axis = [0, 0, 1]; q0 = 0.3 }`:

@@ -40,6 +40,22 @@ static std::string attrs(const std::vector<AstAttr>& a) {
   return fmt::format("{{ {} }}", fmt::join(parts, "; "));
 }
 
+/// The points of a body or ground block, its `for` loops where they stand.
+static std::vector<std::string> ast_points(const std::vector<AstPoint>& points,
+                                           const std::vector<std::shared_ptr<AstPointFor>>& loops) {
+  std::vector<std::string> parts;
+  std::size_t next_loop = 0;
+  for (std::size_t k = 0; k <= points.size(); ++k) {
+    for (; next_loop < loops.size() && loops[next_loop]->position == k; ++next_loop) {
+      const AstPointFor& f = *loops[next_loop];
+      parts.push_back(fmt::format("for {} in {}..{} {{ {} }}", f.var, ast_expr(*f.from), ast_expr(*f.to),
+                                  fmt::join(ast_points(f.points, f.loops), "; ")));
+    }
+    if (k < points.size()) parts.push_back(fmt::format("point {} = {}", points[k].name, ast_expr(*points[k].value)));
+  }
+  return parts;
+}
+
 static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int indent) {
   std::string pad(static_cast<std::size_t>(indent), ' ');
   for (const AstStmt& s : stmts) {
@@ -76,7 +92,7 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
           } else if constexpr (std::is_same_v<T, AstBody>) {
             std::vector<std::string> parts;
             for (const AstAttr& x : st.attrs) parts.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
-            for (const AstPoint& p : st.points) parts.push_back(fmt::format("point {} = {}", p.name, ast_expr(*p.value)));
+            for (std::string& p : ast_points(st.points, st.loops)) parts.push_back(std::move(p));
             if (st.name == "ground") out += fmt::format("{}ground {{ {} }}\n", pad, fmt::join(parts, "; "));
             else out += fmt::format("{}body {} {{ {} }}\n", pad, st.name, fmt::join(parts, "; "));
           } else if constexpr (std::is_same_v<T, AstJoint>) {

@@ -164,6 +164,10 @@ class Parser {
            "(Se Sf I C R TF GY MTF MGY CN) or a junction (0 or 1)");
     }
     if (kElementKinds.count(t.text)) return element();
+    if (for_depth_ > 0 && t.text == "scene")
+      fail("`scene` cannot appear inside a for loop",
+           "a scene is chosen before the loops are unrolled (it may fix their bounds, as --set does): declare it at "
+           "the top level; its outputs may name what a loop declares, e.g. outputs = [q1, q2]");
     if (for_depth_ > 0 && kNotInLoop.count(t.text))
       fail(fmt::format("`{}` cannot appear inside a for loop", t.text),
            "move it out of the loop; a loop repeats the statements that build the model "
@@ -409,8 +413,7 @@ class Parser {
   ir::AstStmt scene() {
     next();
     ir::AstScene s;
-    const Token& n = expect(Tok::Ident, "(the scene's name) after `scene`",
-                            "write scene name { outputs = [a, b] }");
+    Name n = name("(the scene's name) after `scene`", "write scene name { outputs = [a, b] }");
     s.name = n.text;
     s.loc = n.loc;
     s.attrs = attr_block("after the scene's name");
@@ -506,16 +509,17 @@ class Parser {
     ++block_depth_;
     while (!at(Tok::RBrace)) {
       if (accept(Tok::Semi) || accept(Tok::Comma)) continue;
+      const std::string owner = ground ? "`ground`" : fmt::format("body `{}`", b.name);
+      if (at_ident("for") && peek(1).kind == Tok::Ident) {  // before the check below: `for i` also starts a statement
+        b.loops.push_back(point_loop(b.points.size(), owner, block_depth_ - 1));
+        continue;
+      }
       if (at(Tok::End) || new_statement_here()) {
         --block_depth_;  // given up: recovery resumes at this statement
-        fail(fmt::format("missing `}}` at the end of {}", ground ? "`ground`" : fmt::format("body `{}`", b.name)),
-             "close the block with `}`");
+        fail(fmt::format("missing `}}` at the end of {}", owner), "close the block with `}`");
       }
       if (at_ident("point") && peek(1).kind == Tok::Ident) {
-        next();
-        Name p = name("(the point's name)");
-        expect(Tok::Assign, "after the point's name", fmt::format("write point {} = [x, y, z]", p.text));
-        b.points.push_back({p.text, p.loc, expr()});
+        b.points.push_back(point());
       } else {
         b.attrs.push_back(attr());
       }
@@ -523,6 +527,66 @@ class Parser {
     next();
     --block_depth_;
     return b;
+  }
+
+  /// `point name = [x, y, z]` in a body or ground block (at `point`).
+  ir::AstPoint point() {
+    next();
+    Name p = name("(the point's name)");
+    expect(Tok::Assign, "after the point's name", fmt::format("write point {} = [x, y, z]", p.text));
+    return {p.text, p.loc, expr()};
+  }
+
+  /// `for i in from..to { point p{i} = [...] }` inside the block of `owner`
+  /// (a body or ground): points and nested loops of points. `position` is the
+  /// number of the enclosing list's points before it; `outside` the number of
+  /// open blocks outside the owner's, for recovery at a statement.
+  std::shared_ptr<ir::AstPointFor> point_loop(std::size_t position, const std::string& owner, int outside) {
+    const char* form = "write for i in 1..N { point p{i} = [x, y, z] }";
+    auto f = std::make_shared<ir::AstPointFor>();
+    f->loc = next().loc;
+    f->position = position;
+    if (for_depth_ >= kMaxLoopNesting) {
+      diags_.error(f->loc, fmt::format("for loops nested more than {} deep", kMaxLoopNesting),
+                   "use fewer levels of loops");
+      throw ParseError{};
+    }
+    f->var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;
+    if (!at_ident("in")) fail(fmt::format("expected `in` after the loop variable, found {}", describe(peek())), form);
+    next();
+    f->from = expr();
+    expect(Tok::DotDot, "between the loop's bounds", form);
+    f->to = expr();
+    expect(Tok::LBrace, "to open the loop's body", form);
+    ++block_depth_;
+    ++for_depth_;
+    struct Leave {
+      int& depth;
+      ~Leave() { --depth; }
+    } leave{for_depth_};
+    while (!at(Tok::RBrace)) {
+      if (accept(Tok::Semi) || accept(Tok::Comma)) continue;
+      if (at(Tok::End))
+        fail(fmt::format("missing `}}` at the end of the for loop over `{}`", f->var), "close the loop with `}`");
+      if (at_ident("for") && peek(1).kind == Tok::Ident) {
+        f->loops.push_back(point_loop(f->points.size(), owner, outside));
+      } else if (at_ident("point") && peek(1).kind == Tok::Ident) {
+        f->points.push_back(point());
+      } else if (new_statement_here()) {
+        block_depth_ = outside;  // given up: recovery resumes at this statement
+        fail(fmt::format("a for loop inside {} repeats points only, found the statement `{} {}`", owner, peek().text,
+                         peek(1).text),
+             fmt::format("if {} is unfinished, close its block and the loop with `}}` before this line", owner));
+      } else if (at(Tok::Ident) && peek(1).kind == Tok::Assign) {
+        fail(fmt::format("a for loop inside {} repeats points only, found the setting `{}`", owner, peek().text),
+             "a setting is given once: move it out of the loop, into the block");
+      } else {
+        fail(fmt::format("a for loop inside {} repeats points only, found {}", owner, describe(peek())), form);
+      }
+    }
+    next();
+    --block_depth_;
+    return f;
   }
 
   /// `joint name type(a, b) { key = value ... }`

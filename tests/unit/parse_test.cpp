@@ -541,6 +541,51 @@ TEST(ParseInterpolation, OutsideALoopABraceAfterANameIsABlock) {
   EXPECT_EQ(all_of<ir::AstBody>(c->ast)[0]->points.size(), 1u);
 }
 
+TEST(ParseInterpolation, LoopsOfPointsInsideGroundAndBodyBlocks) {
+  auto c = parse(
+      "ground { point a = [0, 0, 0]; for i in 1..N { point O{i} = [i, 0, 0] } point b = [1, 1, 0] }\n"
+      "for i in 1..N {\n"
+      "  body plate{i} {\n"
+      "    mass = 1\n"
+      "    for k in 1..2 {\n"
+      "      point e{k} = [k, 0, 0]\n"
+      "      for l in 1..2 { point c{k}_{l} = [k, l, 0] }\n"
+      "    }\n"
+      "    point p{i} = [0, 0, 0]\n"
+      "  }\n"
+      "}\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const auto& ground = std::get<ir::AstBody>(c->ast.stmts[0]);
+  ASSERT_EQ(ground.points.size(), 2u);
+  ASSERT_EQ(ground.loops.size(), 1u);
+  EXPECT_EQ(ground.loops[0]->position, 1u);  // between a and b
+  EXPECT_EQ(ground.loops[0]->var, "i");
+  ASSERT_EQ(ground.loops[0]->points.size(), 1u);
+  EXPECT_EQ(ground.loops[0]->points[0].name, "O{i}");  // a loop inside ground interpolates
+  const auto& f = *std::get<std::shared_ptr<ir::AstFor>>(c->ast.stmts[1]);
+  const auto& plate = std::get<ir::AstBody>(f.body[0]);
+  ASSERT_EQ(plate.attrs.size(), 1u);
+  ASSERT_EQ(plate.points.size(), 1u);
+  EXPECT_EQ(plate.points[0].name, "p{i}");
+  ASSERT_EQ(plate.loops.size(), 1u);
+  EXPECT_EQ(plate.loops[0]->position, 0u);
+  const auto& k = *plate.loops[0];
+  ASSERT_EQ(k.points.size(), 1u);
+  ASSERT_EQ(k.loops.size(), 1u);
+  EXPECT_EQ(k.loops[0]->position, 1u);
+  EXPECT_EQ(k.loops[0]->points[0].name, "c{k}_{l}");
+  const std::string printed = ir::print_ast(c->ast);
+  EXPECT_EQ(printed,
+            "ground { point a = [0, 0, 0]; for i in 1..N { point O{i} = [i, 0, 0] }; point b = [1, 1, 0] }\n"
+            "for i in 1..N {\n"
+            "  body plate{i} { mass = 1; for k in 1..2 { point e{k} = [k, 0, 0]; for l in 1..2 { point c{k}_{l} = [k, l, "
+            "0] } }; point p{i} = [0, 0, 0] }\n"
+            "}\n");
+  auto again = parse(printed);
+  ASSERT_TRUE(again->ok()) << again->messages() << printed;
+  EXPECT_EQ(ir::print_ast(again->ast), printed);
+}
+
 // ---- printing ------------------------------------------------------------------------------
 
 TEST(Parse, MultibodyRoundTripThroughPrintAst) {
@@ -988,3 +1033,19 @@ TEST(ParseErrors, DeeplyNestedExpressionIsAnErrorNotACrash) {
 }
 
 }  // namespace
+
+TEST(ParseErrors, ALoopInsideABlockRepeatsPointsOnly) {
+  auto c = parse(
+      "body b { for k in 1..2 { mass = 1 } }\n"
+      "ground { for i in 1..2 { point g{i} = [i, 0, 0]\n"
+      "joint j revolute(ground, b)\n");
+  auto e = errors(*c);
+  ASSERT_EQ(e.size(), 2u) << c->messages();
+  EXPECT_EQ(e[0].message, "a for loop inside body `b` repeats points only, found the setting `mass`");
+  EXPECT_EQ(e[0].line, 1);
+  EXPECT_EQ(e[0].col, 26);
+  EXPECT_EQ(e[1].message, "a for loop inside `ground` repeats points only, found the statement `joint j`");
+  EXPECT_EQ(e[1].line, 3);
+  // recovery resumes at the statement: the joint is kept
+  EXPECT_EQ(all_of<ir::AstJoint>(c->ast).size(), 1u);
+}
