@@ -91,6 +91,7 @@ class Builder {
       n.kind = rn.kind;
       n.name = rn.name;
       n.loc = rn.loc;
+      n.tree_node = rn.tree_node, n.tree_parent = rn.tree_parent;
       if (is_two_port(rn.kind)) n.bonds = {-1, -1};
       g_.nodes.push_back(std::move(n));
     }

@@ -70,6 +70,11 @@ struct AstElement {
   // model stops being valid, and why (a beam's modal coordinates: half its
   // length of deflection). The simulator stops there with the reason.
   std::vector<std::pair<double, std::string>> state_limits;
+  // A body of a kinematic tree in joint coordinates (set by the multibody
+  // expansion): the body this element belongs to and that body's parent in
+  // the tree ("" for ground). reduce eliminates the tree's algebraic loop
+  // body by body, leaves first (the articulated-body form).
+  std::string tree_node, tree_parent;
 };
 
 /// `1 loop [n] : a, b -> c, d` — a junction and, optionally, the bonds into
@@ -83,6 +88,7 @@ struct AstJunction {
   SourceLoc dim_loc;
   std::vector<AstEndpoint> inputs;
   std::vector<AstEndpoint> outputs;
+  std::string tree_node, tree_parent;  // as AstElement's
 };
 
 /// `bond [name :] from -> to [n]`: power flows from `from` to `to`.

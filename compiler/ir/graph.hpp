@@ -55,6 +55,9 @@ struct GraphNode {
   Value initial;           // initial state (storage elements), shaped dim x 1
   std::vector<int> state_vars;  // storage: one variable per component
   std::vector<std::pair<double, std::string>> state_limits;  // per component: |state| bound and why (may be empty)
+  // The body of a kinematic tree in joint coordinates this node belongs to,
+  // and its parent body ("" for ground); empty for nodes outside such a tree.
+  std::string tree_node, tree_parent;
 };
 
 struct Bond {

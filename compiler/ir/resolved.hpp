@@ -31,6 +31,7 @@ struct ResolvedNode {
   std::optional<AstElement> element;     // elements: the declaration
   std::optional<int> dim;                // junctions: declared [n]
   SourceLoc dim_loc;
+  std::string tree_node, tree_parent;    // the kinematic tree's body it belongs to (AstElement::tree_node)
 };
 
 struct ResolvedEnd {

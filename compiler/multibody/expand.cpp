@@ -2,6 +2,8 @@
 
 #include "multibody/expander.hpp"
 
+#include <tuple>
+
 #include <fmt/format.h>
 
 namespace mbgc::multibody {
@@ -49,6 +51,7 @@ void Expander::element(const Build& B, const std::string& kind, const std::strin
   el.loc = B.loc();
   el.value = std::move(value);
   el.attrs = std::move(attrs);
+  std::tie(el.tree_node, el.tree_parent) = tree_tag_;
   generated_.push_back(std::move(el));
 }
 
@@ -63,6 +66,7 @@ void Expander::junction(const Build& B, char type, const std::string& name, int 
   j.dim_loc = B.loc();
   for (auto& s : in) j.inputs.push_back({s, B.loc()});
   for (auto& s : out) j.outputs.push_back({s, B.loc()});
+  std::tie(j.tree_node, j.tree_parent) = tree_tag_;
   generated_.push_back(std::move(j));
 }
 

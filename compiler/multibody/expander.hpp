@@ -204,6 +204,24 @@ class Expander {
   std::optional<Strategy> override_;  // mbgc --constraints
   Strategy strategy_;                  // the model-level strategy
   std::vector<AstStmt> generated_;
+  // While a body moved by joint coordinates (and its tree joint) is written:
+  // the tree body and its parent every element and junction is tagged with.
+  std::pair<std::string, std::string> tree_tag_;
+  /// Tags what is written while it lives with body `n`'s tree node (if `n` moves by coordinates).
+  class TreeScope {
+   public:
+    TreeScope(Expander& x, const std::string& n) : x_(x), saved_(x.tree_tag_) {
+      const Body& b = x.bodies_.at(n);
+      if (b.by_coordinates) x.tree_tag_ = {n, b.tree_parent};
+    }
+    ~TreeScope() { x_.tree_tag_ = saved_; }
+    TreeScope(const TreeScope&) = delete;
+    TreeScope& operator=(const TreeScope&) = delete;
+
+   private:
+    Expander& x_;
+    std::pair<std::string, std::string> saved_;
+  };
 };
 
 }  // namespace mbgc::multibody::detail

@@ -30,6 +30,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const std::string& child = fwd ? j.b.body : j.a.body;
   const Body& P = bodies_.at(parent);
   const Body& C = bodies_.at(child);
+  TreeScope tree(*this, child);
   // The relative motion of B's joint frame in A's: a translation disp (A's
   // axes) and a rotation qrel, from the kind. Each rate junction k adds
   // W_k u_k to the relative angular velocity and V_k u_k to the rate of disp.

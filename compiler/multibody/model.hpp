@@ -32,6 +32,7 @@ struct Body {
   bool placed = false;                   // initial pose known (ground, or from a tree joint)
   std::string placed_by;                 // joint that placed it
   bool by_coordinates = false;           // its pose is a function of joint coordinates (no states of its own)
+  std::string tree_parent;               // by_coordinates: its parent body in the tree ("" for ground)
   bool points_unknown = false;           // a modal body whose file could not be read (its error is out already)
 };
 

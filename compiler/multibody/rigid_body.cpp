@@ -17,6 +17,7 @@ void Expander::emit_body(const Body& body) {
   const AstBody& d = *body.decl;
   const std::string& n = d.name;
   Build B(d.loc);
+  TreeScope tree(*this, n);
   if (body.flex) {
     emit_flexible(body);
     return;

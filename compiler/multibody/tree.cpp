@@ -33,6 +33,7 @@ void Expander::find_tree() {
       c.placed = true;
       c.placed_by = j.decl->name;
       c.by_coordinates = j.strategy == Strategy::Coordinates;
+      if (c.by_coordinates && from != "ground") c.tree_parent = from;
       tree_order_.push_back(&j);
       queue.push_back(child);
     }

@@ -1,5 +1,7 @@
 #include "reduce/reduce.hpp"
 
+#include "reduce/tree_elimination.hpp"
+
 #include <algorithm>
 #include <fmt/format.h>
 #include <functional>
@@ -398,6 +400,7 @@ class Reducer {
     };
     for (int i : rest_eqs) visit(eqs_[static_cast<std::size_t>(i)].unknown);
     if (!acyclic) return false;
+    if (eliminate_tree(block, tears, tear_eqs, order, solution, eq_of_unknown)) return true;
     // Each torn unknown as rest + sum_k coeff[k] * tear_k.
     struct Affine { Expr rest; std::vector<Expr> coeff; };
     std::unordered_map<int, Affine> affine;
@@ -461,6 +464,105 @@ class Reducer {
                                   "the {}x{} system is solved at run time with partial pivoting",
                                   tears.size(), tears.size() == 1 ? "" : "s", order.size(), tears.size(), tears.size());
     out_.loops.push_back(loop);
+    return true;
+  }
+
+  /// The bodies of a kinematic tree in joint coordinates, from the graph's
+  /// tags (GraphNode::tree_node), and the body of each variable: a bond's
+  /// efforts and flows belong to the deeper of its two ends' bodies (a bond
+  /// from a parent's junction into a child's joint carries the child's
+  /// reaction), a state derivative to its storage element's, a derivative
+  /// variable der(x) to x's.
+  TreeLayout tree_layout() {
+    TreeLayout tree;
+    std::map<std::string, int> index;
+    auto body = [&](const std::string& name) {
+      auto [it, fresh] = index.emplace(name, static_cast<int>(tree.names.size()));
+      if (fresh) tree.names.push_back(name), tree.parent.push_back(-1);
+      return it->second;
+    };
+    std::vector<int> node_body(out_.graph.nodes.size(), -1);
+    for (std::size_t i = 0; i < out_.graph.nodes.size(); ++i) {
+      const GraphNode& n = out_.graph.nodes[i];
+      if (n.tree_node.empty()) continue;
+      const int b = body(n.tree_node);
+      node_body[i] = b;
+      if (!n.tree_parent.empty()) tree.parent[static_cast<std::size_t>(b)] = body(n.tree_parent);
+    }
+    if (tree.names.empty()) return tree;
+    std::vector<int> depth(tree.names.size(), 0);
+    for (std::size_t b = 0; b < depth.size(); ++b)
+      for (int p = tree.parent[b]; p >= 0 && depth[b] <= static_cast<int>(depth.size()); p = tree.parent[static_cast<std::size_t>(p)]) ++depth[b];
+    std::unordered_map<int, int> derivative_of;  // der(x) -> x
+    for (const auto& [x, dx] : der_var_) derivative_of[dx] = x;
+    std::unordered_map<int, int> storage_of;     // state -> its storage node
+    for (const StateVar& st : out_.states) storage_of[st.var] = st.node;
+    std::function<int(int, int)> of_var = [&](int id, int hops) -> int {
+      if (hops > 8) return -1;
+      const Variable& x = v(id);
+      if ((x.kind == VarKind::Effort || x.kind == VarKind::Flow) && x.of >= 0) {
+        const Bond& bd = out_.graph.bonds[static_cast<std::size_t>(x.of)];
+        const int a = bd.from >= 0 ? node_body[static_cast<std::size_t>(bd.from)] : -1;
+        const int b = bd.to >= 0 ? node_body[static_cast<std::size_t>(bd.to)] : -1;
+        if (a < 0 || b < 0) return a < 0 ? b : a;
+        return depth[static_cast<std::size_t>(b)] > depth[static_cast<std::size_t>(a)] ? b : a;
+      }
+      if (x.kind == VarKind::Derivative && storage_of.count(x.of)) {
+        const int node = storage_of.at(x.of);
+        return node >= 0 ? node_body[static_cast<std::size_t>(node)] : -1;
+      }
+      if (auto d = derivative_of.find(id); d != derivative_of.end()) return of_var(d->second, hops + 1);
+      if (auto s = storage_of.find(id); s != storage_of.end() && s->second >= 0)
+        return node_body[static_cast<std::size_t>(s->second)];
+      return -1;
+    };
+    for (std::size_t id = 0; id < out_.graph.vars.size(); ++id)
+      if (int b = of_var(static_cast<int>(id), 0); b >= 0) tree.body_of[static_cast<int>(id)] = b;
+    return tree;
+  }
+
+  /// A loop torn at its state derivatives, eliminated along the kinematic
+  /// tree its unknowns belong to (tree_elimination.hpp), if they do.
+  bool eliminate_tree(const std::vector<int>& block, const std::vector<int>& tears, const std::vector<int>& tear_eqs,
+                      const std::vector<int>& order, const std::unordered_map<int, Expr>& solution,
+                      const std::unordered_map<int, int>& eq_of_unknown) {
+    if (!tree_) tree_ = tree_layout();
+    if (tree_->names.empty()) return false;
+    TornLoop torn;
+    torn.tears = tears;
+    torn.order = order;
+    torn.solution = solution;
+    for (std::size_t k = 0; k < tears.size(); ++k) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(tear_eqs[k])];
+      torn.tear_residuals.push_back(sub(eq.lhs, eq.rhs));
+      torn.source[tears[k]] = {eq.loc, eq.origin};
+    }
+    for (int u : order) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(eq_of_unknown.at(u))];
+      torn.source[u] = {eq.loc, eq.origin};
+    }
+    std::string why;
+    auto done = eliminate_along_tree(torn, *tree_, out_.graph, &why);
+    if (!done) {
+      out_.log.push_back(fmt::format("algebraic loop of {} unknowns not eliminated along the tree: {}", block.size(), why));
+      return false;
+    }
+    for (Assignment& a : done->assignments) out_.assignments.push_back(std::move(a));
+    AlgebraicLoop loop;
+    loop.vars = tears;
+    for (int i : block) {
+      const Variable& var_info = v(eqs_[static_cast<std::size_t>(i)].unknown);
+      if (var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) loop.bonds.push_back(var_info.of);
+    }
+    std::sort(loop.bonds.begin(), loop.bonds.end());
+    loop.bonds.erase(std::unique(loop.bonds.begin(), loop.bonds.end()), loop.bonds.end());
+    loop.linear = true;
+    loop.resolution = fmt::format(
+        "linear: eliminated along the kinematic tree, leaves first ({} bodies, {} joint accelerations; articulated-body "
+        "form, {} temporaries): work linear in the bodies, no mass matrix",
+        done->bodies, tears.size(), done->temporaries);
+    out_.loops.push_back(loop);
+    tree_eliminated_ = true;
     return true;
   }
 
@@ -623,7 +725,9 @@ class Reducer {
   /// explicit. The result refers to assignment variables, so the emitter
   /// computes it after the same assignments the derivative uses.
   void differentiate_for_jacobian() {
-    if (out_.dae || !out_.linear_blocks.empty()) return;
+    // (after a tree elimination a symbolic Jacobian would be dense in the
+    // bodies: the implicit solvers difference the derivative instead)
+    if (out_.dae || !out_.linear_blocks.empty() || tree_eliminated_) return;
     std::size_t n = out_.states.size();
     if (n == 0) return;
     std::unordered_map<int, std::size_t> state_index;
@@ -739,6 +843,8 @@ class Reducer {
   std::unordered_map<int, int> der_var_;               // variable -> its derivative variable
   std::vector<int> dae_block_eqs_;
   std::unordered_set<int> dae_unknowns_;
+  std::optional<TreeLayout> tree_;   // the kinematic tree's bodies (built when a loop is torn)
+  bool tree_eliminated_ = false;
   int aliases_ = 0;
   int constants_ = 0;
 };

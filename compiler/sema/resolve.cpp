@@ -110,6 +110,7 @@ class Resolver {
               n.kind_loc = st.kind_loc;
               n.scope = scope;
               n.element = st;
+              n.tree_node = st.tree_node, n.tree_parent = st.tree_parent;
               add_node(std::move(n));
             } else if constexpr (std::is_same_v<T, AstJunction>) {
               if (!claim_name(prefix + st.name, st.loc, "junction")) return;
@@ -121,6 +122,7 @@ class Resolver {
               n.scope = scope;
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
+              n.tree_node = st.tree_node, n.tree_parent = st.tree_parent;
               add_node(std::move(n));
               AstEndpoint self{st.name, st.loc};
               for (const AstEndpoint& in : st.inputs)

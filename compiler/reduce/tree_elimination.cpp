@@ -1,0 +1,380 @@
+// reduce/tree_elimination.cpp — a tree's algebraic loop, eliminated leaves first.
+#include "reduce/tree_elimination.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace mbgc::reduce {
+namespace {
+
+using namespace mbgc::ir;
+
+/// sum_w coef[w] * w + rest, over a body's basis variables (its joint
+/// accelerations and the parent unknowns it reads).
+struct Form {
+  std::map<int, Expr> coef;
+  Expr rest = constant(0);
+
+  void add_term(int w, const Expr& c) {
+    if (is_zero(c)) return;
+    auto [it, fresh] = coef.emplace(w, c);
+    if (!fresh) it->second = add(it->second, c);
+  }
+  /// this += s * f
+  void add_scaled(const Form& f, const Expr& s) {
+    for (const auto& [w, c] : f.coef) add_term(w, mul(s, c));
+    rest = add(rest, mul(s, f.rest));
+  }
+  Expr value() const {
+    Expr e = rest;
+    for (const auto& [w, c] : coef) e = add(e, mul(c, var(w)));
+    return e;
+  }
+};
+
+class Eliminator {
+ public:
+  Eliminator(const TornLoop& loop, const TreeLayout& tree, BondGraph& graph)
+      : loop_(loop), tree_(tree), graph_(graph), depth_(tree.parent.size(), -1) {}
+
+  std::optional<TreeElimination> run(std::string* why) {
+    if (!assign_bodies(why) || !check_structure(why)) return std::nullopt;
+    std::vector<int> bodies(in_loop_.begin(), in_loop_.end());
+    std::stable_sort(bodies.begin(), bodies.end(), [&](int a, int b) { return depth_[a] > depth_[b]; });
+    for (int n : bodies)
+      if (!inward(n, why)) return std::nullopt;
+    std::reverse(bodies.begin(), bodies.end());
+    std::stable_sort(bodies.begin(), bodies.end(), [&](int a, int b) { return depth_[a] < depth_[b]; });
+    for (int n : bodies) outward(n);
+    TreeElimination out;
+    out.assignments = std::move(inward_);
+    for (Assignment& a : outward_) out.assignments.push_back(std::move(a));
+    out.bodies = static_cast<int>(in_loop_.size());
+    out.temporaries = temporaries_;
+    return out;
+  }
+
+ private:
+  int depth(int n) {
+    if (n < 0) return 0;
+    if (depth_[static_cast<std::size_t>(n)] < 0) depth_[static_cast<std::size_t>(n)] = 1 + depth(tree_.parent[static_cast<std::size_t>(n)]);
+    return depth_[static_cast<std::size_t>(n)];
+  }
+  int parent(int n) const { return tree_.parent[static_cast<std::size_t>(n)]; }
+  const std::string& body_name(int n) const { return tree_.names[static_cast<std::size_t>(n)]; }
+
+  /// Which body every unknown belongs to: the layout's, else (a bond-graph
+  /// element that joins a body's block, say a motor's rotor on a joint's
+  /// drive) the deepest body of the unknowns it is related to.
+  bool assign_bodies(std::string* why) {
+    std::vector<int> all(loop_.tears);
+    all.insert(all.end(), loop_.order.begin(), loop_.order.end());
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k) refs_[loop_.tears[k]] = loop_vars(loop_.tear_residuals[k], all);
+    for (int u : loop_.order) refs_[u] = loop_vars(loop_.solution.at(u), all);
+    std::unordered_map<int, std::vector<int>> readers;
+    for (int u : all)
+      for (int w : refs_[u]) readers[w].push_back(u);
+    for (int u : all) {
+      auto it = tree_.body_of.find(u);
+      body_[u] = it == tree_.body_of.end() ? -1 : it->second;
+      if (body_[u] >= 0) depth(body_[u]);
+    }
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (int u : all) {
+        if (body_[u] >= 0) continue;
+        int best = -1;
+        auto consider = [&](int w) {
+          int b = body_[w];
+          if (b >= 0 && (best < 0 || depth(b) > depth(best))) best = b;
+        };
+        for (int w : refs_[u]) consider(w);
+        for (int w : readers[u]) consider(w);
+        if (best >= 0) body_[u] = best, changed = true;
+      }
+    }
+    for (int u : all) {
+      if (body_[u] < 0) {
+        *why = fmt::format("`{}` belongs to no body of the tree", graph_.vars[static_cast<std::size_t>(u)].name);
+        return false;
+      }
+      in_loop_.insert(body_[u]);
+    }
+    return true;
+  }
+
+  std::vector<int> loop_vars(const Expr& e, const std::vector<int>& all) const {
+    std::unordered_set<int> vars;
+    collect_vars(e, vars);
+    std::vector<int> out;
+    for (int u : all)
+      if (vars.count(u)) out.push_back(u);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  /// A body's equations read its own unknowns, its parent's (X) and its
+  /// children's (each child's outputs Y); anything else is not a tree.
+  bool check_structure(std::string* why) {
+    for (const auto& [u, ws] : refs_) {
+      const int n = body_.at(u);
+      for (int w : ws) {
+        const int m = body_.at(w);
+        if (m == n) continue;
+        if (m == parent(n)) x_[n].insert(w);
+        else if (parent(m) == n) outputs_[m].insert(w), reads_child_.insert(u);
+        else {
+          *why = fmt::format("`{}` (body {}) reads `{}` (body {}), neither its parent nor a child",
+                             graph_.vars[static_cast<std::size_t>(u)].name, body_name(n),
+                             graph_.vars[static_cast<std::size_t>(w)].name, body_name(m));
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  /// A temporary for `e` (constants and leaves stay as they are).
+  Expr name(const Expr& e, int n, const char* what) {
+    if (e->op == Op::Const || e->op == Op::Param || e->op == Op::Var) return e;
+    const int id = graph_.add_var(fmt::format("{}.{}{}", body_name(n), what, ++count_[n]), VarKind::Auxiliary, loc_[n]);
+    inward_.push_back({id, e, loc_[n],
+                       fmt::format("articulated-body elimination, body {}: {}", body_name(n), what_text(what)), -1});
+    ++temporaries_;
+    return var(id);
+  }
+  static const char* what_text(const char* what) {
+    const std::string w = what;
+    if (w == "pivot") return "1 / pivot of the joint's accelerations";
+    if (w == "factor") return "elimination factor";
+    if (w == "row") return "reduced row of the joint's equations";
+    if (w == "accel") return "joint acceleration as an affine function of the parent's motion";
+    return "what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)";
+  }
+  void name_all(Form& f, int n, const char* what) {
+    for (auto& [w, c] : f.coef) c = name(c, n, what);
+    f.rest = name(f.rest, n, what);
+  }
+
+  /// e as a Form over body n's basis, or false.
+  bool form_of(const Expr& e, int n, const std::vector<int>& refs, Form& out) {
+    std::vector<Expr> c;
+    Expr rest;
+    if (!affine_in(e, refs, c, rest)) return false;
+    out = Form{};
+    out.rest = rest;
+    for (std::size_t k = 0; k < refs.size(); ++k) {
+      const int w = refs[k];
+      if (is_zero(c[k])) continue;
+      if (basis_.count(w)) {
+        out.add_term(w, c[k]);
+      } else if (body_.at(w) == n) {
+        auto it = form_.find(w);
+        if (it == form_.end()) {
+          missing_ = w;
+          return false;
+        }
+        out.add_scaled(it->second, c[k]);
+      } else {  // a child's output: affine in this body's unknowns
+        const Form& y = out_form_.at(w);
+        for (const auto& [x, kx] : y.coef) {
+          Expr ck = mul(c[k], kx);
+          if (basis_.count(x)) {
+            out.add_term(x, ck);
+          } else {
+            auto it = form_.find(x);
+            if (it == form_.end()) {
+              missing_ = x;
+              return false;
+            }
+            out.add_scaled(it->second, ck);
+          }
+        }
+        out.rest = add(out.rest, mul(c[k], y.rest));
+      }
+    }
+    return true;
+  }
+
+  /// Body n's unknowns (other than its tears) in an order that computes
+  /// them: after the unknowns they read, and one that reads a child's
+  /// output after every unknown of n that the child reads (once the child's
+  /// joint accelerations are eliminated, its output depends on all of them).
+  bool sort_body(int n, std::string* why) {
+    std::vector<int>& out = order_[n];
+    std::unordered_map<int, int> state;  // 1 visiting, 2 done
+    bool ok = true;
+    std::function<void(int)> visit = [&](int u) {
+      int& st = state[u];
+      if (st == 2 || !ok) return;
+      if (st == 1) {
+        ok = false;
+        *why = fmt::format("the unknowns of body {} depend on each other through `{}`", body_name(n),
+                           graph_.vars[static_cast<std::size_t>(u)].name);
+        return;
+      }
+      st = 1;
+      for (int w : refs_.at(u)) {
+        const int m = body_.at(w);
+        if (m == n && loop_.solution.count(w)) visit(w);
+        else if (m != n && parent(m) == n)
+          for (int x : x_[m])
+            if (loop_.solution.count(x)) visit(x);
+      }
+      state[u] = 2;
+      out.push_back(u);
+    };
+    for (int u : loop_.order)
+      if (body_.at(u) == n) visit(u);
+    return ok;
+  }
+
+  bool inward(int n, std::string* why) {
+    std::vector<int> tears;
+    for (int t : loop_.tears)
+      if (body_.at(t) == n) tears.push_back(t);
+    const int first = tears.empty() ? -1 : tears[0];
+    for (int u : loop_.order)
+      if (body_.at(u) == n && first < 0) loc_[n] = loop_.source.at(u).first;
+    if (first >= 0) loc_[n] = loop_.source.at(first).first;
+    basis_.clear();
+    basis_.insert(tears.begin(), tears.end());
+    basis_.insert(x_[n].begin(), x_[n].end());
+    auto fail = [&](int u) {
+      if (missing_ >= 0)
+        *why = fmt::format("`{}` (body {}) reads `{}` before it is known", graph_.vars[static_cast<std::size_t>(u)].name,
+                           body_name(n), graph_.vars[static_cast<std::size_t>(missing_)].name);
+      else
+        *why = fmt::format("`{}` (body {}) is not affine in the body's joint accelerations and its parent's motion",
+                           graph_.vars[static_cast<std::size_t>(u)].name, body_name(n));
+      return false;
+    };
+    if (!sort_body(n, why)) return false;
+    for (int u : order_[n]) {
+      Form f;
+      if (!form_of(loop_.solution.at(u), n, refs_.at(u), f)) return fail(u);
+      form_.emplace(u, std::move(f));
+    }
+    // The joint's equations, D T + C X + d = 0, solved for T by elimination
+    // without pivoting (D is an articulated inertia about the joint's free
+    // directions: positive definite for a body with mass).
+    std::vector<Form> rows;
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
+      const int t = loop_.tears[k];
+      if (body_.at(t) != n) continue;
+      Form r;
+      if (!form_of(loop_.tear_residuals[k], n, refs_.at(t), r)) return fail(t);
+      rows.push_back(std::move(r));
+    }
+    const std::size_t m = tears.size();
+    std::vector<Expr> inv(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const int tk = tears[k];
+      std::size_t p = k;
+      while (p < m && !rows[p].coef.count(tk)) ++p;
+      if (p == m) {
+        *why = fmt::format("the joint accelerations of body {} do not enter its joint's equations", body_name(n));
+        return false;
+      }
+      std::swap(rows[k], rows[p]);
+      inv[k] = name(div(constant(1), rows[k].coef.at(tk)), n, "pivot");
+      for (std::size_t r = k + 1; r < m; ++r) {
+        auto a = rows[r].coef.find(tk);
+        if (a == rows[r].coef.end()) continue;
+        Expr factor = name(mul(a->second, inv[k]), n, "factor");
+        rows[r].coef.erase(a);
+        Form scaled;
+        for (const auto& [w, c] : rows[k].coef)
+          if (w != tk) scaled.add_term(w, c);
+        scaled.rest = rows[k].rest;
+        rows[r].add_scaled(scaled, neg(factor));
+        name_all(rows[r], n, "row");
+      }
+    }
+    for (std::size_t k = m; k-- > 0;) {
+      const int tk = tears[k];
+      Form s;
+      s.rest = rows[k].rest;
+      for (const auto& [w, c] : rows[k].coef) {
+        if (w == tk) continue;
+        if (auto j = t_form_.find(w); j != t_form_.end()) s.add_scaled(j->second, c);
+        else s.add_term(w, c);
+      }
+      Form t;
+      t.add_scaled(s, neg(inv[k]));
+      name_all(t, n, "accel");
+      t_form_.emplace(tk, std::move(t));
+    }
+    // What the parent reads of this body, in terms of the parent's unknowns.
+    for (int y : outputs_[n]) {
+      if (auto t = t_form_.find(y); t != t_form_.end()) {
+        out_form_.emplace(y, t->second);
+        continue;
+      }
+      const Form& f = form_.at(y);
+      Form o;
+      o.rest = f.rest;
+      for (const auto& [w, c] : f.coef) {
+        if (auto t = t_form_.find(w); t != t_form_.end()) o.add_scaled(t->second, c);
+        else o.add_term(w, c);
+      }
+      name_all(o, n, "out");
+      out_form_.emplace(y, std::move(o));
+    }
+    return true;
+  }
+
+  void outward(int n) {
+    for (int t : loop_.tears) {
+      if (body_.at(t) != n) continue;
+      const auto& [loc, origin] = loop_.source.at(t);
+      outward_.push_back({t, t_form_.at(t).value(), loc,
+                          fmt::format("joint acceleration of body {} from its parent's motion (articulated-body form)",
+                                      body_name(n)),
+                          -1});
+    }
+    for (int u : order_[n]) {
+      const auto& [loc, origin] = loop_.source.at(u);
+      if (reads_child_.count(u)) outward_.push_back({u, form_.at(u).value(), loc, origin + " [after the body's elimination]", -1});
+      else outward_.push_back({u, loop_.solution.at(u), loc, origin, -1});
+    }
+  }
+
+  const TornLoop& loop_;
+  const TreeLayout& tree_;
+  BondGraph& graph_;
+  std::vector<int> depth_;
+  std::unordered_map<int, std::vector<int>> refs_;  // unknown -> the loop's unknowns its equation reads
+  std::unordered_map<int, int> body_;               // unknown -> body
+  std::set<int> in_loop_;                           // bodies with unknowns in the loop
+  std::map<int, std::set<int>> x_;                  // body -> its parent's unknowns it reads
+  std::map<int, std::set<int>> outputs_;            // body -> its unknowns its parent reads
+  std::unordered_set<int> reads_child_;             // unknowns whose equation reads a child's output
+  std::set<int> basis_;                             // the body being eliminated: tears and X
+  std::map<int, std::vector<int>> order_;           // body -> its unknowns but the tears, in evaluation order
+  std::unordered_map<int, Form> form_;              // unknown -> affine in its body's basis
+  std::unordered_map<int, Form> t_form_;            // tear -> affine in its body's X
+  std::unordered_map<int, Form> out_form_;          // output -> affine in its parent's unknowns
+  std::map<int, int> count_;                        // body -> temporaries so far
+  std::map<int, SourceLoc> loc_;                    // body -> model line for its temporaries
+  std::vector<Assignment> inward_, outward_;
+  int temporaries_ = 0;
+  int missing_ = -1;  // an unknown read before its form was known (for the diagnosis)
+};
+
+}  // namespace
+
+std::optional<TreeElimination> eliminate_along_tree(const TornLoop& loop, const TreeLayout& tree, BondGraph& graph,
+                                                    std::string* why_not) {
+  Eliminator e(loop, tree, graph);
+  std::string why;
+  auto out = e.run(&why);
+  if (!out && why_not) *why_not = why;
+  return out;
+}
+
+}  // namespace mbgc::reduce
