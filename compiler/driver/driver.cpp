@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <optional>
 
 #include "causality/scap.hpp"
 #include "codegen/emit_cpp.hpp"
@@ -16,15 +18,12 @@
 #include "reduce/reduce.hpp"
 #include "scene/scene.hpp"
 #include "sema/resolve.hpp"
-#include <fmt/format.h>
-#include <map>
-#include <optional>
 
 namespace mbgc::driver {
 namespace {
 
-/// Write via a temporary file and rename, so a failed write never leaves a partial file.
-/// Writes `text` to `path` through a temporary file. With `keep_unchanged`
+/// Writes `text` to `path` through a temporary file and a rename, so a failed
+/// write never leaves a partial file. With `keep_unchanged`
 /// an existing file with the same text is left untouched: a build system
 /// that checks outputs after a command (Ninja's restat, which CMake sets for
 /// custom commands) then skips recompiling a simulator when a new mbgc
@@ -99,12 +98,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
     selected = scene::select_scene(scenes, opt.scene, ast, diags);
     if (failed()) return 1;
     if (!selected) {
-      std::vector<std::string> names;
-      for (const ir::AstScene& s : scenes) names.push_back("`" + s.name + "`");
-      err << "mbgc: error: the model declares no scene `" << opt.scene << "`"
-          << (names.empty() ? std::string(" (it declares none: write scene NAME { outputs = [a, b] })")
-                            : " (its scenes: " + fmt::format("{}", fmt::join(names, ", ")) + ")")
-          << "\n";
+      err << "mbgc: error: " << scene::no_such_scene(scenes, opt.scene) << "\n";
       return 1;
     }
     for (const auto& [name, value] : selected->overrides) overrides.emplace(name, value);

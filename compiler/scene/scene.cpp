@@ -119,6 +119,14 @@ std::optional<SelectedScene> select_scene(const std::vector<AstScene>& scenes, c
   return sel;
 }
 
+std::string no_such_scene(const std::vector<AstScene>& scenes, const std::string& name) {
+  std::vector<std::string> names;
+  for (const AstScene& s : scenes) names.push_back("`" + s.name + "`");
+  return fmt::format("the model declares no scene `{}` ({})", name,
+                     names.empty() ? std::string("it declares none: write scene NAME { outputs = [a, b] }")
+                                   : fmt::format("its scenes: {}", fmt::join(names, ", ")));
+}
+
 SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& diags) {
   SceneReport rep;
   rep.scene = scene.name;

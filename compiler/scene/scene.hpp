@@ -41,6 +41,9 @@ struct SelectedScene {
 std::optional<SelectedScene> select_scene(const std::vector<ir::AstScene>& scenes, const std::string& name,
                                           const ir::AstProgram& program, ir::Diagnostics& diags);
 
+/// "the model declares no scene `x` (its scenes: `a`, `b`)", for --scene x.
+std::string no_such_scene(const std::vector<ir::AstScene>& scenes, const std::string& name);
+
 /// What prune_graph kept and removed (for `mbgc --explain-scene`).
 struct SceneReport {
   std::string scene;

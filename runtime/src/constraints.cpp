@@ -290,6 +290,19 @@ RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape&
   return rep;
 }
 
+std::string rank_loss_note(Model& model, const ConstraintShape& shape, double t0, const double* y0, double t,
+                           const double* y) {
+  if (shape.lambda_at.empty()) return {};
+  const RedundancyReport then = find_redundant_constraints(model, shape, t0, y0);
+  const RedundancyReport now = find_redundant_constraints(model, shape, t, y);
+  if (now.redundant.size() <= then.redundant.size() && now.smallest_kept >= 0.05 * then.smallest_kept) return {};
+  return fmt::format(
+      "at t = {:.6g} s the joints' constraint rows are close to losing rank (the least independent row "
+      "kept {:.2g} of its norm, {:.2g} at the start): the mechanism is at or near a singular configuration - "
+      "a dead point, or links aligned - where the joints alone do not determine the motion",
+      t, now.smallest_kept, then.smallest_kept);
+}
+
 AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double* y_io) {
   AssemblyReport rep;
   const Index n = ix(s.n), np = ix(s.np), nv = ix(s.nv);

@@ -96,6 +96,12 @@ struct RedundancyReport {
 RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape& shape, double t,
                                             const double* y);
 
+/// For a run that stopped at (t, y): a sentence if the lagrange rows there
+/// are much closer to dependent than at the start (t0, y0) — a dead point or
+/// aligned links —, else empty.
+std::string rank_loss_note(Model& model, const ConstraintShape& shape, double t0, const double* y0, double t,
+                           const double* y);
+
 struct InitialValuesReport {
   bool ok = false;
   std::size_t differentiated_rows = 0;  ///< residual rows replaced by their time derivative

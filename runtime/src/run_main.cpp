@@ -165,44 +165,28 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   else
     model.terminal(s.t_start_s, y0.data());
 
-  // Stiffness (ODEs): why an explicit run stopped or crept, in model terms.
+  // Why the run stopped (or crept), in model terms: the fastest mode against
+  // an explicit method's stability limit; joint rows losing rank.
   const bool penalty_joints = model.position_constraint_count() > 0 && !model.constraints_enforced();
-  const double bound = explicit_stability_bound(integrator->name());
-  const double step_s = s.solver == Solver::rk4 ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0;
   std::string stop_note, stability;
   if (!model.is_dae() && !linearize) {
     const auto& blame = guard.blame();
     const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception;
-    if (!r.ok && r.started && (r.solver_failed || blew_up)) {
+    if (!r.ok && r.started && (r.solver_failed || blew_up))
       stop_note = describe_stiffness(estimate_stiffness(model, last_row_t, last_row_y.data()), integrator->name(),
-                                     step_s, penalty_joints);
-    } else if (r.ok && bound > 0 && integrator->stats().steps > 0) {
-      const StiffnessEstimate e = estimate_stiffness(model, integrator->t(), integrator->y());
-      const double mean_step_s = (integrator->t() - s.t_start_s) / static_cast<double>(integrator->stats().steps);
-      // Near the limit: well below it the steps were set by accuracy; far above
-      // it the fast mode cannot have been excited (the run would have blown up).
-      const double h_rate = e.rate_per_s * mean_step_s;
-      if (e.valid && h_rate > 0.25 * bound && h_rate < 2 * bound)
-        stability = fmt::format("steps limited by stability, not accuracy (mean step {:.2g} s): {}", mean_step_s,
-                                describe_stiffness(e, integrator->name(), 0.0, penalty_joints));
-    }
+                                     s.solver == Solver::rk4 ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0,
+                                     penalty_joints);
+    else if (r.ok)
+      stability = stability_limited_note(model, *integrator, s.t_start_s, penalty_joints);
   }
-
-  // Joint rows that became (nearly) dependent: a dead point or aligned links.
-  if (!r.ok && r.started && !guard.constraint_shape().lambda_at.empty()) {
-    const RedundancyReport then = find_redundant_constraints(model, guard.constraint_shape(), s.t_start_s, y0.data());
-    // Where the solver gave up (its last accepted state), else the last row.
+  if (!r.ok && r.started) {
+    // where the solver gave up (its last accepted state), else the last row
     const double* y_end = integrator->y();
     double t_end = integrator->t();
     if (!std::all_of(y_end, y_end + n, [](double v) { return std::isfinite(v); }))
       y_end = last_row_y.data(), t_end = last_row_t;
-    const RedundancyReport now = find_redundant_constraints(model, guard.constraint_shape(), t_end, y_end);
-    if (now.redundant.size() > then.redundant.size() || now.smallest_kept < 0.05 * then.smallest_kept)
-      stop_note += fmt::format(
-          "{}at t = {:.6g} s the joints' constraint rows are close to losing rank (the least independent row "
-          "kept {:.2g} of its norm, {:.2g} at the start): the mechanism is at or near a singular configuration - "
-          "a dead point, or links aligned - where the joints alone do not determine the motion",
-          stop_note.empty() ? "" : "; ", t_end, now.smallest_kept, then.smallest_kept);
+    const std::string rank = rank_loss_note(model, guard.constraint_shape(), s.t_start_s, y0.data(), t_end, y_end);
+    if (!rank.empty()) stop_note += (stop_note.empty() ? "" : "; ") + rank;
   }
 
   if (!o.quiet) {

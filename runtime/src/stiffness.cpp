@@ -83,4 +83,18 @@ std::string describe_stiffness(const StiffnessEstimate& e, std::string_view solv
   return s;
 }
 
+std::string stability_limited_note(Model& model, const Integrator& integrator, double t_start_s, bool penalty_joints) {
+  const double bound = explicit_stability_bound(integrator.name());
+  const long steps = integrator.stats().steps;
+  if (!(bound > 0) || steps <= 0 || model.is_dae()) return {};
+  const StiffnessEstimate e = estimate_stiffness(model, integrator.t(), integrator.y());
+  const double mean_step_s = (integrator.t() - t_start_s) / static_cast<double>(steps);
+  // Near the limit: well below it the steps were set by accuracy; far above
+  // it the fast mode cannot have been excited (the run would have blown up).
+  const double h_rate = e.rate_per_s * mean_step_s;
+  if (!e.valid || h_rate <= 0.25 * bound || h_rate >= 2 * bound) return {};
+  return fmt::format("steps limited by stability, not accuracy (mean step {:.2g} s): {}", mean_step_s,
+                     describe_stiffness(e, integrator.name(), 0.0, penalty_joints));
+}
+
 }  // namespace mbgrt::detail

@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "integrator.hpp"
 #include "mbgrt/model.hpp"
 
 namespace mbgrt::detail {
@@ -32,5 +33,10 @@ double explicit_stability_bound(std::string_view solver);
 /// pointer to the penalty joints when the model has them.
 std::string describe_stiffness(const StiffnessEstimate& e, std::string_view solver, double step_s,
                                bool penalty_joints);
+
+/// For an explicit run that reached its end: a sentence if its mean step sat
+/// near the stability limit of the fastest excited mode (empty otherwise, and
+/// for implicit solvers).
+std::string stability_limited_note(Model& model, const Integrator& integrator, double t_start_s, bool penalty_joints);
 
 }  // namespace mbgrt::detail
