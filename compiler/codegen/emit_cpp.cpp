@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 #include "codegen/cpp.hpp"
 #include "codegen/template.hpp"
@@ -115,7 +116,7 @@ class Emitter {
     class_name_ = mangle_.get("class", g_.model_name + "_model");
   }
 
-  std::string run() {
+  std::string run(EmitStats* stats) {
     CppClass c;
     c.name = class_name_;
     c.base = "mbgrt::Model";
@@ -160,7 +161,53 @@ class Emitter {
     replace(out, "{{entry_point}}", entry);
     // No trailing blank lines: one newline at the end.
     while (out.size() > 1 && out[out.size() - 1] == '\n' && out[out.size() - 2] == '\n') out.pop_back();
+    if (stats) collect_stats(c, out, *stats);
     return out;
+  }
+
+  /// The costs counted while the methods were built, with their size in the file.
+  void collect_stats(const CppClass& c, const std::string& out, EmitStats& stats) const {
+    stats = {};
+    stats.model = g_.model_name;
+    stats.dae = s_.dae;
+    stats.states = s_.states.size();
+    stats.algebraic = s_.algebraic.size();
+    // both forms print the class inside a namespace, its methods two levels in
+    const int indent = 2;
+    for (const auto* methods : {&c.public_methods, &c.private_methods})
+      for (const CppFunction& f : *methods) {
+        FunctionStats fs;
+        const std::string& sig = f.signature;
+        auto open = sig.find('(');
+        auto start = sig.find_last_of(' ', open);
+        fs.name = sig.substr(start == std::string::npos ? 0 : start + 1, open - (start == std::string::npos ? 0 : start + 1));
+        std::string text = print(f, indent);
+        fs.bytes = text.size();
+        fs.lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+        if (auto it = costs_.find(sig); it != costs_.end()) {
+          fs.ops = it->second.ops;
+          fs.solves = it->second.solves;
+          for (std::size_t n : fs.solves) fs.solve_ops += solve_linear_ops(n);
+        }
+        stats.functions.push_back(std::move(fs));
+      }
+    stats.file_bytes = out.size();
+    stats.file_lines = static_cast<std::size_t>(std::count(out.begin(), out.end(), '\n'));
+  }
+
+  /// What a method's expressions and linear solves cost, counted as they are printed.
+  struct Cost {
+    CppOps ops;
+    std::vector<std::size_t> solves;
+  };
+  /// While the returned guard lives, printed expressions count towards method `f`.
+  struct Counting {
+    Cost*& cost;
+    ~Counting() { cost = nullptr; }
+  };
+  [[nodiscard]] Counting count_into(const CppFunction& f) {
+    cost_ = &costs_[f.signature];
+    return Counting{cost_};
   }
 
  private:
@@ -308,6 +355,7 @@ class Emitter {
   CppFunction initial() {
     CppFunction f{"INITIAL: parameters (honouring --set overrides), then the initial state.",
                   fmt::format("void initial(double t, double* {}, double* yp) override", s_.dae ? "y" : "x"), {}};
+    const Counting counting = count_into(f);
     f.body.push_back(CppStmt::line("(void)t;"));
     if (s_.states.empty() && s_.algebraic.empty()) f.body.push_back(CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"));
     if (!s_.dae) f.body.push_back(CppStmt::line("(void)yp;"));
@@ -498,11 +546,19 @@ class Emitter {
     body.push_back(CppStmt::line("};"));
     body.push_back(CppStmt::line(fmt::format("double {}_x[{}] = {{{}}};", id, n, fmt::join(rhs, ", "))));
     body.push_back(CppStmt::line(fmt::format("mbgrt::solve_linear({}, {}_a, {}_x);", n, id, id)));
+    if (!cost_) throw std::logic_error("mbgc: a linear solve outside a counted method (codegen bug)");
+    cost_->solves.push_back(n);
+  }
+
+  /// Where the operations of printed text go: the method being built.
+  CppOps* ops() {
+    if (!cost_) throw std::logic_error("mbgc: an expression printed outside a counted method (codegen bug)");
+    return &cost_->ops;
   }
 
   /// to_cpp, with already-defined common subexpressions replaced by their names.
   std::string cpp_with_temps(const Expr& e, const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& temp, bool top) {
-    if (temp.empty()) return to_cpp(e, names_);
+    if (temp.empty()) return to_cpp(e, names_, ops());
     // Replace each defined temporary by a placeholder variable id beyond the real ones.
     std::unordered_map<int, std::string> placeholder;
     int next = static_cast<int>(g_.vars.size()) + 1000000;
@@ -527,12 +583,13 @@ class Emitter {
       auto it = placeholder.find(id);
       return it != placeholder.end() ? it->second : names_.var(id);
     };
-    return to_cpp(replaced, n);
+    return to_cpp(replaced, n, ops());
   }
 
   CppFunction derivative() {
     CppFunction f{"DERIVATIVE: the state derivatives, in causal order.",
                   "void derivative(double t, const double* x, double* xdot) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
+    const Counting counting = count_into(f);
     std::vector<std::pair<std::string, Expr>> results;
     for (std::size_t i = 0; i < s_.states.size(); ++i)
       results.push_back({fmt::format("xdot[{}]", i), s_.state_derivative[i]});
@@ -547,6 +604,7 @@ class Emitter {
                   "void jacobian(double t, const double* x, double* jac_out) override",
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)x;"),
                    CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) jac_out[k] = 0.0;", n * n))}};
+    const Counting counting = count_into(f);
     std::vector<std::pair<std::string, Expr>> results;
     for (std::size_t k = 0; k < s_.jacobian.size(); ++k)
       if (!is_zero(s_.jacobian[k])) results.push_back({fmt::format("jac_out[{}]", k), s_.jacobian[k]});
@@ -558,6 +616,7 @@ class Emitter {
     CppFunction f{"RESIDUAL (DAE): r = F(t, y, yp) must vanish; states first, then algebraic unknowns.",
                   "void residual(double t, const double* y, const double* yp, double* r) override",
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)y;"), CppStmt::line("(void)yp;")}};
+    const Counting counting = count_into(f);
     std::vector<std::pair<std::string, Expr>> results;
     for (std::size_t i = 0; i < s_.residuals.size(); ++i)
       results.push_back({fmt::format("r[{}]", i), s_.residuals[i].value});
@@ -592,6 +651,7 @@ class Emitter {
     CppFunction f{"CONSTRAINTS: g(x) for every CN row, then gdot(x).",
                   fmt::format("void constraints(double t, const double* {}, double* rows_out) override", y),
                   {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
+    const Counting counting = count_into(f);
     std::vector<std::pair<std::string, Expr>> results;
     for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", i), s_.constraints[i].g});
     for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", n + i), s_.constraints[i].gdot});
@@ -624,6 +684,7 @@ class Emitter {
     CppFunction f{"OUTPUT: the declared outputs at (t, y).",
                   fmt::format("void outputs(double t, const double* {}, const double* yp, double* out) override", s_.dae ? "y" : "x"),
                   {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
+    const Counting counting = count_into(f);
     std::vector<std::pair<std::string, Expr>> results;
     for (std::size_t i = 0; i < g_.outputs.size(); ++i) results.push_back({fmt::format("out[{}]", i), g_.outputs[i].value});
     if (results.empty()) f.body.push_back(CppStmt::line("(void)out;"));
@@ -704,16 +765,21 @@ class Emitter {
   Namer names_;
   std::string class_name_;
   int cse_counter_ = 0;
+  std::map<std::string, Cost> costs_;  // method signature -> its cost
+  Cost* cost_ = nullptr;               // the method being built
   std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
   std::vector<Expr> hoisted_order_;                                    // in first-use order
 };
 
 }  // namespace
 
-std::string emit_cpp(const ReducedSystem& system, const SourceManager& sources, const EmitOptions& options) {
+std::string emit_cpp(const ReducedSystem& system, const SourceManager& sources, const EmitOptions& options,
+                     EmitStats* stats) {
   Emitter e(system, sources, options);
-  return e.run();
+  return e.run(stats);
 }
+
+std::size_t solve_linear_ops(std::size_t n) { return (4 * n * n * n + 9 * n * n - 7 * n) / 6; }
 
 std::string namespace_problem(const std::string& name) {
   const bool identifier = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&

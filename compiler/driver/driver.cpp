@@ -156,6 +156,11 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   emit.library_namespace = opt.library_namespace;
   if (selected) emit.scene = selected->name;
   emit.source_display = opt.input;
+  if (opt.stats) {
+    codegen::EmitStats stats;
+    codegen::emit_cpp(reduced, sources, emit, &stats);
+    return finish(codegen::format_stats(stats, opt.stats_csv));
+  }
   return finish(codegen::emit_cpp(reduced, sources, emit));
 }
 

@@ -32,6 +32,8 @@ struct Options {
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time
   std::vector<std::string> search_dirs;              ///< -I: where modal-data files are looked for
   std::optional<multibody::Strategy> constraints;  ///< --constraints: replaces the model's `constraints = ...`
+  bool stats = false;         ///< --stats: print each generated method's operations and size instead of C++
+  bool stats_csv = false;     ///< --stats-format=csv
 };
 
 /// Runs the compiler. Returns the exit status: 0 ok, 1 errors in the model,

@@ -45,6 +45,16 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   app.add_option("--format", format, "dump format: text, or dot (Graphviz) for --dump=graph")
       ->check(CLI::IsMember({"text", "dot"}));
+  std::string stats_format;
+  app.add_flag("--stats", opt.stats,
+               "print, instead of C++, one row per method of the generated model class: its lines, bytes and "
+               "floating-point operations per call, as written (each binary + - * /, each unary minus not on a "
+               "literal, each math function call incl. pow, fabs, fmin, fmax, each comparison of step/sign; x^2 "
+               "and x^3 of a variable are x*x and x*x*x; a shared temporary counts once, where it is defined; "
+               "mbgrt::solve_linear(n) counts (4n^3 + 9n^2 - 7n)/6), then the totals and the whole file's lines and "
+               "bytes");
+  app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
+      ->check(CLI::IsMember({"text", "csv"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
   CLI11_PARSE(app, argc, argv);
   if (!explain.empty()) {
@@ -75,6 +85,15 @@ int main(int argc, char** argv) {
   opt.dot = format == "dot";
   if (opt.dot && opt.dump != Dump::Graph) {
     std::cerr << "mbgc: error: --format=dot goes with --dump=graph\n";
+    return 2;
+  }
+  if (!stats_format.empty() && !opt.stats) {
+    std::cerr << "mbgc: error: --stats-format goes with --stats\n";
+    return 2;
+  }
+  opt.stats_csv = stats_format == "csv";
+  if (opt.stats && (opt.dump != Dump::None || opt.explain_scene)) {
+    std::cerr << "mbgc: error: --stats prints the generated code's costs: it does not go with --dump or --explain-scene\n";
     return 2;
   }
   return mbgc::driver::compile(opt, std::cout, std::cerr);

@@ -343,7 +343,7 @@ struct Printed {
 
 class Printer {
  public:
-  Printer(const Namer& names, bool cpp) : names_(names), cpp_(cpp) {}
+  Printer(const Namer& names, bool cpp, CppOps* ops = nullptr) : names_(names), cpp_(cpp), ops_(ops ? ops : &unused_) {}
 
   Printed print(const Expr& e) {
     if (!e) return {"<null>", kAtom, false};
@@ -360,15 +360,19 @@ class Printer {
         // -(a*b) == (-a)*b exactly, so print it as "-a*b" (a Mul-level text).
         // Not when the product starts with a NaN: "-nan" would read as nan.
         if ((x->op == Op::Mul || x->op == Op::Div) && px.prec == kMul && !px.neg_lead &&
-            !starts_with_nan(x))
+            !starts_with_nan(x)) {
+          // "-2.0 * x" is the literal -2.0 times x: no negation at run time
+          if (!starts_with_literal(x)) ++ops_->neg;
           return {"-" + px.s, kMul, true};
+        }
+        if (x->op != Op::Const) ++ops_->neg;
         if (px.prec >= kUnary && !px.neg_lead) return {"-" + px.s, kUnary, true};
         return {"-(" + px.s + ")", kUnary, true};
       }
-      case Op::Add: return binary(e, kAdd, " + ");
-      case Op::Sub: return binary(e, kAdd, " - ");
-      case Op::Mul: return binary(e, kMul, cpp_ ? " * " : "*");
-      case Op::Div: return binary(e, kMul, cpp_ ? " / " : "/");
+      case Op::Add: ++ops_->add; return binary(e, kAdd, " + ");
+      case Op::Sub: ++ops_->add; return binary(e, kAdd, " - ");
+      case Op::Mul: ++ops_->mul; return binary(e, kMul, cpp_ ? " * " : "*");
+      case Op::Div: ++ops_->div; return binary(e, kMul, cpp_ ? " / " : "/");
       case Op::Pow: return cpp_ ? cpp_pow(e) : model_pow(e);
       case Op::Call: return cpp_ ? cpp_call(e) : model_call(e);
       case Op::Der:
@@ -383,6 +387,15 @@ class Printer {
     const Node* n = product.get();
     while (n->op == Op::Mul || n->op == Op::Div) n = n->args[0].get();
     return n->op == Op::Const && std::isnan(n->value);
+  }
+
+  /// The product's text starts with a numeric literal (its leftmost factor is
+  /// a constant; the printer never parenthesises the left operand of * or /
+  /// when it is itself a product).
+  static bool starts_with_literal(const Expr& product) {
+    const Node* n = product.get();
+    while (n->op == Op::Mul || n->op == Op::Div) n = n->args[0].get();
+    return n->op == Op::Const;
   }
 
   Printed constant_text(double v) const {
@@ -429,9 +442,11 @@ class Printer {
     double c = 0.0;
     bool leaf = a->op == Op::Var || a->op == Op::Param || a->op == Op::Time;
     if (leaf && cval(b, c) && (c == 2.0 || c == 3.0)) {
+      ops_->mul += c == 2.0 ? 1 : 2;
       std::string x = print(a).s;
       return {c == 2.0 ? "(" + x + "*" + x + ")" : "(" + x + "*" + x + "*" + x + ")", kAtom, false};
     }
+    ++ops_->call;
     return {"std::pow(" + print(a).s + ", " + print(b).s + ")", kAtom, false};
   }
 
@@ -452,22 +467,40 @@ class Printer {
     const char* f = nullptr;
     switch (e->fn) {
       case Fn::Sign: {
+        // the argument is written twice: its operations count twice
+        const CppOps before = *ops_;
         std::string x = print(e->args[0]).s;
+        add_difference(*ops_, before);
+        ops_->compare += 2;
         return {"((" + x + ") > 0.0 ? 1.0 : ((" + x + ") < 0.0 ? -1.0 : 0.0))", kAtom, false};
       }
       case Fn::Step:
+        ++ops_->compare;
         return {"((" + print(e->args[0]).s + ") >= 0.0 ? 1.0 : 0.0)", kAtom, false};
       case Fn::Abs: f = "std::fabs"; break;
       case Fn::Min: f = "std::fmin"; break;
       case Fn::Max: f = "std::fmax"; break;
       default: break;
     }
+    ++ops_->call;
     std::string name = f ? std::string(f) : "std::" + std::string(fn_name(e->fn));
     return {name + "(" + arg_list(e) + ")", kAtom, false};
   }
 
+  /// ops += (ops - before), field by field: a text printed twice.
+  static void add_difference(CppOps& ops, const CppOps& before) {
+    ops.add += ops.add - before.add;
+    ops.mul += ops.mul - before.mul;
+    ops.div += ops.div - before.div;
+    ops.neg += ops.neg - before.neg;
+    ops.call += ops.call - before.call;
+    ops.compare += ops.compare - before.compare;
+  }
+
   const Namer& names_;
   bool cpp_;
+  CppOps unused_;  // where the counts go when nobody asked for them
+  CppOps* ops_;
 };
 
 }  // namespace
@@ -771,8 +804,8 @@ std::string to_string(const Expr& e, const Namer& names) {
   return Printer(names, false).print(e).s;
 }
 
-std::string to_cpp(const Expr& e, const Namer& names) {
-  return Printer(names, true).print(e).s;
+std::string to_cpp(const Expr& e, const Namer& names, CppOps* ops) {
+  return Printer(names, true, ops).print(e).s;
 }
 
 Expr with_operands(const Expr& e, std::vector<Expr> operands) { return rebuild(e, std::move(operands)); }

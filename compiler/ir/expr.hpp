@@ -145,6 +145,30 @@ std::string to_string(const Expr& e, const Namer& names);
 /// std::numeric_limits (the text needs <cmath> and <limits>). Der must have been
 /// removed: a leftover one prints as MBGC_DER_NOT_REMOVED(...), which does not
 /// compile.
-std::string to_cpp(const Expr& e, const Namer& names);
+///
+/// With `ops`, also adds to it the floating-point operations of the printed
+/// text, counted by the printer as it writes them (so exactly what the text
+/// says, before the C++ compiler's own optimisations):
+///   add     each binary + and -
+///   mul     each binary *, including those of x^2 and x^3 written as (x*x)
+///           and (x*x*x) (one and two)
+///   div     each binary /
+///   neg     each unary minus applied at run time; not the sign of a numeric
+///           literal: -2.0 * x is the literal -2.0 times x (one mul)
+///   call    each call of a math function: std::sin, ..., std::pow,
+///           std::sqrt, std::exp, std::fabs, std::fmin, std::fmax
+///   compare each comparison: step's >= (one), sign's > and < (two)
+/// Reads of variables, parameters and constants cost nothing. sign(x) writes
+/// its argument twice, so x's operations count twice, as written.
+struct CppOps {
+  std::size_t add = 0, mul = 0, div = 0, neg = 0, call = 0, compare = 0;
+  std::size_t total() const { return add + mul + div + neg + call + compare; }
+  CppOps& operator+=(const CppOps& o) {
+    add += o.add, mul += o.mul, div += o.div, neg += o.neg, call += o.call, compare += o.compare;
+    return *this;
+  }
+  bool operator==(const CppOps&) const = default;
+};
+std::string to_cpp(const Expr& e, const Namer& names, CppOps* ops = nullptr);
 
 }  // namespace mbgc::ir

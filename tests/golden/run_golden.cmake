@@ -3,8 +3,10 @@
 #   -DMBGC=<mbgc> -DDIR=<golden dir> -DNAME=<model name without .mbg> -DKIND=good|bad
 #
 # good: the generated C++ and every stage dump must equal the blessed files
-#       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot (and <NAME>.scene.txt,
-#       from --explain-scene, when the arguments choose a scene); mbgc must exit 0 and be
+#       <NAME>.cpp, <NAME>.<stage>.txt, <NAME>.dot, <NAME>.stats.csv (mbgc --stats
+#       --stats-format csv: each generated method's lines, bytes and operations
+#       per call) and <NAME>.scene.txt (from --explain-scene, when the
+#       arguments choose a scene); mbgc must exit 0 and be
 #       deterministic (two runs, same bytes); what it prints to stderr (notes,
 #       warnings) must equal <NAME>.stderr if either is non-empty.
 # bad:  stderr must equal <NAME>.stderr and the exit status <NAME>.status;
@@ -66,6 +68,13 @@ if(KIND STREQUAL "good")
   endforeach()
   execute_process(COMMAND ${MBGC} ${NAME}.mbg ${extra_args} --dump=graph --format=dot WORKING_DIRECTORY ${DIR} OUTPUT_VARIABLE dot)
   check(${NAME}.dot "${dot}")
+  # What the generated methods cost (mbgc --stats): lines, bytes and operations per call.
+  execute_process(COMMAND ${MBGC} ${NAME}.mbg ${extra_args} --stats --stats-format csv WORKING_DIRECTORY ${DIR}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE stats ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "mbgc --stats failed on ${NAME}.mbg:\n${err}")
+  endif()
+  check(${NAME}.stats.csv "${stats}")
   # A scene's golden also holds what --explain-scene says it removed.
   list(FIND extra_args --scene at)
   if(at GREATER_EQUAL 0)

@@ -3,6 +3,7 @@
 // sections, settings and parameters, and unique C++ identifiers for model names.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <regex>
 #include <set>
@@ -10,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "cpp_ops_text.hpp"
+#include "driver/driver.hpp"
 #include "pipeline.hpp"
 
 namespace {
@@ -312,6 +315,137 @@ TEST(EmitNames, CppKeywordsAndGeneratedNamesAreAvoided) {
   // Names shown to users keep the model spelling.
   EXPECT_NE(code.find("{\"int\", 2.0, \"\"},"), std::string::npos);
   EXPECT_NE(code.find("return {\"xdot\"};"), std::string::npos);
+}
+
+// ---- mbgc --stats ------------------------------------------------------------------------------
+
+TEST(EmitStats, TheTextIsTheSameWithStatsAndTheFileSizeIsItsOwn) {
+  for (const char* model : {kSeriesRlc, kAlgebraicLoop, kNonlinearDae}) {
+    auto c = compile(model);
+    ASSERT_TRUE(c->ok()) << c->messages();
+    for (bool library : {false, true}) {
+      mbgc::codegen::EmitOptions opt;
+      opt.library = library;
+      opt.source_display = "test.mbg";
+      mbgc::codegen::EmitStats stats;
+      const std::string with = mbgc::codegen::emit_cpp(c->reduced, c->sources, opt, &stats);
+      EXPECT_EQ(with, emit(*c, library));
+      EXPECT_EQ(stats.file_bytes, with.size());
+      EXPECT_EQ(stats.file_lines, static_cast<std::size_t>(std::count(with.begin(), with.end(), '\n')));
+      std::size_t lines = 0;
+      for (const auto& f : stats.functions) lines += f.lines;
+      EXPECT_LT(lines, stats.file_lines);
+    }
+  }
+}
+
+TEST(EmitStats, SolveLinearOpsFollowItsLoops) {
+  // count the arithmetic of runtime/include/mbgrt/linear_solve.hpp's loops directly
+  for (std::size_t n = 0; n <= 40; ++n) {
+    std::size_t ops = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      for (std::size_t r = k + 1; r < n; ++r) ops += 1 + 2 * (n - k - 1) + 2;  // factor; row update; x[r]
+    for (std::size_t k = 0; k < n; ++k) ops += 2 * (n - k - 1) + 1;           // back substitution
+    EXPECT_EQ(mbgc::codegen::solve_linear_ops(n), ops) << "n = " << n;
+  }
+}
+
+/// mbgc's output for `args` (the model file first), through the driver as the command line runs it.
+std::string run_mbgc(const std::vector<std::string>& args, bool stats) {
+  mbgc::driver::Options opt;
+  opt.input = args.at(0);
+  for (std::size_t i = 1; i + 1 < args.size(); i += 2) {
+    if (args[i] == "--set") {
+      auto eq = args[i + 1].find('=');
+      opt.overrides[args[i + 1].substr(0, eq)] = std::stod(args[i + 1].substr(eq + 1));
+    } else if (args[i] == "--constraints") {
+      opt.constraints = args[i + 1] == "coordinates" ? mbgc::multibody::Strategy::Coordinates
+                                                     : mbgc::multibody::Strategy::Lagrange;
+    }
+  }
+  opt.stats = stats;
+  opt.stats_csv = true;
+  std::ostringstream out, err;
+  EXPECT_EQ(mbgc::driver::compile(opt, out, err), 0) << err.str();
+  return out.str();
+}
+
+TEST(EmitStats, CountsEqualTheOperationsWrittenInEachMethod) {
+  // Models with shared temporaries, hoisted constants, sign and step, linear
+  // solves, DAE residuals, constraints and outputs: the counts mbgc --stats
+  // reports must be the operations one reads in each method's text.
+  const std::string root = MBGC_SOURCE_DIR;
+  const std::vector<std::vector<std::string>> runs = {
+      {root + "/tests/golden/good/modulated.mbg"},
+      {root + "/tests/golden/good/pendulum_mtf.mbg"},
+      {root + "/tests/golden/good/nonlinear_dae.mbg"},
+      {root + "/tests/golden/good/beam_mean_axes.mbg"},
+      {root + "/tests/golden/good/decay_sine.mbg"},
+      {root + "/tests/numeric/models/coordinates_tree.mbg"},
+      {root + "/tests/numeric/models/coordinates_tree.mbg", "--constraints", "coordinates"},
+      {root + "/examples/chain/chain.mbg", "--set", "N=3"},
+      {root + "/examples/chain/chain.mbg", "--set", "N=3", "--constraints", "coordinates"},
+  };
+  std::size_t checked_ops = 0, solves = 0;
+  for (const auto& args : runs) {
+    SCOPED_TRACE(args.back());
+    const std::string code = run_mbgc(args, false);
+    const std::vector<std::string> lines = lines_of(code);
+    std::istringstream csv(run_mbgc(args, true));
+    std::string row;
+    std::getline(csv, row);
+    ASSERT_EQ(row, "function,lines,bytes,ops,add,mul,div,neg,call,compare,solve_sizes,solve_ops");
+    std::set<std::string> methods;
+    while (std::getline(csv, row)) {
+      std::vector<std::string> f;
+      std::stringstream cells(row);
+      for (std::string cell; std::getline(cells, cell, ',');) f.push_back(cell);
+      if (f[0] == "total" || f[0] == "file") continue;
+      ASSERT_EQ(f.size(), 12u) << row;
+      const std::string& name = f[0];
+      EXPECT_TRUE(methods.insert(name).second) << "two methods named " << name;
+      // the method's lines: its doc comment, the signature, the body, the closing brace
+      std::size_t at = 0;
+      while (at < lines.size() && !(lines[at].rfind("  ", 0) == 0 && lines[at][2] != ' ' && lines[at][2] != '/' &&
+                                    lines[at].find(" " + name + "(") != std::string::npos))
+        ++at;
+      ASSERT_LT(at, lines.size()) << "no method " << name;
+      std::size_t first = at > 0 && lines[at - 1].rfind("  // ", 0) == 0 ? at - 1 : at;
+      std::size_t last = at;
+      if (lines[at].substr(lines[at].size() - 2) != "{}")
+        while (lines[last] != "  }") ++last;
+      EXPECT_EQ(std::stoul(f[1]), last - first + 1) << name;
+      // its operations, read from the statements (comments and loop headers left out)
+      mbgc::ir::CppOps written;
+      std::vector<std::size_t> sizes;
+      for (std::size_t i = at + 1; i < last; ++i) {
+        std::string l = trim(lines[i]);
+        if (l.rfind("//", 0) == 0 || l.rfind("for (", 0) == 0) continue;
+        if (auto c = l.find("  // "); c != std::string::npos) l.resize(c);
+        if (l.rfind("mbgrt::solve_linear(", 0) == 0) sizes.push_back(std::stoul(l.substr(20)));
+        if (l.rfind("static const char* const", 0) == 0 || l.rfind("return", 0) == 0 || l.rfind("case", 0) == 0 ||
+            l.find('"') != std::string::npos)
+          continue;  // name tables, metadata: no arithmetic (a '*' of a pointer type, a string)
+        written += mbgc_test::cpp_ops_in_text(l);
+      }
+      const mbgc::ir::CppOps counted = [&] {
+        mbgc::ir::CppOps o;
+        o.add = std::stoul(f[4]), o.mul = std::stoul(f[5]), o.div = std::stoul(f[6]);
+        o.neg = std::stoul(f[7]), o.call = std::stoul(f[8]), o.compare = std::stoul(f[9]);
+        return o;
+      }();
+      EXPECT_EQ(counted, written) << name << ": counted " << f[3] << " ops, the text has " << written.total();
+      std::size_t solve_ops = 0;
+      for (std::size_t n : sizes) solve_ops += mbgc::codegen::solve_linear_ops(n);
+      EXPECT_EQ(std::stoul(f[11]), solve_ops) << name;
+      EXPECT_EQ(std::stoul(f[3]), counted.total() + solve_ops) << name;
+      checked_ops += counted.total();
+      solves += sizes.size();
+    }
+    EXPECT_TRUE(methods.count("derivative") || methods.count("residual"));
+  }
+  EXPECT_GT(checked_ops, 5000u);
+  EXPECT_GT(solves, 2u);
 }
 
 }  // namespace

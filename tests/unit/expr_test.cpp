@@ -3,6 +3,8 @@
 // substitution, affine decomposition and both printers.
 #include "ir/expr.hpp"
 
+#include "cpp_ops_text.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -1076,6 +1078,79 @@ TEST(ExprToCpp, PowersAndCalls) {
   EXPECT_EQ(cpp(mul(k(2), fn(Fn::Step, x))), "2.0 * ((x) >= 0.0 ? 1.0 : 0.0)");
 }
 
+// ---- operations counted by the C++ printer (mbgc --stats) ---------------------------------
+
+CppOps ops_of(const Expr& e) {
+  CppOps ops;
+  to_cpp(e, names(), &ops);
+  return ops;
+}
+
+CppOps make_ops(std::size_t add, std::size_t mul, std::size_t div, std::size_t neg, std::size_t call,
+                std::size_t compare) {
+  CppOps o;
+  o.add = add, o.mul = mul, o.div = div, o.neg = neg, o.call = call, o.compare = compare;
+  return o;
+}
+
+std::string describe(const CppOps& o) {
+  return "add " + std::to_string(o.add) + " mul " + std::to_string(o.mul) + " div " + std::to_string(o.div) +
+         " neg " + std::to_string(o.neg) + " call " + std::to_string(o.call) + " compare " +
+         std::to_string(o.compare);
+}
+
+TEST(ExprToCppOps, CountsWhatIsWritten) {
+  const Expr a = var(A), b = var(B), x = var(X), y = var(Y);
+  // x' = -k x + a sin(t), k = p, a = q, as written: "-p * x + q * std::sin(t)"
+  // is a negation, two muls, an add and a call
+  const Expr rhs = add(neg(mul(param(P), x)), mul(param(Q), fn(Fn::Sin, time())));
+  EXPECT_EQ(cpp(rhs), "-p * x + q * std::sin(t)");
+  EXPECT_EQ(ops_of(rhs), make_ops(1, 2, 0, 1, 1, 0)) << describe(ops_of(rhs));
+  EXPECT_EQ(ops_of(rhs).total(), 5u);
+  // the same as a sin(t) - k x: the negation is gone, 4 operations
+  const Expr rhs2 = sub(mul(param(Q), fn(Fn::Sin, time())), mul(param(P), x));
+  EXPECT_EQ(cpp(rhs2), "q * std::sin(t) - p * x");
+  EXPECT_EQ(ops_of(rhs2), make_ops(1, 2, 0, 0, 1, 0)) << describe(ops_of(rhs2));
+  EXPECT_EQ(ops_of(rhs2).total(), 4u);
+  // leaves cost nothing
+  EXPECT_EQ(ops_of(x).total(), 0u);
+  EXPECT_EQ(ops_of(k(-2)).total(), 0u);
+  EXPECT_EQ(ops_of(k(-kInf)).total(), 0u);
+  // a unary minus counts, but not the sign of a literal: -2.0 * a is (-2.0) * a
+  EXPECT_EQ(ops_of(neg(x)), make_ops(0, 0, 0, 1, 0, 0));
+  EXPECT_EQ(cpp(mul(a, k(-2))), "-2.0 * a");
+  EXPECT_EQ(ops_of(mul(a, k(-2))), make_ops(0, 1, 0, 0, 0, 0));
+  EXPECT_EQ(ops_of(neg(div(k(2), mul(a, b)))), make_ops(0, 1, 1, 0, 0, 0));  // -2.0 / (a * b)
+  EXPECT_EQ(ops_of(neg(mul(a, b))), make_ops(0, 1, 0, 1, 0, 0));              // -a * b
+  EXPECT_EQ(ops_of(neg(add(a, b))), make_ops(1, 0, 0, 1, 0, 0));              // -(a + b)
+  EXPECT_EQ(ops_of(sub(a, div(b, x))), make_ops(1, 0, 1, 0, 0, 0));
+  // x^2 and x^3 of a leaf are written as products; other powers call std::pow
+  EXPECT_EQ(ops_of(pow(x, k(2))), make_ops(0, 1, 0, 0, 0, 0));
+  EXPECT_EQ(ops_of(pow(x, k(3))), make_ops(0, 2, 0, 0, 0, 0));
+  EXPECT_EQ(ops_of(neg(pow(x, k(2)))), make_ops(0, 1, 0, 1, 0, 0));  // -(x*x)
+  EXPECT_EQ(ops_of(pow(x, k(0.5))), make_ops(0, 0, 0, 0, 1, 0));
+  EXPECT_EQ(ops_of(pow(add(x, y), k(2))), make_ops(1, 0, 0, 0, 1, 0));  // std::pow(x + y, 2.0)
+  // calls, fabs/fmin/fmax included; step compares once; sign compares twice
+  // and writes its argument twice, so the argument's work counts twice
+  EXPECT_EQ(ops_of(fn(Fn::Atan2, y, mul(a, x))), make_ops(0, 1, 0, 0, 1, 0));
+  EXPECT_EQ(ops_of(fn(Fn::Abs, x)), make_ops(0, 0, 0, 0, 1, 0));
+  EXPECT_EQ(ops_of(fn(Fn::Min, a, neg(b))), make_ops(0, 0, 0, 1, 1, 0));
+  EXPECT_EQ(ops_of(fn(Fn::Step, sub(time(), k(2)))), make_ops(1, 0, 0, 0, 0, 1));
+  EXPECT_EQ(ops_of(fn(Fn::Sign, add(x, y))), make_ops(2, 0, 0, 0, 0, 2));
+  EXPECT_EQ(ops_of(mul(a, fn(Fn::Sign, fn(Fn::Sin, x)))), make_ops(0, 1, 0, 0, 2, 2));
+}
+
+TEST(ExprToCppOps, AccumulatesAndLeavesTheTextAlone) {
+  const Expr e = add(mul(var(A), fn(Fn::Cos, var(X))), div(var(B), param(P)));
+  CppOps ops;
+  const std::string once = to_cpp(e, names(), &ops);
+  EXPECT_EQ(once, cpp(e));
+  EXPECT_EQ(ops, make_ops(1, 1, 1, 0, 1, 0));
+  to_cpp(e, names(), &ops);
+  EXPECT_EQ(ops, make_ops(2, 2, 2, 0, 2, 0));
+  EXPECT_EQ(ops.total(), 8u);
+}
+
 TEST(ExprToCpp, DerDoesNotCompile) {
   const std::string s = cpp(add(var(X), der(var(Y))));
   EXPECT_NE(s.find("MBGC_DER_NOT_REMOVED(y)"), std::string::npos) << s;
@@ -1175,6 +1250,20 @@ TEST(ExprProperty, ToCppText) {
     check_cpp_text(cpp(r));
     check_cpp_text(cpp(smart(r)));
   }
+}
+
+TEST(ExprProperty, CppOpsMatchTheText) {
+  Random rnd(2718);
+  std::size_t seen = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Expr e = smart(rnd.tree(6));
+    CppOps ops;
+    const std::string text = to_cpp(e, names(), &ops);
+    EXPECT_EQ(ops, mbgc_test::cpp_ops_in_text(text)) << text << "\n  counted: " << describe(ops)
+                                      << "\n  in text: " << describe(mbgc_test::cpp_ops_in_text(text));
+    seen += ops.total();
+  }
+  EXPECT_GT(seen, 10000u);  // the trees do have operations
 }
 
 TEST(ExprProperty, HashAndEqualityAreStructural) {

@@ -1,0 +1,93 @@
+// codegen/stats.cpp — mbgc --stats: what each generated method costs per call
+// (operations counted by the printer, see ir::to_cpp) and its size.
+#include <fmt/format.h>
+
+#include "codegen/emit_cpp.hpp"
+
+namespace mbgc::codegen {
+namespace {
+
+struct Row {
+  std::string name;
+  std::size_t lines = 0, bytes = 0;
+  bool has_ops = true;
+  ir::CppOps ops;
+  std::vector<std::size_t> solves;
+  std::size_t solve_ops = 0;
+  std::size_t total() const { return ops.total() + solve_ops; }
+};
+
+std::vector<Row> rows_of(const EmitStats& stats) {
+  std::vector<Row> rows;
+  Row total;
+  total.name = "total";
+  for (const FunctionStats& f : stats.functions) {
+    Row r;
+    r.name = f.name;
+    r.lines = f.lines;
+    r.bytes = f.bytes;
+    r.ops = f.ops;
+    r.solves = f.solves;
+    r.solve_ops = f.solve_ops;
+    rows.push_back(r);
+    total.lines += f.lines;
+    total.bytes += f.bytes;
+    total.ops += f.ops;
+    total.solves.insert(total.solves.end(), f.solves.begin(), f.solves.end());
+    total.solve_ops += f.solve_ops;
+  }
+  rows.push_back(total);
+  Row file;
+  file.name = "file";
+  file.lines = stats.file_lines;
+  file.bytes = stats.file_bytes;
+  file.has_ops = false;
+  rows.push_back(file);
+  return rows;
+}
+
+std::string sizes(const std::vector<std::size_t>& solves, const char* sep) {
+  return fmt::format("{}", fmt::join(solves, sep));
+}
+
+}  // namespace
+
+std::string format_stats(const EmitStats& stats, bool csv) {
+  const std::vector<Row> rows = rows_of(stats);
+  std::string out;
+  if (csv) {
+    out += "function,lines,bytes,ops,add,mul,div,neg,call,compare,solve_sizes,solve_ops\n";
+    for (const Row& r : rows) {
+      if (!r.has_ops) {
+        out += fmt::format("{},{},{},,,,,,,,,\n", r.name, r.lines, r.bytes);
+        continue;
+      }
+      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}\n", r.name, r.lines, r.bytes, r.total(), r.ops.add,
+                         r.ops.mul, r.ops.div, r.ops.neg, r.ops.call, r.ops.compare, sizes(r.solves, ";"),
+                         r.solve_ops);
+    }
+    return out;
+  }
+  out += fmt::format("model {}: {}, {} state{}", stats.model, stats.dae ? "DAE" : "ODE", stats.states,
+                     stats.states == 1 ? "" : "s");
+  if (stats.dae) out += fmt::format(", {} algebraic unknown{}", stats.algebraic, stats.algebraic == 1 ? "" : "s");
+  out += "\n";
+  out += "operations per call, as written: ops = add (+ -) + mul + div + neg (unary -) + call (math functions)\n"
+         "  + compare (step, sign) + solve (mbgrt::solve_linear's arithmetic, (4n^3 + 9n^2 - 7n)/6 for n x n)\n\n";
+  out += fmt::format("{:<28} {:>7} {:>9} {:>9} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>8}  {}\n", "function", "lines",
+                     "bytes", "ops", "add", "mul", "div", "neg", "call", "compare", "solve", "solve sizes");
+  for (const Row& r : rows) {
+    if (!r.has_ops) {
+      out += fmt::format("{:<28} {:>7} {:>9}\n", r.name, r.lines, r.bytes);
+      continue;
+    }
+    std::string line = fmt::format("{:<28} {:>7} {:>9} {:>9} {:>8} {:>8} {:>7} {:>7} {:>7} {:>7} {:>8}  {}", r.name,
+                                   r.lines, r.bytes, r.total(), r.ops.add, r.ops.mul, r.ops.div, r.ops.neg, r.ops.call,
+                                   r.ops.compare, r.solve_ops, sizes(r.solves, " "));
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out += line + "\n";
+  }
+  return out;
+}
+
+}  // namespace mbgc::codegen
