@@ -497,23 +497,23 @@ class Reducer {
     for (const auto& [x, dx] : der_var_) derivative_of[dx] = x;
     std::unordered_map<int, int> storage_of;     // state -> its storage node
     for (const StateVar& st : out_.states) storage_of[st.var] = st.node;
+    // (indices checked: a scene's pruning leaves variables whose bond or node is gone)
+    auto body_of_node = [&](int node) {
+      return node >= 0 && static_cast<std::size_t>(node) < node_body.size() ? node_body[static_cast<std::size_t>(node)] : -1;
+    };
     std::function<int(int, int)> of_var = [&](int id, int hops) -> int {
       if (hops > 8) return -1;
       const Variable& x = v(id);
-      if ((x.kind == VarKind::Effort || x.kind == VarKind::Flow) && x.of >= 0) {
+      if ((x.kind == VarKind::Effort || x.kind == VarKind::Flow) && x.of >= 0 &&
+          static_cast<std::size_t>(x.of) < out_.graph.bonds.size()) {
         const Bond& bd = out_.graph.bonds[static_cast<std::size_t>(x.of)];
-        const int a = bd.from >= 0 ? node_body[static_cast<std::size_t>(bd.from)] : -1;
-        const int b = bd.to >= 0 ? node_body[static_cast<std::size_t>(bd.to)] : -1;
+        const int a = body_of_node(bd.from), b = body_of_node(bd.to);
         if (a < 0 || b < 0) return a < 0 ? b : a;
         return depth[static_cast<std::size_t>(b)] > depth[static_cast<std::size_t>(a)] ? b : a;
       }
-      if (x.kind == VarKind::Derivative && storage_of.count(x.of)) {
-        const int node = storage_of.at(x.of);
-        return node >= 0 ? node_body[static_cast<std::size_t>(node)] : -1;
-      }
+      if (x.kind == VarKind::Derivative && storage_of.count(x.of)) return body_of_node(storage_of.at(x.of));
       if (auto d = derivative_of.find(id); d != derivative_of.end()) return of_var(d->second, hops + 1);
-      if (auto s = storage_of.find(id); s != storage_of.end() && s->second >= 0)
-        return node_body[static_cast<std::size_t>(s->second)];
+      if (auto st = storage_of.find(id); st != storage_of.end()) return body_of_node(st->second);
       return -1;
     };
     for (std::size_t id = 0; id < out_.graph.vars.size(); ++id)

@@ -216,6 +216,8 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
   }
   for (GraphNode& n : kept_nodes)
     for (int& b : n.bonds) b = bond_index[at(b)];
+  for (Variable& v : g.vars)  // an effort or flow names its bond: renumbered too (-1: removed)
+    if ((v.kind == VarKind::Effort || v.kind == VarKind::Flow) && v.of >= 0) v.of = bond_index[at(v.of)];
   g.nodes = std::move(kept_nodes);
   g.bonds = std::move(kept_bonds);
 
