@@ -71,10 +71,13 @@ class Eliminator {
   /// element that joins a body's block, say a motor's rotor on a joint's
   /// drive) the deepest body of the unknowns it is related to.
   bool assign_bodies(std::string* why) {
-    std::vector<int> all(loop_.tears);
+    std::vector<int>& all = all_;
+    all = loop_.tears;
     all.insert(all.end(), loop_.order.begin(), loop_.order.end());
-    for (std::size_t k = 0; k < loop_.tears.size(); ++k) refs_[loop_.tears[k]] = loop_vars(loop_.tear_residuals[k], all);
-    for (int u : loop_.order) refs_[u] = loop_vars(loop_.solution.at(u), all);
+    const std::unordered_set<int> unknowns(all.begin(), all.end());
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k)
+      refs_[loop_.tears[k]] = loop_vars(loop_.tear_residuals[k], unknowns);
+    for (int u : loop_.order) refs_[u] = loop_vars(loop_.solution.at(u), unknowns);
     std::unordered_map<int, std::vector<int>> readers;
     for (int u : all)
       for (int w : refs_[u]) readers[w].push_back(u);
@@ -107,12 +110,13 @@ class Eliminator {
     return true;
   }
 
-  std::vector<int> loop_vars(const Expr& e, const std::vector<int>& all) const {
+  /// The loop's unknowns e reads, sorted.
+  static std::vector<int> loop_vars(const Expr& e, const std::unordered_set<int>& unknowns) {
     std::unordered_set<int> vars;
     collect_vars(e, vars);
     std::vector<int> out;
-    for (int u : all)
-      if (vars.count(u)) out.push_back(u);
+    for (int u : vars)
+      if (unknowns.count(u)) out.push_back(u);
     std::sort(out.begin(), out.end());
     return out;
   }
@@ -120,9 +124,9 @@ class Eliminator {
   /// A body's equations read its own unknowns, its parent's (X) and its
   /// children's (each child's outputs Y); anything else is not a tree.
   bool check_structure(std::string* why) {
-    for (const auto& [u, ws] : refs_) {
+    for (int u : all_) {  // in the loop's order: the first offence reported is always the same
       const int n = body_.at(u);
-      for (int w : ws) {
+      for (int w : refs_.at(u)) {
         const int m = body_.at(w);
         if (m == n) continue;
         if (m == parent(n)) x_[n].insert(w);
@@ -348,6 +352,7 @@ class Eliminator {
   const TreeLayout& tree_;
   BondGraph& graph_;
   std::vector<int> depth_;
+  std::vector<int> all_;                            // the loop's unknowns: tears, then the others in order
   std::unordered_map<int, std::vector<int>> refs_;  // unknown -> the loop's unknowns its equation reads
   std::unordered_map<int, int> body_;               // unknown -> body
   std::set<int> in_loop_;                           // bodies with unknowns in the loop
