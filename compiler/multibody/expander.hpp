@@ -139,6 +139,8 @@ class Expander {
   E position(const Build& B, const std::string& body) const;
   E quaternion(const Build& B, const std::string& body) const;
   E rotation(const Build& B, const std::string& body) const;
+  bool body_frame_velocity(const Body& b) const;
+  E velocity(const Build& B, const std::string& body) const;
 
   // ---- 2b. flexible bodies: the floating-frame fragment every deformation kind shares (flexible_body.cpp;
   //      the kinds: beam.hpp, modal_body.hpp)

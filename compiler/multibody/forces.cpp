@@ -20,7 +20,7 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
   const Body& body = bodies_.at(s.body);
   E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
   if (body.ground) return {local, B.vec(0, 0, 0)};
-  E r = position(B, s.body), v = B.name(s.body + ".v.f");
+  E r = position(B, s.body), v = velocity(B, s.body);
   if (body.particle) return {r, v};
   if (body.flex) {
     Eta eta = state_eta(B, s.body, *body.flex);
@@ -67,7 +67,8 @@ void Expander::emit_force(const ForceElement& f) {
       element(B, "Se", base, signed_(flexible_load(B, s->body, s->point, force, torque)));
       continue;
     }
-    element(B, "Se", base + "_f", signed_(force));
+    element(B, "Se", base + "_f",
+            signed_(body_frame_velocity(body) ? B.op('*', B.call("transpose", {rotation(B, s->body)}), force) : force));
     if (body.particle) continue;
     E Rt = B.call("transpose", {rotation(B, s->body)});
     E local = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);

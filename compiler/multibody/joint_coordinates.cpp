@@ -108,9 +108,15 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (P.ground) joint_point = fwd ? pa : pb;  // ground points are absolute
   E rC = B.op('-', joint_point, B.op('*', RC, fwd ? pb : pa));
   for (int k = 0; k < 3; ++k) signal(B, fmt::format("{}.pose.r{}", child, k + 1), B.at(rC, k + 1));
-  // velocities: child omega (body frame) and CoM velocity (world) as sums of MTF flows
+  // Velocities as sums of MTF flows: the child's omega in its own axes and
+  // its centre-of-mass velocity, in its own axes too where it turns
+  // (body_frame_velocity), else (a particle) in world axes. In the child's
+  // axes every modulus is the joint's relative rotation R_PC(q) = R_P^T R_C
+  // (from the joint's own coordinates: its time derivative touches no other
+  // joint) times constants of the joint.
   auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
   auto skew = [&](E x) { return B.call("skew", {std::move(x)}); };
+  auto times = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };
   int fed = 0;
   auto feed = [&](const std::string& from, E modulus, const std::string& sum) {
     const std::string mtf = fmt::format("{}.m{}", jn, ++fed);
@@ -121,21 +127,29 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // (a particle has no angular-velocity junction: nothing turns it, nothing reads it)
   const std::string wsum = jn + ".wsum", vsum = jn + ".vsum";
   const bool parent_turns = !P.ground && !P.particle;
-  E RCt_RP = B.op('*', T(RC), RP);
+  E q_rel = fwd ? qmul(qmul(fa, qrel), conj(fb)) : qmul(qmul(fb, conj(qrel)), conj(fa));
+  E RrelT = T(B.call("rotq", {q_rel}));  // R_PC^T: parent axes -> child axes
   if (!C.particle) {
     junction(B, '0', wsum, 3, {}, {});
-    if (parent_turns) feed(parent + ".w", RCt_RP, wsum);
+    if (parent_turns) feed(parent + ".w", RrelT, wsum);
     for (const Mobilizer::Rate& r : rates)
-      if (r.W) feed(r.junction, fwd ? B.op('*', B.op('*', RCt_RP, Fa), r.W) : B.neg(B.op('*', Fa, r.W)), wsum);
+      if (r.W) feed(r.junction, fwd ? times(times(RrelT, Fa), r.W) : B.neg(times(Fa, r.W)), wsum);
   }
   junction(B, '0', vsum, 3, {}, {});
-  if (!P.ground) feed(parent + ".v", B.call("eye", {B.num(3)}), vsum);
-  if (parent_turns) feed(parent + ".w", B.neg(B.op('*', RP, skew(fwd ? pa : pb))), vsum);
-  for (const Mobilizer::Rate& r : rates)
-    if (r.V) feed(r.junction, fwd ? B.op('*', B.op('*', RP, Fa), r.V) : B.neg(B.op('*', B.op('*', RC, Fa), r.V)), vsum);
   if (!C.particle) {
-    feed(child + ".w", B.op('*', RC, skew(fwd ? pb : pa)), vsum);
+    // V_C = R_PC^T (V_P + omega_P x a + Fa d') - omega_C x b, with a and b the
+    // joint's points from the parent's and the child's centre of mass
+    if (!P.ground) feed(parent + ".v", body_frame_velocity(P) || P.particle ? RrelT : times(RrelT, T(RP)), vsum);
+    if (parent_turns) feed(parent + ".w", times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
+    for (const Mobilizer::Rate& r : rates)
+      if (r.V) feed(r.junction, fwd ? times(times(RrelT, Fa), r.V) : B.neg(times(Fa, r.V)), vsum);
+    feed(child + ".w", skew(fwd ? pb : pa), vsum);
     named_bond(B, jn + ".reaction_t", wsum, child + ".w");
+  } else {  // world axes
+    if (!P.ground) feed(parent + ".v", body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
+    if (parent_turns) feed(parent + ".w", B.neg(times(RP, skew(fwd ? pa : pb))), vsum);
+    for (const Mobilizer::Rate& r : rates)
+      if (r.V) feed(r.junction, fwd ? times(times(RP, Fa), r.V) : B.neg(times(times(RC, Fa), r.V)), vsum);
   }
   named_bond(B, jn + ".reaction_f", vsum, child + ".v");
   coordinate_values_[jn] = {m.angle, m.angle_rate, m.axial, m.axial_rate};

@@ -21,11 +21,12 @@ void Expander::define_quantities() {
       flexible_quantities(B, body);
       continue;
     }
-    E r = position(B, n), v = B.name(n + ".v.f");
+    E r = position(B, n), v = velocity(B, n);
     quantity_[n + ".position"] = r;
     quantity_[n + ".velocity"] = v;
-    quantity_[n + ".momentum"] = B.name(n + ".m.p");
-    E ke = B.op('*', B.num(0.5), B.dot(v, B.name(n + ".m.p")));
+    quantity_[n + ".momentum"] =
+        body_frame_velocity(body) ? B.op('*', rotation(B, n), B.name(n + ".m.p")) : B.name(n + ".m.p");
+    E ke = B.op('*', B.num(0.5), B.dot(B.name(n + ".v.f"), B.name(n + ".m.p")));  // in the junction's own axes
     if (!body.particle) {
       E q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
       quantity_[n + ".quaternion"] = q;
@@ -56,7 +57,9 @@ void Expander::define_quantities() {
       // child's junctions (force world, torque body frame); on b, by Newton's third law
       const std::string child = j.a_is_parent ? j.b.body : j.a.body;
       E sign = B.num(j.a_is_parent ? 1 : -1);
-      quantity_[jn + ".force"] = B.op('*', sign, B.name(jn + ".reaction_f.e"));
+      E reaction_f = B.name(jn + ".reaction_f.e");
+      if (body_frame_velocity(bodies_.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
+      quantity_[jn + ".force"] = B.op('*', sign, reaction_f);
       if (!bodies_.at(child).particle)
         quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
       if (j.kind->has_angle()) {

@@ -36,14 +36,25 @@ void Expander::emit_body(const Body& body) {
   // A body moved by joint coordinates has no states of its own: its inertias
   // take derivative causality and its pose is a function of the coordinates.
   const bool own_states = !body.by_coordinates;
+  // Moved by joint coordinates, a turning body's translational junction is in
+  // its own axes (the parent-to-child MTFs then need only the joint's
+  // relative rotation): Newton's law there has the term omega x p, a second
+  // Euler junction structure, power-free like the rotational one.
+  const bool body_axes = body_frame_velocity(body);
   std::vector<std::string> v_out = {n + ".m"};
   if (own_states) v_out.push_back(n + ".r");
+  if (body_axes) v_out.push_back(n + ".ejs_v");
   junction(B, '1', n + ".v", 3, forces_in, v_out);
   std::vector<AstAttr> m_init, J_init;
   if (own_states) m_init.push_back(kv("f0", B.name(n + ".v0"), d.loc)), J_init.push_back(kv("f0", B.name(n + ".w0"), d.loc));
   element(B, "I", n + ".m", B.op('*', B.name(n + ".mass"), B.call("eye", {B.num(3)})), m_init);
   if (own_states) element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
-  if (gravity_) element(B, "Se", n + ".weight", B.op('*', B.name(n + ".mass"), B.name("gravity")));
+  if (gravity_)
+    element(B, "Se", n + ".weight",
+            B.op('*', B.name(n + ".mass"),
+                 body_axes ? B.op('*', B.call("transpose", {rotation(B, n)}), B.name("gravity")) : B.name("gravity")));
+  if (body_axes)
+    element(B, "R", n + ".ejs_v", nullptr, {kv("e", B.call("cross", {B.name(n + ".J.f"), B.name(n + ".m.p")}), d.loc)});
   if (body.particle) return;
   E com = attr(d, "com");
   param(B, n + ".com", com ? com : B.vec(0, 0, 0));
@@ -77,6 +88,17 @@ E Expander::quaternion(const Build& B, const std::string& body) const {
   std::vector<E> q;
   for (int k = 1; k <= 4; ++k) q.push_back(B.name(fmt::format("{}.pose.q{}", body, k)));
   return B.list(q);
+}
+
+/// Is the body's translational junction in its own axes (a turning body moved by joint coordinates)?
+bool Expander::body_frame_velocity(const Body& b) const { return b.by_coordinates && !b.particle && !b.ground && !b.flex; }
+
+/// Centre-of-mass velocity, world frame.
+E Expander::velocity(const Build& B, const std::string& body) const {
+  const Body& b = bodies_.at(body);
+  if (b.ground) return B.vec(0, 0, 0);
+  if (body_frame_velocity(b)) return B.op('*', rotation(B, body), B.name(body + ".v.f"));
+  return B.name(body + ".v.f");
 }
 
 /// Rotation matrix body -> world (computed once per body in coordinates).
