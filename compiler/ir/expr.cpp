@@ -38,6 +38,36 @@ std::uint64_t combine(std::uint64_t h, std::uint64_t v) {
   return mix64(h ^ (mix64(v) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2)));
 }
 
+bool shallow_equal(const Node* a, const Node* b);
+
+std::uint64_t var_bit(int id) { return std::uint64_t{1} << (static_cast<unsigned>(id) & 63u); }
+
+// Can the sub-tree n contain one of the variables in `mask`? (Only canonical
+// nodes carry the summaries; for others the answer is a conservative yes.)
+bool may_mention(const Node* n, std::uint64_t mask) { return !n->canonical || (n->var_mask & mask) != 0; }
+// Has the sub-tree n the flag? Conservative yes for non-canonical nodes.
+bool may_have(const Node* n, unsigned char flag) { return !n->canonical || (n->flags & flag) != 0; }
+
+// The table of unique nodes (hash-consing). Two nodes with equal shallow
+// parts and the same operand pointers are the same node.
+struct InternHash {
+  std::size_t operator()(const Node* n) const { return n->hash; }
+};
+struct InternEqual {
+  bool operator()(const Node* a, const Node* b) const {
+    if (a == b) return true;
+    if (!shallow_equal(a, b)) return false;
+    for (std::size_t i = 0; i < a->args.size(); ++i)
+      if (a->args[i] != b->args[i]) return false;
+    return true;
+  }
+};
+using InternTable = std::unordered_set<const Node*, InternHash, InternEqual>;
+InternTable& intern_table() {
+  static InternTable* table = new InternTable();  // never destroyed: static Exprs outlive it otherwise
+  return *table;
+}
+
 Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn = Fn::Sin) {
   auto n = std::make_shared<Node>();
   n->op = op;
@@ -60,8 +90,35 @@ Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn 
     default:
       break;
   }
-  for (const Expr& a : n->args) h = combine(h, a->hash);
+  bool canonical = true;
+  unsigned char flags = 0;
+  std::uint64_t mask = 0;
+  switch (op) {
+    case Op::Const:
+      if (!std::isfinite(value)) flags |= Node::kHasNonFinite;
+      break;
+    case Op::Param: flags |= Node::kHasParam; break;
+    case Op::Var: mask |= var_bit(id); break;
+    case Op::Time: flags |= Node::kHasTime; break;
+    case Op::Der: flags |= Node::kHasDer; break;
+    case Op::Div:
+      if (n->args[1]->op == Op::Const && n->args[1]->value == 0.0) flags |= Node::kHasDivByZero;
+      break;
+    default: break;
+  }
+  for (const Expr& a : n->args) {
+    h = combine(h, a->hash);
+    canonical = canonical && a->canonical;
+    flags |= a->flags;
+    mask |= a->var_mask;
+  }
+  n->flags = flags;
+  n->var_mask = mask;
   n->hash = static_cast<std::size_t>(h);
+  auto [it, inserted] = intern_table().insert(n.get());
+  if (!inserted) return (*it)->shared_from_this();
+  n->interned = true;
+  n->canonical = canonical;
   return n;
 }
 
@@ -224,6 +281,12 @@ class Differentiator {
   Differentiator(int id, bool wrt_time) : id_(id), wrt_time_(wrt_time) {}
 
   Expr d(const Expr& e) {
+    // A sub-tree without the variable (or t) has derivative exactly 0 (what
+    // compute() would build from zero operands), unless an inf/NaN constant
+    // or a division by 0 makes a 0*inf or a 0/0 along the way.
+    if (e->canonical && !(e->flags & (Node::kHasNonFinite | Node::kHasDivByZero)) &&
+        (wrt_time_ ? !(e->flags & Node::kHasTime) : !(e->var_mask & var_bit(id_))))
+      return zero();
     auto it = memo_.find(e.get());
     if (it != memo_.end()) return it->second;
     Expr r = compute(e);
@@ -625,9 +688,14 @@ bool is_const(const Expr& e, double* value) {
 bool is_zero(const Expr& e) { return e->op == Op::Const && e->value == 0.0; }
 bool is_one(const Expr& e) { return e->op == Op::Const && e->value == 1.0; }
 
+Node::~Node() {
+  if (interned) intern_table().erase(this);
+}
+
 bool equal(const Expr& a, const Expr& b) {
   if (a == b) return true;
   if (!a || !b) return false;
+  if (a->canonical && b->canonical) return false;  // hash-consed: one node per structure
   long budget = 4096;
   Cmp c = equal_budget(a.get(), b.get(), budget);
   if (c != Cmp::OutOfBudget) return c == Cmp::Equal;
@@ -636,27 +704,38 @@ bool equal(const Expr& a, const Expr& b) {
 }
 
 void collect_vars(const Expr& e, std::unordered_set<int>& out) {
-  visit_unique(e, [&](const Node* n) {
+  // Sub-trees without variables are not entered (same ids, in the same order).
+  if (!may_mention(e.get(), ~std::uint64_t{0})) return;
+  std::unordered_set<const Node*> seen;
+  std::vector<const Node*> stack{e.get()};
+  while (!stack.empty()) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (!seen.insert(n).second) continue;
     if (n->op == Op::Var) out.insert(n->id);
-    return true;
-  });
+    for (const Expr& a : n->args)
+      if (may_mention(a.get(), ~std::uint64_t{0})) stack.push_back(a.get());
+  }
 }
 
 void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out) {
   // One walk over the union: the roots (a torn loop's matrix entries) share most nodes.
   std::unordered_set<const Node*> seen;
   std::vector<const Node*> stack;
-  for (const Expr& r : roots) stack.push_back(r.get());
+  for (const Expr& r : roots)
+    if (may_mention(r.get(), ~std::uint64_t{0})) stack.push_back(r.get());
   while (!stack.empty()) {
     const Node* n = stack.back();
     stack.pop_back();
     if (!seen.insert(n).second) continue;
     if (n->op == Op::Var) out.insert(n->id);
-    for (const Expr& a : n->args) stack.push_back(a.get());
+    for (const Expr& a : n->args)
+      if (may_mention(a.get(), ~std::uint64_t{0})) stack.push_back(a.get());
   }
 }
 
 void collect_params(const Expr& e, std::unordered_set<int>& out) {
+  if (!may_have(e.get(), Node::kHasParam)) return;
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Param) out.insert(n->id);
     return true;
@@ -664,6 +743,7 @@ void collect_params(const Expr& e, std::unordered_set<int>& out) {
 }
 
 bool depends_on_time(const Expr& e) {
+  if (e->canonical) return (e->flags & Node::kHasTime) != 0;
   bool found = false;
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Time) found = true;
@@ -673,6 +753,7 @@ bool depends_on_time(const Expr& e) {
 }
 
 bool contains_der(const Expr& e) {
+  if (e->canonical) return (e->flags & Node::kHasDer) != 0;
   bool found = false;
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Der) found = true;
@@ -704,14 +785,40 @@ std::size_t size(const Expr& e) {
 
 // ---- transformation ----------------------------------------------------------------
 
+namespace {
+// substitute(): a Rewriter that does not enter sub-trees without a mapped
+// variable (they would come back unchanged).
+class Substituter {
+ public:
+  explicit Substituter(const std::unordered_map<int, Expr>& by_var) : by_var_(by_var) {
+    for (const auto& [id, x] : by_var) mask_ |= var_bit(id);
+  }
+  Expr run(const Expr& e) {
+    if (!may_mention(e.get(), mask_)) return e;
+    if (e->op == Op::Var) {
+      auto it = by_var_.find(e->id);
+      return it == by_var_.end() ? e : it->second;
+    }
+    auto it = memo_.find(e.get());
+    if (it != memo_.end()) return it->second;
+    std::vector<Expr> args;
+    args.reserve(e->args.size());
+    for (const Expr& a : e->args) args.push_back(run(a));
+    Expr r = rebuild(e, std::move(args));
+    memo_.emplace(e.get(), r);
+    return r;
+  }
+
+ private:
+  const std::unordered_map<int, Expr>& by_var_;
+  std::uint64_t mask_ = 0;
+  std::unordered_map<const Node*, Expr> memo_;
+};
+}  // namespace
+
 Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var) {
   if (by_var.empty()) return e;
-  std::function<Expr(const Expr&)> f = [&](const Expr& n) -> Expr {
-    if (n->op != Op::Var) return nullptr;
-    auto it = by_var.find(n->id);
-    return it == by_var.end() ? nullptr : it->second;
-  };
-  return Rewriter(f).run(e);
+  return Substituter(by_var).run(e);
 }
 
 Expr rewrite(const Expr& e, const std::function<Expr(const Expr&)>& f) {
@@ -724,9 +831,12 @@ Expr diff_time(const Expr& e) { return Differentiator(-1, true).d(e); }
 bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr>& coeff,
                Expr& rest) {
   const std::unordered_set<int> u(unknowns.begin(), unknowns.end());
+  std::uint64_t umask = 0;
+  for (int id : unknowns) umask |= var_bit(id);
   std::unordered_map<const Node*, bool> memo;
   // Does the subtree mention an unknown?
   std::function<bool(const Node*)> mentions = [&](const Node* n) -> bool {
+    if (!may_mention(n, umask)) return false;
     if (n->op == Op::Var) return u.count(n->id) > 0;
     if (n->args.empty()) return false;
     auto it = memo.find(n);
@@ -742,13 +852,23 @@ bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr
   };
   // Dependence the derivative does not see: Der is opaque, and step/sign have
   // derivative 0 almost everywhere but are not affine.
+  // Only sub-trees that mention an unknown can hide one.
   bool hidden = false;
-  visit_unique(e, [&](const Node* n) {
-    bool opaque = n->op == Op::Der ||
-                  (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign));
-    if (opaque && mentions(n)) hidden = true;
-    return !hidden;
-  });
+  {
+    std::unordered_set<const Node*> seen;
+    std::vector<const Node*> stack;
+    if (mentions(e.get())) stack.push_back(e.get());
+    while (!stack.empty() && !hidden) {
+      const Node* n = stack.back();
+      stack.pop_back();
+      if (!seen.insert(n).second) continue;
+      bool opaque = n->op == Op::Der ||
+                    (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign));
+      if (opaque) hidden = true;  // it mentions an unknown: only such nodes are pushed
+      for (const Expr& a : n->args)
+        if (mentions(a.get())) stack.push_back(a.get());
+    }
+  }
   if (hidden) return false;
 
   std::vector<Expr> c;

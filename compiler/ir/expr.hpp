@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,13 +44,27 @@ enum class Fn {
 struct Node;
 using Expr = std::shared_ptr<const Node>;
 
-struct Node {
+/// The constructors below hash-cons: a node they make is the only live node
+/// of its structure (op, constant bits, id, function and operand pointers), so
+/// structurally equal trees they build are one shared DAG, and a walk or memo
+/// by pointer visits each distinct sub-expression once.
+struct Node : std::enable_shared_from_this<Node> {
   Op op = Op::Const;
   double value = 0.0;       // Const
   int id = -1;              // Param, Var
   Fn fn = Fn::Sin;          // Call
   std::vector<Expr> args;   // operands (1 for Neg/Der, 2 for binary, n for Call)
   std::size_t hash = 0;     // structural hash, set by the constructors
+  bool interned = false;    // in the constructors' table of unique nodes
+  bool canonical = false;   // interned, and so are its operands, recursively: equal() is pointer equality
+  // Summaries of the sub-tree, set by the constructors (valid when canonical),
+  // so that walks skip the parts that cannot matter to them:
+  unsigned char flags = 0;      // kHas* below
+  std::uint64_t var_mask = 0;   // bit (id % 64) for each Var id in the sub-tree (inside Der too)
+  static constexpr unsigned char kHasTime = 1, kHasDer = 2, kHasParam = 4,
+                                 kHasNonFinite = 8,   // a constant inf or NaN
+                                 kHasDivByZero = 16;  // a division by the constant 0
+  ~Node();                  // leaves the table
 };
 
 // ---- construction (all fold constants and simplify trivially) -------------
