@@ -703,35 +703,80 @@ bool equal(const Expr& a, const Expr& b) {
   return equal_memo(a.get(), b.get(), proven);
 }
 
-void collect_vars(const Expr& e, std::unordered_set<int>& out) {
-  // Sub-trees without variables are not entered (same ids, in the same order).
-  if (!may_mention(e.get(), ~std::uint64_t{0})) return;
-  std::unordered_set<const Node*> seen;
-  std::vector<const Node*> stack{e.get()};
+namespace {
+// The variable walks: every distinct node once, told apart by a mark in the
+// node (a fresh number per walk, 64 bits: never reused) rather than a set of
+// visited pointers, entering only sub-trees that can hold a variable in
+// `mask`. on_var returns false to stop. No callback can start another walk.
+struct WalkState {
+  std::uint64_t epoch = 0;         // shared by every instantiation of walk_vars: marks must not repeat
+  std::vector<const Node*> stack;  // reused: no allocation per walk
+};
+WalkState& walk_state() {
+  static WalkState state;
+  return state;
+}
+
+template <class OnVar>
+void walk_vars(const Node* const* roots, std::size_t count, std::uint64_t mask, OnVar&& on_var) {
+  WalkState& ws = walk_state();
+  std::vector<const Node*>& stack = ws.stack;
+  const std::uint64_t mark = ++ws.epoch;
+  stack.clear();
+  for (std::size_t i = 0; i < count; ++i)
+    if (may_mention(roots[i], mask)) stack.push_back(roots[i]);
   while (!stack.empty()) {
     const Node* n = stack.back();
     stack.pop_back();
-    if (!seen.insert(n).second) continue;
-    if (n->op == Op::Var) out.insert(n->id);
+    if (n->mark == mark) continue;
+    n->mark = mark;
+    if (n->op == Op::Var && !on_var(n->id)) return;
     for (const Expr& a : n->args)
-      if (may_mention(a.get(), ~std::uint64_t{0})) stack.push_back(a.get());
+      if (may_mention(a.get(), mask)) stack.push_back(a.get());
   }
+}
+constexpr std::uint64_t kAnyVar = ~std::uint64_t{0};
+}  // namespace
+
+// Same ids, inserted in the same order as a walk of every node would.
+void collect_vars(const Expr& e, std::unordered_set<int>& out) {
+  const Node* root = e.get();
+  walk_vars(&root, 1, kAnyVar, [&](int id) {
+    out.insert(id);
+    return true;
+  });
 }
 
 void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out) {
   // One walk over the union: the roots (a torn loop's matrix entries) share most nodes.
-  std::unordered_set<const Node*> seen;
-  std::vector<const Node*> stack;
-  for (const Expr& r : roots)
-    if (may_mention(r.get(), ~std::uint64_t{0})) stack.push_back(r.get());
-  while (!stack.empty()) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (!seen.insert(n).second) continue;
-    if (n->op == Op::Var) out.insert(n->id);
-    for (const Expr& a : n->args)
-      if (may_mention(a.get(), ~std::uint64_t{0})) stack.push_back(a.get());
-  }
+  std::vector<const Node*> r;
+  r.reserve(roots.size());
+  for (const Expr& e : roots) r.push_back(e.get());
+  walk_vars(r.data(), r.size(), kAnyVar, [&](int id) {
+    out.insert(id);
+    return true;
+  });
+}
+
+bool mentions_var(const Expr& e, int id) {
+  bool found = false;
+  const Node* root = e.get();
+  walk_vars(&root, 1, var_bit(id), [&](int v) {
+    found = v == id;
+    return !found;
+  });
+  return found;
+}
+
+bool mentions_only_var(const Expr& e, int id) {
+  if (e->canonical && (e->var_mask & ~var_bit(id)) != 0) return false;  // another variable is in there
+  bool only = true;
+  const Node* root = e.get();
+  walk_vars(&root, 1, kAnyVar, [&](int v) {
+    only = v == id;
+    return only;
+  });
+  return only;
 }
 
 void collect_params(const Expr& e, std::unordered_set<int>& out) {

@@ -64,6 +64,7 @@ struct Node : std::enable_shared_from_this<Node> {
   static constexpr unsigned char kHasTime = 1, kHasDer = 2, kHasParam = 4,
                                  kHasNonFinite = 8,   // a constant inf or NaN
                                  kHasDivByZero = 16;  // a division by the constant 0
+  mutable std::uint64_t mark = 0;  // visited mark of the variable walks in expr.cpp (never nested)
   ~Node();                  // leaves the table
 };
 
@@ -104,6 +105,10 @@ struct ExprEqual { bool operator()(const Expr& a, const Expr& b) const { return 
 /// Ids of the Var leaves in e (inside Der too).
 void collect_vars(const Expr& e, std::unordered_set<int>& out);
 void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out);  // of all roots, one walk
+/// Does Var `id` occur in e (inside Der too)? What collect_vars would say, without the set.
+bool mentions_var(const Expr& e, int id);
+/// Is every Var leaf of e the variable `id` (also true when e has none)?
+bool mentions_only_var(const Expr& e, int id);
 void collect_params(const Expr& e, std::unordered_set<int>& out);
 bool depends_on_time(const Expr& e);
 bool contains_der(const Expr& e);

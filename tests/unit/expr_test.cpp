@@ -845,6 +845,20 @@ TEST(ExprSummary, WalksThatSkipGiveTheFullWalksAnswer) {
   EXPECT_EQ(str(diff_var(div(y, k(0)), X)), "0/0");
   EXPECT_EQ(str(diff_time(div(y, k(0)))), "0/0");
   EXPECT_TRUE(is_zero(diff_var(mul(param(P), y), X)));
+  // the variable tests, alternating with collect_vars (their walks share marks)
+  const Expr w = add(mul(x, var(X + 64)), der(y));
+  for (int i = 0; i < 3; ++i) {
+    std::unordered_set<int> all;
+    collect_vars(w, all);
+    EXPECT_EQ(all.size(), 3u);
+    EXPECT_TRUE(mentions_var(w, Y));
+    EXPECT_FALSE(mentions_var(w, Z));
+    EXPECT_FALSE(mentions_var(w, Z + 64));
+    EXPECT_FALSE(mentions_only_var(w, X));
+    EXPECT_FALSE(mentions_only_var(mul(x, var(X + 64)), X));
+    EXPECT_TRUE(mentions_only_var(mul(x, fn(Fn::Sin, x)), X));
+    EXPECT_TRUE(mentions_only_var(mul(param(P), t), X));
+  }
   // hand-built trees carry no summary: walked in full
   const Expr r = raw(Op::Add, {raw(Op::Var, {}, 0.0, X), raw(Op::Der, {raw(Op::Time, {})})});
   EXPECT_TRUE(contains_der(r));
