@@ -406,10 +406,12 @@ struct Printed {
 
 class Printer {
  public:
-  Printer(const Namer& names, bool cpp) : names_(names), cpp_(cpp) {}
+  Printer(const Namer& names, bool cpp, const NamedNodes* named = nullptr)
+      : names_(names), cpp_(cpp), named_(named && *named ? named : nullptr) {}
 
   Printed print(const Expr& e) {
     if (!e) return {"<null>", kAtom, false};
+    if (const std::string* name = named(e)) return {*name, kAtom, false};  // like a variable
     switch (e->op) {
       case Op::Const: return constant_text(e->value);
       case Op::Param:
@@ -442,11 +444,13 @@ class Printer {
   }
 
  private:
-  static bool starts_with_nan(const Expr& product) {
-    const Node* n = product.get();
-    while (n->op == Op::Mul || n->op == Op::Div) n = n->args[0].get();
-    return n->op == Op::Const && std::isnan(n->value);
+  bool starts_with_nan(const Expr& product) const {
+    const Expr* n = &product;
+    while (((*n)->op == Op::Mul || (*n)->op == Op::Div) && !named(*n)) n = &(*n)->args[0];
+    return (*n)->op == Op::Const && std::isnan((*n)->value) && !named(*n);
   }
+
+  const std::string* named(const Expr& e) const { return named_ ? (*named_)(e) : nullptr; }
 
   Printed constant_text(double v) const {
     if (std::isnan(v))
@@ -490,7 +494,7 @@ class Printer {
   Printed cpp_pow(const Expr& e) {
     const Expr &a = e->args[0], &b = e->args[1];
     double c = 0.0;
-    bool leaf = a->op == Op::Var || a->op == Op::Param || a->op == Op::Time;
+    bool leaf = a->op == Op::Var || a->op == Op::Param || a->op == Op::Time || named(a);
     if (leaf && cval(b, c) && (c == 2.0 || c == 3.0)) {
       std::string x = print(a).s;
       return {c == 2.0 ? "(" + x + "*" + x + ")" : "(" + x + "*" + x + "*" + x + ")", kAtom, false};
@@ -531,6 +535,7 @@ class Printer {
 
   const Namer& names_;
   bool cpp_;
+  const NamedNodes* named_;
 };
 
 }  // namespace
@@ -938,6 +943,10 @@ std::string to_string(const Expr& e, const Namer& names) {
 
 std::string to_cpp(const Expr& e, const Namer& names) {
   return Printer(names, true).print(e).s;
+}
+
+std::string to_cpp(const Expr& e, const Namer& names, const NamedNodes& named) {
+  return Printer(names, true, &named).print(e).s;
 }
 
 Expr with_operands(const Expr& e, std::vector<Expr> operands) { return rebuild(e, std::move(operands)); }

@@ -166,5 +166,11 @@ std::string to_string(const Expr& e, const Namer& names);
 /// removed: a leftover one prints as MBGC_DER_NOT_REMOVED(...), which does not
 /// compile.
 std::string to_cpp(const Expr& e, const Namer& names);
+/// Sub-expressions printed as a name: `named` returns the name of a node that
+/// has one (a common subexpression defined before), else nullptr.
+using NamedNodes = std::function<const std::string*(const Expr&)>;
+/// to_cpp, printing each named node as its name, exactly as if it were a
+/// variable of that name (what substituting variables for them would print).
+std::string to_cpp(const Expr& e, const Namer& names, const NamedNodes& named);
 
 }  // namespace mbgc::ir
