@@ -48,48 +48,124 @@ bool may_mention(const Node* n, std::uint64_t mask) { return !n->canonical || (n
 // Has the sub-tree n the flag? Conservative yes for non-canonical nodes.
 bool may_have(const Node* n, unsigned char flag) { return !n->canonical || (n->flags & flag) != 0; }
 
-// The table of unique nodes (hash-consing). Two nodes with equal shallow
-// parts and the same operand pointers are the same node.
-struct InternHash {
-  std::size_t operator()(const Node* n) const { return n->hash; }
-};
-struct InternEqual {
-  bool operator()(const Node* a, const Node* b) const {
-    if (a == b) return true;
-    if (!shallow_equal(a, b)) return false;
-    for (std::size_t i = 0; i < a->args.size(); ++i)
-      if (a->args[i] != b->args[i]) return false;
-    return true;
+// The table of unique nodes (hash-consing): open addressing with linear
+// probing over (hash, node) slots, so that a look-up costs about one cache
+// line, and no allocation per node. A node is found by its shallow parts
+// (op, constant bits, id, function) and its operand pointers.
+class InternTable {
+ public:
+  struct Key {
+    std::uint64_t hash;
+    Op op;
+    double value;
+    int id;
+    Fn fn;
+    const std::vector<Expr>& args;
+    bool matches(const Node* n) const {
+      if (n->hash != hash || n->op != op || n->args.size() != args.size()) return false;
+      switch (op) {
+        case Op::Const:
+          if (std::bit_cast<std::uint64_t>(n->value) != std::bit_cast<std::uint64_t>(value)) return false;
+          break;
+        case Op::Param:
+        case Op::Var:
+          if (n->id != id) return false;
+          break;
+        case Op::Call:
+          if (n->fn != fn) return false;
+          break;
+        default: break;
+      }
+      for (std::size_t i = 0; i < args.size(); ++i)
+        if (n->args[i] != args[i]) return false;
+      return true;
+    }
+  };
+
+  /// The live node equal to `key`, else nullptr; `slot` is where to insert it.
+  const Node* find(const Key& key, std::size_t& slot) {
+    if ((size_ + 1) * 2 > slots_.size()) grow();
+    std::size_t i = static_cast<std::size_t>(key.hash) & mask_;
+    while (const Node* n = slots_[i].node) {
+      if (slots_[i].hash == key.hash && key.matches(n)) return n;
+      i = (i + 1) & mask_;
+    }
+    slot = i;
+    return nullptr;
   }
+  /// Right after a find() that returned nullptr with this slot.
+  void insert_at(std::size_t slot, const Node* n) {
+    slots_[slot] = {static_cast<std::uint64_t>(n->hash), n};
+    ++size_;
+  }
+  void erase(const Node* n) {
+    std::size_t i = static_cast<std::size_t>(n->hash) & mask_;
+    while (slots_[i].node != n) i = (i + 1) & mask_;  // it is in the table
+    // Backward-shift deletion: no tombstones, probe runs stay unbroken.
+    std::size_t j = i;
+    for (;;) {
+      j = (j + 1) & mask_;
+      if (!slots_[j].node) break;
+      std::size_t home = static_cast<std::size_t>(slots_[j].hash) & mask_;
+      bool stays = i <= j ? (i < home && home <= j) : (i < home || home <= j);
+      if (stays) continue;
+      slots_[i] = slots_[j];
+      i = j;
+    }
+    slots_[i] = {};
+    --size_;
+  }
+
+ private:
+  struct Slot {
+    std::uint64_t hash = 0;
+    const Node* node = nullptr;
+  };
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(old.empty() ? 1024 : old.size() * 2, Slot{});
+    mask_ = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (!s.node) continue;
+      std::size_t i = static_cast<std::size_t>(s.hash) & mask_;
+      while (slots_[i].node) i = (i + 1) & mask_;
+      slots_[i] = s;
+    }
+  }
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+  std::size_t size_ = 0;
 };
-using InternTable = std::unordered_set<const Node*, InternHash, InternEqual>;
 InternTable& intern_table() {
   static InternTable* table = new InternTable();  // never destroyed: static Exprs outlive it otherwise
   return *table;
 }
 
 Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn = Fn::Sin) {
+  std::uint64_t h = mix64(static_cast<std::uint64_t>(op) + 0x51afd7ed558ccdULL);
+  switch (op) {
+    case Op::Const: h = combine(h, std::bit_cast<std::uint64_t>(value)); break;
+    case Op::Param:
+    case Op::Var: h = combine(h, static_cast<std::uint64_t>(static_cast<std::int64_t>(id))); break;
+    case Op::Call: h = combine(h, static_cast<std::uint64_t>(fn)); break;
+    default: break;
+  }
+  for (const Expr& a : args) h = combine(h, a->hash);
+  InternTable& table = intern_table();
+  std::size_t slot = 0;
+  const InternTable::Key key{static_cast<std::uint64_t>(static_cast<std::size_t>(h)), op, value, id, fn, args};
+  if (const Node* existing = table.find(key, slot)) return existing->shared_from_this();
   auto n = std::make_shared<Node>();
   n->op = op;
   n->args = std::move(args);
-  std::uint64_t h = mix64(static_cast<std::uint64_t>(op) + 0x51afd7ed558ccdULL);
   switch (op) {
-    case Op::Const:
-      n->value = value;
-      h = combine(h, std::bit_cast<std::uint64_t>(value));
-      break;
+    case Op::Const: n->value = value; break;
     case Op::Param:
-    case Op::Var:
-      n->id = id;
-      h = combine(h, static_cast<std::uint64_t>(static_cast<std::int64_t>(id)));
-      break;
-    case Op::Call:
-      n->fn = fn;
-      h = combine(h, static_cast<std::uint64_t>(fn));
-      break;
-    default:
-      break;
+    case Op::Var: n->id = id; break;
+    case Op::Call: n->fn = fn; break;
+    default: break;
   }
+  n->hash = static_cast<std::size_t>(h);
   bool canonical = true;
   unsigned char flags = 0;
   std::uint64_t mask = 0;
@@ -107,16 +183,13 @@ Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn 
     default: break;
   }
   for (const Expr& a : n->args) {
-    h = combine(h, a->hash);
     canonical = canonical && a->canonical;
     flags |= a->flags;
     mask |= a->var_mask;
   }
   n->flags = flags;
   n->var_mask = mask;
-  n->hash = static_cast<std::size_t>(h);
-  auto [it, inserted] = intern_table().insert(n.get());
-  if (!inserted) return (*it)->shared_from_this();
+  table.insert_at(slot, n.get());
   n->interned = true;
   n->canonical = canonical;
   return n;

@@ -648,6 +648,21 @@ TEST(ExprHash, ConstructorsShareEqualNodes) {
   EXPECT_NE(var(X).get(), r.get());
 }
 
+TEST(ExprHash, TableKeepsFindingNodesAsOthersComeAndGo) {
+  // Many nodes made and dropped in an interleaved order (the table moves
+  // entries when one leaves): every live one is still the one handed out.
+  for (int round = 0; round < 3; ++round) {
+    std::vector<Expr> made;
+    for (int i = 0; i < 20000; ++i) made.push_back(add(var(i % 97), k(i + round + 1)));
+    for (std::size_t i = 0; i < made.size(); i += 2 + round) made[i].reset();
+    for (int i = 0; i < 20000; ++i) {
+      const Expr again = add(var(i % 97), k(i + round + 1));
+      if (made[static_cast<std::size_t>(i)]) EXPECT_EQ(again.get(), made[static_cast<std::size_t>(i)].get());
+      EXPECT_EQ(again->args[0]->id, i % 97);
+    }
+  }
+}
+
 TEST(ExprHash, NoCollisionsOnRandomTrees) {
   Random rnd(12345);
   std::unordered_map<std::size_t, std::string> by_hash;
