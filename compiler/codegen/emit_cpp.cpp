@@ -328,8 +328,11 @@ class Emitter {
   /// "= FORMULA" of a computed parameter (sim --list-parameters prints it); a
   /// long one (a joint frame from its axis) as the parameters it is computed from.
   std::string computed_doc(const Parameter& p) const {
-    std::string formula = to_string(p.value, names_for_dump());
-    if (formula.size() <= 80) return "= " + formula;
+    // Every node prints at least one character: past 80 nodes, no need to print it.
+    if (ir::size(p.value) <= 80) {
+      std::string formula = to_string(p.value, names_for_dump());
+      if (formula.size() <= 80) return "= " + formula;
+    }
     std::unordered_set<int> ids;
     collect_params(p.value, ids);
     std::vector<int> order(ids.begin(), ids.end());
@@ -430,6 +433,8 @@ class Emitter {
     std::unordered_set<const Node*> seen;
     std::function<void(const Expr&)> define = [&](const Expr& x) {
       if (x->args.empty() || !seen.insert(x.get()).second) return;
+      // A temporary named after its whole sub-tree was walked defines nothing new below.
+      if (!shared.known_.count(x) && shared.temp.count(x)) return;
       for (const Expr& a : x->args) define(a);
       if (shared.pending.count(x) && !shared.temp.count(x)) {
         std::string name = fmt::format("cse{}", ++cse_counter_);
@@ -559,31 +564,14 @@ class Emitter {
   /// to_cpp, with already-defined common subexpressions replaced by their names.
   std::string cpp_with_temps(const Expr& e, const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& temp, bool top) {
     if (temp.empty()) return to_cpp(e, names_, ops());
-    // Replace each defined temporary by a placeholder variable id beyond the real ones.
-    std::unordered_map<int, std::string> placeholder;
-    int next = static_cast<int>(g_.vars.size()) + 1000000;
-    std::function<Expr(const Expr&)> swap_in = [&](const Expr& x) -> Expr {
-      return rewrite(x, [&](const Expr& n) -> Expr {
-        if (top && n.get() == e.get()) return nullptr;
-        auto it = temp.find(n);
-        if (it == temp.end()) return nullptr;
-        int id = next++;
-        placeholder[id] = it->second;
-        return var(id);
-      });
+    // Each defined temporary prints as its name, as a variable would; with
+    // `top`, e itself is written out (its definition).
+    const NamedNodes named = [&](const Expr& x) -> const std::string* {
+      if (top && x.get() == e.get()) return nullptr;
+      auto it = temp.find(x);
+      return it == temp.end() ? nullptr : &it->second;
     };
-    Expr replaced = top ? e : swap_in(e);
-    if (top) {
-      std::vector<Expr> args;
-      for (const Expr& a : e->args) args.push_back(swap_in(a));
-      replaced = with_operands(e, args);
-    }
-    Namer n = names_;
-    n.var = [&](int id) {
-      auto it = placeholder.find(id);
-      return it != placeholder.end() ? it->second : names_.var(id);
-    };
-    return to_cpp(replaced, n, ops());
+    return to_cpp(e, names_, named, ops());
   }
 
   CppFunction derivative() {

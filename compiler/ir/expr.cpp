@@ -38,30 +38,160 @@ std::uint64_t combine(std::uint64_t h, std::uint64_t v) {
   return mix64(h ^ (mix64(v) + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2)));
 }
 
+bool shallow_equal(const Node* a, const Node* b);
+
+std::uint64_t var_bit(int id) { return std::uint64_t{1} << (static_cast<unsigned>(id) & 63u); }
+
+// Can the sub-tree n contain one of the variables in `mask`? (Only canonical
+// nodes carry the summaries; for others the answer is a conservative yes.)
+bool may_mention(const Node* n, std::uint64_t mask) { return !n->canonical || (n->var_mask & mask) != 0; }
+// Has the sub-tree n the flag? Conservative yes for non-canonical nodes.
+bool may_have(const Node* n, unsigned char flag) { return !n->canonical || (n->flags & flag) != 0; }
+
+// The table of unique nodes (hash-consing): open addressing with linear
+// probing over (hash, node) slots, so that a look-up costs about one cache
+// line, and no allocation per node. A node is found by its shallow parts
+// (op, constant bits, id, function) and its operand pointers.
+class InternTable {
+ public:
+  struct Key {
+    std::uint64_t hash;
+    Op op;
+    double value;
+    int id;
+    Fn fn;
+    const std::vector<Expr>& args;
+    bool matches(const Node* n) const {
+      if (n->hash != hash || n->op != op || n->args.size() != args.size()) return false;
+      switch (op) {
+        case Op::Const:
+          if (std::bit_cast<std::uint64_t>(n->value) != std::bit_cast<std::uint64_t>(value)) return false;
+          break;
+        case Op::Param:
+        case Op::Var:
+          if (n->id != id) return false;
+          break;
+        case Op::Call:
+          if (n->fn != fn) return false;
+          break;
+        default: break;
+      }
+      for (std::size_t i = 0; i < args.size(); ++i)
+        if (n->args[i] != args[i]) return false;
+      return true;
+    }
+  };
+
+  /// The live node equal to `key`, else nullptr; `slot` is where to insert it.
+  const Node* find(const Key& key, std::size_t& slot) {
+    if ((size_ + 1) * 2 > slots_.size()) grow();
+    std::size_t i = static_cast<std::size_t>(key.hash) & mask_;
+    while (const Node* n = slots_[i].node) {
+      if (slots_[i].hash == key.hash && key.matches(n)) return n;
+      i = (i + 1) & mask_;
+    }
+    slot = i;
+    return nullptr;
+  }
+  /// Right after a find() that returned nullptr with this slot.
+  void insert_at(std::size_t slot, const Node* n) {
+    slots_[slot] = {static_cast<std::uint64_t>(n->hash), n};
+    ++size_;
+  }
+  void erase(const Node* n) {
+    std::size_t i = static_cast<std::size_t>(n->hash) & mask_;
+    while (slots_[i].node != n) i = (i + 1) & mask_;  // it is in the table
+    // Backward-shift deletion: no tombstones, probe runs stay unbroken.
+    std::size_t j = i;
+    for (;;) {
+      j = (j + 1) & mask_;
+      if (!slots_[j].node) break;
+      std::size_t home = static_cast<std::size_t>(slots_[j].hash) & mask_;
+      bool stays = i <= j ? (i < home && home <= j) : (i < home || home <= j);
+      if (stays) continue;
+      slots_[i] = slots_[j];
+      i = j;
+    }
+    slots_[i] = {};
+    --size_;
+  }
+
+ private:
+  struct Slot {
+    std::uint64_t hash = 0;
+    const Node* node = nullptr;
+  };
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(old.empty() ? 1024 : old.size() * 2, Slot{});
+    mask_ = slots_.size() - 1;
+    for (const Slot& s : old) {
+      if (!s.node) continue;
+      std::size_t i = static_cast<std::size_t>(s.hash) & mask_;
+      while (slots_[i].node) i = (i + 1) & mask_;
+      slots_[i] = s;
+    }
+  }
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+  std::size_t size_ = 0;
+};
+InternTable& intern_table() {
+  static InternTable* table = new InternTable();  // never destroyed: static Exprs outlive it otherwise
+  return *table;
+}
+
 Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn = Fn::Sin) {
+  std::uint64_t h = mix64(static_cast<std::uint64_t>(op) + 0x51afd7ed558ccdULL);
+  switch (op) {
+    case Op::Const: h = combine(h, std::bit_cast<std::uint64_t>(value)); break;
+    case Op::Param:
+    case Op::Var: h = combine(h, static_cast<std::uint64_t>(static_cast<std::int64_t>(id))); break;
+    case Op::Call: h = combine(h, static_cast<std::uint64_t>(fn)); break;
+    default: break;
+  }
+  for (const Expr& a : args) h = combine(h, a->hash);
+  InternTable& table = intern_table();
+  std::size_t slot = 0;
+  const InternTable::Key key{static_cast<std::uint64_t>(static_cast<std::size_t>(h)), op, value, id, fn, args};
+  if (const Node* existing = table.find(key, slot)) return existing->shared_from_this();
   auto n = std::make_shared<Node>();
   n->op = op;
   n->args = std::move(args);
-  std::uint64_t h = mix64(static_cast<std::uint64_t>(op) + 0x51afd7ed558ccdULL);
+  switch (op) {
+    case Op::Const: n->value = value; break;
+    case Op::Param:
+    case Op::Var: n->id = id; break;
+    case Op::Call: n->fn = fn; break;
+    default: break;
+  }
+  n->hash = static_cast<std::size_t>(h);
+  bool canonical = true;
+  unsigned char flags = 0;
+  std::uint64_t mask = 0;
   switch (op) {
     case Op::Const:
-      n->value = value;
-      h = combine(h, std::bit_cast<std::uint64_t>(value));
+      if (!std::isfinite(value)) flags |= Node::kHasNonFinite;
       break;
-    case Op::Param:
-    case Op::Var:
-      n->id = id;
-      h = combine(h, static_cast<std::uint64_t>(static_cast<std::int64_t>(id)));
+    case Op::Param: flags |= Node::kHasParam; break;
+    case Op::Var: mask |= var_bit(id); break;
+    case Op::Time: flags |= Node::kHasTime; break;
+    case Op::Der: flags |= Node::kHasDer; break;
+    case Op::Div:
+      if (n->args[1]->op == Op::Const && n->args[1]->value == 0.0) flags |= Node::kHasDivByZero;
       break;
-    case Op::Call:
-      n->fn = fn;
-      h = combine(h, static_cast<std::uint64_t>(fn));
-      break;
-    default:
-      break;
+    default: break;
   }
-  for (const Expr& a : n->args) h = combine(h, a->hash);
-  n->hash = static_cast<std::size_t>(h);
+  for (const Expr& a : n->args) {
+    canonical = canonical && a->canonical;
+    flags |= a->flags;
+    mask |= a->var_mask;
+  }
+  n->flags = flags;
+  n->var_mask = mask;
+  table.insert_at(slot, n.get());
+  n->interned = true;
+  n->canonical = canonical;
   return n;
 }
 
@@ -224,6 +354,12 @@ class Differentiator {
   Differentiator(int id, bool wrt_time) : id_(id), wrt_time_(wrt_time) {}
 
   Expr d(const Expr& e) {
+    // A sub-tree without the variable (or t) has derivative exactly 0 (what
+    // compute() would build from zero operands), unless an inf/NaN constant
+    // or a division by 0 makes a 0*inf or a 0/0 along the way.
+    if (e->canonical && !(e->flags & (Node::kHasNonFinite | Node::kHasDivByZero)) &&
+        (wrt_time_ ? !(e->flags & Node::kHasTime) : !(e->var_mask & var_bit(id_))))
+      return zero();
     auto it = memo_.find(e.get());
     if (it != memo_.end()) return it->second;
     Expr r = compute(e);
@@ -343,10 +479,12 @@ struct Printed {
 
 class Printer {
  public:
-  Printer(const Namer& names, bool cpp, CppOps* ops = nullptr) : names_(names), cpp_(cpp), ops_(ops ? ops : &unused_) {}
+  Printer(const Namer& names, bool cpp, CppOps* ops = nullptr, const NamedNodes* named = nullptr)
+      : names_(names), cpp_(cpp), ops_(ops ? ops : &unused_), named_(named && *named ? named : nullptr) {}
 
   Printed print(const Expr& e) {
     if (!e) return {"<null>", kAtom, false};
+    if (const std::string* name = named(e)) return {*name, kAtom, false};  // like a variable
     switch (e->op) {
       case Op::Const: return constant_text(e->value);
       case Op::Param:
@@ -383,20 +521,22 @@ class Printer {
   }
 
  private:
-  static bool starts_with_nan(const Expr& product) {
-    const Node* n = product.get();
-    while (n->op == Op::Mul || n->op == Op::Div) n = n->args[0].get();
-    return n->op == Op::Const && std::isnan(n->value);
+  bool starts_with_nan(const Expr& product) const {
+    const Expr* n = &product;
+    while (((*n)->op == Op::Mul || (*n)->op == Op::Div) && !named(*n)) n = &(*n)->args[0];
+    return (*n)->op == Op::Const && std::isnan((*n)->value) && !named(*n);
   }
 
   /// The product's text starts with a numeric literal (its leftmost factor is
-  /// a constant; the printer never parenthesises the left operand of * or /
-  /// when it is itself a product).
-  static bool starts_with_literal(const Expr& product) {
-    const Node* n = product.get();
-    while (n->op == Op::Mul || n->op == Op::Div) n = n->args[0].get();
-    return n->op == Op::Const;
+  /// a constant, not printed by name; the printer never parenthesises the
+  /// left operand of * or / when it is itself a product).
+  bool starts_with_literal(const Expr& product) const {
+    const Expr* n = &product;
+    while (((*n)->op == Op::Mul || (*n)->op == Op::Div) && !named(*n)) n = &(*n)->args[0];
+    return (*n)->op == Op::Const && !named(*n);
   }
+
+  const std::string* named(const Expr& e) const { return named_ ? (*named_)(e) : nullptr; }
 
   Printed constant_text(double v) const {
     if (std::isnan(v))
@@ -440,7 +580,7 @@ class Printer {
   Printed cpp_pow(const Expr& e) {
     const Expr &a = e->args[0], &b = e->args[1];
     double c = 0.0;
-    bool leaf = a->op == Op::Var || a->op == Op::Param || a->op == Op::Time;
+    bool leaf = a->op == Op::Var || a->op == Op::Param || a->op == Op::Time || named(a);
     if (leaf && cval(b, c) && (c == 2.0 || c == 3.0)) {
       ops_->mul += c == 2.0 ? 1 : 2;
       std::string x = print(a).s;
@@ -501,6 +641,7 @@ class Printer {
   bool cpp_;
   CppOps unused_;  // where the counts go when nobody asked for them
   CppOps* ops_;
+  const NamedNodes* named_;
 };
 
 }  // namespace
@@ -658,9 +799,14 @@ bool is_const(const Expr& e, double* value) {
 bool is_zero(const Expr& e) { return e->op == Op::Const && e->value == 0.0; }
 bool is_one(const Expr& e) { return e->op == Op::Const && e->value == 1.0; }
 
+Node::~Node() {
+  if (interned) intern_table().erase(this);
+}
+
 bool equal(const Expr& a, const Expr& b) {
   if (a == b) return true;
   if (!a || !b) return false;
+  if (a->canonical && b->canonical) return false;  // hash-consed: one node per structure
   long budget = 4096;
   Cmp c = equal_budget(a.get(), b.get(), budget);
   if (c != Cmp::OutOfBudget) return c == Cmp::Equal;
@@ -668,28 +814,84 @@ bool equal(const Expr& a, const Expr& b) {
   return equal_memo(a.get(), b.get(), proven);
 }
 
+namespace {
+// The variable walks: every distinct node once, told apart by a mark in the
+// node (a fresh number per walk, 64 bits: never reused) rather than a set of
+// visited pointers, entering only sub-trees that can hold a variable in
+// `mask`. on_var returns false to stop. No callback can start another walk.
+struct WalkState {
+  std::uint64_t epoch = 0;         // shared by every instantiation of walk_vars: marks must not repeat
+  std::vector<const Node*> stack;  // reused: no allocation per walk
+};
+WalkState& walk_state() {
+  static WalkState state;
+  return state;
+}
+
+template <class OnVar>
+void walk_vars(const Node* const* roots, std::size_t count, std::uint64_t mask, OnVar&& on_var) {
+  WalkState& ws = walk_state();
+  std::vector<const Node*>& stack = ws.stack;
+  const std::uint64_t mark = ++ws.epoch;
+  stack.clear();
+  for (std::size_t i = 0; i < count; ++i)
+    if (may_mention(roots[i], mask)) stack.push_back(roots[i]);
+  while (!stack.empty()) {
+    const Node* n = stack.back();
+    stack.pop_back();
+    if (n->mark == mark) continue;
+    n->mark = mark;
+    if (n->op == Op::Var && !on_var(n->id)) return;
+    for (const Expr& a : n->args)
+      if (may_mention(a.get(), mask)) stack.push_back(a.get());
+  }
+}
+constexpr std::uint64_t kAnyVar = ~std::uint64_t{0};
+}  // namespace
+
+// Same ids, inserted in the same order as a walk of every node would.
 void collect_vars(const Expr& e, std::unordered_set<int>& out) {
-  visit_unique(e, [&](const Node* n) {
-    if (n->op == Op::Var) out.insert(n->id);
+  const Node* root = e.get();
+  walk_vars(&root, 1, kAnyVar, [&](int id) {
+    out.insert(id);
     return true;
   });
 }
 
 void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out) {
   // One walk over the union: the roots (a torn loop's matrix entries) share most nodes.
-  std::unordered_set<const Node*> seen;
-  std::vector<const Node*> stack;
-  for (const Expr& r : roots) stack.push_back(r.get());
-  while (!stack.empty()) {
-    const Node* n = stack.back();
-    stack.pop_back();
-    if (!seen.insert(n).second) continue;
-    if (n->op == Op::Var) out.insert(n->id);
-    for (const Expr& a : n->args) stack.push_back(a.get());
-  }
+  std::vector<const Node*> r;
+  r.reserve(roots.size());
+  for (const Expr& e : roots) r.push_back(e.get());
+  walk_vars(r.data(), r.size(), kAnyVar, [&](int id) {
+    out.insert(id);
+    return true;
+  });
+}
+
+bool mentions_var(const Expr& e, int id) {
+  bool found = false;
+  const Node* root = e.get();
+  walk_vars(&root, 1, var_bit(id), [&](int v) {
+    found = v == id;
+    return !found;
+  });
+  return found;
+}
+
+bool mentions_only_var(const Expr& e, int id) {
+  if (e->canonical && (e->var_mask & ~var_bit(id)) != 0) return false;  // another variable is in there
+  bool only = true;
+  const Node* root = e.get();
+  walk_vars(&root, 1, kAnyVar, [&](int v) {
+    only = v == id;
+    return only;
+  });
+  return only;
 }
 
 void collect_params(const Expr& e, std::unordered_set<int>& out) {
+  if (!may_have(e.get(), Node::kHasParam)) return;
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Param) out.insert(n->id);
     return true;
@@ -697,6 +899,7 @@ void collect_params(const Expr& e, std::unordered_set<int>& out) {
 }
 
 bool depends_on_time(const Expr& e) {
+  if (e->canonical) return (e->flags & Node::kHasTime) != 0;
   bool found = false;
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Time) found = true;
@@ -706,6 +909,7 @@ bool depends_on_time(const Expr& e) {
 }
 
 bool contains_der(const Expr& e) {
+  if (e->canonical) return (e->flags & Node::kHasDer) != 0;
   bool found = false;
   visit_unique(e, [&](const Node* n) {
     if (n->op == Op::Der) found = true;
@@ -737,14 +941,40 @@ std::size_t size(const Expr& e) {
 
 // ---- transformation ----------------------------------------------------------------
 
+namespace {
+// substitute(): a Rewriter that does not enter sub-trees without a mapped
+// variable (they would come back unchanged).
+class Substituter {
+ public:
+  explicit Substituter(const std::unordered_map<int, Expr>& by_var) : by_var_(by_var) {
+    for (const auto& [id, x] : by_var) mask_ |= var_bit(id);
+  }
+  Expr run(const Expr& e) {
+    if (!may_mention(e.get(), mask_)) return e;
+    if (e->op == Op::Var) {
+      auto it = by_var_.find(e->id);
+      return it == by_var_.end() ? e : it->second;
+    }
+    auto it = memo_.find(e.get());
+    if (it != memo_.end()) return it->second;
+    std::vector<Expr> args;
+    args.reserve(e->args.size());
+    for (const Expr& a : e->args) args.push_back(run(a));
+    Expr r = rebuild(e, std::move(args));
+    memo_.emplace(e.get(), r);
+    return r;
+  }
+
+ private:
+  const std::unordered_map<int, Expr>& by_var_;
+  std::uint64_t mask_ = 0;
+  std::unordered_map<const Node*, Expr> memo_;
+};
+}  // namespace
+
 Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var) {
   if (by_var.empty()) return e;
-  std::function<Expr(const Expr&)> f = [&](const Expr& n) -> Expr {
-    if (n->op != Op::Var) return nullptr;
-    auto it = by_var.find(n->id);
-    return it == by_var.end() ? nullptr : it->second;
-  };
-  return Rewriter(f).run(e);
+  return Substituter(by_var).run(e);
 }
 
 Expr rewrite(const Expr& e, const std::function<Expr(const Expr&)>& f) {
@@ -757,9 +987,12 @@ Expr diff_time(const Expr& e) { return Differentiator(-1, true).d(e); }
 bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr>& coeff,
                Expr& rest) {
   const std::unordered_set<int> u(unknowns.begin(), unknowns.end());
+  std::uint64_t umask = 0;
+  for (int id : unknowns) umask |= var_bit(id);
   std::unordered_map<const Node*, bool> memo;
   // Does the subtree mention an unknown?
   std::function<bool(const Node*)> mentions = [&](const Node* n) -> bool {
+    if (!may_mention(n, umask)) return false;
     if (n->op == Op::Var) return u.count(n->id) > 0;
     if (n->args.empty()) return false;
     auto it = memo.find(n);
@@ -775,13 +1008,23 @@ bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr
   };
   // Dependence the derivative does not see: Der is opaque, and step/sign have
   // derivative 0 almost everywhere but are not affine.
+  // Only sub-trees that mention an unknown can hide one.
   bool hidden = false;
-  visit_unique(e, [&](const Node* n) {
-    bool opaque = n->op == Op::Der ||
-                  (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign));
-    if (opaque && mentions(n)) hidden = true;
-    return !hidden;
-  });
+  {
+    std::unordered_set<const Node*> seen;
+    std::vector<const Node*> stack;
+    if (mentions(e.get())) stack.push_back(e.get());
+    while (!stack.empty() && !hidden) {
+      const Node* n = stack.back();
+      stack.pop_back();
+      if (!seen.insert(n).second) continue;
+      bool opaque = n->op == Op::Der ||
+                    (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign));
+      if (opaque) hidden = true;  // it mentions an unknown: only such nodes are pushed
+      for (const Expr& a : n->args)
+        if (mentions(a.get())) stack.push_back(a.get());
+    }
+  }
   if (hidden) return false;
 
   std::vector<Expr> c;
@@ -806,6 +1049,10 @@ std::string to_string(const Expr& e, const Namer& names) {
 
 std::string to_cpp(const Expr& e, const Namer& names, CppOps* ops) {
   return Printer(names, true, ops).print(e).s;
+}
+
+std::string to_cpp(const Expr& e, const Namer& names, const NamedNodes& named, CppOps* ops) {
+  return Printer(names, true, ops, &named).print(e).s;
 }
 
 Expr with_operands(const Expr& e, std::vector<Expr> operands) { return rebuild(e, std::move(operands)); }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,13 +44,28 @@ enum class Fn {
 struct Node;
 using Expr = std::shared_ptr<const Node>;
 
-struct Node {
+/// The constructors below hash-cons: a node they make is the only live node
+/// of its structure (op, constant bits, id, function and operand pointers), so
+/// structurally equal trees they build are one shared DAG, and a walk or memo
+/// by pointer visits each distinct sub-expression once.
+struct Node : std::enable_shared_from_this<Node> {
   Op op = Op::Const;
   double value = 0.0;       // Const
   int id = -1;              // Param, Var
   Fn fn = Fn::Sin;          // Call
   std::vector<Expr> args;   // operands (1 for Neg/Der, 2 for binary, n for Call)
   std::size_t hash = 0;     // structural hash, set by the constructors
+  bool interned = false;    // in the constructors' table of unique nodes
+  bool canonical = false;   // interned, and so are its operands, recursively: equal() is pointer equality
+  // Summaries of the sub-tree, set by the constructors (valid when canonical),
+  // so that walks skip the parts that cannot matter to them:
+  unsigned char flags = 0;      // kHas* below
+  std::uint64_t var_mask = 0;   // bit (id % 64) for each Var id in the sub-tree (inside Der too)
+  static constexpr unsigned char kHasTime = 1, kHasDer = 2, kHasParam = 4,
+                                 kHasNonFinite = 8,   // a constant inf or NaN
+                                 kHasDivByZero = 16;  // a division by the constant 0
+  mutable std::uint64_t mark = 0;  // visited mark of the variable walks in expr.cpp (never nested)
+  ~Node();                  // leaves the table
 };
 
 // ---- construction (all fold constants and simplify trivially) -------------
@@ -89,6 +105,10 @@ struct ExprEqual { bool operator()(const Expr& a, const Expr& b) const { return 
 /// Ids of the Var leaves in e (inside Der too).
 void collect_vars(const Expr& e, std::unordered_set<int>& out);
 void collect_vars(const std::vector<Expr>& roots, std::unordered_set<int>& out);  // of all roots, one walk
+/// Does Var `id` occur in e (inside Der too)? What collect_vars would say, without the set.
+bool mentions_var(const Expr& e, int id);
+/// Is every Var leaf of e the variable `id` (also true when e has none)?
+bool mentions_only_var(const Expr& e, int id);
 void collect_params(const Expr& e, std::unordered_set<int>& out);
 bool depends_on_time(const Expr& e);
 bool contains_der(const Expr& e);
@@ -170,5 +190,12 @@ struct CppOps {
   bool operator==(const CppOps&) const = default;
 };
 std::string to_cpp(const Expr& e, const Namer& names, CppOps* ops = nullptr);
+/// Sub-expressions printed as a name: `named` returns the name of a node that
+/// has one (a common subexpression defined before), else nullptr.
+using NamedNodes = std::function<const std::string*(const Expr&)>;
+/// to_cpp, printing each named node as its name, exactly as if it were a
+/// variable of that name (what substituting variables for them would print;
+/// a named node costs no operations).
+std::string to_cpp(const Expr& e, const Namer& names, const NamedNodes& named, CppOps* ops = nullptr);
 
 }  // namespace mbgc::ir

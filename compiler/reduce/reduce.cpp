@@ -69,10 +69,9 @@ class Reducer {
     };
     for (Equation& eq : eqs_) {
       // unknown = constant: propagate the constant (e.g. a zero force component).
-      std::unordered_set<int> vars;
-      collect_vars(eq.lhs, vars);
-      collect_vars(eq.rhs, vars);
-      if (vars.size() == 1 && vars.count(eq.unknown)) {
+      // (The unknown is the equation's only variable.)
+      if (mentions_only_var(eq.lhs, eq.unknown) && mentions_only_var(eq.rhs, eq.unknown) &&
+          (mentions_var(eq.lhs, eq.unknown) || mentions_var(eq.rhs, eq.unknown))) {
         auto sol = solve_single(eq);
         if (sol && is_const(*sol)) {
           alias[eq.unknown] = *sol;
@@ -96,14 +95,33 @@ class Reducer {
       }
       kept.push_back(std::move(eq));
     }
+    // The aliases are complete: resolve is now a function of the node alone,
+    // remembered across all equations (they share a body's sub-expressions).
+    // The memo keeps its keys alive, so that no new node can reuse an address.
+    std::unordered_map<const Node*, std::pair<Expr, Expr>> resolved;
+    std::function<Expr(const Expr&)> resolve_all = [&](const Expr& e) -> Expr {
+      if (auto it = resolved.find(e.get()); it != resolved.end()) return it->second.second;
+      Expr r;
+      if (e->op == Op::Var) {
+        auto it = alias.find(e->id);
+        r = it == alias.end() ? e : resolve(it->second);
+      } else {
+        std::vector<Expr> args;
+        args.reserve(e->args.size());
+        for (const Expr& a : e->args) args.push_back(resolve_all(a));
+        r = with_operands(e, std::move(args));
+      }
+      resolved.emplace(e.get(), std::make_pair(e, r));
+      return r;
+    };
     for (Equation& eq : kept) {
-      eq.lhs = resolve(eq.lhs);
-      eq.rhs = resolve(eq.rhs);
+      eq.lhs = resolve_all(eq.lhs);
+      eq.rhs = resolve_all(eq.rhs);
     }
     eqs_ = std::move(kept);
-    for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve(var(s.der)));
-    for (Output& o : out_.graph.outputs) o.value = resolve(o.value);
-    for (ConstraintRow& row : out_.constraints) row.gdot = resolve(var(row.flow));
+    for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve_all(var(s.der)));
+    for (Output& o : out_.graph.outputs) o.value = resolve_all(o.value);
+    for (ConstraintRow& row : out_.constraints) row.gdot = resolve_all(var(row.flow));
     alias_ = std::move(alias);
     out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
     out_.log.push_back(fmt::format("constant propagation: {} variable{} with a constant value folded into their uses", constants_, constants_ == 1 ? "" : "s"));
@@ -300,9 +318,7 @@ class Reducer {
     if (block.size() == 1) {
       const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
       if (auto sol = solve_single(eq)) {
-        std::unordered_set<int> vars;
-        collect_vars(*sol, vars);
-        if (!vars.count(eq.unknown)) {
+        if (!mentions_var(*sol, eq.unknown)) {
           out_.assignments.push_back({eq.unknown, *sol, eq.loc, eq.origin});
           return;
         }

@@ -548,7 +548,7 @@ Expr sample_tree() {
 
 TEST(ExprHash, StructurallyEqualTreesBuiltSeparately) {
   const Expr e1 = sample_tree(), e2 = sample_tree();
-  EXPECT_NE(e1.get(), e2.get());
+  EXPECT_EQ(e1.get(), e2.get());  // hash-consed: one node per structure
   EXPECT_EQ(e1->hash, e2->hash);
   EXPECT_TRUE(equal(e1, e2));
   std::unordered_set<Expr, ExprHash, ExprEqual> set{e1, e2, var(X), var(X)};
@@ -585,8 +585,8 @@ Expr deep_dag(int levels, const Expr& leaf) {
 
 TEST(ExprHash, SharedDagsCompareInLinearTime) {
   const Expr a = deep_dag(80, var(X)), b = deep_dag(80, var(X));
-  EXPECT_NE(a.get(), b.get());
-  EXPECT_TRUE(equal(a, b));  // would never finish without the memo
+  EXPECT_EQ(a.get(), b.get());  // hash-consed (raw DAGs below take the memoised path)
+  EXPECT_TRUE(equal(a, b));
   EXPECT_FALSE(equal(a, deep_dag(80, var(Y))));
   // same DAG shape at the top, different only at one leaf deep down
   const Expr c = add(mul(a, b), k(1));
@@ -629,6 +629,40 @@ TEST(ExprHash, EqualDoesNotTrustHashesAlone) {
                      raw(Op::Add, {raw_dag(80, rv(1)), raw(Op::Neg, {rv(2)})})));
   EXPECT_TRUE(equal(raw(Op::Add, {raw_dag(80, rv(1)), raw(Op::Neg, {rv(1)})}),
                     raw(Op::Add, {raw_dag(80, rv(1)), raw(Op::Neg, {rv(1)})})));
+}
+
+TEST(ExprHash, ConstructorsShareEqualNodes) {
+  // A node outlives nothing: when the last reference goes, a new one is built.
+  const Node* first = nullptr;
+  {
+    const Expr a = add(var(X), k(2));
+    first = a.get();
+    EXPECT_EQ(add(var(X), k(2)).get(), first);
+  }
+  const Expr again = add(var(X), k(2));
+  EXPECT_TRUE(equal(again, add(var(X), k(2))));
+  EXPECT_EQ(again.get(), add(var(X), k(2)).get());
+  // -0.0 and 0.0, and every NaN, are one constant
+  EXPECT_EQ(k(-0.0).get(), k(0.0).get());
+  EXPECT_EQ(k(kNaN).get(), k(-kNaN).get());
+  // a hand-built node is never handed out by the constructors
+  const Expr r = raw(Op::Var, {}, 0.0, X);
+  EXPECT_NE(var(X).get(), r.get());
+}
+
+TEST(ExprHash, TableKeepsFindingNodesAsOthersComeAndGo) {
+  // Many nodes made and dropped in an interleaved order (the table moves
+  // entries when one leaves): every live one is still the one handed out.
+  for (int round = 0; round < 3; ++round) {
+    std::vector<Expr> made;
+    for (int i = 0; i < 20000; ++i) made.push_back(add(var(i % 97), k(i + round + 1)));
+    for (std::size_t i = 0; i < made.size(); i += 2 + round) made[i].reset();
+    for (int i = 0; i < 20000; ++i) {
+      const Expr again = add(var(i % 97), k(i + round + 1));
+      if (made[static_cast<std::size_t>(i)]) EXPECT_EQ(again.get(), made[static_cast<std::size_t>(i)].get());
+      EXPECT_EQ(again->args[0]->id, i % 97);
+    }
+  }
 }
 
 TEST(ExprHash, NoCollisionsOnRandomTrees) {
@@ -802,6 +836,54 @@ TEST(ExprDiff, Time) {
     EXPECT_TRUE(derivative_matches(e, de, env, -1));
     EXPECT_TRUE(derivative_matches(e2, diff_time(e2), env, -1));
   }
+}
+
+// The constructors summarise each sub-tree (variables, t, der, parameters);
+// walks skip the parts a summary rules out, and must give what a full walk gives.
+TEST(ExprSummary, WalksThatSkipGiveTheFullWalksAnswer) {
+  const Expr x = var(X), y = var(Y), t = time();
+  const Expr e = add(mul(param(P), fn(Fn::Sin, t)), mul(x, der(y)));
+  EXPECT_TRUE(depends_on_time(e));
+  EXPECT_TRUE(contains_der(e));
+  EXPECT_FALSE(depends_on_time(mul(x, der(y))));
+  EXPECT_FALSE(contains_der(mul(param(P), fn(Fn::Sin, t))));
+  std::unordered_set<int> vars, params;
+  collect_vars(e, vars);
+  collect_params(e, params);
+  EXPECT_EQ(vars, (std::unordered_set<int>{X, Y}));
+  EXPECT_EQ(params, (std::unordered_set<int>{P}));
+  // ids 64 apart share a summary bit: still told apart
+  EXPECT_TRUE(is_zero(diff_var(var(X + 64), X)));
+  EXPECT_TRUE(is_one(diff_var(add(var(X + 64), x), X)));
+  EXPECT_TRUE(equal(substitute(add(var(X + 64), x), {{X, y}}), add(var(X + 64), y)));
+  // what differentiating a sub-tree without the variable gives is not always
+  // 0: 0*inf and 0/0 stay what they were
+  EXPECT_EQ(str(diff_var(mul(k(kInf), y), X)), "nan");
+  EXPECT_EQ(str(diff_var(div(y, k(0)), X)), "0/0");
+  EXPECT_EQ(str(diff_time(div(y, k(0)))), "0/0");
+  EXPECT_TRUE(is_zero(diff_var(mul(param(P), y), X)));
+  // the variable tests, alternating with collect_vars (their walks share marks)
+  const Expr w = add(mul(x, var(X + 64)), der(y));
+  for (int i = 0; i < 3; ++i) {
+    std::unordered_set<int> all;
+    collect_vars(w, all);
+    EXPECT_EQ(all.size(), 3u);
+    EXPECT_TRUE(mentions_var(w, Y));
+    EXPECT_FALSE(mentions_var(w, Z));
+    EXPECT_FALSE(mentions_var(w, Z + 64));
+    EXPECT_FALSE(mentions_only_var(w, X));
+    EXPECT_FALSE(mentions_only_var(mul(x, var(X + 64)), X));
+    EXPECT_TRUE(mentions_only_var(mul(x, fn(Fn::Sin, x)), X));
+    EXPECT_TRUE(mentions_only_var(mul(param(P), t), X));
+  }
+  // hand-built trees carry no summary: walked in full
+  const Expr r = raw(Op::Add, {raw(Op::Var, {}, 0.0, X), raw(Op::Der, {raw(Op::Time, {})})});
+  EXPECT_TRUE(contains_der(r));
+  EXPECT_TRUE(depends_on_time(r));
+  EXPECT_TRUE(is_one(diff_var(r, X)));
+  std::unordered_set<int> raw_vars;
+  collect_vars(r, raw_vars);
+  EXPECT_EQ(raw_vars, (std::unordered_set<int>{X}));
 }
 
 TEST(ExprDiff, SharedDagStaysLinear) {
@@ -1272,9 +1354,7 @@ TEST(ExprProperty, HashAndEqualityAreStructural) {
     const Expr a = smart(r1.tree(5)), b = smart(r2.tree(5));
     EXPECT_EQ(a->hash, b->hash);
     EXPECT_TRUE(equal(a, b)) << str(a);
-    if (!a->args.empty()) {
-      EXPECT_NE(a.get(), b.get());
-    }
+    EXPECT_EQ(a.get(), b.get());  // hash-consed
   }
 }
 
