@@ -83,6 +83,16 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   return r;
 }
 
+Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const char* q0, const char* rate0,
+                                  bool prescribed) {
+  Mobilizer::Rate& s = m.rate(m.joint.decl->name + "." + junction, "s", m.setting_or(q0, m.zero),
+                              m.setting_or(rate0, m.zero), prescribed);
+  s.V = m.ez;
+  m.axial = s.value, m.axial_rate = s.rate;
+  m.disp = m.B.op('*', m.ez, m.axial);
+  return s;
+}
+
 // ---- initial values --------------------------------------------------------------------
 InitialMotion JointKind::initial(const Build& B, const Joint& j) const {
   E zero = B.num(0);

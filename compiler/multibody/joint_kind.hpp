@@ -153,4 +153,9 @@ std::vector<std::string> joint_kind_names();
 /// prescribed motion), on junction `j.drive`: revolute, cylindrical, screw.
 Mobilizer::Rate& turn_about_axis(Mobilizer& m);
 
+/// A slide along A's joint z axis by the settings `q0`, `rate0` (or the
+/// prescribed motion), on junction `j.<junction>`: prismatic, cylindrical.
+Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const char* q0, const char* rate0,
+                                  bool prescribed);
+
 }  // namespace mbgc::multibody::detail

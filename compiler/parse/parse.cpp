@@ -544,20 +544,8 @@ class Parser {
   std::shared_ptr<ir::AstPointFor> point_loop(std::size_t position, const std::string& owner, int outside) {
     const char* form = "write for i in 1..N { point p{i} = [x, y, z] }";
     auto f = std::make_shared<ir::AstPointFor>();
-    f->loc = next().loc;
     f->position = position;
-    if (for_depth_ >= kMaxLoopNesting) {
-      diags_.error(f->loc, fmt::format("for loops nested more than {} deep", kMaxLoopNesting),
-                   "use fewer levels of loops");
-      throw ParseError{};
-    }
-    f->var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;
-    if (!at_ident("in")) fail(fmt::format("expected `in` after the loop variable, found {}", describe(peek())), form);
-    next();
-    f->from = expr();
-    expect(Tok::DotDot, "between the loop's bounds", form);
-    f->to = expr();
-    expect(Tok::LBrace, "to open the loop's body", form);
+    loop_header(*f, form);
     ++block_depth_;
     ++for_depth_;
     struct Leave {
@@ -657,23 +645,29 @@ class Parser {
     return s;
   }
 
+  /// `for i in from..to {` (at `for`) into a statement loop or a loop of points.
+  template <class Loop>
+  void loop_header(Loop& f, const char* form) {
+    f.loc = next().loc;
+    if (for_depth_ >= kMaxLoopNesting) {
+      diags_.error(f.loc, fmt::format("for loops nested more than {} deep", kMaxLoopNesting),
+                   "use fewer levels of loops");
+      throw ParseError{};
+    }
+    f.var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;
+    if (!at_ident("in")) fail(fmt::format("expected `in` after the loop variable, found {}", describe(peek())), form);
+    next();
+    f.from = expr();
+    expect(Tok::DotDot, "between the loop's bounds", form);
+    f.to = expr();
+    expect(Tok::LBrace, "to open the loop's body", form);
+  }
+
   /// `for i in from..to { statements }`
   ir::AstStmt for_loop(bool in_component) {
     const char* form = "write for i in 1..N { ... }";
     auto f = std::make_shared<ir::AstFor>();
-    f->loc = next().loc;
-    if (for_depth_ >= kMaxLoopNesting) {
-      diags_.error(f->loc, fmt::format("for loops nested more than {} deep", kMaxLoopNesting),
-                   "use fewer levels of loops");
-      throw ParseError{};
-    }
-    f->var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;
-    if (!at_ident("in")) fail(fmt::format("expected `in` after the loop variable, found {}", describe(peek())), form);
-    next();
-    f->from = expr();
-    expect(Tok::DotDot, "between the loop's bounds", form);
-    f->to = expr();
-    expect(Tok::LBrace, "to open the loop's body", form);
+    loop_header(*f, form);
     ++for_depth_;
     struct Leave {
       int& depth;

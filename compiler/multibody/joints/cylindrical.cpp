@@ -19,11 +19,7 @@ class Cylindrical final : public JointKind {
   /// The angle on `j.drive` (the drive's torque acts on it), the slide on `j.slide`.
   void mobilize(Mobilizer& m) const override {
     turn_about_axis(m);
-    Mobilizer::Rate& s = m.rate(m.joint.decl->name + ".slide", "s", m.setting_or("d0", m.zero),
-                                m.setting_or("ddot0", m.zero), false);
-    s.V = m.ez;
-    m.axial = s.value, m.axial_rate = s.rate;
-    m.disp = m.B.op('*', m.ez, m.axial);
+    slide_along_axis(m, "slide", "d0", "ddot0", false);
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);

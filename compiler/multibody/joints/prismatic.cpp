@@ -17,11 +17,7 @@ class Prismatic final : public JointKind {
     r.push_back(f.perp(f.A.X, f.Bf.Y));
   }
   void mobilize(Mobilizer& m) const override {
-    Mobilizer::Rate& s = m.rate(m.joint.decl->name + ".drive", "s", m.setting_or("q0", m.zero),
-                                m.setting_or("rate0", m.zero), m.prescribed());
-    s.V = m.ez;
-    m.axial = s.value, m.axial_rate = s.rate;
-    m.disp = m.B.op('*', m.ez, m.axial);
+    slide_along_axis(m, "drive", "q0", "rate0", m.prescribed());
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
