@@ -342,6 +342,27 @@ class Unroller {
     return out;
   }
 
+  /// A loop's bounds, or nullopt after reporting why it cannot be unrolled:
+  /// its variable hides an outer one, a bound is not a constant integer, or
+  /// it would repeat more than kMaxIterations times. (A loop of statements or of points.)
+  template <class Loop>
+  std::optional<std::pair<long, long>> loop_range(const Loop& f, const std::map<std::string, long>& env) {
+    if (env.count(f.var)) {
+      error(f.loc, fmt::format("loop variable `{}` hides an outer loop's variable", f.var),
+            fmt::format("rename the inner loop's variable, e.g. for {}2 in ...", f.var));
+      return std::nullopt;
+    }
+    auto from = eval_integer(*f.from, env, "a loop's lower bound");
+    auto to = eval_integer(*f.to, env, "a loop's upper bound");
+    if (!from || !to) return std::nullopt;
+    if (*to - *from >= kMaxIterations) {
+      error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
+            fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", kMaxIterations));
+      return std::nullopt;
+    }
+    return std::pair{*from, *to};
+  }
+
   AstPoint instantiate_point(const AstPoint& p, const std::map<std::string, long>& env) {
     return {interpolate(p.name, p.loc, env), p.loc, subst(p.value, env)};
   }
@@ -356,21 +377,11 @@ class Unroller {
     for (std::size_t k = 0; k <= points.size(); ++k) {
       for (; next_loop < loops.size() && loops[next_loop]->position == k; ++next_loop) {
         const AstPointFor& f = *loops[next_loop];
-        if (env.count(f.var)) {
-          error(f.loc, fmt::format("loop variable `{}` hides an outer loop's variable", f.var),
-                fmt::format("rename the inner loop's variable, e.g. for {}2 in ...", f.var));
-          continue;
-        }
-        auto from = eval_integer(*f.from, env, "a loop's lower bound");
-        auto to = eval_integer(*f.to, env, "a loop's upper bound");
-        if (!from || !to) continue;
+        const auto range = loop_range(f, env);
+        if (!range) continue;
+        const auto [from, to] = *range;
         const SourceLoc& top = outermost ? *outermost : f.loc;
-        if (*to - *from >= kMaxIterations) {
-          error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
-                fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", kMaxIterations));
-          continue;
-        }
-        for (long i = *from; i <= *to; ++i) {
+        for (long i = from; i <= to; ++i) {
           if (++work_ > kMaxWork) {
             give_up(top);
             return out;
@@ -428,21 +439,11 @@ class Unroller {
       if (gave_up_) return;
       if (auto* loop = std::get_if<std::shared_ptr<AstFor>>(&s)) {
         const AstFor& f = **loop;
-        if (env.count(f.var)) {
-          error(f.loc, fmt::format("loop variable `{}` hides an outer loop's variable", f.var),
-                fmt::format("rename the inner loop's variable, e.g. for {}2 in ...", f.var));
-          continue;
-        }
-        auto from = eval_integer(*f.from, env, "a loop's lower bound");
-        auto to = eval_integer(*f.to, env, "a loop's upper bound");
-        if (!from || !to) continue;
-        if (*to - *from >= kMaxIterations) {
-          error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
-                fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", kMaxIterations));
-          continue;
-        }
+        const auto range = loop_range(f, env);
+        if (!range) continue;
+        const auto [from, to] = *range;
         const AstFor* top = outermost ? outermost : &f;
-        for (long i = *from; i <= *to; ++i) {
+        for (long i = from; i <= to; ++i) {
           if (++work_ > kMaxWork) return give_up(top->loc);
           std::map<std::string, long> inner = env;
           inner[f.var] = i;

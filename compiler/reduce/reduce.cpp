@@ -329,13 +329,7 @@ class Reducer {
     for (int i : block) unknowns.push_back(eqs_[static_cast<std::size_t>(i)].unknown);
     AlgebraicLoop loop;
     loop.vars = unknowns;
-    for (int u : unknowns) {
-      const Variable& var_info = v(u);
-      if ((var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) &&
-          std::find(loop.bonds.begin(), loop.bonds.end(), var_info.of) == loop.bonds.end())
-        loop.bonds.push_back(var_info.of);
-    }
-    std::sort(loop.bonds.begin(), loop.bonds.end());
+    loop.bonds = loop_bonds(block);
     std::size_t n = block.size();
     std::vector<std::vector<Expr>> a(n);
     std::vector<Expr> b(n);
@@ -365,6 +359,18 @@ class Reducer {
       dae_block_eqs_.push_back(i);
       dae_unknowns_.insert(eq.unknown);
     }
+  }
+
+  /// The bonds whose efforts or flows are unknowns of a loop, sorted, each once (for its report).
+  std::vector<int> loop_bonds(const std::vector<int>& block) const {
+    std::vector<int> bonds;
+    for (int i : block) {
+      const Variable& var_info = v(eqs_[static_cast<std::size_t>(i)].unknown);
+      if (var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) bonds.push_back(var_info.of);
+    }
+    std::sort(bonds.begin(), bonds.end());
+    bonds.erase(std::unique(bonds.begin(), bonds.end()), bonds.end());
+    return bonds;
   }
 
   /// Loops larger than this are torn before Gaussian elimination is tried.
@@ -469,12 +475,7 @@ class Reducer {
     }
     AlgebraicLoop loop;
     loop.vars = tears;
-    for (int i : block) {  // the bonds of every unknown in the loop, as for an untorn one
-      const Variable& var_info = v(eqs_[static_cast<std::size_t>(i)].unknown);
-      if (var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) loop.bonds.push_back(var_info.of);
-    }
-    std::sort(loop.bonds.begin(), loop.bonds.end());
-    loop.bonds.erase(std::unique(loop.bonds.begin(), loop.bonds.end()), loop.bonds.end());
+    loop.bonds = loop_bonds(block);
     loop.linear = true;
     loop.resolution = fmt::format("linear: torn at the {} state derivative{}, the other {} unknowns follow in order; "
                                   "the {}x{} system is solved at run time with partial pivoting",
@@ -566,12 +567,7 @@ class Reducer {
     for (Assignment& a : done->assignments) out_.assignments.push_back(std::move(a));
     AlgebraicLoop loop;
     loop.vars = tears;
-    for (int i : block) {
-      const Variable& var_info = v(eqs_[static_cast<std::size_t>(i)].unknown);
-      if (var_info.kind == VarKind::Effort || var_info.kind == VarKind::Flow) loop.bonds.push_back(var_info.of);
-    }
-    std::sort(loop.bonds.begin(), loop.bonds.end());
-    loop.bonds.erase(std::unique(loop.bonds.begin(), loop.bonds.end()), loop.bonds.end());
+    loop.bonds = loop_bonds(block);
     loop.linear = true;
     loop.resolution = fmt::format(
         "linear: eliminated along the kinematic tree, leaves first ({} bodies, {} joint accelerations; articulated-body "
