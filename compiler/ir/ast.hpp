@@ -49,7 +49,18 @@ struct AstEndpoint {
 
 struct AstModel { std::string name; SourceLoc loc; };
 struct AstImport { std::string path; SourceLoc loc; };
-struct AstParam { std::string name; SourceLoc loc; AstExprPtr value; };
+/// `param name = expr`. The multibody layer also writes the properties it
+/// derives (a body's mass, centre, inertia and points, a joint's frames, the
+/// modal integrals, gravity) as parameters with `fold` set: those are
+/// compile-time constants wherever their value depends on literals only (a
+/// structural zero then folds out of every equation), and run-time
+/// parameters (`--set`) where it reads a `param`.
+struct AstParam {
+  std::string name;
+  SourceLoc loc;
+  AstExprPtr value;
+  bool fold = false;
+};
 struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; };
 struct AstOutput { std::string name; SourceLoc loc; AstExprPtr value; };
 

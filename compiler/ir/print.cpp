@@ -64,7 +64,7 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
           using T = std::decay_t<decltype(st)>;
           if constexpr (std::is_same_v<T, AstModel>) out += fmt::format("{}model {}\n", pad, st.name);
           else if constexpr (std::is_same_v<T, AstImport>) out += fmt::format("{}import \"{}\"\n", pad, st.path);
-          else if constexpr (std::is_same_v<T, AstParam>) out += fmt::format("{}param {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_same_v<T, AstParam>) out += fmt::format("{}{} {} = {}\n", pad, st.fold ? "const" : "param", st.name, ast_expr(*st.value));
           else if constexpr (std::is_same_v<T, AstSignal>) out += fmt::format("{}signal {} = {}\n", pad, st.name, ast_expr(*st.value));
           else if constexpr (std::is_same_v<T, AstOutput>) out += fmt::format("{}output {} = {}\n", pad, st.name, ast_expr(*st.value));
           else if constexpr (std::is_same_v<T, AstElement>) {

@@ -35,7 +35,7 @@ const std::map<std::string, FnInfo> kFunctions = {
     {"dot", {2, 2, true}},        {"cross", {2, 2, true}},     {"skew", {1, 1, true}},
     {"norm", {1, 1, true}},       {"hcat", {1, 1000, true}},   {"vcat", {1, 1000, true}},
     {"rotq", {1, 1, true}},       {"quat_rate", {1, 1, true}}, {"quat_mul", {2, 2, true}},
-    {"quat_conj", {1, 1, true}},  {"quat_axis_angle", {2, 2, true}},
+    {"quat_conj", {1, 1, true}},  {"quat_axis_angle", {2, 2, true}}, {"rot_axis_angle", {2, 2, true}},
     {"quat_arc", {1, 1, true}},   {"bryant", {1, 1, true}},    {"jacobian", {2, 2, true}},
     {"partial_t", {1, 1, true}},
 };
@@ -47,6 +47,32 @@ using Vec = std::vector<Expr>;
 
 Expr sq(const Expr& a) { return mul(a, a); }
 Expr twice(const Expr& a) { return mul(constant(2), a); }
+
+/// The rotation by `angle` about `axis` (normalised here), Rodrigues' form
+/// c I + s [u]x + (1 - c) u u^T, written so that a literal axis folds: about
+/// z it is [c -s 0; s c 0; 0 0 1], with no half angles and no division.
+Value axis_angle_rotation(const Vec& axis, const Expr& angle) {
+  const Expr n = call(Fn::Sqrt, {add(add(sq(axis[0]), sq(axis[1])), sq(axis[2]))});
+  Vec u;
+  for (const Expr& a : axis) u.push_back(div(a, n));
+  const Expr c = call(Fn::Cos, {angle}), s = call(Fn::Sin, {angle}), v = sub(constant(1), c);
+  Value r{3, 3, Vec(9)};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Expr uu = mul(u[static_cast<std::size_t>(i)], u[static_cast<std::size_t>(j)]);
+      Expr x;
+      if (i == j) {
+        double w = 0.0;
+        x = is_const(uu, &w) && w == 1.0 ? constant(1) : add(c, mul(v, uu));
+      } else {
+        const int k = 3 - i - j;  // [u]x(i, j) = -+u_k
+        const Expr skew = (j == (i + 1) % 3) ? neg(u[static_cast<std::size_t>(k)]) : u[static_cast<std::size_t>(k)];
+        x = add(mul(s, skew), mul(v, uu));
+      }
+      r.items[static_cast<std::size_t>(3 * i + j)] = x;
+    }
+  return r;
+}
 
 Value column(Vec items) {
   Value r{static_cast<int>(items.size()), 1, std::move(items)};
@@ -287,6 +313,7 @@ class Lowerer {
         {"quat_mul", "write quat_mul(a, b) with quaternions a, b = [w, x, y, z]"},
         {"quat_conj", "write quat_conj(q) with a quaternion q = [w, x, y, z]"},
         {"quat_axis_angle", "write quat_axis_angle(axis, angle) with a 3-vector axis and a scalar angle"},
+        {"rot_axis_angle", "write rot_axis_angle(axis, angle) with a 3-vector axis and a scalar angle"},
         {"quat_arc", "write quat_arc(a) with a nonzero 3-vector a"},
         {"bryant", "write bryant(q) with a quaternion q = [w, x, y, z]"},
         {"jacobian", "write jacobian(f, x): f a vector of expressions, x a vector of model variables"},
@@ -414,7 +441,7 @@ class Lowerer {
       if (!q) return std::nullopt;
       return column({(*q)[0], neg((*q)[1]), neg((*q)[2]), neg((*q)[3])});
     }
-    if (f == "quat_axis_angle") {
+    if (f == "quat_axis_angle" || f == "rot_axis_angle") {
       auto axis = vector_arg(e, args, 0, 3, "a 3-vector (the axis)");
       if (!axis) return std::nullopt;
       if (!args[1].is_scalar()) {
@@ -422,7 +449,9 @@ class Lowerer {
                      call_hint(f));
         return std::nullopt;
       }
-      Expr half = mul(constant(0.5), args[1].items[0]);
+      const Expr& angle = args[1].items[0];
+      if (f == "rot_axis_angle") return axis_angle_rotation(*axis, angle);
+      Expr half = mul(constant(0.5), angle);
       Expr s = div(call(Fn::Sin, {half}), call(Fn::Sqrt, {dot_of(*axis, *axis)}));
       return column({call(Fn::Cos, {half}), mul((*axis)[0], s), mul((*axis)[1], s), mul((*axis)[2], s)});
     }

@@ -13,8 +13,8 @@ AstProgram Expander::run(const AstProgram& in) {
   collect(in);
   if (diags_.has_errors()) return {};
   if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && !gravity_) return in;  // nothing multibody here
-  if (gravity_) param(Build(gravity_loc_), "gravity", gravity_);
-  for (const auto& [p, v] : bodies_.at("ground").points) param(Build(v->loc), "ground." + p, v);
+  if (gravity_) property(Build(gravity_loc_), "gravity", gravity_);
+  for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), "ground." + p, v);
   find_tree();
   check_coordinates();
   if (diags_.has_errors()) return {};
@@ -40,6 +40,11 @@ AstProgram Expander::run(const AstProgram& in) {
 void Expander::param(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
   generated_.push_back(AstParam{name, B.loc(), std::move(value)});
+}
+
+void Expander::property(const Build& B, const std::string& name, E value) {
+  generated_names_.insert(name);
+  generated_.push_back(AstParam{name, B.loc(), std::move(value), /*fold=*/true});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs) {

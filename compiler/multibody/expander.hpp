@@ -96,7 +96,11 @@ class Expander {
 
  private:
   // ---- the pass: run(), and the statements it writes (expand.cpp)
+  // A run-time parameter (a setting: a penalty's stiffness, a force's law,
+  // an initial value), and a property (geometry, mass, frames, modal
+  // integrals, gravity), folded where it depends on literals (AstParam::fold).
   void param(const Build& B, const std::string& name, E value);
+  void property(const Build& B, const std::string& name, E value);
   void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
   void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
   void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt);

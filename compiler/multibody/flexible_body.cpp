@@ -23,8 +23,8 @@ void Expander::emit_flexible(const Body& body) {
   const std::string& n = d.name;
   const Deformation& beam = *body.flex;
   Build B(d.loc);
-  beam.params({B, d, [&](const std::string& name, E value) { param(B, name, std::move(value)); }, diags_});
-  for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
+  beam.params({B, d, [&](const std::string& name, E value) { property(B, name, std::move(value)); }, diags_});
+  for (const auto& [p, v] : body.points) property(B, n + "." + p, v);
   const int ne = beam.count(), N = 6 + ne;
   Eta eta = state_eta(B, n, beam);
   Eta rest = beam.split([&](int) { return B.num(0); });

@@ -81,6 +81,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const std::deque<Mobilizer::Rate>& rates = m.rates;
   const E& disp = m.disp;
   const E& qrel = m.qrel;
+  const E rot = m.rot ? m.rot : B.call("rotq", {qrel});  // B's joint frame in A's
   auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
   for (const char* key : {"torque", "force"}) {
@@ -97,11 +98,19 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
   E qP = quaternion(B, parent), RP = rotation(B, parent);
   E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
+  auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
+  auto times = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };
+  // R_PC = R_P^T R_C, the relative rotation of the bodies: the joint's own
+  // turn between its fixed frames F_a and F_b.
+  E Fb = B.name(jn + ".Fb");
+  E Rrel = fwd ? times(times(Fa, rot), T(Fb)) : times(times(Fb, T(rot)), T(Fa));
   if (!C.particle) {
     for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
-    E Rq = B.call("rotq", {quaternion(B, child)});
+    // The child's rotation matrix, propagated from its parent's (R_C = R_P R_PC):
+    // no quaternion product and no normalisation.
+    E Rc = P.ground || P.particle ? Rrel : times(RP, Rrel);
     for (int r = 1; r <= 3; ++r)
-      for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rq, r, c));
+      for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rc, r, c));
   }
   E RC = rotation(B, child);
   E joint_point = B.op('+', position(B, parent), B.op('*', RP, fwd ? pa : pb));
@@ -114,9 +123,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // axes every modulus is the joint's relative rotation R_PC(q) = R_P^T R_C
   // (from the joint's own coordinates: its time derivative touches no other
   // joint) times constants of the joint.
-  auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
   auto skew = [&](E x) { return B.call("skew", {std::move(x)}); };
-  auto times = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };
   int fed = 0;
   auto feed = [&](const std::string& from, E modulus, const std::string& sum) {
     const std::string mtf = fmt::format("{}.m{}", jn, ++fed);
@@ -127,8 +134,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // (a particle has no angular-velocity junction: nothing turns it, nothing reads it)
   const std::string wsum = jn + ".wsum", vsum = jn + ".vsum";
   const bool parent_turns = !P.ground && !P.particle;
-  E q_rel = fwd ? qmul(qmul(fa, qrel), conj(fb)) : qmul(qmul(fb, conj(qrel)), conj(fa));
-  E RrelT = T(B.call("rotq", {q_rel}));  // R_PC^T: parent axes -> child axes
+  E RrelT = T(Rrel);  // R_PC^T: parent axes -> child axes
   if (!C.particle) {
     junction(B, '0', wsum, 3, {}, {});
     if (parent_turns) feed(parent + ".w", RrelT, wsum);

@@ -80,6 +80,7 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   r.W = m.ez;
   m.angle = r.value, m.angle_rate = r.rate;
   m.qrel = B.call("quat_axis_angle", {m.ez, m.angle});
+  m.rot = B.call("rot_axis_angle", {m.ez, m.angle});
   return r;
 }
 

@@ -93,8 +93,10 @@ class Mobilizer {
   const bool child_particle;  // the child body has no orientation
   E zero, ex, ey, ez;
   // The relative pose of B's joint frame in A's: the translation disp (A's
-  // axes) and the rotation qrel; and the coordinates users read.
-  E disp, qrel;
+  // axes) and the rotation qrel; and the coordinates users read. Kinds that
+  // turn about fixed axes also give the rotation's matrix `rot` directly
+  // (rot_axis_angle: no half angles, no normalisation); else it is rotq(qrel).
+  E disp, qrel, rot;
   E angle, angle_rate, axial, axial_rate;
 };
 

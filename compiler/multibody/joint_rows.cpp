@@ -44,15 +44,15 @@ void Expander::joint_params(const Build& B, const Joint& j) {
   for (const auto& [s, tag] : {std::pair{&j.a, "a"}, std::pair{&j.b, "b"}}) {
     const Body& body = bodies_.at(s->body);
     E point = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
-    if (body.ground || body.particle) param(B, jn + ".p" + tag, point);
-    else param(B, jn + ".p" + tag, B.op('-', point, B.name(s->body + ".com")));
+    if (body.ground || body.particle) property(B, jn + ".p" + tag, point);
+    else property(B, jn + ".p" + tag, B.op('-', point, B.name(s->body + ".com")));
     const AstAttr* ax = j.attrs.count(std::string("axis_") + tag) ? j.attrs.at(std::string("axis_") + tag)
                         : j.attrs.count("axis")                     ? j.attrs.at("axis")
                                                                     : nullptr;
     E axis = ax ? ax->value : B.vec(0, 0, 1);
-    param(B, jn + ".axis_" + tag, B.op('/', axis, B.call("norm", {axis})));
-    param(B, jn + ".f" + tag, B.call("quat_arc", {B.name(jn + ".axis_" + tag)}));
-    param(B, jn + ".F" + tag, B.call("rotq", {B.name(jn + ".f" + tag)}));
+    property(B, jn + ".axis_" + tag, B.op('/', axis, B.call("norm", {axis})));
+    property(B, jn + ".f" + tag, B.call("quat_arc", {B.name(jn + ".axis_" + tag)}));
+    property(B, jn + ".F" + tag, B.call("rotq", {B.name(jn + ".f" + tag)}));
   }
   // Length scale that turns the angular rows (dot products) into metres: the
   // radius of gyration of the lighter body, so one stiffness suits all rows.
@@ -65,7 +65,7 @@ void Expander::joint_params(const Build& B, const Joint& j) {
     radii.push_back(B.call("sqrt", {B.op('/', trace, B.op('*', B.num(3), B.name(s->body + ".mass")))}));
   }
   E scale = radii.empty() ? B.num(1) : radii.size() == 1 ? radii[0] : B.call("min", {radii[0], radii[1]});
-  param(B, jn + ".scale", scale);
+  property(B, jn + ".scale", scale);
 }
 
 /// The constraint rows g (each a scalar AST expression) of a joint: its
@@ -119,7 +119,7 @@ void Expander::emit_joint(Joint& j) {
   const std::string jn = d.name;
   Build B(d.loc);
   joint_params(B, j);
-  j.kind->params(j, [&](const std::string& name, E value) { param(B, name, std::move(value)); });
+  j.kind->params(j, [&](const std::string& name, E value) { property(B, name, std::move(value)); });
   Frame A = frame(B, j, j.a, "a");
   Frame Bf = frame(B, j, j.b, "b");
   frames_[jn] = {A, Bf};

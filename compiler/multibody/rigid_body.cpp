@@ -22,8 +22,8 @@ void Expander::emit_body(const Body& body) {
     emit_flexible(body);
     return;
   }
-  param(B, n + ".mass", attr(d, "mass"));
-  for (const auto& [p, v] : body.points) param(B, n + "." + p, v);
+  property(B, n + ".mass", attr(d, "mass"));
+  for (const auto& [p, v] : body.points) property(B, n + "." + p, v);
   // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
   // applied loads (force elements) push into the body's junctions
   std::vector<std::string> forces_in, torques_in;
@@ -57,8 +57,8 @@ void Expander::emit_body(const Body& body) {
     element(B, "R", n + ".ejs_v", nullptr, {kv("e", B.call("cross", {B.name(n + ".J.f"), B.name(n + ".m.p")}), d.loc)});
   if (body.particle) return;
   E com = attr(d, "com");
-  param(B, n + ".com", com ? com : B.vec(0, 0, 0));
-  param(B, n + ".inertia", attr(d, "inertia"));
+  property(B, n + ".com", com ? com : B.vec(0, 0, 0));
+  property(B, n + ".inertia", attr(d, "inertia"));
   std::vector<std::string> w_out = {n + ".J", n + ".ejs"};
   if (own_states) w_out.push_back(n + ".qrate.p1");
   junction(B, '1', n + ".w", 3, torques_in, w_out);

@@ -89,7 +89,7 @@ std::optional<Shape> Expander::shape_of(const AstExpr& e, int depth) const {
         return std::nullopt;
       }
       if (f == "cross" || f == "bryant") return Shape{3, 1};
-      if (f == "skew" || f == "rotq") return Shape{3, 3};
+      if (f == "skew" || f == "rotq" || f == "rot_axis_angle") return Shape{3, 3};
       if (f == "quat_rate") return Shape{4, 3};
       if (f == "quat_mul" || f == "quat_conj" || f == "quat_axis_angle" || f == "quat_arc") return Shape{4, 1};
       return std::nullopt;

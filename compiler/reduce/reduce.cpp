@@ -57,8 +57,51 @@ class Reducer {
     return false;
   }
 
+  /// Constants, propagated in dependency order: an equation whose other
+  /// variables all have constant values is solved; if its unknown comes out
+  /// constant (a zero force component, a velocity no joint can produce), so
+  /// do its readers' inputs. A worklist keeps it linear in the equations.
+  void propagate_constants(std::unordered_map<int, Expr>& constant_of) {
+    const std::size_t n = eqs_.size();
+    std::vector<int> pending(n, 0);
+    std::unordered_map<int, std::vector<int>> readers;
+    std::vector<int> ready;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::unordered_set<int> vars;
+      collect_vars(eqs_[i].lhs, vars);
+      collect_vars(eqs_[i].rhs, vars);
+      for (int id : vars) {
+        if (id == eqs_[i].unknown || is_state_.count(id)) continue;  // a state may still cancel out
+        ++pending[i];
+        readers[id].push_back(static_cast<int>(i));
+      }
+      if (pending[i] == 0 && !eqs_[i].constraint) ready.push_back(static_cast<int>(i));
+    }
+    const auto fold = [&](const Expr& e) {
+      return rewrite(e, [&](const Expr& x) -> Expr {
+        if (x->op != Op::Var) return nullptr;
+        auto it = constant_of.find(x->id);
+        return it == constant_of.end() ? nullptr : it->second;
+      });
+    };
+    while (!ready.empty()) {
+      const Equation& eq = eqs_[static_cast<std::size_t>(ready.back())];
+      ready.pop_back();
+      Equation folded = eq;
+      folded.lhs = fold(eq.lhs);
+      folded.rhs = fold(eq.rhs);
+      auto sol = solve_single(folded);
+      if (!sol || !is_const(*sol)) continue;
+      constant_of[eq.unknown] = *sol;
+      ++constants_;
+      for (int r : readers[eq.unknown])
+        if (--pending[static_cast<std::size_t>(r)] == 0) ready.push_back(r);
+    }
+  }
+
   void eliminate_aliases() {
     std::unordered_map<int, Expr> alias;
+    propagate_constants(alias);
     std::vector<Equation> kept;
     std::function<Expr(const Expr&)> resolve = [&](const Expr& e) {
       return rewrite(e, [&](const Expr& n) -> Expr {
@@ -68,17 +111,7 @@ class Reducer {
       });
     };
     for (Equation& eq : eqs_) {
-      // unknown = constant: propagate the constant (e.g. a zero force component).
-      // (The unknown is the equation's only variable.)
-      if (mentions_only_var(eq.lhs, eq.unknown) && mentions_only_var(eq.rhs, eq.unknown) &&
-          (mentions_var(eq.lhs, eq.unknown) || mentions_var(eq.rhs, eq.unknown))) {
-        auto sol = solve_single(eq);
-        if (sol && is_const(*sol)) {
-          alias[eq.unknown] = *sol;
-          ++constants_;
-          continue;
-        }
-      }
+      if (alias.count(eq.unknown)) continue;  // a constant
       int a = -1, sa = 0, b = -1, sb = 0;
       if (as_signed_var(eq.lhs, &a, &sa) && as_signed_var(eq.rhs, &b, &sb) && a != b &&
           (eq.unknown == a || eq.unknown == b)) {

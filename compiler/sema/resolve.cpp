@@ -28,6 +28,7 @@ struct PendingParam {
   SourceLoc loc;
   AstExprPtr expr;
   int scope;  // scope its expression is evaluated in
+  bool fold = false;  // AstParam::fold: a constant where its value is one
 };
 
 /// A bond end as written, with the scope and port bindings it is read in.
@@ -94,7 +95,7 @@ class Resolver {
               // spliced by parse
             } else if constexpr (std::is_same_v<T, AstParam>) {
               if (claim_name(prefix + st.name, st.loc, "parameter"))
-                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope});
+                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, st.fold});
             } else if constexpr (std::is_same_v<T, AstSignal>) {
               if (claim_name(prefix + st.name, st.loc, "signal"))
                 m_.signals.push_back({prefix + st.name, st.loc, st.value, scope});
@@ -366,6 +367,7 @@ class Resolver {
     }
     Value as_params = *v;
     for (int k = 0; k < v->length(); ++k) {
+      if (p.fold && is_const(v->items[static_cast<std::size_t>(k)])) continue;  // stays the number it is
       std::string name = v->is_scalar() ? p.full
                          : v->cols == 1 ? fmt::format("{}[{}]", p.full, k + 1)
                                         : fmt::format("{}[{},{}]", p.full, k / v->cols + 1, k % v->cols + 1);

@@ -94,7 +94,8 @@ TEST(ReduceAliases, AlgebraicLoopModelRemovesEightAliases) {
 }
 
 TEST(ReduceAliases, NegatedAliasKeepsItsSign) {
-  auto c = reduce("Se src = 10\nR r = 2\n1 j : src ->\nbond r -> j\noutput fr = r.f\noutput er = r.e\n");
+  // (A parameter, not a literal: a literal source would make every variable a constant.)
+  auto c = reduce("param V = 10\nSe src = V\nR r = 2\n1 j : src ->\nbond r -> j\noutput fr = r.f\noutput er = r.e\n");
   ASSERT_TRUE(c->ok()) << c->messages();
   EXPECT_EQ(alias_count(c->reduced), 1);  // src.f = r.f
   Env env = evaluate(c->reduced, {});

@@ -21,6 +21,7 @@ class Planar final : public JointKind {
     turn.W = m.ez;
     m.disp = m.B.list({x.value, y.value, m.zero});
     m.qrel = m.B.call("quat_axis_angle", {m.ez, turn.value});
+    m.rot = m.B.call("rot_axis_angle", {m.ez, turn.value});
   }
 };
 

@@ -22,8 +22,10 @@ class Universal final : public JointKind {
     a.W = m.ex;
     Mobilizer::Rate& b = m.rate(m.joint.decl->name + ".betadot", "beta", m.zero, m.zero, false);
     E qa = B.call("quat_axis_angle", {m.ex, a.value});
-    b.W = B.op('*', B.call("rotq", {qa}), m.ey);
+    E Ra = B.call("rot_axis_angle", {m.ex, a.value});
+    b.W = B.op('*', Ra, m.ey);
     m.qrel = B.call("quat_mul", {qa, B.call("quat_axis_angle", {m.ey, b.value})});
+    m.rot = B.op('*', Ra, B.call("rot_axis_angle", {m.ey, b.value}));
   }
 };
 
