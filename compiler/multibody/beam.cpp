@@ -312,6 +312,26 @@ void Beam::params(const FieldParams& fp) const {
   }
 }
 
+bool Beam::fixed_point(const std::string& pt) const {
+  const double x = pt.empty() ? origin_m : point_x.at(pt);  // "": the frame's origin
+  auto zero = [](double v) { return std::abs(v) <= 1e-12; };
+  for (const auto* modes : {&y, &z}) {
+    if (!*modes) continue;
+    for (int i = 0; i < (*modes)->count(); ++i)
+      if (!zero((*modes)->shape(i, x)) || !zero((*modes)->shape(i, x, 1))) return false;
+    if (geometric_stiffness)
+      for (const auto& row : flex::axial_up_to(**modes, x))
+        for (double v : row)
+          if (!zero(v)) return false;
+  }
+  for (const auto* modes : {&axial, &torsion}) {
+    if (!*modes) continue;
+    for (int i = 0; i < (*modes)->count(); ++i)
+      if (!zero((*modes)->shape(i, x))) return false;
+  }
+  return true;
+}
+
 /// The body-frame position of a point of a beam, deflected: [x - 1/2 eta^T a(x) eta, w_y, w_z].
 E Beam::point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const {
   const Beam& beam = *this;

@@ -29,15 +29,26 @@ void Expander::emit_flexible(const Body& body) {
   Eta eta = state_eta(B, n, beam);
   Eta rest = beam.split([&](int) { return B.num(0); });
   // the I field and its velocity terms on the common junction nu = [V; omega; eta']
+  // (V in body axes). With its own states (rows strategies) nu is the I
+  // field's flow; moved by joint coordinates, nu is assembled from the flows
+  // the tree joint sets on its V and omega junctions and from the modal
+  // rates, free rates of its own (the modal accelerations join the body's
+  // block in the tree elimination).
+  const bool own_states = !body.by_coordinates;
   std::vector<std::string> nu_in;
   if (gravity_) nu_in.push_back(n + ".weight");
   if (auto it = loads_.find(n); it != loads_.end())
     for (const std::string& f : it->second) nu_in.push_back(f + ".on_" + n);
-  junction(B, '1', n + ".nu", N, nu_in, {n + ".M", n + ".ejs", n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
-  E R0 = B.call("rotq", {B.name(n + ".q0")});
-  E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
-  element(B, "I", n + ".M", rows_to_matrix(B, beam.mass_matrix(B, n, eta)),
-          {kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc)});
+  std::vector<std::string> nu_out = {n + ".M", n + ".ejs"};
+  if (own_states) nu_out.insert(nu_out.end(), {n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
+  junction(B, '1', n + ".nu", N, nu_in, nu_out);
+  std::vector<AstAttr> M_init;
+  if (own_states) {
+    E R0 = B.call("rotq", {B.name(n + ".q0")});
+    E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
+    M_init.push_back(kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc));
+  }
+  element(B, "I", n + ".M", rows_to_matrix(B, beam.mass_matrix(B, n, eta)), M_init);
   std::get<AstElement>(generated_.back()).configuration_dependent = true;
   E f = B.name("f"), p = B.name(n + ".M.p");
   auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
@@ -50,28 +61,48 @@ void Expander::emit_flexible(const Body& body) {
           {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
   if (gravity_) {
     // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
-    E g = B.op('*', B.call("transpose", {B.call("rotq", {B.name(n + ".q.q")})}), B.name("gravity"));
+    E g = B.op('*', B.call("transpose", {rotation(B, n)}), B.name("gravity"));
     E coupling = rows_to_matrix(B, beam.translation_coupling(B, n, eta));
     element(B, "Se", n + ".weight",
             B.call("vcat", {B.op('*', B.name(n + ".mass"), g), cross(beam.first_moment(B, n, eta), g),
                             B.op('*', B.call("transpose", {coupling}), g)}));
   }
-  // selectors: V (turned to world axes), omega, eta'
-  E Rq = B.call("rotq", {B.name(n + ".q.q")});
-  element(B, "MTF", n + ".sv", B.call("hcat", {Rq, B.call("zeros", {B.num(3), B.num(3 + ne)})}));
-  element(B, "MTF", n + ".sw", B.call("hcat", {B.call("zeros", {B.num(3), B.num(3)}), B.call("eye", {B.num(3)}), B.call("zeros", {B.num(3), B.num(ne)})}));
-  element(B, "MTF", n + ".se", B.call("hcat", {B.call("zeros", {B.num(ne), B.num(6)}), B.call("eye", {B.num(ne)})}));
-  // position and orientation, as on a rigid body
-  junction(B, '1', n + ".v", 3, {n + ".sv.p2"}, {n + ".r"});
-  element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
-  junction(B, '1', n + ".w", 3, {n + ".sw.p2"}, {n + ".qrate.p1"});
-  element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
-  element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
-  bond(B, n + ".qrate.p2", n + ".q", 4);
+  // selectors (own states): V (turned to world axes), omega, eta'; or
+  // (coordinates) their transposes, assembling nu from V, omega and eta'
+  E pick_v = B.call("hcat", {B.call("eye", {B.num(3)}), B.call("zeros", {B.num(3), B.num(3 + ne)})});
+  E pick_w = B.call("hcat", {B.call("zeros", {B.num(3), B.num(3)}), B.call("eye", {B.num(3)}), B.call("zeros", {B.num(3), B.num(ne)})});
+  E pick_e = B.call("hcat", {B.call("zeros", {B.num(ne), B.num(6)}), B.call("eye", {B.num(ne)})});
+  auto T_ = [&](E x) { return B.call("transpose", {std::move(x)}); };
+  std::vector<std::string> modal_in, modal_out = {n + ".eta"};
+  if (own_states) {
+    E Rq = B.call("rotq", {B.name(n + ".q.q")});
+    element(B, "MTF", n + ".sv", B.op('*', Rq, pick_v));
+    element(B, "MTF", n + ".sw", pick_w);
+    element(B, "MTF", n + ".se", pick_e);
+    // position and orientation, as on a rigid body
+    junction(B, '1', n + ".v", 3, {n + ".sv.p2"}, {n + ".r"});
+    element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
+    junction(B, '1', n + ".w", 3, {n + ".sw.p2"}, {n + ".qrate.p1"});
+    element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
+    element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
+    bond(B, n + ".qrate.p2", n + ".q", 4);
+    modal_in.push_back(n + ".se.p2");
+  } else {
+    // the tree joint's flows arrive on v and w (body axes); the modal rates are free
+    junction(B, '1', n + ".v", 3, {}, {n + ".av.p1"});
+    junction(B, '1', n + ".w", 3, {}, {n + ".aw.p1"});
+    element(B, "MTF", n + ".av", T_(pick_v));
+    element(B, "MTF", n + ".aw", T_(pick_w));
+    element(B, "MTF", n + ".ae", T_(pick_e));
+    element(B, "Sf", n + ".eta_rate", nullptr, {kv("rate0", B.call("zeros", {B.num(ne)}), d.loc)});
+    modal_in.push_back(n + ".eta_rate");
+    modal_out.push_back(n + ".ae.p1");
+    junction(B, '0', n + ".nusum", N, {n + ".av.p2", n + ".aw.p2", n + ".ae.p2"}, {});
+    bond(B, n + ".nusum", n + ".nu");
+  }
   // elasticity and modal damping on eta'
-  std::vector<std::string> modal_out = {n + ".eta"};
   if (attr(d, "damping")) modal_out.push_back(n + ".damp");
-  junction(B, '1', n + ".etadot", ne, {n + ".se.p2"}, modal_out);
+  junction(B, '1', n + ".etadot", ne, modal_in, modal_out);
   Rows K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
   Rows D = K;
   beam.stiffness_and_damping(B, n, K, D);
@@ -91,7 +122,7 @@ std::pair<E, E> Expander::flexible_point_motion(const Build& B, const std::strin
   E R = rotation(B, n);
   E rate = B.op('+', B.call("cross", {B.name(n + ".w.f"), local}),
                 B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
-  return {B.op('+', position(B, n), B.op('*', R, local)), B.op('+', B.name(n + ".v.f"), B.op('*', R, rate))};
+  return {B.op('+', position(B, n), B.op('*', R, local)), B.op('+', velocity(B, n), B.op('*', R, rate))};
 }
 
 /// A force F (and torque T), world axes, at a beam's point as an effort on
@@ -119,7 +150,7 @@ void Expander::flexible_quantities(const Build& B, const Body& body) {
   const std::string& n = body.decl->name;
   const Deformation& beam = *body.flex;
   Eta eta = state_eta(B, n, beam);
-  E r = position(B, n), v = B.name(n + ".v.f"), q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
+  E r = position(B, n), v = velocity(B, n), q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
   E p = B.name(n + ".M.p");
   auto part = [&](E x, int from) { return B.list({B.at(x, from), B.at(x, from + 1), B.at(x, from + 2)}); };
   quantity_[n + ".position"] = r;

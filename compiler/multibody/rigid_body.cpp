@@ -91,7 +91,7 @@ E Expander::quaternion(const Build& B, const std::string& body) const {
 }
 
 /// Is the body's translational junction in its own axes (a turning body moved by joint coordinates)?
-bool Expander::body_frame_velocity(const Body& b) const { return b.by_coordinates && !b.particle && !b.ground && !b.flex; }
+bool Expander::body_frame_velocity(const Body& b) const { return b.by_coordinates && !b.particle && !b.ground; }
 
 /// Centre-of-mass velocity, world frame.
 E Expander::velocity(const Build& B, const std::string& body) const {
