@@ -296,8 +296,13 @@ void Beam::params(const FieldParams& fp) const {
   for (const auto& [pt, x] : beam.point_x) {
     for (const auto& [plane, modes] : {std::pair{"y", &beam.y}, std::pair{"z", &beam.z}}) {
       if (!*modes) continue;
+      // (rounding left where a mode is exactly zero, at a clamped root, is
+      // snapped to the zero it is, so that it folds out of the equations)
+      const double L = beam.length_m;
+      auto clean = [](double v, double scale) { return std::abs(v) <= 1e-12 * scale ? 0.0 : v; };
       std::vector<double> phi, slope;
-      for (int i = 0; i < (*modes)->count(); ++i) phi.push_back((*modes)->shape(i, x)), slope.push_back((*modes)->shape(i, x, 1));
+      for (int i = 0; i < (*modes)->count(); ++i)
+        phi.push_back(clean((*modes)->shape(i, x), 1.0)), slope.push_back(clean((*modes)->shape(i, x, 1), 1.0 / L));
       const std::string p = n + "." + pt + "." + plane;
       fp.param(p + ".shape", vector_param(B, phi));
       fp.param(p + ".slope", vector_param(B, slope));
@@ -306,30 +311,26 @@ void Beam::params(const FieldParams& fp) const {
     for (const auto& [group, modes] : {std::pair{"a", &beam.axial}, std::pair{"t", &beam.torsion}}) {
       if (!*modes) continue;
       std::vector<double> chi;
-      for (int i = 0; i < (*modes)->count(); ++i) chi.push_back((*modes)->shape(i, x));
+      for (int i = 0; i < (*modes)->count(); ++i) chi.push_back(std::abs((*modes)->shape(i, x)) <= 1e-12 ? 0.0 : (*modes)->shape(i, x));
       fp.param(n + "." + pt + "." + group + ".shape", vector_param(B, chi));
     }
   }
 }
 
-bool Beam::fixed_point(const std::string& pt) const {
-  const double x = pt.empty() ? origin_m : point_x.at(pt);  // "": the frame's origin
-  auto zero = [](double v) { return std::abs(v) <= 1e-12; };
+bool Beam::origin_fixed() const {
+  const double x = origin_m;
+  auto zero = [&](double v, double scale) { return std::abs(v) <= 1e-12 * scale; };
   for (const auto* modes : {&y, &z}) {
     if (!*modes) continue;
     for (int i = 0; i < (*modes)->count(); ++i)
-      if (!zero((*modes)->shape(i, x)) || !zero((*modes)->shape(i, x, 1))) return false;
-    if (geometric_stiffness)
-      for (const auto& row : flex::axial_up_to(**modes, x))
-        for (double v : row)
-          if (!zero(v)) return false;
+      if (!zero((*modes)->shape(i, x), 1.0) || !zero((*modes)->shape(i, x, 1), 1.0 / length_m)) return false;
   }
   for (const auto* modes : {&axial, &torsion}) {
     if (!*modes) continue;
     for (int i = 0; i < (*modes)->count(); ++i)
-      if (!zero((*modes)->shape(i, x))) return false;
+      if (!zero((*modes)->shape(i, x), 1.0)) return false;
   }
-  return true;
+  return true;  // (the foreshortening integral from the root to x = 0 is empty)
 }
 
 /// The body-frame position of a point of a beam, deflected: [x - 1/2 eta^T a(x) eta, w_y, w_z].

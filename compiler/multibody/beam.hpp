@@ -29,7 +29,7 @@ class Beam final : public Deformation {
   Rows mass_matrix(const Build& B, const std::string& n, const Eta& eta) const override;
   E point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
   E slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
-  bool fixed_point(const std::string& pt) const override;
+  bool origin_fixed() const override;
   Limits limits(const std::string& n) const override;
   void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const override;
 

@@ -63,10 +63,9 @@ class Deformation {
   virtual E point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const = 0;
   /// The small rotation of the section at a point (body axes).
   virtual E slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const = 0;
-  /// Does the point stay where it is in the body frame, unturned, whatever
-  /// the modes do (a clamped root)? A tree joint in joint coordinates must
-  /// join a flexible child there.
-  virtual bool fixed_point(const std::string& pt) const = 0;
+  /// Does the frame's origin stay put and unturned whatever the modes do (a
+  /// clamped root with the frame there)? A joint may then hold the body there.
+  virtual bool origin_fixed() const = 0;
   /// Where each modal coordinate leaves the model's range.
   virtual Limits limits(const std::string& n) const = 0;
   /// The modal stiffness and damping matrices, count x count, from the parameters.

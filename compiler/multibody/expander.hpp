@@ -165,6 +165,12 @@ class Expander {
 
   // ---- 3b. joints in joint coordinates (joint_coordinates.cpp)
   void emit_coordinate_joint(const Build& B, const Joint& j);
+  /// Where a tree joint sits on a flexible body (all null for a rigid one):
+  /// the deflected point, the section's small rotation theta, and (unless the
+  /// joint's rotation is free) the turn rotq([1, theta/2]), its quaternion and
+  /// the map W(theta) from theta' to the turn's angular velocity.
+  struct FlexibleSeat { E point, slope, turn, quaternion, turn_rate; };
+  FlexibleSeat flexible_seat(const Build& B, const Side& side, bool free_rotation) const;
 
   // ---- 4. the spanning tree and initial conditions along it (tree.cpp)
   void find_tree();

@@ -69,6 +69,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       x_.junction(B, '1', spin, 3, {jn + ".spin_rate"}, {jn + ".rotrate.p1"});
       x_.bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
       qrel = B.name(jn + ".rot.q");
+      free_rotation = true;
       rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr});
     }
     std::deque<Rate> rates;  // a deque: references rate() returned stay valid
@@ -91,18 +92,30 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     bond(B, jn + ".applied", jn + ".drive");
   }
   // pose of the child as signals of the coordinates
-  E Fa = B.name(jn + ".Fa");
-  // A's point, moved by d; a particle's joint point is its position
-  E pa = B.op('+', bodies_.at(j.a.body).particle ? B.vec(0, 0, 0) : B.name(jn + ".pa"), B.op('*', Fa, disp));
-  E pb = bodies_.at(j.b.body).particle ? B.vec(0, 0, 0) : B.name(jn + ".pb");
-  E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
-  E qP = quaternion(B, parent), RP = rotation(B, parent);
-  E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
   auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
   auto times = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };
+  E Fa = B.name(jn + ".Fa"), Fb = B.name(jn + ".Fb");
+  E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
+  // On a flexible body the joint's point deflects with the modes and its
+  // section turns by the small rotation theta(eta): the joint frame there is
+  // turned by rotq([1, theta / 2]) (orthonormal; its angular velocity is
+  // W(theta) theta', below). A ball joint's free rotation needs no turned
+  // reference: its relative quaternion is taken from the bodies' axes.
+  const FlexibleSeat seat_a = flexible_seat(B, j.a, m.free_rotation), seat_b = flexible_seat(B, j.b, m.free_rotation);
+  const FlexibleSeat& seat = fwd ? seat_a : seat_b;        // on the parent
+  const FlexibleSeat& own_seat = fwd ? seat_b : seat_a;    // on the child
+  if (seat_a.turn) Fa = times(seat_a.turn, Fa);
+  if (seat_b.turn) Fb = times(seat_b.turn, Fb);
+  // A's point, moved by d; a particle's joint point is its position
+  E pa = B.op('+', bodies_.at(j.a.body).particle ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.name(jn + ".pa"),
+              B.op('*', Fa, disp));
+  E pb = bodies_.at(j.b.body).particle ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.name(jn + ".pb");
+  E qP = quaternion(B, parent), RP = rotation(B, parent);
+  if (seat.quaternion) qP = qmul(qP, seat.quaternion);
+  E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
+  if (own_seat.quaternion) qC = qmul(qC, conj(own_seat.quaternion));
   // R_PC = R_P^T R_C, the relative rotation of the bodies: the joint's own
   // turn between its fixed frames F_a and F_b.
-  E Fb = B.name(jn + ".Fb");
   E Rrel = fwd ? times(times(Fa, rot), T(Fb)) : times(times(Fb, T(rot)), T(Fa));
   if (!C.particle) {
     for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
@@ -150,8 +163,19 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     for (const Mobilizer::Rate& r : rates)
       if (r.V) feed(r.junction, fwd ? times(times(RrelT, Fa), r.V) : B.neg(times(Fa, r.V)), vsum);
     feed(child + ".w", skew(fwd ? pb : pa), vsum);
+    if (seat.point) {  // the parent's modal rates move and turn the joint's seat
+      E q = B.name(parent + ".eta.q");
+      feed(parent + ".etadot", times(RrelT, B.call("jacobian", {fwd ? pa : pb, q})), vsum);
+      if (seat.turn) feed(parent + ".etadot", times(times(RrelT, seat.turn_rate), B.call("jacobian", {seat.slope, q})), wsum);
+    }
+    if (own_seat.point) {  // and the child's own modal rates move and turn its seat under the joint
+      E q = B.name(child + ".eta.q");
+      feed(child + ".etadot", B.neg(B.call("jacobian", {fwd ? pb : pa, q})), vsum);
+      if (own_seat.turn) feed(child + ".etadot", B.neg(times(own_seat.turn_rate, B.call("jacobian", {own_seat.slope, q}))), wsum);
+    }
     named_bond(B, jn + ".reaction_t", wsum, child + ".w");
   } else {  // world axes
+    if (seat.point) feed(parent + ".etadot", times(RP, B.call("jacobian", {fwd ? pa : pb, B.name(parent + ".eta.q")})), vsum);
     if (!P.ground) feed(parent + ".v", body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
     if (parent_turns) feed(parent + ".w", B.neg(times(RP, skew(fwd ? pa : pb))), vsum);
     for (const Mobilizer::Rate& r : rates)
@@ -159,6 +183,24 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   }
   named_bond(B, jn + ".reaction_f", vsum, child + ".v");
   coordinate_values_[jn] = {m.angle, m.angle_rate, m.axial, m.axial_rate};
+}
+
+Expander::FlexibleSeat Expander::flexible_seat(const Build& B, const Side& s, bool free_rotation) const {
+  const Body& P = bodies_.at(s.body);
+  if (!P.flex || s.point.empty()) return {};  // rigid, or a flexible body's fixed origin (check_coordinates)
+  const Eta eta = state_eta(B, s.body, *P.flex);
+  FlexibleSeat seat;
+  seat.point = P.flex->point(B, s.body, s.point, eta);
+  seat.slope = P.flex->slope(B, s.body, s.point, eta);
+  if (free_rotation) return seat;
+  // q = [1, theta / 2] (normalised by rotq): omega = 2 vec(q' q*) / |q|^2 = (theta' + theta x theta' / 2) / (1 + |theta|^2 / 4)
+  E half = B.op('*', B.num(0.5), seat.slope);
+  E q = section_quaternion(B, seat.slope);
+  E norm2 = B.op('+', B.num(1), B.dot(half, half));
+  seat.turn = section_turn(B, seat.slope);
+  seat.quaternion = B.op('/', q, B.call("sqrt", {norm2}));
+  seat.turn_rate = B.op('/', B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {half})), norm2);
+  return seat;
 }
 
 }  // namespace mbgc::multibody::detail

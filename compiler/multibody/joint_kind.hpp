@@ -97,6 +97,9 @@ class Mobilizer {
   // turn about fixed axes also give the rotation's matrix `rot` directly
   // (rot_axis_angle: no half angles, no normalisation); else it is rotq(qrel).
   E disp, qrel, rot;
+  // The rotation is free (a ball joint): any frame on A serves as reference,
+  // so a flexible parent's section turn need not enter it.
+  bool free_rotation = false;
   E angle, angle_rate, axial, axial_rate;
 };
 

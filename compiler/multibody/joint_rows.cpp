@@ -26,7 +26,7 @@ Frame Expander::frame(const Build& B, const Joint& j, const Side& s, const std::
   if (body.flex && !s.point.empty()) {
     Eta eta = state_eta(B, s.body, *body.flex);
     local = body.flex->point(B, s.body, s.point, eta);
-    turn = B.op('*', f.R, B.op('+', B.call("eye", {B.num(3)}), B.call("skew", {body.flex->slope(B, s.body, s.point, eta)})));
+    turn = B.op('*', f.R, section_turn(B, body.flex->slope(B, s.body, s.point, eta)));
   }
   if (body.ground) f.p = local;
   else if (body.particle) f.p = position(B, s.body);

@@ -92,4 +92,10 @@ E modal_damping(const Build& B, E zeta, int count, const std::string& K, const s
   return c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c);
 }
 
+E section_quaternion(const Build& B, E theta) {
+  return B.call("vcat", {B.list({B.num(1)}), B.op('*', B.num(0.5), std::move(theta))});
+}
+
+E section_turn(const Build& B, E theta) { return B.call("rotq", {section_quaternion(B, std::move(theta))}); }
+
 }  // namespace mbgc::multibody::detail

@@ -33,6 +33,12 @@ E rows_to_matrix(const Build& B, const Rows& m);
 void put_first_moment(const Build& B, Rows& M, E s);
 /// Every entry is 0.
 bool all_zero(const flex::Matrix& m);
+/// The turn of a flexible body's section whose small rotation (body axes) is
+/// `theta`: rotq([1, theta / 2]), orthonormal (the Cayley form; to first
+/// order I + skew(theta)). Joint frames at a flexible body's points turn by it
+/// under every constraint strategy, so rows and coordinates model the same body.
+E section_quaternion(const Build& B, E theta);  // [1, theta / 2], not normalised
+E section_turn(const Build& B, E theta);
 /// Modal damping 2 zeta omega_i m_i = 2 zeta sqrt(K_ii M_ii) per mode (zeta: the body's `damping`, or none).
 E modal_damping(const Build& B, E zeta, int count, const std::string& K, const std::string& M);
 

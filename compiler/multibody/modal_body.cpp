@@ -62,16 +62,6 @@ void ModalBody::params(const FieldParams& fp) const {
   }
 }
 
-bool ModalBody::fixed_point(const std::string& pt) const {
-  if (pt.empty()) return false;  // the frame's origin: the file does not say how it moves
-  const flex::ModalPoint& node = data_->points.at(pt);
-  for (const auto* m : {&node.shape, &node.slope})
-    for (const auto& row : *m)
-      for (double v : row)
-        if (std::abs(v) > 1e-12) return false;
-  return true;
-}
-
 /// s(eta) = int r0 dm + C eta.
 E ModalBody::first_moment(const Build& B, const std::string& n, const Eta& modes) const {
   const std::vector<E>& eta = modes.y;

@@ -26,7 +26,7 @@ class ModalBody final : public Deformation {
   Rows mass_matrix(const Build& B, const std::string& n, const Eta& eta) const override;
   E point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
   E slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
-  bool fixed_point(const std::string& pt) const override;
+  bool origin_fixed() const override { return false; }  // the file does not say how the origin moves
   Limits limits(const std::string& n) const override;
   void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const override;
   std::string point_file() const override { return data_->path; }

@@ -72,25 +72,16 @@ void Expander::check_coordinates() {
       continue;
     }
     if (j.strategy == Strategy::Coordinates) {
-      const Side& parent = j.a_is_parent ? j.a : j.b;
-      const Side& child = j.a_is_parent ? j.b : j.a;
-      if (bodies_.at(parent.body).flex) {
-        diags_.error(d.loc, fmt::format("joint `{}` hangs `{}` from the flexible body `{}` by joint coordinates, which is not implemented yet",
-                                        d.name, child.body, parent.body),
-                     "in joint coordinates a flexible body can be a leaf of the tree so far (its joint point's deflection "
-                     "and turn would move its children); write constraints = lagrange or penalty for this model (see "
-                     "README known limits)");
-        continue;
-      }
-      if (const Body& c = bodies_.at(child.body); c.flex && !c.flex->fixed_point(child.point)) {
-        diags_.error(d.loc, fmt::format("joint `{}` holds the flexible body `{}` at {}, which moves with its modes, so its "
-                                        "motion cannot be given by joint coordinates",
-                                        d.name, child.body, child.point.empty() ? "its frame's origin" : "`" + child.point + "`"),
-                     "in joint coordinates the tree joint must hold a flexible body where it neither deflects nor turns: "
-                     "a beam's clamped root (modes = clamped_free) with its frame there; or write constraints = "
-                     "lagrange or penalty for this model");
-        continue;
-      }
+      for (const Side* s : {&j.a, &j.b})
+        if (bodies_.at(s->body).flex && s->point.empty() && !bodies_.at(s->body).flex->origin_fixed()) {
+          diags_.error(d.loc, fmt::format("joint `{}` holds the flexible body `{}` at its frame's origin, which moves with "
+                                          "its modes: not implemented in joint coordinates",
+                                          d.name, s->body),
+                       fmt::format("declare a point of `{}` where the joint sits and name it (`{}.p`): its deflection "
+                                   "and turn come from the modes there; or put the frame at a clamped root",
+                                   s->body, s->body));
+          break;
+        }
     }
     if (j.strategy == Strategy::Coordinates && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
