@@ -106,7 +106,8 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
 
   ast = elaborate::unroll_loops(ast, overrides, diags);
   if (failed()) return 1;
-  ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs});
+  std::string strategy_report;  // what constraints = auto chose, for the causality report
+  ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, &strategy_report});
   if (failed()) return 1;
   if (opt.dump == Dump::Expanded) return finish(ir::print_ast(ast));
 
@@ -134,6 +135,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (opt.dump == Dump::Causality) {
     // The causality report includes the algebraic loops, found when sorting.
     std::string text = ir::print_causality(causal);
+    if (!strategy_report.empty()) text += strategy_report + "\n";
     text += "algebraic loops:";
     if (reduced.loops.empty()) text += " none\n";
     else text += "\n";

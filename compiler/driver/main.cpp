@@ -37,9 +37,9 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   std::string constraints;
   app.add_option("--constraints", constraints,
-                 "lagrange|penalty|coordinates: how joint constraints are enforced, replacing the model's `constraints = ...` "
-                 "(a joint's own `constraint = ...` still wins)")
-      ->check(CLI::IsMember({"lagrange", "penalty", "coordinates"}));
+                 "auto|lagrange|penalty|coordinates: how joint constraints are enforced, replacing the model's "
+                 "`constraints = ...` (a joint's own `constraint = ...` still wins; auto: coordinates for a tree, else lagrange)")
+      ->check(CLI::IsMember({"auto", "lagrange", "penalty", "coordinates"}));
   app.add_option("-I,--include-dir", opt.search_dirs,
                  "a directory where modal-data files (flexible = modal(\"file.mbm\")) are looked for, after the model's own")
       ->allow_extra_args(false);
@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
     }
     opt.overrides[s.substr(0, eq)] = v;
   }
+  if (constraints == "auto") opt.constraints = mbgc::multibody::Strategy::Auto;
   if (constraints == "coordinates") opt.constraints = mbgc::multibody::Strategy::Coordinates;
   if (constraints == "lagrange") opt.constraints = mbgc::multibody::Strategy::Lagrange;
   if (constraints == "penalty") opt.constraints = mbgc::multibody::Strategy::Penalty;

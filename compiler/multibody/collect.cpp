@@ -103,25 +103,26 @@ void Expander::setting(const AstSetting& st) {
     if (s && !override_) strategy_ = *s;
     return;
   }
-  diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = lagrange|penalty|coordinates`");
+  diags_.error(st.loc, fmt::format("unknown model setting `{}`", st.key), "model settings are `gravity = [...]` and `constraints = auto|lagrange|penalty|coordinates`");
 }
 
 /// `constraints = ...` (the model's) or `constraint = ...` (a joint's).
 std::optional<Strategy> Expander::strategy_of(const AstExpr& v, const char* key) {
   const std::string choices =
-      "lagrange (multipliers: a DAE for IDA), penalty (stiff spring-dampers: an ODE) or coordinates (joint "
-      "coordinates as states, for trees: an ODE)";
+      "auto (the default: coordinates for a tree, else lagrange), lagrange (multipliers: a DAE for IDA), penalty "
+      "(stiff spring-dampers: an ODE) or coordinates (joint coordinates as states, for trees: an ODE)";
   const std::string how = fmt::format("write {} = {}", key, choices);
   if (v.kind == AstExpr::Kind::Name) {
+    if (v.name == "auto") return Strategy::Auto;
     if (v.name == "lagrange") return Strategy::Lagrange;
     if (v.name == "penalty") return Strategy::Penalty;
     if (v.name == "coordinates") return Strategy::Coordinates;
-    std::string near = closest_name(v.name, {"lagrange", "penalty", "coordinates"});
+    std::string near = closest_name(v.name, {"auto", "lagrange", "penalty", "coordinates"});
     diags_.error(v.loc, fmt::format("unknown constraint strategy `{}`", v.name),
                  near.empty() ? how : fmt::format("did you mean `{}`? The strategies are {}", near, choices));
     return std::nullopt;
   }
-  diags_.error(v.loc, "a constraint strategy is a name: `lagrange`, `penalty` or `coordinates`", how);
+  diags_.error(v.loc, "a constraint strategy is a name: `auto`, `lagrange`, `penalty` or `coordinates`", how);
   return std::nullopt;
 }
 

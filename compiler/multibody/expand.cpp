@@ -16,6 +16,7 @@ AstProgram Expander::run(const AstProgram& in) {
   if (gravity_) property(Build(gravity_loc_), "gravity", gravity_);
   for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), "ground." + p, v);
   find_tree();
+  choose_strategy();
   check_coordinates();
   if (diags_.has_errors()) return {};
   for (const std::string& name : body_order_) emit_body(bodies_.at(name));

@@ -34,7 +34,9 @@
 namespace mbgc::multibody {
 
 /// How joint constraints are enforced (the model's `constraints = ...`).
-enum class Strategy { Lagrange, Penalty, Coordinates };
+/// `Auto` (the default) becomes Coordinates for a tree joint coordinates can
+/// move, else Lagrange; ExpandOptions::strategy_report says which and why.
+enum class Strategy { Auto, Lagrange, Penalty, Coordinates };
 
 struct ExpandOptions {
   /// mbgc --constraints: replaces the model-level setting; a joint's own
@@ -42,6 +44,8 @@ struct ExpandOptions {
   std::optional<Strategy> constraints;
   /// mbgc -I: directories searched for modal-data files after the model's own.
   std::vector<std::string> search_dirs;
+  /// If set: what `constraints = auto` chose and why (empty when no joint was left to auto).
+  std::string* strategy_report = nullptr;
 };
 
 /// Modal-data files a model names (`flexible = modal("arm.mbm")`) are read

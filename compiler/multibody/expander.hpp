@@ -90,7 +90,7 @@ class Expander {
  public:
   Expander(ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options)
       : sources_(sources), diags_(diags), search_dirs_(options.search_dirs), override_(options.constraints),
-        strategy_(options.constraints.value_or(Strategy::Lagrange)) {}
+        strategy_(options.constraints.value_or(Strategy::Auto)), strategy_report_(options.strategy_report) {}
 
   AstProgram run(const AstProgram& in);
 
@@ -175,6 +175,10 @@ class Expander {
   // ---- 4. the spanning tree and initial conditions along it (tree.cpp)
   void find_tree();
   std::vector<std::string> path_to_ground(std::string body) const;
+  struct Problem { SourceLoc loc; std::string message, hint; bool loop = false; };
+  std::vector<Problem> coordinate_problems() const;
+  void mark_coordinate_bodies();
+  void choose_strategy();
   void check_coordinates();
   void place_bodies();
   std::string placed_hint(const std::string& jn) const;
@@ -215,6 +219,7 @@ class Expander {
   SourceLoc gravity_loc_;
   std::optional<Strategy> override_;  // mbgc --constraints
   Strategy strategy_;                  // the model-level strategy
+  std::string* strategy_report_;       // ExpandOptions::strategy_report
   std::vector<AstStmt> generated_;
   // While a body moved by joint coordinates (and its tree joint) is written:
   // the tree body and its parent every element and junction is tagged with.

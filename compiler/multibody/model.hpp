@@ -46,7 +46,7 @@ struct Joint {
   const JointKind* kind = nullptr;  // its type (joint_kind.hpp)
   Side a, b;
   std::map<std::string, const ir::AstAttr*> attrs;
-  Strategy strategy = Strategy::Lagrange;
+  Strategy strategy = Strategy::Auto;
   bool tree = false;       // places its child (a spanning-tree joint from ground)
   bool a_is_parent = true; // tree joints: which side is the parent
 };

@@ -32,12 +32,44 @@ void Expander::find_tree() {
       Body& c = bodies_.at(child);
       c.placed = true;
       c.placed_by = j.decl->name;
-      c.by_coordinates = j.strategy == Strategy::Coordinates;
-      if (c.by_coordinates && from != "ground") c.tree_parent = from;
       tree_order_.push_back(&j);
       queue.push_back(child);
     }
   }
+  mark_coordinate_bodies();
+}
+
+/// Which bodies the tree joints move by joint coordinates (their joint's strategy).
+void Expander::mark_coordinate_bodies() {
+  for (const Joint* j : tree_order_) {
+    Body& c = bodies_.at(j->a_is_parent ? j->b.body : j->a.body);
+    const std::string& parent = j->a_is_parent ? j->a.body : j->b.body;
+    c.by_coordinates = j->strategy == Strategy::Coordinates;
+    c.tree_parent = c.by_coordinates && parent != "ground" ? parent : "";
+  }
+}
+
+/// constraints = auto: joint coordinates when they can move every joint left
+/// to auto (a tree, no particle a joint turns, ...), else multipliers.
+void Expander::choose_strategy() {
+  std::vector<Joint*> open;
+  for (Joint& j : joints_)
+    if (j.strategy == Strategy::Auto) open.push_back(&j);
+  if (open.empty()) return;
+  for (Joint* j : open) j->strategy = Strategy::Coordinates;
+  mark_coordinate_bodies();
+  const std::vector<Problem> problems = coordinate_problems();
+  std::string report;
+  if (problems.empty()) {
+    report = fmt::format("constraints = auto: coordinates (the joints form a tree: joint coordinates as states, an ODE "
+                         "without constraint rows)");
+  } else {
+    for (Joint* j : open) j->strategy = Strategy::Lagrange;
+    mark_coordinate_bodies();
+    report = fmt::format("constraints = auto: lagrange (multipliers, a DAE), because {}{}", problems.front().message,
+                         problems.front().loop ? " (cut joints on top of joint coordinates are not implemented yet)" : "");
+  }
+  if (strategy_report_) *strategy_report_ = report;
 }
 
 /// The tree joints from `body` up to ground.
@@ -52,9 +84,11 @@ std::vector<std::string> Expander::path_to_ground(std::string body) const {
   return path;
 }
 
-/// Joint coordinates need a tree without particles turned by joints, and constraint rows
-/// (a CN) need the position states that coordinate-driven bodies lack.
-void Expander::check_coordinates() {
+/// What keeps joint coordinates from moving a joint: a loop-closing joint, a
+/// particle a joint would turn, a flexible body held at an origin that moves,
+/// and constraint rows (a CN) on a body that has no position states.
+std::vector<Expander::Problem> Expander::coordinate_problems() const {
+  std::vector<Problem> out;
   for (const Joint& j : joints_) {
     const AstJoint& d = *j.decl;
     if (j.strategy == Strategy::Coordinates && !j.tree) {
@@ -63,47 +97,53 @@ void Expander::check_coordinates() {
       while (!pa.empty() && !pb.empty() && pa.back() == pb.back()) pa.pop_back(), pb.pop_back();
       std::vector<std::string> loop(pa.begin(), pa.end());
       loop.insert(loop.end(), pb.rbegin(), pb.rend());
-      diags_.error(d.loc, fmt::format("joint `{}` closes a kinematic loop, so its motion cannot be given by joint coordinates", d.name),
-                   fmt::format("with constraints = coordinates the tree joints ({}) already set the flows of `{}` and `{}`; "
-                               "`{}` would impose a second, dependent flow on those junctions, a causal conflict no "
-                               "storage element can take. A closed loop needs constraint rows: write constraints = "
-                               "lagrange or penalty",
-                               fmt::join(loop, ", "), j.a.body, j.b.body, d.name));
+      out.push_back({d.loc, fmt::format("joint `{}` closes a kinematic loop, so its motion cannot be given by joint coordinates", d.name),
+                     fmt::format("with constraints = coordinates the tree joints ({}) already set the flows of `{}` and `{}`; "
+                                 "`{}` would impose a second, dependent flow on those junctions, a causal conflict no "
+                                 "storage element can take. A closed loop needs constraint rows: write constraints = "
+                                 "lagrange or penalty",
+                                 fmt::join(loop, ", "), j.a.body, j.b.body, d.name),
+                     /*loop=*/true});
       continue;
     }
     if (j.strategy == Strategy::Coordinates) {
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).flex && s->point.empty() && !bodies_.at(s->body).flex->origin_fixed()) {
-          diags_.error(d.loc, fmt::format("joint `{}` holds the flexible body `{}` at its frame's origin, which moves with "
-                                          "its modes: not implemented in joint coordinates",
-                                          d.name, s->body),
-                       fmt::format("declare a point of `{}` where the joint sits and name it (`{}.p`): its deflection "
-                                   "and turn come from the modes there; or put the frame at a clamped root",
-                                   s->body, s->body));
+          out.push_back({d.loc, fmt::format("joint `{}` holds the flexible body `{}` at its frame's origin, which moves with "
+                                            "its modes: not implemented in joint coordinates",
+                                            d.name, s->body),
+                         fmt::format("declare a point of `{}` where the joint sits and name it (`{}.p`): its deflection "
+                                     "and turn come from the modes there; or put the frame at a clamped root",
+                                     s->body, s->body)});
           break;
         }
     }
     if (j.strategy == Strategy::Coordinates && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).particle) {
-          diags_.error(d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
-                       fmt::format("a particle has no angular-velocity junction for the joint's rotation rates to "
-                                   "drive, so they would carry no inertia: give `{}` an inertia, or write "
-                                   "constraints = lagrange or penalty for this model",
-                                   s->body));
+          out.push_back({d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
+                         fmt::format("a particle has no angular-velocity junction for the joint's rotation rates to "
+                                     "drive, so they would carry no inertia: give `{}` an inertia, or write "
+                                     "constraints = lagrange or penalty for this model",
+                                     s->body)});
           break;
         }
     if (j.strategy != Strategy::Coordinates)
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).by_coordinates) {
-          diags_.error(d.loc, fmt::format("joint `{}` uses constraint rows, but `{}` moves by joint coordinates", d.name, s->body),
-                       fmt::format("a constraintor CN acts through the rates of a body's position states, and `{}` has "
-                                   "none (its pose is a function of joint `{}`'s coordinates): use one strategy for the "
-                                   "whole model (constraints = lagrange, penalty or coordinates)",
-                                   s->body, bodies_.at(s->body).placed_by));
+          out.push_back({d.loc, fmt::format("joint `{}` uses constraint rows, but `{}` moves by joint coordinates", d.name, s->body),
+                         fmt::format("a constraintor CN acts through the rates of a body's position states, and `{}` has "
+                                     "none (its pose is a function of joint `{}`'s coordinates): use one strategy for the "
+                                     "whole model (constraints = lagrange, penalty or coordinates)",
+                                     s->body, bodies_.at(s->body).placed_by)});
           break;
         }
   }
+  return out;
+}
+
+void Expander::check_coordinates() {
+  for (const Problem& p : coordinate_problems()) diags_.error(p.loc, p.message, p.hint);
 }
 
 void Expander::place_bodies() {
