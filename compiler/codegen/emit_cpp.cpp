@@ -375,7 +375,7 @@ class Emitter {
     shared.finish_counting();
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
-      std::string value = print_shared(p.value, shared, f.body, "");
+      std::string value = print_shared(p.value, shared, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});  // {}", names_.param(static_cast<int>(i)), i,
                                                  value, where(p.loc))));
     }
@@ -383,7 +383,7 @@ class Emitter {
     for (const Expr& e : hoisted_order_) {
       // a derived constant that recurs whole is reused by its own name
       bool shared_whole = shared.pending.erase(e) > 0;
-      std::string value = print_shared(e, shared, f.body, "");
+      std::string value = print_shared(e, shared, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), value)));
       if (shared_whole) shared.temp[e] = hoisted_.at(e);
     }
@@ -392,7 +392,7 @@ class Emitter {
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
       const StateVar& st = s_.states[i];
       const Variable& v = g_.vars[static_cast<std::size_t>(st.var)];
-      std::string value = print_shared(st.initial, shared, f.body, "");
+      std::string value = print_shared(st.initial, shared, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {} ({})", y, i, value, v.name, where(v.loc))));
     }
     if (s_.dae) {
@@ -426,10 +426,11 @@ class Emitter {
     std::unordered_map<Expr, int, ExprHash, ExprEqual> uses_;
     std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp;
     std::unordered_set<Expr, ExprHash, ExprEqual> pending;
+    bool announced = false;  // the note on cseN names is printed
   };
 
   /// `e` in C++, after defining (into `body`) the shared temporaries it needs, innermost first.
-  std::string print_shared(const Expr& e, SharedTemps& shared, std::vector<CppStmt>& body, const std::string& why) {
+  std::string print_shared(const Expr& e, SharedTemps& shared, std::vector<CppStmt>& body) {
     std::unordered_set<const Node*> seen;
     std::function<void(const Expr&)> define = [&](const Expr& x) {
       if (x->args.empty() || !seen.insert(x.get()).second) return;
@@ -438,8 +439,9 @@ class Emitter {
       for (const Expr& a : x->args) define(a);
       if (shared.pending.count(x) && !shared.temp.count(x)) {
         std::string name = fmt::format("cse{}", ++cse_counter_);
-        body.push_back(CppStmt::line(fmt::format("const double {} = {};  // shared by several equations{}", name,
-                                                 cpp_with_temps(x, shared.temp, /*top=*/true), why)));
+        if (!shared.announced) body.push_back(CppStmt::comment("(cseN: a subexpression several equations below share)"));
+        shared.announced = true;
+        body.push_back(CppStmt::line(fmt::format("const double {} = {};", name, cpp_with_temps(x, shared.temp, /*top=*/true))));
         shared.temp[x] = name;
       }
     };
@@ -498,10 +500,9 @@ class Emitter {
     shared.finish_counting();
     auto& pending = shared.pending;
     auto& temp = shared.temp;
-    auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body, const std::string& why) {
-      return print_shared(e, shared, out_body, why);
-    };
+    auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return print_shared(e, shared, out_body); };
     std::set<int> blocks_done;
+    std::string last_origin;
     for (int i : assignment_indices) {
       const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
       if (a.block >= 0) {
@@ -509,18 +510,21 @@ class Emitter {
         body.push_back(CppStmt::line(fmt::format("const double {} = blk{}_x[{}];", var_name(a.var), a.block + 1, block_position(a))));
         continue;
       }
-      body.push_back(CppStmt::comment(fmt::format("{}  {}", where(a.loc), a.origin)));
+      // One comment heads each run of assignments from the same model line and origin.
+      std::string origin = fmt::format("{}  {}", where(a.loc), a.origin);
+      if (origin != last_origin) body.push_back(CppStmt::comment(origin));
+      last_origin = std::move(origin);
       // An assignment whose whole value recurs elsewhere becomes the shared
       // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
       bool shared_whole = pending.count(a.value) && !temp.count(a.value);
       if (shared_whole) pending.erase(a.value);
-      std::string rhs = print_expr(a.value, body, "");
+      std::string rhs = print_expr(a.value, body);
       body.push_back(CppStmt::line(fmt::format("const double {} = {};", var_name(a.var), rhs)));
       if (shared_whole) temp[a.value] = var_name(a.var);
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
     for (const auto& [target, e] : results) {
-      std::string rhs = print_expr(e, body, "");
+      std::string rhs = print_expr(e, body);
       body.push_back(CppStmt::line(fmt::format("{} = {};", target, rhs)));
     }
   }
@@ -540,8 +544,8 @@ class Emitter {
     body.push_back(CppStmt::comment(fmt::format("{}  {}", where(a.loc), a.origin)));
     body.push_back(CppStmt::comment(fmt::format("A x = b for x = ({})", fmt::join(names, ", "))));
     std::vector<std::string> entries, rhs;
-    for (const Expr& e : lb.a) entries.push_back(print_expr(e, body, ""));
-    for (const Expr& e : lb.b) rhs.push_back(print_expr(e, body, ""));
+    for (const Expr& e : lb.a) entries.push_back(print_expr(e, body));
+    for (const Expr& e : lb.b) rhs.push_back(print_expr(e, body));
     std::string id = fmt::format("blk{}", a.block + 1);
     body.push_back(CppStmt::line(fmt::format("double {}_a[{}] = {{", id, n * n)));
     for (std::size_t r = 0; r < n; ++r) {

@@ -71,6 +71,18 @@ class Generator {
     for (int k = 0; k < nd.dim; ++k) {
       std::string row = nd.dim == 1 ? nd.name : fmt::format("{}[{}]", nd.name, k + 1);
       s_.constraints.push_back({row, nd.loc, nd.constraint_g.items[static_cast<std::size_t>(k)], f_id(b, k), lagrange ? e_id(b, k) : -1, nullptr, -1});
+      if (nd.law == LawForm::Stabilised) {
+        // A cut joint on a tree in joint coordinates: the flow (g') follows
+        // from the tree's rates; the multiplier keeps g'' + 2 w g' + w^2 g = 0,
+        // an equation of the accelerations, solved with them (reduce).
+        const Expr& w = nd.law_rhs[0];
+        const Expr rate = signed_(s, f(b, k));
+        Expr lhs = add(add(der(rate), mul(mul(constant(2), w), rate)), mul(mul(w, w), nd.constraint_g.items[static_cast<std::size_t>(k)]));
+        Equation eq{lhs, constant(0), e_id(b, k), nd.loc, label(nd, "g'' + 2 w g' + w^2 g = 0, e is the multiplier"), /*constraint=*/true};
+        eq.in_loop = true;
+        s_.equations.push_back(std::move(eq));
+        continue;
+      }
       if (lagrange) {
         // The flow is computed by the rest of the graph; this equation pins it
         // to zero and thereby determines the multiplier e (an index-2 DAE row).

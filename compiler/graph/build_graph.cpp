@@ -500,7 +500,8 @@ class Builder {
             n.constraint_g = Value{n.dim, 1, n.law_rhs};
             n.law_rhs.clear();
             n.law = LawForm::Constraint;
-            check_constraint_inputs(n, a);
+            const bool stabilised = std::any_of(el.attrs.begin(), el.attrs.end(), [](const AstAttr& x) { return x.key == "stabilisation"; });
+            check_constraint_inputs(n, a, /*signals_too=*/stabilised);
             continue;
           }
           n.law = law_form(n.kind, a.key);
@@ -533,17 +534,26 @@ class Builder {
   }
 
   static bool is_penalty_key(NodeKind k, const std::string& key) {
-    return k == NodeKind::CN && (key == "stiffness" || key == "damping");
+    return k == NodeKind::CN && (key == "stiffness" || key == "damping" || key == "stabilisation");
   }
 
   /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
   /// e = stiffness * g + damping * f per component, an ODE instead of a multiplier.
   void lower_penalty(GraphNode& n, const AstElement& el, const NameLookup& lookup, std::map<std::string, Value>& locals) {
-    std::optional<Value> k, d;
+    std::optional<Value> k, d, w;
     for (const AstAttr& a : el.attrs) {
       if (!is_penalty_key(n.kind, a.key)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
+      if (a.key == "stabilisation") {
+        if (!v->is_scalar() || !only_params(*v)) {
+          diags_.error(a.value->loc, fmt::format("the stabilisation of `{}` must be a constant scalar (rad/s)", n.name),
+                       "stabilisation = 20 keeps g'' + 2 w g' + w^2 g = 0 with w = 20 rad/s");
+          return;
+        }
+        w = v;
+        continue;
+      }
       if (!v->is_scalar() || !only_params(*v)) {
         diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name),
                      fmt::format("the penalty effort is e = stiffness * g + damping * f with constant coefficients, e.g. {} = 1e6",
@@ -551,6 +561,11 @@ class Builder {
         return;
       }
       (a.key == "stiffness" ? k : d) = v;
+    }
+    if (w) {
+      n.law = LawForm::Stabilised;
+      n.law_rhs = {w->items[0]};
+      return;
     }
     if (!k && !d) return;
     if (!k) {
@@ -568,13 +583,13 @@ class Builder {
   }
 
   /// g must be a function of states (the positions whose rate the CN's flow is), not of efforts or flows.
-  void check_constraint_inputs(const GraphNode& n, const AstAttr& a) {
+  void check_constraint_inputs(const GraphNode& n, const AstAttr& a, bool signals_too) {
     for (const Expr& e : n.constraint_g.items) {
       std::unordered_set<int> vars;
       collect_vars(e, vars);
       for (int id : vars) {
         VarKind k = g_.vars[static_cast<std::size_t>(id)].kind;
-        if (k != VarKind::State) {
+        if (k != VarKind::State && !(signals_too && k == VarKind::Signal)) {
           diags_.error(a.value->loc, fmt::format("the constraint g of `{}` depends on `{}`, which is not a state", n.name, g_.vars[static_cast<std::size_t>(id)].name),
                        "g is a position-level constraint: write it in terms of displacements (a C element's q)");
           return;
@@ -616,7 +631,7 @@ class Builder {
       case NodeKind::R: return {"e", "f"};
       case NodeKind::C: return {"e", "q0", "e0"};
       case NodeKind::I: return {"f", "p0", "f0"};
-      case NodeKind::CN: return {"g", "stiffness", "damping"};
+      case NodeKind::CN: return {"g", "stiffness", "damping", "stabilisation"};
       case NodeKind::Sf: return {"rate0"};
       default: return {};
     }

@@ -18,6 +18,8 @@ struct Equation {
   std::string origin;   // e.g. "I armature_l: f = p / L" (for comments and dumps)
   bool constraint = false;  // lhs == rhs holds, but does not contain `unknown` (a CN's
                             // multiplier): reduce makes it a DAE residual
+  bool in_loop = false;     // ... unless it is a stabilised CN's (acceleration level): then
+                            // it is solved with the algebraic loop it belongs to
 };
 
 /// One holonomic constraint row of a CN: position level g(states) = 0 and

@@ -36,6 +36,8 @@ enum class LawForm {
   Source,          // Se/Sf: value is the imposed effort/flow (any expression)
   Constraint,      // CN, lagrange: f = 0, e is an unknown multiplier
   Penalty,         // CN, penalty: e = stiffness * g + damping * f
+  Stabilised,      // CN, a cut joint on a tree in joint coordinates: e is a multiplier that keeps
+                   // der(f) + 2 w f + w^2 g = 0 (Baumgarte; w = law_rhs[0]); g may read signals
   FreeRate,        // Sf { rate0 = ... }: the flow is a state (an independent joint rate) and
                    // the effort must vanish; the rate's derivative is found from e = 0
 };

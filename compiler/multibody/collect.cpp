@@ -340,7 +340,7 @@ void Expander::add_joint(const AstJoint& j) {
   joint.a = *a;
   joint.b = *b;
   joint.strategy = strategy_;
-  std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping"};
+  std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping", "stabilisation"};
   for (std::string& key : kind->settings()) keys.push_back(std::move(key));
   for (const AstAttr& at : j.attrs) {
     if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {

@@ -175,7 +175,7 @@ class Expander {
   // ---- 4. the spanning tree and initial conditions along it (tree.cpp)
   void find_tree();
   std::vector<std::string> path_to_ground(std::string body) const;
-  struct Problem { SourceLoc loc; std::string message, hint; bool loop = false; };
+  struct Problem { SourceLoc loc; std::string message, hint; };
   std::vector<Problem> coordinate_problems() const;
   void mark_coordinate_bodies();
   void choose_strategy();

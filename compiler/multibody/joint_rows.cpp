@@ -90,14 +90,42 @@ void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec,
   if (f.ground) return;
   const std::string& b = f.body;
   std::vector<std::pair<std::string, std::string>> parts;  // (MTF name, body junction)
-  if (translational) {
-    element(B, "MTF", prefix + "t", B.call("jacobian", {rows_vec, B.name(b + ".r.q")}));
-    parts.push_back({prefix + "t", b + ".v"});
-  }
-  if (!f.particle) {
-    element(B, "MTF", prefix + "r",
-            B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
-    parts.push_back({prefix + "r", b + ".w"});
+  const Body& body = bodies_.at(b);
+  if (body.by_coordinates) {
+    // (a cut joint on a body moved by joint coordinates: its pose is signals,
+    // r and R; r' = R V for V in body axes (else V), R' = R skew(omega))
+    E r = position(B, b), R = rotation(B, b);
+    if (translational) {
+      E Jr = B.call("jacobian", {rows_vec, r});
+      element(B, "MTF", prefix + "t", body_frame_velocity(body) ? B.op('*', Jr, R) : Jr);
+      parts.push_back({prefix + "t", b + ".v"});
+    }
+    if (!f.particle) {
+      std::vector<E> entries;
+      for (int i = 1; i <= 3; ++i)
+        for (int k = 1; k <= 3; ++k) entries.push_back(B.name(fmt::format("{}.pose.R{}{}", b, i, k)));
+      E JR = B.call("jacobian", {rows_vec, B.list(entries)});  // k x 9, row-major R
+      std::vector<E> columns;
+      for (int axis = 0; axis < 3; ++axis) {
+        E turn = B.op('*', R, B.call("skew", {axis == 0 ? B.vec(1, 0, 0) : axis == 1 ? B.vec(0, 1, 0) : B.vec(0, 0, 1)}));
+        std::vector<E> flat;
+        for (int i = 1; i <= 3; ++i)
+          for (int k = 1; k <= 3; ++k) flat.push_back(idx2(B, turn, i, k));
+        columns.push_back(B.op('*', JR, B.list(flat)));
+      }
+      element(B, "MTF", prefix + "r", B.call("hcat", {columns[0], columns[1], columns[2]}));
+      parts.push_back({prefix + "r", b + ".w"});
+    }
+  } else {
+    if (translational) {
+      element(B, "MTF", prefix + "t", B.call("jacobian", {rows_vec, B.name(b + ".r.q")}));
+      parts.push_back({prefix + "t", b + ".v"});
+    }
+    if (!f.particle) {
+      element(B, "MTF", prefix + "r",
+              B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
+      parts.push_back({prefix + "r", b + ".w"});
+    }
   }
   if (bodies_.at(b).flex) {  // the joint's point moves with the beam's deflection
     element(B, "MTF", prefix + "e", B.call("jacobian", {rows_vec, B.name(b + ".eta.q")}));
@@ -123,7 +151,7 @@ void Expander::emit_joint(Joint& j) {
   Frame A = frame(B, j, j.a, "a");
   Frame Bf = frame(B, j, j.b, "b");
   frames_[jn] = {A, Bf};
-  if (j.strategy == Strategy::Coordinates) {
+  if (j.strategy == Strategy::Coordinates && j.tree) {
     emit_coordinate_joint(B, j);
     return;
   }
@@ -135,6 +163,13 @@ void Expander::emit_joint(Joint& j) {
   rates_into(B, jn + ".ca", gvec, A, jn + ".c", true, true);
   rates_into(B, jn + ".cb", gvec, Bf, jn + ".c", true, true);
   std::vector<AstAttr> cn = {kv("g", gvec, d.loc)};
+  if (j.strategy == Strategy::Coordinates) {
+    // A cut joint on a tree in joint coordinates: its rows' multipliers keep
+    // g'' + 2 w g' + w^2 g = 0 (Baumgarte, critically damped at w rad/s), an
+    // acceleration-level condition solved with the tree's accelerations.
+    param(B, jn + ".stabilisation", setting_or(j, "stabilisation", B.num(20)));
+    cn.push_back(kv("stabilisation", B.name(jn + ".stabilisation"), d.loc));
+  }
   if (j.strategy == Strategy::Penalty) {
     // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
     std::vector<E> masses;

@@ -61,13 +61,18 @@ void Expander::choose_strategy() {
   const std::vector<Problem> problems = coordinate_problems();
   std::string report;
   if (problems.empty()) {
-    report = fmt::format("constraints = auto: coordinates (the joints form a tree: joint coordinates as states, an ODE "
-                         "without constraint rows)");
+    std::vector<std::string> cut;
+    for (const Joint* j : open)
+      if (!j->tree) cut.push_back("`" + j->decl->name + "`");
+    report = cut.empty() ? std::string("constraints = auto: coordinates (the joints form a tree: joint coordinates as states, "
+                                       "an ODE without constraint rows)")
+                         : fmt::format("constraints = auto: coordinates on a spanning tree, with cut joint{} {} (their rows "
+                                       "held at acceleration level by multipliers, Baumgarte-stabilised: an ODE)",
+                                       cut.size() == 1 ? "" : "s", fmt::join(cut, ", "));
   } else {
     for (Joint* j : open) j->strategy = Strategy::Lagrange;
     mark_coordinate_bodies();
-    report = fmt::format("constraints = auto: lagrange (multipliers, a DAE), because {}{}", problems.front().message,
-                         problems.front().loop ? " (cut joints on top of joint coordinates are not implemented yet)" : "");
+    report = fmt::format("constraints = auto: lagrange (multipliers, a DAE), because {}", problems.front().message);
   }
   if (strategy_report_) *strategy_report_ = report;
 }
@@ -84,28 +89,15 @@ std::vector<std::string> Expander::path_to_ground(std::string body) const {
   return path;
 }
 
-/// What keeps joint coordinates from moving a joint: a loop-closing joint, a
-/// particle a joint would turn, a flexible body held at an origin that moves,
-/// and constraint rows (a CN) on a body that has no position states.
+/// What keeps joint coordinates from moving a joint: a particle a joint would
+/// turn, a flexible body held at an origin that moves, and rows-strategy
+/// constraint rows (a CN) on a body that has no position states. (A joint
+/// that closes a loop is a cut joint: its rows act through multipliers on the
+/// tree, emit_joint.)
 std::vector<Expander::Problem> Expander::coordinate_problems() const {
   std::vector<Problem> out;
   for (const Joint& j : joints_) {
     const AstJoint& d = *j.decl;
-    if (j.strategy == Strategy::Coordinates && !j.tree) {
-      std::vector<std::string> pa = path_to_ground(j.a.body), pb = path_to_ground(j.b.body);
-      // the loop: both paths without their common part near ground
-      while (!pa.empty() && !pb.empty() && pa.back() == pb.back()) pa.pop_back(), pb.pop_back();
-      std::vector<std::string> loop(pa.begin(), pa.end());
-      loop.insert(loop.end(), pb.rbegin(), pb.rend());
-      out.push_back({d.loc, fmt::format("joint `{}` closes a kinematic loop, so its motion cannot be given by joint coordinates", d.name),
-                     fmt::format("with constraints = coordinates the tree joints ({}) already set the flows of `{}` and `{}`; "
-                                 "`{}` would impose a second, dependent flow on those junctions, a causal conflict no "
-                                 "storage element can take. A closed loop needs constraint rows: write constraints = "
-                                 "lagrange or penalty",
-                                 fmt::join(loop, ", "), j.a.body, j.b.body, d.name),
-                     /*loop=*/true});
-      continue;
-    }
     if (j.strategy == Strategy::Coordinates) {
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).flex && s->point.empty() && !bodies_.at(s->body).flex->origin_fixed()) {
@@ -118,7 +110,7 @@ std::vector<Expander::Problem> Expander::coordinate_problems() const {
           break;
         }
     }
-    if (j.strategy == Strategy::Coordinates && !j.kind->moves_particles())
+    if (j.strategy == Strategy::Coordinates && j.tree && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).particle) {
           out.push_back({d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),

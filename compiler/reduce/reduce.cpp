@@ -57,25 +57,22 @@ class Reducer {
     return false;
   }
 
-  /// Constants, propagated in dependency order: an equation whose other
-  /// variables all have constant values is solved; if its unknown comes out
-  /// constant (a zero force component, a velocity no joint can produce), so
-  /// do its readers' inputs. A worklist keeps it linear in the equations.
+  /// Constants, propagated: an equation whose solution folds to a constant
+  /// (a zero force component, a velocity no joint can produce) makes its
+  /// unknown a constant, and each equation that reads it is folded again
+  /// (a zero coefficient may now cancel a variable). Every equation is tried
+  /// once, then once per variable of it that turns constant.
   void propagate_constants(std::unordered_map<int, Expr>& constant_of) {
     const std::size_t n = eqs_.size();
-    std::vector<int> pending(n, 0);
     std::unordered_map<int, std::vector<int>> readers;
     std::vector<int> ready;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = n; i-- > 0;) {
       std::unordered_set<int> vars;
       collect_vars(eqs_[i].lhs, vars);
       collect_vars(eqs_[i].rhs, vars);
-      for (int id : vars) {
-        if (id == eqs_[i].unknown || is_state_.count(id)) continue;  // a state may still cancel out
-        ++pending[i];
-        readers[id].push_back(static_cast<int>(i));
-      }
-      if (pending[i] == 0 && !eqs_[i].constraint) ready.push_back(static_cast<int>(i));
+      for (int id : vars)
+        if (id != eqs_[i].unknown && !is_state_.count(id)) readers[id].push_back(static_cast<int>(i));
+      if (!eqs_[i].constraint || eqs_[i].in_loop) ready.push_back(static_cast<int>(i));
     }
     const auto fold = [&](const Expr& e) {
       return rewrite(e, [&](const Expr& x) -> Expr {
@@ -87,15 +84,25 @@ class Reducer {
     while (!ready.empty()) {
       const Equation& eq = eqs_[static_cast<std::size_t>(ready.back())];
       ready.pop_back();
+      if (constant_of.count(eq.unknown)) continue;
       Equation folded = eq;
       folded.lhs = fold(eq.lhs);
       folded.rhs = fold(eq.rhs);
-      auto sol = solve_single(folded);
-      if (!sol || !is_const(*sol)) continue;
-      constant_of[eq.unknown] = *sol;
+      if (eq.constraint) {  // a cut joint's row (in_loop)
+        // A row that holds identically (a planar loop's out-of-plane rows,
+        // once the geometry is folded) is redundant: its multiplier is 0.
+        if (!is_zero(sub(folded.lhs, folded.rhs))) continue;
+        constant_of[eq.unknown] = constant(0);
+        out_.log.push_back(fmt::format("redundant constraint row: {} holds identically (its rate is 0 in every "
+                                       "configuration), so its multiplier `{}` is 0",
+                                       eq.origin, v(eq.unknown).name));
+      } else {
+        auto sol = solve_single(folded);
+        if (!sol || !is_const(*sol)) continue;
+        constant_of[eq.unknown] = *sol;
+      }
       ++constants_;
-      for (int r : readers[eq.unknown])
-        if (--pending[static_cast<std::size_t>(r)] == 0) ready.push_back(r);
+      for (int r : readers[eq.unknown]) ready.push_back(r);
     }
   }
 
@@ -154,7 +161,10 @@ class Reducer {
     eqs_ = std::move(kept);
     for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve_all(var(s.der)));
     for (Output& o : out_.graph.outputs) o.value = resolve_all(o.value);
-    for (ConstraintRow& row : out_.constraints) row.gdot = resolve_all(var(row.flow));
+    for (ConstraintRow& row : out_.constraints) {
+      row.gdot = resolve_all(var(row.flow));
+      row.g = resolve_all(row.g);  // (a cut joint's g reads signals, some now constants)
+    }
     alias_ = std::move(alias);
     out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
     out_.log.push_back(fmt::format("constant propagation: {} variable{} with a constant value folded into their uses", constants_, constants_ == 1 ? "" : "s"));
@@ -337,7 +347,7 @@ class Reducer {
 
   void solve_block(const std::vector<int>& block) {
     bool has_constraint = false;
-    for (int i : block) has_constraint |= eqs_[static_cast<std::size_t>(i)].constraint;
+    for (int i : block) has_constraint |= eqs_[static_cast<std::size_t>(i)].constraint && !eqs_[static_cast<std::size_t>(i)].in_loop;
     if (has_constraint) {
       // A CN row gdot = 0 determines its multiplier only through the
       // dynamics: it stays a residual of the (index-2) DAE.
@@ -419,7 +429,8 @@ class Reducer {
     std::vector<int> tears, tear_eqs, rest_eqs;
     for (int i : block) {
       int u = eqs_[static_cast<std::size_t>(i)].unknown;
-      if (v(u).kind == VarKind::Derivative) {
+      // (a cut joint's multiplier is torn too: its equation, g'' = ..., does not contain it)
+      if (v(u).kind == VarKind::Derivative || eqs_[static_cast<std::size_t>(i)].in_loop) {
         tears.push_back(u);
         tear_eqs.push_back(i);
       } else {
@@ -854,7 +865,10 @@ class Reducer {
     out_.for_outputs = needed_by(output_roots);
     out_.for_jacobian = needed_by(out_.jacobian);
     std::vector<Expr> constraint_roots;
-    for (const ConstraintRow& row : out_.constraints) constraint_roots.push_back(row.gdot);
+    for (const ConstraintRow& row : out_.constraints) {
+      constraint_roots.push_back(row.gdot);
+      constraint_roots.push_back(row.g);  // (a cut joint's g reads the tree's pose signals)
+    }
     out_.for_constraints = needed_by(constraint_roots);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
     used.insert(out_.for_constraints.begin(), out_.for_constraints.end());

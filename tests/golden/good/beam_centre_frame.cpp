@@ -110,20 +110,21 @@ class beam_centre_frame_model final : public mbgrt::Model {
     rod_w0_2 = param(11, 0.0);  // beam_centre_frame.mbg:5:6
     rod_w0_3 = param(12, 0.5);  // beam_centre_frame.mbg:5:6
     // INITIAL STATE
-    const double cse1 = rod_q0_1 * rod_q0_1;  // shared by several equations
-    const double cse2 = rod_q0_2 * rod_q0_2;  // shared by several equations
-    const double cse3 = cse1 + cse2;  // shared by several equations
-    const double cse4 = rod_q0_3 * rod_q0_3;  // shared by several equations
-    const double cse5 = rod_q0_4 * rod_q0_4;  // shared by several equations
-    const double cse6 = cse3 + cse4 + cse5;  // shared by several equations
-    const double cse7 = rod_q0_2 * rod_q0_3;  // shared by several equations
-    const double cse8 = rod_q0_1 * rod_q0_4;  // shared by several equations
-    const double cse9 = rod_q0_2 * rod_q0_4;  // shared by several equations
-    const double cse10 = rod_q0_1 * rod_q0_3;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = rod_q0_1 * rod_q0_1;
+    const double cse2 = rod_q0_2 * rod_q0_2;
+    const double cse3 = cse1 + cse2;
+    const double cse4 = rod_q0_3 * rod_q0_3;
+    const double cse5 = rod_q0_4 * rod_q0_4;
+    const double cse6 = cse3 + cse4 + cse5;
+    const double cse7 = rod_q0_2 * rod_q0_3;
+    const double cse8 = rod_q0_1 * rod_q0_4;
+    const double cse9 = rod_q0_2 * rod_q0_4;
+    const double cse10 = rod_q0_1 * rod_q0_3;
     x[0] = 4.932300466135975 * ((cse3 - cse4 - cse5) / cse6 * rod_v0_1 + 2.0 * (cse7 + cse8) / cse6 * rod_v0_2 + 2.0 * (cse9 - cse10) / cse6 * rod_v0_3);  // rod.M.p[1] (beam_centre_frame.mbg:5:6)
-    const double cse11 = rod_q0_3 * rod_q0_4;  // shared by several equations
-    const double cse12 = rod_q0_1 * rod_q0_2;  // shared by several equations
-    const double cse13 = 2.0 * (cse7 - cse8) / cse6 * rod_v0_1 + (cse1 + cse4 - cse2 - cse5) / cse6 * rod_v0_2 + 2.0 * (cse11 + cse12) / cse6 * rod_v0_3;  // shared by several equations
+    const double cse11 = rod_q0_3 * rod_q0_4;
+    const double cse12 = rod_q0_1 * rod_q0_2;
+    const double cse13 = 2.0 * (cse7 - cse8) / cse6 * rod_v0_1 + (cse1 + cse4 - cse2 - cse5) / cse6 * rod_v0_2 + 2.0 * (cse11 + cse12) / cse6 * rod_v0_3;
     x[1] = 4.932300466135975 * cse13;  // rod.M.p[2] (beam_centre_frame.mbg:5:6)
     x[2] = 4.932300466135975 * (2.0 * (cse9 + cse10) / cse6 * rod_v0_1 + 2.0 * (cse11 - cse12) / cse6 * rod_v0_2 + (cse1 + cse5 - cse2 - cse4) / cse6 * rod_v0_3);  // rod.M.p[3] (beam_centre_frame.mbg:5:6)
     x[3] = 0.00024661502330679876 * rod_w0_1;  // rod.M.p[4] (beam_centre_frame.mbg:5:6)
@@ -163,24 +164,25 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_eta_q_2 = x[16];
     // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
-    const double cse14 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;  // shared by several equations
-    const double cse15 = -cse14;  // shared by several equations
-    const double cse16 = 4.243863994952002e-15 * rod_eta_q_1;  // shared by several equations
-    const double cse17 = 42.200327390662835 * rod_eta_q_1;  // shared by several equations
-    const double cse18 = 42.200327390662835 * rod_eta_q_2;  // shared by several equations
-    const double cse19 = 0.5 * (cse16 * rod_eta_q_1 - cse17 * rod_eta_q_2 - cse18 * rod_eta_q_1);  // shared by several equations
-    const double cse20 = -cse19;  // shared by several equations
-    const double cse21 = 12.221211925254192 * rod_eta_q_1;  // shared by several equations
-    const double cse22 = 7.666334958622971e-15 * rod_eta_q_1;  // shared by several equations
-    const double cse23 = 7.666334958622971e-15 * rod_eta_q_2;  // shared by several equations
-    const double cse24 = 52.8806874173523 * rod_eta_q_2;  // shared by several equations
-    const double cse25 = cse21 * rod_eta_q_1 - cse22 * rod_eta_q_2 - cse23 * rod_eta_q_1 + cse24 * rod_eta_q_2;  // shared by several equations
-    const double cse26 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;  // shared by several equations
-    const double cse27 = 15.042353071526472 * rod_eta_q_1;  // shared by several equations
-    const double cse28 = 8.898424505544521e-15 * rod_eta_q_1;  // shared by several equations
-    const double cse29 = 8.898424505544521e-15 * rod_eta_q_2;  // shared by several equations
-    const double cse30 = 79.50226053985593 * rod_eta_q_2;  // shared by several equations
-    const double cse31 = cse27 * rod_eta_q_1 - cse28 * rod_eta_q_2 - cse29 * rod_eta_q_1 + cse30 * rod_eta_q_2;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse14 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse15 = -cse14;
+    const double cse16 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse17 = 42.200327390662835 * rod_eta_q_1;
+    const double cse18 = 42.200327390662835 * rod_eta_q_2;
+    const double cse19 = 0.5 * (cse16 * rod_eta_q_1 - cse17 * rod_eta_q_2 - cse18 * rod_eta_q_1);
+    const double cse20 = -cse19;
+    const double cse21 = 12.221211925254192 * rod_eta_q_1;
+    const double cse22 = 7.666334958622971e-15 * rod_eta_q_1;
+    const double cse23 = 7.666334958622971e-15 * rod_eta_q_2;
+    const double cse24 = 52.8806874173523 * rod_eta_q_2;
+    const double cse25 = cse21 * rod_eta_q_1 - cse22 * rod_eta_q_2 - cse23 * rod_eta_q_1 + cse24 * rod_eta_q_2;
+    const double cse26 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse27 = 15.042353071526472 * rod_eta_q_1;
+    const double cse28 = 8.898424505544521e-15 * rod_eta_q_1;
+    const double cse29 = 8.898424505544521e-15 * rod_eta_q_2;
+    const double cse30 = 79.50226053985593 * rod_eta_q_2;
+    const double cse31 = cse27 * rod_eta_q_1 - cse28 * rod_eta_q_2 - cse29 * rod_eta_q_1 + cse30 * rod_eta_q_2;
     double blk1_a[9] = {
         -4.932300466135975, cse15, cse20,
         cse15, -(0.00024661502330679876 + cse25), cse26,
@@ -193,8 +195,8 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_M_f_5 = blk1_x[2];
     // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
-    const double cse32 = cse16 - cse18;  // shared by several equations
-    const double cse33 = -cse17;  // shared by several equations
+    const double cse32 = cse16 - cse18;
+    const double cse33 = -cse17;
     double blk2_a[25] = {
         -4.932300466135975, 0.0, cse14, cse32, cse33,
         0.0, -4.932300466135975, cse19, -5.995923730955276, 2.1903814167494206e-15,
@@ -234,53 +236,48 @@ class beam_centre_frame_model final : public mbgrt::Model {
     // beam_centre_frame.mbg:5:6  1 rod.nu: efforts in = efforts out
     const double rod_M_e_6 = -rod_ejs_e_6;
     // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
-    const double cse34 = 0.5 * (cse16 + cse16 - cse18 - cse18);  // shared by several equations
-    const double cse35 = cse21 + cse21 - cse23 - cse23;  // shared by several equations
-    const double cse36 = cse27 + cse27 - cse29 - cse29;  // shared by several equations
-    const double cse37 = 42.200327390662835 * rod_M_f_1;  // shared by several equations
+    const double cse34 = 0.5 * (cse16 + cse16 - cse18 - cse18);
+    const double cse35 = cse21 + cse21 - cse23 - cse23;
+    const double cse36 = cse27 + cse27 - cse29 - cse29;
+    const double cse37 = 42.200327390662835 * rod_M_f_1;
     const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - 4.243863994952002e-15 * rod_M_f_7 + 42.200327390662835 * rod_M_f_8) - rod_M_f_2 * (cse34 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse34 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse35 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse34 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse36 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse34 * rod_M_f_2 + (cse35 - cse36) * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse37);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_1 = 103199.76688612405 * rod_eta_q_1 - 1.0603392723672647e-10 * rod_eta_q_2;
     // beam_centre_frame.mbg:5:6  1 rod.nu: efforts in = efforts out
     const double rod_M_e_7 = -(rod_ejs_e_7 + rod_eta_e_1);
     // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
-    const double cse38 = 0.5 * (cse33 - cse17);  // shared by several equations
-    const double cse39 = -cse22 - cse22 + (cse24 + cse24);  // shared by several equations
-    const double cse40 = -cse28 - cse28 + (cse30 + cse30);  // shared by several equations
+    const double cse38 = 0.5 * (cse33 - cse17);
+    const double cse39 = -cse22 - cse22 + (cse24 + cse24);
+    const double cse40 = -cse28 - cse28 + (cse30 + cse30);
     const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + 42.200327390662835 * rod_M_f_7) - rod_M_f_2 * (cse38 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse38 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse39 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse38 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse40 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse38 * rod_M_f_2 + (cse39 - cse40) * rod_M_f_6) + rod_M_f_7 * cse37);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_2 = -1.0603392723672647e-10 * rod_eta_q_1 + 784163.8973272434 * rod_eta_q_2;
     // beam_centre_frame.mbg:5:6  1 rod.nu: efforts in = efforts out
     const double rod_M_e_8 = -(rod_ejs_e_8 + rod_eta_e_2);
     // beam_centre_frame.mbg:5:6  MTF rod.sv: f2 = T f1
-    const double cse41 = rod_q_q_1 * rod_q_q_1;  // shared by several equations
-    const double cse42 = rod_q_q_2 * rod_q_q_2;  // shared by several equations
-    const double cse43 = cse41 + cse42;  // shared by several equations
-    const double cse44 = rod_q_q_3 * rod_q_q_3;  // shared by several equations
-    const double cse45 = rod_q_q_4 * rod_q_q_4;  // shared by several equations
-    const double cse46 = cse43 + cse44 + cse45;  // shared by several equations
-    const double cse47 = rod_q_q_2 * rod_q_q_3;  // shared by several equations
-    const double cse48 = rod_q_q_1 * rod_q_q_4;  // shared by several equations
-    const double cse49 = rod_q_q_2 * rod_q_q_4;  // shared by several equations
-    const double cse50 = rod_q_q_1 * rod_q_q_3;  // shared by several equations
+    const double cse41 = rod_q_q_1 * rod_q_q_1;
+    const double cse42 = rod_q_q_2 * rod_q_q_2;
+    const double cse43 = cse41 + cse42;
+    const double cse44 = rod_q_q_3 * rod_q_q_3;
+    const double cse45 = rod_q_q_4 * rod_q_q_4;
+    const double cse46 = cse43 + cse44 + cse45;
+    const double cse47 = rod_q_q_2 * rod_q_q_3;
+    const double cse48 = rod_q_q_1 * rod_q_q_4;
+    const double cse49 = rod_q_q_2 * rod_q_q_4;
+    const double cse50 = rod_q_q_1 * rod_q_q_3;
     const double rod_sv_f2_1 = (cse43 - cse44 - cse45) / cse46 * rod_M_f_1 + 2.0 * (cse47 - cse48) / cse46 * rod_M_f_2 + 2.0 * (cse49 + cse50) / cse46 * rod_M_f_3;
-    // beam_centre_frame.mbg:5:6  MTF rod.sv: f2 = T f1
-    const double cse51 = rod_q_q_3 * rod_q_q_4;  // shared by several equations
-    const double cse52 = rod_q_q_1 * rod_q_q_2;  // shared by several equations
+    const double cse51 = rod_q_q_3 * rod_q_q_4;
+    const double cse52 = rod_q_q_1 * rod_q_q_2;
     const double rod_sv_f2_2 = 2.0 * (cse47 + cse48) / cse46 * rod_M_f_1 + (cse41 + cse44 - cse42 - cse45) / cse46 * rod_M_f_2 + 2.0 * (cse51 - cse52) / cse46 * rod_M_f_3;
-    // beam_centre_frame.mbg:5:6  MTF rod.sv: f2 = T f1
     const double rod_sv_f2_3 = 2.0 * (cse49 - cse50) / cse46 * rod_M_f_1 + 2.0 * (cse51 + cse52) / cse46 * rod_M_f_2 + (cse41 + cse45 - cse42 - cse44) / cse46 * rod_M_f_3;
     // beam_centre_frame.mbg:5:6  MTF rod.qrate: f2 = T f1
-    const double cse53 = 0.5 * rod_q_q_2;  // shared by several equations
-    const double cse54 = 0.5 * rod_q_q_3;  // shared by several equations
-    const double cse55 = 0.5 * rod_q_q_4;  // shared by several equations
+    const double cse53 = 0.5 * rod_q_q_2;
+    const double cse54 = 0.5 * rod_q_q_3;
+    const double cse55 = 0.5 * rod_q_q_4;
     const double rod_q_f2_1 = -cse53 * rod_M_f_4 - cse54 * rod_M_f_5 - cse55 * rod_M_f_6;
-    // beam_centre_frame.mbg:5:6  MTF rod.qrate: f2 = T f1
-    const double cse56 = 0.5 * rod_q_q_1;  // shared by several equations
+    const double cse56 = 0.5 * rod_q_q_1;
     const double rod_q_f2_2 = cse56 * rod_M_f_4 - cse55 * rod_M_f_5 + cse54 * rod_M_f_6;
-    // beam_centre_frame.mbg:5:6  MTF rod.qrate: f2 = T f1
     const double rod_q_f2_3 = cse55 * rod_M_f_4 + cse56 * rod_M_f_5 - cse53 * rod_M_f_6;
-    // beam_centre_frame.mbg:5:6  MTF rod.qrate: f2 = T f1
     const double rod_q_f2_4 = -cse54 * rod_M_f_4 + cse53 * rod_M_f_5 + cse56 * rod_M_f_6;
     // state derivatives
     xdot[0] = rod_M_e_1;
@@ -318,16 +315,17 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_eta_q_1 = x[15];
     const double rod_eta_q_2 = x[16];
     // outputs, in declaration order
-    const double cse57 = rod_q_q_1 * rod_q_q_1;  // shared by several equations
-    const double cse58 = rod_q_q_2 * rod_q_q_2;  // shared by several equations
-    const double cse59 = cse57 + cse58;  // shared by several equations
-    const double cse60 = rod_q_q_3 * rod_q_q_3;  // shared by several equations
-    const double cse61 = rod_q_q_4 * rod_q_q_4;  // shared by several equations
-    const double cse62 = cse59 + cse60 + cse61;  // shared by several equations
-    const double cse63 = 1.0 - 0.5 * (12.370205669468392 * rod_eta_q_1 * rod_eta_q_1 - 30.46989029379667 * rod_eta_q_1 * rod_eta_q_2 - 30.46989029379667 * rod_eta_q_2 * rod_eta_q_1 + 77.99650448625702 * rod_eta_q_2 * rod_eta_q_2);  // shared by several equations
-    const double cse64 = rod_q_q_2 * rod_q_q_3;  // shared by several equations
-    const double cse65 = rod_q_q_1 * rod_q_q_4;  // shared by several equations
-    const double cse66 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse57 = rod_q_q_1 * rod_q_q_1;
+    const double cse58 = rod_q_q_2 * rod_q_q_2;
+    const double cse59 = cse57 + cse58;
+    const double cse60 = rod_q_q_3 * rod_q_q_3;
+    const double cse61 = rod_q_q_4 * rod_q_q_4;
+    const double cse62 = cse59 + cse60 + cse61;
+    const double cse63 = 1.0 - 0.5 * (12.370205669468392 * rod_eta_q_1 * rod_eta_q_1 - 30.46989029379667 * rod_eta_q_1 * rod_eta_q_2 - 30.46989029379667 * rod_eta_q_2 * rod_eta_q_1 + 77.99650448625702 * rod_eta_q_2 * rod_eta_q_2);
+    const double cse64 = rod_q_q_2 * rod_q_q_3;
+    const double cse65 = rod_q_q_1 * rod_q_q_4;
+    const double cse66 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;
     out[0] = rod_r_q_1 + ((cse59 - cse60 - cse61) / cse62 * cse63 + 2.0 * (cse64 - cse65) / cse62 * cse66);
     out[1] = rod_r_q_2 + (2.0 * (cse64 + cse65) / cse62 * cse63 + (cse57 + cse60 - cse58 - cse61) / cse62 * cse66);
     out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse62 * cse63 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse62 * cse66);

@@ -101,20 +101,16 @@ class beam_load_model final : public mbgrt::Model {
     const double blade_eta_rate_rate_2 = x[1];
     const double blade_eta_q_1 = x[2];
     const double blade_eta_q_2 = x[3];
-    // beam_load.mbg:5:6  R blade.ejs: e = law(f)
-    const double blade_ejs_e_7 = 0.0;
     // beam_load.mbg:5:6  C blade.eta: e = law(q)
     const double blade_eta_e_1 = 19593.220346149414 * blade_eta_q_1;
     // beam_load.mbg:5:6  R blade.damp: e = R f
     const double blade_damp_e_1 = 27.34739645305369 * blade_eta_rate_rate_1;
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(blade.M.p[7])
-    const double der_blade_M_p_7 = -(blade_eta_e_1 + blade_damp_e_1 - (0.6882527423362675 - blade_ejs_e_7));
+    const double der_blade_M_p_7 = -(blade_eta_e_1 + blade_damp_e_1 - 0.6882527423362675);
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(b9.f[7])
     const double der_b9_f_7 = der_blade_M_p_7 / 3.8170350741116;
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(blade.eta_rate.rate[1])
     const double der_blade_eta_rate_rate_1 = der_b9_f_7;
-    // beam_load.mbg:5:6  R blade.ejs: e = law(f)
-    const double blade_ejs_e_8 = 0.0;
     // beam_load.mbg:14:7  Se push.on_blade: e = value
     const double push_on_blade_e_8 = -2.0 * F;
     // beam_load.mbg:5:6  C blade.eta: e = law(q)
@@ -122,7 +118,7 @@ class beam_load_model final : public mbgrt::Model {
     // beam_load.mbg:5:6  R blade.damp: e = R f
     const double blade_damp_e_2 = 27.34739645305369 * blade_eta_rate_rate_2;
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(blade.M.p[8])
-    const double der_blade_M_p_8 = -(blade_eta_e_2 + blade_damp_e_2 - (push_on_blade_e_8 - blade_ejs_e_8));
+    const double der_blade_M_p_8 = -(blade_eta_e_2 + blade_damp_e_2 - push_on_blade_e_8);
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(b9.f[8])
     const double der_b9_f_8 = der_blade_M_p_8 / 3.8170350741116;
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(blade.eta_rate.rate[2])

@@ -110,22 +110,23 @@ class beam_mean_axes_model final : public mbgrt::Model {
     bar_w0_2 = param(11, 0.0);  // beam_mean_axes.mbg:5:6
     bar_w0_3 = param(12, 2.0);  // beam_mean_axes.mbg:5:6
     // INITIAL STATE
-    const double cse1 = bar_q0_1 * bar_q0_1;  // shared by several equations
-    const double cse2 = bar_q0_2 * bar_q0_2;  // shared by several equations
-    const double cse3 = cse1 + cse2;  // shared by several equations
-    const double cse4 = bar_q0_3 * bar_q0_3;  // shared by several equations
-    const double cse5 = bar_q0_4 * bar_q0_4;  // shared by several equations
-    const double cse6 = cse3 + cse4 + cse5;  // shared by several equations
-    const double cse7 = bar_q0_2 * bar_q0_3;  // shared by several equations
-    const double cse8 = bar_q0_1 * bar_q0_4;  // shared by several equations
-    const double cse9 = bar_q0_2 * bar_q0_4;  // shared by several equations
-    const double cse10 = bar_q0_1 * bar_q0_3;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = bar_q0_1 * bar_q0_1;
+    const double cse2 = bar_q0_2 * bar_q0_2;
+    const double cse3 = cse1 + cse2;
+    const double cse4 = bar_q0_3 * bar_q0_3;
+    const double cse5 = bar_q0_4 * bar_q0_4;
+    const double cse6 = cse3 + cse4 + cse5;
+    const double cse7 = bar_q0_2 * bar_q0_3;
+    const double cse8 = bar_q0_1 * bar_q0_4;
+    const double cse9 = bar_q0_2 * bar_q0_4;
+    const double cse10 = bar_q0_1 * bar_q0_3;
     x[0] = 0.6165375582669969 * ((cse3 - cse4 - cse5) / cse6 * bar_v0_1 + 2.0 * (cse7 + cse8) / cse6 * bar_v0_2 + 2.0 * (cse9 - cse10) / cse6 * bar_v0_3);  // bar.M.p[1] (beam_mean_axes.mbg:5:6)
-    const double cse11 = bar_q0_3 * bar_q0_4;  // shared by several equations
-    const double cse12 = bar_q0_1 * bar_q0_2;  // shared by several equations
-    const double cse13 = 2.0 * (cse7 - cse8) / cse6 * bar_v0_1 + (cse1 + cse4 - cse2 - cse5) / cse6 * bar_v0_2 + 2.0 * (cse11 + cse12) / cse6 * bar_v0_3;  // shared by several equations
+    const double cse11 = bar_q0_3 * bar_q0_4;
+    const double cse12 = bar_q0_1 * bar_q0_2;
+    const double cse13 = 2.0 * (cse7 - cse8) / cse6 * bar_v0_1 + (cse1 + cse4 - cse2 - cse5) / cse6 * bar_v0_2 + 2.0 * (cse11 + cse12) / cse6 * bar_v0_3;
     x[1] = 0.6165375582669969 * cse13 + 0.3082687791334984 * bar_w0_3;  // bar.M.p[2] (beam_mean_axes.mbg:5:6)
-    const double cse14 = 2.0 * (cse9 + cse10) / cse6 * bar_v0_1 + 2.0 * (cse11 - cse12) / cse6 * bar_v0_2 + (cse1 + cse5 - cse2 - cse4) / cse6 * bar_v0_3;  // shared by several equations
+    const double cse14 = 2.0 * (cse9 + cse10) / cse6 * bar_v0_1 + 2.0 * (cse11 - cse12) / cse6 * bar_v0_2 + (cse1 + cse5 - cse2 - cse4) / cse6 * bar_v0_3;
     x[2] = 0.6165375582669969 * cse14 - 0.3082687791334984 * bar_w0_2;  // bar.M.p[3] (beam_mean_axes.mbg:5:6)
     x[3] = 7.706719478337461e-06 * bar_w0_1;  // bar.M.p[4] (beam_mean_axes.mbg:5:6)
     x[4] = -0.3082687791334984 * cse14 + 0.20551637278207147 * bar_w0_2;  // bar.M.p[5] (beam_mean_axes.mbg:5:6)
@@ -164,16 +165,17 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_eta_q_2 = x[16];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
-    const double cse15 = 15.253392797429207 * bar_eta_q_1;  // shared by several equations
-    const double cse16 = 13.70347789009205 * bar_eta_q_1;  // shared by several equations
-    const double cse17 = 13.70347789009205 * bar_eta_q_2;  // shared by several equations
-    const double cse18 = 33.578051071136144 * bar_eta_q_2;  // shared by several equations
-    const double cse19 = 0.3082687791334984 - 0.5 * (cse15 * bar_eta_q_1 + cse16 * bar_eta_q_2 + cse17 * bar_eta_q_1 + cse18 * bar_eta_q_2);  // shared by several equations
-    const double cse20 = 9.506990532655411 * bar_eta_q_1;  // shared by several equations
-    const double cse21 = 6.851738945046023 * bar_eta_q_1;  // shared by several equations
-    const double cse22 = 6.851738945046023 * bar_eta_q_2;  // shared by several equations
-    const double cse23 = 20.73325973414802 * bar_eta_q_2;  // shared by several equations
-    const double cse24 = cse20 * bar_eta_q_1 + cse21 * bar_eta_q_2 + cse22 * bar_eta_q_1 + cse23 * bar_eta_q_2;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse15 = 15.253392797429207 * bar_eta_q_1;
+    const double cse16 = 13.70347789009205 * bar_eta_q_1;
+    const double cse17 = 13.70347789009205 * bar_eta_q_2;
+    const double cse18 = 33.578051071136144 * bar_eta_q_2;
+    const double cse19 = 0.3082687791334984 - 0.5 * (cse15 * bar_eta_q_1 + cse16 * bar_eta_q_2 + cse17 * bar_eta_q_1 + cse18 * bar_eta_q_2);
+    const double cse20 = 9.506990532655411 * bar_eta_q_1;
+    const double cse21 = 6.851738945046023 * bar_eta_q_1;
+    const double cse22 = 6.851738945046023 * bar_eta_q_2;
+    const double cse23 = 20.73325973414802 * bar_eta_q_2;
+    const double cse24 = cse20 * bar_eta_q_1 + cse21 * bar_eta_q_2 + cse22 * bar_eta_q_1 + cse23 * bar_eta_q_2;
     double blk1_a[4] = {
         -0.6165375582669969, cse19,
         cse19, -(0.20551637278207147 - cse24),
@@ -184,12 +186,12 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse25 = -cse19;  // shared by several equations
-    const double cse26 = 0.6165375582669969 * bar_eta_q_1;  // shared by several equations
-    const double cse27 = 1.1978648372848393e-16 * bar_eta_q_1;  // shared by several equations
-    const double cse28 = 1.1978648372848393e-16 * bar_eta_q_2;  // shared by several equations
-    const double cse29 = 0.6165375582669967 * bar_eta_q_2;  // shared by several equations
-    const double cse30 = cse26 * bar_eta_q_1 - cse27 * bar_eta_q_2 - cse28 * bar_eta_q_1 + cse29 * bar_eta_q_2;  // shared by several equations
+    const double cse25 = -cse19;
+    const double cse26 = 0.6165375582669969 * bar_eta_q_1;
+    const double cse27 = 1.1978648372848393e-16 * bar_eta_q_1;
+    const double cse28 = 1.1978648372848393e-16 * bar_eta_q_2;
+    const double cse29 = 0.6165375582669967 * bar_eta_q_2;
+    const double cse30 = cse26 * bar_eta_q_1 - cse27 * bar_eta_q_2 - cse28 * bar_eta_q_1 + cse29 * bar_eta_q_2;
     double blk2_a[4] = {
         -0.6165375582669969, cse25,
         cse25, -(0.20551637278207147 + (cse30 - cse24)),
@@ -218,8 +220,8 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_e_4 = -bar_ejs_e_4;
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse31 = cse15 + cse17;  // shared by several equations
-    const double cse32 = cse16 + cse18;  // shared by several equations
+    const double cse31 = cse15 + cse17;
+    const double cse32 = cse16 + cse18;
     double blk3_a[9] = {
         -0.6165375582669969, cse31, cse32,
         cse31, -0.6165375582669969, 1.1978648372848393e-16,
@@ -239,53 +241,48 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  1 bar.nu: efforts in = efforts out
     const double bar_M_e_6 = -bar_ejs_e_6;
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
-    const double cse33 = 0.5 * (cse15 + cse15 + cse17 + cse17);  // shared by several equations
-    const double cse34 = cse26 + cse26 - cse28 - cse28;  // shared by several equations
-    const double cse35 = cse20 + cse20 + cse22 + cse22;  // shared by several equations
-    const double cse36 = 13.70347789009205 * bar_M_f_1;  // shared by several equations
+    const double cse33 = 0.5 * (cse15 + cse15 + cse17 + cse17);
+    const double cse34 = cse26 + cse26 - cse28 - cse28;
+    const double cse35 = cse20 + cse20 + cse22 + cse22;
+    const double cse36 = 13.70347789009205 * bar_M_f_1;
     const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * (-15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8) - bar_M_f_2 * (cse33 * bar_M_f_6) + bar_M_f_3 * (cse33 * bar_M_f_5) + bar_M_f_4 * (cse34 * bar_M_f_4) + bar_M_f_5 * (cse33 * bar_M_f_3 - cse35 * bar_M_f_5) + bar_M_f_6 * (-cse33 * bar_M_f_2 + (cse34 - cse35) * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse36);
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
     // beam_mean_axes.mbg:5:6  1 bar.nu: efforts in = efforts out
     const double bar_M_e_7 = -(bar_ejs_e_7 + bar_eta_e_1);
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
-    const double cse37 = 0.5 * (cse16 + cse16 + (cse18 + cse18));  // shared by several equations
-    const double cse38 = -cse27 - cse27 + (cse29 + cse29);  // shared by several equations
-    const double cse39 = cse21 + cse21 + (cse23 + cse23);  // shared by several equations
+    const double cse37 = 0.5 * (cse16 + cse16 + (cse18 + cse18));
+    const double cse38 = -cse27 - cse27 + (cse29 + cse29);
+    const double cse39 = cse21 + cse21 + (cse23 + cse23);
     const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * (-13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8) - bar_M_f_2 * (cse37 * bar_M_f_6) + bar_M_f_3 * (cse37 * bar_M_f_5) + bar_M_f_4 * (cse38 * bar_M_f_4) + bar_M_f_5 * (cse37 * bar_M_f_3 - cse39 * bar_M_f_5) + bar_M_f_6 * (-cse37 * bar_M_f_2 + (cse38 - cse39) * bar_M_f_6) - bar_M_f_7 * cse36 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
     // beam_mean_axes.mbg:5:6  1 bar.nu: efforts in = efforts out
     const double bar_M_e_8 = -(bar_ejs_e_8 + bar_eta_e_2);
     // beam_mean_axes.mbg:5:6  MTF bar.sv: f2 = T f1
-    const double cse40 = bar_q_q_1 * bar_q_q_1;  // shared by several equations
-    const double cse41 = bar_q_q_2 * bar_q_q_2;  // shared by several equations
-    const double cse42 = cse40 + cse41;  // shared by several equations
-    const double cse43 = bar_q_q_3 * bar_q_q_3;  // shared by several equations
-    const double cse44 = bar_q_q_4 * bar_q_q_4;  // shared by several equations
-    const double cse45 = cse42 + cse43 + cse44;  // shared by several equations
-    const double cse46 = bar_q_q_2 * bar_q_q_3;  // shared by several equations
-    const double cse47 = bar_q_q_1 * bar_q_q_4;  // shared by several equations
-    const double cse48 = bar_q_q_2 * bar_q_q_4;  // shared by several equations
-    const double cse49 = bar_q_q_1 * bar_q_q_3;  // shared by several equations
+    const double cse40 = bar_q_q_1 * bar_q_q_1;
+    const double cse41 = bar_q_q_2 * bar_q_q_2;
+    const double cse42 = cse40 + cse41;
+    const double cse43 = bar_q_q_3 * bar_q_q_3;
+    const double cse44 = bar_q_q_4 * bar_q_q_4;
+    const double cse45 = cse42 + cse43 + cse44;
+    const double cse46 = bar_q_q_2 * bar_q_q_3;
+    const double cse47 = bar_q_q_1 * bar_q_q_4;
+    const double cse48 = bar_q_q_2 * bar_q_q_4;
+    const double cse49 = bar_q_q_1 * bar_q_q_3;
     const double bar_sv_f2_1 = (cse42 - cse43 - cse44) / cse45 * bar_M_f_1 + 2.0 * (cse46 - cse47) / cse45 * bar_M_f_2 + 2.0 * (cse48 + cse49) / cse45 * bar_M_f_3;
-    // beam_mean_axes.mbg:5:6  MTF bar.sv: f2 = T f1
-    const double cse50 = bar_q_q_3 * bar_q_q_4;  // shared by several equations
-    const double cse51 = bar_q_q_1 * bar_q_q_2;  // shared by several equations
+    const double cse50 = bar_q_q_3 * bar_q_q_4;
+    const double cse51 = bar_q_q_1 * bar_q_q_2;
     const double bar_sv_f2_2 = 2.0 * (cse46 + cse47) / cse45 * bar_M_f_1 + (cse40 + cse43 - cse41 - cse44) / cse45 * bar_M_f_2 + 2.0 * (cse50 - cse51) / cse45 * bar_M_f_3;
-    // beam_mean_axes.mbg:5:6  MTF bar.sv: f2 = T f1
     const double bar_sv_f2_3 = 2.0 * (cse48 - cse49) / cse45 * bar_M_f_1 + 2.0 * (cse50 + cse51) / cse45 * bar_M_f_2 + (cse40 + cse44 - cse41 - cse43) / cse45 * bar_M_f_3;
     // beam_mean_axes.mbg:5:6  MTF bar.qrate: f2 = T f1
-    const double cse52 = 0.5 * bar_q_q_2;  // shared by several equations
-    const double cse53 = 0.5 * bar_q_q_3;  // shared by several equations
-    const double cse54 = 0.5 * bar_q_q_4;  // shared by several equations
+    const double cse52 = 0.5 * bar_q_q_2;
+    const double cse53 = 0.5 * bar_q_q_3;
+    const double cse54 = 0.5 * bar_q_q_4;
     const double bar_q_f2_1 = -cse52 * bar_M_f_4 - cse53 * bar_M_f_5 - cse54 * bar_M_f_6;
-    // beam_mean_axes.mbg:5:6  MTF bar.qrate: f2 = T f1
-    const double cse55 = 0.5 * bar_q_q_1;  // shared by several equations
+    const double cse55 = 0.5 * bar_q_q_1;
     const double bar_q_f2_2 = cse55 * bar_M_f_4 - cse54 * bar_M_f_5 + cse53 * bar_M_f_6;
-    // beam_mean_axes.mbg:5:6  MTF bar.qrate: f2 = T f1
     const double bar_q_f2_3 = cse54 * bar_M_f_4 + cse55 * bar_M_f_5 - cse52 * bar_M_f_6;
-    // beam_mean_axes.mbg:5:6  MTF bar.qrate: f2 = T f1
     const double bar_q_f2_4 = -cse53 * bar_M_f_4 + cse52 * bar_M_f_5 + cse55 * bar_M_f_6;
     // state derivatives
     xdot[0] = bar_M_e_1;
@@ -325,12 +322,13 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_eta_q_2 = x[16];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
-    const double cse56 = 15.253392797429207 * bar_eta_q_1;  // shared by several equations
-    const double cse57 = 13.70347789009205 * bar_eta_q_1;  // shared by several equations
-    const double cse58 = 13.70347789009205 * bar_eta_q_2;  // shared by several equations
-    const double cse59 = 33.578051071136144 * bar_eta_q_2;  // shared by several equations
-    const double cse60 = 0.3082687791334984 - 0.5 * (cse56 * bar_eta_q_1 + cse57 * bar_eta_q_2 + cse58 * bar_eta_q_1 + cse59 * bar_eta_q_2);  // shared by several equations
-    const double cse61 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse56 = 15.253392797429207 * bar_eta_q_1;
+    const double cse57 = 13.70347789009205 * bar_eta_q_1;
+    const double cse58 = 13.70347789009205 * bar_eta_q_2;
+    const double cse59 = 33.578051071136144 * bar_eta_q_2;
+    const double cse60 = 0.3082687791334984 - 0.5 * (cse56 * bar_eta_q_1 + cse57 * bar_eta_q_2 + cse58 * bar_eta_q_1 + cse59 * bar_eta_q_2);
+    const double cse61 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
     double blk1_a[4] = {
         -0.6165375582669969, cse60,
         cse60, -(0.20551637278207147 - cse61),
@@ -341,8 +339,8 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse62 = -cse60;  // shared by several equations
-    const double cse63 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;  // shared by several equations
+    const double cse62 = -cse60;
+    const double cse63 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
     double blk2_a[4] = {
         -0.6165375582669969, cse62,
         cse62, -(0.20551637278207147 + (cse63 - cse61)),
@@ -355,8 +353,8 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse63);
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse64 = cse56 + cse58;  // shared by several equations
-    const double cse65 = cse57 + cse59;  // shared by several equations
+    const double cse64 = cse56 + cse58;
+    const double cse65 = cse57 + cse59;
     double blk3_a[9] = {
         -0.6165375582669969, cse64, cse65,
         cse64, -0.6165375582669969, 1.1978648372848393e-16,
@@ -369,7 +367,6 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_8 = blk3_x[2];
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
-    // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
     // outputs, in declaration order
     out[0] = 1.9999999999999991 * bar_eta_q_1 - 2.000000000000001 * bar_eta_q_2;

@@ -81,9 +81,10 @@ class dc_motor_model final : public mbgrt::Model {
     J = param(4, 0.57207);  // dc_motor.mbg:10:7
     D = param(5, 0.226);  // dc_motor.mbg:11:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
-    const double cse1 = 1.0 / L_a;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = 1.0 / L_a;
     derived1_ = -R_a * cse1;
-    const double cse2 = 1.0 / J;  // shared by several equations
+    const double cse2 = 1.0 / J;
     derived2_ = -K_m * cse2;
     derived3_ = K_m * cse1;
     derived4_ = -D * cse2;

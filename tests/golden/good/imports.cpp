@@ -75,7 +75,8 @@ class imports_model final : public mbgrt::Model {
     sd_c = param(2, 2.0);  // lib/spring_damper.mbg:2:54
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / sd_k;
-    const double cse1 = 1.0 / m;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = 1.0 / m;
     derived2_ = -sd_c * cse1;
     derived3_ = -1.0 / derived1_;
     derived4_ = cse1;

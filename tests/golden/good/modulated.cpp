@@ -87,7 +87,8 @@ class modulated_model final : public mbgrt::Model {
     // modulated.mbg:8:8  signal theta
     const double theta = 0.5 * t;
     // modulated.mbg:9:5  MTF arm: f2 = T f1
-    const double cse1 = std::cos(theta);  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = std::cos(theta);
     const double arm_f2 = cse1 * m_f;
     // modulated.mbg:12:3  C c: e = law(q)
     const double c_e = 100.0 * c_q + 10.0 * (c_q*c_q*c_q);
@@ -118,7 +119,8 @@ class modulated_model final : public mbgrt::Model {
     const double theta = 0.5 * t;
     // nonzero entries
     jac_out[0] = -0.5 * (0.1 * std::fabs(m_f) + 0.1 * m_f * ((m_f) > 0.0 ? 1.0 : ((m_f) < 0.0 ? -1.0 : 0.0)));
-    const double cse2 = std::cos(theta);  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse2 = std::cos(theta);
     jac_out[1] = -cse2 * (100.0 + 30.0 * (c_q*c_q));
     jac_out[2] = 0.5 * cse2;
   }

@@ -72,7 +72,8 @@ class multibond_model final : public mbgrt::Model {
     k = param(1, 10.0);  // multibond.mbg:5:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / k;
-    const double cse1 = 1.0 / m;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = 1.0 / m;
     derived2_ = -0.5 * cse1;
     derived3_ = -0.1 * cse1;
     derived4_ = -1.0 / derived1_;
@@ -97,19 +98,15 @@ class multibond_model final : public mbgrt::Model {
     const double gravity_e_2 = -9.81 * m;
     // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_1 = mass_p_1 / m;
-    // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_2 = mass_p_2 / m;
     // multibond.mbg:8:3  C spring: q = C e
     const double spring_e_1 = spring_q_1 / derived1_;
-    // multibond.mbg:8:3  C spring: q = C e
     const double spring_e_2 = spring_q_2 / derived1_;
     // multibond.mbg:9:3  R damper: e = R f
     const double damper_e_1 = 0.5 * mass_f_1 + 0.1 * mass_f_2;
-    // multibond.mbg:9:3  R damper: e = R f
     const double damper_e_2 = 0.1 * mass_f_1 + 0.5 * mass_f_2;
     // multibond.mbg:10:3  1 v: efforts in = efforts out
     const double mass_e_1 = -(spring_e_1 + damper_e_1);
-    // multibond.mbg:10:3  1 v: efforts in = efforts out
     const double mass_e_2 = gravity_e_2 - (spring_e_2 + damper_e_2);
     // state derivatives
     xdot[0] = mass_e_1;
@@ -149,7 +146,6 @@ class multibond_model final : public mbgrt::Model {
     const double spring_q_1 = x[2];
     // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_1 = mass_p_1 / m;
-    // multibond.mbg:7:3  I mass: p = I f
     const double mass_f_2 = mass_p_2 / m;
     // multibond.mbg:8:3  C spring: q = C e
     const double spring_e_1 = spring_q_1 / derived1_;

@@ -99,10 +99,11 @@ class pendulum_mtf_model final : public mbgrt::Model {
     const double gravity_e_2 = -m * g;
     // pendulum_mtf.mbg:23:5  algebraic loop (11 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (arm.e1, bob.e[1], bob.e[2], hub.e, arm.e2[1], arm.e2[2], der(hub.f), der(arm.f2[1]), der(bob.p[1]), der(arm.f2[2]), der(bob.p[2]))
-    const double cse1 = L * std::cos(angle_q);  // shared by several equations
-    const double cse2 = -cse1;  // shared by several equations
-    const double cse3 = L * std::sin(angle_q);  // shared by several equations
-    const double cse4 = -cse3;  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = L * std::cos(angle_q);
+    const double cse2 = -cse1;
+    const double cse3 = L * std::sin(angle_q);
+    const double cse4 = -cse3;
     double blk1_a[121] = {
         1.0, 0.0, 0.0, 0.0, cse2, cse4, 0.0, 0.0, 0.0, 0.0, 0.0,
         0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0,
@@ -135,7 +136,8 @@ class pendulum_mtf_model final : public mbgrt::Model {
     // pendulum_mtf.mbg:21:3  I hub: p = I f
     const double hub_f = hub_p / J_hub;
     // pendulum_mtf.mbg:30:8  signal energy
-    const double cse5 = std::cos(angle_q);  // shared by several equations
+    // (cseN: a subexpression several equations below share)
+    const double cse5 = std::cos(angle_q);
     const double energy = derived1_ * (hub_f*hub_f) - m * g * L * cse5;
     // outputs, in declaration order
     out[0] = angle_q;
