@@ -72,6 +72,8 @@ void Expander::define_quantities() {
     // reaction on the second body (on the first, negated, if the second is ground)
     std::string side = Bf.ground ? "ca" : "cb";
     E force = Bf.ground ? B.name(jn + "." + side + "t.e1") : B.neg(B.name(jn + "." + side + "t.e1"));
+    // (a cut joint on a body moved by joint coordinates: that junction is in the body's axes)
+    if (body_frame_velocity(bodies_.at(body_side.body))) force = B.op('*', body_side.R, force);
     if (body_side.particle) {
       quantity_[jn + ".force"] = force;
     } else {
