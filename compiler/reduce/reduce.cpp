@@ -597,6 +597,7 @@ class Reducer {
       const Equation& eq = eqs_[static_cast<std::size_t>(tear_eqs[k])];
       torn.tear_residuals.push_back(sub(eq.lhs, eq.rhs));
       torn.source[tears[k]] = {eq.loc, eq.origin};
+      if (eq.in_loop) torn.multipliers.push_back(tears[k]);
     }
     for (int u : order) {
       const Equation& eq = eqs_[static_cast<std::size_t>(eq_of_unknown.at(u))];
@@ -608,15 +609,22 @@ class Reducer {
       out_.log.push_back(fmt::format("algebraic loop of {} unknowns not eliminated along the tree: {}", block.size(), why));
       return false;
     }
-    for (Assignment& a : done->assignments) out_.assignments.push_back(std::move(a));
+    const int block_index = static_cast<int>(out_.linear_blocks.size());
+    if (done->multipliers) out_.linear_blocks.push_back(std::move(*done->multipliers));
+    for (Assignment& a : done->assignments) {
+      if (a.block >= 0) a.block = block_index;  // the cut joints' multipliers
+      out_.assignments.push_back(std::move(a));
+    }
+    const std::size_t m = torn.multipliers.size();
     AlgebraicLoop loop;
     loop.vars = tears;
     loop.bonds = loop_bonds(block);
     loop.linear = true;
     loop.resolution = fmt::format(
         "linear: eliminated along the kinematic tree, leaves first ({} bodies, {} joint accelerations; articulated-body "
-        "form, {} temporaries): work linear in the bodies, no mass matrix",
-        done->bodies, tears.size(), done->temporaries);
+        "form, {} temporaries): work linear in the bodies, no mass matrix{}",
+        done->bodies, tears.size() - m, done->temporaries,
+        m ? fmt::format("; {} cut-joint multiplier{} from a {}x{} system", m, m == 1 ? "" : "s", m, m) : std::string());
     out_.loops.push_back(loop);
     tree_eliminated_ = true;
     return true;

@@ -47,10 +47,13 @@ class Eliminator {
     std::stable_sort(bodies.begin(), bodies.end(), [&](int a, int b) { return depth_[a] > depth_[b]; });
     for (int n : bodies)
       if (!inward(n, why)) return std::nullopt;
+    TreeElimination out;
+    if (!multipliers_.empty() && !multiplier_system(out, why)) return std::nullopt;
     std::reverse(bodies.begin(), bodies.end());
     std::stable_sort(bodies.begin(), bodies.end(), [&](int a, int b) { return depth_[a] < depth_[b]; });
     for (int n : bodies) outward(n);
-    TreeElimination out;
+    for (int u : loop_.order)  // what only the cut joints' rows read, last
+      if (global_.count(u)) outward_.push_back({u, loop_.solution.at(u), loop_.source.at(u).first, loop_.source.at(u).second, -1});
     out.assignments = std::move(inward_);
     for (Assignment& a : outward_) out.assignments.push_back(std::move(a));
     out.bodies = static_cast<int>(in_loop_.size());
@@ -81,7 +84,24 @@ class Eliminator {
     std::unordered_map<int, std::vector<int>> readers;
     for (int u : all)
       for (int w : refs_[u]) readers[w].push_back(u);
+    // The cut joints' multipliers, and what only their rows read (directly or
+    // through each other: the rows' rates and their derivatives), belong to
+    // no body: they are solved for after the inward pass.
+    multipliers_.insert(loop_.multipliers.begin(), loop_.multipliers.end());
+    global_ = multipliers_;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int u : loop_.order) {
+        if (global_.count(u) || readers[u].empty()) continue;
+        if (std::all_of(readers[u].begin(), readers[u].end(), [&](int r) { return global_.count(r) > 0; }))
+          global_.insert(u), grew = true;
+      }
+    }
     for (int u : all) {
+      if (global_.count(u)) {
+        body_[u] = kGlobal;
+        continue;
+      }
       auto it = tree_.body_of.find(u);
       body_[u] = it == tree_.body_of.end() ? -1 : it->second;
       if (body_[u] >= 0) depth(body_[u]);
@@ -89,7 +109,7 @@ class Eliminator {
     for (bool changed = true; changed;) {
       changed = false;
       for (int u : all) {
-        if (body_[u] >= 0) continue;
+        if (body_[u] >= 0 || body_[u] == kGlobal) continue;
         int best = -1;
         auto consider = [&](int w) {
           int b = body_[w];
@@ -101,6 +121,7 @@ class Eliminator {
       }
     }
     for (int u : all) {
+      if (body_[u] == kGlobal) continue;
       if (body_[u] < 0) {
         *why = fmt::format("`{}` belongs to no body of the tree", graph_.vars[static_cast<std::size_t>(u)].name);
         return false;
@@ -126,9 +147,15 @@ class Eliminator {
   bool check_structure(std::string* why) {
     for (int u : all_) {  // in the loop's order: the first offence reported is always the same
       const int n = body_.at(u);
+      if (n == kGlobal) continue;  // a cut joint's row reads bodies anywhere
       for (int w : refs_.at(u)) {
         const int m = body_.at(w);
-        if (m == n) continue;
+        if (m == n || multipliers_.count(w)) continue;
+        if (m == kGlobal) {
+          *why = fmt::format("`{}` (body {}) reads `{}`, which only the cut joints' rows should read",
+                             graph_.vars[static_cast<std::size_t>(u)].name, body_name(n), graph_.vars[static_cast<std::size_t>(w)].name);
+          return false;
+        }
         if (m == parent(n)) x_[n].insert(w);
         else if (parent(m) == n) outputs_[m].insert(w), reads_child_.insert(u);
         else {
@@ -157,6 +184,7 @@ class Eliminator {
     if (w == "factor") return "elimination factor";
     if (w == "row") return "reduced row of the joint's equations";
     if (w == "accel") return "joint acceleration as an affine function of the parent's motion";
+    if (w == "column") return "the cut joints' columns: an unknown their rows read, affine in their multipliers";
     return "what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)";
   }
   void name_all(Form& f, int n, const char* what) {
@@ -225,7 +253,7 @@ class Eliminator {
       for (int w : refs_.at(u)) {
         const int m = body_.at(w);
         if (m == n && loop_.solution.count(w)) visit(w);
-        else if (m != n && parent(m) == n)
+        else if (m >= 0 && m != n && parent(m) == n)
           for (int x : x_[m])
             if (loop_.solution.count(x)) visit(x);
       }
@@ -248,6 +276,7 @@ class Eliminator {
     basis_.clear();
     basis_.insert(tears.begin(), tears.end());
     basis_.insert(x_[n].begin(), x_[n].end());
+    basis_.insert(multipliers_.begin(), multipliers_.end());
     auto fail = [&](int u) {
       if (missing_ >= 0)
         *why = fmt::format("`{}` (body {}) reads `{}` before it is known", graph_.vars[static_cast<std::size_t>(u)].name,
@@ -332,6 +361,71 @@ class Eliminator {
     return true;
   }
 
+  /// Unknown u affine in the multipliers alone (its body's X and tears
+  /// replaced by theirs, up to the root), coefficients named.
+  const Form& lambda_form(int u) {
+    if (auto it = lambda_form_.find(u); it != lambda_form_.end()) return it->second;
+    Form out;
+    auto substitute = [&](const Form& f) {
+      out.rest = f.rest;
+      for (const auto& [w, c] : f.coef) {
+        if (multipliers_.count(w)) out.add_term(w, c);
+        else out.add_scaled(lambda_form(w), c);
+      }
+    };
+    const int n = body_.at(u);
+    if (multipliers_.count(u)) {
+      out.add_term(u, constant(1));
+    } else if (n == kGlobal || (!t_form_.count(u) && !form_.count(u))) {
+      // read by the cut joints' rows only: its own equation, over the loop's unknowns
+      const std::vector<int>& refs = refs_.at(u);
+      std::vector<Expr> c;
+      Expr rest;
+      affine_in(loop_.solution.at(u), refs, c, rest);  // (affine: the loop was torn linearly)
+      out.rest = rest;
+      for (std::size_t k = 0; k < refs.size(); ++k)
+        if (!is_zero(c[k])) out.add_scaled(lambda_form(refs[k]), c[k]);
+    } else {
+      substitute(t_form_.count(u) ? t_form_.at(u) : form_.at(u));
+    }
+    if (n >= 0) name_all(out, n, "column");
+    return lambda_form_.emplace(u, std::move(out)).first->second;
+  }
+
+  /// The cut joints' rows, affine in the multipliers: A lambda + b = 0.
+  bool multiplier_system(TreeElimination& out, std::string* why) {
+    LinearBlock lb;
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
+      const int t = loop_.tears[k];
+      if (!multipliers_.count(t)) continue;
+      lb.unknowns.push_back(t);
+    }
+    for (int t : lb.unknowns) {
+      const std::size_t k = static_cast<std::size_t>(std::find(loop_.tears.begin(), loop_.tears.end(), t) - loop_.tears.begin());
+      const std::vector<int>& refs = refs_.at(t);
+      std::vector<Expr> c;
+      Expr rest;
+      if (!affine_in(loop_.tear_residuals[k], refs, c, rest)) {
+        *why = fmt::format("the row of `{}` is not affine in the loop's unknowns", graph_.vars[static_cast<std::size_t>(t)].name);
+        return false;
+      }
+      Form row;
+      row.rest = rest;
+      for (std::size_t r = 0; r < refs.size(); ++r)
+        if (!is_zero(c[r])) row.add_scaled(lambda_form(refs[r]), c[r]);
+      for (int l : lb.unknowns) lb.a.push_back(row.coef.count(l) ? row.coef.at(l) : constant(0));
+      lb.b.push_back(neg(row.rest));
+    }
+    for (int t : lb.unknowns)
+      inward_.push_back({t, nullptr, loop_.source.at(t).first,
+                         fmt::format("cut joints: {} multiplier{} from their rows at acceleration level, an {}x{} system "
+                                     "solved at run time",
+                                     lb.unknowns.size(), lb.unknowns.size() == 1 ? "" : "s", lb.unknowns.size(), lb.unknowns.size()),
+                         0});
+    out.multipliers = std::move(lb);
+    return true;
+  }
+
   void outward(int n) {
     for (int t : loop_.tears) {
       if (body_.at(t) != n) continue;
@@ -369,6 +463,9 @@ class Eliminator {
   std::vector<Assignment> inward_, outward_;
   int temporaries_ = 0;
   int missing_ = -1;  // an unknown read before its form was known (for the diagnosis)
+  static constexpr int kGlobal = -2;                // body_ of the multipliers and what only their rows read
+  std::unordered_set<int> multipliers_, global_;    // the cut joints' multipliers; they and what only their rows read
+  std::unordered_map<int, Form> lambda_form_;       // unknown -> affine in the multipliers alone
 };
 
 }  // namespace

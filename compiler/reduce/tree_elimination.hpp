@@ -20,6 +20,13 @@
 // For rigid bodies this is Featherstone's articulated-body algorithm; the
 // same elimination takes flexible bodies' modal accelerations (more tears per
 // body) and any bond-graph element whose unknowns join a body's block.
+//
+// Cut joints (loops on the tree): their multipliers Lambda are carried through
+// the inward pass as more columns of every affine form (like X_n); after it,
+// the unknowns their acceleration-level rows read are written affine in
+// Lambda alone (one outward pass per column, along the paths to the root
+// only), the m x m system for Lambda is solved at run time, and the outward
+// pass follows as before.
 #pragma once
 
 #include <optional>
@@ -39,6 +46,9 @@ struct TornLoop {
   std::vector<int> order;                  // the other unknowns, each computable from the tears and earlier ones
   std::unordered_map<int, ir::Expr> solution;  // their explicit solutions
   std::unordered_map<int, std::pair<ir::SourceLoc, std::string>> source;  // per unknown: model line and origin
+  // Tears that are cut joints' multipliers (their residuals, g'' = ..., read
+  // bodies anywhere in the tree), not accelerations of a body.
+  std::vector<int> multipliers;
 };
 
 /// The bodies of the tree and which body each variable belongs to.
@@ -49,7 +59,12 @@ struct TreeLayout {
 };
 
 struct TreeElimination {
-  std::vector<ir::Assignment> assignments;  // in evaluation order: inward temporaries, then every unknown
+  // In evaluation order: the inward temporaries; with cut joints, the
+  // multipliers' columns (each unknown their equations read, affine in the
+  // multipliers) and the multipliers themselves (block == 0: the system
+  // `multipliers` below); then every other unknown.
+  std::vector<ir::Assignment> assignments;
+  std::optional<ir::LinearBlock> multipliers;  // the m x m system for the cut joints' multipliers, solved at run time
   int bodies = 0;                           // bodies of the tree in the loop
   int temporaries = 0;
 };

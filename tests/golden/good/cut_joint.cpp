@@ -153,6 +153,9 @@ class cut_joint_model final : public mbgrt::Model {
     j3_scale = param(38, std::fmin(cse2, cse3));  // cut_joint.mbg:16:7
     j3_stabilisation = param(39, 20.0);  // cut_joint.mbg:16:7
     j4_scale = param(40, cse3);  // cut_joint.mbg:17:7
+    // DERIVED CONSTANTS: parameter expressions, computed once per run
+    derived1_ = 1.0 / (coupler_inertia_3_3 + 0.25);
+    derived2_ = 1.0 / (rocker_inertia_3_3 + 0.010000000000000002);
     // INITIAL STATE
     x[0] = 0.0;  // j1.theta_rate.rate (cut_joint.mbg:14:7)
     x[1] = 1.2;  // j1.theta.q (cut_joint.mbg:14:7)
@@ -299,36 +302,95 @@ class cut_joint_model final : public mbgrt::Model {
     const double coupler_weight_e_1 = -9.81 * coupler_pose_R21;
     // cut_joint.mbg:12:6  R coupler.ejs_v: e = law(f)
     const double coupler_ejs_v_e_1 = -j2_reaction_t_f_3 * j2_reaction_f_f_2;
-    // cut_joint.mbg:14:7  algebraic loop (55 unknowns) torn at 5 state derivatives: dense 5x5 system solved at run time
-    // A x = b for x = (der(j1.theta_rate.rate), der(j2.theta_rate.rate), j3.cn.e[1], j3.cn.e[2], der(j4.theta_rate.rate))
-    const double cse21 = cse6 + cse6;
-    const double cse22 = cse7 + cse7 + 0.5;
-    const double cse23 = coupler_inertia_3_3 + 0.5 * cse22;
-    const double cse24 = 0.05 * cse5;
-    const double cse25 = coupler_inertia_3_3 + 0.25;
-    const double cse26 = -cse10 - cse10;
-    const double cse27 = -cse18 - cse18;
-    const double cse28 = cse12 + cse12;
-    const double cse29 = cse19 + cse19;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: 1 / pivot of the joint's accelerations
+    const double cse21 = coupler_inertia_3_3 + 0.25;
+    const double coupler_pivot1 = derived1_;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: joint acceleration as an affine function of the parent's motion
+    const double cse22 = -cse10 - cse10;
+    const double coupler_accel2 = -coupler_pivot1 * cse22;
+    const double cse23 = -cse18 - cse18;
+    const double coupler_accel3 = -coupler_pivot1 * cse23;
+    const double cse24 = cse7 + 0.5;
+    const double cse25 = coupler_inertia_3_3 + 0.5 * cse24;
+    const double coupler_accel4 = -coupler_pivot1 * cse25;
+    const double cse26 = 0.5 * cse5;
+    const double coupler_accel5 = -coupler_pivot1 * cse26;
+    const double cse27 = -j2_m3_f2_1 * j2_theta_rate_rate - j2_m4_f2_1 * j2_theta_rate_rate;
+    const double cse28 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) + cse27;
+    const double cse29 = 0.5 * cse28;
+    const double coupler_accel6 = -coupler_pivot1 * cse29;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
+    const double coupler_out7 = -cse4 * coupler_pose_R11 - cse5 * coupler_pose_R12 + cse26 * coupler_accel2;
+    const double coupler_out8 = -cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22 + cse26 * coupler_accel3;
+    const double coupler_out9 = cse4 * cse6 + cse5 * cse24 + cse26 * coupler_accel4;
+    const double coupler_out10 = cse26 * coupler_accel5 + (cse4 * cse4 + cse5 * cse5);
     const double cse30 = j2_m3_f2_2 * j2_theta_rate_rate + j2_m4_f2_2 * j2_theta_rate_rate;
     const double cse31 = -(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse30;
-    const double cse32 = -j2_m3_f2_1 * j2_theta_rate_rate - j2_m4_f2_1 * j2_theta_rate_rate;
-    const double cse33 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) + cse32;
-    const double cse34 = 0.5 * cse33;
-    const double cse35 = 2.0 * j3_stabilisation;
-    const double cse36 = j3_stabilisation * j3_stabilisation;
-    double blk1_a[25] = {
-        crank_inertia_3_3 + 0.1 * (0.1 + (cse4 * cse21 + cse5 * cse22)) + cse23 + (cse6 * cse21 + cse7 * cse22), cse24 + cse25 + cse24, 0.1 * (-cse4 * coupler_pose_R11 - cse5 * coupler_pose_R12) + cse26 + (-cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12), 0.1 * (-cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22) + cse27 + (-cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22), 0.0,
-        cse23, cse25, cse26, cse27, 0.0,
-        -coupler_pose_R11 * cse21 - coupler_pose_R12 * cse22 - cse10, cse26, 0.0, 0.0, cse28,
-        -coupler_pose_R22 * cse22 - coupler_pose_R21 * cse21 - cse18, cse27, 0.0, 0.0, cse29,
-        0.0, 0.0, cse28, cse29, rocker_inertia_3_3 + 0.010000000000000002,
+    const double coupler_out11 = cse4 * cse31 + cse5 * cse28 + cse26 * coupler_accel6;
+    const double cse32 = 0.05 * cse5;
+    const double coupler_out12 = -cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12 + cse32 * coupler_accel2;
+    const double coupler_out13 = -cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22 + cse32 * coupler_accel3;
+    const double coupler_out14 = cse6 * cse6 + cse7 * cse24 + cse32 * coupler_accel4;
+    const double coupler_out15 = cse32 * coupler_accel5 + (cse6 * cse4 + cse7 * cse5);
+    const double coupler_out16 = cse6 * cse31 + cse7 * cse28 + cse32 * coupler_accel6;
+    const double coupler_out17 = cse22 + cse21 * coupler_accel2;
+    const double coupler_out18 = cse23 + cse21 * coupler_accel3;
+    const double coupler_out19 = cse25 + cse21 * coupler_accel4;
+    const double coupler_out20 = cse21 * coupler_accel5 + cse26;
+    const double coupler_out21 = cse29 + cse21 * coupler_accel6;
+    // cut_joint.mbg:14:7  articulated-body elimination, body crank: 1 / pivot of the joint's accelerations
+    const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + 0.1 * coupler_out10) + coupler_out14 + 0.1 * coupler_out15 + coupler_out19 + 0.1 * coupler_out20);
+    // cut_joint.mbg:14:7  articulated-body elimination, body crank: joint acceleration as an affine function of the parent's motion
+    const double crank_accel2 = -crank_pivot1 * (0.1 * coupler_out7 + coupler_out12 + coupler_out17);
+    const double crank_accel3 = -crank_pivot1 * (0.1 * coupler_out8 + coupler_out13 + coupler_out18);
+    const double crank_accel4 = -crank_pivot1 * (0.1 * (-crank_weight_e_2 + coupler_out11) + coupler_out16 + coupler_out21);
+    // cut_joint.mbg:17:7  articulated-body elimination, body rocker: 1 / pivot of the joint's accelerations
+    const double rocker_pivot1 = derived2_;
+    // cut_joint.mbg:17:7  articulated-body elimination, body rocker: joint acceleration as an affine function of the parent's motion
+    const double rocker_accel2 = -rocker_pivot1 * (cse12 + cse12);
+    const double rocker_accel3 = -rocker_pivot1 * (cse19 + cse19);
+    const double rocker_accel4 = rocker_pivot1 * (0.1 * rocker_weight_e_2);
+    // cut_joint.mbg:14:7  articulated-body elimination, body crank: the cut joints' columns: an unknown their rows read, affine in their multipliers
+    const double crank_column5 = 0.1 * crank_accel2;
+    const double crank_column6 = 0.1 * crank_accel3;
+    const double crank_column7 = 0.1 * crank_accel4;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: the cut joints' columns: an unknown their rows read, affine in their multipliers
+    const double coupler_column22 = cse6 * crank_accel2 + cse4 * crank_column5;
+    const double coupler_column23 = cse6 * crank_accel3 + cse4 * crank_column6;
+    const double coupler_column24 = cse30 + cse6 * crank_accel4 + cse4 * crank_column7;
+    const double coupler_column25 = coupler_accel2 + coupler_accel4 * crank_accel2 + coupler_accel5 * crank_column5;
+    const double coupler_column26 = coupler_accel3 + coupler_accel4 * crank_accel3 + coupler_accel5 * crank_column6;
+    const double coupler_column27 = coupler_accel6 + coupler_accel4 * crank_accel4 + coupler_accel5 * crank_column7;
+    const double coupler_column28 = cse24 * crank_accel2 + 0.5 * coupler_column25 + cse5 * crank_column5;
+    const double coupler_column29 = cse24 * crank_accel3 + 0.5 * coupler_column26 + cse5 * crank_column6;
+    const double coupler_column30 = cse27 + cse24 * crank_accel4 + 0.5 * coupler_column27 + cse5 * crank_column7;
+    const double coupler_column31 = crank_accel2 + coupler_column25;
+    const double coupler_column32 = crank_accel3 + coupler_column26;
+    const double coupler_column33 = crank_accel4 + coupler_column27;
+    // cut_joint.mbg:17:7  articulated-body elimination, body rocker: the cut joints' columns: an unknown their rows read, affine in their multipliers
+    const double rocker_column5 = 0.1 * rocker_accel2;
+    const double rocker_column6 = 0.1 * rocker_accel3;
+    const double rocker_column7 = 0.1 * rocker_accel4;
+    // cut_joint.mbg:16:7  cut joints: 2 multipliers from their rows at acceleration level, an 2x2 system solved at run time
+    // A x = b for x = (j3.cn.e[1], j3.cn.e[2])
+    const double cse33 = 2.0 * j3_stabilisation;
+    const double cse34 = j3_stabilisation * j3_stabilisation;
+    double blk1_a[4] = {
+        -coupler_pose_R11 * coupler_column22 - coupler_pose_R12 * coupler_column28 - cse10 * coupler_column31 + rocker_pose_R12 * rocker_column5 + cse12 * rocker_accel2, -coupler_pose_R11 * coupler_column23 - coupler_pose_R12 * coupler_column29 - cse10 * coupler_column32 + rocker_pose_R12 * rocker_column6 + cse12 * rocker_accel3,
+        -coupler_pose_R21 * coupler_column22 - coupler_pose_R22 * coupler_column28 - cse18 * coupler_column31 + rocker_pose_R22 * rocker_column5 + cse19 * rocker_accel2, -coupler_pose_R21 * coupler_column23 - coupler_pose_R22 * coupler_column29 - cse18 * coupler_column32 + rocker_pose_R22 * rocker_column6 + cse19 * rocker_accel3,
     };
-    double blk1_x[5] = {-(0.1 * (-crank_weight_e_2 + (cse4 * cse31 + cse5 * cse33)) + cse34 + (cse6 * cse31 + cse7 * cse33)), -cse34, -(cse35 * j3_cn_f_1 + cse36 * (rocker_pose_r1 + cse14 - (coupler_pose_r1 + cse13)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * cse30 - coupler_pose_R12 * cse32 - j2_m5_f2_2 * der_coupler_pose_R12 + j4_m2_f2_2 * der_rocker_pose_R12 + j4_m2_f2_2 * der_rocker_pose_R12)), -(cse35 * j3_cn_f_2 + cse36 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse20)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R22 * cse32 - coupler_pose_R21 * cse30 - j2_m5_f2_2 * der_coupler_pose_R22 + j4_m2_f2_2 * der_rocker_pose_R22 + j4_m2_f2_2 * der_rocker_pose_R22)), 0.1 * rocker_weight_e_2};
-    mbgrt::solve_linear(5, blk1_a, blk1_x);
-    const double der_j1_theta_rate_rate = blk1_x[0];
-    const double der_j2_theta_rate_rate = blk1_x[1];
-    const double der_j4_theta_rate_rate = blk1_x[4];
+    double blk1_x[2] = {-(cse33 * j3_cn_f_1 + cse34 * (rocker_pose_r1 + cse14 - (coupler_pose_r1 + cse13)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column24 - coupler_pose_R12 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse10 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse12 * rocker_accel4))), -(cse33 * j3_cn_f_2 + cse34 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse20)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column24 - coupler_pose_R22 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse18 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse19 * rocker_accel4)))};
+    mbgrt::solve_linear(2, blk1_a, blk1_x);
+    const double j3_cn_e_1 = blk1_x[0];
+    const double j3_cn_e_2 = blk1_x[1];
+    // cut_joint.mbg:17:7  joint acceleration of body rocker from its parent's motion (articulated-body form)
+    const double der_j4_theta_rate_rate = rocker_accel4 + rocker_accel2 * j3_cn_e_1 + rocker_accel3 * j3_cn_e_2;
+    // cut_joint.mbg:14:7  joint acceleration of body crank from its parent's motion (articulated-body form)
+    const double der_j1_theta_rate_rate = crank_accel4 + crank_accel2 * j3_cn_e_1 + crank_accel3 * j3_cn_e_2;
+    // cut_joint.mbg:14:7  d/dt of [MTF j1.m2: f2 = T f1]
+    const double der_j1_m2_f2_2 = 0.1 * der_j1_theta_rate_rate;
+    // cut_joint.mbg:15:7  joint acceleration of body coupler from its parent's motion (articulated-body form)
+    const double der_j2_theta_rate_rate = coupler_accel6 + coupler_accel2 * j3_cn_e_1 + coupler_accel3 * j3_cn_e_2 + coupler_accel4 * der_j1_theta_rate_rate + coupler_accel5 * der_j1_m2_f2_2;
     // state derivatives
     xdot[0] = der_j1_theta_rate_rate;
     xdot[1] = j1_theta_rate_rate;
@@ -357,26 +419,26 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
     // (cseN: a subexpression several equations below share)
-    const double cse37 = std::cos(j2_theta_q);
-    const double cse38 = std::sin(j2_theta_q);
-    const double coupler_pose_R11 = crank_pose_R11 * cse37 + crank_pose_R12 * cse38;
+    const double cse35 = std::cos(j2_theta_q);
+    const double cse36 = std::sin(j2_theta_q);
+    const double coupler_pose_R11 = crank_pose_R11 * cse35 + crank_pose_R12 * cse36;
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse39 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse39;
+    const double cse37 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse37;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse40 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse40;
+    const double cse38 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse38;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse37 + crank_pose_R22 * cse38;
+    const double coupler_pose_R21 = crank_pose_R21 * cse35 + crank_pose_R22 * cse36;
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse41 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse41;
+    const double cse39 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse39;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
     const double rocker_pose_R21 = std::sin(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r2
@@ -384,9 +446,9 @@ class cut_joint_model final : public mbgrt::Model {
     // outputs, in declaration order
     out[0] = j1_theta_q;
     out[1] = j4_theta_q;
-    const double cse42 = coupler_pose_r1 + cse39 - (rocker_pose_r1 + cse40);
-    const double cse43 = coupler_pose_r2 + cse41 - (rocker_pose_r2 + rocker_pose_r2);
-    out[2] = std::sqrt(cse42 * cse42 + cse43 * cse43);
+    const double cse40 = coupler_pose_r1 + cse37 - (rocker_pose_r1 + cse38);
+    const double cse41 = coupler_pose_r2 + cse39 - (rocker_pose_r2 + rocker_pose_r2);
+    out[2] = std::sqrt(cse40 * cse40 + cse41 * cse41);
   }
 
   std::size_t position_constraint_count() const override {
@@ -426,21 +488,21 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R22 = std::cos(j1_theta_q);
     // cut_joint.mbg:15:7  signal coupler.pose.R22
     // (cseN: a subexpression several equations below share)
-    const double cse44 = std::sin(j2_theta_q);
-    const double cse45 = std::cos(j2_theta_q);
-    const double coupler_pose_R22 = -crank_pose_R21 * cse44 + crank_pose_R22 * cse45;
+    const double cse42 = std::sin(j2_theta_q);
+    const double cse43 = std::cos(j2_theta_q);
+    const double coupler_pose_R22 = -crank_pose_R21 * cse42 + crank_pose_R22 * cse43;
     // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
     const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
     // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_1 = cse44 * j1_m2_f2_2;
+    const double j2_m3_f2_1 = cse42 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_1 = 0.1 * cse44 * j1_theta_rate_rate;
+    const double j2_m4_f2_1 = 0.1 * cse42 * j1_theta_rate_rate;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
     const double j2_reaction_f_f_1 = j2_m3_f2_1 + j2_m4_f2_1;
     // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_2 = cse45 * j1_m2_f2_2;
+    const double j2_m3_f2_2 = cse43 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_2 = 0.1 * cse45 * j1_theta_rate_rate;
+    const double j2_m4_f2_2 = 0.1 * cse43 * j1_theta_rate_rate;
     // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
@@ -450,9 +512,9 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.R12
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
-    const double coupler_pose_R11 = crank_pose_R11 * cse45 + crank_pose_R12 * cse44;
+    const double coupler_pose_R11 = crank_pose_R11 * cse43 + crank_pose_R12 * cse42;
     // cut_joint.mbg:15:7  signal coupler.pose.R12
-    const double coupler_pose_R12 = -crank_pose_R11 * cse44 + crank_pose_R12 * cse45;
+    const double coupler_pose_R12 = -crank_pose_R11 * cse42 + crank_pose_R12 * cse43;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -460,8 +522,8 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
     const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
     // cut_joint.mbg:17:7  signal rocker.pose.R12
-    const double cse46 = std::sin(j4_theta_q);
-    const double rocker_pose_R12 = -cse46;
+    const double cse44 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse44;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
@@ -471,15 +533,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse47 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse47;
+    const double cse45 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse45;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse48 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse48;
+    const double cse46 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse46;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse45 + crank_pose_R22 * cse44;
+    const double coupler_pose_R21 = crank_pose_R21 * cse43 + crank_pose_R22 * cse42;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -495,15 +557,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse49 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse49;
+    const double cse47 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse47;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
-    const double rocker_pose_R21 = cse46;
+    const double rocker_pose_R21 = cse44;
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
     // g, then gdot
-    rows_out[0] = rocker_pose_r1 + cse48 - (coupler_pose_r1 + cse47);
-    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse49);
+    rows_out[0] = rocker_pose_r1 + cse46 - (coupler_pose_r1 + cse45);
+    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse47);
     rows_out[2] = 0.0;
     rows_out[3] = 0.0;
     rows_out[4] = 0.0;
@@ -525,6 +587,9 @@ class cut_joint_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // derived constants (set in initial())
+  double derived1_ = 0.0;  // = 1/(coupler.inertia[3,3] + 0.25)
+  double derived2_ = 0.0;  // = 1/(rocker.inertia[3,3] + 0.010000000000000002)
   // parameters (set in initial())
   double J_1_1 = 0.0;  // cut_joint.mbg:8:7
   double J_1_2 = 0.0;  // cut_joint.mbg:8:7
