@@ -93,9 +93,9 @@ class Reducer {
         // once the geometry is folded) is redundant: its multiplier is 0.
         if (!is_zero(sub(folded.lhs, folded.rhs))) continue;
         constant_of[eq.unknown] = constant(0);
-        out_.log.push_back(fmt::format("redundant constraint row: {} holds identically (its rate is 0 in every "
-                                       "configuration), so its multiplier `{}` is 0",
-                                       eq.origin, v(eq.unknown).name));
+        out_.log.push_back(fmt::format("redundant constraint row: the row of multiplier `{}` ({}) holds identically "
+                                       "(its rate is 0 in every configuration): the multiplier is 0",
+                                       v(eq.unknown).name, eq.origin));
       } else {
         auto sol = solve_single(folded);
         if (!sol || !is_const(*sol)) continue;
@@ -258,7 +258,8 @@ class Reducer {
       eq.lhs = lhs;
       eq.rhs = rhs;
       ++expanded;
-      out_.derivative_causality.push_back(fmt::format("{}: state eliminated, derivative taken symbolically", eq.origin));
+      out_.derivative_causality.push_back(eq.in_loop ? fmt::format("{}: g'' taken symbolically through the tree's rates", eq.origin)
+                                                     : fmt::format("{}: state eliminated, derivative taken symbolically", eq.origin));
     }
     for (Equation& e : added) eqs_.push_back(std::move(e));
     if (expanded)
