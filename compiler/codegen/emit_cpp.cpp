@@ -554,7 +554,7 @@ class Emitter {
     }
     body.push_back(CppStmt::line("};"));
     body.push_back(CppStmt::line(fmt::format("double {}_x[{}] = {{{}}};", id, n, fmt::join(rhs, ", "))));
-    body.push_back(CppStmt::line(fmt::format("mbgrt::solve_linear({}, {}_a, {}_x);", n, id, id)));
+    body.push_back(CppStmt::line(fmt::format("mbgrt::{}({}, {}_a, {}_x);", lb.rank_revealing ? "solve_rank_revealing" : "solve_linear", n, id, id)));
     if (!cost_) throw std::logic_error("mbgc: a linear solve outside a counted method (codegen bug)");
     cost_->solves.push_back(n);
   }

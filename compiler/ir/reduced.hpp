@@ -25,6 +25,9 @@ struct LinearBlock {
   std::vector<int> unknowns;  // x
   std::vector<Expr> a;        // n x n, row-major
   std::vector<Expr> b;        // n
+  // Cut joints' multipliers: their rows may become dependent during a run (a
+  // parallelogram's links aligning): mbgrt::solve_rank_revealing instead.
+  bool rank_revealing = false;
 };
 
 /// An algebraic loop found while sorting, in bond-graph terms.

@@ -422,6 +422,7 @@ class Eliminator {
                                      "solved at run time",
                                      lb.unknowns.size(), lb.unknowns.size() == 1 ? "" : "s", lb.unknowns.size(), lb.unknowns.size()),
                          0});
+    lb.rank_revealing = true;
     out.multipliers = std::move(lb);
     return true;
   }

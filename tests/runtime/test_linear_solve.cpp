@@ -2,6 +2,7 @@
 // whose pivots depend on the state.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mbgrt/linear_solve.hpp>
 #include <random>
@@ -37,4 +38,40 @@ TEST(LinearSolve, SingularSystemGivesNaNForTheGuardToReport) {
   mbgrt::solve_linear(2, a, x);
   EXPECT_TRUE(std::isnan(x[0]));
   EXPECT_TRUE(std::isnan(x[1]));
+}
+
+TEST(RankRevealingSolve, AFullRankSystemIsSolvedAsByPartialPivoting) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int n : {1, 2, 5, 9}) {
+    std::vector<double> a(static_cast<std::size_t>(n * n)), x_true(static_cast<std::size_t>(n)), b(static_cast<std::size_t>(n), 0.0);
+    for (double& v : a) v = u(rng);
+    for (double& v : x_true) v = u(rng);
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) b[static_cast<std::size_t>(r)] += a[static_cast<std::size_t>(r * n + c)] * x_true[static_cast<std::size_t>(c)];
+    EXPECT_EQ(mbgrt::solve_rank_revealing(n, a.data(), b.data()), n);
+    for (int i = 0; i < n; ++i) EXPECT_NEAR(b[static_cast<std::size_t>(i)], x_true[static_cast<std::size_t>(i)], 1e-10) << "n = " << n;
+  }
+}
+
+TEST(RankRevealingSolve, ADependentRowGivesASolutionAndTheRankNotNaN) {
+  // Rows 1 and 3 are the same constraint twice (b consistent): rank 2; the
+  // dependent direction's unknown is 0 and A x = b holds.
+  const double a0[9] = {1.0, 2.0, 0.5, 0.0, 1.0, -1.0, 2.0, 4.0, 1.0};
+  const double b0[3] = {3.0, 1.0, 6.0};
+  double a[9], x[3];
+  std::copy(a0, a0 + 9, a);
+  std::copy(b0, b0 + 3, x);
+  EXPECT_EQ(mbgrt::solve_rank_revealing(3, a, x), 2);
+  for (int r = 0; r < 3; ++r) {
+    double s = 0;
+    for (int c = 0; c < 3; ++c) s += a0[r * 3 + c] * x[c];
+    EXPECT_NEAR(s, b0[r], 1e-12) << "row " << r;
+  }
+  for (double v : x) EXPECT_TRUE(std::isfinite(v));
+  // partial pivoting on the same system gives NaN
+  std::copy(a0, a0 + 9, a);
+  std::copy(b0, b0 + 3, x);
+  mbgrt::solve_linear(3, a, x);
+  EXPECT_TRUE(std::isnan(x[0]));
 }

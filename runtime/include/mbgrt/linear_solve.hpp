@@ -52,4 +52,78 @@ inline void solve_linear(int n, double* a, double* x) {
   }
 }
 
+/// Solve A x = b where A may be rank deficient (the multipliers of cut
+/// joints whose rows become dependent, a parallelogram whose links align):
+/// Gaussian elimination with complete pivoting; once every remaining entry is
+/// below `rel_tol` times the largest entry of A, the remaining unknowns are
+/// set to 0 and the rest back-substituted (a basic solution: for a consistent
+/// system, any solution gives the same motion). `a` (n x n, row-major) is
+/// overwritten, `x` holds b on entry and the solution on return; returns the
+/// rank found. Non-finite entries give NaN, as solve_linear does.
+inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10) {
+  constexpr int kMax = 64;
+  int col[kMax];  // col[k]: the unknown eliminated at step k
+  if (n > kMax) {
+    solve_linear(n, a, x);
+    return n;
+  }
+  double scale = 0.0;
+  for (int i = 0; i < n * n; ++i) scale = std::fmax(scale, std::fabs(a[i]));
+  if (!std::isfinite(scale)) {
+    for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
+    return 0;
+  }
+  for (int k = 0; k < n; ++k) col[k] = k;
+  int rank = n;
+  for (int k = 0; k < n; ++k) {
+    int pr = k, pc = k;
+    double best = -1.0;
+    for (int r = k; r < n; ++r)
+      for (int c = k; c < n; ++c)
+        if (std::fabs(a[r * n + c]) > best) best = std::fabs(a[r * n + c]), pr = r, pc = c;
+    if (!(best > rel_tol * scale)) {
+      rank = k;
+      break;
+    }
+    if (pr != k) {
+      for (int c = 0; c < n; ++c) {
+        double t = a[k * n + c];
+        a[k * n + c] = a[pr * n + c];
+        a[pr * n + c] = t;
+      }
+      double t = x[k];
+      x[k] = x[pr];
+      x[pr] = t;
+    }
+    if (pc != k) {
+      for (int r = 0; r < n; ++r) {
+        double t = a[r * n + k];
+        a[r * n + k] = a[r * n + pc];
+        a[r * n + pc] = t;
+      }
+      int t = col[k];
+      col[k] = col[pc];
+      col[pc] = t;
+    }
+    for (int r = k + 1; r < n; ++r) {
+      double factor = a[r * n + k] / a[k * n + k];
+      if (factor == 0.0) continue;
+      for (int c = k + 1; c < n; ++c) a[r * n + c] -= factor * a[k * n + c];
+      x[r] -= factor * x[k];
+    }
+  }
+  double y[kMax];
+  for (int k = n - 1; k >= 0; --k) {
+    if (k >= rank) {
+      y[k] = 0.0;
+      continue;
+    }
+    double s = x[k];
+    for (int c = k + 1; c < rank; ++c) s -= a[k * n + c] * y[c];
+    y[k] = s / a[k * n + k];
+  }
+  for (int k = 0; k < n; ++k) x[col[k]] = y[k];
+  return rank;
+}
+
 }  // namespace mbgrt
