@@ -9,6 +9,31 @@
 #include <limits>
 
 namespace mbgrt {
+namespace detail {
+
+/// Swap rows i and j of A (n x n, row-major) and of b.
+inline void swap_rows(int n, double* a, double* x, int i, int j) {
+  for (int c = 0; c < n; ++c) {
+    double t = a[i * n + c];
+    a[i * n + c] = a[j * n + c];
+    a[j * n + c] = t;
+  }
+  double t = x[i];
+  x[i] = x[j];
+  x[j] = t;
+}
+
+/// Eliminate column k below the pivot a[k][k] (rows k+1..n-1, and b).
+inline void eliminate_below(int n, double* a, double* x, int k) {
+  for (int r = k + 1; r < n; ++r) {
+    double factor = a[r * n + k] / a[k * n + k];
+    if (factor == 0.0) continue;
+    for (int c = k + 1; c < n; ++c) a[r * n + c] -= factor * a[k * n + c];
+    x[r] -= factor * x[k];
+  }
+}
+
+}  // namespace detail
 
 /// Solve A x = b for x. `a` is n x n row-major and is overwritten; `x` holds
 /// b on entry and the solution on return. A singular A gives NaN in every
@@ -28,22 +53,8 @@ inline void solve_linear(int n, double* a, double* x) {
       for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
       return;
     }
-    if (pivot != k) {
-      for (int c = 0; c < n; ++c) {
-        double tmp = a[k * n + c];
-        a[k * n + c] = a[pivot * n + c];
-        a[pivot * n + c] = tmp;
-      }
-      double tmp = x[k];
-      x[k] = x[pivot];
-      x[pivot] = tmp;
-    }
-    for (int r = k + 1; r < n; ++r) {
-      double factor = a[r * n + k] / a[k * n + k];
-      if (factor == 0.0) continue;
-      for (int c = k + 1; c < n; ++c) a[r * n + c] -= factor * a[k * n + c];
-      x[r] -= factor * x[k];
-    }
+    if (pivot != k) detail::swap_rows(n, a, x, k, pivot);
+    detail::eliminate_below(n, a, x, k);
   }
   for (int k = n - 1; k >= 0; --k) {
     double s = x[k];
@@ -85,16 +96,7 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
       rank = k;
       break;
     }
-    if (pr != k) {
-      for (int c = 0; c < n; ++c) {
-        double t = a[k * n + c];
-        a[k * n + c] = a[pr * n + c];
-        a[pr * n + c] = t;
-      }
-      double t = x[k];
-      x[k] = x[pr];
-      x[pr] = t;
-    }
+    if (pr != k) detail::swap_rows(n, a, x, k, pr);
     if (pc != k) {
       for (int r = 0; r < n; ++r) {
         double t = a[r * n + k];
@@ -105,12 +107,7 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
       col[k] = col[pc];
       col[pc] = t;
     }
-    for (int r = k + 1; r < n; ++r) {
-      double factor = a[r * n + k] / a[k * n + k];
-      if (factor == 0.0) continue;
-      for (int c = k + 1; c < n; ++c) a[r * n + c] -= factor * a[k * n + c];
-      x[r] -= factor * x[k];
-    }
+    detail::eliminate_below(n, a, x, k);
   }
   double y[kMax];
   for (int k = n - 1; k >= 0; --k) {
