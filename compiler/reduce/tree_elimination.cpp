@@ -78,8 +78,10 @@ class Eliminator {
     all = loop_.tears;
     all.insert(all.end(), loop_.order.begin(), loop_.order.end());
     const std::unordered_set<int> unknowns(all.begin(), all.end());
-    for (std::size_t k = 0; k < loop_.tears.size(); ++k)
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
       refs_[loop_.tears[k]] = loop_vars(loop_.tear_residuals[k], unknowns);
+      tear_index_[loop_.tears[k]] = k;
+    }
     for (int u : loop_.order) refs_[u] = loop_vars(loop_.solution.at(u), unknowns);
     std::unordered_map<int, std::vector<int>> readers;
     for (int u : all)
@@ -128,6 +130,10 @@ class Eliminator {
       }
       in_loop_.insert(body_[u]);
     }
+    for (int t : loop_.tears)
+      if (body_[t] >= 0) tears_of_[body_[t]].push_back(t);
+    for (int u : loop_.order)
+      if (body_[u] >= 0) order_of_[body_[u]].push_back(u);
     return true;
   }
 
@@ -260,19 +266,15 @@ class Eliminator {
       state[u] = 2;
       out.push_back(u);
     };
-    for (int u : loop_.order)
-      if (body_.at(u) == n) visit(u);
+    for (int u : order_of_[n]) visit(u);
     return ok;
   }
 
   bool inward(int n, std::string* why) {
-    std::vector<int> tears;
-    for (int t : loop_.tears)
-      if (body_.at(t) == n) tears.push_back(t);
-    const int first = tears.empty() ? -1 : tears[0];
-    for (int u : loop_.order)
-      if (body_.at(u) == n && first < 0) loc_[n] = loop_.source.at(u).first;
-    if (first >= 0) loc_[n] = loop_.source.at(first).first;
+    const std::vector<int>& tears = tears_of_[n];
+    const std::vector<int>& others = order_of_[n];
+    if (!tears.empty()) loc_[n] = loop_.source.at(tears[0]).first;
+    else if (!others.empty()) loc_[n] = loop_.source.at(others.back()).first;
     basis_.clear();
     basis_.insert(tears.begin(), tears.end());
     basis_.insert(x_[n].begin(), x_[n].end());
@@ -296,11 +298,9 @@ class Eliminator {
     // without pivoting (D is an articulated inertia about the joint's free
     // directions: positive definite for a body with mass).
     std::vector<Form> rows;
-    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
-      const int t = loop_.tears[k];
-      if (body_.at(t) != n) continue;
+    for (int t : tears) {
       Form r;
-      if (!form_of(loop_.tear_residuals[k], n, refs_.at(t), r)) return fail(t);
+      if (!form_of(loop_.tear_residuals[tear_index_.at(t)], n, refs_.at(t), r)) return fail(t);
       rows.push_back(std::move(r));
     }
     const std::size_t m = tears.size();
@@ -428,8 +428,7 @@ class Eliminator {
   }
 
   void outward(int n) {
-    for (int t : loop_.tears) {
-      if (body_.at(t) != n) continue;
+    for (int t : tears_of_[n]) {
       const auto& [loc, origin] = loop_.source.at(t);
       outward_.push_back({t, t_form_.at(t).value(), loc,
                           fmt::format("joint acceleration of body {} from its parent's motion (articulated-body form)",
@@ -456,6 +455,9 @@ class Eliminator {
   std::unordered_set<int> reads_child_;             // unknowns whose equation reads a child's output
   std::set<int> basis_;                             // the body being eliminated: tears and X
   std::map<int, std::vector<int>> order_;           // body -> its unknowns but the tears, in evaluation order
+  std::unordered_map<int, std::vector<int>> tears_of_;   // body -> its tears, in the loop's order
+  std::unordered_map<int, std::vector<int>> order_of_;   // body -> its other unknowns, in the loop's order
+  std::unordered_map<int, std::size_t> tear_index_;      // tear -> its index in loop_.tears
   std::unordered_map<int, Form> form_;              // unknown -> affine in its body's basis
   std::unordered_map<int, Form> t_form_;            // tear -> affine in its body's X
   std::unordered_map<int, Form> out_form_;          // output -> affine in its parent's unknowns
