@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -404,30 +405,48 @@ TEST(EmitStats, CountsEqualTheOperationsWrittenInEachMethod) {
       ASSERT_EQ(f.size(), 12u) << row;
       const std::string& name = f[0];
       EXPECT_TRUE(methods.insert(name).second) << "two methods named " << name;
-      // the method's lines: its doc comment, the signature, the body, the closing brace
-      std::size_t at = 0;
-      while (at < lines.size() && !(lines[at].rfind("  ", 0) == 0 && lines[at][2] != ' ' && lines[at][2] != '/' &&
-                                    lines[at].find(" " + name + "(") != std::string::npos))
-        ++at;
-      ASSERT_LT(at, lines.size()) << "no method " << name;
-      std::size_t first = at > 0 && lines[at - 1].rfind("  // ", 0) == 0 ? at - 1 : at;
-      std::size_t last = at;
-      if (lines[at].substr(lines[at].size() - 2) != "{}")
-        while (lines[last] != "  }") ++last;
-      EXPECT_EQ(std::stoul(f[1]), last - first + 1) << name;
+      // the method's lines: its doc comment, the signature, the body, the
+      // closing brace; a long method's parts (NAME_part1, ...) count as its own
+      struct Span {
+        std::size_t first, at, last;
+      };
+      auto find_method = [&](const std::string& m) -> std::optional<Span> {
+        std::size_t at = 0;
+        while (at < lines.size() && !(lines[at].rfind("  ", 0) == 0 && lines[at][2] != ' ' && lines[at][2] != '/' &&
+                                      lines[at].find(" " + m + "(") != std::string::npos))
+          ++at;
+        if (at == lines.size()) return std::nullopt;
+        std::size_t first = at > 0 && lines[at - 1].rfind("  // ", 0) == 0 ? at - 1 : at;
+        std::size_t last = at;
+        if (lines[at].substr(lines[at].size() - 2) != "{}")
+          while (lines[last] != "  }") ++last;
+        return Span{first, at, last};
+      };
+      std::vector<Span> spans;
+      if (auto own = find_method(name)) spans.push_back(*own);
+      ASSERT_FALSE(spans.empty()) << "no method " << name;
+      for (int k = 1;; ++k) {
+        auto part = find_method(name + "_part" + std::to_string(k));
+        if (!part) break;
+        spans.push_back(*part);
+      }
+      std::size_t method_lines = 0;
+      for (const Span& sp : spans) method_lines += sp.last - sp.first + 1;
+      EXPECT_EQ(std::stoul(f[1]), method_lines) << name;
       // its operations, read from the statements (comments and loop headers left out)
       mbgc::ir::CppOps written;
       std::vector<std::size_t> sizes;
-      for (std::size_t i = at + 1; i < last; ++i) {
-        std::string l = trim(lines[i]);
-        if (l.rfind("//", 0) == 0 || l.rfind("for (", 0) == 0) continue;
-        if (auto c = l.find("  // "); c != std::string::npos) l.resize(c);
-        if (l.rfind("mbgrt::solve_linear(", 0) == 0) sizes.push_back(std::stoul(l.substr(20)));
-        if (l.rfind("static const char* const", 0) == 0 || l.rfind("return", 0) == 0 || l.rfind("case", 0) == 0 ||
-            l.find('"') != std::string::npos)
-          continue;  // name tables, metadata: no arithmetic (a '*' of a pointer type, a string)
-        written += mbgc_test::cpp_ops_in_text(l);
-      }
+      for (const Span& sp : spans)
+        for (std::size_t i = sp.at + 1; i < sp.last; ++i) {
+          std::string l = trim(lines[i]);
+          if (l.rfind("//", 0) == 0 || l.rfind("for (", 0) == 0) continue;
+          if (auto c = l.find("  // "); c != std::string::npos) l.resize(c);
+          if (l.rfind("mbgrt::solve_linear(", 0) == 0) sizes.push_back(std::stoul(l.substr(20)));
+          if (l.rfind("static const char* const", 0) == 0 || l.rfind("return", 0) == 0 || l.rfind("case", 0) == 0 ||
+              l.find('"') != std::string::npos)
+            continue;  // name tables, metadata: no arithmetic (a '*' of a pointer type, a string)
+          written += mbgc_test::cpp_ops_in_text(l);
+        }
       const mbgc::ir::CppOps counted = [&] {
         mbgc::ir::CppOps o;
         o.add = std::stoul(f[4]), o.mul = std::stoul(f[5]), o.div = std::stoul(f[6]);
