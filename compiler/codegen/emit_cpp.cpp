@@ -39,6 +39,7 @@ class Emitter {
     find_parameter_expressions();
     c.public_methods.push_back(initial());
     add_long_method(c, s_.dae ? residual() : derivative());
+    if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity());
     if (!s_.jacobian.empty()) {
       c.public_methods.push_back({"", "bool has_jacobian() const override", {CppStmt::line("return true;")}});
       add_long_method(c, jacobian());
@@ -556,6 +557,34 @@ class Emitter {
     for (std::size_t i = 0; i < s_.residuals.size(); ++i)
       results.push_back({fmt::format("r[{}]", i), s_.residuals[i].value});
     section(f.body, s_.for_derivative, results, "residuals");
+    return f;
+  }
+
+  /// Where IDA's matrix dF/dy + c_j dF/dy' can be nonzero (reduce/sparsity.hpp).
+  CppFunction residual_sparsity() const {
+    std::vector<long> starts{0}, rows;
+    for (const std::vector<int>& column : s_.residual_pattern) {
+      rows.insert(rows.end(), column.begin(), column.end());
+      starts.push_back(static_cast<long>(rows.size()));
+    }
+    CppFunction f{fmt::format("SPARSITY: where IDA's matrix dF/dy + c_j dF/dy' can be nonzero, by column (compressed "
+                              "sparse columns: {} of {} entries)",
+                              rows.size(), s_.residual_pattern.size() * s_.residual_pattern.size()),
+                  "bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override",
+                  {}};
+    auto table = [&](const char* name, const std::vector<long>& v) {
+      f.body.push_back(CppStmt::line(fmt::format("static const long {}[] = {{", name)));
+      for (std::size_t i = 0; i < v.size(); i += 20) {
+        std::vector<long> line(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(std::min(v.size(), i + 20)));
+        f.body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
+      }
+      f.body.push_back(CppStmt::line("};"));
+    };
+    table("kStarts", starts);
+    table("kRows", rows);
+    f.body.push_back(CppStmt::line(fmt::format("column_starts.assign(kStarts, kStarts + {});", starts.size())));
+    f.body.push_back(CppStmt::line(fmt::format("rows.assign(kRows, kRows + {});", rows.size())));
+    f.body.push_back(CppStmt::line("return true;"));
     return f;
   }
 

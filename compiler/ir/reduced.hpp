@@ -65,6 +65,9 @@ struct ReducedSystem {
   std::vector<int> algebraic;             // algebraic unknowns (read from y)
   std::vector<int> derivative_unknowns;   // DAE: per state, the variable read from yp[i]
   std::vector<Residual> residuals;
+  // DAE: per column k of IDA's matrix dF/dy + c_j dF/dy', the residual rows
+  // that read y_k or y'_k, ascending (reduce/sparsity.hpp).
+  std::vector<std::vector<int>> residual_pattern;
   // Holonomic constraints of the CN elements (g in states, gdot after the
   // assignments in for_constraints): enforced by the DAE for lagrange rows
   // (stabilised index-2: residuals gdot = 0 and g = 0, multipliers lambda and

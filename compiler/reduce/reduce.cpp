@@ -1,5 +1,6 @@
 #include "reduce/reduce.hpp"
 
+#include "reduce/sparsity.hpp"
 #include "reduce/tree_elimination.hpp"
 
 #include <algorithm>
@@ -940,6 +941,7 @@ ReducedSystem reduce(EquationSystem system, Diagnostics& diags) {
   ReducedSystem out;
   Reducer r(system, out, diags);
   r.run();
+  if (!diags.has_errors()) residual_sparsity(out);
   return out;
 }
 

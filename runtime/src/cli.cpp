@@ -43,6 +43,13 @@ Solver solver_from_name(const std::string& name) {
       fmt::format("--solver: unknown solver '{}' (use rk4, dopri5, cvode or ida)", name));
 }
 
+LinearSolver linear_solver_from_name(const std::string& name) {
+  if (name == "auto") return LinearSolver::automatic;
+  if (name == "dense") return LinearSolver::dense;
+  if (name == "sparse") return LinearSolver::sparse;
+  throw UsageError(fmt::format("--linear-solver: unknown '{}' (use auto, dense or sparse)", name));
+}
+
 void require(bool ok, const std::string& message) {
   if (!ok) throw UsageError(message);
 }
@@ -95,6 +102,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
       "2 bad command line.\n");
 
   std::string solver = solver_name(s.solver);
+  std::string linear_solver = "auto";
   std::vector<std::string> sets;
   double linearize_at = 0.0;
 
@@ -112,6 +120,12 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--atol", s.atol, "Absolute tolerance (adaptive solvers)")
       ->type_name("X")
+      ->capture_default_str();
+  app.add_option("--linear-solver", linear_solver,
+                 fmt::format("IDA's linear solver: dense (LU), sparse (KLU on the model's sparsity pattern, "
+                             "columns differenced in groups) or auto (sparse for a DAE of {} unknowns or more)",
+                             kSparseFromUnknowns))
+      ->type_name("NAME")
       ->capture_default_str();
   auto* step = app.add_option("--step", s.step_s, "Fixed step for rk4 [s] (default: interval/10)")
                    ->type_name("SECONDS");
@@ -142,9 +156,18 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   try {
     app.parse(argc, argv);
     s.solver = solver_from_name(solver);
+    s.linear_solver = linear_solver_from_name(linear_solver);
     for (const std::string& arg : sets) o.overrides.push_back(parse_override(arg));
     if (lin->count() > 0) o.linearize_at = linearize_at;
     validate(o, step->count() > 0);
+    if (s.linear_solver == LinearSolver::sparse) {
+      std::vector<long> starts, rows;
+      require(model.is_dae() && model.residual_sparsity(starts, rows),
+              fmt::format("--linear-solver sparse: model '{}' gives no sparsity pattern (mbgc gives one for DAE "
+                          "models only)",
+                          model.name()));
+      require(s.solver == Solver::ida, "--linear-solver applies to --solver ida only");
+    }
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) {  // --help
       app.exit(e);

@@ -78,7 +78,9 @@ inline Csv read_csv(const std::string& path) {
     std::stringstream ss(line);
     std::string cell;
     std::vector<double> row;
-    while (std::getline(ss, cell, ',')) row.push_back(std::stod(cell));
+    // strtod, not stod: a subnormal value (1e-320, a force that has decayed
+    // to nothing) is a number, but stod throws out_of_range on it
+    while (std::getline(ss, cell, ',')) row.push_back(std::strtod(cell.c_str(), nullptr));
     csv.rows.push_back(row);
   }
   return csv;

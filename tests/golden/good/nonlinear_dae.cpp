@@ -97,6 +97,19 @@ class nonlinear_dae_model final : public mbgrt::Model {
     r[1] = diode_e - (0.1 * diode_f + (diode_f*diode_f*diode_f));
   }
 
+  // SPARSITY: where IDA's matrix dF/dy + c_j dF/dy' can be nonzero, by column (compressed sparse columns: 4 of 4 entries)
+  bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override {
+    static const long kStarts[] = {
+        0, 2, 4,
+    };
+    static const long kRows[] = {
+        0, 1, 0, 1,
+    };
+    column_starts.assign(kStarts, kStarts + 3);
+    rows.assign(kRows, kRows + 4);
+    return true;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* y, const double* yp, double* out) override {
     (void)t;
