@@ -9,8 +9,9 @@ Engine mbgc_engine(int n) {
     case 2: return mbgc_engine_2();
     case 8: return mbgc_engine_8();
     case 32: return mbgc_engine_32();
+    case 100: return mbgc_engine_100();
   }
-  throw std::invalid_argument("mbgc_engine: the benchmark compiles the chain for N = 2, 8 and 32 only");
+  throw std::invalid_argument("mbgc_engine: the benchmark compiles the chain for N = 2, 8, 32 and 100 only");
 }
 
 }  // namespace bench

@@ -26,5 +26,6 @@ Engine engine_for_generated(int n) {
 Engine mbgc_engine_2();
 Engine mbgc_engine_8();
 Engine mbgc_engine_32();
+Engine mbgc_engine_100();
 
 }  // namespace bench
