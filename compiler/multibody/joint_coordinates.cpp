@@ -40,7 +40,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     Rate& rate(const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) override {
       const std::string jn = joint.decl->name;
       const SourceLoc& at = joint.decl->loc;
-      Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr};
+      Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr, nullptr};
       if (prescribed) {
         E motion = joint.attrs.at("motion")->value;
         x_.element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion}));
@@ -70,7 +70,8 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       x_.bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
       qrel = B.name(jn + ".rot.q");
       free_rotation = true;
-      rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr});
+      // the spin is B's angular velocity in B's joint axes: W = R(q) in A's, I in B's
+      rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr, B.call("eye", {B.num(3)})});
     }
     std::deque<Rate> rates;  // a deque: references rate() returned stay valid
 
@@ -151,8 +152,10 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (!C.particle) {
     junction(B, '0', wsum, 3, {}, {});
     if (parent_turns) feed(parent + ".w", RrelT, wsum);
+    // in the child's axes, R_PC^T Fa W = Fb R^T W: where the kind gives R^T W
+    // (Wb), no product of the rotation with its transpose is left to fold
     for (const Mobilizer::Rate& r : rates)
-      if (r.W) feed(r.junction, fwd ? times(times(RrelT, Fa), r.W) : B.neg(times(Fa, r.W)), wsum);
+      if (r.W) feed(r.junction, fwd ? (r.Wb ? times(Fb, r.Wb) : times(times(RrelT, Fa), r.W)) : B.neg(times(Fa, r.W)), wsum);
   }
   junction(B, '0', vsum, 3, {}, {});
   if (!C.particle) {

@@ -78,6 +78,7 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   Mobilizer::Rate& r = m.rate(m.joint.decl->name + ".drive", "theta", m.setting_or("q0", m.zero),
                               m.setting_or("rate0", m.zero), m.prescribed());
   r.W = m.ez;
+  r.Wb = m.ez;  // a turn about z leaves z where it is
   m.angle = r.value, m.angle_rate = r.rate;
   m.qrel = B.call("quat_axis_angle", {m.ez, m.angle});
   m.rot = B.call("rot_axis_angle", {m.ez, m.angle});

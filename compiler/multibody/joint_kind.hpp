@@ -72,6 +72,7 @@ class Mobilizer {
     E value;               // the coordinate (or the prescribed motion f(t))
     E rate;                // its rate
     E W, V;                // angular and linear velocity per unit rate, A's joint axes (null: none)
+    E Wb;                  // W in B's joint axes, R^T W, where the kind knows it simply (null: R^T W is formed)
   };
   Mobilizer(const Build& b, const Joint& j, bool child_particle);
   virtual ~Mobilizer() = default;

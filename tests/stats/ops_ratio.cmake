@@ -2,12 +2,15 @@
 # mbgc --stats's operation counts (not from timings). Run with `cmake -P`:
 #
 #   -DMBGC=<mbgc> -DMODEL=<file.mbg> -DSMALL=<N> -DLARGE=<N> -DMAX_RATIO=<r>
-#   [-DEXTRA=<more mbgc arguments, ;-separated>]
+#   [-DSMALLEST=<N>] [-DEXTRA=<more mbgc arguments, ;-separated>]
 #
 # Compiles MODEL with --set N=SMALL and --set N=LARGE and reads the ops of the
 # method that computes the dynamics (derivative, or residual for a DAE: its
 # expressions plus mbgrt::solve_linear's arithmetic). Fails unless
-# ops(LARGE) / ops(SMALL) <= MAX_RATIO (a decimal such as 2.1).
+# ops(LARGE) / ops(SMALL) <= MAX_RATIO (a decimal such as 2.1). With
+# SMALLEST, also unless the operations per added body are the same, to 1 %,
+# from SMALLEST to SMALL as from SMALL to LARGE (exactly linear growth, a
+# constant allowed: the test for a tree whose root costs less than a body).
 cmake_minimum_required(VERSION 3.20)
 
 function(dynamics_ops n out_ops out_lines)
@@ -60,3 +63,20 @@ if(lhs GREATER rhs)
   message(FATAL_ERROR "the work grows faster than allowed: ${report}")
 endif()
 message(STATUS "${report}")
+
+if(DEFINED SMALLEST)
+  dynamics_ops(${SMALLEST} smallest_ops smallest_lines)
+  # per added body, in thousandths of an operation
+  math(EXPR early "(${small_ops} - ${smallest_ops}) * 1000 / (${SMALL} - ${SMALLEST})")
+  math(EXPR late "(${large_ops} - ${small_ops}) * 1000 / (${LARGE} - ${SMALL})")
+  math(EXPR gap "${late} - ${early}")
+  if(gap LESS 0)
+    math(EXPR gap "0 - ${gap}")
+  endif()
+  set(report "${method}: ${early}/1000 operations per added body from N = ${SMALLEST} to ${SMALL}, ${late}/1000 from ${SMALL} to ${LARGE}")
+  math(EXPR limit "${early} / 100")
+  if(gap GREATER limit)
+    message(FATAL_ERROR "the work per body is not constant: ${report}")
+  endif()
+  message(STATUS "${report}")
+endif()

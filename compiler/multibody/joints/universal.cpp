@@ -24,6 +24,9 @@ class Universal final : public JointKind {
     E qa = B.call("quat_axis_angle", {m.ex, a.value});
     E Ra = B.call("rot_axis_angle", {m.ex, a.value});
     b.W = B.op('*', Ra, m.ey);
+    // in B's axes (R = Ra Rb): the second arm is B's y; the first is Rb^T x
+    a.Wb = B.op('*', B.call("transpose", {B.call("rot_axis_angle", {m.ey, b.value})}), m.ex);
+    b.Wb = m.ey;
     m.qrel = B.call("quat_mul", {qa, B.call("quat_axis_angle", {m.ey, b.value})});
     m.rot = B.op('*', Ra, B.call("rot_axis_angle", {m.ey, b.value}));
   }
