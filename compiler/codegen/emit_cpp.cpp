@@ -498,7 +498,22 @@ class Emitter {
     }
     body.push_back(CppStmt::line("};"));
     body.push_back(CppStmt::line(fmt::format("double {}_x[{}] = {{{}}};", id, n, fmt::join(rhs, ", "))));
-    body.push_back(CppStmt::line(fmt::format("mbgrt::{}({}, {}_a, {}_x);", lb.rank_revealing ? "solve_rank_revealing" : "solve_linear", n, id, id)));
+    if (lb.rank_revealing) {
+      // rows the others imply at this configuration: recorded for the run summary
+      std::vector<std::string> rows;
+      for (int u : lb.unknowns) rows.push_back(cpp_string(g_.vars[static_cast<std::size_t>(u)].name));
+      body.push_back(CppStmt::line(fmt::format("static const char* const {}_rows[] = {{{}}};", id, fmt::join(rows, ", "))));
+      body.push_back(CppStmt::line(fmt::format("int {}_dependent[{}];", id, n)));
+      body.push_back(CppStmt::line(
+          fmt::format("const int {0}_rank = mbgrt::solve_rank_revealing({1}, {0}_a, {0}_x, 1e-10, {0}_dependent);", id, n)));
+      body.push_back(CppStmt::line(fmt::format(
+          "if ({0}_rank < {1}) rank_loss_.record(t, \"the cut joints' {1} x {1} multiplier system\", {0}_rank, {1}, "
+          "{0}_dependent, {0}_rows);",
+          id, n)));
+      has_rank_loss_ = true;
+    } else {
+      body.push_back(CppStmt::line(fmt::format("mbgrt::solve_linear({}, {}_a, {}_x);", n, id, id)));
+    }
     if (!cost_) throw std::logic_error("mbgc: a linear solve outside a counted method (codegen bug)");
     cost_->solves.push_back(n);
   }
@@ -705,6 +720,11 @@ class Emitter {
   }
 
   void private_part(CppClass& c) {
+    if (has_rank_loss_) {
+      c.public_methods.push_back({"Cut joints: the rows their multipliers' solves found dependent during the run.",
+                                  "const mbgrt::RankLossLog* rank_loss() const override", {CppStmt::line("return &rank_loss_;")}});
+      c.private_members.push_back(CppStmt::line("mbgrt::RankLossLog rank_loss_;  // what the rank-revealing solves found"));
+    }
     if (!scratch_.empty()) {
       c.private_members.push_back(CppStmt::comment("values one part of a long method passes to a later part"));
       for (const std::string& m : scratch_) c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;", m)));
@@ -737,6 +757,7 @@ class Emitter {
   Cost* cost_ = nullptr;               // the method being built
   std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
   std::vector<Expr> hoisted_order_;                                    // in first-use order
+  bool has_rank_loss_ = false;        // a rank-revealing solve was written: the model keeps its log
   std::vector<std::string> scratch_;  // members of split methods (codegen/split.hpp), in order of definition
   /// Statements per part of a long method: g++ -O2 compiles the 100-rod
   /// chain's derivative (8,300 statements) in 20 s as one function.

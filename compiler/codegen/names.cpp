@@ -35,7 +35,7 @@ const std::set<std::string> kReserved = {
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
     "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
     "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason",
-    "residual_sparsity", "column_starts", "rows", "kStarts", "kRows"};
+    "residual_sparsity", "column_starts", "rows", "kStarts", "kRows", "rank_loss", "rank_loss_"};
 
 }  // namespace
 

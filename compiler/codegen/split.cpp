@@ -50,13 +50,19 @@ std::string defined_scalar(const CppStmt& st) {
   return st.text.compare(j, 3, " = ") == 0 ? st.text.substr(prefix.size(), j - prefix.size()) : std::string{};
 }
 
-/// NAME if the statement is `double NAME[n] = ...` (a linear block's array), else "".
+/// NAME if the statement is `double NAME[n] ...` or `int NAME[n]...` (a
+/// linear block's arrays), `const int NAME = ...` (its rank) or a static
+/// table, else "": a local a part may not pass to the next.
 std::string defined_array(const CppStmt& st) {
-  static const std::string prefix = "double ";
-  if (st.kind != CppStmt::Kind::Line || st.text.rfind(prefix, 0) != 0) return {};
-  std::size_t j = prefix.size();
-  while (j < st.text.size() && ident_char(st.text[j])) ++j;
-  return j < st.text.size() && st.text[j] == '[' ? st.text.substr(prefix.size(), j - prefix.size()) : std::string{};
+  if (st.kind != CppStmt::Kind::Line) return {};
+  for (const std::string prefix : {"double ", "int ", "const int ", "static const char* const "}) {
+    if (st.text.rfind(prefix, 0) != 0) continue;
+    std::size_t j = prefix.size();
+    while (j < st.text.size() && ident_char(st.text[j])) ++j;
+    if (j > prefix.size() && j < st.text.size() && (st.text[j] == '[' || st.text.compare(j, 3, " = ") == 0))
+      return st.text.substr(prefix.size(), j - prefix.size());
+  }
+  return {};
 }
 
 struct Signature {

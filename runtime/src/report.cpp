@@ -77,6 +77,16 @@ void print_summary(std::FILE* err, const RunRecord& run) {
     fmt::print(err, "  warnings     {} from the solver (first: {})\n", st.warnings,
                st.first_warning);
   if (run.constraints) fmt::print(err, "  {}\n", describe(*run.constraints));
+  if (const RankLossLog* rl = run.model->rank_loss(); rl && rl->count() > 0) {
+    const bool one = rl->size() - rl->lowest_rank() == 1;
+    fmt::print(err,
+               "  dependent rows: {} derivative evaluation{} found {} rank-deficient, first at t = {} s; "
+               "lowest rank {} of {} at t = {} s, where {} {} implied by the others ({} set to 0: the basic "
+               "solution)\n",
+               rl->count(), rl->count() == 1 ? "" : "s", rl->system(), format_time(rl->first_t()), rl->lowest_rank(),
+               rl->size(), format_time(rl->lowest_t()), rl->rows(), one ? "was" : "were",
+               one ? "its multiplier" : "their multipliers");
+  }
   fmt::print(err, "  output       {}\n", run.output);
   fmt::print(err, "  wall time    {:.3g} s\n", run.wall_s);
 }

@@ -401,6 +401,7 @@ TEST(CutJoints, TheCrankRockerInCoordinatesAgreesWithItsMultiplierRun) {
   EXPECT_LT(max_difference(c.csv, l.csv, "omega_crank"), 3e-7);
   EXPECT_LT(max_difference(c.csv, l.csv, "current"), 3e-7);
   EXPECT_NE(c.log.find("largest constraint violation"), std::string::npos) << c.log;
+  EXPECT_EQ(c.log.find("dependent rows"), std::string::npos) << c.log;  // never singular: nothing to name
 }
 
 TEST(CutJoints, AndrewsSqueezerInCoordinatesAgreesWithItsMultiplierRun) {
@@ -440,6 +441,9 @@ TEST(CutJoints, AParallelogramStartedAlignedRuns) {
   // crank - rocker 6.8e-11 rad over 10 rad, the loop's gap 3.4e-13 m.
   SimRun r = run(PARALLELOGRAM_SIM, "--set q_start=0", "parallelogram_aligned");
   ASSERT_EQ(r.status, 0) << r.log;
+  // ... and the run summary names the row the others implied there
+  EXPECT_NE(r.log.find("dependent rows: "), std::string::npos) << r.log;
+  EXPECT_NE(r.log.find("lowest rank 1 of 2 at t = 0 s, where j3.cn.e["), std::string::npos) << r.log;
   EXPECT_GT(r.csv.rows.back()[r.csv.col("crank_angle")], 3 * M_PI);
   double apart = 0;
   for (const auto& row : r.csv.rows) apart = std::max(apart, std::abs(row[r.csv.col("crank_angle")] - row[r.csv.col("rocker_angle")]));

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace mbgrt {
 namespace detail {
@@ -70,10 +71,13 @@ inline void solve_linear(int n, double* a, double* x) {
 /// set to 0 and the rest back-substituted (a basic solution: for a consistent
 /// system, any solution gives the same motion). `a` (n x n, row-major) is
 /// overwritten, `x` holds b on entry and the solution on return; returns the
-/// rank found. Non-finite entries give NaN, as solve_linear does.
-inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10) {
+/// rank found. With `dependent`, its first n - rank entries receive the rows
+/// (as numbered on entry) left without a pivot: the rows the others imply.
+/// Non-finite entries give NaN, as solve_linear does.
+inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr) {
   constexpr int kMax = 64;
   int col[kMax];  // col[k]: the unknown eliminated at step k
+  int row[kMax];  // row[k]: the equation (as numbered on entry) now in row k
   if (n > kMax) {
     solve_linear(n, a, x);
     return n;
@@ -84,7 +88,7 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
     for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
     return 0;
   }
-  for (int k = 0; k < n; ++k) col[k] = k;
+  for (int k = 0; k < n; ++k) col[k] = k, row[k] = k;
   int rank = n;
   for (int k = 0; k < n; ++k) {
     int pr = k, pc = k;
@@ -96,7 +100,12 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
       rank = k;
       break;
     }
-    if (pr != k) detail::swap_rows(n, a, x, k, pr);
+    if (pr != k) {
+      detail::swap_rows(n, a, x, k, pr);
+      int t = row[k];
+      row[k] = row[pr];
+      row[pr] = t;
+    }
     if (pc != k) {
       for (int r = 0; r < n; ++r) {
         double t = a[r * n + k];
@@ -120,7 +129,41 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
     y[k] = s / a[k * n + k];
   }
   for (int k = 0; k < n; ++k) x[col[k]] = y[k];
+  if (dependent)
+    for (int k = rank; k < n; ++k) dependent[k - rank] = row[k];
   return rank;
 }
+
+/// What a model's rank-revealing solves found during a run (the multipliers
+/// of cut joints whose rows became dependent): the generated code records
+/// each solve that lost rank, the runtime prints it in the run summary.
+class RankLossLog {
+ public:
+  /// A solve of the n x n system `system` found `rank` < n at time t, the
+  /// rows dependent[0 .. n - rank) named by row_names.
+  void record(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names) {
+    if (count_++ == 0) first_t_ = t;
+    if (rank >= lowest_rank_ && count_ > 1) return;
+    lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
+    rows_.clear();
+    for (int k = 0; k < n - rank; ++k) {
+      if (k) rows_ += ", ";
+      rows_ += row_names[dependent[k]];
+    }
+  }
+  long count() const { return count_; }      ///< solves that lost rank (derivative evaluations)
+  double first_t() const { return first_t_; }  ///< the first time one did
+  int lowest_rank() const { return lowest_rank_; }
+  int size() const { return size_; }
+  double lowest_t() const { return lowest_t_; }  ///< when the lowest rank was first found
+  const std::string& system() const { return system_; }
+  const std::string& rows() const { return rows_; }  ///< the rows dependent then, in model terms
+
+ private:
+  long count_ = 0;
+  double first_t_ = 0.0, lowest_t_ = 0.0;
+  int lowest_rank_ = 0, size_ = 0;
+  std::string system_, rows_;
+};
 
 }  // namespace mbgrt

@@ -32,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include "mbgrt/linear_solve.hpp"
+
 namespace mbgrt {
 
 /// Integrators the runtime offers (names as used by --solver).
@@ -124,6 +126,11 @@ class Model {
   /// and why; the run stops there with the reason (a beam's modal coordinates).
   virtual double state_limit(std::size_t i) const { (void)i; return HUGE_VAL; }
   virtual std::string state_limit_reason(std::size_t i) const { (void)i; return {}; }
+
+  /// Joint coordinates with cut joints: what the multipliers' rank-revealing
+  /// solves found (rows that became dependent during the run); null if the
+  /// model has no such solve.
+  virtual const RankLossLog* rank_loss() const { return nullptr; }
 
   virtual bool has_jacobian() const { return false; }
   virtual void jacobian(double t, const double* y, double* J) { (void)t; (void)y; (void)J; }

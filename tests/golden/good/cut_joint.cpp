@@ -380,7 +380,10 @@ class cut_joint_model final : public mbgrt::Model {
         -coupler_pose_R21 * coupler_column22 - coupler_pose_R22 * coupler_column28 - cse18 * coupler_column31 + rocker_pose_R22 * rocker_column5 + cse19 * rocker_accel2, -coupler_pose_R21 * coupler_column23 - coupler_pose_R22 * coupler_column29 - cse18 * coupler_column32 + rocker_pose_R22 * rocker_column6 + cse19 * rocker_accel3,
     };
     double blk1_x[2] = {-(cse33 * j3_cn_f_1 + cse34 * (rocker_pose_r1 + cse14 - (coupler_pose_r1 + cse13)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column24 - coupler_pose_R12 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse10 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse12 * rocker_accel4))), -(cse33 * j3_cn_f_2 + cse34 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse20)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column24 - coupler_pose_R22 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse18 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse19 * rocker_accel4)))};
-    mbgrt::solve_rank_revealing(2, blk1_a, blk1_x);
+    static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
+    int blk1_dependent[2];
+    const int blk1_rank = mbgrt::solve_rank_revealing(2, blk1_a, blk1_x, 1e-10, blk1_dependent);
+    if (blk1_rank < 2) rank_loss_.record(t, "the cut joints' 2 x 2 multiplier system", blk1_rank, 2, blk1_dependent, blk1_rows);
     const double j3_cn_e_1 = blk1_x[0];
     const double j3_cn_e_2 = blk1_x[1];
     // cut_joint.mbg:17:7  joint acceleration of body rocker from its parent's motion (articulated-body form)
@@ -582,11 +585,17 @@ class cut_joint_model final : public mbgrt::Model {
     (void)y;
   }
 
+  // Cut joints: the rows their multipliers' solves found dependent during the run.
+  const mbgrt::RankLossLog* rank_loss() const override {
+    return &rank_loss_;
+  }
+
  private:
   double param(std::size_t i, double model_value) const {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  mbgrt::RankLossLog rank_loss_;  // what the rank-revealing solves found
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/(coupler.inertia[3,3] + 0.25)
   double derived2_ = 0.0;  // = 1/(rocker.inertia[3,3] + 0.010000000000000002)
