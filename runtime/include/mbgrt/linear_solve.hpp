@@ -83,8 +83,13 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
     return n;
   }
   double scale = 0.0;
-  for (int i = 0; i < n * n; ++i) scale = std::fmax(scale, std::fabs(a[i]));
-  if (!std::isfinite(scale)) {
+  bool finite = true;
+  for (int i = 0; i < n * n; ++i) {
+    const double v = std::fabs(a[i]);
+    finite = finite && v <= std::numeric_limits<double>::max();  // false for inf and NaN
+    scale = v > scale ? v : scale;
+  }
+  if (!finite) {
     for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
     return 0;
   }
