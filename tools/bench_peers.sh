@@ -3,12 +3,14 @@
 # models (a binary tree of 31 rods on ball and universal joints, a chain of 32
 # rods on ball joints) in mbgc's generated code, a hand-written O(N) model,
 # MuJoCo, Simbody and DART, built and run side by side (bench/peers/main.cpp
-# and tree_main.cpp say how), and the rotating beam against its modal
-# equations written by hand (bench/modal). Installs what the README's set-up
-# installs plus libmujoco-dev, libsimbody-dev and libdart-dev, builds a
-# Release tree in build-bench/ (BUILD_DIR=... for another), and writes
+# and tree_main.cpp say how), and the rotating beam and the flexible
+# crank-rocker against their equations written by hand (bench/modal).
+# Installs what the README's set-up installs plus libmujoco-dev,
+# libsimbody-dev and libdart-dev, builds a Release tree in build-bench/
+# (BUILD_DIR=... for another), and writes
 # bench/peers/chain_peers.{csv,png}, bench/peers/{binary_tree,spherical_chain}_peers.csv,
-# bench/peers/tree_peers.png and bench/modal/rotating_beam.txt.
+# bench/peers/tree_peers.png, bench/modal/rotating_beam.txt and
+# bench/modal/crank_rocker_flexible.txt.
 set -euo pipefail
 # Before common.sh, which defaults BUILD_DIR to the test build (build/).
 BUILD_DIR=${BUILD_DIR:-build-bench}
@@ -23,8 +25,8 @@ step "Configuring $BUILD_DIR (Release, bench only)"
 generator=()
 [ -f "$BUILD_DIR/CMakeCache.txt" ] || generator=(-G Ninja)
 cmake -S "$MBGC_ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DMBGC_BENCH=ON -DBUILD_TESTING=OFF
-step "Building chain_peers, tree_peers and rotating_beam_by_hand ($JOBS jobs; the generated models of chain_100 and the 3-D models take g++ a while)"
-cmake --build "$BUILD_DIR" --parallel "$JOBS" --target chain_peers tree_peers rotating_beam_by_hand
+step "Building chain_peers, tree_peers, rotating_beam_by_hand and crank_rocker_flexible_by_hand ($JOBS jobs; the generated models of chain_100 and the 3-D models take g++ a while)"
+cmake --build "$BUILD_DIR" --parallel "$JOBS" --target chain_peers tree_peers rotating_beam_by_hand crank_rocker_flexible_by_hand
 
 out=bench/peers
 step "Running $BUILD_DIR/bench/peers/chain_peers $out/chain_peers.csv"
@@ -42,3 +44,7 @@ echo "wrote $out/{binary_tree,spherical_chain}_peers.csv and $out/tree_peers.png
 
 step "The rotating beam: mbgc against its modal equations by hand (bench/modal)"
 "$BUILD_DIR/bench/modal/rotating_beam_by_hand" "$BUILD_DIR/bench/modal/bench_rotating_beam" | tee bench/modal/rotating_beam.txt
+
+step "The flexible crank-rocker: mbgc against its equations by hand (bench/modal)"
+"$BUILD_DIR/bench/modal/crank_rocker_flexible_by_hand" "$BUILD_DIR/bench/modal/bench_crank_rocker_flexible" |
+  tee bench/modal/crank_rocker_flexible.txt

@@ -25,6 +25,7 @@
 #include <sstream>
 #include <string>
 
+#include "timing.hpp"
 #include "flex/beam_modes.hpp"
 
 namespace {
@@ -87,17 +88,7 @@ struct ByHand {
   }
 };
 
-template <class F>
-double fastest_of(F&& f, double min_total_s = 0.3) {
-  double best = 1e300, total = 0;
-  for (int rep = 0; rep < 3 || total < min_total_s; ++rep) {
-    const auto start = std::chrono::steady_clock::now();
-    f();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    best = std::min(best, s), total += s;
-  }
-  return best;
-}
+using bench_modal::fastest_of;
 
 /// One run of the generated simulator to t = 8 s under RK4 with `steps`
 /// steps (the hand-written model's integrator): the tip there and the run's
