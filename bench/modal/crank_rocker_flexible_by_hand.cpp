@@ -58,12 +58,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "timing.hpp"
+#include "by_hand.hpp"
 #include "flex/beam_modes.hpp"
 
 namespace {
@@ -286,25 +284,12 @@ struct SimResult {
   double wall_s = NAN;
 };
 SimResult run_simulator(const std::string& sim, long steps) {
-  const std::string csv = "/tmp/crank_rocker_flexible_by_hand.csv", log = "/tmp/crank_rocker_flexible_by_hand.log";
-  char cmd[1024];
-  std::snprintf(cmd, sizeof cmd, "\"%s\" --t-end %g --interval %g --solver rk4 --step %.17g --out %s 2> %s", sim.c_str(),
-                kTEnd_s, kTEnd_s, kTEnd_s / static_cast<double>(steps), csv.c_str(), log.c_str());
+  const bench_modal::GeneratedRun run = bench_modal::run_generated(sim, kTEnd_s, steps, "crank_rocker_flexible_by_hand");
   SimResult r;
-  if (std::system(cmd) != 0) return r;
-  std::ifstream in(csv);
-  std::string line, header, last;
-  std::getline(in, header);
-  while (std::getline(in, line)) last = line;
   // columns: t,omega_crank,omega_rocker,current,force_j1,axial_force,deflection_mid,eta1,eta2
-  std::vector<double> cells;
-  std::stringstream ss(last);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) cells.push_back(std::stod(cell));
-  if (cells.size() == 9) r.out = {cells[1], cells[2], cells[3], cells[6], cells[7], cells[8]};
-  std::ifstream lg(log);
-  while (std::getline(lg, line))
-    if (line.rfind("  wall time", 0) == 0) r.wall_s = std::stod(line.substr(line.find_first_of("0123456789")));
+  const std::vector<double>& c = run.last_row;
+  if (c.size() == 9) r.out = {c[1], c[2], c[3], c[6], c[7], c[8]};
+  r.wall_s = run.wall_s;
   return r;
 }
 

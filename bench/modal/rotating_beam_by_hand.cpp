@@ -21,11 +21,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
 
-#include "timing.hpp"
+#include "by_hand.hpp"
 #include "flex/beam_modes.hpp"
 
 namespace {
@@ -97,24 +95,10 @@ struct SimResult {
   double tip = NAN, wall_s = NAN;
 };
 SimResult run_simulator(const std::string& sim, long steps) {
-  const std::string csv = "/tmp/rotating_beam_by_hand.csv", log = "/tmp/rotating_beam_by_hand.log";
-  char cmd[1024];
-  std::snprintf(cmd, sizeof cmd, "\"%s\" --t-end %g --interval %g --solver rk4 --step %.17g --out %s 2> %s", sim.c_str(), kT_s,
-                kT_s, kT_s / static_cast<double>(steps), csv.c_str(), log.c_str());
+  const bench_modal::GeneratedRun run = bench_modal::run_generated(sim, kT_s, steps, "rotating_beam_by_hand");
   SimResult r;
-  if (std::system(cmd) != 0) return r;
-  std::ifstream in(csv);
-  std::string line, header, last;
-  std::getline(in, header);
-  while (std::getline(in, line)) last = line;
-  // columns: t,spin,tip_deflection,eta1
-  std::stringstream ss(last);
-  std::string cell;
-  for (int c = 0; std::getline(ss, cell, ','); ++c)
-    if (c == 2) r.tip = std::stod(cell);
-  std::ifstream lg(log);
-  while (std::getline(lg, line))
-    if (line.rfind("  wall time", 0) == 0) r.wall_s = std::stod(line.substr(line.find_first_of("0123456789")));
+  if (run.last_row.size() > 2) r.tip = run.last_row[2];  // columns: t,spin,tip_deflection,eta1
+  r.wall_s = run.wall_s;
   return r;
 }
 

@@ -50,10 +50,10 @@ std::string defined_scalar(const CppStmt& st) {
   return st.text.compare(j, 3, " = ") == 0 ? st.text.substr(prefix.size(), j - prefix.size()) : std::string{};
 }
 
-/// NAME if the statement is `double NAME[n] ...` or `int NAME[n]...` (a
-/// linear block's arrays), `const int NAME = ...` (its rank) or a static
-/// table, else "": a local a part may not pass to the next.
-std::string defined_array(const CppStmt& st) {
+/// NAME if the statement defines a local that a part may not pass to the
+/// next: a linear block's arrays (`double NAME[n]`, `int NAME[n]`), its rank
+/// (`const int NAME = ...`) or a static table; else "".
+std::string defined_block_local(const CppStmt& st) {
   if (st.kind != CppStmt::Kind::Line) return {};
   for (const std::string prefix : {"double ", "int ", "const int ", "static const char* const "}) {
     if (st.text.rfind(prefix, 0) != 0) continue;
@@ -115,7 +115,7 @@ std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_li
   // outside the span from a linear block's array to its last reader.
   const std::size_t n = body.size();
   std::vector<std::vector<std::string>> reads(n);
-  std::map<std::string, std::pair<std::size_t, std::size_t>> array_span;  // array -> [definition, last use]
+  std::map<std::string, std::pair<std::size_t, std::size_t>> block_span;  // block local -> [definition, last use]
   std::vector<bool> may_start(n, false);
   int depth = 0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -123,12 +123,12 @@ std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_li
     may_start[i] = depth == 0 && st.kind == CppStmt::Kind::Comment;
     if (st.kind != CppStmt::Kind::Line) continue;
     reads[i] = identifiers(st.text);
-    if (std::string a = defined_array(st); !a.empty()) array_span[a] = {i, i};
+    if (std::string a = defined_block_local(st); !a.empty()) block_span[a] = {i, i};
     for (const std::string& id : reads[i])
-      if (auto it = array_span.find(id); it != array_span.end()) it->second.second = i;
+      if (auto it = block_span.find(id); it != block_span.end()) it->second.second = i;
     for (char c : st.text) depth += c == '{' ? 1 : c == '}' ? -1 : 0;
   }
-  for (const auto& [name, span] : array_span)
+  for (const auto& [name, span] : block_span)
     for (std::size_t i = span.first + 1; i <= span.second; ++i) may_start[i] = false;
 
   // Greedy: each part ends at the last possible start within max_lines.

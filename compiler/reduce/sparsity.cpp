@@ -19,6 +19,7 @@ void residual_sparsity(ReducedSystem& s) {
     columns[s.algebraic[j]].push_back(static_cast<int>(s.states.size() + j));
   for (std::size_t i = 0; i < s.derivative_unknowns.size(); ++i)
     if (s.derivative_unknowns[i] >= 0) columns[s.derivative_unknowns[i]].push_back(static_cast<int>(i));
+  for (auto& [var, cols] : columns) std::sort(cols.begin(), cols.end());  // every list stays sorted from here
   const auto merge = [](std::vector<int>& into, const std::vector<int>& from) {
     std::vector<int> out;
     out.reserve(into.size() + from.size());
@@ -27,13 +28,8 @@ void residual_sparsity(ReducedSystem& s) {
   };
   const auto columns_of = [&](const std::unordered_set<int>& vars) {
     std::vector<int> out;
-    for (int v : vars) {
-      auto it = columns.find(v);
-      if (it == columns.end()) continue;
-      std::vector<int> c = it->second;
-      std::sort(c.begin(), c.end());
-      merge(out, c);
-    }
+    for (int v : vars)
+      if (auto it = columns.find(v); it != columns.end()) merge(out, it->second);
     return out;
   };
   // Assignments in evaluation order: each one's columns are its inputs'.

@@ -7,7 +7,7 @@
 
 #include <cmath>
 #include <limits>
-#include <string>
+#include <utility>
 
 namespace mbgrt {
 namespace detail {
@@ -22,6 +22,15 @@ inline void swap_rows(int n, double* a, double* x, int i, int j) {
   double t = x[i];
   x[i] = x[j];
   x[j] = t;
+}
+
+/// Swap columns i and j of A (n x n, row-major).
+inline void swap_columns(int n, double* a, int i, int j) {
+  for (int r = 0; r < n; ++r) {
+    double t = a[r * n + i];
+    a[r * n + i] = a[r * n + j];
+    a[r * n + j] = t;
+  }
 }
 
 /// Eliminate column k below the pivot a[k][k] (rows k+1..n-1, and b).
@@ -107,19 +116,11 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
     }
     if (pr != k) {
       detail::swap_rows(n, a, x, k, pr);
-      int t = row[k];
-      row[k] = row[pr];
-      row[pr] = t;
+      std::swap(row[k], row[pr]);
     }
     if (pc != k) {
-      for (int r = 0; r < n; ++r) {
-        double t = a[r * n + k];
-        a[r * n + k] = a[r * n + pc];
-        a[r * n + pc] = t;
-      }
-      int t = col[k];
-      col[k] = col[pc];
-      col[pc] = t;
+      detail::swap_columns(n, a, k, pc);
+      std::swap(col[k], col[pc]);
     }
     detail::eliminate_below(n, a, x, k);
   }
@@ -138,37 +139,5 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
     for (int k = rank; k < n; ++k) dependent[k - rank] = row[k];
   return rank;
 }
-
-/// What a model's rank-revealing solves found during a run (the multipliers
-/// of cut joints whose rows became dependent): the generated code records
-/// each solve that lost rank, the runtime prints it in the run summary.
-class RankLossLog {
- public:
-  /// A solve of the n x n system `system` found `rank` < n at time t, the
-  /// rows dependent[0 .. n - rank) named by row_names.
-  void record(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names) {
-    if (count_++ == 0) first_t_ = t;
-    if (rank >= lowest_rank_ && count_ > 1) return;
-    lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
-    rows_.clear();
-    for (int k = 0; k < n - rank; ++k) {
-      if (k) rows_ += ", ";
-      rows_ += row_names[dependent[k]];
-    }
-  }
-  long count() const { return count_; }      ///< solves that lost rank (derivative evaluations)
-  double first_t() const { return first_t_; }  ///< the first time one did
-  int lowest_rank() const { return lowest_rank_; }
-  int size() const { return size_; }
-  double lowest_t() const { return lowest_t_; }  ///< when the lowest rank was first found
-  const std::string& system() const { return system_; }
-  const std::string& rows() const { return rows_; }  ///< the rows dependent then, in model terms
-
- private:
-  long count_ = 0;
-  double first_t_ = 0.0, lowest_t_ = 0.0;
-  int lowest_rank_ = 0, size_ = 0;
-  std::string system_, rows_;
-};
 
 }  // namespace mbgrt

@@ -32,12 +32,43 @@
 #include <string>
 #include <vector>
 
-#include "mbgrt/linear_solve.hpp"
-
 namespace mbgrt {
 
 /// Integrators the runtime offers (names as used by --solver).
 enum class Solver { rk4, dopri5, cvode, ida };
+
+/// What a model's rank-revealing solves found during a run (the multipliers
+/// of cut joints whose rows became dependent): the generated code records
+/// each solve that lost rank, the runtime prints it in the run summary.
+class RankLossLog {
+ public:
+  /// A solve of the n x n system `system` found `rank` < n at time t, the
+  /// rows dependent[0 .. n - rank) named by row_names.
+  void record(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names) {
+    if (count_++ == 0) first_t_ = t;
+    if (rank >= lowest_rank_ && count_ > 1) return;
+    lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
+    rows_.clear();
+    for (int k = 0; k < n - rank; ++k) {
+      if (k) rows_ += ", ";
+      rows_ += row_names[dependent[k]];
+    }
+  }
+  long count() const { return count_; }      ///< solves that lost rank (derivative evaluations)
+  double first_t() const { return first_t_; }  ///< the first time one did
+  int lowest_rank() const { return lowest_rank_; }
+  int size() const { return size_; }
+  double lowest_t() const { return lowest_t_; }  ///< when the lowest rank was first found
+  const std::string& system() const { return system_; }
+  const std::string& rows() const { return rows_; }  ///< the rows dependent then, in model terms
+
+ private:
+  long count_ = 0;
+  double first_t_ = 0.0, lowest_t_ = 0.0;
+  int lowest_rank_ = 0, size_ = 0;
+  std::string system_, rows_;
+};
+
 
 /// IDA's linear solver: dense LU, or KLU on the model's sparsity pattern
 /// (Model::residual_sparsity); `automatic` takes KLU for a DAE of at least
