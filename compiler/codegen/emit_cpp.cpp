@@ -505,7 +505,7 @@ class Emitter {
       body.push_back(CppStmt::line(fmt::format("static const char* const {}_rows[] = {{{}}};", id, fmt::join(rows, ", "))));
       body.push_back(CppStmt::line(fmt::format("int {}_dependent[{}];", id, n)));
       body.push_back(CppStmt::line(
-          fmt::format("const int {0}_rank = mbgrt::solve_rank_revealing({1}, {0}_a, {0}_x, 1e-10, {0}_dependent);", id, n)));
+          fmt::format("const int {0}_rank = mbgrt::solve_rank_revealing<{1}>({0}_a, {0}_x, 1e-10, {0}_dependent);", id, n)));
       body.push_back(CppStmt::line(fmt::format(
           "if ({0}_rank < {1}) rank_loss_.record(t, \"the cut joints' {1} x {1} multiplier system\", {0}_rank, {1}, "
           "{0}_dependent, {0}_rows);",

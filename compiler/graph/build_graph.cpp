@@ -718,7 +718,13 @@ class Builder {
                      "index it, e.g. v[1], or declare one signal per component");
         continue;
       }
-      g_.signals.push_back({s.name, s.loc, signal_var_.at(s.name), v->items[0]});
+      Expr rate;
+      if (s.rate) {
+        auto r = lower(*s.rate, lookup_in(s.scope), diags_);
+        if (!r) continue;
+        rate = r->items[0];  // (scalar: the multibody layer writes one entry per signal)
+      }
+      g_.signals.push_back({s.name, s.loc, signal_var_.at(s.name), v->items[0], rate});
     }
     for (const ResolvedExpr& o : m_.outputs) {
       auto v = lower(*o.expr, lookup_in(o.scope), diags_);

@@ -61,7 +61,10 @@ struct AstParam {
   AstExprPtr value;
   bool fold = false;
 };
-struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; };
+/// `signal NAME = value`; `rate`, where the multibody layer knows the
+/// signal's time derivative in closed form (a body's rotation: R skew(omega)),
+/// is used for d/dt instead of the chain rule through `value`.
+struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; AstExprPtr rate = nullptr; };
 struct AstOutput { std::string name; SourceLoc loc; AstExprPtr value; };
 
 /// `Se supply = expr`, `R fr { e = c*f^2 }`, `C k = 1/k_s { q0 = 0.1 }`.

@@ -535,6 +535,53 @@ Expr mul(const Expr& a, const Expr& b) {
   return make2(Op::Mul, a, b);
 }
 
+namespace {
+
+/// e >= 0 for every value of its variables, as far as its form shows (a
+/// square, a sum or product of such, a non-negative constant).
+bool non_negative(const Expr& e, int depth = 0);
+
+/// e > 0 for every value of its variables, as far as its form shows:
+/// 1 + s^2 is, x is not. Shallow (a few levels), so it stays cheap.
+bool positive(const Expr& e, int depth = 0) {
+  if (e->op == Op::Const) return e->value > 0.0;
+  if (depth > 4) return false;
+  switch (e->op) {
+    case Op::Add:
+      return (positive(e->args[0], depth + 1) && non_negative(e->args[1], depth + 1)) ||
+             (non_negative(e->args[0], depth + 1) && positive(e->args[1], depth + 1));
+    case Op::Mul:
+    case Op::Div:
+      return positive(e->args[0], depth + 1) && positive(e->args[1], depth + 1);
+    case Op::Call:
+      return e->fn == Fn::Exp || e->fn == Fn::Cosh;
+    default:
+      return false;
+  }
+}
+
+bool non_negative(const Expr& e, int depth) {
+  if (e->op == Op::Const) return e->value >= 0.0;
+  if (depth > 4) return false;
+  switch (e->op) {
+    case Op::Add:
+      return non_negative(e->args[0], depth + 1) && non_negative(e->args[1], depth + 1);
+    case Op::Mul:
+      return equal(e->args[0], e->args[1]) ||
+             (non_negative(e->args[0], depth + 1) && non_negative(e->args[1], depth + 1));
+    case Op::Pow: {
+      double y = 0.0;
+      return is_const(e->args[1], &y) && y == 2.0;
+    }
+    case Op::Call:
+      return e->fn == Fn::Abs || e->fn == Fn::Sqrt || e->fn == Fn::Exp || e->fn == Fn::Cosh;
+    default:
+      return positive(e, depth);
+  }
+}
+
+}  // namespace
+
 Expr div(const Expr& a, const Expr& b) {
   double x = 0.0, y = 0.0;
   bool ca = cval(a, x), cb = cval(b, y);
@@ -542,6 +589,7 @@ Expr div(const Expr& a, const Expr& b) {
   if (ca && cb && !by_zero) return constant(x / y);
   if (ca && x == 0.0 && !by_zero) return zero();
   if (cb && y == 1.0) return a;
+  if (equal(a, b) && positive(b)) return one();  // a section's R33, (1 + s^2) / (1 + s^2); x / x stays (x may be 0)
   bool na = a->op == Op::Neg, nb = b->op == Op::Neg;
   if (na && nb) return div(a->args[0], b->args[0]);
   if (na) return neg(div(a->args[0], b));

@@ -96,6 +96,7 @@ struct Signal {
   SourceLoc loc;
   int var = -1;
   Expr value;
+  Expr rate;  // d/dt of the signal in closed form (a body's rotation: R skew(omega)), or null: the chain rule
 };
 
 struct Output {

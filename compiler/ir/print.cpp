@@ -65,7 +65,10 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
           if constexpr (std::is_same_v<T, AstModel>) out += fmt::format("{}model {}\n", pad, st.name);
           else if constexpr (std::is_same_v<T, AstImport>) out += fmt::format("{}import \"{}\"\n", pad, st.path);
           else if constexpr (std::is_same_v<T, AstParam>) out += fmt::format("{}{} {} = {}\n", pad, st.fold ? "const" : "param", st.name, ast_expr(*st.value));
-          else if constexpr (std::is_same_v<T, AstSignal>) out += fmt::format("{}signal {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_same_v<T, AstSignal>) {
+            out += fmt::format("{}signal {} = {}", pad, st.name, ast_expr(*st.value));
+            out += st.rate ? fmt::format("  // d/dt = {}\n", ast_expr(*st.rate)) : "\n";
+          }
           else if constexpr (std::is_same_v<T, AstOutput>) out += fmt::format("{}output {} = {}\n", pad, st.name, ast_expr(*st.value));
           else if constexpr (std::is_same_v<T, AstElement>) {
             out += fmt::format("{}{} {}", pad, st.kind, st.name);
@@ -168,7 +171,10 @@ std::string print_graph(const BondGraph& g) {
                        g.nodes[static_cast<std::size_t>(b.to)].name, b.dim,
                        g.vars[static_cast<std::size_t>(b.effort_vars[0])].name, g.vars[static_cast<std::size_t>(b.flow_vars[0])].name);
   if (!g.signals.empty()) out += "signals:\n";
-  for (const Signal& s : g.signals) out += fmt::format("  {} = {}\n", s.name, to_string(s.value, n));
+  for (const Signal& s : g.signals) {
+    out += fmt::format("  {} = {}\n", s.name, to_string(s.value, n));
+    if (s.rate) out += fmt::format("    d/dt = {}\n", to_string(s.rate, n));
+  }
   if (!g.outputs.empty()) out += "outputs:\n";
   for (const Output& o : g.outputs) out += fmt::format("  {} = {}\n", o.name, to_string(o.value, n));
   return out;

@@ -53,6 +53,7 @@ struct ResolvedExpr {
   SourceLoc loc;
   AstExprPtr expr;
   int scope = 0;
+  AstExprPtr rate;       // a signal's closed-form time derivative, if the multibody layer gave one
 };
 
 struct ResolvedModel {

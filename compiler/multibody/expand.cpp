@@ -86,9 +86,9 @@ void Expander::bond(const Build& B, const std::string& from, const std::string& 
   generated_.push_back(std::move(b));
 }
 
-void Expander::signal(const Build& B, const std::string& name, E value) {
+void Expander::signal(const Build& B, const std::string& name, E value, E rate) {
   generated_names_.insert(name);
-  generated_.push_back(AstSignal{name, B.loc(), std::move(value)});
+  generated_.push_back(AstSignal{name, B.loc(), std::move(value), std::move(rate)});
 }
 
 /// A 1-junction with the given elements bonded into / out of it.

@@ -104,7 +104,7 @@ class Expander {
   void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
   void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
   void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt);
-  void signal(const Build& B, const std::string& name, E value);
+  void signal(const Build& B, const std::string& name, E value, E rate = nullptr);
   void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {});
   void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to);
 

@@ -121,10 +121,15 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (!C.particle) {
     for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
     // The child's rotation matrix, propagated from its parent's (R_C = R_P R_PC):
-    // no quaternion product and no normalisation.
+    // no quaternion product and no normalisation. Its rate is R_C skew(omega_C)
+    // with omega_C the child's angular velocity in its own axes (the flow of
+    // the bond into its omega junction, below): 2 products an entry, where the
+    // chain rule through R_P R_PC(q) would differentiate every factor.
     E Rc = P.ground || P.particle ? Rrel : times(RP, Rrel);
+    const E rate = times(rotation(B, child), B.call("skew", {B.name(jn + ".reaction_t.f")}));
     for (int r = 1; r <= 3; ++r)
-      for (int c = 1; c <= 3; ++c) signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rc, r, c));
+      for (int c = 1; c <= 3; ++c)
+        signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rc, r, c), idx2(B, rate, r, c));
   }
   E RC = rotation(B, child);
   E joint_point = B.op('+', position(B, parent), B.op('*', RP, fwd ? pa : pb));

@@ -25,6 +25,8 @@ class Reducer {
     out_.constraints = std::move(sys_.constraints);
     eqs_ = std::move(sys_.equations);
     for (const StateVar& s : out_.states) is_state_.insert(s.var);
+    for (const Signal& s : out_.graph.signals)
+      if (s.rate) rate_of_[s.var] = s.rate;
     if (!check_each_unknown_once()) return;
     eliminate_aliases();
     if (!expand_derivatives()) return;
@@ -162,6 +164,7 @@ class Reducer {
     eqs_ = std::move(kept);
     for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve_all(var(s.der)));
     for (Output& o : out_.graph.outputs) o.value = resolve_all(o.value);
+    for (auto& [id, rate] : rate_of_) rate = resolve_all(rate);
     for (ConstraintRow& row : out_.constraints) {
       row.gdot = resolve_all(var(row.flow));
       row.g = resolve_all(row.g);  // (a cut joint's g reads signals, some now constants)
@@ -190,6 +193,12 @@ class Reducer {
   std::optional<Expr> derivative_of_var(int id, std::vector<int>& path, std::vector<Equation>& added) {
     if (auto s = state_index_.find(id); s != state_index_.end()) return out_.state_derivative[s->second];
     if (auto it = der_var_.find(id); it != der_var_.end()) return var(it->second);
+    if (auto r = rate_of_.find(id); r != rate_of_.end()) {  // known in closed form (a body's rotation)
+      int dx = out_.graph.add_var("der(" + v(id).name + ")", VarKind::Auxiliary, v(id).loc);
+      der_var_[id] = dx;
+      added.push_back({var(dx), r->second, dx, v(id).loc, "d/dt of [signal " + v(id).name + "] in closed form"});
+      return var(dx);
+    }
     auto eq = eq_of_.find(id);
     if (eq == eq_of_.end() || std::count(path.begin(), path.end(), id)) return std::nullopt;
     const Equation& def = eqs_[static_cast<std::size_t>(eq->second)];
@@ -910,6 +919,7 @@ class Reducer {
   std::unordered_map<int, int> eq_of_;
   std::unordered_map<int, std::size_t> state_index_;  // state variable -> index in out_.states
   std::unordered_map<int, int> der_var_;               // variable -> its derivative variable
+  std::unordered_map<int, Expr> rate_of_;              // signal -> its time derivative in closed form (Signal::rate)
   std::vector<int> dae_block_eqs_;
   std::unordered_set<int> dae_unknowns_;
   std::optional<TreeLayout> tree_;   // the kinematic tree's bodies (built when a loop is torn)

@@ -185,6 +185,7 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
       if (const int s = signal_of[at(v)]; s >= 0 && !need_signal[at(s)]) {
         need_signal[at(s)] = 1;
         want_vars_of(g.signals[at(s)].value);
+        if (g.signals[at(s)].rate) want_vars_of(g.signals[at(s)].rate);
       }
       continue;
     }
@@ -240,7 +241,9 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
   std::unordered_set<int> read;
   for (const GraphNode& n : g.nodes)
     for (const Expr& e : node_exprs(n)) collect_params(e, read);
-  for (const Signal& s : g.signals) collect_params(s.value, read);
+  for (const Signal& s : g.signals)
+    for (const Expr& e : {s.value, s.rate})
+      if (e) collect_params(e, read);
   for (const Output& o : g.outputs) collect_params(o.value, read);
   for (std::size_t p = g.params.size(); p-- > 0;)  // dependencies come first: walk back
     if (read.count(static_cast<int>(p)) && g.params[p].value) collect_params(g.params[p].value, read);
@@ -267,7 +270,7 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
       for (Expr& e : v->items) renumber(e);
     for (Expr& e : n.law_rhs) renumber(e);
   }
-  for (Signal& s : g.signals) renumber(s.value);
+  for (Signal& s : g.signals) renumber(s.value), renumber(s.rate);
   for (Output& o : g.outputs) renumber(o.value);
 
   rep.nodes_after = static_cast<int>(g.nodes.size());

@@ -98,10 +98,10 @@ class Resolver {
                 pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, st.fold});
             } else if constexpr (std::is_same_v<T, AstSignal>) {
               if (claim_name(prefix + st.name, st.loc, "signal"))
-                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope});
+                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, st.rate});
             } else if constexpr (std::is_same_v<T, AstOutput>) {
               if (claim_name("output " + prefix + st.name, st.loc, "output"))
-                m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope});
+                m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope, nullptr});
             } else if constexpr (std::is_same_v<T, AstElement>) {
               if (!claim_name(prefix + st.name, st.loc, "element")) return;
               ResolvedNode n;

@@ -39,10 +39,11 @@ int GuardedModel::record(double t, BlameSite site, std::size_t index, double val
   return -1;
 }
 
-int GuardedModel::derivative(double t, const double* y, double* ydot) {
+int GuardedModel::derivative(double t, const double* y, double* ydot, InputCheck check) {
   // A non-finite input means an earlier step already went wrong; blaming the
   // state itself points the user at the real culprit, not at its consumers.
-  if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
+  if (check == InputCheck::before)
+    if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
   try {
     model_.derivative(t, y, ydot);
   } catch (const std::exception& e) {
@@ -50,8 +51,10 @@ int GuardedModel::derivative(double t, const double* y, double* ydot) {
   } catch (...) {
     return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
   }
-  if (std::size_t i = first_non_finite(ydot); i < n_)
+  if (std::size_t i = first_non_finite(ydot); i < n_) {
+    if (std::size_t j = first_non_finite(y); j < n_) return record(t, BlameSite::state, j, y[j]);
     return record(t, BlameSite::derivative, i, ydot[i]);
+  }
   return 0;
 }
 

@@ -40,8 +40,14 @@ class GuardedModel {
   /// Lagrange rows whose multipliers residual() holds at 0 (redundant rows).
   void set_redundant_constraints(std::vector<std::size_t> rows) { shape_.redundant = std::move(rows); }
 
+  /// When derivative() checks that y is finite: before calling the model
+  /// (SUNDIALS' stage values), or only to place the blame once ydot is not
+  /// (rk4, whose stage values are checked states plus finite multiples of
+  /// checked derivatives: the check would cost a pass over y per call).
+  enum class InputCheck { before, on_failure };
+
   /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
-  int derivative(double t, const double* y, double* ydot);
+  int derivative(double t, const double* y, double* ydot, InputCheck check = InputCheck::before);
   int residual(double t, const double* y, const double* yp, double* r);
   /// The model's own Jacobian (row-major n x n); -1 after recording a blame.
   int jacobian(double t, const double* y, double* J);

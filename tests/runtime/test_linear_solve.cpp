@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mbgrt/linear_solve.hpp>
 #include <random>
 #include <vector>
@@ -74,4 +75,29 @@ TEST(RankRevealingSolve, ADependentRowGivesASolutionAndTheRankNotNaN) {
   std::copy(b0, b0 + 3, x);
   mbgrt::solve_linear(3, a, x);
   EXPECT_TRUE(std::isnan(x[0]));
+}
+
+TEST(RankRevealingSolve, TheSizeKnownAtCompileTimeGivesTheSameBits) {
+  // Generated code calls solve_rank_revealing<N>: the same algorithm, the
+  // loops unrolled. Full rank, a dependent row and a NaN entry alike.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    double a[9], b[3];
+    for (double& v : a) v = u(rng);
+    for (double& v : b) v = u(rng);
+    if (trial % 5 == 1) std::copy(a, a + 3, a + 6), b[2] = b[0];  // row 3 = row 1
+    if (trial % 5 == 2) a[4] = NAN;
+    double a1[9], x1[3], a2[9], x2[3];
+    std::copy(a, a + 9, a1), std::copy(b, b + 3, x1);
+    std::copy(a, a + 9, a2), std::copy(b, b + 3, x2);
+    int dep1[3] = {-1, -1, -1}, dep2[3] = {-1, -1, -1};
+    const int r1 = mbgrt::solve_rank_revealing(3, a1, x1, 1e-10, dep1);
+    const int r2 = mbgrt::solve_rank_revealing<3>(a2, x2, 1e-10, dep2);
+    EXPECT_EQ(r1, r2) << "trial " << trial;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(std::memcmp(&x1[i], &x2[i], sizeof(double)), 0) << "trial " << trial << " x[" << i << "]";
+      EXPECT_EQ(dep1[i], dep2[i]) << "trial " << trial;
+    }
+  }
 }

@@ -492,7 +492,10 @@ TEST(ExprIdentity, MulDiv) {
   EXPECT_TRUE(equal(mul(k(-1), x), neg(x)));
   EXPECT_EQ(div(x, k(1)), x);
   EXPECT_TRUE(is_zero(div(k(0), x)));
-  EXPECT_EQ(div(x, var(X))->op, Op::Div);  // a/a is deliberately not folded
+  EXPECT_EQ(div(x, var(X))->op, Op::Div);  // a/a is deliberately not folded: x may be 0
+  const Expr denom = add(k(1), mul(x, x));  // 1 + x^2 is never 0: its quotient by itself is 1
+  EXPECT_TRUE(is_one(div(denom, add(k(1), mul(x, x)))));
+  EXPECT_EQ(div(add(k(1), y), add(k(1), y))->op, Op::Div);  // 1 + y may be 0
   EXPECT_TRUE(equal(div(x, k(-1)), neg(x)));
 }
 

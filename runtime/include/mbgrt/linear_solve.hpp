@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 namespace mbgrt {
@@ -73,22 +74,17 @@ inline void solve_linear(int n, double* a, double* x) {
   }
 }
 
-/// Solve A x = b where A may be rank deficient (the multipliers of cut
-/// joints whose rows become dependent, a parallelogram whose links align):
-/// Gaussian elimination with complete pivoting; once every remaining entry is
-/// below `rel_tol` times the largest entry of A, the remaining unknowns are
-/// set to 0 and the rest back-substituted (a basic solution: for a consistent
-/// system, any solution gives the same motion). `a` (n x n, row-major) is
-/// overwritten, `x` holds b on entry and the solution on return; returns the
-/// rank found. With `dependent`, its first n - rank entries receive the rows
-/// (as numbered on entry) left without a pivot: the rows the others imply.
-/// Non-finite entries give NaN, as solve_linear does.
-inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr) {
+namespace detail {
+
+/// solve_rank_revealing's algorithm; Size is int, or std::integral_constant
+/// when the generated code knows n, so that the C++ compiler unrolls it.
+template <class Size>
+inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dependent) {
   constexpr int kMax = 64;
   int col[kMax];  // col[k]: the unknown eliminated at step k
   int row[kMax];  // row[k]: the equation (as numbered on entry) now in row k
   if (n > kMax) {
-    solve_linear(n, a, x);
+    mbgrt::solve_linear(n, a, x);
     return n;
   }
   double scale = 0.0;
@@ -115,14 +111,14 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
       break;
     }
     if (pr != k) {
-      detail::swap_rows(n, a, x, k, pr);
+      swap_rows(n, a, x, k, pr);
       std::swap(row[k], row[pr]);
     }
     if (pc != k) {
-      detail::swap_columns(n, a, k, pc);
+      swap_columns(n, a, k, pc);
       std::swap(col[k], col[pc]);
     }
-    detail::eliminate_below(n, a, x, k);
+    eliminate_below(n, a, x, k);
   }
   double y[kMax];
   for (int k = n - 1; k >= 0; --k) {
@@ -138,6 +134,29 @@ inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e
   if (dependent)
     for (int k = rank; k < n; ++k) dependent[k - rank] = row[k];
   return rank;
+}
+
+}  // namespace detail
+
+/// Solve A x = b where A may be rank deficient (the multipliers of cut
+/// joints whose rows become dependent, a parallelogram whose links align):
+/// Gaussian elimination with complete pivoting; once every remaining entry is
+/// below `rel_tol` times the largest entry of A, the remaining unknowns are
+/// set to 0 and the rest back-substituted (a basic solution: for a consistent
+/// system, any solution gives the same motion). `a` (n x n, row-major) is
+/// overwritten, `x` holds b on entry and the solution on return; returns the
+/// rank found. With `dependent`, its first n - rank entries receive the rows
+/// (as numbered on entry) left without a pivot: the rows the others imply.
+/// Non-finite entries give NaN, as solve_linear does.
+inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr) {
+  return detail::rank_revealing(n, a, x, rel_tol, dependent);
+}
+
+/// The same with n known at compile time (what generated code calls): the
+/// loops unroll, a 2 x 2 system costs a few dozen instructions.
+template <int N>
+inline int solve_rank_revealing(double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr) {
+  return detail::rank_revealing(std::integral_constant<int, N>{}, a, x, rel_tol, dependent);
 }
 
 }  // namespace mbgrt

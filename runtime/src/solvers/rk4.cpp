@@ -90,7 +90,10 @@ class Rk4 final : public Integrator {
 
   bool eval(double t, const double* y, double* ydot) {
     ++evals_;
-    if (m_.derivative(t, y, ydot) != 0) return fail();
+    // y is y_ (checked after the last step) plus finite multiples of
+    // derivatives checked here: finite unless it overflowed, which the
+    // derivative then shows and the guard blames on the state.
+    if (m_.derivative(t, y, ydot, GuardedModel::InputCheck::on_failure) != 0) return fail();
     return true;
   }
 

@@ -214,87 +214,74 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.R12
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
-    const double cse8 = crank_pose_R11 * cse5;
-    const double cse9 = crank_pose_R12 * cse4;
-    const double coupler_pose_R11 = cse8 + cse9;
+    const double coupler_pose_R11 = crank_pose_R11 * cse5 + crank_pose_R12 * cse4;
     // cut_joint.mbg:15:7  signal coupler.pose.R12
     const double coupler_pose_R12 = -crank_pose_R11 * cse4 + crank_pose_R12 * cse5;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
-    const double cse10 = 0.5 * coupler_pose_R12;
-    const double j3_car_f2_1 = -cse10 * j2_reaction_t_f_3;
+    const double cse8 = 0.5 * coupler_pose_R12;
+    const double j3_car_f2_1 = -cse8 * j2_reaction_t_f_3;
     // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
     const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
     // cut_joint.mbg:17:7  signal rocker.pose.R12
-    const double cse11 = std::sin(j4_theta_q);
-    const double rocker_pose_R12 = -cse11;
+    const double cse9 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse9;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
-    const double cse12 = 0.1 * rocker_pose_R12;
-    const double j3_cbr_f2_1 = cse12 * j4_theta_rate_rate;
+    const double cse10 = 0.1 * rocker_pose_R12;
+    const double j3_cbr_f2_1 = cse10 * j4_theta_rate_rate;
     // cut_joint.mbg:16:7  0 j3.c: flows in = flows out
     const double j3_cn_f_1 = j3_cat_f2_1 + j3_car_f2_1 + j3_cbt_f2_1 + j3_cbr_f2_1;
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse13 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse13;
+    const double cse11 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse11;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse14 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse14;
-    // cut_joint.mbg:14:7  d/dt of [signal crank.pose.R11]
-    const double der_crank_pose_R11 = -crank_pose_R21 * j1_theta_rate_rate;
-    // cut_joint.mbg:14:7  d/dt of [signal crank.pose.R12]
-    const double cse15 = crank_pose_R22 * j1_theta_rate_rate;
-    const double der_crank_pose_R12 = -cse15;
-    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R11]
-    const double der_coupler_pose_R11 = coupler_pose_R12 * j2_theta_rate_rate + cse5 * der_crank_pose_R11 + cse4 * der_crank_pose_R12;
-    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R12]
-    const double der_coupler_pose_R12 = (-cse8 - cse9) * j2_theta_rate_rate - cse4 * der_crank_pose_R11 + cse5 * der_crank_pose_R12;
+    const double cse12 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse12;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R11] in closed form
+    const double der_coupler_pose_R11 = coupler_pose_R12 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R12] in closed form
+    const double der_coupler_pose_R12 = -coupler_pose_R11 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double cse16 = crank_pose_R21 * cse5;
-    const double cse17 = crank_pose_R22 * cse4;
-    const double coupler_pose_R21 = cse16 + cse17;
+    const double coupler_pose_R21 = crank_pose_R21 * cse5 + crank_pose_R22 * cse4;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
-    const double cse18 = 0.5 * coupler_pose_R22;
-    const double j3_car_f2_2 = -cse18 * j2_reaction_t_f_3;
+    const double cse13 = 0.5 * coupler_pose_R22;
+    const double j3_car_f2_2 = -cse13 * j2_reaction_t_f_3;
     // cut_joint.mbg:17:7  signal rocker.pose.R22
     const double rocker_pose_R22 = rocker_pose_R11;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_2 = rocker_pose_R22 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
-    const double cse19 = 0.1 * rocker_pose_R22;
-    const double j3_cbr_f2_2 = cse19 * j4_theta_rate_rate;
+    const double cse14 = 0.1 * rocker_pose_R22;
+    const double j3_cbr_f2_2 = cse14 * j4_theta_rate_rate;
     // cut_joint.mbg:16:7  0 j3.c: flows in = flows out
     const double j3_cn_f_2 = j3_cat_f2_2 + j3_car_f2_2 + j3_cbt_f2_2 + j3_cbr_f2_2;
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse20 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse20;
+    const double cse15 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse15;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
-    const double rocker_pose_R21 = cse11;
+    const double rocker_pose_R21 = cse9;
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
-    // cut_joint.mbg:14:7  d/dt of [signal crank.pose.R21]
-    const double der_crank_pose_R21 = cse15;
-    // cut_joint.mbg:14:7  d/dt of [signal crank.pose.R22]
-    const double der_crank_pose_R22 = der_crank_pose_R11;
-    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R21]
-    const double der_coupler_pose_R21 = coupler_pose_R22 * j2_theta_rate_rate + cse5 * der_crank_pose_R21 + cse4 * der_crank_pose_R22;
-    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R22]
-    const double der_coupler_pose_R22 = (-cse16 - cse17) * j2_theta_rate_rate - cse4 * der_crank_pose_R21 + cse5 * der_crank_pose_R22;
-    // cut_joint.mbg:17:7  d/dt of [signal rocker.pose.R22]
-    const double der_rocker_pose_R22 = -cse11 * j4_theta_rate_rate;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R21] in closed form
+    const double der_coupler_pose_R21 = coupler_pose_R22 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R22] in closed form
+    const double der_coupler_pose_R22 = -coupler_pose_R21 * j2_reaction_t_f_3;
+    // cut_joint.mbg:17:7  d/dt of [signal rocker.pose.R22] in closed form
+    const double der_rocker_pose_R22 = -rocker_pose_R21 * j4_theta_rate_rate;
     // cut_joint.mbg:13:6  Se rocker.weight: e = value
     const double rocker_weight_e_2 = -9.81 * rocker_pose_R22;
-    // cut_joint.mbg:17:7  d/dt of [signal rocker.pose.R12]
+    // cut_joint.mbg:17:7  d/dt of [signal rocker.pose.R12] in closed form
     const double der_rocker_pose_R12 = -rocker_pose_R11 * j4_theta_rate_rate;
     // cut_joint.mbg:11:6  Se crank.weight: e = value
     const double crank_weight_e_2 = -9.81 * crank_pose_R22;
@@ -303,41 +290,41 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:12:6  R coupler.ejs_v: e = law(f)
     const double coupler_ejs_v_e_1 = -j2_reaction_t_f_3 * j2_reaction_f_f_2;
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: 1 / pivot of the joint's accelerations
-    const double cse21 = coupler_inertia_3_3 + 0.25;
+    const double cse16 = coupler_inertia_3_3 + 0.25;
     const double coupler_pivot1 = derived1_;
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: joint acceleration as an affine function of the parent's motion
-    const double cse22 = -cse10 - cse10;
-    const double coupler_accel2 = -coupler_pivot1 * cse22;
-    const double cse23 = -cse18 - cse18;
-    const double coupler_accel3 = -coupler_pivot1 * cse23;
-    const double cse24 = cse7 + 0.5;
-    const double cse25 = coupler_inertia_3_3 + 0.5 * cse24;
-    const double coupler_accel4 = -coupler_pivot1 * cse25;
-    const double cse26 = 0.5 * cse5;
-    const double coupler_accel5 = -coupler_pivot1 * cse26;
-    const double cse27 = -j2_m3_f2_1 * j2_theta_rate_rate - j2_m4_f2_1 * j2_theta_rate_rate;
-    const double cse28 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) + cse27;
-    const double cse29 = 0.5 * cse28;
-    const double coupler_accel6 = -coupler_pivot1 * cse29;
+    const double cse17 = -cse8 - cse8;
+    const double coupler_accel2 = -coupler_pivot1 * cse17;
+    const double cse18 = -cse13 - cse13;
+    const double coupler_accel3 = -coupler_pivot1 * cse18;
+    const double cse19 = cse7 + 0.5;
+    const double cse20 = coupler_inertia_3_3 + 0.5 * cse19;
+    const double coupler_accel4 = -coupler_pivot1 * cse20;
+    const double cse21 = 0.5 * cse5;
+    const double coupler_accel5 = -coupler_pivot1 * cse21;
+    const double cse22 = -j2_m3_f2_1 * j2_theta_rate_rate - j2_m4_f2_1 * j2_theta_rate_rate;
+    const double cse23 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) + cse22;
+    const double cse24 = 0.5 * cse23;
+    const double coupler_accel6 = -coupler_pivot1 * cse24;
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double coupler_out7 = -cse4 * coupler_pose_R11 - cse5 * coupler_pose_R12 + cse26 * coupler_accel2;
-    const double coupler_out8 = -cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22 + cse26 * coupler_accel3;
-    const double coupler_out9 = cse4 * cse6 + cse5 * cse24 + cse26 * coupler_accel4;
-    const double coupler_out10 = cse26 * coupler_accel5 + (cse4 * cse4 + cse5 * cse5);
-    const double cse30 = j2_m3_f2_2 * j2_theta_rate_rate + j2_m4_f2_2 * j2_theta_rate_rate;
-    const double cse31 = -(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse30;
-    const double coupler_out11 = cse4 * cse31 + cse5 * cse28 + cse26 * coupler_accel6;
-    const double cse32 = 0.05 * cse5;
-    const double coupler_out12 = -cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12 + cse32 * coupler_accel2;
-    const double coupler_out13 = -cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22 + cse32 * coupler_accel3;
-    const double coupler_out14 = cse6 * cse6 + cse7 * cse24 + cse32 * coupler_accel4;
-    const double coupler_out15 = cse32 * coupler_accel5 + (cse6 * cse4 + cse7 * cse5);
-    const double coupler_out16 = cse6 * cse31 + cse7 * cse28 + cse32 * coupler_accel6;
-    const double coupler_out17 = cse22 + cse21 * coupler_accel2;
-    const double coupler_out18 = cse23 + cse21 * coupler_accel3;
-    const double coupler_out19 = cse25 + cse21 * coupler_accel4;
-    const double coupler_out20 = cse21 * coupler_accel5 + cse26;
-    const double coupler_out21 = cse29 + cse21 * coupler_accel6;
+    const double coupler_out7 = -cse4 * coupler_pose_R11 - cse5 * coupler_pose_R12 + cse21 * coupler_accel2;
+    const double coupler_out8 = -cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22 + cse21 * coupler_accel3;
+    const double coupler_out9 = cse4 * cse6 + cse5 * cse19 + cse21 * coupler_accel4;
+    const double coupler_out10 = cse21 * coupler_accel5 + (cse4 * cse4 + cse5 * cse5);
+    const double cse25 = j2_m3_f2_2 * j2_theta_rate_rate + j2_m4_f2_2 * j2_theta_rate_rate;
+    const double cse26 = -(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse25;
+    const double coupler_out11 = cse4 * cse26 + cse5 * cse23 + cse21 * coupler_accel6;
+    const double cse27 = 0.05 * cse5;
+    const double coupler_out12 = -cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12 + cse27 * coupler_accel2;
+    const double coupler_out13 = -cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22 + cse27 * coupler_accel3;
+    const double coupler_out14 = cse6 * cse6 + cse7 * cse19 + cse27 * coupler_accel4;
+    const double coupler_out15 = cse27 * coupler_accel5 + (cse6 * cse4 + cse7 * cse5);
+    const double coupler_out16 = cse6 * cse26 + cse7 * cse23 + cse27 * coupler_accel6;
+    const double coupler_out17 = cse17 + cse16 * coupler_accel2;
+    const double coupler_out18 = cse18 + cse16 * coupler_accel3;
+    const double coupler_out19 = cse20 + cse16 * coupler_accel4;
+    const double coupler_out20 = cse16 * coupler_accel5 + cse21;
+    const double coupler_out21 = cse24 + cse16 * coupler_accel6;
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: 1 / pivot of the joint's accelerations
     const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + 0.1 * coupler_out10) + coupler_out14 + 0.1 * coupler_out15 + coupler_out19 + 0.1 * coupler_out20);
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: joint acceleration as an affine function of the parent's motion
@@ -347,8 +334,8 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: 1 / pivot of the joint's accelerations
     const double rocker_pivot1 = derived2_;
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: joint acceleration as an affine function of the parent's motion
-    const double rocker_accel2 = -rocker_pivot1 * (cse12 + cse12);
-    const double rocker_accel3 = -rocker_pivot1 * (cse19 + cse19);
+    const double rocker_accel2 = -rocker_pivot1 * (cse10 + cse10);
+    const double rocker_accel3 = -rocker_pivot1 * (cse14 + cse14);
     const double rocker_accel4 = rocker_pivot1 * (0.1 * rocker_weight_e_2);
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: the cut joints' columns: an unknown their rows read, affine in their multipliers
     const double crank_column5 = 0.1 * crank_accel2;
@@ -357,13 +344,13 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: the cut joints' columns: an unknown their rows read, affine in their multipliers
     const double coupler_column22 = cse6 * crank_accel2 + cse4 * crank_column5;
     const double coupler_column23 = cse6 * crank_accel3 + cse4 * crank_column6;
-    const double coupler_column24 = cse30 + cse6 * crank_accel4 + cse4 * crank_column7;
+    const double coupler_column24 = cse25 + cse6 * crank_accel4 + cse4 * crank_column7;
     const double coupler_column25 = coupler_accel2 + coupler_accel4 * crank_accel2 + coupler_accel5 * crank_column5;
     const double coupler_column26 = coupler_accel3 + coupler_accel4 * crank_accel3 + coupler_accel5 * crank_column6;
     const double coupler_column27 = coupler_accel6 + coupler_accel4 * crank_accel4 + coupler_accel5 * crank_column7;
-    const double coupler_column28 = cse24 * crank_accel2 + 0.5 * coupler_column25 + cse5 * crank_column5;
-    const double coupler_column29 = cse24 * crank_accel3 + 0.5 * coupler_column26 + cse5 * crank_column6;
-    const double coupler_column30 = cse27 + cse24 * crank_accel4 + 0.5 * coupler_column27 + cse5 * crank_column7;
+    const double coupler_column28 = cse19 * crank_accel2 + 0.5 * coupler_column25 + cse5 * crank_column5;
+    const double coupler_column29 = cse19 * crank_accel3 + 0.5 * coupler_column26 + cse5 * crank_column6;
+    const double coupler_column30 = cse22 + cse19 * crank_accel4 + 0.5 * coupler_column27 + cse5 * crank_column7;
     const double coupler_column31 = crank_accel2 + coupler_column25;
     const double coupler_column32 = crank_accel3 + coupler_column26;
     const double coupler_column33 = crank_accel4 + coupler_column27;
@@ -373,16 +360,16 @@ class cut_joint_model final : public mbgrt::Model {
     const double rocker_column7 = 0.1 * rocker_accel4;
     // cut_joint.mbg:16:7  cut joints: 2 multipliers from their rows at acceleration level, an 2x2 system solved at run time
     // A x = b for x = (j3.cn.e[1], j3.cn.e[2])
-    const double cse33 = 2.0 * j3_stabilisation;
-    const double cse34 = j3_stabilisation * j3_stabilisation;
+    const double cse28 = 2.0 * j3_stabilisation;
+    const double cse29 = j3_stabilisation * j3_stabilisation;
     double blk1_a[4] = {
-        -coupler_pose_R11 * coupler_column22 - coupler_pose_R12 * coupler_column28 - cse10 * coupler_column31 + rocker_pose_R12 * rocker_column5 + cse12 * rocker_accel2, -coupler_pose_R11 * coupler_column23 - coupler_pose_R12 * coupler_column29 - cse10 * coupler_column32 + rocker_pose_R12 * rocker_column6 + cse12 * rocker_accel3,
-        -coupler_pose_R21 * coupler_column22 - coupler_pose_R22 * coupler_column28 - cse18 * coupler_column31 + rocker_pose_R22 * rocker_column5 + cse19 * rocker_accel2, -coupler_pose_R21 * coupler_column23 - coupler_pose_R22 * coupler_column29 - cse18 * coupler_column32 + rocker_pose_R22 * rocker_column6 + cse19 * rocker_accel3,
+        -coupler_pose_R11 * coupler_column22 - coupler_pose_R12 * coupler_column28 - cse8 * coupler_column31 + rocker_pose_R12 * rocker_column5 + cse10 * rocker_accel2, -coupler_pose_R11 * coupler_column23 - coupler_pose_R12 * coupler_column29 - cse8 * coupler_column32 + rocker_pose_R12 * rocker_column6 + cse10 * rocker_accel3,
+        -coupler_pose_R21 * coupler_column22 - coupler_pose_R22 * coupler_column28 - cse13 * coupler_column31 + rocker_pose_R22 * rocker_column5 + cse14 * rocker_accel2, -coupler_pose_R21 * coupler_column23 - coupler_pose_R22 * coupler_column29 - cse13 * coupler_column32 + rocker_pose_R22 * rocker_column6 + cse14 * rocker_accel3,
     };
-    double blk1_x[2] = {-(cse33 * j3_cn_f_1 + cse34 * (rocker_pose_r1 + cse14 - (coupler_pose_r1 + cse13)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column24 - coupler_pose_R12 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse10 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse12 * rocker_accel4))), -(cse33 * j3_cn_f_2 + cse34 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse20)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column24 - coupler_pose_R22 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse18 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse19 * rocker_accel4)))};
+    double blk1_x[2] = {-(cse28 * j3_cn_f_1 + cse29 * (rocker_pose_r1 + cse12 - (coupler_pose_r1 + cse11)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column24 - coupler_pose_R12 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse8 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse10 * rocker_accel4))), -(cse28 * j3_cn_f_2 + cse29 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse15)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column24 - coupler_pose_R22 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse13 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse14 * rocker_accel4)))};
     static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
     int blk1_dependent[2];
-    const int blk1_rank = mbgrt::solve_rank_revealing(2, blk1_a, blk1_x, 1e-10, blk1_dependent);
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
     if (blk1_rank < 2) rank_loss_.record(t, "the cut joints' 2 x 2 multiplier system", blk1_rank, 2, blk1_dependent, blk1_rows);
     const double j3_cn_e_1 = blk1_x[0];
     const double j3_cn_e_2 = blk1_x[1];
@@ -422,26 +409,26 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
     // (cseN: a subexpression several equations below share)
-    const double cse35 = std::cos(j2_theta_q);
-    const double cse36 = std::sin(j2_theta_q);
-    const double coupler_pose_R11 = crank_pose_R11 * cse35 + crank_pose_R12 * cse36;
+    const double cse30 = std::cos(j2_theta_q);
+    const double cse31 = std::sin(j2_theta_q);
+    const double coupler_pose_R11 = crank_pose_R11 * cse30 + crank_pose_R12 * cse31;
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse37 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse37;
+    const double cse32 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse32;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse38 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse38;
+    const double cse33 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse33;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse35 + crank_pose_R22 * cse36;
+    const double coupler_pose_R21 = crank_pose_R21 * cse30 + crank_pose_R22 * cse31;
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse39 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse39;
+    const double cse34 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse34;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
     const double rocker_pose_R21 = std::sin(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r2
@@ -449,9 +436,9 @@ class cut_joint_model final : public mbgrt::Model {
     // outputs, in declaration order
     out[0] = j1_theta_q;
     out[1] = j4_theta_q;
-    const double cse40 = coupler_pose_r1 + cse37 - (rocker_pose_r1 + cse38);
-    const double cse41 = coupler_pose_r2 + cse39 - (rocker_pose_r2 + rocker_pose_r2);
-    out[2] = std::sqrt(cse40 * cse40 + cse41 * cse41);
+    const double cse35 = coupler_pose_r1 + cse32 - (rocker_pose_r1 + cse33);
+    const double cse36 = coupler_pose_r2 + cse34 - (rocker_pose_r2 + rocker_pose_r2);
+    out[2] = std::sqrt(cse35 * cse35 + cse36 * cse36);
   }
 
   std::size_t position_constraint_count() const override {
@@ -491,21 +478,21 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R22 = std::cos(j1_theta_q);
     // cut_joint.mbg:15:7  signal coupler.pose.R22
     // (cseN: a subexpression several equations below share)
-    const double cse42 = std::sin(j2_theta_q);
-    const double cse43 = std::cos(j2_theta_q);
-    const double coupler_pose_R22 = -crank_pose_R21 * cse42 + crank_pose_R22 * cse43;
+    const double cse37 = std::sin(j2_theta_q);
+    const double cse38 = std::cos(j2_theta_q);
+    const double coupler_pose_R22 = -crank_pose_R21 * cse37 + crank_pose_R22 * cse38;
     // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
     const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
     // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_1 = cse42 * j1_m2_f2_2;
+    const double j2_m3_f2_1 = cse37 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_1 = 0.1 * cse42 * j1_theta_rate_rate;
+    const double j2_m4_f2_1 = 0.1 * cse37 * j1_theta_rate_rate;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
     const double j2_reaction_f_f_1 = j2_m3_f2_1 + j2_m4_f2_1;
     // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_2 = cse43 * j1_m2_f2_2;
+    const double j2_m3_f2_2 = cse38 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_2 = 0.1 * cse43 * j1_theta_rate_rate;
+    const double j2_m4_f2_2 = 0.1 * cse38 * j1_theta_rate_rate;
     // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
@@ -515,9 +502,9 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.R12
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
-    const double coupler_pose_R11 = crank_pose_R11 * cse43 + crank_pose_R12 * cse42;
+    const double coupler_pose_R11 = crank_pose_R11 * cse38 + crank_pose_R12 * cse37;
     // cut_joint.mbg:15:7  signal coupler.pose.R12
-    const double coupler_pose_R12 = -crank_pose_R11 * cse42 + crank_pose_R12 * cse43;
+    const double coupler_pose_R12 = -crank_pose_R11 * cse37 + crank_pose_R12 * cse38;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -525,8 +512,8 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
     const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
     // cut_joint.mbg:17:7  signal rocker.pose.R12
-    const double cse44 = std::sin(j4_theta_q);
-    const double rocker_pose_R12 = -cse44;
+    const double cse39 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse39;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
@@ -536,15 +523,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse45 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse45;
+    const double cse40 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse40;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse46 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse46;
+    const double cse41 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse41;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse43 + crank_pose_R22 * cse42;
+    const double coupler_pose_R21 = crank_pose_R21 * cse38 + crank_pose_R22 * cse37;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -560,15 +547,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse47 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse47;
+    const double cse42 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse42;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
-    const double rocker_pose_R21 = cse44;
+    const double rocker_pose_R21 = cse39;
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
     // g, then gdot
-    rows_out[0] = rocker_pose_r1 + cse46 - (coupler_pose_r1 + cse45);
-    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse47);
+    rows_out[0] = rocker_pose_r1 + cse41 - (coupler_pose_r1 + cse40);
+    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse42);
     rows_out[2] = 0.0;
     rows_out[3] = 0.0;
     rows_out[4] = 0.0;
