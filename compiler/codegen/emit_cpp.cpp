@@ -10,6 +10,7 @@
 
 #include "codegen/cpp.hpp"
 #include "codegen/names.hpp"
+#include "codegen/shared_temps.hpp"
 #include "codegen/split.hpp"
 #include "codegen/template.hpp"
 
@@ -311,32 +312,32 @@ class Emitter {
     // chain) repeat subexpressions: share them here too. A parameter only
     // reads earlier ones, so a temporary defined before its first use reads
     // parameters that are already set (overrides included).
-    const std::unordered_map<Expr, std::string, ExprHash, ExprEqual> none;
-    SharedTemps shared(none);
+    const ExprNames none;
+    SharedTemps shared(none, names_, cse_counter_, ops());
     for (const Parameter& p : g_.params) shared.count(p.value);
     for (const Expr& e : hoisted_order_) shared.count(e);
     for (const StateVar& st : s_.states) shared.count(st.initial);
     shared.finish_counting();
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
-      std::string value = print_shared(p.value, shared, f.body);
+      std::string value = shared.print(p.value, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});  // {}", names_.param(static_cast<int>(i)), i,
                                                  value, where(p.loc))));
     }
     if (!hoisted_order_.empty()) f.body.push_back(CppStmt::comment("DERIVED CONSTANTS: parameter expressions, computed once per run"));
     for (const Expr& e : hoisted_order_) {
       // a derived constant that recurs whole is reused by its own name
-      bool shared_whole = shared.pending.erase(e) > 0;
-      std::string value = print_shared(e, shared, f.body);
+      bool shared_whole = shared.take_pending(e);
+      std::string value = shared.print(e, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), value)));
-      if (shared_whole) shared.temp[e] = hoisted_.at(e);
+      if (shared_whole) shared.name_whole(e, hoisted_.at(e));
     }
     if (!s_.states.empty()) f.body.push_back(CppStmt::comment("INITIAL STATE"));
     const char* y = s_.dae ? "y" : "x";
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
       const StateVar& st = s_.states[i];
       const Variable& v = g_.vars[static_cast<std::size_t>(st.var)];
-      std::string value = print_shared(st.initial, shared, f.body);
+      std::string value = shared.print(st.initial, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {} ({})", y, i, value, v.name, where(v.loc))));
     }
     if (s_.dae) {
@@ -346,51 +347,6 @@ class Emitter {
       f.body.push_back(CppStmt::line(fmt::format("for (std::size_t i = 0; i < {}; ++i) yp[i] = 0.0;  // first guess", unknown_count())));
     }
     return f;
-  }
-
-  // ---- common subexpressions -------------------------------------------------------------
-  /// Subexpressions used more than once in one function, defined as `const
-  /// double cseN` right before their first use. `temp` starts with the
-  /// derived constants, which are members already.
-  struct SharedTemps {
-    explicit SharedTemps(const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& known)
-        : known_(known), temp(known.begin(), known.end()) {}
-    void count(const Expr& e) {
-      if (e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty())) return;
-      if (known_.count(e)) return;  // computed once in initial()
-      if (++uses_[e] > 1) return;   // children already counted through the first occurrence
-      for (const Expr& a : e->args) count(a);
-    }
-    void finish_counting() {
-      for (const auto& [e, n] : uses_)
-        if (n > 1) pending.insert(e);
-      uses_.clear();
-    }
-    const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& known_;
-    std::unordered_map<Expr, int, ExprHash, ExprEqual> uses_;
-    std::unordered_map<Expr, std::string, ExprHash, ExprEqual> temp;
-    std::unordered_set<Expr, ExprHash, ExprEqual> pending;
-    bool announced = false;  // the note on cseN names is printed
-  };
-
-  /// `e` in C++, after defining (into `body`) the shared temporaries it needs, innermost first.
-  std::string print_shared(const Expr& e, SharedTemps& shared, std::vector<CppStmt>& body) {
-    std::unordered_set<const Node*> seen;
-    std::function<void(const Expr&)> define = [&](const Expr& x) {
-      if (x->args.empty() || !seen.insert(x.get()).second) return;
-      // A temporary named after its whole sub-tree was walked defines nothing new below.
-      if (!shared.known_.count(x) && shared.temp.count(x)) return;
-      for (const Expr& a : x->args) define(a);
-      if (shared.pending.count(x) && !shared.temp.count(x)) {
-        std::string name = fmt::format("cse{}", ++cse_counter_);
-        if (!shared.announced) body.push_back(CppStmt::comment("(cseN: a subexpression several equations below share)"));
-        shared.announced = true;
-        body.push_back(CppStmt::line(fmt::format("const double {} = {};", name, cpp_with_temps(x, shared.temp, /*top=*/true))));
-        shared.temp[x] = name;
-      }
-    };
-    define(e);
-    return cpp_with_temps(e, shared.temp, false);
   }
 
   // ---- sections with equations ------------------------------------------------------------
@@ -426,7 +382,7 @@ class Emitter {
       body.push_back(CppStmt::line(fmt::format("const double {} = yp[{}];", var_name(v), i)));
     }
     // Common subexpressions: anything non-trivial used twice or more in this section.
-    SharedTemps shared(hoisted_);
+    SharedTemps shared(hoisted_, names_, cse_counter_, ops());
     auto visit = [&](const Expr& e) { shared.count(e); };
     std::set<int> blocks_counted;
     for (int i : assignment_indices) {
@@ -442,9 +398,7 @@ class Emitter {
     }
     for (const auto& [target, e] : results) visit(e);
     shared.finish_counting();
-    auto& pending = shared.pending;
-    auto& temp = shared.temp;
-    auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return print_shared(e, shared, out_body); };
+    auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return shared.print(e, out_body); };
     std::set<int> blocks_done;
     std::string last_origin;
     for (int i : assignment_indices) {
@@ -460,11 +414,10 @@ class Emitter {
       last_origin = std::move(origin);
       // An assignment whose whole value recurs elsewhere becomes the shared
       // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
-      bool shared_whole = pending.count(a.value) && !temp.count(a.value);
-      if (shared_whole) pending.erase(a.value);
+      bool shared_whole = shared.take_whole(a.value);
       std::string rhs = print_expr(a.value, body);
       body.push_back(CppStmt::line(fmt::format("const double {} = {};", var_name(a.var), rhs)));
-      if (shared_whole) temp[a.value] = var_name(a.var);
+      if (shared_whole) shared.name_whole(a.value, var_name(a.var));
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
     for (const auto& [target, e] : results) {
@@ -522,19 +475,6 @@ class Emitter {
   CppOps* ops() {
     if (!cost_) throw std::logic_error("mbgc: an expression printed outside a counted method (codegen bug)");
     return &cost_->ops;
-  }
-
-  /// to_cpp, with already-defined common subexpressions replaced by their names.
-  std::string cpp_with_temps(const Expr& e, const std::unordered_map<Expr, std::string, ExprHash, ExprEqual>& temp, bool top) {
-    if (temp.empty()) return to_cpp(e, names_, ops());
-    // Each defined temporary prints as its name, as a variable would; with
-    // `top`, e itself is written out (its definition).
-    const NamedNodes named = [&](const Expr& x) -> const std::string* {
-      if (top && x.get() == e.get()) return nullptr;
-      auto it = temp.find(x);
-      return it == temp.end() ? nullptr : &it->second;
-    };
-    return to_cpp(e, names_, named, ops());
   }
 
   CppFunction derivative() {
