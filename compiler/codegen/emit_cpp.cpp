@@ -10,6 +10,7 @@
 
 #include "codegen/cpp.hpp"
 #include "codegen/names.hpp"
+#include "codegen/outline.hpp"
 #include "codegen/shared_temps.hpp"
 #include "codegen/split.hpp"
 #include "codegen/template.hpp"
@@ -49,6 +50,7 @@ class Emitter {
     if (!s_.constraints.empty()) constraint_functions(c);
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
+    for (CppFunction& f : outlined_) c.private_methods.push_back(std::move(f));
     private_part(c);
 
     std::string banner = fmt::format(
@@ -122,9 +124,12 @@ class Emitter {
         }
         stats.functions.push_back(std::move(fs));
       }
-    // A long method's parts (NAME_partK) count as lines and bytes of NAME.
+    // A long method's parts (NAME_partK) and its shapes' functions
+    // (NAME_shapeK, whose operations count in NAME once per call) count as
+    // lines and bytes of NAME.
     for (auto it = stats.functions.begin(); it != stats.functions.end();) {
-      const auto cut = it->name.rfind("_part");
+      auto cut = it->name.rfind("_part");
+      if (cut == std::string::npos) cut = it->name.rfind("_shape");
       auto base = cut == std::string::npos ? stats.functions.end()
                                            : std::find_if(stats.functions.begin(), stats.functions.end(),
                                                           [&](const FunctionStats& g) { return g.name == it->name.substr(0, cut); });
@@ -152,6 +157,7 @@ class Emitter {
   };
   [[nodiscard]] Counting count_into(const CppFunction& f) {
     cost_ = &costs_[f.signature];
+    cost_signature_ = f.signature;
     return Counting{cost_};
   }
 
@@ -381,12 +387,31 @@ class Emitter {
       if (v < 0 || !used.count(v)) continue;
       body.push_back(CppStmt::line(fmt::format("const double {} = yp[{}];", var_name(v), i)));
     }
+    // Bodies whose elimination is the same up to names: one function each shape (codegen/outline).
+    std::vector<const Assignment*> list;
+    for (int i : assignment_indices) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
+    Outlining outlined;
+    std::vector<int> run_at(list.size(), -1);
+    if (opt_.outline) {
+      std::vector<std::unordered_set<int>> reads(list.size() + 1);
+      for (std::size_t k = 0; k < list.size(); ++k) assignment_inputs(s_, *list[k], reads[k]);
+      for (const auto& [target, e] : results) collect_vars(e, reads.back());
+      outlined = find_outlined_runs(list, reads);
+      for (std::size_t r = 0; r < outlined.runs.size(); ++r)
+        if (outlined.runs[r].shape >= 0)
+          for (std::size_t k = outlined.runs[r].begin; k < outlined.runs[r].end; ++k) run_at[k] = static_cast<int>(r);
+    }
     // Common subexpressions: anything non-trivial used twice or more in this section.
     SharedTemps shared(hoisted_, names_, cse_counter_, ops());
     auto visit = [&](const Expr& e) { shared.count(e); };
     std::set<int> blocks_counted;
-    for (int i : assignment_indices) {
-      const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const Assignment& a = *list[k];
+      if (run_at[k] >= 0) {  // an outlined run reads its inputs, once
+        if (outlined.runs[static_cast<std::size_t>(run_at[k])].begin == k)
+          for (const Expr& e : outlined.runs[static_cast<std::size_t>(run_at[k])].inputs) visit(e);
+        continue;
+      }
       if (a.block < 0) {
         visit(a.value);
         continue;
@@ -401,8 +426,15 @@ class Emitter {
     auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return shared.print(e, out_body); };
     std::set<int> blocks_done;
     std::string last_origin;
-    for (int i : assignment_indices) {
-      const Assignment& a = s_.assignments[static_cast<std::size_t>(i)];
+    std::vector<std::string> shape_names(outlined.shapes.size());
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const Assignment& a = *list[k];
+      if (run_at[k] >= 0) {
+        const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(run_at[k])];
+        if (run.begin == k) call_shape(body, outlined, run_at[k], list, shape_names, shared);
+        last_origin.clear();
+        continue;
+      }
       if (a.block >= 0) {
         if (blocks_done.insert(a.block).second) emit_block(body, a, print_expr);
         body.push_back(CppStmt::line(fmt::format("const double {} = blk{}_x[{}];", var_name(a.var), a.block + 1, block_position(a))));
@@ -424,6 +456,39 @@ class Emitter {
       std::string rhs = print_expr(e, body);
       body.push_back(CppStmt::line(fmt::format("{} = {};", target, rhs)));
     }
+  }
+
+  /// One outlined run: its inputs into an array, the shape's function (made
+  /// the first time), its outputs out of an array under their own names.
+  void call_shape(std::vector<CppStmt>& body, const Outlining& o, int r, const std::vector<const Assignment*>& list,
+                  std::vector<std::string>& shape_names, SharedTemps& shared) {
+    const OutlinedRun& run = o.runs[static_cast<std::size_t>(r)];
+    const OutlineShape& shape = o.shapes[static_cast<std::size_t>(run.shape)];
+    std::string& fn = shape_names[static_cast<std::size_t>(run.shape)];
+    const std::string method = method_name(cost_signature_);
+    if (fn.empty()) {
+      fn = mangle_.get(fmt::format("shape:{}:{}", method, run.shape), fmt::format("{}_shape{}", method, run.shape + 1));
+      Cost one;
+      Cost* caller = cost_;
+      cost_ = &one;
+      outlined_.push_back(shape_function(fn, o, run.shape, list, g_, names_, [this](const SourceLoc& l) { return where(l); },
+                                         cse_counter_, ops()));
+      cost_ = caller;
+      shape_cost_[fn] = one.ops;
+    }
+    cost_->ops += shape_cost_.at(fn);  // the work of one call
+    const Assignment& first = *list[run.begin];
+    body.push_back(CppStmt::comment(fmt::format("{}  articulated-body elimination, body {}: {}() (the same equations as {} bodies)",
+                                                where(first.loc), run.body, fn, shape.runs.size())));
+    std::vector<std::string> in;
+    for (const Expr& e : run.inputs) in.push_back(shared.print(e, body));
+    const std::string key = fmt::format("run:{}:{}", method, run.begin);
+    const std::string in_name = mangle_.get(key + ":in", run.body + "_in"), out_name = mangle_.get(key + ":out", run.body + "_out");
+    body.push_back(CppStmt::line(fmt::format("double {}[{}] = {{{}}};", in_name, in.size(), fmt::join(in, ", "))));
+    body.push_back(CppStmt::line(fmt::format("double {}[{}];", out_name, shape.outputs.size())));
+    body.push_back(CppStmt::line(fmt::format("{}({}, {});", fn, in_name, out_name)));
+    for (std::size_t k = 0; k < shape.outputs.size(); ++k)
+      body.push_back(CppStmt::line(fmt::format("const double {} = {}[{}];", var_name(run.defined[shape.outputs[k]]), out_name, k)));
   }
 
   std::size_t block_position(const Assignment& a) const {
@@ -695,6 +760,9 @@ class Emitter {
   int cse_counter_ = 0;
   std::map<std::string, Cost> costs_;  // method signature -> its cost
   Cost* cost_ = nullptr;               // the method being built
+  std::string cost_signature_;         // its signature
+  std::vector<CppFunction> outlined_;  // the shapes' functions (codegen/outline), private
+  std::map<std::string, CppOps> shape_cost_;  // per shape function: the operations of one call
   std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
   std::vector<Expr> hoisted_order_;                                    // in first-use order
   bool has_rank_loss_ = false;        // a rank-revealing solve was written: the model keeps its log

@@ -25,6 +25,7 @@ struct EmitOptions {
   std::string source_display;    ///< source path shown in the banner
   std::string scene;             ///< the scene compiled (mbgc --scene), if any
   std::string version = MBGC_VERSION;
+  bool outline = true;           ///< bodies with the same elimination share one function (codegen/outline.hpp)
 };
 
 /// Empty if `name` can be the namespace of --library's class, else why not.

@@ -155,6 +155,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
 
   codegen::EmitOptions emit;
   emit.library = opt.library;
+  emit.outline = !opt.no_outline;
   emit.library_namespace = opt.library_namespace;
   if (selected) emit.scene = selected->name;
   emit.source_display = opt.input;

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
   std::string explain;
   app.add_option("--explain-scene", explain,
                  "print what scene NAME keeps and removes (bodies, elements, signals, outputs) instead of C++");
+  app.add_flag("--no-outline", opt.no_outline,
+               "write every body's articulated-body elimination inline, not one function per shape of bodies "
+               "with the same equations (to measure what outlining saves)");
   app.add_flag("--keep-unchanged", opt.keep_unchanged,
                "leave -o's file (and the depfile) untouched when its text would not change, so that Ninja's "
                "restat skips recompiling it (mbgc_add_simulation passes it under Ninja)");
@@ -51,8 +54,8 @@ int main(int argc, char** argv) {
                "floating-point operations per call, as written (each binary + - * /, each unary minus not on a "
                "literal, each math function call incl. pow, fabs, fmin, fmax, each comparison of step/sign; x^2 "
                "and x^3 of a variable are x*x and x*x*x; a shared temporary counts once, where it is defined; "
-               "mbgrt::solve_linear(n) counts (4n^3 + 9n^2 - 7n)/6), then the totals and the whole file's lines and "
-               "bytes");
+               "mbgrt::solve_linear(n) counts (4n^3 + 9n^2 - 7n)/6; a body-shape function NAME_shapeK counts in NAME "
+               "once per call, its lines and bytes once), then the totals and the whole file's lines and bytes");
   app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
       ->check(CLI::IsMember({"text", "csv"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);

@@ -1,0 +1,66 @@
+// codegen/outline.hpp — bodies with the same equations, computed by one function.
+//
+// A generated derivative is straight-line code, and for a large model the
+// processor spends its time fetching it: measured on the chain of 32 and 100
+// rods and the 31-rod binary tree alike, the derivative ran at about 57 bytes
+// of machine code per nanosecond whatever its arithmetic (docs/notes/
+// linear_time.md). Bodies made by one `for` loop have the same equations up
+// to their names, so their articulated-body elimination (most of the work
+// for 3-D bodies) is written once, as a function of the values it reads, and
+// called once per body: the code shrinks by about the number of bodies and
+// stays in the instruction cache.
+//
+// A run is the contiguous sequence of one body's elimination temporaries in
+// a section (reduce/tree_elimination names them and their origin). Two runs
+// have the same shape when their expressions are the same DAG with the
+// leaves renamed in order of first appearance: the run's own variables,
+// its inputs (variables defined before it, and parameter-only subexpressions,
+// which stay on the caller's side where initial() computed them once) and
+// the same constants, bit for bit.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "codegen/cpp.hpp"
+#include "ir/expr.hpp"
+#include "ir/graph.hpp"
+#include "ir/reduced.hpp"
+
+namespace mbgc::codegen {
+
+struct OutlinedRun {
+  std::size_t begin = 0, end = 0;   // [begin, end) in the section's assignment list
+  std::string body;                 // the body whose elimination it is
+  int shape = -1;                   // index into Outlining::shapes; -1: written inline
+  std::vector<ir::Expr> inputs;     // what it reads from outside, in canonical order
+  std::vector<int> defined;         // the variables it computes, in order
+};
+
+struct OutlineShape {
+  std::vector<int> runs;            // indices into Outlining::runs, in section order
+  std::vector<std::size_t> outputs; // positions in `defined` that anything outside a run reads
+};
+
+struct Outlining {
+  std::vector<OutlinedRun> runs;
+  std::vector<OutlineShape> shapes; // only shapes of two runs or more
+};
+
+/// The runs of `assignments` (one section, in order) and their shapes;
+/// reads[i] the variables assignment i reads, reads[assignments.size()] what
+/// the section's results read.
+Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignments,
+                             const std::vector<std::unordered_set<int>>& reads);
+
+/// The function that computes one shape: `static void NAME(const double* in,
+/// double* out)`, in[] the first run's inputs, out[] the shape's outputs. Its
+/// operations are counted into `ops` (once: the caller counts each call).
+CppFunction shape_function(const std::string& name, const Outlining& o, int shape,
+                           const std::vector<const ir::Assignment*>& assignments, const ir::BondGraph& graph,
+                           const ir::Namer& names, const std::function<std::string(const ir::SourceLoc&)>& where,
+                           int& cse_counter, ir::CppOps* ops);
+
+}  // namespace mbgc::codegen
