@@ -118,6 +118,38 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // R_PC = R_P^T R_C, the relative rotation of the bodies: the joint's own
   // turn between its fixed frames F_a and F_b.
   E Rrel = fwd ? times(times(Fa, rot), T(Fb)) : times(times(Fb, T(rot)), T(Fa));
+  // As signals jn.Rpc{r}{c} where its rate is known in closed form,
+  // R_PC skew(omega_rel) with omega_rel = sum Fb Wb u in the child's axes:
+  // every modulus below is R_PC^T times constants, and what they carry is
+  // differentiated for the accelerations (the bias terms), through these
+  // rates instead of the chain rule through R(q) (for a quaternion, its
+  // quotient by |q|^2 differentiated by each of four components). A turn
+  // about one axis keeps the chain rule: d/dt of cos and sin costs less
+  // than the signals (the planar chain: 1.5 % fewer operations).
+  int turning = 0;
+  for (const Mobilizer::Rate& r : rates) turning += r.W ? 1 : 0;
+  if (fwd && !C.particle && !seat_a.turn && !seat_b.turn && (m.free_rotation || turning > 1)) {
+    E omega = nullptr;
+    bool known = true;
+    for (const Mobilizer::Rate& r : rates) {
+      if (!r.W) continue;
+      if (!r.Wb) known = false;
+      else omega = omega ? B.op('+', omega, times(times(Fb, r.Wb), r.rate)) : times(times(Fb, r.Wb), r.rate);
+    }
+    if (known && omega) {
+      std::vector<E> rows_;
+      for (int r = 1; r <= 3; ++r) {
+        std::vector<E> row;
+        for (int c = 1; c <= 3; ++c) row.push_back(B.name(fmt::format("{}.Rpc{}{}", jn, r, c)));
+        rows_.push_back(B.list(row));
+      }
+      const E named = B.list(rows_), rate = times(named, B.call("skew", {omega}));
+      for (int r = 1; r <= 3; ++r)
+        for (int c = 1; c <= 3; ++c)
+          signal(B, fmt::format("{}.Rpc{}{}", jn, r, c), idx2(B, Rrel, r, c), idx2(B, rate, r, c));
+      Rrel = named;
+    }
+  }
   if (!C.particle) {
     for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
     // The child's rotation matrix, propagated from its parent's (R_C = R_P R_PC):
