@@ -28,7 +28,10 @@ class Emitter {
     // -Wrestrict on operator+(const char*, std::string&&) (GCC PR 105329).
     for (std::size_t i = 0; i < g_.params.size(); ++i) mangle_.get(fmt::format("p{}", i), g_.params[i].name);
     for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get(fmt::format("v{}", i), g_.vars[i].name);
-    names_.var = [this](int id) { return mangle_.get(fmt::format("v{}", id), ""); };
+    names_.var = [this](int id) {
+      if (auto it = stored_name_.find(id); it != stored_name_.end()) return it->second;
+      return mangle_.get(fmt::format("v{}", id), "");
+    };
     names_.param = [this](int id) { return mangle_.get(fmt::format("p{}", id), ""); };
     class_name_ = mangle_.get("class", g_.model_name + "_model");
   }
@@ -391,15 +394,19 @@ class Emitter {
     std::vector<const Assignment*> list;
     for (int i : assignment_indices) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
     Outlining outlined;
-    std::vector<int> run_at(list.size(), -1);
+    std::vector<std::string> store;
+    std::vector<int> run_at(list.size(), -1), copy_after(list.size(), -1);
     if (opt_.outline) {
       std::vector<std::unordered_set<int>> reads(list.size() + 1);
       for (std::size_t k = 0; k < list.size(); ++k) assignment_inputs(s_, *list[k], reads[k]);
       for (const auto& [target, e] : results) collect_vars(e, reads.back());
       outlined = find_outlined_runs(list, reads);
+      store = store_outlined(outlined);
       for (std::size_t r = 0; r < outlined.runs.size(); ++r)
         if (outlined.runs[r].shape >= 0)
           for (std::size_t k = outlined.runs[r].begin; k < outlined.runs[r].end; ++k) run_at[k] = static_cast<int>(r);
+      for (std::size_t r = 0; r < outlined.runs.size(); ++r)  // an inline run an outlined one reads: copied when done
+        if (outlined.runs[r].shape < 0 && !store[r].empty()) copy_after[outlined.runs[r].end - 1] = static_cast<int>(r);
     }
     // Common subexpressions: anything non-trivial used twice or more in this section.
     SharedTemps shared(hoisted_, names_, cse_counter_, ops());
@@ -431,7 +438,7 @@ class Emitter {
       const Assignment& a = *list[k];
       if (run_at[k] >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(run_at[k])];
-        if (run.begin == k) call_shape(body, outlined, run_at[k], list, shape_names, shared);
+        if (run.begin == k) call_shape(body, outlined, run_at[k], list, shape_names, store, shared);
         last_origin.clear();
         continue;
       }
@@ -450,18 +457,50 @@ class Emitter {
       std::string rhs = print_expr(a.value, body);
       body.push_back(CppStmt::line(fmt::format("const double {} = {};", var_name(a.var), rhs)));
       if (shared_whole) shared.name_whole(a.value, var_name(a.var));
+      if (const int r = copy_after[k]; r >= 0) {
+        const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(r)];
+        for (std::size_t j = 0; j < run.outputs.size(); ++j)
+          body.push_back(CppStmt::line(fmt::format("{}[{}] = {};", store[static_cast<std::size_t>(r)], j, var_name(run.defined[run.outputs[j]]))));
+      }
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
     for (const auto& [target, e] : results) {
       std::string rhs = print_expr(e, body);
       body.push_back(CppStmt::line(fmt::format("{} = {};", target, rhs)));
     }
+    for (const auto& [v, at] : outlined.stored) stored_name_.erase(v);
   }
 
-  /// One outlined run: its inputs into an array, the shape's function (made
-  /// the first time), its outputs out of an array under their own names.
+  /// The member arrays that keep the runs' outputs that an outlined run
+  /// reads or computes; while the section is printed, each output of an
+  /// outlined run is named by its place there (an inline run's keep their
+  /// names, and are copied there after it).
+  std::vector<std::string> store_outlined(const Outlining& o) {
+    std::vector<char> kept(o.runs.size(), 0);
+    for (const OutlinedRun& run : o.runs)
+      if (run.shape >= 0) {
+        kept[static_cast<std::size_t>(&run - o.runs.data())] = 1;
+        for (int src : run.sources) kept[static_cast<std::size_t>(src)] = 1;
+      }
+    std::vector<std::string> store(o.runs.size());
+    const std::string method = method_name(cost_signature_);
+    for (std::size_t r = 0; r < o.runs.size(); ++r) {
+      if (!kept[r]) continue;
+      const OutlinedRun& run = o.runs[r];
+      store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), run.body + "_elim");
+      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of body {}'s elimination",
+                                                  store[r], std::max<std::size_t>(run.outputs.size(), 1), method, run.body)));
+    }
+    for (const auto& [v, at] : o.stored)
+      if (o.runs[static_cast<std::size_t>(at.first)].shape >= 0)
+        stored_name_[v] = fmt::format("{}[{}]", store[static_cast<std::size_t>(at.first)], at.second);
+    return store;
+  }
+
+  /// One outlined run: its other inputs into an array, then the shape's
+  /// function (made the first time) with its sources' arrays and its own.
   void call_shape(std::vector<CppStmt>& body, const Outlining& o, int r, const std::vector<const Assignment*>& list,
-                  std::vector<std::string>& shape_names, SharedTemps& shared) {
+                  std::vector<std::string>& shape_names, const std::vector<std::string>& store, SharedTemps& shared) {
     const OutlinedRun& run = o.runs[static_cast<std::size_t>(r)];
     const OutlineShape& shape = o.shapes[static_cast<std::size_t>(run.shape)];
     std::string& fn = shape_names[static_cast<std::size_t>(run.shape)];
@@ -480,15 +519,19 @@ class Emitter {
     const Assignment& first = *list[run.begin];
     body.push_back(CppStmt::comment(fmt::format("{}  articulated-body elimination, body {}: {}() (the same equations as {} bodies)",
                                                 where(first.loc), run.body, fn, shape.runs.size())));
-    std::vector<std::string> in;
-    for (const Expr& e : run.inputs) in.push_back(shared.print(e, body));
-    const std::string key = fmt::format("run:{}:{}", method, run.begin);
-    const std::string in_name = mangle_.get(key + ":in", run.body + "_in"), out_name = mangle_.get(key + ":out", run.body + "_out");
-    body.push_back(CppStmt::line(fmt::format("double {}[{}] = {{{}}};", in_name, in.size(), fmt::join(in, ", "))));
-    body.push_back(CppStmt::line(fmt::format("double {}[{}];", out_name, shape.outputs.size())));
-    body.push_back(CppStmt::line(fmt::format("{}({}, {});", fn, in_name, out_name)));
-    for (std::size_t k = 0; k < shape.outputs.size(); ++k)
-      body.push_back(CppStmt::line(fmt::format("const double {} = {}[{}];", var_name(run.defined[shape.outputs[k]]), out_name, k)));
+    std::vector<std::string> args;
+    if (run.inputs.empty()) {
+      args.push_back("nullptr");
+    } else {
+      std::vector<std::string> in;
+      for (const Expr& e : run.inputs) in.push_back(shared.print(e, body));
+      const std::string in_name = mangle_.get(fmt::format("run:{}:{}:in", method, run.begin), run.body + "_in");
+      body.push_back(CppStmt::line(fmt::format("double {}[{}] = {{{}}};", in_name, in.size(), fmt::join(in, ", "))));
+      args.push_back(in_name);
+    }
+    for (int src : run.sources) args.push_back(store[static_cast<std::size_t>(src)]);
+    args.push_back(store[static_cast<std::size_t>(r)]);
+    body.push_back(CppStmt::line(fmt::format("{}({});", fn, fmt::join(args, ", "))));
   }
 
   std::size_t block_position(const Assignment& a) const {
@@ -730,6 +773,10 @@ class Emitter {
                                   "const mbgrt::RankLossLog* rank_loss() const override", {CppStmt::line("return &rank_loss_;")}});
       c.private_members.push_back(CppStmt::line("mbgrt::RankLossLog rank_loss_;  // what the rank-revealing solves found"));
     }
+    if (!stores_.empty()) {
+      c.private_members.push_back(CppStmt::comment("bodies' eliminations computed by one function per shape: what the rest reads of them"));
+      for (CppStmt& st : stores_) c.private_members.push_back(std::move(st));
+    }
     if (!scratch_.empty()) {
       c.private_members.push_back(CppStmt::comment("values one part of a long method passes to a later part"));
       for (const std::string& m : scratch_) c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;", m)));
@@ -762,6 +809,8 @@ class Emitter {
   Cost* cost_ = nullptr;               // the method being built
   std::string cost_signature_;         // its signature
   std::vector<CppFunction> outlined_;  // the shapes' functions (codegen/outline), private
+  std::vector<CppStmt> stores_;        // the member arrays of their runs' outputs
+  std::unordered_map<int, std::string> stored_name_;  // while a section is printed: an outlined output -> its place
   std::map<std::string, CppOps> shape_cost_;  // per shape function: the operations of one call
   std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
   std::vector<Expr> hoisted_order_;                                    // in first-use order

@@ -1,6 +1,7 @@
 // codegen/outline.cpp — runs of a body's elimination, their shapes, their functions.
 #include "codegen/outline.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <fmt/format.h>
@@ -28,18 +29,22 @@ std::string body_of(const Assignment& a) {
 }
 
 /// The canonical text of a run: its DAG with every leaf renamed in order of
-/// first appearance. Empty if the run cannot be outlined (it reads t).
+/// first appearance, and its outputs. Empty if the run cannot be outlined
+/// (it reads t). Fills the run's sources and inputs.
 class Canon {
  public:
-  Canon(const std::vector<const Assignment*>& list, OutlinedRun& run) : list_(list), run_(run) {
-    for (std::size_t i = run.begin; i < run.end; ++i) {
-      local_[list[i]->var] = static_cast<int>(run.defined.size());
-      run.defined.push_back(list[i]->var);
-    }
+  /// `stored`: the outputs of the runs taken as outlined (var -> run, position).
+  Canon(const std::vector<const Assignment*>& list, OutlinedRun& run,
+        const std::unordered_map<int, std::pair<int, std::size_t>>& stored, int self)
+      : list_(list), run_(run), stored_(stored), self_(self) {
+    for (std::size_t k = 0; k < run.defined.size(); ++k) local_[run.defined[k]] = static_cast<int>(k);
+    run.sources.clear();
+    run.inputs.clear();
   }
 
   std::string key() {
     for (std::size_t i = run_.begin; i < run_.end && ok_; ++i) text_ += fmt::format("=>{};", node(list_[i]->value));
+    text_ += fmt::format("out({})", fmt::join(run_.outputs, ","));
     return ok_ ? text_ : std::string{};
   }
 
@@ -63,6 +68,10 @@ class Canon {
       piece = fmt::format("C{:x}", bits);
     } else if (e->op == Op::Var && local_.count(e->id)) {
       piece = fmt::format("L{}", local_.at(e->id));
+    } else if (auto st = e->op == Op::Var ? stored_.find(e->id) : stored_.end(); st != stored_.end() && st->second.first != self_) {
+      auto src = std::find(run_.sources.begin(), run_.sources.end(), st->second.first);
+      if (src == run_.sources.end()) src = run_.sources.insert(src, st->second.first);
+      piece = fmt::format("S{}.{}", src - run_.sources.begin(), st->second.second);
     } else if (e->op == Op::Var || parameter_only(e)) {
       piece = fmt::format("I{}", run_.inputs.size());
       run_.inputs.push_back(e);
@@ -82,6 +91,8 @@ class Canon {
 
   const std::vector<const Assignment*>& list_;
   OutlinedRun& run_;
+  const std::unordered_map<int, std::pair<int, std::size_t>>& stored_;
+  const int self_;
   std::unordered_map<int, int> local_;
   std::unordered_map<const Node*, int> id_;
   std::unordered_map<const Node*, bool> param_only_;
@@ -106,12 +117,41 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
     std::size_t j = i + 1;
     if (!body.empty())
       while (j < list.size() && body_of(*list[j]) == body) ++j;
-    if (!body.empty() && j - i >= kMinRun) o.runs.push_back({i, j, body, -1, {}, {}});
+    if (!body.empty() && j - i >= kMinRun) {
+      OutlinedRun run;
+      run.begin = i, run.end = j, run.body = body;
+      for (std::size_t k = i; k < j; ++k) run.defined.push_back(list[k]->var);
+      o.runs.push_back(std::move(run));
+    }
     i = j;
   }
+  // Each run's outputs: what anything outside it reads.
+  std::vector<int> run_at(list.size(), -1);
+  std::unordered_map<int, std::pair<int, std::size_t>> defined_by;  // var -> (run, position in defined)
+  for (std::size_t r = 0; r < o.runs.size(); ++r) {
+    for (std::size_t i = o.runs[r].begin; i < o.runs[r].end; ++i) run_at[i] = static_cast<int>(r);
+    for (std::size_t k = 0; k < o.runs[r].defined.size(); ++k) defined_by[o.runs[r].defined[k]] = {static_cast<int>(r), k};
+  }
+  std::vector<std::vector<char>> read_outside(o.runs.size());
+  for (std::size_t r = 0; r < o.runs.size(); ++r) read_outside[r].assign(o.runs[r].defined.size(), 0);
+  for (std::size_t i = 0; i <= list.size(); ++i)  // reads[list.size()]: what the section's results read
+    for (int v : reads[i]) {
+      auto it = defined_by.find(v);
+      if (it == defined_by.end() || (i < list.size() && run_at[i] == it->second.first)) continue;
+      read_outside[static_cast<std::size_t>(it->second.first)][it->second.second] = 1;
+    }
+  for (std::size_t r = 0; r < o.runs.size(); ++r)
+    for (std::size_t k = 0; k < read_outside[r].size(); ++k)
+      if (read_outside[r][k]) o.runs[r].outputs.push_back(k);
+  // Every run's outputs have a place (a member array), whether its run is
+  // outlined or not: so a run's shape never depends on whether its sources'
+  // shapes are shared (a chain's body above the leaf reads the leaf there).
+  for (std::size_t r = 0; r < o.runs.size(); ++r)
+    for (std::size_t k = 0; k < o.runs[r].outputs.size(); ++k)
+      o.stored[o.runs[r].defined[o.runs[r].outputs[k]]] = {static_cast<int>(r), k};
   std::map<std::string, std::vector<int>> by_key;
   for (std::size_t r = 0; r < o.runs.size(); ++r) {
-    std::string key = Canon(list, o.runs[r]).key();
+    std::string key = Canon(list, o.runs[r], o.stored, static_cast<int>(r)).key();
     if (!key.empty()) by_key[std::move(key)].push_back(static_cast<int>(r));
   }
   std::vector<std::vector<int>> groups;
@@ -119,32 +159,9 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
     if (runs.size() > 1) groups.push_back(runs);
   std::sort(groups.begin(), groups.end());  // in the order of their first run: deterministic
   for (const std::vector<int>& runs : groups) {
-    OutlineShape s;
-    s.runs = runs;
     for (int r : runs) o.runs[static_cast<std::size_t>(r)].shape = static_cast<int>(o.shapes.size());
-    o.shapes.push_back(std::move(s));
+    o.shapes.push_back({runs});
   }
-  // What anything outside a run reads of it: the shape's outputs (the union over its runs).
-  std::unordered_map<int, std::pair<int, std::size_t>> defined_by;  // var -> (run, position)
-  for (std::size_t r = 0; r < o.runs.size(); ++r)
-    if (o.runs[r].shape >= 0)
-      for (std::size_t k = 0; k < o.runs[r].defined.size(); ++k) defined_by[o.runs[r].defined[k]] = {static_cast<int>(r), k};
-  std::vector<std::vector<char>> used(o.shapes.size());
-  for (std::size_t s = 0; s < o.shapes.size(); ++s)
-    used[s].assign(o.runs[static_cast<std::size_t>(o.shapes[s].runs[0])].defined.size(), 0);
-  std::vector<int> run_at(list.size(), -1);
-  for (std::size_t r = 0; r < o.runs.size(); ++r)
-    for (std::size_t i = o.runs[r].begin; i < o.runs[r].end; ++i) run_at[i] = static_cast<int>(r);
-  for (std::size_t i = 0; i <= list.size(); ++i) {  // reads[list.size()]: what the section's results read
-    for (int v : reads[i]) {
-      auto it = defined_by.find(v);
-      if (it == defined_by.end() || (i < list.size() && run_at[i] == it->second.first)) continue;
-      used[static_cast<std::size_t>(o.runs[static_cast<std::size_t>(it->second.first)].shape)][it->second.second] = 1;
-    }
-  }
-  for (std::size_t s = 0; s < o.shapes.size(); ++s)
-    for (std::size_t k = 0; k < used[s].size(); ++k)
-      if (used[s][k]) o.shapes[s].outputs.push_back(k);
   return o;
 }
 
@@ -153,24 +170,32 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
                            int& cse_counter, CppOps* ops) {
   const OutlineShape& s = o.shapes[static_cast<std::size_t>(shape)];
   const OutlinedRun& run = o.runs[static_cast<std::size_t>(s.runs[0])];
-  std::vector<std::string> bodies;
-  for (int r : s.runs) bodies.push_back(o.runs[static_cast<std::size_t>(r)].body);
-  CppFunction f{fmt::format("The articulated-body elimination of bodies {} (the same equations, up to their names): "
-                            "in[] what it reads, out[] what the rest of the model reads of it.",
-                            fmt::join(bodies, ", ")),
-                fmt::format("static void {}(const double* in, double* out)", name),
-                {}};
-  // Names: the first body's, without its prefix; in[k] for the inputs.
+  // Names: the first body's, without its prefix; in[k], sK[k] and out[k] for what crosses the call.
   const std::string prefix = run.body + ".";
   std::unordered_map<int, std::string> local;
   for (int v : run.defined) {
     const std::string& full = g.vars[static_cast<std::size_t>(v)].name;
     local[v] = identifier(full.rfind(prefix, 0) == 0 ? full.substr(prefix.size()) : full);
   }
-  Namer inside = names;
-  inside.var = [&](int id) { return local.count(id) ? local.at(id) : names.var(id); };
+  std::vector<std::string> bodies, params = {"const double* in"}, outs;
+  for (int r : s.runs) bodies.push_back(o.runs[static_cast<std::size_t>(r)].body);
   ExprNames known;
   for (std::size_t k = 0; k < run.inputs.size(); ++k) known.emplace(run.inputs[k], fmt::format("in[{}]", k));
+  for (std::size_t i = 0; i < run.sources.size(); ++i) {
+    const OutlinedRun& src = o.runs[static_cast<std::size_t>(run.sources[i])];
+    for (std::size_t k = 0; k < src.outputs.size(); ++k) known.emplace(var(src.defined[src.outputs[k]]), fmt::format("s{}[{}]", i, k));
+    params.push_back(fmt::format("const double* s{}", i));
+  }
+  params.push_back("double* out");
+  for (std::size_t k = 0; k < run.outputs.size(); ++k) outs.push_back(local.at(run.defined[run.outputs[k]]));
+  CppFunction f{fmt::format("The articulated-body elimination of bodies {} (the same equations, up to their names): "
+                            "in[] what it reads{}, out[] what the rest of the model reads of it: {}.",
+                            fmt::join(bodies, ", "), run.sources.empty() ? "" : ", sK[] the outputs of the runs it reads",
+                            fmt::join(outs, ", ")),
+                fmt::format("static void {}({})", name, fmt::join(params, ", ")),
+                {}};
+  Namer inside = names;
+  inside.var = [&](int id) { return local.count(id) ? local.at(id) : names.var(id); };
   SharedTemps shared(known, inside, cse_counter, ops);
   for (std::size_t i = run.begin; i < run.end; ++i) shared.count(list[i]->value);
   shared.finish_counting();
@@ -186,8 +211,7 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
     f.body.push_back(CppStmt::line(fmt::format("const double {} = {};", local.at(a.var), rhs)));
     if (whole) shared.name_whole(a.value, local.at(a.var));
   }
-  for (std::size_t k = 0; k < s.outputs.size(); ++k)
-    f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", k, local.at(run.defined[s.outputs[k]]))));
+  for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", k, outs[k])));
   return f;
 }
 

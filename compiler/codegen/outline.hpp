@@ -11,16 +11,21 @@
 // stays in the instruction cache.
 //
 // A run is the contiguous sequence of one body's elimination temporaries in
-// a section (reduce/tree_elimination names them and their origin). Two runs
-// have the same shape when their expressions are the same DAG with the
-// leaves renamed in order of first appearance: the run's own variables,
-// its inputs (variables defined before it, and parameter-only subexpressions,
-// which stay on the caller's side where initial() computed them once) and
-// the same constants, bit for bit.
+// a section (reduce/tree_elimination names them and their origin). What
+// anything outside the run reads of it (its outputs) is kept in a member
+// array of the run's own; a run that reads another outlined run's outputs
+// (a parent its children's) reads them there. Two runs have the same shape
+// when their expressions are the same DAG with the leaves renamed in order
+// of first appearance: the run's own variables, the outputs of its source
+// runs (by their position there), its other inputs (variables, and
+// parameter-only subexpressions, which stay on the caller's side where
+// initial() computed them once) and the same constants, bit for bit, and
+// when they have the same outputs.
 #pragma once
 
 #include <functional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -35,18 +40,21 @@ struct OutlinedRun {
   std::size_t begin = 0, end = 0;   // [begin, end) in the section's assignment list
   std::string body;                 // the body whose elimination it is
   int shape = -1;                   // index into Outlining::shapes; -1: written inline
-  std::vector<ir::Expr> inputs;     // what it reads from outside, in canonical order
   std::vector<int> defined;         // the variables it computes, in order
+  std::vector<std::size_t> outputs; // positions in `defined` that anything outside the run reads
+  std::vector<int> sources;         // runs whose outputs it reads (a parent: its children's), in order of first reading
+  std::vector<ir::Expr> inputs;     // what else it reads (variables, parameter-only subexpressions), in order
 };
 
 struct OutlineShape {
   std::vector<int> runs;            // indices into Outlining::runs, in section order
-  std::vector<std::size_t> outputs; // positions in `defined` that anything outside a run reads
 };
 
 struct Outlining {
   std::vector<OutlinedRun> runs;
   std::vector<OutlineShape> shapes; // only shapes of two runs or more
+  /// Where a run's output is kept (outlined or not): var -> (run, position among its outputs).
+  std::unordered_map<int, std::pair<int, std::size_t>> stored;
 };
 
 /// The runs of `assignments` (one section, in order) and their shapes;
@@ -56,8 +64,10 @@ Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignmen
                              const std::vector<std::unordered_set<int>>& reads);
 
 /// The function that computes one shape: `static void NAME(const double* in,
-/// double* out)`, in[] the first run's inputs, out[] the shape's outputs. Its
-/// operations are counted into `ops` (once: the caller counts each call).
+/// const double* s0, ..., double* out)`: in[] the first run's inputs, sK
+/// the outputs of its K-th source run, out[] its own outputs (where they are
+/// kept between calls: the run's member array). Its operations are counted
+/// into `ops` (once: the caller counts each call).
 CppFunction shape_function(const std::string& name, const Outlining& o, int shape,
                            const std::vector<const ir::Assignment*>& assignments, const ir::BondGraph& graph,
                            const ir::Namer& names, const std::function<std::string(const ir::SourceLoc&)>& where,
