@@ -396,12 +396,20 @@ class Emitter {
     Outlining outlined;
     std::vector<std::string> store;
     std::vector<int> run_at(list.size(), -1), copy_after(list.size(), -1);
-    if (opt_.outline) {
-      std::vector<std::unordered_set<int>> reads(list.size() + 1);
-      for (std::size_t k = 0; k < list.size(); ++k) assignment_inputs(s_, *list[k], reads[k]);
-      for (const auto& [target, e] : results) collect_vars(e, reads.back());
-      outlined = find_outlined_runs(list, reads);
-      store = store_outlined(outlined);
+    if (opt_.outline && s_.tree) {
+      // Two ways, the one that leaves less inline: every body's equations
+      // grouped (kinematics too), or its elimination alone in causal order.
+      std::vector<const Assignment*> grouped = list;
+      std::vector<int> labels;
+      group_by_body(grouped, s_, labels);
+      const Outlining by_body = outline(grouped, labels, results);
+      for (std::size_t k = 0; k < list.size(); ++k)
+        if (list[k]->origin.rfind("articulated-body elimination", 0) != 0) labels[k] = -1;
+        else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
+      Outlining eliminations = outline(list, labels, results);
+      if (inline_count(by_body, grouped) < inline_count(eliminations, list)) outlined = by_body, list = grouped;
+      else outlined = std::move(eliminations);
+      store = store_outlined(outlined, list);
       for (std::size_t r = 0; r < outlined.runs.size(); ++r)
         if (outlined.runs[r].shape >= 0)
           for (std::size_t k = outlined.runs[r].begin; k < outlined.runs[r].end; ++k) run_at[k] = static_cast<int>(r);
@@ -471,11 +479,35 @@ class Emitter {
     for (const auto& [v, at] : outlined.stored) stored_name_.erase(v);
   }
 
+  /// The runs of `list` by body (`labels`) and their shapes; none if no shape is shared.
+  Outlining outline(const std::vector<const Assignment*>& list, const std::vector<int>& labels,
+                    const std::vector<std::pair<std::string, Expr>>& results) const {
+    std::vector<std::unordered_set<int>> reads(list.size() + 1);
+    for (std::size_t k = 0; k < list.size(); ++k) assignment_inputs(s_, *list[k], reads[k]);
+    for (const auto& [target, e] : results) collect_vars(e, reads.back());
+    Outlining o = find_outlined_runs(list, reads, labels, s_.tree->names);
+    if (o.shapes.empty()) o = {};
+    return o;
+  }
+  /// The expression nodes of what stays inline.
+  static std::size_t inline_count(const Outlining& o, const std::vector<const Assignment*>& list) {
+    std::vector<char> out(list.size(), 0);
+    for (const OutlinedRun& run : o.runs)
+      if (run.shape >= 0) std::fill(out.begin() + static_cast<long>(run.begin), out.begin() + static_cast<long>(run.end), 1);
+    std::size_t n = 0;
+    for (std::size_t k = 0; k < list.size(); ++k)
+      if (!out[k] && list[k]->value) n += ir::size(list[k]->value);
+    return n;
+  }
+
   /// The member arrays that keep the runs' outputs that an outlined run
   /// reads or computes; while the section is printed, each output of an
   /// outlined run is named by its place there (an inline run's keep their
   /// names, and are copied there after it).
-  std::vector<std::string> store_outlined(const Outlining& o) {
+  std::vector<std::string> store_outlined(const Outlining& o, const std::vector<const Assignment*>& list) {
+    std::size_t first_elim = list.size();  // the runs before the tree's elimination are kinematics, after it accelerations
+    for (std::size_t k = 0; k < list.size() && first_elim == list.size(); ++k)
+      if (list[k]->origin.rfind("articulated-body elimination", 0) == 0) first_elim = k;
     std::vector<char> kept(o.runs.size(), 0);
     for (const OutlinedRun& run : o.runs)
       if (run.shape >= 0) {
@@ -487,9 +519,12 @@ class Emitter {
     for (std::size_t r = 0; r < o.runs.size(); ++r) {
       if (!kept[r]) continue;
       const OutlinedRun& run = o.runs[r];
-      store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), run.body + "_elim");
-      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of body {}'s elimination",
-                                                  store[r], std::max<std::size_t>(run.outputs.size(), 1), method, run.body)));
+      const bool elimination = list[run.begin]->origin.rfind("articulated-body elimination", 0) == 0;
+      const char* phase = elimination ? "elim" : run.begin < first_elim ? "kin" : "acc";
+      const char* what = elimination ? "elimination" : run.begin < first_elim ? "kinematics" : "accelerations";
+      store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), fmt::format("{}_{}", run.body, phase));
+      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of body {}'s {}", store[r],
+                                                  std::max<std::size_t>(run.outputs.size(), 1), method, run.body, what)));
     }
     for (const auto& [v, at] : o.stored)
       if (o.runs[static_cast<std::size_t>(at.first)].shape >= 0)
@@ -517,8 +552,8 @@ class Emitter {
     }
     cost_->ops += shape_cost_.at(fn);  // the work of one call
     const Assignment& first = *list[run.begin];
-    body.push_back(CppStmt::comment(fmt::format("{}  articulated-body elimination, body {}: {}() (the same equations as {} bodies)",
-                                                where(first.loc), run.body, fn, shape.runs.size())));
+    body.push_back(CppStmt::comment(fmt::format("{}  body {}: {}() (the same equations as {} bodies)", where(first.loc), run.body,
+                                                fn, shape.runs.size())));
     std::vector<std::string> args;
     if (run.inputs.empty()) {
       args.push_back("nullptr");

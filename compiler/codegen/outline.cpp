@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 #include <map>
+#include <queue>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -16,17 +19,8 @@ namespace {
 
 using namespace mbgc::ir;
 
-constexpr const char* kRunOrigin = "articulated-body elimination, body ";
 // Shorter runs stay inline: their call would cost about what it saves.
 constexpr std::size_t kMinRun = 12;
-
-/// The body an elimination temporary belongs to ("" for anything else).
-std::string body_of(const Assignment& a) {
-  if (a.block >= 0 || !a.value || a.origin.rfind(kRunOrigin, 0) != 0) return {};
-  const std::size_t start = std::strlen(kRunOrigin);
-  const std::size_t colon = a.origin.find(": ", start);
-  return colon == std::string::npos ? std::string{} : a.origin.substr(start, colon - start);
-}
 
 /// The canonical text of a run: its DAG with every leaf renamed in order of
 /// first appearance, and its outputs. Empty if the run cannot be outlined
@@ -101,6 +95,14 @@ class Canon {
   bool ok_ = true;
 };
 
+/// "s3.m1.f2[1]" -> "m1.f2[1]", "der(rod3.pose.R11)" -> "der(pose.R11)": a
+/// variable's name without the body or joint it belongs to.
+std::string without_owner(const std::string& name) {
+  if (name.rfind("der(", 0) == 0) return "der(" + without_owner(name.substr(4));
+  const std::size_t dot = name.find('.');
+  return dot == std::string::npos ? name : name.substr(dot + 1);
+}
+
 std::string identifier(const std::string& s) {
   std::string out;
   for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
@@ -110,16 +112,18 @@ std::string identifier(const std::string& s) {
 
 }  // namespace
 
-Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const std::vector<std::unordered_set<int>>& reads) {
+Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const std::vector<std::unordered_set<int>>& reads,
+                             const std::vector<int>& labels, const std::vector<std::string>& bodies) {
   Outlining o;
+  auto label = [&](std::size_t i) { return list[i]->block >= 0 || !list[i]->value ? -1 : labels[i]; };
   for (std::size_t i = 0; i < list.size();) {
-    const std::string body = body_of(*list[i]);
+    const int body = label(i);
     std::size_t j = i + 1;
-    if (!body.empty())
-      while (j < list.size() && body_of(*list[j]) == body) ++j;
-    if (!body.empty() && j - i >= kMinRun) {
+    if (body >= 0)
+      while (j < list.size() && label(j) == body) ++j;
+    if (body >= 0 && j - i >= kMinRun) {
       OutlinedRun run;
-      run.begin = i, run.end = j, run.body = body;
+      run.begin = i, run.end = j, run.body = bodies[static_cast<std::size_t>(body)];
       for (std::size_t k = i; k < j; ++k) run.defined.push_back(list[k]->var);
       o.runs.push_back(std::move(run));
     }
@@ -152,6 +156,10 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
   std::map<std::string, std::vector<int>> by_key;
   for (std::size_t r = 0; r < o.runs.size(); ++r) {
     std::string key = Canon(list, o.runs[r], o.stored, static_cast<int>(r)).key();
+    if (std::getenv("MBGC_OUTLINE_DEBUG"))
+      fmt::print(stderr, "run {} body {} [{}, {}) outputs {} sources {} inputs {} key hash {}\n", r, o.runs[r].body, o.runs[r].begin,
+                 o.runs[r].end, o.runs[r].outputs.size(), fmt::join(o.runs[r].sources, ","), o.runs[r].inputs.size(),
+                 std::hash<std::string>{}(key) % 100000);
     if (!key.empty()) by_key[std::move(key)].push_back(static_cast<int>(r));
   }
   std::vector<std::vector<int>> groups;
@@ -163,6 +171,81 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
     o.shapes.push_back({runs});
   }
   return o;
+}
+
+void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s, std::vector<int>& labels) {
+  const std::size_t n = list.size();
+  labels.assign(n, -1);
+  if (!s.tree) return;
+  const BodyTree& t = *s.tree;
+  const std::size_t bodies = t.names.size();
+  // Depth and preorder of the bodies (children in index order).
+  std::vector<std::vector<int>> children(bodies);
+  std::vector<int> roots, depth(bodies, 0), pre(bodies, 0);
+  for (std::size_t b = 0; b < bodies; ++b)
+    (t.parent[b] < 0 ? roots : children[static_cast<std::size_t>(t.parent[b])]).push_back(static_cast<int>(b));
+  int next = 0;
+  std::function<void(int, int)> visit = [&](int b, int d) {
+    depth[static_cast<std::size_t>(b)] = d, pre[static_cast<std::size_t>(b)] = next++;
+    for (int c : children[static_cast<std::size_t>(b)]) visit(c, d + 1);
+  };
+  for (int r : roots) visit(r, 0);
+  // Labels: the tree's, else the deepest body of what it reads.
+  std::unordered_map<int, int> label_of(t.body_of.begin(), t.body_of.end());
+  std::vector<std::unordered_set<int>> reads(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    assignment_inputs(s, *list[i], reads[i]);
+    if (list[i]->block >= 0) continue;
+    int best = -1;
+    if (auto it = t.body_of.find(list[i]->var); it != t.body_of.end()) {
+      best = it->second;
+    } else {
+      for (int v : reads[i])
+        if (auto it = label_of.find(v); it != label_of.end() && (best < 0 || depth[static_cast<std::size_t>(it->second)] > depth[static_cast<std::size_t>(best)]))
+          best = it->second;
+    }
+    labels[i] = best;
+    if (best >= 0) label_of[list[i]->var] = best;
+  }
+  // The kinematics: everything before the elimination, unless a linear block is among them.
+  std::size_t end = 0;
+  while (end < n && list[end]->origin.rfind("articulated-body elimination", 0) != 0) {
+    if (list[end]->block >= 0) return;
+    ++end;
+  }
+  if (end == n) return;
+  std::unordered_map<int, std::size_t> defined_at;
+  for (std::size_t i = 0; i < end; ++i) defined_at[list[i]->var] = i;
+  std::vector<std::vector<std::size_t>> readers(end);
+  std::vector<int> waiting(end, 0), key(end, -1);
+  for (std::size_t i = 0; i < end; ++i) {
+    if (labels[i] >= 0) key[i] = pre[static_cast<std::size_t>(labels[i])];
+    for (int v : reads[i])
+      if (auto d = defined_at.find(v); d != defined_at.end() && d->second != i) {
+        readers[d->second].push_back(i);
+        ++waiting[i];
+        if (labels[i] < 0) key[i] = std::max(key[i], key[d->second]);
+      }
+  }
+  // Kahn's order, the lowest (body in preorder, name without its owner,
+  // place) first: the same order for every body with the same equations.
+  using Item = std::tuple<int, std::string, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> ready;
+  auto push = [&](std::size_t i) { ready.push({key[i], without_owner(s.graph.vars[static_cast<std::size_t>(list[i]->var)].name), i}); };
+  for (std::size_t i = 0; i < end; ++i)
+    if (!waiting[i]) push(i);
+  std::vector<const Assignment*> order;
+  std::vector<int> order_labels;
+  while (!ready.empty()) {
+    const std::size_t i = std::get<2>(ready.top());
+    ready.pop();
+    order.push_back(list[i]), order_labels.push_back(labels[i]);
+    for (std::size_t r : readers[i])
+      if (--waiting[r] == 0) push(r);
+  }
+  if (order.size() != end) return;  // (a cycle: cannot be, the list was in causal order)
+  std::copy(order.begin(), order.end(), list.begin());
+  std::copy(order_labels.begin(), order_labels.end(), labels.begin());
 }
 
 CppFunction shape_function(const std::string& name, const Outlining& o, int shape, const std::vector<const Assignment*>& list,
@@ -188,9 +271,9 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   }
   params.push_back("double* out");
   for (std::size_t k = 0; k < run.outputs.size(); ++k) outs.push_back(local.at(run.defined[run.outputs[k]]));
-  CppFunction f{fmt::format("The articulated-body elimination of bodies {} (the same equations, up to their names): "
-                            "in[] what it reads{}, out[] what the rest of the model reads of it: {}.",
-                            fmt::join(bodies, ", "), run.sources.empty() ? "" : ", sK[] the outputs of the runs it reads",
+  CppFunction f{fmt::format("Equations of bodies {}, the same up to their names (written with {}'s): in[] what they "
+                            "read{}, out[] what the rest of the model reads of them: {}.",
+                            fmt::join(bodies, ", "), run.body, run.sources.empty() ? "" : ", sK[] the outputs of the runs they read",
                             fmt::join(outs, ", ")),
                 fmt::format("static void {}({})", name, fmt::join(params, ", ")),
                 {}};
@@ -202,8 +285,7 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   std::string last;
   for (std::size_t i = run.begin; i < run.end; ++i) {
     const Assignment& a = *list[i];
-    const std::size_t colon = a.origin.find(": ");
-    std::string origin = fmt::format("{}  {}", where(a.loc), colon == std::string::npos ? a.origin : a.origin.substr(colon + 2));
+    std::string origin = fmt::format("{}  {}", where(a.loc), a.origin);
     if (origin != last) f.body.push_back(CppStmt::comment(origin));
     last = std::move(origin);
     const bool whole = shared.take_whole(a.value);

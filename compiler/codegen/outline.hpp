@@ -59,9 +59,18 @@ struct Outlining {
 
 /// The runs of `assignments` (one section, in order) and their shapes;
 /// reads[i] the variables assignment i reads, reads[assignments.size()] what
-/// the section's results read.
+/// the section's results read; labels[i] the body assignment i belongs to
+/// (an index into `bodies`, -1 for none).
 Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignments,
-                             const std::vector<std::unordered_set<int>>& reads);
+                             const std::vector<std::unordered_set<int>>& reads, const std::vector<int>& labels,
+                             const std::vector<std::string>& bodies);
+
+/// Which body each assignment belongs to (`tree`'s, else the deepest body of
+/// what it reads; -1 for none), and `assignments` reordered so that each
+/// body's kinematics (everything before the tree's elimination) are
+/// contiguous: parents before children, every assignment after what it
+/// reads. `labels` follows the new order.
+void group_by_body(std::vector<const ir::Assignment*>& assignments, const ir::ReducedSystem& system, std::vector<int>& labels);
 
 /// The function that computes one shape: `static void NAME(const double* in,
 /// const double* s0, ..., double* out)`: in[] the first run's inputs, sK

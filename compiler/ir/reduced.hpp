@@ -1,6 +1,9 @@
 // ir/reduced.hpp — the sorted, simplified system the emitter prints.
 #pragma once
 
+#include <optional>
+#include <unordered_map>
+
 #include <string>
 #include <vector>
 
@@ -44,6 +47,15 @@ struct Residual {
   std::string origin;
 };
 
+/// A kinematic tree in joint coordinates whose loop was eliminated along it
+/// (reduce/tree_elimination): its bodies and which body each variable
+/// belongs to (the emitter groups a body's equations by it, codegen/outline).
+struct BodyTree {
+  std::vector<std::string> names;        // per body
+  std::vector<int> parent;               // per body: its parent body, -1 for ground
+  std::unordered_map<int, int> body_of;  // variable id -> body (variables not listed: none, or unknown)
+};
+
 /// The variables an assignment reads (its value, or its whole block).
 void assignment_inputs(const struct ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out);
 
@@ -75,6 +87,7 @@ struct ReducedSystem {
   std::vector<ConstraintRow> constraints;
   std::vector<int> for_constraints;       // indices into assignments, in order
   std::vector<AlgebraicLoop> loops;
+  std::optional<BodyTree> tree;           // set when a loop was eliminated along a kinematic tree
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled
   std::vector<std::string> log;           // what reduction did, one line per step
 };

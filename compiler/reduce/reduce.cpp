@@ -622,6 +622,8 @@ class Reducer {
     }
     const int block_index = static_cast<int>(out_.linear_blocks.size());
     if (done->multipliers) out_.linear_blocks.push_back(std::move(*done->multipliers));
+    if (!out_.tree) out_.tree = *tree_;
+    for (const auto& [u, b] : done->body_of) out_.tree->body_of[u] = b;
     for (Assignment& a : done->assignments) {
       if (a.block >= 0) a.block = block_index;  // the cut joints' multipliers
       out_.assignments.push_back(std::move(a));

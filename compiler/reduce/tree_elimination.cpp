@@ -58,6 +58,9 @@ class Eliminator {
     for (Assignment& a : outward_) out.assignments.push_back(std::move(a));
     out.bodies = static_cast<int>(in_loop_.size());
     out.temporaries = temporaries_;
+    for (const auto& [u, b] : body_)
+      if (b >= 0) out.body_of[u] = b;
+    for (const auto& [t, b] : temporary_body_) out.body_of[t] = b;
     return out;
   }
 
@@ -179,6 +182,7 @@ class Eliminator {
   Expr name(const Expr& e, int n, const char* what) {
     if (e->op == Op::Const || e->op == Op::Param || e->op == Op::Var) return e;
     const int id = graph_.add_var(fmt::format("{}.{}{}", body_name(n), what, ++count_[n]), VarKind::Auxiliary, loc_[n]);
+    temporary_body_[id] = n;
     inward_.push_back({id, e, loc_[n],
                        fmt::format("articulated-body elimination, body {}: {}", body_name(n), what_text(what)), -1});
     ++temporaries_;
@@ -465,6 +469,7 @@ class Eliminator {
   std::map<int, SourceLoc> loc_;                    // body -> model line for its temporaries
   std::vector<Assignment> inward_, outward_;
   int temporaries_ = 0;
+  std::unordered_map<int, int> temporary_body_;     // temporary -> its body
   int missing_ = -1;  // an unknown read before its form was known (for the diagnosis)
   static constexpr int kGlobal = -2;                // body_ of the multipliers and what only their rows read
   std::unordered_set<int> multipliers_, global_;    // the cut joints' multipliers; they and what only their rows read

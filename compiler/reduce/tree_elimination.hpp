@@ -52,11 +52,7 @@ struct TornLoop {
 };
 
 /// The bodies of the tree and which body each variable belongs to.
-struct TreeLayout {
-  std::vector<std::string> names;        // per body
-  std::vector<int> parent;               // per body: its parent body, -1 for ground
-  std::unordered_map<int, int> body_of;  // variable id -> body (variables not listed: unknown)
-};
+using TreeLayout = ir::BodyTree;
 
 struct TreeElimination {
   // In evaluation order: the inward temporaries; with cut joints, the
@@ -67,6 +63,7 @@ struct TreeElimination {
   std::optional<ir::LinearBlock> multipliers;  // the m x m system for the cut joints' multipliers, solved at run time
   int bodies = 0;                           // bodies of the tree in the loop
   int temporaries = 0;
+  std::unordered_map<int, int> body_of;     // every unknown of the loop and temporary -> its body (not the multipliers)
 };
 
 /// The loop eliminated along the tree, or nullopt (with the reason in
