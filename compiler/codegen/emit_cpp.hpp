@@ -25,7 +25,9 @@ struct EmitOptions {
   std::string source_display;    ///< source path shown in the banner
   std::string scene;             ///< the scene compiled (mbgc --scene), if any
   std::string version = MBGC_VERSION;
-  bool outline = true;           ///< bodies with the same elimination share one function (codegen/outline.hpp)
+  /// Bodies with the same equations share one function (codegen/outline.hpp):
+  /// automatic: where the inline code would not fit the instruction cache.
+  enum class Outline { automatic, always, never } outline = Outline::automatic;
 };
 
 /// Empty if `name` can be the namespace of --library's class, else why not.

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <cstring>
 #include <fmt/format.h>
 #include <map>
@@ -12,6 +11,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "codegen/names.hpp"
 #include "codegen/shared_temps.hpp"
 
 namespace mbgc::codegen {
@@ -106,12 +106,6 @@ std::string without_owner(const std::string& name) {
   return dot == std::string::npos ? name : name.substr(dot + 1);
 }
 
-std::string identifier(const std::string& s) {
-  std::string out;
-  for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "t_" + out;
-  return out;
-}
 
 }  // namespace
 
@@ -159,10 +153,6 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
   std::map<std::string, std::vector<int>> by_key;
   for (std::size_t r = 0; r < o.runs.size(); ++r) {
     std::string key = Canon(list, o.runs[r], o.stored, static_cast<int>(r)).key();
-    if (std::getenv("MBGC_OUTLINE_DEBUG"))
-      fmt::print(stderr, "run {} body {} [{}, {}) outputs {} sources {} inputs {} key hash {}\n", r, o.runs[r].body, o.runs[r].begin,
-                 o.runs[r].end, o.runs[r].outputs.size(), fmt::join(o.runs[r].sources, ","), o.runs[r].inputs.size(),
-                 std::hash<std::string>{}(key) % 100000);
     if (!key.empty()) by_key[std::move(key)].push_back(static_cast<int>(r));
   }
   std::vector<std::vector<int>> groups;
@@ -258,10 +248,13 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   const OutlinedRun& run = o.runs[static_cast<std::size_t>(s.runs[0])];
   // Names: the first body's, without its prefix; in[k], sK[k] and out[k] for what crosses the call.
   const std::string prefix = run.body + ".";
+  Mangler mangle;  // the locals' identifiers: unique, never a parameter's, a keyword or cseN
+  for (const std::string p : {"in", "out"}) mangle.get(p, p);
+  for (std::size_t i = 0; i < run.sources.size(); ++i) mangle.get(fmt::format("s{}", i), fmt::format("s{}", i));
   std::unordered_map<int, std::string> local;
   for (int v : run.defined) {
     const std::string& full = g.vars[static_cast<std::size_t>(v)].name;
-    local[v] = identifier(full.rfind(prefix, 0) == 0 ? full.substr(prefix.size()) : full);
+    local[v] = mangle.get(fmt::format("v{}", v), full.rfind(prefix, 0) == 0 ? full.substr(prefix.size()) : full);
   }
   std::vector<std::string> bodies, params = {"const double* in"}, outs;
   for (int r : s.runs) bodies.push_back(o.runs[static_cast<std::size_t>(r)].body);

@@ -155,7 +155,9 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
 
   codegen::EmitOptions emit;
   emit.library = opt.library;
-  emit.outline = !opt.no_outline;
+  emit.outline = opt.outline == "always"  ? codegen::EmitOptions::Outline::always
+                 : opt.outline == "never" ? codegen::EmitOptions::Outline::never
+                                          : codegen::EmitOptions::Outline::automatic;
   emit.library_namespace = opt.library_namespace;
   if (selected) emit.scene = selected->name;
   emit.source_display = opt.input;

@@ -27,7 +27,7 @@ struct Options {
   std::string library_namespace = "mbgc_model";  ///< --namespace: where --library puts the class
   std::string scene;          ///< --scene: compile only what this scene's outputs need
   bool explain_scene = false;  ///< --explain-scene: print what the scene removes instead of C++
-  bool no_outline = false;     ///< --no-outline: every body's elimination written inline
+  std::string outline = "auto";  ///< --outline auto|always|never (codegen/outline.hpp)
   bool keep_unchanged = false;  ///< --keep-unchanged: do not rewrite an output whose text is the same
   std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time

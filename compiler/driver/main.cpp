@@ -26,9 +26,11 @@ int main(int argc, char** argv) {
   std::string explain;
   app.add_option("--explain-scene", explain,
                  "print what scene NAME keeps and removes (bodies, elements, signals, outputs) instead of C++");
-  app.add_flag("--no-outline", opt.no_outline,
-               "write every body's articulated-body elimination inline, not one function per shape of bodies "
-               "with the same equations (to measure what outlining saves)");
+  app.add_option("--outline", opt.outline,
+                 "auto|always|never: bodies with the same equations computed by one function per shape, called per "
+                 "body (auto: where the derivative written inline would outgrow the instruction cache, about "
+                 "100,000 expression nodes; never: everything inline, to measure what outlining saves)")
+      ->check(CLI::IsMember({"auto", "always", "never"}));
   app.add_flag("--keep-unchanged", opt.keep_unchanged,
                "leave -o's file (and the depfile) untouched when its text would not change, so that Ninja's "
                "restat skips recompiling it (mbgc_add_simulation passes it under Ninja)");

@@ -61,7 +61,7 @@ void expect_outlined(const std::string& name) {
   const std::string outlined = header("outline_" + name), plain = header("inline_" + name);
   ASSERT_FALSE(outlined.empty());
   EXPECT_NE(outlined.find("derivative_shape1("), std::string::npos) << name << ": nothing outlined";
-  EXPECT_EQ(plain.find("_shape1("), std::string::npos) << name << ": --no-outline outlined";
+  EXPECT_EQ(plain.find("_shape1("), std::string::npos) << name << ": --outline never outlined";
 }
 
 }  // namespace
