@@ -14,6 +14,10 @@
 # previous size of the same model and strategy (about 2 when the work is
 # linear in the bodies, 4 when quadratic, 8 when cubic).
 #
+# In joint coordinates the code is outlined at every size (--outline always:
+# with mbgc's default, auto, the small models are written inline and the
+# large ones outlined, and the ratio across the switch compares two forms).
+#
 #   tools/ops_growth.sh [build dir, default build]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -31,7 +35,9 @@ series() {  # model-file label strategy sizes...
   shift 3
   local prev_ops="" prev_lines="" prev_bytes="" n csv row method ops lines solve_ops sizes bytes expr
   for n in "$@"; do
-    csv=$("$mbgc" "$file" --set N="$n" --constraints "$strategy" --stats --stats-format csv)
+    local form=()
+    [ "$strategy" = coordinates ] && form=(--outline always)
+    csv=$("$mbgc" "$file" --set N="$n" --constraints "$strategy" "${form[@]}" --stats --stats-format csv)
     # function,lines,bytes,ops,add,mul,div,neg,call,compare,solve_sizes,solve_ops
     row=$(grep -E '^(derivative|residual),' <<<"$csv")
     IFS=, read -r method lines _ ops _ _ _ _ _ _ sizes solve_ops <<<"$row"
