@@ -28,6 +28,8 @@ struct Options {
   std::string scene;          ///< --scene: compile only what this scene's outputs need
   bool explain_scene = false;  ///< --explain-scene: print what the scene removes instead of C++
   std::string outline = "auto";  ///< --outline auto|always|never (codegen/outline.hpp)
+  bool time_passes = false;   ///< --time-passes: each pass's wall time on stderr
+  bool exit_when_done = false;  ///< end the process once the C++ is written, without freeing (the executable's main)
   bool keep_unchanged = false;  ///< --keep-unchanged: do not rewrite an output whose text is the same
   std::string depfile;        ///< --depfile: Makefile-style list of the files read (for build tools)
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time

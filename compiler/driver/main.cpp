@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
                  "body (auto: where the derivative written inline would outgrow the instruction cache, about "
                  "100,000 expression nodes; never: everything inline, to measure what outlining saves)")
       ->check(CLI::IsMember({"auto", "always", "never"}));
+  app.add_flag("--time-passes", opt.time_passes, "print each pass's wall time on stderr (for mbgc's developers)");
   app.add_flag("--keep-unchanged", opt.keep_unchanged,
                "leave -o's file (and the depfile) untouched when its text would not change, so that Ninja's "
                "restat skips recompiling it (mbgc_add_simulation passes it under Ninja)");
@@ -102,5 +103,6 @@ int main(int argc, char** argv) {
     std::cerr << "mbgc: error: --stats prints the generated code's costs: it does not go with --dump or --explain-scene\n";
     return 2;
   }
+  opt.exit_when_done = true;
   return mbgc::driver::compile(opt, std::cout, std::cerr);
 }
