@@ -469,7 +469,8 @@ class Emitter {
       if (const int r = copy_after[k]; r >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(r)];
         for (std::size_t j = 0; j < run.outputs.size(); ++j)
-          body.push_back(CppStmt::line(fmt::format("{}[{}] = {};", store[static_cast<std::size_t>(r)], j, var_name(run.defined[run.outputs[j]]))));
+          body.push_back(
+              CppStmt::line(fmt::format("{}[{}] = {};", store[static_cast<std::size_t>(r)], run.slots[j], var_name(run.defined[run.outputs[j]]))));
       }
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
@@ -486,7 +487,7 @@ class Emitter {
     std::vector<std::unordered_set<int>> reads(list.size() + 1);
     for (std::size_t k = 0; k < list.size(); ++k) assignment_inputs(s_, *list[k], reads[k]);
     for (const auto& [target, e] : results) collect_vars(e, reads.back());
-    Outlining o = find_outlined_runs(list, reads, labels, s_.tree->names);
+    Outlining o = find_outlined_runs(list, reads, labels, s_.tree->names, g_);
     if (o.shapes.empty()) o = {};
     return o;
   }
@@ -525,7 +526,7 @@ class Emitter {
       const char* what = elimination ? "elimination" : run.begin < first_elim ? "kinematics" : "accelerations";
       store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), fmt::format("{}_{}", run.body, phase));
       stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of body {}'s {}", store[r],
-                                                  std::max<std::size_t>(run.outputs.size(), 1), method, run.body, what)));
+                                                  std::max<std::size_t>(run.width, 1), method, run.body, what)));
     }
     for (const auto& [v, at] : o.stored)
       if (o.runs[static_cast<std::size_t>(at.first)].shape >= 0)

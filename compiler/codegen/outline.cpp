@@ -30,7 +30,7 @@ constexpr std::size_t kMinRun = 6;
 /// (it reads t). Fills the run's sources and inputs.
 class Canon {
  public:
-  /// `stored`: the outputs of the runs taken as outlined (var -> run, position).
+  /// `stored`: where every run's outputs are kept (var -> run, slot).
   Canon(const std::vector<const Assignment*>& list, OutlinedRun& run,
         const std::unordered_map<int, std::pair<int, std::size_t>>& stored, int self)
       : list_(list), run_(run), stored_(stored), self_(self) {
@@ -41,7 +41,7 @@ class Canon {
 
   std::string key() {
     for (std::size_t i = run_.begin; i < run_.end && ok_; ++i) text_ += fmt::format("=>{};", node(list_[i]->value));
-    text_ += fmt::format("out({})", fmt::join(run_.outputs, ","));
+    text_ += fmt::format("out({})", fmt::join(run_.slots, ","));
     return ok_ ? text_ : std::string{};
   }
 
@@ -110,7 +110,7 @@ std::string without_owner(const std::string& name) {
 }  // namespace
 
 Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const std::vector<std::unordered_set<int>>& reads,
-                             const std::vector<int>& labels, const std::vector<std::string>& bodies) {
+                             const std::vector<int>& labels, const std::vector<std::string>& bodies, const BondGraph& graph) {
   Outlining o;
   auto label = [&](std::size_t i) { return list[i]->block >= 0 || !list[i]->value ? -1 : labels[i]; };
   for (std::size_t i = 0; i < list.size();) {
@@ -147,9 +147,20 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
   // Every run's outputs have a place (a member array), whether its run is
   // outlined or not: so a run's shape never depends on whether its sources'
   // shapes are shared (a chain's body above the leaf reads the leaf there).
-  for (std::size_t r = 0; r < o.runs.size(); ++r)
-    for (std::size_t k = 0; k < o.runs[r].outputs.size(); ++k)
-      o.stored[o.runs[r].defined[o.runs[r].outputs[k]]] = {static_cast<int>(r), k};
+  // Slots: one per name without its owner, numbered in order of first appearance.
+  std::unordered_map<std::string, std::size_t> slot_of;
+  for (std::size_t r = 0; r < o.runs.size(); ++r) {
+    OutlinedRun& run = o.runs[r];
+    std::unordered_map<std::string, int> seen;  // a name twice in one run: the second is name#2
+    for (std::size_t k : run.outputs) {
+      std::string name = without_owner(graph.vars[static_cast<std::size_t>(run.defined[k])].name);
+      if (const int n = ++seen[name]; n > 1) name += fmt::format("#{}", n);
+      const std::size_t slot = slot_of.emplace(name, slot_of.size()).first->second;
+      run.slots.push_back(slot);
+      run.width = std::max(run.width, slot + 1);
+      o.stored[run.defined[k]] = {static_cast<int>(r), slot};
+    }
+  }
   std::map<std::string, std::vector<int>> by_key;
   for (std::size_t r = 0; r < o.runs.size(); ++r) {
     std::string key = Canon(list, o.runs[r], o.stored, static_cast<int>(r)).key();
@@ -262,7 +273,8 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   for (std::size_t k = 0; k < run.inputs.size(); ++k) known.emplace(run.inputs[k], fmt::format("in[{}]", k));
   for (std::size_t i = 0; i < run.sources.size(); ++i) {
     const OutlinedRun& src = o.runs[static_cast<std::size_t>(run.sources[i])];
-    for (std::size_t k = 0; k < src.outputs.size(); ++k) known.emplace(var(src.defined[src.outputs[k]]), fmt::format("s{}[{}]", i, k));
+    for (std::size_t k = 0; k < src.outputs.size(); ++k)
+      known.emplace(var(src.defined[src.outputs[k]]), fmt::format("s{}[{}]", i, src.slots[k]));
     params.push_back(fmt::format("const double* s{}", i));
   }
   params.push_back("double* out");
@@ -289,7 +301,7 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
     f.body.push_back(CppStmt::line(fmt::format("const double {} = {};", local.at(a.var), rhs)));
     if (whole) shared.name_whole(a.value, local.at(a.var));
   }
-  for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", k, outs[k])));
+  for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", run.slots[k], outs[k])));
   return f;
 }
 

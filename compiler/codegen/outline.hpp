@@ -42,6 +42,8 @@ struct OutlinedRun {
   int shape = -1;                   // index into Outlining::shapes; -1: written inline
   std::vector<int> defined;         // the variables it computes, in order
   std::vector<std::size_t> outputs; // positions in `defined` that anything outside the run reads
+  std::vector<std::size_t> slots;   // per output: its place in the run's member array (by its name, see below)
+  std::size_t width = 0;            // the member array's size
   std::vector<int> sources;         // runs whose outputs it reads (a parent: its children's), in order of first reading
   std::vector<ir::Expr> inputs;     // what else it reads (variables, parameter-only subexpressions), in order
 };
@@ -53,7 +55,10 @@ struct OutlineShape {
 struct Outlining {
   std::vector<OutlinedRun> runs;
   std::vector<OutlineShape> shapes; // only shapes of two runs or more
-  /// Where a run's output is kept (outlined or not): var -> (run, position among its outputs).
+  /// Where a run's output is kept (outlined or not): var -> (run, slot). A
+  /// slot stands for a name without its owner ("pose.R11", "reaction_t.f[1]"),
+  /// the same in every run of the section: a child reads its parent's
+  /// omega at the same place whatever the parent's joint.
   std::unordered_map<int, std::pair<int, std::size_t>> stored;
 };
 
@@ -63,7 +68,7 @@ struct Outlining {
 /// (an index into `bodies`, -1 for none).
 Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignments,
                              const std::vector<std::unordered_set<int>>& reads, const std::vector<int>& labels,
-                             const std::vector<std::string>& bodies);
+                             const std::vector<std::string>& bodies, const ir::BondGraph& graph);
 
 /// Which body each assignment belongs to (`tree`'s, else the deepest body of
 /// what it reads; -1 for none), and `assignments` reordered so that each
