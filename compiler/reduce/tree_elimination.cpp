@@ -86,7 +86,7 @@ class Eliminator {
       tear_index_[loop_.tears[k]] = k;
     }
     for (int u : loop_.order) refs_[u] = loop_vars(loop_.solution.at(u), unknowns);
-    std::unordered_map<int, std::vector<int>> readers;
+    std::unordered_map<int, std::vector<int>>& readers = readers_;
     for (int u : all)
       for (int w : refs_[u]) readers[w].push_back(u);
     // The cut joints' multipliers, and what only their rows read (directly or
@@ -203,15 +203,25 @@ class Eliminator {
   }
 
   /// e as a Form over body n's basis, or false.
-  bool form_of(const Expr& e, int n, const std::vector<int>& refs, Form& out) {
+  bool form_of(const Expr& e, int n, const std::vector<int>& refs, Form& out, int u) {
     std::vector<Expr> c;
     Expr rest;
     if (!affine_in(e, refs, c, rest)) return false;
     out = Form{};
     out.rest = rest;
+    std::set<int> groups_done;  // the child output sums this unknown reads, each substituted once
     for (std::size_t k = 0; k < refs.size(); ++k) {
       const int w = refs[k];
       if (is_zero(c[k])) continue;
+      if (auto g = group_of_.find(w); g != group_of_.end() && g->second == u) {
+        if (!groups_done.insert(w).second) continue;
+        // every member of the sum u reads of this child: once, as the sum's form
+        const Form& z = group_form_.at({u, body_.at(w)});
+        if (!add_child_form(z, out)) return false;
+        for (int other : group_members_.at({u, body_.at(w)})) groups_done.insert(other);
+        continue;
+      }
+      if (groups_done.count(w)) continue;
       if (basis_.count(w)) {
         out.add_term(w, c[k]);
       } else if (body_.at(w) == n) {
@@ -222,23 +232,29 @@ class Eliminator {
         }
         out.add_scaled(it->second, c[k]);
       } else {  // a child's output: affine in this body's unknowns
-        const Form& y = out_form_.at(w);
-        for (const auto& [x, kx] : y.coef) {
-          Expr ck = mul(c[k], kx);
-          if (basis_.count(x)) {
-            out.add_term(x, ck);
-          } else {
-            auto it = form_.find(x);
-            if (it == form_.end()) {
-              missing_ = x;
-              return false;
-            }
-            out.add_scaled(it->second, ck);
-          }
-        }
-        out.rest = add(out.rest, mul(c[k], y.rest));
+        Form scaled;
+        scaled.add_scaled(out_form_.at(w), c[k]);
+        if (!add_child_form(scaled, out)) return false;
       }
     }
+    return true;
+  }
+
+  /// out += y, y a child's output form over this body's unknowns.
+  bool add_child_form(const Form& y, Form& out) {
+    for (const auto& [x, kx] : y.coef) {
+      if (basis_.count(x)) {
+        out.add_term(x, kx);
+      } else {
+        auto it = form_.find(x);
+        if (it == form_.end()) {
+          missing_ = x;
+          return false;
+        }
+        out.add_scaled(it->second, kx);
+      }
+    }
+    out.rest = add(out.rest, y.rest);
     return true;
   }
 
@@ -295,7 +311,7 @@ class Eliminator {
     if (!sort_body(n, why)) return false;
     for (int u : order_[n]) {
       Form f;
-      if (!form_of(loop_.solution.at(u), n, refs_.at(u), f)) return fail(u);
+      if (!form_of(loop_.solution.at(u), n, refs_.at(u), f, u)) return fail(u);
       form_.emplace(u, std::move(f));
     }
     // The joint's equations, D T + C X + d = 0, solved for T by elimination
@@ -304,7 +320,7 @@ class Eliminator {
     std::vector<Form> rows;
     for (int t : tears) {
       Form r;
-      if (!form_of(loop_.tear_residuals[tear_index_.at(t)], n, refs_.at(t), r)) return fail(t);
+      if (!form_of(loop_.tear_residuals[tear_index_.at(t)], n, refs_.at(t), r, t)) return fail(t);
       rows.push_back(std::move(r));
     }
     const std::size_t m = tears.size();
@@ -347,21 +363,75 @@ class Eliminator {
       t_form_.emplace(tk, std::move(t));
     }
     // What the parent reads of this body, in terms of the parent's unknowns.
+    // Outputs that one equation of the parent reads only as a sum with
+    // constant coefficients (the torques a joint's two feeds put on the
+    // parent's omega junction) are passed on as that sum: one form, not one
+    // per output.
+    std::map<int, std::vector<std::pair<int, Expr>>> sums;  // parent unknown -> (output, coefficient)
+    for (int y : outputs_[n]) {
+      const int u = sole_parent_reader(y, n);
+      Expr c;
+      if (u >= 0 && !t_form_.count(y) && constant_coefficient(u, y, c)) sums[u].push_back({y, c});
+    }
+    for (auto it = sums.begin(); it != sums.end();)
+      it = it->second.size() < 2 ? sums.erase(it) : std::next(it);
     for (int y : outputs_[n]) {
       if (auto t = t_form_.find(y); t != t_form_.end()) {
         out_form_.emplace(y, t->second);
         continue;
       }
-      const Form& f = form_.at(y);
-      Form o;
-      o.rest = f.rest;
-      for (const auto& [w, c] : f.coef) {
-        if (auto t = t_form_.find(w); t != t_form_.end()) o.add_scaled(t->second, c);
-        else o.add_term(w, c);
-      }
+      if (std::any_of(sums.begin(), sums.end(), [&](const auto& s) {
+            return std::any_of(s.second.begin(), s.second.end(), [&](const auto& m) { return m.first == y; });
+          }))
+        continue;
+      Form o = eliminated(form_.at(y));
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
     }
+    for (const auto& [u, members] : sums) {
+      Form z;
+      for (const auto& [y, c] : members) {
+        z.add_scaled(eliminated(form_.at(y)), c);
+        group_of_[y] = u;
+        group_members_[{u, n}].push_back(y);
+      }
+      name_all(z, n, "out");
+      group_form_.emplace(std::make_pair(u, n), std::move(z));
+    }
+    return true;
+  }
+
+  /// f with the body's joint accelerations replaced by their forms.
+  Form eliminated(const Form& f) const {
+    Form o;
+    o.rest = f.rest;
+    for (const auto& [w, c] : f.coef) {
+      if (auto t = t_form_.find(w); t != t_form_.end()) o.add_scaled(t->second, c);
+      else o.add_term(w, c);
+    }
+    return o;
+  }
+
+  /// The one unknown of n's parent whose equation reads y, or -1.
+  int sole_parent_reader(int y, int n) const {
+    int found = -1;
+    auto it = readers_.find(y);
+    if (it == readers_.end()) return -1;
+    for (int u : it->second) {
+      if (body_.at(u) == n) continue;
+      if (body_.at(u) != parent(n) || found >= 0) return -1;
+      found = u;
+    }
+    return found;
+  }
+
+  /// The coefficient of y in u's equation, if it is a constant.
+  bool constant_coefficient(int u, int y, Expr& c) const {
+    const Expr& e = tear_index_.count(u) ? loop_.tear_residuals[tear_index_.at(u)] : loop_.solution.at(u);
+    std::vector<Expr> coef;
+    Expr rest;
+    if (!affine_in(e, {y}, coef, rest) || !is_const(coef[0])) return false;
+    c = coef[0];
     return true;
   }
 
@@ -465,6 +535,10 @@ class Eliminator {
   std::unordered_map<int, Form> form_;              // unknown -> affine in its body's basis
   std::unordered_map<int, Form> t_form_;            // tear -> affine in its body's X
   std::unordered_map<int, Form> out_form_;          // output -> affine in its parent's unknowns
+  std::unordered_map<int, std::vector<int>> readers_;  // unknown -> the loop's unknowns whose equation reads it
+  std::unordered_map<int, int> group_of_;           // output passed on in a sum -> the parent unknown that reads the sum
+  std::map<std::pair<int, int>, Form> group_form_;  // (parent unknown, child) -> the sum's form
+  std::map<std::pair<int, int>, std::vector<int>> group_members_;  // (parent unknown, child) -> the outputs in the sum
   std::map<int, int> count_;                        // body -> temporaries so far
   std::map<int, SourceLoc> loc_;                    // body -> model line for its temporaries
   std::vector<Assignment> inward_, outward_;

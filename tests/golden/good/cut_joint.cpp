@@ -315,22 +315,17 @@ class cut_joint_model final : public mbgrt::Model {
     const double cse26 = -(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse25;
     const double coupler_out11 = cse4 * cse26 + cse5 * cse23 + cse21 * coupler_accel6;
     const double cse27 = 0.05 * cse5;
-    const double coupler_out12 = -cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12 + cse27 * coupler_accel2;
-    const double coupler_out13 = -cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22 + cse27 * coupler_accel3;
-    const double coupler_out14 = cse6 * cse6 + cse7 * cse19 + cse27 * coupler_accel4;
-    const double coupler_out15 = cse27 * coupler_accel5 + (cse6 * cse4 + cse7 * cse5);
-    const double coupler_out16 = cse6 * cse26 + cse7 * cse23 + cse27 * coupler_accel6;
-    const double coupler_out17 = cse17 + cse16 * coupler_accel2;
-    const double coupler_out18 = cse18 + cse16 * coupler_accel3;
-    const double coupler_out19 = cse20 + cse16 * coupler_accel4;
-    const double coupler_out20 = cse16 * coupler_accel5 + cse21;
-    const double coupler_out21 = cse24 + cse16 * coupler_accel6;
+    const double coupler_out12 = -cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12 + cse27 * coupler_accel2 + (cse17 + cse16 * coupler_accel2);
+    const double coupler_out13 = -cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22 + cse27 * coupler_accel3 + (cse18 + cse16 * coupler_accel3);
+    const double coupler_out14 = cse6 * cse6 + cse7 * cse19 + cse27 * coupler_accel4 + (cse20 + cse16 * coupler_accel4);
+    const double coupler_out15 = cse27 * coupler_accel5 + (cse6 * cse4 + cse7 * cse5) + (cse16 * coupler_accel5 + cse21);
+    const double coupler_out16 = cse6 * cse26 + cse7 * cse23 + cse27 * coupler_accel6 + (cse24 + cse16 * coupler_accel6);
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: 1 / pivot of the joint's accelerations
-    const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + 0.1 * coupler_out10) + coupler_out14 + 0.1 * coupler_out15 + coupler_out19 + 0.1 * coupler_out20);
+    const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + 0.1 * coupler_out10) + coupler_out14 + 0.1 * coupler_out15);
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: joint acceleration as an affine function of the parent's motion
-    const double crank_accel2 = -crank_pivot1 * (0.1 * coupler_out7 + coupler_out12 + coupler_out17);
-    const double crank_accel3 = -crank_pivot1 * (0.1 * coupler_out8 + coupler_out13 + coupler_out18);
-    const double crank_accel4 = -crank_pivot1 * (0.1 * (-crank_weight_e_2 + coupler_out11) + coupler_out16 + coupler_out21);
+    const double crank_accel2 = -crank_pivot1 * (0.1 * coupler_out7 + coupler_out12);
+    const double crank_accel3 = -crank_pivot1 * (0.1 * coupler_out8 + coupler_out13);
+    const double crank_accel4 = -crank_pivot1 * (0.1 * (-crank_weight_e_2 + coupler_out11) + coupler_out16);
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: 1 / pivot of the joint's accelerations
     const double rocker_pivot1 = derived2_;
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: joint acceleration as an affine function of the parent's motion
@@ -342,18 +337,18 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_column6 = 0.1 * crank_accel3;
     const double crank_column7 = 0.1 * crank_accel4;
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: the cut joints' columns: an unknown their rows read, affine in their multipliers
-    const double coupler_column22 = cse6 * crank_accel2 + cse4 * crank_column5;
-    const double coupler_column23 = cse6 * crank_accel3 + cse4 * crank_column6;
-    const double coupler_column24 = cse25 + cse6 * crank_accel4 + cse4 * crank_column7;
-    const double coupler_column25 = coupler_accel2 + coupler_accel4 * crank_accel2 + coupler_accel5 * crank_column5;
-    const double coupler_column26 = coupler_accel3 + coupler_accel4 * crank_accel3 + coupler_accel5 * crank_column6;
-    const double coupler_column27 = coupler_accel6 + coupler_accel4 * crank_accel4 + coupler_accel5 * crank_column7;
-    const double coupler_column28 = cse19 * crank_accel2 + 0.5 * coupler_column25 + cse5 * crank_column5;
-    const double coupler_column29 = cse19 * crank_accel3 + 0.5 * coupler_column26 + cse5 * crank_column6;
-    const double coupler_column30 = cse22 + cse19 * crank_accel4 + 0.5 * coupler_column27 + cse5 * crank_column7;
-    const double coupler_column31 = crank_accel2 + coupler_column25;
-    const double coupler_column32 = crank_accel3 + coupler_column26;
-    const double coupler_column33 = crank_accel4 + coupler_column27;
+    const double coupler_column17 = cse6 * crank_accel2 + cse4 * crank_column5;
+    const double coupler_column18 = cse6 * crank_accel3 + cse4 * crank_column6;
+    const double coupler_column19 = cse25 + cse6 * crank_accel4 + cse4 * crank_column7;
+    const double coupler_column20 = coupler_accel2 + coupler_accel4 * crank_accel2 + coupler_accel5 * crank_column5;
+    const double coupler_column21 = coupler_accel3 + coupler_accel4 * crank_accel3 + coupler_accel5 * crank_column6;
+    const double coupler_column22 = coupler_accel6 + coupler_accel4 * crank_accel4 + coupler_accel5 * crank_column7;
+    const double coupler_column23 = cse19 * crank_accel2 + 0.5 * coupler_column20 + cse5 * crank_column5;
+    const double coupler_column24 = cse19 * crank_accel3 + 0.5 * coupler_column21 + cse5 * crank_column6;
+    const double coupler_column25 = cse22 + cse19 * crank_accel4 + 0.5 * coupler_column22 + cse5 * crank_column7;
+    const double coupler_column26 = crank_accel2 + coupler_column20;
+    const double coupler_column27 = crank_accel3 + coupler_column21;
+    const double coupler_column28 = crank_accel4 + coupler_column22;
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: the cut joints' columns: an unknown their rows read, affine in their multipliers
     const double rocker_column5 = 0.1 * rocker_accel2;
     const double rocker_column6 = 0.1 * rocker_accel3;
@@ -363,10 +358,10 @@ class cut_joint_model final : public mbgrt::Model {
     const double cse28 = 2.0 * j3_stabilisation;
     const double cse29 = j3_stabilisation * j3_stabilisation;
     double blk1_a[4] = {
-        -coupler_pose_R11 * coupler_column22 - coupler_pose_R12 * coupler_column28 - cse8 * coupler_column31 + rocker_pose_R12 * rocker_column5 + cse10 * rocker_accel2, -coupler_pose_R11 * coupler_column23 - coupler_pose_R12 * coupler_column29 - cse8 * coupler_column32 + rocker_pose_R12 * rocker_column6 + cse10 * rocker_accel3,
-        -coupler_pose_R21 * coupler_column22 - coupler_pose_R22 * coupler_column28 - cse13 * coupler_column31 + rocker_pose_R22 * rocker_column5 + cse14 * rocker_accel2, -coupler_pose_R21 * coupler_column23 - coupler_pose_R22 * coupler_column29 - cse13 * coupler_column32 + rocker_pose_R22 * rocker_column6 + cse14 * rocker_accel3,
+        -coupler_pose_R11 * coupler_column17 - coupler_pose_R12 * coupler_column23 - cse8 * coupler_column26 + rocker_pose_R12 * rocker_column5 + cse10 * rocker_accel2, -coupler_pose_R11 * coupler_column18 - coupler_pose_R12 * coupler_column24 - cse8 * coupler_column27 + rocker_pose_R12 * rocker_column6 + cse10 * rocker_accel3,
+        -coupler_pose_R21 * coupler_column17 - coupler_pose_R22 * coupler_column23 - cse13 * coupler_column26 + rocker_pose_R22 * rocker_column5 + cse14 * rocker_accel2, -coupler_pose_R21 * coupler_column18 - coupler_pose_R22 * coupler_column24 - cse13 * coupler_column27 + rocker_pose_R22 * rocker_column6 + cse14 * rocker_accel3,
     };
-    double blk1_x[2] = {-(cse28 * j3_cn_f_1 + cse29 * (rocker_pose_r1 + cse12 - (coupler_pose_r1 + cse11)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column24 - coupler_pose_R12 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse8 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse10 * rocker_accel4))), -(cse28 * j3_cn_f_2 + cse29 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse15)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column24 - coupler_pose_R22 * coupler_column30 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse13 * coupler_column33) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse14 * rocker_accel4)))};
+    double blk1_x[2] = {-(cse28 * j3_cn_f_1 + cse29 * (rocker_pose_r1 + cse12 - (coupler_pose_r1 + cse11)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column19 - coupler_pose_R12 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse8 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse10 * rocker_accel4))), -(cse28 * j3_cn_f_2 + cse29 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse15)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column19 - coupler_pose_R22 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse13 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse14 * rocker_accel4)))};
     static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
     int blk1_dependent[2];
     const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
