@@ -389,12 +389,13 @@ class Eliminator {
       out_form_.emplace(y, std::move(o));
     }
     for (const auto& [u, members] : sums) {
-      Form z;
+      Form sum;  // summed before the joint accelerations are eliminated: one coefficient per acceleration
       for (const auto& [y, c] : members) {
-        z.add_scaled(eliminated(form_.at(y)), c);
+        sum.add_scaled(form_.at(y), c);
         group_of_[y] = u;
         group_members_[{u, n}].push_back(y);
       }
+      Form z = eliminated(sum);
       name_all(z, n, "out");
       group_form_.emplace(std::make_pair(u, n), std::move(z));
     }
