@@ -1,0 +1,149 @@
+// codegen/identity.cpp — the model class's metadata methods.
+#include "codegen/identity.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <unordered_set>
+
+#include "codegen/names.hpp"
+
+namespace mbgc::codegen {
+namespace {
+
+using namespace mbgc::ir;
+
+/// Bounds beyond which a state's model no longer holds (a beam's modal
+/// coordinates): the runtime stops the run there and prints the reason.
+void state_limits(CppClass& c, const ReducedSystem& s) {
+  const BondGraph& g = s.graph;
+  std::vector<std::string> bounds, reasons;
+  for (std::size_t i = 0; i < s.states.size(); ++i) {
+    const GraphNode& nd = g.nodes[static_cast<std::size_t>(s.states[i].node)];
+    const auto& vars = nd.state_vars;
+    auto k = static_cast<std::size_t>(std::find(vars.begin(), vars.end(), s.states[i].var) - vars.begin());
+    if (k >= nd.state_limits.size()) continue;
+    bounds.push_back(fmt::format("case {}: return {};", i, cpp_double(nd.state_limits[k].first)));
+    reasons.push_back(fmt::format("case {}: return {};", i, cpp_string(nd.state_limits[k].second)));
+  }
+  if (bounds.empty()) return;
+  CppFunction limit{"LIMITS: where a state's model stops being valid (the run stops there, with the reason).",
+                    "double state_limit(std::size_t i) const override", {CppStmt::line("switch (i) {")}};
+  CppFunction why{"", "std::string state_limit_reason(std::size_t i) const override", {CppStmt::line("switch (i) {")}};
+  for (const auto& b : bounds) limit.body.push_back(CppStmt::line("  " + b));
+  for (const auto& r : reasons) why.body.push_back(CppStmt::line("  " + r));
+  limit.body.push_back(CppStmt::line("  default: return HUGE_VAL;"));
+  why.body.push_back(CppStmt::line("  default: return {};"));
+  limit.body.push_back(CppStmt::line("}"));
+  why.body.push_back(CppStmt::line("}"));
+  c.public_methods.push_back(limit);
+  c.public_methods.push_back(why);
+}
+
+/// "= FORMULA" of a computed parameter (sim --list-parameters prints it); a
+/// long one (a joint frame from its axis) as the parameters it is computed from.
+std::string computed_doc(const Parameter& p, const BondGraph& g) {
+  // Every node prints at least one character: past 80 nodes, no need to print it.
+  if (ir::size(p.value) <= 80) {
+    std::string formula = to_string(p.value, names_for_dump(g));
+    if (formula.size() <= 80) return "= " + formula;
+  }
+  std::unordered_set<int> ids;
+  collect_params(p.value, ids);
+  std::vector<int> order(ids.begin(), ids.end());
+  std::sort(order.begin(), order.end());
+  std::vector<std::string> from;
+  for (int id : order) {
+    const std::string& full = g.params[static_cast<std::size_t>(id)].name;
+    std::string base = full.substr(0, full.find('['));  // link.axis_a[2] -> link.axis_a
+    if (std::find(from.begin(), from.end(), base) == from.end()) from.push_back(base);
+  }
+  if (from.empty()) return "= a long constant expression";
+  return fmt::format("= a function of {}", fmt::join(from, ", "));
+}
+
+}  // namespace
+
+ir::Namer names_for_dump(const ir::BondGraph& g) {
+  ir::Namer n;
+  n.var = [&g](int id) { return g.vars[static_cast<std::size_t>(id)].name; };
+  n.param = [&g](int id) { return g.params[static_cast<std::size_t>(id)].name; };
+  return n;
+}
+
+void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions& opt) {
+  const BondGraph& g = s.graph;
+  const std::size_t unknowns = s.states.size() + s.algebraic.size();
+  c.public_methods.push_back({"", "const char* name() const override", {CppStmt::line(fmt::format("return {};", cpp_string(g.model_name)))}});
+  c.public_methods.push_back({"", "const char* source_file() const override", {CppStmt::line(fmt::format("return {};", cpp_string(opt.source_display)))}});
+  c.public_methods.push_back({"", "std::size_t size() const override", {CppStmt::line(fmt::format("return {};", unknowns))}});
+  std::vector<std::string> unknown_names;
+  for (const StateVar& st : s.states) unknown_names.push_back(cpp_string(g.vars[static_cast<std::size_t>(st.var)].name));
+  for (int a : s.algebraic) unknown_names.push_back(cpp_string(g.vars[static_cast<std::size_t>(a)].name));
+  CppFunction vn{"", "std::string variable_name(std::size_t i) const override", {}};
+  if (unknown_names.empty()) {
+    vn.body.push_back(CppStmt::line("(void)i;"));
+    vn.body.push_back(CppStmt::line("return \"?\";"));
+  } else {
+    vn.body.push_back(CppStmt::line(fmt::format("static const char* const kNames[] = {{{}}};", fmt::join(unknown_names, ", "))));
+    vn.body.push_back(CppStmt::line(fmt::format("return i < {} ? kNames[i] : \"?\";", unknown_names.size())));
+  }
+  c.public_methods.push_back(vn);
+  state_limits(c, s);
+  std::vector<std::string> outs;
+  for (const Output& o : g.outputs) outs.push_back(cpp_string(o.name));
+  c.public_methods.push_back({"", "std::vector<std::string> output_names() const override",
+                              {CppStmt::line(fmt::format("return {{{}}};", fmt::join(outs, ", ")))}});
+  CppFunction params{"", "std::vector<mbgrt::ParameterInfo> parameters() const override", {}};
+  std::vector<std::string> infos;
+  for (const Parameter& p : g.params)
+    infos.push_back(fmt::format("{{{}, {}, {}}}", cpp_string(p.name),
+                                p.literal ? cpp_double(p.literal_value) : "std::numeric_limits<double>::quiet_NaN()",
+                                cpp_string(p.literal ? "" : computed_doc(p, g))));
+  if (infos.empty()) params.body.push_back(CppStmt::line("return {};"));
+  else {
+    params.body.push_back(CppStmt::line("return {"));
+    for (const std::string& s : infos) params.body.push_back(CppStmt::line("    " + s + ","));
+    params.body.push_back(CppStmt::line("};"));
+  }
+  c.public_methods.push_back(params);
+  if (s.dae) {
+    CppFunction ids{"", "void differential_ids(double* id) const override", {}};
+    for (std::size_t i = 0; i < unknowns; ++i)
+      ids.body.push_back(CppStmt::line(fmt::format("id[{}] = {};", i, i < s.states.size() ? "1.0" : "0.0")));
+    c.public_methods.push_back(ids);
+    c.public_methods.push_back({"", "bool is_dae() const override", {CppStmt::line("return true;")}});
+  }
+  CppFunction settings{"Defaults from the model's simulate { } block; the command line overrides them.",
+                       "mbgrt::Settings default_settings() const override", {CppStmt::line("mbgrt::Settings s;")}};
+  const SimSettings& ss = g.settings;
+  if (ss.t_end) settings.body.push_back(CppStmt::line(fmt::format("s.t_end_s = {};", cpp_double(*ss.t_end))));
+  if (ss.interval) settings.body.push_back(CppStmt::line(fmt::format("s.interval_s = {};", cpp_double(*ss.interval))));
+  std::string solver = ss.solver.value_or(s.dae ? "ida" : "cvode");
+  settings.body.push_back(CppStmt::line(fmt::format("s.solver = mbgrt::Solver::{};", solver)));
+  if (ss.rtol) settings.body.push_back(CppStmt::line(fmt::format("s.rtol = {};", cpp_double(*ss.rtol))));
+  if (ss.atol) settings.body.push_back(CppStmt::line(fmt::format("s.atol = {};", cpp_double(*ss.atol))));
+  if (ss.step) settings.body.push_back(CppStmt::line(fmt::format("s.step_s = {};", cpp_double(*ss.step))));
+  settings.body.push_back(CppStmt::line("return s;"));
+  c.public_methods.push_back(settings);
+  CppFunction set{"", "bool set_parameter(const std::string& name, double value) override", {}};
+  if (g.params.empty()) {
+    set.body.push_back(CppStmt::line("(void)name;"));
+    set.body.push_back(CppStmt::line("(void)value;"));
+    set.body.push_back(CppStmt::line("return false;"));
+  } else {
+    std::vector<std::string> pn;
+    for (const Parameter& p : g.params) pn.push_back(cpp_string(p.name));
+    set.body.push_back(CppStmt::line(fmt::format("static const char* const kParams[] = {{{}}};", fmt::join(pn, ", "))));
+    set.body.push_back(CppStmt::line(fmt::format("for (std::size_t i = 0; i < {}; ++i) {{", g.params.size())));
+    set.body.push_back(CppStmt::line("  if (name != kParams[i]) continue;"));
+    set.body.push_back(CppStmt::line("  overrides_[i] = value;"));
+    set.body.push_back(CppStmt::line("  overridden_[i] = true;"));
+    set.body.push_back(CppStmt::line("  return true;"));
+    set.body.push_back(CppStmt::line("}"));
+    set.body.push_back(CppStmt::line("return false;"));
+  }
+  c.public_methods.push_back(set);
+}
+
+}  // namespace mbgc::codegen

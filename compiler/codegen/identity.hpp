@@ -1,0 +1,19 @@
+// codegen/identity.hpp — the model class's metadata methods: its name and
+// source file, its size, its unknowns' and outputs' names, the limits of its
+// states' validity, its parameters (a computed one with its formula), the
+// model's default settings and set_parameter().
+#pragma once
+
+#include "codegen/cpp.hpp"
+#include "codegen/emit_cpp.hpp"
+#include "ir/reduced.hpp"
+
+namespace mbgc::codegen {
+
+/// Appends those methods to `c`.
+void add_identity_methods(CppClass& c, const ir::ReducedSystem& s, const EmitOptions& opt);
+
+/// Variables and parameters by their names in the model (for comments).
+ir::Namer names_for_dump(const ir::BondGraph& g);
+
+}  // namespace mbgc::codegen
