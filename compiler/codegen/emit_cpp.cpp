@@ -262,33 +262,14 @@ class Emitter {
       if (v < 0 || !used.count(v)) continue;
       body.push_back(CppStmt::line(fmt::format("const double {} = yp[{}];", var_name(v), i)));
     }
-    // Bodies whose elimination is the same up to names: one function each shape (codegen/outline).
+    // Bodies whose equations are the same up to names: one function per shape (codegen/outline).
     std::vector<const Assignment*> list;
     for (int i : assignment_indices) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
-    Outlining outlined;
-    std::vector<std::string> store;
-    std::vector<int> run_at(list.size(), -1), copy_after(list.size(), -1);
-    if (opt_.outline != EmitOptions::Outline::never && s_.tree &&
-        (opt_.outline == EmitOptions::Outline::always || inline_count({}, list) > kOutlineFromNodes)) {
-      // Two ways, the one that leaves less inline: every body's equations
-      // grouped (kinematics too), or its elimination alone in causal order.
-      std::vector<const Assignment*> grouped = list;
-      std::vector<int> labels;
-      group_by_body(grouped, s_, labels);
-      const Outlining by_body = outline(grouped, labels, results);
-      for (std::size_t k = 0; k < list.size(); ++k)
-        if (list[k]->origin.rfind("articulated-body elimination", 0) != 0) labels[k] = -1;
-        else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
-      Outlining eliminations = outline(list, labels, results);
-      if (inline_count(by_body, grouped) < inline_count(eliminations, list)) outlined = by_body, list = grouped;
-      else outlined = std::move(eliminations);
-      store = store_outlined(outlined, list);
-      for (std::size_t r = 0; r < outlined.runs.size(); ++r)
-        if (outlined.runs[r].shape >= 0)
-          for (std::size_t k = outlined.runs[r].begin; k < outlined.runs[r].end; ++k) run_at[k] = static_cast<int>(r);
-      for (std::size_t r = 0; r < outlined.runs.size(); ++r)  // an inline run an outlined one reads: copied when done
-        if (outlined.runs[r].shape < 0 && !store[r].empty()) copy_after[outlined.runs[r].end - 1] = static_cast<int>(r);
-    }
+    const Outlined outlined_form = outline_section(list, results);
+    const Outlining& outlined = outlined_form.o;
+    const std::vector<std::string>& store = outlined_form.store;
+    const std::vector<int>& run_at = outlined_form.run_at;
+    const std::vector<int>& copy_after = outlined_form.copy_after;
     // Common subexpressions: anything non-trivial used twice or more in this section.
     SharedTemps shared(hoisted_, names_, cse_counter_, ops());
     auto visit = [&](const Expr& e) { shared.count(e); };
@@ -351,6 +332,46 @@ class Emitter {
       body.push_back(CppStmt::line(fmt::format("{} = {};", target, rhs)));
     }
     for (const auto& [v, at] : outlined.stored) stored_name_.erase(v);
+  }
+
+  /// A section's outlining: its runs and shapes, their member arrays, per
+  /// assignment the outlined run it is in and the inline run whose outputs
+  /// are copied to their array after it (-1: none).
+  struct Outlined {
+    Outlining o;
+    std::vector<std::string> store;
+    std::vector<int> run_at, copy_after;
+  };
+
+  /// `list` outlined where --outline says so (reordered body by body if that
+  /// form is taken): of every body's equations grouped (kinematics too) and
+  /// the eliminations alone in causal order, the one that leaves less inline.
+  Outlined outline_section(std::vector<const Assignment*>& list, const std::vector<std::pair<std::string, Expr>>& results) {
+    Outlined out;
+    out.run_at.assign(list.size(), -1);
+    out.copy_after.assign(list.size(), -1);
+    if (opt_.outline == EmitOptions::Outline::never || !s_.tree ||
+        (opt_.outline == EmitOptions::Outline::automatic && inline_count({}, list) <= kOutlineFromNodes))
+      return out;
+    std::vector<const Assignment*> grouped = list;
+    std::vector<int> labels;
+    group_by_body(grouped, s_, labels);
+    Outlining by_body = outline(grouped, labels, results);
+    for (std::size_t k = 0; k < list.size(); ++k)
+      if (list[k]->origin.rfind("articulated-body elimination", 0) != 0) labels[k] = -1;
+      else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
+    Outlining eliminations = outline(list, labels, results);
+    if (inline_count(by_body, grouped) < inline_count(eliminations, list)) out.o = std::move(by_body), list = grouped;
+    else out.o = std::move(eliminations);
+    out.store = store_outlined(out.o, list);
+    for (std::size_t r = 0; r < out.o.runs.size(); ++r) {
+      const OutlinedRun& run = out.o.runs[r];
+      if (run.shape >= 0)
+        for (std::size_t k = run.begin; k < run.end; ++k) out.run_at[k] = static_cast<int>(r);
+      else if (!out.store[r].empty())  // an inline run an outlined one reads: copied when done
+        out.copy_after[run.end - 1] = static_cast<int>(r);
+    }
+    return out;
   }
 
   /// The runs of `list` by body (`labels`) and their shapes; none if no shape is shared.
