@@ -353,14 +353,22 @@ class Emitter {
     if (opt_.outline == EmitOptions::Outline::never || !s_.tree ||
         (opt_.outline == EmitOptions::Outline::automatic && inline_count({}, list) <= kOutlineFromNodes))
       return out;
+    ReadsOf reads;
+    for (const Assignment* a : list) assignment_inputs(s_, *a, reads[a]);
+    std::unordered_set<int> results_read;
+    for (const auto& [target, e] : results) collect_vars(e, results_read);
+    auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels) {
+      Outlining o = find_outlined_runs(order, reads, results_read, labels, s_.tree->names, g_);
+      return o.shapes.empty() ? Outlining{} : o;  // nothing shared: nothing stored either
+    };
     std::vector<const Assignment*> grouped = list;
     std::vector<int> labels;
-    group_by_body(grouped, s_, labels);
-    Outlining by_body = outline(grouped, labels, results);
+    group_by_body(grouped, s_, reads, labels);
+    Outlining by_body = outline(grouped, labels);
     for (std::size_t k = 0; k < list.size(); ++k)
-      if (list[k]->origin.rfind("articulated-body elimination", 0) != 0) labels[k] = -1;
+      if (!from_tree_elimination(*list[k])) labels[k] = -1;
       else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
-    Outlining eliminations = outline(list, labels, results);
+    Outlining eliminations = outline(list, labels);
     if (inline_count(by_body, grouped) < inline_count(eliminations, list)) out.o = std::move(by_body), list = grouped;
     else out.o = std::move(eliminations);
     out.store = store_outlined(out.o, list);
@@ -374,16 +382,6 @@ class Emitter {
     return out;
   }
 
-  /// The runs of `list` by body (`labels`) and their shapes; none if no shape is shared.
-  Outlining outline(const std::vector<const Assignment*>& list, const std::vector<int>& labels,
-                    const std::vector<std::pair<std::string, Expr>>& results) const {
-    std::vector<std::unordered_set<int>> reads(list.size() + 1);
-    for (std::size_t k = 0; k < list.size(); ++k) assignment_inputs(s_, *list[k], reads[k]);
-    for (const auto& [target, e] : results) collect_vars(e, reads.back());
-    Outlining o = find_outlined_runs(list, reads, labels, s_.tree->names, g_);
-    if (o.shapes.empty()) o = {};
-    return o;
-  }
   /// The expression nodes of what stays inline.
   static std::size_t inline_count(const Outlining& o, const std::vector<const Assignment*>& list) {
     std::vector<char> out(list.size(), 0);
@@ -402,7 +400,7 @@ class Emitter {
   std::vector<std::string> store_outlined(const Outlining& o, const std::vector<const Assignment*>& list) {
     std::size_t first_elim = list.size();  // the runs before the tree's elimination are kinematics, after it accelerations
     for (std::size_t k = 0; k < list.size() && first_elim == list.size(); ++k)
-      if (list[k]->origin.rfind("articulated-body elimination", 0) == 0) first_elim = k;
+      if (from_tree_elimination(*list[k])) first_elim = k;
     std::vector<char> kept(o.runs.size(), 0);
     for (const OutlinedRun& run : o.runs)
       if (run.shape >= 0) {
@@ -414,7 +412,7 @@ class Emitter {
     for (std::size_t r = 0; r < o.runs.size(); ++r) {
       if (!kept[r]) continue;
       const OutlinedRun& run = o.runs[r];
-      const bool elimination = list[run.begin]->origin.rfind("articulated-body elimination", 0) == 0;
+      const bool elimination = from_tree_elimination(*list[run.begin]);
       const char* phase = elimination ? "elim" : run.begin < first_elim ? "kin" : "acc";
       const char* what = elimination ? "elimination" : run.begin < first_elim ? "kinematics" : "accelerations";
       store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), fmt::format("{}_{}", run.body, phase));

@@ -109,8 +109,9 @@ std::string without_owner(const std::string& name) {
 
 }  // namespace
 
-Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const std::vector<std::unordered_set<int>>& reads,
-                             const std::vector<int>& labels, const std::vector<std::string>& bodies, const BondGraph& graph) {
+Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const ReadsOf& reads,
+                             const std::unordered_set<int>& results_read, const std::vector<int>& labels,
+                             const std::vector<std::string>& bodies, const BondGraph& graph) {
   Outlining o;
   auto label = [&](std::size_t i) { return list[i]->block >= 0 || !list[i]->value ? -1 : labels[i]; };
   for (std::size_t i = 0; i < list.size();) {
@@ -135,8 +136,8 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
   }
   std::vector<std::vector<char>> read_outside(o.runs.size());
   for (std::size_t r = 0; r < o.runs.size(); ++r) read_outside[r].assign(o.runs[r].defined.size(), 0);
-  for (std::size_t i = 0; i <= list.size(); ++i)  // reads[list.size()]: what the section's results read
-    for (int v : reads[i]) {
+  for (std::size_t i = 0; i <= list.size(); ++i)  // i == list.size(): the section's results
+    for (int v : i < list.size() ? reads.at(list[i]) : results_read) {
       auto it = defined_by.find(v);
       if (it == defined_by.end() || (i < list.size() && run_at[i] == it->second.first)) continue;
       read_outside[static_cast<std::size_t>(it->second.first)][it->second.second] = 1;
@@ -177,7 +178,8 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const s
   return o;
 }
 
-void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s, std::vector<int>& labels) {
+void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s, const ReadsOf& reads_of,
+                   std::vector<int>& labels) {
   const std::size_t n = list.size();
   labels.assign(n, -1);
   if (!s.tree) return;
@@ -196,15 +198,15 @@ void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s,
   for (int r : roots) visit(r, 0);
   // Labels: the tree's, else the deepest body of what it reads.
   std::unordered_map<int, int> label_of(t.body_of.begin(), t.body_of.end());
-  std::vector<std::unordered_set<int>> reads(n);
+  std::vector<const std::unordered_set<int>*> reads(n);
   for (std::size_t i = 0; i < n; ++i) {
-    assignment_inputs(s, *list[i], reads[i]);
+    reads[i] = &reads_of.at(list[i]);
     if (list[i]->block >= 0) continue;
     int best = -1;
     if (auto it = t.body_of.find(list[i]->var); it != t.body_of.end()) {
       best = it->second;
     } else {
-      for (int v : reads[i])
+      for (int v : *reads[i])
         if (auto it = label_of.find(v); it != label_of.end() && (best < 0 || depth[static_cast<std::size_t>(it->second)] > depth[static_cast<std::size_t>(best)]))
           best = it->second;
     }
@@ -213,7 +215,7 @@ void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s,
   }
   // The kinematics: everything before the elimination, unless a linear block is among them.
   std::size_t end = 0;
-  while (end < n && list[end]->origin.rfind("articulated-body elimination", 0) != 0) {
+  while (end < n && !from_tree_elimination(*list[end])) {
     if (list[end]->block >= 0) return;
     ++end;
   }
@@ -224,7 +226,7 @@ void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s,
   std::vector<int> waiting(end, 0), key(end, -1);
   for (std::size_t i = 0; i < end; ++i) {
     if (labels[i] >= 0) key[i] = pre[static_cast<std::size_t>(labels[i])];
-    for (int v : reads[i])
+    for (int v : *reads[i])
       if (auto d = defined_at.find(v); d != defined_at.end() && d->second != i) {
         readers[d->second].push_back(i);
         ++waiting[i];

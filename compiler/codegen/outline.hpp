@@ -62,12 +62,15 @@ struct Outlining {
   std::unordered_map<int, std::pair<int, std::size_t>> stored;
 };
 
+/// The variables each assignment of a section reads (ir::assignment_inputs),
+/// found once for the orders the section is tried in.
+using ReadsOf = std::unordered_map<const ir::Assignment*, std::unordered_set<int>>;
+
 /// The runs of `assignments` (one section, in order) and their shapes;
-/// reads[i] the variables assignment i reads, reads[assignments.size()] what
-/// the section's results read; labels[i] the body assignment i belongs to
-/// (an index into `bodies`, -1 for none).
-Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignments,
-                             const std::vector<std::unordered_set<int>>& reads, const std::vector<int>& labels,
+/// `results_read` what the section's results read; labels[i] the body
+/// assignment i belongs to (an index into `bodies`, -1 for none).
+Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignments, const ReadsOf& reads,
+                             const std::unordered_set<int>& results_read, const std::vector<int>& labels,
                              const std::vector<std::string>& bodies, const ir::BondGraph& graph);
 
 /// Which body each assignment belongs to (`tree`'s, else the deepest body of
@@ -75,7 +78,8 @@ Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignmen
 /// body's kinematics (everything before the tree's elimination) are
 /// contiguous: parents before children, every assignment after what it
 /// reads. `labels` follows the new order.
-void group_by_body(std::vector<const ir::Assignment*>& assignments, const ir::ReducedSystem& system, std::vector<int>& labels);
+void group_by_body(std::vector<const ir::Assignment*>& assignments, const ir::ReducedSystem& system, const ReadsOf& reads,
+                   std::vector<int>& labels);
 
 /// The function that computes one shape: `static void NAME(const double* in,
 /// const double* s0, ..., double* out)`: in[] the first run's inputs, sK

@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ir/equations.hpp"
@@ -55,6 +56,11 @@ struct BodyTree {
   std::vector<int> parent;               // per body: its parent body, -1 for ground
   std::unordered_map<int, int> body_of;  // variable id -> body (variables not listed: none, or unknown)
 };
+
+/// What every temporary of a tree elimination's origin starts with
+/// (reduce/tree_elimination); the emitter groups a body's equations by it.
+inline constexpr std::string_view kTreeEliminationOrigin = "articulated-body elimination";
+inline bool from_tree_elimination(const Assignment& a) { return a.origin.starts_with(kTreeEliminationOrigin); }
 
 /// The variables an assignment reads (its value, or its whole block).
 void assignment_inputs(const struct ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out);

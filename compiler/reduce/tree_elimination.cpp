@@ -184,7 +184,7 @@ class Eliminator {
     const int id = graph_.add_var(fmt::format("{}.{}{}", body_name(n), what, ++count_[n]), VarKind::Auxiliary, loc_[n]);
     temporary_body_[id] = n;
     inward_.push_back({id, e, loc_[n],
-                       fmt::format("articulated-body elimination, body {}: {}", body_name(n), what_text(what)), -1});
+                       fmt::format("{}, body {}: {}", kTreeEliminationOrigin, body_name(n), what_text(what)), -1});
     ++temporaries_;
     return var(id);
   }
@@ -209,19 +209,15 @@ class Eliminator {
     if (!affine_in(e, refs, c, rest)) return false;
     out = Form{};
     out.rest = rest;
-    std::set<int> groups_done;  // the child output sums this unknown reads, each substituted once
+    std::set<int> sums_added;  // the children whose output sum u reads: each sum substituted once
     for (std::size_t k = 0; k < refs.size(); ++k) {
       const int w = refs[k];
       if (is_zero(c[k])) continue;
-      if (auto g = group_of_.find(w); g != group_of_.end() && g->second == u) {
-        if (!groups_done.insert(w).second) continue;
-        // every member of the sum u reads of this child: once, as the sum's form
-        const Form& z = group_form_.at({u, body_.at(w)});
-        if (!add_child_form(z, out)) return false;
-        for (int other : group_members_.at({u, body_.at(w)})) groups_done.insert(other);
+      if (auto g = group_of_.find(w); g != group_of_.end() && g->second == u) {  // in a sum this unknown reads
+        const int child = body_.at(w);
+        if (sums_added.insert(child).second && !add_child_form(group_form_.at({u, child}), out)) return false;
         continue;
       }
-      if (groups_done.count(w)) continue;
       if (basis_.count(w)) {
         out.add_term(w, c[k]);
       } else if (body_.at(w) == n) {
@@ -373,17 +369,21 @@ class Eliminator {
       Expr c;
       if (u >= 0 && !t_form_.count(y) && constant_coefficient(u, y, c)) sums[u].push_back({y, c});
     }
-    for (auto it = sums.begin(); it != sums.end();)
-      it = it->second.size() < 2 ? sums.erase(it) : std::next(it);
+    std::set<int> in_sum;
+    for (auto it = sums.begin(); it != sums.end();) {
+      if (it->second.size() < 2) {
+        it = sums.erase(it);
+        continue;
+      }
+      for (const auto& [y, c] : it->second) in_sum.insert(y);
+      ++it;
+    }
     for (int y : outputs_[n]) {
       if (auto t = t_form_.find(y); t != t_form_.end()) {
         out_form_.emplace(y, t->second);
         continue;
       }
-      if (std::any_of(sums.begin(), sums.end(), [&](const auto& s) {
-            return std::any_of(s.second.begin(), s.second.end(), [&](const auto& m) { return m.first == y; });
-          }))
-        continue;
+      if (in_sum.count(y)) continue;
       Form o = eliminated(form_.at(y));
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
@@ -393,7 +393,6 @@ class Eliminator {
       for (const auto& [y, c] : members) {
         sum.add_scaled(form_.at(y), c);
         group_of_[y] = u;
-        group_members_[{u, n}].push_back(y);
       }
       Form z = eliminated(sum);
       name_all(z, n, "out");
@@ -539,7 +538,6 @@ class Eliminator {
   std::unordered_map<int, std::vector<int>> readers_;  // unknown -> the loop's unknowns whose equation reads it
   std::unordered_map<int, int> group_of_;           // output passed on in a sum -> the parent unknown that reads the sum
   std::map<std::pair<int, int>, Form> group_form_;  // (parent unknown, child) -> the sum's form
-  std::map<std::pair<int, int>, std::vector<int>> group_members_;  // (parent unknown, child) -> the outputs in the sum
   std::map<int, int> count_;                        // body -> temporaries so far
   std::map<int, SourceLoc> loc_;                    // body -> model line for its temporaries
   std::vector<Assignment> inward_, outward_;
