@@ -43,6 +43,7 @@ class Eliminator {
 
   std::optional<TreeElimination> run(std::string* why) {
     if (!assign_bodies(why) || !check_structure(why)) return std::nullopt;
+    find_zeros();
     std::vector<int> bodies(in_loop_.begin(), in_loop_.end());
     std::stable_sort(bodies.begin(), bodies.end(), [&](int a, int b) { return depth_[a] > depth_[b]; });
     for (int n : bodies)
@@ -151,6 +152,57 @@ class Eliminator {
     return out;
   }
 
+  /// The unknowns that vanish once the loop is solved. A joint direction
+  /// that is free, with no element on it, says so in its row: the effort
+  /// along it is zero (the row is that one unknown, times a constant). So is
+  /// every unknown that is that effort times a constant, or a combination
+  /// of such unknowns alone (a ball joint passes no torque to its parent).
+  /// What a body reads of another after that one is solved (its parent's
+  /// motion, its children's outputs) then reads 0 for them: exact, and the
+  /// articulated-body form of a ball joint loses its torque rows.
+  void find_zeros() {
+    // the one unknown e is a nonzero constant multiple of, or -1
+    auto multiple_of = [](const Expr& e, const std::vector<int>& refs) {
+      std::vector<Expr> c;
+      Expr rest;
+      if (!affine_in(e, refs, c, rest) || !is_zero(rest)) return -1;
+      int found = -1;
+      for (std::size_t k = 0; k < refs.size(); ++k) {
+        if (is_zero(c[k])) continue;
+        double value = 0;
+        if (found >= 0 || !is_const(c[k], &value) || value == 0) return -1;
+        found = refs[k];
+      }
+      return found;
+    };
+    std::vector<int> work;
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
+      const int t = loop_.tears[k];
+      if (multipliers_.count(t)) continue;
+      const int w = multiple_of(loop_.tear_residuals[k], refs_.at(t));
+      if (w >= 0 && !tear_index_.count(w) && zero_.insert(w).second) work.push_back(w);
+    }
+    while (!work.empty()) {  // v = c w with v zero: w is zero
+      const int v = work.back();
+      work.pop_back();
+      auto s = loop_.solution.find(v);
+      if (s == loop_.solution.end()) continue;
+      const int w = multiple_of(s->second, refs_.at(v));
+      if (w >= 0 && !tear_index_.count(w) && zero_.insert(w).second) work.push_back(w);
+    }
+    for (int u : loop_.order) {  // (the order computes every unknown after those it reads)
+      if (zero_.count(u) || body_.at(u) == kGlobal) continue;
+      const std::vector<int>& refs = refs_.at(u);
+      std::vector<Expr> c;
+      Expr rest;
+      if (refs.empty() || !affine_in(loop_.solution.at(u), refs, c, rest) || !is_zero(rest)) continue;
+      bool all = true;
+      for (std::size_t k = 0; k < refs.size() && all; ++k) all = is_zero(c[k]) || zero_.count(refs[k]);
+      if (all) zero_.insert(u);
+    }
+    for (int u : zero_) zero_values_[u] = constant(0);
+  }
+
   /// A body's equations read its own unknowns, its parent's (X) and its
   /// children's (each child's outputs Y); anything else is not a tree.
   bool check_structure(std::string* why) {
@@ -213,6 +265,7 @@ class Eliminator {
     for (std::size_t k = 0; k < refs.size(); ++k) {
       const int w = refs[k];
       if (is_zero(c[k])) continue;
+      if (zero_.count(w) && body_.at(w) != n) continue;  // read once solved: 0
       if (auto g = group_of_.find(w); g != group_of_.end() && g->second == u) {  // in a sum this unknown reads
         const int child = body_.at(w);
         if (sums_added.insert(child).second && !add_child_form(group_form_.at({u, child}), out)) return false;
@@ -365,6 +418,7 @@ class Eliminator {
     // per output.
     std::map<int, std::vector<std::pair<int, Expr>>> sums;  // parent unknown -> (output, coefficient)
     for (int y : outputs_[n]) {
+      if (zero_.count(y)) continue;
       const int u = sole_parent_reader(y, n);
       Expr c;
       if (u >= 0 && !t_form_.count(y) && constant_coefficient(u, y, c)) sums[u].push_back({y, c});
@@ -384,6 +438,10 @@ class Eliminator {
         continue;
       }
       if (in_sum.count(y)) continue;
+      if (zero_.count(y)) {
+        out_form_.emplace(y, Form{});
+        continue;
+      }
       Form o = eliminated(form_.at(y));
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
@@ -511,9 +569,16 @@ class Eliminator {
     }
     for (int u : order_[n]) {
       const auto& [loc, origin] = loop_.source.at(u);
-      if (reads_child_.count(u)) outward_.push_back({u, form_.at(u).value(), loc, origin + " [after the body's elimination]", -1});
-      else outward_.push_back({u, loop_.solution.at(u), loc, origin, -1});
+      if (zero_.count(u)) outward_.push_back({u, constant(0), loc, origin + " [zero: a free joint direction's effort]", -1});
+      else if (reads_child_.count(u)) outward_.push_back({u, form_.at(u).value(), loc, origin + " [after the body's elimination]", -1});
+      else outward_.push_back({u, without_zeros(loop_.solution.at(u)), loc, origin, -1});
     }
+  }
+
+  /// e with the unknowns that vanish at the solution set to 0.
+  Expr without_zeros(const Expr& e) const {
+    if (zero_values_.empty()) return e;
+    return substitute(e, zero_values_);
   }
 
   const TornLoop& loop_;
@@ -546,6 +611,8 @@ class Eliminator {
   int missing_ = -1;  // an unknown read before its form was known (for the diagnosis)
   static constexpr int kGlobal = -2;                // body_ of the multipliers and what only their rows read
   std::unordered_set<int> multipliers_, global_;    // the cut joints' multipliers; they and what only their rows read
+  std::unordered_set<int> zero_;                    // unknowns that vanish at the solution (find_zeros)
+  std::unordered_map<int, Expr> zero_values_;       // each of them -> 0
   std::unordered_map<int, Form> lambda_form_;       // unknown -> affine in the multipliers alone
 };
 

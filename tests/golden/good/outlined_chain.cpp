@@ -288,39 +288,35 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod5_pivot1 = derived1_;
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: joint acceleration as an affine function of the parent's motion
     const double cse23 = rod5_mass * (-cse19 + j5_pb_2);
-    const double cse24 = rod5_inertia_3_3 + j5_pb_2 * cse23;
-    const double rod5_accel2 = -rod5_pivot1 * cse24;
-    const double cse25 = rod5_mass * cse15;
-    const double cse26 = j5_pb_2 * cse25;
-    const double rod5_accel3 = -rod5_pivot1 * cse26;
-    const double cse27 = rod5_mass * cse17;
-    const double cse28 = j5_pb_2 * cse27;
-    const double rod5_accel4 = -rod5_pivot1 * cse28;
-    const double cse29 = -(rod5_weight_e_1 - rod5_ejs_v_e_1) + rod5_mass * (j5_m3_f2_2 * j5_theta_rate_rate + j5_m4_f2_2 * j5_theta_rate_rate);
-    const double cse30 = j5_pb_2 * cse29;
-    const double rod5_accel5 = -rod5_pivot1 * cse30;
+    const double rod5_accel2 = -rod5_pivot1 * (rod5_inertia_3_3 + j5_pb_2 * cse23);
+    const double cse24 = rod5_mass * cse15;
+    const double rod5_accel3 = -rod5_pivot1 * (j5_pb_2 * cse24);
+    const double cse25 = rod5_mass * cse17;
+    const double rod5_accel4 = -rod5_pivot1 * (j5_pb_2 * cse25);
+    const double cse26 = -(rod5_weight_e_1 - rod5_ejs_v_e_1) + rod5_mass * (j5_m3_f2_2 * j5_theta_rate_rate + j5_m4_f2_2 * j5_theta_rate_rate);
+    const double rod5_accel5 = -rod5_pivot1 * (j5_pb_2 * cse26);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse31 = cse15 * cse22;
-    const double cse32 = rod5_mass * cse21;
-    const double rod5_out6 = cse31 * rod5_accel2 + (cse15 * cse23 - cse17 * cse32);
-    const double cse33 = cse15 * cse25;
-    const double cse34 = cse17 * cse27;
-    const double rod5_out7 = cse31 * rod5_accel3 + (cse33 + cse34);
-    const double cse35 = cse15 * cse27;
-    const double cse36 = cse17 * cse25;
-    const double rod5_out8 = cse31 * rod5_accel4 + (cse35 - cse36);
-    const double cse37 = -(rod5_weight_e_2 - rod5_ejs_v_e_2) + rod5_mass * ((-cse16 - cse18) * j5_theta_rate_rate + cse20 * j5_theta_rate_rate);
-    const double rod5_out9 = cse15 * cse29 - cse17 * cse37 + cse31 * rod5_accel5;
-    const double cse38 = cse17 * cse22;
-    const double rod5_out10 = cse38 * rod5_accel2 + (cse17 * cse23 + cse15 * cse32);
-    const double rod5_out11 = cse38 * rod5_accel3 + (cse36 - cse35);
-    const double rod5_out12 = cse38 * rod5_accel4 + (cse34 + cse33);
-    const double rod5_out13 = cse17 * cse29 + cse15 * cse37 + cse38 * rod5_accel5;
-    const double cse39 = -cse19 * cse22 + (rod5_inertia_3_3 + j5_pb_2 * cse22);
-    const double rod5_out14 = cse39 * rod5_accel2 + (-cse19 * cse23 + cse21 * cse32 + cse24);
-    const double rod5_out15 = cse39 * rod5_accel3 + (-cse19 * cse25 - cse21 * cse27 + cse26);
-    const double rod5_out16 = cse39 * rod5_accel4 + (-cse19 * cse27 + cse21 * cse25 + cse28);
-    const double rod5_out17 = -cse19 * cse29 + cse21 * cse37 + cse30 + cse39 * rod5_accel5;
+    const double cse27 = cse15 * cse22;
+    const double cse28 = rod5_mass * cse21;
+    const double rod5_out6 = cse27 * rod5_accel2 + (cse15 * cse23 - cse17 * cse28);
+    const double cse29 = cse15 * cse24;
+    const double cse30 = cse17 * cse25;
+    const double rod5_out7 = cse27 * rod5_accel3 + (cse29 + cse30);
+    const double cse31 = cse15 * cse25;
+    const double cse32 = cse17 * cse24;
+    const double rod5_out8 = cse27 * rod5_accel4 + (cse31 - cse32);
+    const double cse33 = -(rod5_weight_e_2 - rod5_ejs_v_e_2) + rod5_mass * ((-cse16 - cse18) * j5_theta_rate_rate + cse20 * j5_theta_rate_rate);
+    const double rod5_out9 = cse15 * cse26 - cse17 * cse33 + cse27 * rod5_accel5;
+    const double cse34 = cse17 * cse22;
+    const double rod5_out10 = cse34 * rod5_accel2 + (cse17 * cse23 + cse15 * cse28);
+    const double rod5_out11 = cse34 * rod5_accel3 + (cse32 - cse31);
+    const double rod5_out12 = cse34 * rod5_accel4 + (cse30 + cse29);
+    const double rod5_out13 = cse17 * cse26 + cse15 * cse33 + cse34 * rod5_accel5;
+    const double cse35 = cse19 * cse22;
+    const double rod5_out14 = -cse35 * rod5_accel2 + (-cse19 * cse23 + cse21 * cse28);
+    const double rod5_out15 = -cse35 * rod5_accel3 + (-cse19 * cse24 - cse21 * cse25);
+    const double rod5_out16 = -cse35 * rod5_accel4 + (-cse19 * cse25 + cse21 * cse24);
+    const double rod5_out17 = -cse19 * cse26 + cse21 * cse33 - cse35 * rod5_accel5;
     rod5_kin[9] = rod5_accel2;
     rod5_kin[10] = rod5_accel3;
     rod5_kin[11] = rod5_accel4;
@@ -344,39 +340,35 @@ class outlined_chain_model final : public mbgrt::Model {
     double rod3_in_2[7] = {rod3_inertia_3_3, j3_pb_2, rod3_mass * j3_pb_2, rod3_mass, j3_theta_q, j3_pa_2, j3_theta_rate_rate};
     derivative_shape2(rod3_in_2, rod4_elim, rod3_kin, rod2_kin, rod3_elim);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: 1 / pivot of the joint's accelerations
-    const double cse67 = rod2_mass * j2_pb_2 + rod3_elim[13] + rod3_elim[14] * j2_pb_2;
-    const double cse68 = rod2_inertia_3_3 + j2_pb_2 * cse67 + rod3_elim[21] + rod3_elim[22] * j2_pb_2;
-    const double rod2_pivot1 = 1.0 / cse68;
+    const double cse58 = rod2_mass * j2_pb_2 + rod3_elim[13] + rod3_elim[14] * j2_pb_2;
+    const double rod2_pivot1 = 1.0 / (rod2_inertia_3_3 + j2_pb_2 * cse58 + rod3_elim[21] + rod3_elim[22] * j2_pb_2);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: joint acceleration as an affine function of the parent's motion
-    const double cse69 = -cse10 + j2_pb_2;
-    const double cse70 = rod2_mass * cse69 + rod3_elim[13] + rod3_elim[14] * cse69 + rod3_elim[15] * cse12;
-    const double cse71 = rod2_inertia_3_3 + j2_pb_2 * cse70 + rod3_elim[21] + rod3_elim[22] * cse69 + rod3_elim[23] * cse12;
-    const double rod2_accel2 = -rod2_pivot1 * cse71;
-    const double cse72 = rod2_mass * cse7 + rod3_elim[14] * cse7 - rod3_elim[15] * cse8;
-    const double cse73 = j2_pb_2 * cse72 + rod3_elim[22] * cse7 - rod3_elim[23] * cse8;
-    const double rod2_accel3 = -rod2_pivot1 * cse73;
-    const double cse74 = cse9 * j2_theta_rate_rate;
-    const double cse75 = j2_m4_f2_2 * j2_theta_rate_rate;
-    const double cse76 = -cse74 + cse75;
-    const double cse77 = j2_m3_f2_1 * j2_theta_rate_rate;
-    const double cse78 = cse11 * j2_theta_rate_rate;
-    const double cse79 = -cse77 + cse78;
-    const double cse80 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod2_mass * cse76 + rod3_elim[14] * cse76 + rod3_elim[15] * cse79 + rod3_elim[16];
-    const double cse81 = j2_pb_2 * cse80 + rod3_elim[22] * cse76 + rod3_elim[23] * cse79 + rod3_elim[24];
-    const double rod2_accel4 = -rod2_pivot1 * cse81;
+    const double cse59 = -cse10 + j2_pb_2;
+    const double cse60 = rod2_mass * cse59 + rod3_elim[13] + rod3_elim[14] * cse59 + rod3_elim[15] * cse12;
+    const double rod2_accel2 = -rod2_pivot1 * (rod2_inertia_3_3 + j2_pb_2 * cse60 + rod3_elim[21] + rod3_elim[22] * cse59 + rod3_elim[23] * cse12);
+    const double cse61 = rod2_mass * cse7 + rod3_elim[14] * cse7 - rod3_elim[15] * cse8;
+    const double rod2_accel3 = -rod2_pivot1 * (j2_pb_2 * cse61 + rod3_elim[22] * cse7 - rod3_elim[23] * cse8);
+    const double cse62 = cse9 * j2_theta_rate_rate;
+    const double cse63 = j2_m4_f2_2 * j2_theta_rate_rate;
+    const double cse64 = -cse62 + cse63;
+    const double cse65 = j2_m3_f2_1 * j2_theta_rate_rate;
+    const double cse66 = cse11 * j2_theta_rate_rate;
+    const double cse67 = -cse65 + cse66;
+    const double cse68 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod2_mass * cse64 + rod3_elim[14] * cse64 + rod3_elim[15] * cse67 + rod3_elim[16];
+    const double rod2_accel4 = -rod2_pivot1 * (j2_pb_2 * cse68 + rod3_elim[22] * cse64 + rod3_elim[23] * cse67 + rod3_elim[24]);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse82 = rod2_mass * cse12 + rod3_elim[17] + rod3_elim[18] * cse69 + rod3_elim[19] * cse12;
-    const double cse83 = rod3_elim[17] + rod3_elim[18] * j2_pb_2;
-    const double cse84 = cse7 * cse67 - cse8 * cse83;
-    const double rod2_out5 = cse7 * cse70 - cse8 * cse82 + cse84 * rod2_accel2;
-    const double cse85 = -rod2_mass * cse8 + rod3_elim[18] * cse7 - rod3_elim[19] * cse8;
-    const double rod2_out6 = cse84 * rod2_accel3 + (cse7 * cse72 - cse8 * cse85);
-    const double cse86 = -(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod2_mass * cse79 + rod3_elim[18] * cse76 + rod3_elim[19] * cse79 + rod3_elim[20];
-    const double rod2_out7 = cse7 * cse80 - cse8 * cse86 + cse84 * rod2_accel4;
-    const double cse87 = -cse10 * cse67 + cse12 * cse83 + cse68;
-    const double rod2_out8 = -cse10 * cse70 + cse12 * cse82 + cse71 + cse87 * rod2_accel2;
-    const double rod2_out9 = cse87 * rod2_accel3 + (-cse10 * cse72 + cse12 * cse85 + cse73);
-    const double rod2_out10 = -cse10 * cse80 + cse12 * cse86 + cse81 + cse87 * rod2_accel4;
+    const double cse69 = rod2_mass * cse12 + rod3_elim[17] + rod3_elim[18] * cse59 + rod3_elim[19] * cse12;
+    const double cse70 = rod3_elim[17] + rod3_elim[18] * j2_pb_2;
+    const double cse71 = cse7 * cse58 - cse8 * cse70;
+    const double rod2_out5 = cse7 * cse60 - cse8 * cse69 + cse71 * rod2_accel2;
+    const double cse72 = -rod2_mass * cse8 + rod3_elim[18] * cse7 - rod3_elim[19] * cse8;
+    const double rod2_out6 = cse71 * rod2_accel3 + (cse7 * cse61 - cse8 * cse72);
+    const double cse73 = -(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod2_mass * cse67 + rod3_elim[18] * cse64 + rod3_elim[19] * cse67 + rod3_elim[20];
+    const double rod2_out7 = cse7 * cse68 - cse8 * cse73 + cse71 * rod2_accel4;
+    const double cse74 = -cse10 * cse58 + cse12 * cse70;
+    const double rod2_out8 = -cse10 * cse60 + cse12 * cse69 + cse74 * rod2_accel2;
+    const double rod2_out9 = cse74 * rod2_accel3 + (-cse10 * cse61 + cse12 * cse72);
+    const double rod2_out10 = -cse10 * cse68 + cse12 * cse73 + cse74 * rod2_accel4;
     // outlined_chain.mbg:25:7  articulated-body elimination, body rod1: 1 / pivot of the joint's accelerations
     const double rod1_pivot1 = 1.0 / (rod1_inertia_3_3 + j1_pb_2 * (rod1_mass * j1_pb_2 + rod2_out5 + rod2_out6 * j1_pb_2) + rod2_out8 + rod2_out9 * j1_pb_2);
     // outlined_chain.mbg:25:7  articulated-body elimination, body rod1: joint acceleration as an affine function of the parent's motion
@@ -388,9 +380,9 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  joint acceleration of body rod2 from its parent's motion (articulated-body form)
     const double der_j2_theta_rate_rate = rod2_accel4 + rod2_accel2 * der_j1_theta_rate_rate + rod2_accel3 * der_j1_m2_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m3: f2 = T f1]
-    const double der_j2_m3_f2_1 = cse7 * der_j1_m2_f2_1 - cse74;
+    const double der_j2_m3_f2_1 = cse7 * der_j1_m2_f2_1 - cse62;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m4: f2 = T f1]
-    const double der_j2_m4_f2_1 = -cse10 * der_j1_theta_rate_rate + cse75;
+    const double der_j2_m4_f2_1 = -cse10 * der_j1_theta_rate_rate + cse63;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.wsum: flows in = flows out]
     const double der_j2_reaction_t_f_3 = der_j1_theta_rate_rate + der_j2_theta_rate_rate;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m5: f2 = T f1]
@@ -398,9 +390,9 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vsum: flows in = flows out]
     const double der_j2_reaction_f_f_1 = der_j2_m3_f2_1 + der_j2_m4_f2_1 + der_j2_m5_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m3: f2 = T f1]
-    const double der_j2_m3_f2_2 = -cse8 * der_j1_m2_f2_1 - cse77;
+    const double der_j2_m3_f2_2 = -cse8 * der_j1_m2_f2_1 - cse65;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m4: f2 = T f1]
-    const double der_j2_m4_f2_2 = cse12 * der_j1_theta_rate_rate + cse78;
+    const double der_j2_m4_f2_2 = cse12 * der_j1_theta_rate_rate + cse66;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vsum: flows in = flows out]
     const double der_j2_reaction_f_f_2 = der_j2_m3_f2_2 + der_j2_m4_f2_2;
     rod2_acc[26] = der_j2_theta_rate_rate;
@@ -445,23 +437,23 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod1_pose_R22 = std::cos(j1_theta_q);
     // outlined_chain.mbg:27:9  signal rod2.pose.R21
     // (cseN: a subexpression several equations below share)
-    const double cse92 = std::cos(j2_theta_q);
-    const double cse93 = std::sin(j2_theta_q);
-    const double rod2_pose_R21 = rod1_pose_R21 * cse92 + rod1_pose_R22 * cse93;
+    const double cse79 = std::cos(j2_theta_q);
+    const double cse80 = std::sin(j2_theta_q);
+    const double rod2_pose_R21 = rod1_pose_R21 * cse79 + rod1_pose_R22 * cse80;
     // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double rod2_pose_R22 = -rod1_pose_R21 * cse93 + rod1_pose_R22 * cse92;
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse80 + rod1_pose_R22 * cse79;
     // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double cse94 = std::cos(j3_theta_q);
-    const double cse95 = std::sin(j3_theta_q);
-    const double rod3_pose_R21 = rod2_pose_R21 * cse94 + rod2_pose_R22 * cse95;
+    const double cse81 = std::cos(j3_theta_q);
+    const double cse82 = std::sin(j3_theta_q);
+    const double rod3_pose_R21 = rod2_pose_R21 * cse81 + rod2_pose_R22 * cse82;
     // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double rod3_pose_R22 = -rod2_pose_R21 * cse95 + rod2_pose_R22 * cse94;
+    const double rod3_pose_R22 = -rod2_pose_R21 * cse82 + rod2_pose_R22 * cse81;
     // outlined_chain.mbg:27:9  signal rod4.pose.R21
-    const double cse96 = std::cos(j4_theta_q);
-    const double cse97 = std::sin(j4_theta_q);
-    const double rod4_pose_R21 = rod3_pose_R21 * cse96 + rod3_pose_R22 * cse97;
+    const double cse83 = std::cos(j4_theta_q);
+    const double cse84 = std::sin(j4_theta_q);
+    const double rod4_pose_R21 = rod3_pose_R21 * cse83 + rod3_pose_R22 * cse84;
     // outlined_chain.mbg:27:9  signal rod4.pose.R22
-    const double rod4_pose_R22 = -rod3_pose_R21 * cse97 + rod3_pose_R22 * cse96;
+    const double rod4_pose_R22 = -rod3_pose_R21 * cse84 + rod3_pose_R22 * cse83;
     // outlined_chain.mbg:27:9  signal rod5.pose.R22
     const double rod5_pose_R22 = -rod4_pose_R21 * std::sin(j5_theta_q) + rod4_pose_R22 * std::cos(j5_theta_q);
     // outlined_chain.mbg:25:7  signal rod1.pose.r2
@@ -533,52 +525,47 @@ class outlined_chain_model final : public mbgrt::Model {
   static void derivative_shape2(const double* in, const double* s0, const double* s1, const double* s2, double* out) {
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: 1 / pivot of the joint's accelerations
     // (cseN: a subexpression several equations below share)
-    const double cse40 = in[2] + s0[13] + s0[14] * in[1];
-    const double cse41 = in[0] + in[1] * cse40 + s0[21] + s0[22] * in[1];
-    const double pivot1 = 1.0 / cse41;
+    const double cse36 = in[2] + s0[13] + s0[14] * in[1];
+    const double pivot1 = 1.0 / (in[0] + in[1] * cse36 + s0[21] + s0[22] * in[1]);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: joint acceleration as an affine function of the parent's motion
-    const double cse42 = std::cos(in[4]);
-    const double cse43 = cse42 * in[5];
-    const double cse44 = -cse43 + in[1];
-    const double cse45 = std::sin(in[4]);
-    const double cse46 = cse45 * in[5];
-    const double cse47 = in[3] * cse44 + s0[13] + s0[14] * cse44 + s0[15] * cse46;
-    const double cse48 = in[0] + in[1] * cse47 + s0[21] + s0[22] * cse44 + s0[23] * cse46;
-    const double accel2 = -pivot1 * cse48;
-    const double cse49 = in[3] * cse42;
-    const double cse50 = cse49 + s0[14] * cse42 - s0[15] * cse45;
-    const double cse51 = in[1] * cse50 + s0[22] * cse42 - s0[23] * cse45;
-    const double accel3 = -pivot1 * cse51;
-    const double cse52 = in[3] * cse45;
-    const double cse53 = cse52 + s0[14] * cse45 + s0[15] * cse42;
-    const double cse54 = in[1] * cse53 + s0[22] * cse45 + s0[23] * cse42;
-    const double accel4 = -pivot1 * cse54;
-    const double cse55 = (-cse45 * s2[5] + cse42 * s2[2]) * in[6] + cse46 * s2[3] * in[6];
-    const double cse56 = (-cse42 * s2[5] - cse45 * s2[2]) * in[6] + cse43 * s2[3] * in[6];
-    const double cse57 = -(s1[7] - s1[4]) + in[3] * cse55 + s0[14] * cse55 + s0[15] * cse56 + s0[16];
-    const double cse58 = in[1] * cse57 + s0[22] * cse55 + s0[23] * cse56 + s0[24];
-    const double accel5 = -pivot1 * cse58;
+    const double cse37 = std::cos(in[4]);
+    const double cse38 = cse37 * in[5];
+    const double cse39 = -cse38 + in[1];
+    const double cse40 = std::sin(in[4]);
+    const double cse41 = cse40 * in[5];
+    const double cse42 = in[3] * cse39 + s0[13] + s0[14] * cse39 + s0[15] * cse41;
+    const double accel2 = -pivot1 * (in[0] + in[1] * cse42 + s0[21] + s0[22] * cse39 + s0[23] * cse41);
+    const double cse43 = in[3] * cse37;
+    const double cse44 = cse43 + s0[14] * cse37 - s0[15] * cse40;
+    const double accel3 = -pivot1 * (in[1] * cse44 + s0[22] * cse37 - s0[23] * cse40);
+    const double cse45 = in[3] * cse40;
+    const double cse46 = cse45 + s0[14] * cse40 + s0[15] * cse37;
+    const double accel4 = -pivot1 * (in[1] * cse46 + s0[22] * cse40 + s0[23] * cse37);
+    const double cse47 = (-cse40 * s2[5] + cse37 * s2[2]) * in[6] + cse41 * s2[3] * in[6];
+    const double cse48 = (-cse37 * s2[5] - cse40 * s2[2]) * in[6] + cse38 * s2[3] * in[6];
+    const double cse49 = -(s1[7] - s1[4]) + in[3] * cse47 + s0[14] * cse47 + s0[15] * cse48 + s0[16];
+    const double accel5 = -pivot1 * (in[1] * cse49 + s0[22] * cse47 + s0[23] * cse48 + s0[24]);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse59 = s0[17] + s0[18] * in[1];
-    const double cse60 = cse42 * cse40 - cse45 * cse59;
-    const double cse61 = in[3] * cse46 + s0[17] + s0[18] * cse44 + s0[19] * cse46;
-    const double out6 = cse60 * accel2 + (cse42 * cse47 - cse45 * cse61);
-    const double cse62 = -cse52 + s0[18] * cse42 - s0[19] * cse45;
-    const double out7 = cse60 * accel3 + (cse42 * cse50 - cse45 * cse62);
-    const double cse63 = cse49 + s0[18] * cse45 + s0[19] * cse42;
-    const double out8 = cse60 * accel4 + (cse42 * cse53 - cse45 * cse63);
-    const double cse64 = -(s1[8] - s1[6]) + in[3] * cse56 + s0[18] * cse55 + s0[19] * cse56 + s0[20];
-    const double out9 = cse42 * cse57 - cse45 * cse64 + cse60 * accel5;
-    const double cse65 = cse45 * cse40 + cse42 * cse59;
-    const double out10 = cse65 * accel2 + (cse45 * cse47 + cse42 * cse61);
-    const double out11 = cse65 * accel3 + (cse45 * cse50 + cse42 * cse62);
-    const double out12 = cse65 * accel4 + (cse45 * cse53 + cse42 * cse63);
-    const double out13 = cse45 * cse57 + cse42 * cse64 + cse65 * accel5;
-    const double cse66 = -cse43 * cse40 + cse46 * cse59 + cse41;
-    const double out14 = cse66 * accel2 + (-cse43 * cse47 + cse46 * cse61 + cse48);
-    const double out15 = cse66 * accel3 + (-cse43 * cse50 + cse46 * cse62 + cse51);
-    const double out16 = cse66 * accel4 + (-cse43 * cse53 + cse46 * cse63 + cse54);
-    const double out17 = -cse43 * cse57 + cse46 * cse64 + cse58 + cse66 * accel5;
+    const double cse50 = s0[17] + s0[18] * in[1];
+    const double cse51 = cse37 * cse36 - cse40 * cse50;
+    const double cse52 = in[3] * cse41 + s0[17] + s0[18] * cse39 + s0[19] * cse41;
+    const double out6 = cse51 * accel2 + (cse37 * cse42 - cse40 * cse52);
+    const double cse53 = -cse45 + s0[18] * cse37 - s0[19] * cse40;
+    const double out7 = cse51 * accel3 + (cse37 * cse44 - cse40 * cse53);
+    const double cse54 = cse43 + s0[18] * cse40 + s0[19] * cse37;
+    const double out8 = cse51 * accel4 + (cse37 * cse46 - cse40 * cse54);
+    const double cse55 = -(s1[8] - s1[6]) + in[3] * cse48 + s0[18] * cse47 + s0[19] * cse48 + s0[20];
+    const double out9 = cse37 * cse49 - cse40 * cse55 + cse51 * accel5;
+    const double cse56 = cse40 * cse36 + cse37 * cse50;
+    const double out10 = cse56 * accel2 + (cse40 * cse42 + cse37 * cse52);
+    const double out11 = cse56 * accel3 + (cse40 * cse44 + cse37 * cse53);
+    const double out12 = cse56 * accel4 + (cse40 * cse46 + cse37 * cse54);
+    const double out13 = cse40 * cse49 + cse37 * cse55 + cse56 * accel5;
+    const double cse57 = -cse38 * cse36 + cse41 * cse50;
+    const double out14 = cse57 * accel2 + (-cse38 * cse42 + cse41 * cse52);
+    const double out15 = cse57 * accel3 + (-cse38 * cse44 + cse41 * cse53);
+    const double out16 = cse57 * accel4 + (-cse38 * cse46 + cse41 * cse54);
+    const double out17 = -cse38 * cse49 + cse41 * cse55 + cse57 * accel5;
     out[9] = accel2;
     out[10] = accel3;
     out[11] = accel4;
@@ -602,13 +589,13 @@ class outlined_chain_model final : public mbgrt::Model {
     const double der_j3_theta_rate_rate = s0[12] + s0[9] * s1[27] + s0[10] * s1[28] + s0[11] * s1[29];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m3: f2 = T f1]
     // (cseN: a subexpression several equations below share)
-    const double cse88 = std::cos(in[0]);
-    const double cse89 = std::sin(in[0]);
-    const double der_j3_m3_f2_1 = cse88 * s1[28] + cse89 * s1[29] + (-cse89 * s2[5] + cse88 * s2[2]) * in[1];
+    const double cse75 = std::cos(in[0]);
+    const double cse76 = std::sin(in[0]);
+    const double der_j3_m3_f2_1 = cse75 * s1[28] + cse76 * s1[29] + (-cse76 * s2[5] + cse75 * s2[2]) * in[1];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m4: f2 = T f1]
-    const double cse90 = cse88 * in[2];
-    const double cse91 = cse89 * in[2];
-    const double der_j3_m4_f2_1 = -cse90 * s1[27] + cse91 * s2[3] * in[1];
+    const double cse77 = cse75 * in[2];
+    const double cse78 = cse76 * in[2];
+    const double der_j3_m4_f2_1 = -cse77 * s1[27] + cse78 * s2[3] * in[1];
     // outlined_chain.mbg:27:9  d/dt of [0 j3.wsum: flows in = flows out]
     const double der_j3_reaction_t_f_3 = s1[27] + der_j3_theta_rate_rate;
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m5: f2 = T f1]
@@ -616,9 +603,9 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  d/dt of [0 j3.vsum: flows in = flows out]
     const double der_j3_reaction_f_f_1 = der_j3_m3_f2_1 + der_j3_m4_f2_1 + der_j3_m5_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m3: f2 = T f1]
-    const double der_j3_m3_f2_2 = -cse89 * s1[28] + cse88 * s1[29] + (-cse88 * s2[5] - cse89 * s2[2]) * in[1];
+    const double der_j3_m3_f2_2 = -cse76 * s1[28] + cse75 * s1[29] + (-cse75 * s2[5] - cse76 * s2[2]) * in[1];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m4: f2 = T f1]
-    const double der_j3_m4_f2_2 = cse91 * s1[27] + cse90 * s2[3] * in[1];
+    const double der_j3_m4_f2_2 = cse78 * s1[27] + cse77 * s2[3] * in[1];
     // outlined_chain.mbg:27:9  d/dt of [0 j3.vsum: flows in = flows out]
     const double der_j3_reaction_f_f_2 = der_j3_m3_f2_2 + der_j3_m4_f2_2;
     out[26] = der_j3_theta_rate_rate;
