@@ -254,13 +254,18 @@ class Eliminator {
     f.rest = name(f.rest, n, what);
   }
 
-  /// e as a Form over body n's basis, or false.
+  /// e as a Form over body n's basis, or false. It is first written over
+  /// the basis and the body's own unknowns, its children's outputs summed
+  /// there (each child's output is affine in this body's unknowns); each own
+  /// unknown is then replaced by its form once, however many children read
+  /// it: two children cost one substitution, as the articulated-body
+  /// algorithm sums its children's inertias before transforming them.
   bool form_of(const Expr& e, int n, const std::vector<int>& refs, Form& out, int u) {
     std::vector<Expr> c;
     Expr rest;
     if (!affine_in(e, refs, c, rest)) return false;
-    out = Form{};
-    out.rest = rest;
+    Form shallow;  // over the basis and body n's unknowns
+    shallow.rest = rest;
     std::set<int> sums_added;  // the children whose output sum u reads: each sum substituted once
     for (std::size_t k = 0; k < refs.size(); ++k) {
       const int w = refs[k];
@@ -268,43 +273,33 @@ class Eliminator {
       if (zero_.count(w) && body_.at(w) != n) continue;  // read once solved: 0
       if (auto g = group_of_.find(w); g != group_of_.end() && g->second == u) {  // in a sum this unknown reads
         const int child = body_.at(w);
-        if (sums_added.insert(child).second && !add_child_form(group_form_.at({u, child}), out)) return false;
+        if (sums_added.insert(child).second) add_form(group_form_.at({u, child}), shallow);
         continue;
       }
-      if (basis_.count(w)) {
-        out.add_term(w, c[k]);
-      } else if (body_.at(w) == n) {
-        auto it = form_.find(w);
-        if (it == form_.end()) {
-          missing_ = w;
-          return false;
-        }
-        out.add_scaled(it->second, c[k]);
-      } else {  // a child's output: affine in this body's unknowns
-        Form scaled;
-        scaled.add_scaled(out_form_.at(w), c[k]);
-        if (!add_child_form(scaled, out)) return false;
+      if (basis_.count(w) || body_.at(w) == n) shallow.add_term(w, c[k]);
+      else shallow.add_scaled(out_form_.at(w), c[k]);  // a child's output: affine in this body's unknowns
+    }
+    out = Form{};
+    out.rest = shallow.rest;
+    for (const auto& [x, kx] : shallow.coef) {
+      if (basis_.count(x)) {
+        out.add_term(x, kx);
+        continue;
       }
+      auto it = form_.find(x);
+      if (it == form_.end()) {
+        missing_ = x;
+        return false;
+      }
+      out.add_scaled(it->second, kx);
     }
     return true;
   }
 
-  /// out += y, y a child's output form over this body's unknowns.
-  bool add_child_form(const Form& y, Form& out) {
-    for (const auto& [x, kx] : y.coef) {
-      if (basis_.count(x)) {
-        out.add_term(x, kx);
-      } else {
-        auto it = form_.find(x);
-        if (it == form_.end()) {
-          missing_ = x;
-          return false;
-        }
-        out.add_scaled(it->second, kx);
-      }
-    }
+  /// out += y.
+  static void add_form(const Form& y, Form& out) {
+    for (const auto& [x, kx] : y.coef) out.add_term(x, kx);
     out.rest = add(out.rest, y.rest);
-    return true;
   }
 
   /// Body n's unknowns (other than its tears) in an order that computes

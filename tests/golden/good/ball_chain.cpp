@@ -333,13 +333,13 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: reduced row of the joint's equations
     const double upper_row2 = 0.02 - 0.25 * (-0.25 + lower_out24 - 0.25 * lower_out27) + lower_out30 - 0.25 * lower_out33;
     const double upper_row3 = -0.25 * (lower_out25 + 0.25 * lower_out26) + lower_out31 + 0.25 * lower_out32;
-    const double upper_row4 = upper_ejs_e_2 - 0.25 * (-(upper_weight_e_3 - upper_ejs_v_e_3) + lower_out28) + lower_out34 - upper_factor1 * upper_ejs_e_1;
+    const double upper_row4 = upper_ejs_e_2 + lower_out34 - 0.25 * (-(upper_weight_e_3 - upper_ejs_v_e_3) + lower_out28) - upper_factor1 * upper_ejs_e_1;
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: elimination factor
     const double upper_factor5 = 10000.0 * (0.25 * lower_out17 + lower_out35);
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: reduced row of the joint's equations
     const double upper_row6 = 0.25 * (lower_out18 - 0.25 * lower_out21) + lower_out36 - 0.25 * lower_out39;
     const double upper_row7 = 0.02 + 0.25 * (0.25 + lower_out19 + 0.25 * lower_out20) + lower_out37 + 0.25 * lower_out38;
-    const double upper_row8 = upper_ejs_e_3 + 0.25 * (-(upper_weight_e_2 - upper_ejs_v_e_2) + lower_out22) + lower_out40 - upper_factor5 * upper_ejs_e_1;
+    const double upper_row8 = upper_ejs_e_3 + lower_out40 + 0.25 * (-(upper_weight_e_2 - upper_ejs_v_e_2) + lower_out22) - upper_factor5 * upper_ejs_e_1;
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: 1 / pivot of the joint's accelerations
     const double upper_pivot9 = 1.0 / upper_row2;
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: elimination factor

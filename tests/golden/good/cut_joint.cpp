@@ -320,7 +320,7 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: joint acceleration as an affine function of the parent's motion
     const double crank_accel2 = -crank_pivot1 * (0.1 * coupler_out7 + coupler_out12);
     const double crank_accel3 = -crank_pivot1 * (0.1 * coupler_out8 + coupler_out13);
-    const double crank_accel4 = -crank_pivot1 * (0.1 * (-crank_weight_e_2 + coupler_out11) + coupler_out16);
+    const double crank_accel4 = -crank_pivot1 * (coupler_out16 + 0.1 * (-crank_weight_e_2 + coupler_out11));
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: 1 / pivot of the joint's accelerations
     const double rocker_pivot1 = derived2_;
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: joint acceleration as an affine function of the parent's motion

@@ -354,8 +354,8 @@ class outlined_chain_model final : public mbgrt::Model {
     const double cse65 = j2_m3_f2_1 * j2_theta_rate_rate;
     const double cse66 = cse11 * j2_theta_rate_rate;
     const double cse67 = -cse65 + cse66;
-    const double cse68 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod2_mass * cse64 + rod3_elim[14] * cse64 + rod3_elim[15] * cse67 + rod3_elim[16];
-    const double rod2_accel4 = -rod2_pivot1 * (j2_pb_2 * cse68 + rod3_elim[22] * cse64 + rod3_elim[23] * cse67 + rod3_elim[24]);
+    const double cse68 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod3_elim[16] + rod2_mass * cse64 + rod3_elim[14] * cse64 + rod3_elim[15] * cse67;
+    const double rod2_accel4 = -rod2_pivot1 * (rod3_elim[24] + j2_pb_2 * cse68 + rod3_elim[22] * cse64 + rod3_elim[23] * cse67);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
     const double cse69 = rod2_mass * cse12 + rod3_elim[17] + rod3_elim[18] * cse59 + rod3_elim[19] * cse12;
     const double cse70 = rod3_elim[17] + rod3_elim[18] * j2_pb_2;
@@ -363,7 +363,7 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod2_out5 = cse7 * cse60 - cse8 * cse69 + cse71 * rod2_accel2;
     const double cse72 = -rod2_mass * cse8 + rod3_elim[18] * cse7 - rod3_elim[19] * cse8;
     const double rod2_out6 = cse71 * rod2_accel3 + (cse7 * cse61 - cse8 * cse72);
-    const double cse73 = -(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod2_mass * cse67 + rod3_elim[18] * cse64 + rod3_elim[19] * cse67 + rod3_elim[20];
+    const double cse73 = -(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod3_elim[20] + rod2_mass * cse67 + rod3_elim[18] * cse64 + rod3_elim[19] * cse67;
     const double rod2_out7 = cse7 * cse68 - cse8 * cse73 + cse71 * rod2_accel4;
     const double cse74 = -cse10 * cse58 + cse12 * cse70;
     const double rod2_out8 = -cse10 * cse60 + cse12 * cse69 + cse74 * rod2_accel2;
@@ -372,7 +372,7 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:25:7  articulated-body elimination, body rod1: 1 / pivot of the joint's accelerations
     const double rod1_pivot1 = 1.0 / (rod1_inertia_3_3 + j1_pb_2 * (rod1_mass * j1_pb_2 + rod2_out5 + rod2_out6 * j1_pb_2) + rod2_out8 + rod2_out9 * j1_pb_2);
     // outlined_chain.mbg:25:7  articulated-body elimination, body rod1: joint acceleration as an affine function of the parent's motion
-    const double rod1_accel2 = -rod1_pivot1 * (j1_pb_2 * (-rod1_weight_e_1 + rod2_out7) + rod2_out10);
+    const double rod1_accel2 = -rod1_pivot1 * (rod2_out10 + j1_pb_2 * (-rod1_weight_e_1 + rod2_out7));
     // outlined_chain.mbg:25:7  joint acceleration of body rod1 from its parent's motion (articulated-body form)
     const double der_j1_theta_rate_rate = rod1_accel2;
     // outlined_chain.mbg:25:7  d/dt of [MTF j1.m2: f2 = T f1]
@@ -543,8 +543,8 @@ class outlined_chain_model final : public mbgrt::Model {
     const double accel4 = -pivot1 * (in[1] * cse46 + s0[22] * cse40 + s0[23] * cse37);
     const double cse47 = (-cse40 * s2[5] + cse37 * s2[2]) * in[6] + cse41 * s2[3] * in[6];
     const double cse48 = (-cse37 * s2[5] - cse40 * s2[2]) * in[6] + cse38 * s2[3] * in[6];
-    const double cse49 = -(s1[7] - s1[4]) + in[3] * cse47 + s0[14] * cse47 + s0[15] * cse48 + s0[16];
-    const double accel5 = -pivot1 * (in[1] * cse49 + s0[22] * cse47 + s0[23] * cse48 + s0[24]);
+    const double cse49 = -(s1[7] - s1[4]) + s0[16] + in[3] * cse47 + s0[14] * cse47 + s0[15] * cse48;
+    const double accel5 = -pivot1 * (s0[24] + in[1] * cse49 + s0[22] * cse47 + s0[23] * cse48);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
     const double cse50 = s0[17] + s0[18] * in[1];
     const double cse51 = cse37 * cse36 - cse40 * cse50;
@@ -554,7 +554,7 @@ class outlined_chain_model final : public mbgrt::Model {
     const double out7 = cse51 * accel3 + (cse37 * cse44 - cse40 * cse53);
     const double cse54 = cse43 + s0[18] * cse40 + s0[19] * cse37;
     const double out8 = cse51 * accel4 + (cse37 * cse46 - cse40 * cse54);
-    const double cse55 = -(s1[8] - s1[6]) + in[3] * cse48 + s0[18] * cse47 + s0[19] * cse48 + s0[20];
+    const double cse55 = -(s1[8] - s1[6]) + s0[20] + in[3] * cse48 + s0[18] * cse47 + s0[19] * cse48;
     const double out9 = cse37 * cse49 - cse40 * cse55 + cse51 * accel5;
     const double cse56 = cse40 * cse36 + cse37 * cse50;
     const double out10 = cse56 * accel2 + (cse40 * cse42 + cse37 * cse52);
