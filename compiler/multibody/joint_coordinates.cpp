@@ -198,8 +198,21 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (!C.particle) {
     // V_C = R_PC^T (V_P + omega_P x a + Fa d') - omega_C x b, with a and b the
     // joint's points from the parent's and the child's centre of mass
-    if (!P.ground) feed(parent + ".v", body_frame_velocity(P) || P.particle ? RrelT : times(RrelT, T(RP)), vsum);
-    if (parent_turns) feed(parent + ".w", times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
+    if (parent_turns && body_frame_velocity(P)) {
+      // The joint point's velocity in the parent's axes, V_P + omega_P x a,
+      // on its own 0-junction, turned into the child's axes by one MTF. The
+      // parent then reads the child's force there (R_PC f) and its moment
+      // about the parent's centre through the lever arm's MTF: a x (the
+      // force it reads), not a second product with the rotation.
+      const std::string vpa = jn + ".vpa";
+      junction(B, '0', vpa, 3, {}, {});
+      named_bond(B, jn + ".parent_v", parent + ".v", vpa);
+      feed(parent + ".w", B.neg(skew(fwd ? pa : pb)), vpa);
+      feed(vpa, RrelT, vsum);
+    } else {
+      if (!P.ground) feed(parent + ".v", body_frame_velocity(P) || P.particle ? RrelT : times(RrelT, T(RP)), vsum);
+      if (parent_turns) feed(parent + ".w", times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
+    }
     for (const Mobilizer::Rate& r : rates)
       if (r.V) feed(r.junction, fwd ? times(times(RrelT, Fa), r.V) : B.neg(times(Fa, r.V)), vsum);
     feed(child + ".w", skew(fwd ? pb : pa), vsum);

@@ -427,12 +427,20 @@ class Eliminator {
       for (const auto& [y, c] : it->second) in_sum.insert(y);
       ++it;
     }
+    // An output that is a combination of others (the moment of the force
+    // the parent reads, through the lever arm's MTF) is that combination of
+    // their eliminated forms.
+    std::map<int, std::vector<std::pair<int, Expr>>> derived;  // output -> (primary output, coefficient)
+    for (int y : outputs_[n]) {
+      std::vector<std::pair<int, Expr>> of;
+      if (combination_of_outputs(y, n, in_sum, of)) derived.emplace(y, std::move(of));
+    }
     for (int y : outputs_[n]) {
       if (auto t = t_form_.find(y); t != t_form_.end()) {
         out_form_.emplace(y, t->second);
         continue;
       }
-      if (in_sum.count(y)) continue;
+      if (in_sum.count(y) || derived.count(y)) continue;
       if (zero_.count(y)) {
         out_form_.emplace(y, Form{});
         continue;
@@ -441,17 +449,57 @@ class Eliminator {
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
     }
+    auto combination = [&](const std::vector<std::pair<int, Expr>>& of, const Expr& scale, Form& into) {
+      for (const auto& [x, c] : of) into.add_scaled(out_form_.at(x), mul(scale, c));
+    };
+    for (const auto& [y, of] : derived) {
+      if (in_sum.count(y)) continue;
+      Form o;
+      combination(of, constant(1), o);
+      name_all(o, n, "out");
+      out_form_.emplace(y, std::move(o));
+    }
     for (const auto& [u, members] : sums) {
-      Form sum;  // summed before the joint accelerations are eliminated: one coefficient per acceleration
+      Form sum;    // summed before the joint accelerations are eliminated: one coefficient per acceleration
+      Form after;  // the members that are combinations of other outputs, from their eliminated forms
       for (const auto& [y, c] : members) {
-        sum.add_scaled(form_.at(y), c);
+        if (auto d = derived.find(y); d != derived.end()) combination(d->second, c, after);
+        else sum.add_scaled(form_.at(y), c);
         group_of_[y] = u;
       }
       Form z = eliminated(sum);
+      add_form(after, z);
       name_all(z, n, "out");
       group_form_.emplace(std::make_pair(u, n), std::move(z));
     }
     return true;
+  }
+
+  /// Is output y of body n a combination, free of the loop's unknowns, of
+  /// other outputs of n that are passed on alone (not in a sum, not tears)?
+  bool combination_of_outputs(int y, int n, const std::set<int>& in_sum, std::vector<std::pair<int, Expr>>& of) const {
+    auto s = loop_.solution.find(y);
+    if (s == loop_.solution.end() || t_form_.count(y) || zero_.count(y)) return false;
+    const std::vector<int>& refs = refs_.at(y);
+    std::vector<Expr> c;
+    Expr rest;
+    if (refs.empty() || !affine_in(s->second, refs, c, rest) || !is_zero(rest)) return false;
+    for (std::size_t k = 0; k < refs.size(); ++k) {
+      if (is_zero(c[k])) continue;
+      const int x = refs[k];
+      if (x == y || !outputs_.at(n).count(x) || in_sum.count(x) || t_form_.count(x) || body_.at(x) != n) return false;
+      of.push_back({x, c[k]});
+    }
+    // (a primary output is computed from its own form: it reads no output)
+    for (const auto& [x, cx] : of) {
+      std::vector<Expr> cc;
+      Expr rr;
+      const std::vector<int>& xr = refs_.at(x);
+      if (loop_.solution.count(x) && affine_in(loop_.solution.at(x), xr, cc, rr))
+        for (std::size_t k = 0; k < xr.size(); ++k)
+          if (!is_zero(cc[k]) && outputs_.at(n).count(xr[k])) return false;
+    }
+    return !of.empty();
   }
 
   /// f with the body's joint accelerations replaced by their forms.

@@ -106,22 +106,29 @@ class ball_chain_model final : public mbgrt::Model {
     const double shoulder_Rpc31 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 - shoulder_rot_q_1 * shoulder_rot_q_3) / cse5;
     // ball_chain.mbg:26:7  MTF shoulder.m2: f2 = T f1
     const double shoulder_m2_f2_2 = 0.25 * shoulder_spin_rate_rate_3;
-    const double cse6 = 0.25 * shoulder_spin_rate_rate_2;
-    const double shoulder_m2_f2_3 = -cse6;
+    const double shoulder_m2_f2_3 = -0.25 * shoulder_spin_rate_rate_2;
+    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
+    const double elbow_m3_f2_2 = shoulder_m2_f2_2;
+    // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
+    const double elbow_m4_f1_2 = shoulder_m2_f2_2 + elbow_m3_f2_2;
+    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
+    const double elbow_m3_f2_3 = shoulder_m2_f2_3;
+    // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
+    const double elbow_m4_f1_3 = shoulder_m2_f2_3 + elbow_m3_f2_3;
     // ball_chain.mbg:27:7  signal elbow.Rpc21
-    const double cse7 = elbow_rot_q_2 * elbow_rot_q_3;
-    const double cse8 = elbow_rot_q_1 * elbow_rot_q_4;
-    const double cse9 = elbow_rot_q_1 * elbow_rot_q_1;
-    const double cse10 = elbow_rot_q_2 * elbow_rot_q_2;
-    const double cse11 = cse9 + cse10;
-    const double cse12 = elbow_rot_q_3 * elbow_rot_q_3;
-    const double cse13 = elbow_rot_q_4 * elbow_rot_q_4;
-    const double cse14 = cse11 + cse12 + cse13;
-    const double elbow_Rpc21 = 2.0 * (cse7 + cse8) / cse14;
+    const double cse6 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse7 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse8 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse9 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse10 = cse8 + cse9;
+    const double cse11 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse12 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse13 = cse10 + cse11 + cse12;
+    const double elbow_Rpc21 = 2.0 * (cse6 + cse7) / cse13;
     // ball_chain.mbg:27:7  signal elbow.Rpc31
-    const double cse15 = elbow_rot_q_2 * elbow_rot_q_4;
-    const double cse16 = elbow_rot_q_1 * elbow_rot_q_3;
-    const double elbow_Rpc31 = 2.0 * (cse15 - cse16) / cse14;
+    const double cse14 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse15 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse14 - cse15) / cse13;
     // ball_chain.mbg:13:6  I upper.J: p = I f (derivative causality)
     const double upper_J_p_1 = 0.0001 * shoulder_spin_rate_rate_1;
     const double upper_J_p_2 = 0.02 * shoulder_spin_rate_rate_2;
@@ -134,11 +141,11 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:13:6  R upper.ejs_v: e = law(f)
     const double upper_ejs_v_e_2 = -shoulder_spin_rate_rate_1 * shoulder_m2_f2_3;
     // ball_chain.mbg:27:7  signal elbow.Rpc22
-    const double elbow_Rpc22 = (cse9 + cse12 - cse10 - cse13) / cse14;
+    const double elbow_Rpc22 = (cse8 + cse11 - cse9 - cse12) / cse13;
     // ball_chain.mbg:27:7  signal elbow.Rpc32
-    const double cse17 = elbow_rot_q_3 * elbow_rot_q_4;
-    const double cse18 = elbow_rot_q_1 * elbow_rot_q_2;
-    const double elbow_Rpc32 = 2.0 * (cse17 + cse18) / cse14;
+    const double cse16 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse17 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse16 + cse17) / cse13;
     // ball_chain.mbg:13:6  I upper.J: p = I f (derivative causality)
     const double upper_J_p_3 = 0.02 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
@@ -150,15 +157,15 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:13:6  R upper.ejs_v: e = law(f)
     const double upper_ejs_v_e_3 = shoulder_spin_rate_rate_1 * shoulder_m2_f2_2;
     // ball_chain.mbg:27:7  signal elbow.Rpc23
-    const double elbow_Rpc23 = 2.0 * (cse17 - cse18) / cse14;
+    const double elbow_Rpc23 = 2.0 * (cse16 - cse17) / cse13;
     // ball_chain.mbg:27:7  signal elbow.Rpc33
-    const double elbow_Rpc33 = (cse9 + cse13 - cse10 - cse12) / cse14;
+    const double elbow_Rpc33 = (cse8 + cse12 - cse9 - cse11) / cse13;
     // ball_chain.mbg:27:7  d/dt of [signal elbow.Rpc23] in closed form
     const double der_elbow_Rpc23 = elbow_Rpc21 * elbow_spin_rate_rate_2 - elbow_Rpc22 * elbow_spin_rate_rate_1;
     // ball_chain.mbg:27:7  d/dt of [signal elbow.Rpc33] in closed form
     const double der_elbow_Rpc33 = elbow_Rpc31 * elbow_spin_rate_rate_2 - elbow_Rpc32 * elbow_spin_rate_rate_1;
     // ball_chain.mbg:27:7  signal elbow.Rpc11
-    const double elbow_Rpc11 = (cse11 - cse12 - cse13) / cse14;
+    const double elbow_Rpc11 = (cse10 - cse11 - cse12) / cse13;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_1 = elbow_Rpc11 * shoulder_spin_rate_rate_1 + elbow_Rpc21 * shoulder_spin_rate_rate_2 + elbow_Rpc31 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
@@ -166,7 +173,7 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:20:6  I lower.J: p = I f (derivative causality)
     const double lower_J_p_1 = 0.0001 * elbow_reaction_t_f_1;
     // ball_chain.mbg:27:7  signal elbow.Rpc13
-    const double elbow_Rpc13 = 2.0 * (cse15 + cse16) / cse14;
+    const double elbow_Rpc13 = 2.0 * (cse14 + cse15) / cse13;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_3 = elbow_Rpc13 * shoulder_spin_rate_rate_1 + elbow_Rpc23 * shoulder_spin_rate_rate_2 + elbow_Rpc33 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
@@ -182,7 +189,7 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:27:7  d/dt of [signal elbow.Rpc31] in closed form
     const double der_elbow_Rpc31 = elbow_Rpc32 * elbow_spin_rate_rate_3 - elbow_Rpc33 * elbow_spin_rate_rate_2;
     // ball_chain.mbg:27:7  signal elbow.Rpc12
-    const double elbow_Rpc12 = 2.0 * (cse7 - cse8) / cse14;
+    const double elbow_Rpc12 = 2.0 * (cse6 - cse7) / cse13;
     // ball_chain.mbg:27:7  d/dt of [signal elbow.Rpc11] in closed form
     const double der_elbow_Rpc11 = elbow_Rpc12 * elbow_spin_rate_rate_3 - elbow_Rpc13 * elbow_spin_rate_rate_2;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
@@ -207,26 +214,18 @@ class ball_chain_model final : public mbgrt::Model {
     const double lower_pose_R33 = shoulder_Rpc31 * elbow_Rpc13 + shoulder_Rpc32 * elbow_Rpc23 + shoulder_Rpc33 * elbow_Rpc33;
     // ball_chain.mbg:20:6  Se lower.weight: e = value
     const double lower_weight_e_3 = -4.905 * lower_pose_R33;
-    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
-    const double elbow_m3_f2_1 = elbow_Rpc21 * shoulder_m2_f2_2 + elbow_Rpc31 * shoulder_m2_f2_3;
     // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
-    const double cse19 = 0.25 * elbow_Rpc31;
-    const double cse20 = 0.25 * elbow_Rpc21;
-    const double elbow_m4_f2_1 = -cse19 * shoulder_spin_rate_rate_2 + cse20 * shoulder_spin_rate_rate_3;
+    const double elbow_m4_f2_1 = elbow_Rpc21 * elbow_m4_f1_2 + elbow_Rpc31 * elbow_m4_f1_3;
     // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
-    const double elbow_reaction_f_f_1 = elbow_m3_f2_1 + elbow_m4_f2_1;
+    const double elbow_reaction_f_f_1 = elbow_m4_f2_1;
     // ball_chain.mbg:20:6  I lower.m: p = I f (derivative causality)
     const double lower_m_p_1 = 0.5 * elbow_reaction_f_f_1;
-    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
-    const double elbow_m3_f2_2 = elbow_Rpc22 * shoulder_m2_f2_2 + elbow_Rpc32 * shoulder_m2_f2_3;
     // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
-    const double cse21 = 0.25 * elbow_Rpc32;
-    const double cse22 = 0.25 * elbow_Rpc22;
-    const double elbow_m4_f2_2 = -cse21 * shoulder_spin_rate_rate_2 + cse22 * shoulder_spin_rate_rate_3;
+    const double elbow_m4_f2_2 = elbow_Rpc22 * elbow_m4_f1_2 + elbow_Rpc32 * elbow_m4_f1_3;
     // ball_chain.mbg:27:7  MTF elbow.m5: f2 = T f1
     const double elbow_m5_f2_2 = 0.2 * elbow_reaction_t_f_3;
     // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
-    const double elbow_reaction_f_f_2 = elbow_m3_f2_2 + elbow_m4_f2_2 + elbow_m5_f2_2;
+    const double elbow_reaction_f_f_2 = elbow_m4_f2_2 + elbow_m5_f2_2;
     // ball_chain.mbg:20:6  I lower.m: p = I f (derivative causality)
     const double lower_m_p_2 = 0.5 * elbow_reaction_f_f_2;
     // ball_chain.mbg:20:6  R lower.ejs_v: e = law(f)
@@ -235,16 +234,12 @@ class ball_chain_model final : public mbgrt::Model {
     const double lower_pose_R32 = shoulder_Rpc31 * elbow_Rpc12 + shoulder_Rpc32 * elbow_Rpc22 + shoulder_Rpc33 * elbow_Rpc32;
     // ball_chain.mbg:20:6  Se lower.weight: e = value
     const double lower_weight_e_2 = -4.905 * lower_pose_R32;
-    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
-    const double elbow_m3_f2_3 = elbow_Rpc23 * shoulder_m2_f2_2 + elbow_Rpc33 * shoulder_m2_f2_3;
     // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
-    const double cse23 = 0.25 * elbow_Rpc33;
-    const double cse24 = 0.25 * elbow_Rpc23;
-    const double elbow_m4_f2_3 = -cse23 * shoulder_spin_rate_rate_2 + cse24 * shoulder_spin_rate_rate_3;
+    const double elbow_m4_f2_3 = elbow_Rpc23 * elbow_m4_f1_2 + elbow_Rpc33 * elbow_m4_f1_3;
     // ball_chain.mbg:27:7  MTF elbow.m5: f2 = T f1
     const double elbow_m5_f2_3 = -0.2 * elbow_reaction_t_f_2;
     // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
-    const double elbow_reaction_f_f_3 = elbow_m3_f2_3 + elbow_m4_f2_3 + elbow_m5_f2_3;
+    const double elbow_reaction_f_f_3 = elbow_m4_f2_3 + elbow_m5_f2_3;
     // ball_chain.mbg:20:6  I lower.m: p = I f (derivative causality)
     const double lower_m_p_3 = 0.5 * elbow_reaction_f_f_3;
     // ball_chain.mbg:20:6  R lower.ejs_v: e = law(f)
@@ -257,88 +252,86 @@ class ball_chain_model final : public mbgrt::Model {
     const double lower_ejs_v_e_1 = elbow_reaction_t_f_2 * lower_m_p_3 - elbow_reaction_t_f_3 * lower_m_p_2;
     // ball_chain.mbg:27:7  articulated-body elimination, body lower: joint acceleration as an affine function of the parent's motion
     const double lower_accel1 = -33.33333333333333 * (0.01 * elbow_Rpc13 + 0.020000000000000004 * elbow_Rpc13);
-    const double cse25 = -cse21 + 0.2 * elbow_Rpc23;
-    const double lower_accel2 = -33.33333333333333 * (0.01 * elbow_Rpc23 + 0.1 * cse25);
-    const double cse26 = cse22 + 0.2 * elbow_Rpc33;
-    const double lower_accel3 = -33.33333333333333 * (0.01 * elbow_Rpc33 + 0.1 * cse26);
+    const double cse18 = -0.25 * elbow_Rpc32 + 0.2 * elbow_Rpc23;
+    const double lower_accel2 = -33.33333333333333 * (0.01 * elbow_Rpc23 + 0.1 * cse18);
+    const double cse19 = 0.25 * elbow_Rpc22 + 0.2 * elbow_Rpc33;
+    const double lower_accel3 = -33.33333333333333 * (0.01 * elbow_Rpc33 + 0.1 * cse19);
     const double lower_accel4 = -3.333333333333333 * elbow_Rpc22;
     const double lower_accel5 = -3.333333333333333 * elbow_Rpc32;
-    const double cse27 = shoulder_spin_rate_rate_1 * der_elbow_Rpc13 + shoulder_spin_rate_rate_2 * der_elbow_Rpc23 + shoulder_spin_rate_rate_3 * der_elbow_Rpc33;
-    const double cse28 = -(lower_weight_e_2 - lower_ejs_v_e_2) + 0.5 * (shoulder_m2_f2_2 * der_elbow_Rpc22 + shoulder_m2_f2_3 * der_elbow_Rpc32 + (shoulder_m2_f2_2 * der_elbow_Rpc22 - cse6 * der_elbow_Rpc32) + 0.2 * cse27);
-    const double lower_accel6 = -33.33333333333333 * (lower_ejs_e_3 + 0.01 * cse27 + 0.2 * cse28);
+    const double cse20 = shoulder_spin_rate_rate_1 * der_elbow_Rpc13 + shoulder_spin_rate_rate_2 * der_elbow_Rpc23 + shoulder_spin_rate_rate_3 * der_elbow_Rpc33;
+    const double cse21 = -(lower_weight_e_2 - lower_ejs_v_e_2) + 0.5 * (elbow_m4_f1_2 * der_elbow_Rpc22 + elbow_m4_f1_3 * der_elbow_Rpc32 + 0.2 * cse20);
+    const double lower_accel6 = -33.33333333333333 * (lower_ejs_e_3 + 0.01 * cse20 + 0.2 * cse21);
     const double lower_accel7 = -33.33333333333333 * (0.01 * elbow_Rpc12 + 0.020000000000000004 * elbow_Rpc12);
-    const double cse29 = -cse23 - 0.2 * elbow_Rpc22;
-    const double lower_accel8 = -33.33333333333333 * (0.01 * elbow_Rpc22 - 0.1 * cse29);
-    const double cse30 = cse24 - 0.2 * elbow_Rpc32;
-    const double lower_accel9 = -33.33333333333333 * (0.01 * elbow_Rpc32 - 0.1 * cse30);
+    const double cse22 = -0.25 * elbow_Rpc33 - 0.2 * elbow_Rpc22;
+    const double lower_accel8 = -33.33333333333333 * (0.01 * elbow_Rpc22 - 0.1 * cse22);
+    const double cse23 = 0.25 * elbow_Rpc23 - 0.2 * elbow_Rpc32;
+    const double lower_accel9 = -33.33333333333333 * (0.01 * elbow_Rpc32 - 0.1 * cse23);
     const double lower_accel10 = 3.333333333333333 * elbow_Rpc23;
     const double lower_accel11 = 3.333333333333333 * elbow_Rpc33;
-    const double cse31 = shoulder_spin_rate_rate_1 * der_elbow_Rpc12 + shoulder_spin_rate_rate_2 * der_elbow_Rpc22 + shoulder_spin_rate_rate_3 * der_elbow_Rpc32;
-    const double cse32 = -(lower_weight_e_3 - lower_ejs_v_e_3) + 0.5 * (shoulder_m2_f2_2 * der_elbow_Rpc23 + shoulder_m2_f2_3 * der_elbow_Rpc33 + (shoulder_m2_f2_2 * der_elbow_Rpc23 - cse6 * der_elbow_Rpc33) - 0.2 * cse31);
-    const double lower_accel12 = -33.33333333333333 * (lower_ejs_e_2 + 0.01 * cse31 - 0.2 * cse32);
+    const double cse24 = shoulder_spin_rate_rate_1 * der_elbow_Rpc12 + shoulder_spin_rate_rate_2 * der_elbow_Rpc22 + shoulder_spin_rate_rate_3 * der_elbow_Rpc32;
+    const double cse25 = -(lower_weight_e_3 - lower_ejs_v_e_3) + 0.5 * (elbow_m4_f1_2 * der_elbow_Rpc23 + elbow_m4_f1_3 * der_elbow_Rpc33 - 0.2 * cse24);
+    const double lower_accel12 = -33.33333333333333 * (lower_ejs_e_2 + 0.01 * cse24 - 0.2 * cse25);
     const double lower_accel13 = -elbow_Rpc11;
     const double lower_accel14 = -elbow_Rpc21;
     const double lower_accel15 = -elbow_Rpc31;
     const double lower_accel16 = -10000.0 * (lower_ejs_e_1 + 0.0001 * (shoulder_spin_rate_rate_1 * der_elbow_Rpc11 + shoulder_spin_rate_rate_2 * der_elbow_Rpc21 + shoulder_spin_rate_rate_3 * der_elbow_Rpc31));
     // ball_chain.mbg:27:7  articulated-body elimination, body lower: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse33 = 0.1 * elbow_Rpc13;
-    const double cse34 = 0.1 * elbow_Rpc12;
-    const double cse35 = 0.1 * elbow_Rpc23;
-    const double cse36 = 0.1 * elbow_Rpc22;
-    const double lower_out17 = elbow_Rpc22 * cse33 - elbow_Rpc23 * cse34 - cse35 * lower_accel7 + cse36 * lower_accel1;
-    const double cse37 = 0.125 * elbow_Rpc31;
-    const double cse38 = 0.5 * cse25;
-    const double cse39 = 0.5 * cse29;
-    const double lower_out18 = -elbow_Rpc21 * cse37 + elbow_Rpc22 * cse38 + elbow_Rpc23 * cse39 - cse35 * lower_accel8 + cse36 * lower_accel2;
-    const double cse40 = 0.125 * elbow_Rpc21;
-    const double cse41 = 0.5 * cse26;
-    const double cse42 = 0.5 * cse30;
-    const double lower_out19 = elbow_Rpc21 * cse40 + elbow_Rpc22 * cse41 + elbow_Rpc23 * cse42 - cse35 * lower_accel9 + cse36 * lower_accel3;
-    const double cse43 = 0.5 * elbow_Rpc21;
-    const double cse44 = 0.5 * elbow_Rpc22;
-    const double cse45 = 0.5 * elbow_Rpc23;
-    const double lower_out20 = -cse35 * lower_accel10 + cse36 * lower_accel4 + (elbow_Rpc21 * cse43 + elbow_Rpc22 * cse44 + elbow_Rpc23 * cse45);
-    const double cse46 = 0.5 * elbow_Rpc31;
-    const double cse47 = 0.5 * elbow_Rpc32;
-    const double cse48 = 0.5 * elbow_Rpc33;
-    const double lower_out21 = -cse35 * lower_accel11 + cse36 * lower_accel5 + (elbow_Rpc21 * cse46 + elbow_Rpc22 * cse47 + elbow_Rpc23 * cse48);
-    const double cse49 = -(lower_weight_e_1 - lower_ejs_v_e_1) + 0.5 * (shoulder_m2_f2_2 * der_elbow_Rpc21 + shoulder_m2_f2_3 * der_elbow_Rpc31 + (shoulder_m2_f2_2 * der_elbow_Rpc21 - cse6 * der_elbow_Rpc31));
-    const double lower_out22 = elbow_Rpc21 * cse49 + elbow_Rpc22 * cse28 + elbow_Rpc23 * cse32 - cse35 * lower_accel12 + cse36 * lower_accel6;
-    const double cse50 = 0.1 * elbow_Rpc33;
-    const double cse51 = 0.1 * elbow_Rpc32;
-    const double lower_out23 = elbow_Rpc32 * cse33 - elbow_Rpc33 * cse34 - cse50 * lower_accel7 + cse51 * lower_accel1;
-    const double lower_out24 = -elbow_Rpc31 * cse37 + elbow_Rpc32 * cse38 + elbow_Rpc33 * cse39 - cse50 * lower_accel8 + cse51 * lower_accel2;
-    const double lower_out25 = elbow_Rpc31 * cse40 + elbow_Rpc32 * cse41 + elbow_Rpc33 * cse42 - cse50 * lower_accel9 + cse51 * lower_accel3;
-    const double lower_out26 = -cse50 * lower_accel10 + cse51 * lower_accel4 + (elbow_Rpc31 * cse43 + elbow_Rpc32 * cse44 + elbow_Rpc33 * cse45);
-    const double lower_out27 = -cse50 * lower_accel11 + cse51 * lower_accel5 + (elbow_Rpc31 * cse46 + elbow_Rpc32 * cse47 + elbow_Rpc33 * cse48);
-    const double lower_out28 = elbow_Rpc31 * cse49 + elbow_Rpc32 * cse28 + elbow_Rpc33 * cse32 - cse50 * lower_accel12 + cse51 * lower_accel6;
-    const double cse52 = 0.025 * elbow_Rpc33;
-    const double cse53 = 0.025 * elbow_Rpc32;
-    const double lower_out29 = -cse21 * cse33 + cse23 * cse34 + cse52 * lower_accel7 - cse53 * lower_accel1;
-    const double lower_out30 = cse19 * cse37 - cse21 * cse38 - cse23 * cse39 + cse52 * lower_accel8 - cse53 * lower_accel2;
-    const double lower_out31 = -cse19 * cse40 - cse21 * cse41 - cse23 * cse42 + cse52 * lower_accel9 - cse53 * lower_accel3;
-    const double lower_out32 = cse52 * lower_accel10 - cse53 * lower_accel4 + (-cse19 * cse43 - cse21 * cse44 - cse23 * cse45);
-    const double lower_out33 = cse52 * lower_accel11 - cse53 * lower_accel5 + (-cse19 * cse46 - cse21 * cse47 - cse23 * cse48);
-    const double lower_out34 = -cse19 * cse49 - cse21 * cse28 - cse23 * cse32 + cse52 * lower_accel12 - cse53 * lower_accel6;
-    const double cse54 = 0.025 * elbow_Rpc23;
-    const double cse55 = 0.025 * elbow_Rpc22;
-    const double lower_out35 = cse22 * cse33 - cse24 * cse34 - cse54 * lower_accel7 + cse55 * lower_accel1;
-    const double lower_out36 = -cse20 * cse37 + cse22 * cse38 + cse24 * cse39 - cse54 * lower_accel8 + cse55 * lower_accel2;
-    const double lower_out37 = cse20 * cse40 + cse22 * cse41 + cse24 * cse42 - cse54 * lower_accel9 + cse55 * lower_accel3;
-    const double lower_out38 = -cse54 * lower_accel10 + cse55 * lower_accel4 + (cse20 * cse43 + cse22 * cse44 + cse24 * cse45);
-    const double lower_out39 = -cse54 * lower_accel11 + cse55 * lower_accel5 + (cse20 * cse46 + cse22 * cse47 + cse24 * cse48);
-    const double lower_out40 = cse20 * cse49 + cse22 * cse28 + cse24 * cse32 - cse54 * lower_accel12 + cse55 * lower_accel6;
+    const double cse26 = 0.1 * elbow_Rpc13;
+    const double cse27 = 0.1 * elbow_Rpc12;
+    const double cse28 = 0.1 * elbow_Rpc23;
+    const double cse29 = 0.1 * elbow_Rpc22;
+    const double lower_out17 = elbow_Rpc22 * cse26 - elbow_Rpc23 * cse27 - cse28 * lower_accel7 + cse29 * lower_accel1;
+    const double cse30 = 0.125 * elbow_Rpc31;
+    const double cse31 = 0.5 * cse18;
+    const double cse32 = 0.5 * cse22;
+    const double lower_out18 = -elbow_Rpc21 * cse30 + elbow_Rpc22 * cse31 + elbow_Rpc23 * cse32 - cse28 * lower_accel8 + cse29 * lower_accel2;
+    const double cse33 = 0.125 * elbow_Rpc21;
+    const double cse34 = 0.5 * cse19;
+    const double cse35 = 0.5 * cse23;
+    const double lower_out19 = elbow_Rpc21 * cse33 + elbow_Rpc22 * cse34 + elbow_Rpc23 * cse35 - cse28 * lower_accel9 + cse29 * lower_accel3;
+    const double cse36 = 0.5 * elbow_Rpc21;
+    const double cse37 = 0.5 * elbow_Rpc22;
+    const double cse38 = 0.5 * elbow_Rpc23;
+    const double lower_out20 = -cse28 * lower_accel10 + cse29 * lower_accel4 + (elbow_Rpc21 * cse36 + elbow_Rpc22 * cse37 + elbow_Rpc23 * cse38);
+    const double cse39 = 0.5 * elbow_Rpc31;
+    const double cse40 = 0.5 * elbow_Rpc32;
+    const double cse41 = 0.5 * elbow_Rpc33;
+    const double lower_out21 = -cse28 * lower_accel11 + cse29 * lower_accel5 + (elbow_Rpc21 * cse39 + elbow_Rpc22 * cse40 + elbow_Rpc23 * cse41);
+    const double cse42 = -(lower_weight_e_1 - lower_ejs_v_e_1) + 0.5 * (elbow_m4_f1_2 * der_elbow_Rpc21 + elbow_m4_f1_3 * der_elbow_Rpc31);
+    const double lower_out22 = elbow_Rpc21 * cse42 + elbow_Rpc22 * cse21 + elbow_Rpc23 * cse25 - cse28 * lower_accel12 + cse29 * lower_accel6;
+    const double cse43 = 0.1 * elbow_Rpc33;
+    const double cse44 = 0.1 * elbow_Rpc32;
+    const double lower_out23 = elbow_Rpc32 * cse26 - elbow_Rpc33 * cse27 - cse43 * lower_accel7 + cse44 * lower_accel1;
+    const double lower_out24 = -elbow_Rpc31 * cse30 + elbow_Rpc32 * cse31 + elbow_Rpc33 * cse32 - cse43 * lower_accel8 + cse44 * lower_accel2;
+    const double lower_out25 = elbow_Rpc31 * cse33 + elbow_Rpc32 * cse34 + elbow_Rpc33 * cse35 - cse43 * lower_accel9 + cse44 * lower_accel3;
+    const double lower_out26 = -cse43 * lower_accel10 + cse44 * lower_accel4 + (elbow_Rpc31 * cse36 + elbow_Rpc32 * cse37 + elbow_Rpc33 * cse38);
+    const double lower_out27 = -cse43 * lower_accel11 + cse44 * lower_accel5 + (elbow_Rpc31 * cse39 + elbow_Rpc32 * cse40 + elbow_Rpc33 * cse41);
+    const double lower_out28 = elbow_Rpc31 * cse42 + elbow_Rpc32 * cse21 + elbow_Rpc33 * cse25 - cse43 * lower_accel12 + cse44 * lower_accel6;
+    const double lower_out29 = -0.25 * lower_out23;
+    const double lower_out30 = -0.25 * lower_out24;
+    const double lower_out31 = -0.25 * lower_out25;
+    const double cse45 = 0.25 * lower_out26;
+    const double lower_out32 = -cse45;
+    const double cse46 = 0.25 * lower_out27;
+    const double lower_out33 = -cse46;
+    const double lower_out34 = -0.25 * lower_out28;
+    const double lower_out35 = 0.25 * lower_out17;
+    const double lower_out36 = 0.25 * lower_out18;
+    const double lower_out37 = 0.25 * lower_out19;
+    const double lower_out38 = 0.25 * lower_out20;
+    const double lower_out39 = 0.25 * lower_out21;
+    const double lower_out40 = 0.25 * lower_out22;
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: elimination factor
-    const double upper_factor1 = 10000.0 * (-0.25 * lower_out23 + lower_out29);
+    const double upper_factor1 = 10000.0 * (lower_out29 + lower_out29);
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: reduced row of the joint's equations
-    const double upper_row2 = 0.02 - 0.25 * (-0.25 + lower_out24 - 0.25 * lower_out27) + lower_out30 - 0.25 * lower_out33;
-    const double upper_row3 = -0.25 * (lower_out25 + 0.25 * lower_out26) + lower_out31 + 0.25 * lower_out32;
+    const double upper_row2 = 0.02 - 0.25 * (-0.25 + lower_out24 - cse46) + lower_out30 - 0.25 * lower_out33;
+    const double upper_row3 = -0.25 * (lower_out25 + cse45) + lower_out31 + 0.25 * lower_out32;
     const double upper_row4 = upper_ejs_e_2 + lower_out34 - 0.25 * (-(upper_weight_e_3 - upper_ejs_v_e_3) + lower_out28) - upper_factor1 * upper_ejs_e_1;
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: elimination factor
-    const double upper_factor5 = 10000.0 * (0.25 * lower_out17 + lower_out35);
+    const double upper_factor5 = 10000.0 * (lower_out35 + lower_out35);
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: reduced row of the joint's equations
-    const double upper_row6 = 0.25 * (lower_out18 - 0.25 * lower_out21) + lower_out36 - 0.25 * lower_out39;
-    const double upper_row7 = 0.02 + 0.25 * (0.25 + lower_out19 + 0.25 * lower_out20) + lower_out37 + 0.25 * lower_out38;
+    const double upper_row6 = 0.25 * (lower_out18 - lower_out39) + lower_out36 - 0.25 * lower_out39;
+    const double upper_row7 = 0.02 + 0.25 * (0.25 + lower_out19 + lower_out38) + lower_out37 + 0.25 * lower_out38;
     const double upper_row8 = upper_ejs_e_3 + lower_out40 + 0.25 * (-(upper_weight_e_2 - upper_ejs_v_e_2) + lower_out22) - upper_factor5 * upper_ejs_e_1;
     // ball_chain.mbg:26:7  articulated-body elimination, body upper: 1 / pivot of the joint's accelerations
     const double upper_pivot9 = 1.0 / upper_row2;
@@ -365,23 +358,23 @@ class ball_chain_model final : public mbgrt::Model {
     const double der_elbow_spin_rate_rate_2 = lower_accel12 + lower_accel7 * der_shoulder_spin_rate_rate_1 + lower_accel8 * der_shoulder_spin_rate_rate_2 + lower_accel9 * der_shoulder_spin_rate_rate_3 + lower_accel10 * der_shoulder_m2_f2_2 + lower_accel11 * der_shoulder_m2_f2_3;
     const double der_elbow_spin_rate_rate_3 = lower_accel6 + lower_accel1 * der_shoulder_spin_rate_rate_1 + lower_accel2 * der_shoulder_spin_rate_rate_2 + lower_accel3 * der_shoulder_spin_rate_rate_3 + lower_accel4 * der_shoulder_m2_f2_2 + lower_accel5 * der_shoulder_m2_f2_3;
     // ball_chain.mbg:26:7  MTF shoulder.rotrate: f2 = T f1
-    const double cse56 = 0.5 * shoulder_rot_q_2;
-    const double cse57 = 0.5 * shoulder_rot_q_3;
-    const double cse58 = 0.5 * shoulder_rot_q_4;
-    const double shoulder_rotrate_f2_1 = -cse56 * shoulder_spin_rate_rate_1 - cse57 * shoulder_spin_rate_rate_2 - cse58 * shoulder_spin_rate_rate_3;
-    const double cse59 = 0.5 * shoulder_rot_q_1;
-    const double shoulder_rotrate_f2_2 = cse59 * shoulder_spin_rate_rate_1 - cse58 * shoulder_spin_rate_rate_2 + cse57 * shoulder_spin_rate_rate_3;
-    const double shoulder_rotrate_f2_3 = cse58 * shoulder_spin_rate_rate_1 + cse59 * shoulder_spin_rate_rate_2 - cse56 * shoulder_spin_rate_rate_3;
-    const double shoulder_rotrate_f2_4 = -cse57 * shoulder_spin_rate_rate_1 + cse56 * shoulder_spin_rate_rate_2 + cse59 * shoulder_spin_rate_rate_3;
+    const double cse47 = 0.5 * shoulder_rot_q_2;
+    const double cse48 = 0.5 * shoulder_rot_q_3;
+    const double cse49 = 0.5 * shoulder_rot_q_4;
+    const double shoulder_rotrate_f2_1 = -cse47 * shoulder_spin_rate_rate_1 - cse48 * shoulder_spin_rate_rate_2 - cse49 * shoulder_spin_rate_rate_3;
+    const double cse50 = 0.5 * shoulder_rot_q_1;
+    const double shoulder_rotrate_f2_2 = cse50 * shoulder_spin_rate_rate_1 - cse49 * shoulder_spin_rate_rate_2 + cse48 * shoulder_spin_rate_rate_3;
+    const double shoulder_rotrate_f2_3 = cse49 * shoulder_spin_rate_rate_1 + cse50 * shoulder_spin_rate_rate_2 - cse47 * shoulder_spin_rate_rate_3;
+    const double shoulder_rotrate_f2_4 = -cse48 * shoulder_spin_rate_rate_1 + cse47 * shoulder_spin_rate_rate_2 + cse50 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  MTF elbow.rotrate: f2 = T f1
-    const double cse60 = 0.5 * elbow_rot_q_2;
-    const double cse61 = 0.5 * elbow_rot_q_3;
-    const double cse62 = 0.5 * elbow_rot_q_4;
-    const double elbow_rotrate_f2_1 = -cse60 * elbow_spin_rate_rate_1 - cse61 * elbow_spin_rate_rate_2 - cse62 * elbow_spin_rate_rate_3;
-    const double cse63 = 0.5 * elbow_rot_q_1;
-    const double elbow_rotrate_f2_2 = cse63 * elbow_spin_rate_rate_1 - cse62 * elbow_spin_rate_rate_2 + cse61 * elbow_spin_rate_rate_3;
-    const double elbow_rotrate_f2_3 = cse62 * elbow_spin_rate_rate_1 + cse63 * elbow_spin_rate_rate_2 - cse60 * elbow_spin_rate_rate_3;
-    const double elbow_rotrate_f2_4 = -cse61 * elbow_spin_rate_rate_1 + cse60 * elbow_spin_rate_rate_2 + cse63 * elbow_spin_rate_rate_3;
+    const double cse51 = 0.5 * elbow_rot_q_2;
+    const double cse52 = 0.5 * elbow_rot_q_3;
+    const double cse53 = 0.5 * elbow_rot_q_4;
+    const double elbow_rotrate_f2_1 = -cse51 * elbow_spin_rate_rate_1 - cse52 * elbow_spin_rate_rate_2 - cse53 * elbow_spin_rate_rate_3;
+    const double cse54 = 0.5 * elbow_rot_q_1;
+    const double elbow_rotrate_f2_2 = cse54 * elbow_spin_rate_rate_1 - cse53 * elbow_spin_rate_rate_2 + cse52 * elbow_spin_rate_rate_3;
+    const double elbow_rotrate_f2_3 = cse53 * elbow_spin_rate_rate_1 + cse54 * elbow_spin_rate_rate_2 - cse51 * elbow_spin_rate_rate_3;
+    const double elbow_rotrate_f2_4 = -cse52 * elbow_spin_rate_rate_1 + cse51 * elbow_spin_rate_rate_2 + cse54 * elbow_spin_rate_rate_3;
     // state derivatives
     xdot[0] = der_shoulder_spin_rate_rate_1;
     xdot[1] = der_shoulder_spin_rate_rate_2;
@@ -415,27 +408,27 @@ class ball_chain_model final : public mbgrt::Model {
     const double elbow_rot_q_4 = x[13];
     // ball_chain.mbg:27:7  signal elbow.Rpc21
     // (cseN: a subexpression several equations below share)
-    const double cse64 = elbow_rot_q_1 * elbow_rot_q_1 + elbow_rot_q_2 * elbow_rot_q_2;
-    const double cse65 = elbow_rot_q_3 * elbow_rot_q_3;
-    const double cse66 = elbow_rot_q_4 * elbow_rot_q_4;
-    const double cse67 = cse64 + cse65 + cse66;
-    const double elbow_Rpc21 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_3 + elbow_rot_q_1 * elbow_rot_q_4) / cse67;
+    const double cse55 = elbow_rot_q_1 * elbow_rot_q_1 + elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse56 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse57 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse58 = cse55 + cse56 + cse57;
+    const double elbow_Rpc21 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_3 + elbow_rot_q_1 * elbow_rot_q_4) / cse58;
     // ball_chain.mbg:27:7  signal elbow.Rpc31
-    const double elbow_Rpc31 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_4 - elbow_rot_q_1 * elbow_rot_q_3) / cse67;
+    const double elbow_Rpc31 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_4 - elbow_rot_q_1 * elbow_rot_q_3) / cse58;
     // ball_chain.mbg:27:7  signal elbow.Rpc11
-    const double elbow_Rpc11 = (cse64 - cse65 - cse66) / cse67;
+    const double elbow_Rpc11 = (cse55 - cse56 - cse57) / cse58;
     // ball_chain.mbg:20:6  1 lower.w: efforts in = efforts out [zero: a free joint direction's effort]
     const double elbow_reaction_t_e_3 = 0.0;
     // ball_chain.mbg:26:7  signal shoulder.Rpc11
-    const double cse68 = shoulder_rot_q_1 * shoulder_rot_q_1 + shoulder_rot_q_2 * shoulder_rot_q_2;
-    const double cse69 = shoulder_rot_q_3 * shoulder_rot_q_3;
-    const double cse70 = shoulder_rot_q_4 * shoulder_rot_q_4;
-    const double cse71 = cse68 + cse69 + cse70;
-    const double shoulder_Rpc11 = (cse68 - cse69 - cse70) / cse71;
+    const double cse59 = shoulder_rot_q_1 * shoulder_rot_q_1 + shoulder_rot_q_2 * shoulder_rot_q_2;
+    const double cse60 = shoulder_rot_q_3 * shoulder_rot_q_3;
+    const double cse61 = shoulder_rot_q_4 * shoulder_rot_q_4;
+    const double cse62 = cse59 + cse60 + cse61;
+    const double shoulder_Rpc11 = (cse59 - cse60 - cse61) / cse62;
     // ball_chain.mbg:26:7  signal shoulder.Rpc12
-    const double shoulder_Rpc12 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_3 - shoulder_rot_q_1 * shoulder_rot_q_4) / cse71;
+    const double shoulder_Rpc12 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_3 - shoulder_rot_q_1 * shoulder_rot_q_4) / cse62;
     // ball_chain.mbg:26:7  signal shoulder.Rpc13
-    const double shoulder_Rpc13 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_3) / cse71;
+    const double shoulder_Rpc13 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_3) / cse62;
     // ball_chain.mbg:26:7  signal upper.pose.r1
     const double upper_pose_r1 = 0.25 * shoulder_Rpc11;
     // ball_chain.mbg:27:7  signal lower.pose.R11

@@ -180,6 +180,10 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R21 = std::sin(j1_theta_q);
     // cut_joint.mbg:14:7  MTF j1.m2: f2 = T f1
     const double j1_m2_f2_2 = 0.1 * j1_theta_rate_rate;
+    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_2 = j1_m2_f2_2;
+    // cut_joint.mbg:15:7  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_2 = j1_m2_f2_2 + j2_m3_f2_2;
     // cut_joint.mbg:14:7  signal crank.pose.R22
     const double crank_pose_R22 = std::cos(j1_theta_q);
     // cut_joint.mbg:15:7  signal coupler.pose.R22
@@ -191,24 +195,18 @@ class cut_joint_model final : public mbgrt::Model {
     const double coupler_weight_e_2 = -9.81 * coupler_pose_R22;
     // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
     const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
-    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_1 = cse4 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double cse6 = 0.1 * cse4;
-    const double j2_m4_f2_1 = cse6 * j1_theta_rate_rate;
+    const double j2_m4_f2_1 = cse4 * j2_m4_f1_2;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_1 = j2_m3_f2_1 + j2_m4_f2_1;
+    const double j2_reaction_f_f_1 = j2_m4_f2_1;
     // cut_joint.mbg:12:6  R coupler.ejs_v: e = law(f)
     const double coupler_ejs_v_e_2 = j2_reaction_t_f_3 * j2_reaction_f_f_1;
-    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_2 = cse5 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double cse7 = 0.1 * cse5;
-    const double j2_m4_f2_2 = cse7 * j1_theta_rate_rate;
+    const double j2_m4_f2_2 = cse5 * j2_m4_f1_2;
     // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_2 = j2_m3_f2_2 + j2_m4_f2_2 + j2_m5_f2_2;
+    const double j2_reaction_f_f_2 = j2_m4_f2_2 + j2_m5_f2_2;
     // cut_joint.mbg:14:7  signal crank.pose.R11
     const double crank_pose_R11 = crank_pose_R22;
     // cut_joint.mbg:14:7  signal crank.pose.R12
@@ -220,30 +218,30 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
-    const double cse8 = 0.5 * coupler_pose_R12;
-    const double j3_car_f2_1 = -cse8 * j2_reaction_t_f_3;
+    const double cse6 = 0.5 * coupler_pose_R12;
+    const double j3_car_f2_1 = -cse6 * j2_reaction_t_f_3;
     // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
     const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
     // cut_joint.mbg:17:7  signal rocker.pose.R12
-    const double cse9 = std::sin(j4_theta_q);
-    const double rocker_pose_R12 = -cse9;
+    const double cse7 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse7;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
-    const double cse10 = 0.1 * rocker_pose_R12;
-    const double j3_cbr_f2_1 = cse10 * j4_theta_rate_rate;
+    const double cse8 = 0.1 * rocker_pose_R12;
+    const double j3_cbr_f2_1 = cse8 * j4_theta_rate_rate;
     // cut_joint.mbg:16:7  0 j3.c: flows in = flows out
     const double j3_cn_f_1 = j3_cat_f2_1 + j3_car_f2_1 + j3_cbt_f2_1 + j3_cbr_f2_1;
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse11 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse11;
+    const double cse9 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse9;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse12 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse12;
+    const double cse10 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse10;
     // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R11] in closed form
     const double der_coupler_pose_R11 = coupler_pose_R12 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R12] in closed form
@@ -253,24 +251,24 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
-    const double cse13 = 0.5 * coupler_pose_R22;
-    const double j3_car_f2_2 = -cse13 * j2_reaction_t_f_3;
+    const double cse11 = 0.5 * coupler_pose_R22;
+    const double j3_car_f2_2 = -cse11 * j2_reaction_t_f_3;
     // cut_joint.mbg:17:7  signal rocker.pose.R22
     const double rocker_pose_R22 = rocker_pose_R11;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_2 = rocker_pose_R22 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
-    const double cse14 = 0.1 * rocker_pose_R22;
-    const double j3_cbr_f2_2 = cse14 * j4_theta_rate_rate;
+    const double cse12 = 0.1 * rocker_pose_R22;
+    const double j3_cbr_f2_2 = cse12 * j4_theta_rate_rate;
     // cut_joint.mbg:16:7  0 j3.c: flows in = flows out
     const double j3_cn_f_2 = j3_cat_f2_2 + j3_car_f2_2 + j3_cbt_f2_2 + j3_cbr_f2_2;
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse15 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse15;
+    const double cse13 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse13;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
-    const double rocker_pose_R21 = cse9;
+    const double rocker_pose_R21 = cse7;
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
     // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R21] in closed form
@@ -292,55 +290,54 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: 1 / pivot of the joint's accelerations
     const double coupler_pivot1 = derived1_;
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: joint acceleration as an affine function of the parent's motion
-    const double coupler_accel2 = -coupler_pivot1 * (-cse8 - cse8);
-    const double coupler_accel3 = -coupler_pivot1 * (-cse13 - cse13);
-    const double cse16 = cse7 + 0.5;
-    const double coupler_accel4 = -coupler_pivot1 * (coupler_inertia_3_3 + 0.5 * cse16);
-    const double cse17 = 0.5 * cse5;
-    const double coupler_accel5 = -coupler_pivot1 * cse17;
-    const double cse18 = -j2_m3_f2_1 * j2_theta_rate_rate - j2_m4_f2_1 * j2_theta_rate_rate;
-    const double cse19 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) + cse18;
-    const double coupler_accel6 = -coupler_pivot1 * (0.5 * cse19);
+    const double coupler_accel2 = -coupler_pivot1 * (-cse6 - cse6);
+    const double coupler_accel3 = -coupler_pivot1 * (-cse11 - cse11);
+    const double cse14 = 0.1 * cse5 + 0.5;
+    const double coupler_accel4 = -coupler_pivot1 * (coupler_inertia_3_3 + 0.5 * cse14);
+    const double cse15 = 0.5 * cse5;
+    const double coupler_accel5 = -coupler_pivot1 * cse15;
+    const double cse16 = j2_m4_f2_1 * j2_theta_rate_rate;
+    const double cse17 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) - cse16;
+    const double coupler_accel6 = -coupler_pivot1 * (0.5 * cse17);
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double coupler_out7 = -cse4 * coupler_pose_R11 - cse5 * coupler_pose_R12 + cse17 * coupler_accel2;
-    const double coupler_out8 = -cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22 + cse17 * coupler_accel3;
-    const double coupler_out9 = cse4 * cse6 + cse5 * cse16 + cse17 * coupler_accel4;
-    const double coupler_out10 = cse17 * coupler_accel5 + (cse4 * cse4 + cse5 * cse5);
-    const double cse20 = j2_m3_f2_2 * j2_theta_rate_rate + j2_m4_f2_2 * j2_theta_rate_rate;
-    const double cse21 = -(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse20;
-    const double coupler_out11 = cse4 * cse21 + cse5 * cse19 + cse17 * coupler_accel6;
-    const double cse22 = 0.05 * cse5;
-    const double coupler_out12 = -cse6 * coupler_pose_R11 - cse7 * coupler_pose_R12 + cse22 * coupler_accel2;
-    const double coupler_out13 = -cse6 * coupler_pose_R21 - cse7 * coupler_pose_R22 + cse22 * coupler_accel3;
-    const double coupler_out14 = cse6 * cse6 + cse7 * cse16 + cse22 * coupler_accel4;
-    const double coupler_out15 = cse22 * coupler_accel5 + (cse6 * cse4 + cse7 * cse5);
-    const double coupler_out16 = cse6 * cse21 + cse7 * cse19 + cse22 * coupler_accel6;
+    const double coupler_out7 = -cse4 * coupler_pose_R11 - cse5 * coupler_pose_R12 + cse15 * coupler_accel2;
+    const double coupler_out8 = -cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22 + cse15 * coupler_accel3;
+    const double cse18 = 0.1 * cse4;
+    const double coupler_out9 = cse4 * cse18 + cse5 * cse14 + cse15 * coupler_accel4;
+    const double coupler_out10 = cse15 * coupler_accel5 + (cse4 * cse4 + cse5 * cse5);
+    const double cse19 = j2_m4_f2_2 * j2_theta_rate_rate;
+    const double coupler_out11 = cse4 * (-(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse19) + cse5 * cse17 + cse15 * coupler_accel6;
+    const double coupler_out12 = 0.1 * coupler_out7;
+    const double coupler_out13 = 0.1 * coupler_out8;
+    const double coupler_out14 = 0.1 * coupler_out9;
+    const double coupler_out15 = 0.1 * coupler_out10;
+    const double coupler_out16 = 0.1 * coupler_out11;
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: 1 / pivot of the joint's accelerations
-    const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + 0.1 * coupler_out10) + coupler_out14 + 0.1 * coupler_out15);
+    const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + coupler_out15) + coupler_out14 + 0.1 * coupler_out15);
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: joint acceleration as an affine function of the parent's motion
-    const double crank_accel2 = -crank_pivot1 * (0.1 * coupler_out7 + coupler_out12);
-    const double crank_accel3 = -crank_pivot1 * (0.1 * coupler_out8 + coupler_out13);
+    const double crank_accel2 = -crank_pivot1 * (coupler_out12 + coupler_out12);
+    const double crank_accel3 = -crank_pivot1 * (coupler_out13 + coupler_out13);
     const double crank_accel4 = -crank_pivot1 * (coupler_out16 + 0.1 * (-crank_weight_e_2 + coupler_out11));
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: 1 / pivot of the joint's accelerations
     const double rocker_pivot1 = derived2_;
     // cut_joint.mbg:17:7  articulated-body elimination, body rocker: joint acceleration as an affine function of the parent's motion
-    const double rocker_accel2 = -rocker_pivot1 * (cse10 + cse10);
-    const double rocker_accel3 = -rocker_pivot1 * (cse14 + cse14);
+    const double rocker_accel2 = -rocker_pivot1 * (cse8 + cse8);
+    const double rocker_accel3 = -rocker_pivot1 * (cse12 + cse12);
     const double rocker_accel4 = rocker_pivot1 * (0.1 * rocker_weight_e_2);
     // cut_joint.mbg:14:7  articulated-body elimination, body crank: the cut joints' columns: an unknown their rows read, affine in their multipliers
     const double crank_column5 = 0.1 * crank_accel2;
     const double crank_column6 = 0.1 * crank_accel3;
     const double crank_column7 = 0.1 * crank_accel4;
     // cut_joint.mbg:15:7  articulated-body elimination, body coupler: the cut joints' columns: an unknown their rows read, affine in their multipliers
-    const double coupler_column17 = cse6 * crank_accel2 + cse4 * crank_column5;
-    const double coupler_column18 = cse6 * crank_accel3 + cse4 * crank_column6;
-    const double coupler_column19 = cse20 + cse6 * crank_accel4 + cse4 * crank_column7;
+    const double coupler_column17 = cse18 * crank_accel2 + cse4 * crank_column5;
+    const double coupler_column18 = cse18 * crank_accel3 + cse4 * crank_column6;
+    const double coupler_column19 = cse19 + cse18 * crank_accel4 + cse4 * crank_column7;
     const double coupler_column20 = coupler_accel2 + coupler_accel4 * crank_accel2 + coupler_accel5 * crank_column5;
     const double coupler_column21 = coupler_accel3 + coupler_accel4 * crank_accel3 + coupler_accel5 * crank_column6;
     const double coupler_column22 = coupler_accel6 + coupler_accel4 * crank_accel4 + coupler_accel5 * crank_column7;
-    const double coupler_column23 = cse16 * crank_accel2 + 0.5 * coupler_column20 + cse5 * crank_column5;
-    const double coupler_column24 = cse16 * crank_accel3 + 0.5 * coupler_column21 + cse5 * crank_column6;
-    const double coupler_column25 = cse18 + cse16 * crank_accel4 + 0.5 * coupler_column22 + cse5 * crank_column7;
+    const double coupler_column23 = cse14 * crank_accel2 + 0.5 * coupler_column20 + cse5 * crank_column5;
+    const double coupler_column24 = cse14 * crank_accel3 + 0.5 * coupler_column21 + cse5 * crank_column6;
+    const double coupler_column25 = -cse16 + cse14 * crank_accel4 + 0.5 * coupler_column22 + cse5 * crank_column7;
     const double coupler_column26 = crank_accel2 + coupler_column20;
     const double coupler_column27 = crank_accel3 + coupler_column21;
     const double coupler_column28 = crank_accel4 + coupler_column22;
@@ -350,13 +347,13 @@ class cut_joint_model final : public mbgrt::Model {
     const double rocker_column7 = 0.1 * rocker_accel4;
     // cut_joint.mbg:16:7  cut joints: 2 multipliers from their rows at acceleration level, an 2x2 system solved at run time
     // A x = b for x = (j3.cn.e[1], j3.cn.e[2])
-    const double cse23 = 2.0 * j3_stabilisation;
-    const double cse24 = j3_stabilisation * j3_stabilisation;
+    const double cse20 = 2.0 * j3_stabilisation;
+    const double cse21 = j3_stabilisation * j3_stabilisation;
     double blk1_a[4] = {
-        -coupler_pose_R11 * coupler_column17 - coupler_pose_R12 * coupler_column23 - cse8 * coupler_column26 + rocker_pose_R12 * rocker_column5 + cse10 * rocker_accel2, -coupler_pose_R11 * coupler_column18 - coupler_pose_R12 * coupler_column24 - cse8 * coupler_column27 + rocker_pose_R12 * rocker_column6 + cse10 * rocker_accel3,
-        -coupler_pose_R21 * coupler_column17 - coupler_pose_R22 * coupler_column23 - cse13 * coupler_column26 + rocker_pose_R22 * rocker_column5 + cse14 * rocker_accel2, -coupler_pose_R21 * coupler_column18 - coupler_pose_R22 * coupler_column24 - cse13 * coupler_column27 + rocker_pose_R22 * rocker_column6 + cse14 * rocker_accel3,
+        -coupler_pose_R11 * coupler_column17 - coupler_pose_R12 * coupler_column23 - cse6 * coupler_column26 + rocker_pose_R12 * rocker_column5 + cse8 * rocker_accel2, -coupler_pose_R11 * coupler_column18 - coupler_pose_R12 * coupler_column24 - cse6 * coupler_column27 + rocker_pose_R12 * rocker_column6 + cse8 * rocker_accel3,
+        -coupler_pose_R21 * coupler_column17 - coupler_pose_R22 * coupler_column23 - cse11 * coupler_column26 + rocker_pose_R22 * rocker_column5 + cse12 * rocker_accel2, -coupler_pose_R21 * coupler_column18 - coupler_pose_R22 * coupler_column24 - cse11 * coupler_column27 + rocker_pose_R22 * rocker_column6 + cse12 * rocker_accel3,
     };
-    double blk1_x[2] = {-(cse23 * j3_cn_f_1 + cse24 * (rocker_pose_r1 + cse12 - (coupler_pose_r1 + cse11)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column19 - coupler_pose_R12 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse8 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse10 * rocker_accel4))), -(cse23 * j3_cn_f_2 + cse24 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse15)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column19 - coupler_pose_R22 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse13 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse14 * rocker_accel4)))};
+    double blk1_x[2] = {-(cse20 * j3_cn_f_1 + cse21 * (rocker_pose_r1 + cse10 - (coupler_pose_r1 + cse9)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column19 - coupler_pose_R12 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse6 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse8 * rocker_accel4))), -(cse20 * j3_cn_f_2 + cse21 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse13)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column19 - coupler_pose_R22 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse11 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse12 * rocker_accel4)))};
     static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
     int blk1_dependent[2];
     const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
@@ -399,26 +396,26 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
     // (cseN: a subexpression several equations below share)
-    const double cse25 = std::cos(j2_theta_q);
-    const double cse26 = std::sin(j2_theta_q);
-    const double coupler_pose_R11 = crank_pose_R11 * cse25 + crank_pose_R12 * cse26;
+    const double cse22 = std::cos(j2_theta_q);
+    const double cse23 = std::sin(j2_theta_q);
+    const double coupler_pose_R11 = crank_pose_R11 * cse22 + crank_pose_R12 * cse23;
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse27 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse27;
+    const double cse24 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse24;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse28 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse28;
+    const double cse25 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse25;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse25 + crank_pose_R22 * cse26;
+    const double coupler_pose_R21 = crank_pose_R21 * cse22 + crank_pose_R22 * cse23;
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse29 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse29;
+    const double cse26 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse26;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
     const double rocker_pose_R21 = std::sin(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r2
@@ -426,9 +423,9 @@ class cut_joint_model final : public mbgrt::Model {
     // outputs, in declaration order
     out[0] = j1_theta_q;
     out[1] = j4_theta_q;
-    const double cse30 = coupler_pose_r1 + cse27 - (rocker_pose_r1 + cse28);
-    const double cse31 = coupler_pose_r2 + cse29 - (rocker_pose_r2 + rocker_pose_r2);
-    out[2] = std::sqrt(cse30 * cse30 + cse31 * cse31);
+    const double cse27 = coupler_pose_r1 + cse24 - (rocker_pose_r1 + cse25);
+    const double cse28 = coupler_pose_r2 + cse26 - (rocker_pose_r2 + rocker_pose_r2);
+    out[2] = std::sqrt(cse27 * cse27 + cse28 * cse28);
   }
 
   std::size_t position_constraint_count() const override {
@@ -464,37 +461,37 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R21 = std::sin(j1_theta_q);
     // cut_joint.mbg:14:7  MTF j1.m2: f2 = T f1
     const double j1_m2_f2_2 = 0.1 * j1_theta_rate_rate;
+    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_2 = j1_m2_f2_2;
+    // cut_joint.mbg:15:7  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_2 = j1_m2_f2_2 + j2_m3_f2_2;
     // cut_joint.mbg:14:7  signal crank.pose.R22
     const double crank_pose_R22 = std::cos(j1_theta_q);
     // cut_joint.mbg:15:7  signal coupler.pose.R22
     // (cseN: a subexpression several equations below share)
-    const double cse32 = std::sin(j2_theta_q);
-    const double cse33 = std::cos(j2_theta_q);
-    const double coupler_pose_R22 = -crank_pose_R21 * cse32 + crank_pose_R22 * cse33;
+    const double cse29 = std::sin(j2_theta_q);
+    const double cse30 = std::cos(j2_theta_q);
+    const double coupler_pose_R22 = -crank_pose_R21 * cse29 + crank_pose_R22 * cse30;
     // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
     const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
-    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_1 = cse32 * j1_m2_f2_2;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_1 = 0.1 * cse32 * j1_theta_rate_rate;
+    const double j2_m4_f2_1 = cse29 * j2_m4_f1_2;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_1 = j2_m3_f2_1 + j2_m4_f2_1;
-    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_2 = cse33 * j1_m2_f2_2;
+    const double j2_reaction_f_f_1 = j2_m4_f2_1;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_2 = 0.1 * cse33 * j1_theta_rate_rate;
+    const double j2_m4_f2_2 = cse30 * j2_m4_f1_2;
     // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_2 = j2_m3_f2_2 + j2_m4_f2_2 + j2_m5_f2_2;
+    const double j2_reaction_f_f_2 = j2_m4_f2_2 + j2_m5_f2_2;
     // cut_joint.mbg:14:7  signal crank.pose.R11
     const double crank_pose_R11 = crank_pose_R22;
     // cut_joint.mbg:14:7  signal crank.pose.R12
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
-    const double coupler_pose_R11 = crank_pose_R11 * cse33 + crank_pose_R12 * cse32;
+    const double coupler_pose_R11 = crank_pose_R11 * cse30 + crank_pose_R12 * cse29;
     // cut_joint.mbg:15:7  signal coupler.pose.R12
-    const double coupler_pose_R12 = -crank_pose_R11 * cse32 + crank_pose_R12 * cse33;
+    const double coupler_pose_R12 = -crank_pose_R11 * cse29 + crank_pose_R12 * cse30;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -502,8 +499,8 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
     const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
     // cut_joint.mbg:17:7  signal rocker.pose.R12
-    const double cse34 = std::sin(j4_theta_q);
-    const double rocker_pose_R12 = -cse34;
+    const double cse31 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse31;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
@@ -513,15 +510,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse35 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse35;
+    const double cse32 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse32;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse36 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse36;
+    const double cse33 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse33;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse33 + crank_pose_R22 * cse32;
+    const double coupler_pose_R21 = crank_pose_R21 * cse30 + crank_pose_R22 * cse29;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -537,15 +534,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse37 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse37;
+    const double cse34 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse34;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
-    const double rocker_pose_R21 = cse34;
+    const double rocker_pose_R21 = cse31;
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
     // g, then gdot
-    rows_out[0] = rocker_pose_r1 + cse36 - (coupler_pose_r1 + cse35);
-    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse37);
+    rows_out[0] = rocker_pose_r1 + cse33 - (coupler_pose_r1 + cse32);
+    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse34);
     rows_out[2] = 0.0;
     rows_out[3] = 0.0;
     rows_out[4] = 0.0;

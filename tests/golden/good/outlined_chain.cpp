@@ -197,24 +197,22 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:17:8  Se rod1.weight: e = value
     const double rod1_weight_e_1 = -rod1_mass * (9.81 * rod1_pose_R21);
     // outlined_chain.mbg:27:9  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_1 = -j2_pa_2 * j1_theta_rate_rate;
+    // outlined_chain.mbg:27:9  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
     const double cse7 = std::cos(j2_theta_q);
-    const double j2_m3_f2_1 = cse7 * j1_m2_f2_1;
+    const double j2_m4_f2_1 = cse7 * j2_m4_f1_1;
     const double cse8 = std::sin(j2_theta_q);
-    const double cse9 = cse8 * j1_m2_f2_1;
-    const double j2_m3_f2_2 = -cse9;
-    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
-    const double cse10 = cse7 * j2_pa_2;
-    const double cse11 = cse10 * j1_theta_rate_rate;
-    const double j2_m4_f2_1 = -cse11;
-    const double cse12 = cse8 * j2_pa_2;
-    const double j2_m4_f2_2 = cse12 * j1_theta_rate_rate;
+    const double cse9 = cse8 * j2_m4_f1_1;
+    const double j2_m4_f2_2 = -cse9;
     // outlined_chain.mbg:27:9  signal rod2.pose.R21
     const double rod2_pose_R21 = rod1_pose_R21 * cse7 + rod1_pose_R22 * cse8;
     // outlined_chain.mbg:27:9  signal rod2.pose.R22
     const double rod2_pose_R22 = -rod1_pose_R21 * cse8 + rod1_pose_R22 * cse7;
     // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_2 = j2_m3_f2_2 + j2_m4_f2_2;
+    const double j2_reaction_f_f_2 = j2_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
     const double rod2_m_p_2 = rod2_mass * j2_reaction_f_f_2;
     // outlined_chain.mbg:27:9  0 j2.wsum: flows in = flows out
@@ -224,7 +222,7 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_1 = j2_pb_2 * j2_reaction_t_f_3;
     // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_1 = j2_m3_f2_1 + j2_m4_f2_1 + j2_m5_f2_1;
+    const double j2_reaction_f_f_1 = j2_m4_f2_1 + j2_m5_f2_1;
     // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
     const double rod2_m_p_1 = rod2_mass * j2_reaction_f_f_1;
     // outlined_chain.mbg:17:8  R rod2.ejs_v: e = law(f)
@@ -232,50 +230,50 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:17:8  Se rod2.weight: e = value
     const double rod2_weight_e_1 = -rod2_mass * (9.81 * rod2_pose_R21);
     const double rod2_weight_e_2 = -rod2_mass * (9.81 * rod2_pose_R22);
-    rod2_kin[0] = rod2_pose_R21;
-    rod2_kin[1] = rod2_pose_R22;
-    rod2_kin[2] = j2_reaction_f_f_2;
-    rod2_kin[3] = j2_reaction_t_f_3;
-    rod2_kin[4] = rod2_ejs_v_e_1;
-    rod2_kin[5] = j2_reaction_f_f_1;
-    rod2_kin[6] = rod2_ejs_v_e_2;
-    rod2_kin[7] = rod2_weight_e_1;
-    rod2_kin[8] = rod2_weight_e_2;
+    rod2_kin[0] = j2_m4_f1_1;
+    rod2_kin[1] = rod2_pose_R21;
+    rod2_kin[2] = rod2_pose_R22;
+    rod2_kin[3] = j2_reaction_f_f_2;
+    rod2_kin[4] = j2_reaction_t_f_3;
+    rod2_kin[5] = rod2_ejs_v_e_1;
+    rod2_kin[6] = j2_reaction_f_f_1;
+    rod2_kin[7] = rod2_ejs_v_e_2;
+    rod2_kin[8] = rod2_weight_e_1;
+    rod2_kin[9] = rod2_weight_e_2;
     // outlined_chain.mbg:27:9  body rod3: derivative_shape1() (the same equations as 2 bodies)
-    double rod3_in[5] = {j3_theta_q, j3_pa_2, rod3_mass, j3_theta_rate_rate, j3_pb_2};
+    double rod3_in[5] = {j3_pa_2, j3_theta_q, rod3_mass, j3_theta_rate_rate, j3_pb_2};
     derivative_shape1(rod3_in, rod2_kin, rod3_kin);
     // outlined_chain.mbg:27:9  body rod4: derivative_shape1() (the same equations as 2 bodies)
-    double rod4_in[5] = {j4_theta_q, j4_pa_2, rod4_mass, j4_theta_rate_rate, j4_pb_2};
+    double rod4_in[5] = {j4_pa_2, j4_theta_q, rod4_mass, j4_theta_rate_rate, j4_pb_2};
     derivative_shape1(rod4_in, rod3_kin, rod4_kin);
     // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
-    const double cse15 = std::cos(j5_theta_q);
-    const double cse16 = cse15 * rod4_kin[5];
-    const double cse17 = std::sin(j5_theta_q);
-    const double cse18 = cse17 * rod4_kin[2];
-    const double j5_m3_f2_1 = cse16 + cse18;
-    const double j5_m3_f2_2 = -cse17 * rod4_kin[5] + cse15 * rod4_kin[2];
+    const double j5_m3_f2_1 = -j5_pa_2 * rod4_kin[4];
+    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
+    const double j5_m4_f1_1 = rod4_kin[6] + j5_m3_f2_1;
+    const double j5_m4_f1_2 = rod4_kin[3];
     // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
-    const double cse19 = cse15 * j5_pa_2;
-    const double cse20 = cse19 * rod4_kin[3];
-    const double j5_m4_f2_1 = -cse20;
-    const double cse21 = cse17 * j5_pa_2;
-    const double j5_m4_f2_2 = cse21 * rod4_kin[3];
+    const double cse12 = std::cos(j5_theta_q);
+    const double cse13 = cse12 * j5_m4_f1_1;
+    const double cse14 = std::sin(j5_theta_q);
+    const double cse15 = cse14 * j5_m4_f1_2;
+    const double j5_m4_f2_1 = cse13 + cse15;
+    const double j5_m4_f2_2 = -cse14 * j5_m4_f1_1 + cse12 * j5_m4_f1_2;
     // outlined_chain.mbg:27:9  signal rod5.pose.R21
-    const double rod5_pose_R21 = rod4_kin[0] * cse15 + rod4_kin[1] * cse17;
+    const double rod5_pose_R21 = rod4_kin[1] * cse12 + rod4_kin[2] * cse14;
     // outlined_chain.mbg:27:9  signal rod5.pose.R22
-    const double rod5_pose_R22 = -rod4_kin[0] * cse17 + rod4_kin[1] * cse15;
+    const double rod5_pose_R22 = -rod4_kin[1] * cse14 + rod4_kin[2] * cse12;
     // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
-    const double j5_reaction_f_f_2 = j5_m3_f2_2 + j5_m4_f2_2;
+    const double j5_reaction_f_f_2 = j5_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
     const double rod5_m_p_2 = rod5_mass * j5_reaction_f_f_2;
     // outlined_chain.mbg:27:9  0 j5.wsum: flows in = flows out
-    const double j5_reaction_t_f_3 = rod4_kin[3] + j5_theta_rate_rate;
+    const double j5_reaction_t_f_3 = rod4_kin[4] + j5_theta_rate_rate;
     // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
     const double rod5_ejs_v_e_1 = -j5_reaction_t_f_3 * rod5_m_p_2;
     // outlined_chain.mbg:27:9  MTF j5.m5: f2 = T f1
     const double j5_m5_f2_1 = j5_pb_2 * j5_reaction_t_f_3;
     // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
-    const double j5_reaction_f_f_1 = j5_m3_f2_1 + j5_m4_f2_1 + j5_m5_f2_1;
+    const double j5_reaction_f_f_1 = j5_m4_f2_1 + j5_m5_f2_1;
     // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
     const double rod5_m_p_1 = rod5_mass * j5_reaction_f_f_1;
     // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
@@ -284,91 +282,82 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod5_weight_e_1 = -rod5_mass * (9.81 * rod5_pose_R21);
     const double rod5_weight_e_2 = -rod5_mass * (9.81 * rod5_pose_R22);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: 1 / pivot of the joint's accelerations
-    const double cse22 = rod5_mass * j5_pb_2;
+    const double cse16 = rod5_mass * j5_pb_2;
     const double rod5_pivot1 = derived1_;
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: joint acceleration as an affine function of the parent's motion
-    const double cse23 = rod5_mass * (-cse19 + j5_pb_2);
-    const double rod5_accel2 = -rod5_pivot1 * (rod5_inertia_3_3 + j5_pb_2 * cse23);
-    const double cse24 = rod5_mass * cse15;
-    const double rod5_accel3 = -rod5_pivot1 * (j5_pb_2 * cse24);
-    const double cse25 = rod5_mass * cse17;
-    const double rod5_accel4 = -rod5_pivot1 * (j5_pb_2 * cse25);
-    const double cse26 = -(rod5_weight_e_1 - rod5_ejs_v_e_1) + rod5_mass * (j5_m3_f2_2 * j5_theta_rate_rate + j5_m4_f2_2 * j5_theta_rate_rate);
-    const double rod5_accel5 = -rod5_pivot1 * (j5_pb_2 * cse26);
+    const double cse17 = rod5_mass * (-cse12 * j5_pa_2 + j5_pb_2);
+    const double rod5_accel2 = -rod5_pivot1 * (rod5_inertia_3_3 + j5_pb_2 * cse17);
+    const double cse18 = rod5_mass * cse12;
+    const double rod5_accel3 = -rod5_pivot1 * (j5_pb_2 * cse18);
+    const double cse19 = rod5_mass * cse14;
+    const double rod5_accel4 = -rod5_pivot1 * (j5_pb_2 * cse19);
+    const double cse20 = -(rod5_weight_e_1 - rod5_ejs_v_e_1) + rod5_mass * (j5_m4_f2_2 * j5_theta_rate_rate);
+    const double rod5_accel5 = -rod5_pivot1 * (j5_pb_2 * cse20);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse27 = cse15 * cse22;
-    const double cse28 = rod5_mass * cse21;
-    const double rod5_out6 = cse27 * rod5_accel2 + (cse15 * cse23 - cse17 * cse28);
-    const double cse29 = cse15 * cse24;
-    const double cse30 = cse17 * cse25;
-    const double rod5_out7 = cse27 * rod5_accel3 + (cse29 + cse30);
-    const double cse31 = cse15 * cse25;
-    const double cse32 = cse17 * cse24;
-    const double rod5_out8 = cse27 * rod5_accel4 + (cse31 - cse32);
-    const double cse33 = -(rod5_weight_e_2 - rod5_ejs_v_e_2) + rod5_mass * ((-cse16 - cse18) * j5_theta_rate_rate + cse20 * j5_theta_rate_rate);
-    const double rod5_out9 = cse15 * cse26 - cse17 * cse33 + cse27 * rod5_accel5;
-    const double cse34 = cse17 * cse22;
-    const double rod5_out10 = cse34 * rod5_accel2 + (cse17 * cse23 + cse15 * cse28);
-    const double rod5_out11 = cse34 * rod5_accel3 + (cse32 - cse31);
-    const double rod5_out12 = cse34 * rod5_accel4 + (cse30 + cse29);
-    const double rod5_out13 = cse17 * cse26 + cse15 * cse33 + cse34 * rod5_accel5;
-    const double cse35 = cse19 * cse22;
-    const double rod5_out14 = -cse35 * rod5_accel2 + (-cse19 * cse23 + cse21 * cse28);
-    const double rod5_out15 = -cse35 * rod5_accel3 + (-cse19 * cse24 - cse21 * cse25);
-    const double rod5_out16 = -cse35 * rod5_accel4 + (-cse19 * cse25 + cse21 * cse24);
-    const double rod5_out17 = -cse19 * cse26 + cse21 * cse33 - cse35 * rod5_accel5;
-    rod5_kin[9] = rod5_accel2;
-    rod5_kin[10] = rod5_accel3;
-    rod5_kin[11] = rod5_accel4;
-    rod5_kin[12] = rod5_accel5;
-    rod5_kin[13] = rod5_out6;
-    rod5_kin[14] = rod5_out7;
-    rod5_kin[15] = rod5_out8;
-    rod5_kin[16] = rod5_out9;
-    rod5_kin[17] = rod5_out10;
-    rod5_kin[18] = rod5_out11;
-    rod5_kin[19] = rod5_out12;
-    rod5_kin[20] = rod5_out13;
-    rod5_kin[21] = rod5_out14;
-    rod5_kin[22] = rod5_out15;
-    rod5_kin[23] = rod5_out16;
-    rod5_kin[24] = rod5_out17;
+    const double cse21 = cse12 * cse16;
+    const double cse22 = rod5_mass * (cse14 * j5_pa_2);
+    const double rod5_out6 = cse21 * rod5_accel2 + (cse12 * cse17 - cse14 * cse22);
+    const double cse23 = cse12 * cse18;
+    const double cse24 = cse14 * cse19;
+    const double rod5_out7 = cse21 * rod5_accel3 + (cse23 + cse24);
+    const double cse25 = cse12 * cse19;
+    const double cse26 = cse14 * cse18;
+    const double rod5_out8 = cse21 * rod5_accel4 + (cse25 - cse26);
+    const double cse27 = -(rod5_weight_e_2 - rod5_ejs_v_e_2) + rod5_mass * ((-cse13 - cse15) * j5_theta_rate_rate);
+    const double rod5_out9 = cse12 * cse20 - cse14 * cse27 + cse21 * rod5_accel5;
+    const double cse28 = cse14 * cse16;
+    const double rod5_out10 = cse28 * rod5_accel2 + (cse14 * cse17 + cse12 * cse22);
+    const double rod5_out11 = cse28 * rod5_accel3 + (cse26 - cse25);
+    const double rod5_out12 = cse28 * rod5_accel4 + (cse24 + cse23);
+    const double rod5_out13 = cse14 * cse20 + cse12 * cse27 + cse28 * rod5_accel5;
+    const double rod5_out14 = -j5_pa_2 * rod5_out6;
+    const double rod5_out15 = -j5_pa_2 * rod5_out7;
+    const double rod5_out16 = -j5_pa_2 * rod5_out8;
+    const double rod5_out17 = -j5_pa_2 * rod5_out9;
+    rod5_kin[11] = rod5_accel2;
+    rod5_kin[12] = rod5_accel3;
+    rod5_kin[13] = rod5_accel4;
+    rod5_kin[14] = rod5_accel5;
+    rod5_kin[15] = rod5_out6;
+    rod5_kin[16] = rod5_out7;
+    rod5_kin[17] = rod5_out8;
+    rod5_kin[18] = rod5_out9;
+    rod5_kin[19] = rod5_out10;
+    rod5_kin[20] = rod5_out11;
+    rod5_kin[21] = rod5_out12;
+    rod5_kin[22] = rod5_out13;
+    rod5_kin[23] = rod5_out14;
+    rod5_kin[24] = rod5_out15;
+    rod5_kin[25] = rod5_out16;
+    rod5_kin[26] = rod5_out17;
     // outlined_chain.mbg:27:9  body rod4: derivative_shape2() (the same equations as 2 bodies)
     double rod4_in_2[7] = {rod4_inertia_3_3, j4_pb_2, rod4_mass * j4_pb_2, rod4_mass, j4_theta_q, j4_pa_2, j4_theta_rate_rate};
-    derivative_shape2(rod4_in_2, rod5_kin, rod4_kin, rod3_kin, rod4_elim);
+    derivative_shape2(rod4_in_2, rod5_kin, rod4_kin, rod4_elim);
     // outlined_chain.mbg:27:9  body rod3: derivative_shape2() (the same equations as 2 bodies)
     double rod3_in_2[7] = {rod3_inertia_3_3, j3_pb_2, rod3_mass * j3_pb_2, rod3_mass, j3_theta_q, j3_pa_2, j3_theta_rate_rate};
-    derivative_shape2(rod3_in_2, rod4_elim, rod3_kin, rod2_kin, rod3_elim);
+    derivative_shape2(rod3_in_2, rod4_elim, rod3_kin, rod3_elim);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: 1 / pivot of the joint's accelerations
-    const double cse58 = rod2_mass * j2_pb_2 + rod3_elim[13] + rod3_elim[14] * j2_pb_2;
-    const double rod2_pivot1 = 1.0 / (rod2_inertia_3_3 + j2_pb_2 * cse58 + rod3_elim[21] + rod3_elim[22] * j2_pb_2);
+    const double cse49 = rod2_mass * j2_pb_2 + rod3_elim[15] + rod3_elim[16] * j2_pb_2;
+    const double rod2_pivot1 = 1.0 / (rod2_inertia_3_3 + j2_pb_2 * cse49 + rod3_elim[23] + rod3_elim[24] * j2_pb_2);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: joint acceleration as an affine function of the parent's motion
-    const double cse59 = -cse10 + j2_pb_2;
-    const double cse60 = rod2_mass * cse59 + rod3_elim[13] + rod3_elim[14] * cse59 + rod3_elim[15] * cse12;
-    const double rod2_accel2 = -rod2_pivot1 * (rod2_inertia_3_3 + j2_pb_2 * cse60 + rod3_elim[21] + rod3_elim[22] * cse59 + rod3_elim[23] * cse12);
-    const double cse61 = rod2_mass * cse7 + rod3_elim[14] * cse7 - rod3_elim[15] * cse8;
-    const double rod2_accel3 = -rod2_pivot1 * (j2_pb_2 * cse61 + rod3_elim[22] * cse7 - rod3_elim[23] * cse8);
-    const double cse62 = cse9 * j2_theta_rate_rate;
-    const double cse63 = j2_m4_f2_2 * j2_theta_rate_rate;
-    const double cse64 = -cse62 + cse63;
-    const double cse65 = j2_m3_f2_1 * j2_theta_rate_rate;
-    const double cse66 = cse11 * j2_theta_rate_rate;
-    const double cse67 = -cse65 + cse66;
-    const double cse68 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod3_elim[16] + rod2_mass * cse64 + rod3_elim[14] * cse64 + rod3_elim[15] * cse67;
-    const double rod2_accel4 = -rod2_pivot1 * (rod3_elim[24] + j2_pb_2 * cse68 + rod3_elim[22] * cse64 + rod3_elim[23] * cse67);
+    const double cse50 = -cse7 * j2_pa_2 + j2_pb_2;
+    const double cse51 = cse8 * j2_pa_2;
+    const double cse52 = rod2_mass * cse50 + rod3_elim[15] + rod3_elim[16] * cse50 + rod3_elim[17] * cse51;
+    const double rod2_accel2 = -rod2_pivot1 * (rod2_inertia_3_3 + j2_pb_2 * cse52 + rod3_elim[23] + rod3_elim[24] * cse50 + rod3_elim[25] * cse51);
+    const double cse53 = rod2_mass * cse7 + rod3_elim[16] * cse7 - rod3_elim[17] * cse8;
+    const double rod2_accel3 = -rod2_pivot1 * (j2_pb_2 * cse53 + rod3_elim[24] * cse7 - rod3_elim[25] * cse8);
+    const double cse54 = cse9 * j2_theta_rate_rate;
+    const double cse55 = j2_m4_f2_1 * j2_theta_rate_rate;
+    const double cse56 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod3_elim[18] - rod2_mass * cse54 - rod3_elim[16] * cse54 - rod3_elim[17] * cse55;
+    const double rod2_accel4 = -rod2_pivot1 * (rod3_elim[26] + j2_pb_2 * cse56 - rod3_elim[24] * cse54 - rod3_elim[25] * cse55);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse69 = rod2_mass * cse12 + rod3_elim[17] + rod3_elim[18] * cse59 + rod3_elim[19] * cse12;
-    const double cse70 = rod3_elim[17] + rod3_elim[18] * j2_pb_2;
-    const double cse71 = cse7 * cse58 - cse8 * cse70;
-    const double rod2_out5 = cse7 * cse60 - cse8 * cse69 + cse71 * rod2_accel2;
-    const double cse72 = -rod2_mass * cse8 + rod3_elim[18] * cse7 - rod3_elim[19] * cse8;
-    const double rod2_out6 = cse71 * rod2_accel3 + (cse7 * cse61 - cse8 * cse72);
-    const double cse73 = -(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod3_elim[20] + rod2_mass * cse67 + rod3_elim[18] * cse64 + rod3_elim[19] * cse67;
-    const double rod2_out7 = cse7 * cse68 - cse8 * cse73 + cse71 * rod2_accel4;
-    const double cse74 = -cse10 * cse58 + cse12 * cse70;
-    const double rod2_out8 = -cse10 * cse60 + cse12 * cse69 + cse74 * rod2_accel2;
-    const double rod2_out9 = cse74 * rod2_accel3 + (-cse10 * cse61 + cse12 * cse72);
-    const double rod2_out10 = -cse10 * cse68 + cse12 * cse73 + cse74 * rod2_accel4;
+    const double cse57 = cse7 * cse49 - cse8 * (rod3_elim[19] + rod3_elim[20] * j2_pb_2);
+    const double rod2_out5 = cse7 * cse52 - cse8 * (rod2_mass * cse51 + rod3_elim[19] + rod3_elim[20] * cse50 + rod3_elim[21] * cse51) + cse57 * rod2_accel2;
+    const double rod2_out6 = cse57 * rod2_accel3 + (cse7 * cse53 - cse8 * (-rod2_mass * cse8 + rod3_elim[20] * cse7 - rod3_elim[21] * cse8));
+    const double rod2_out7 = cse7 * cse56 - cse8 * (-(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod3_elim[22] - rod2_mass * cse55 - rod3_elim[20] * cse54 - rod3_elim[21] * cse55) + cse57 * rod2_accel4;
+    const double rod2_out8 = -j2_pa_2 * rod2_out5;
+    const double rod2_out9 = -j2_pa_2 * rod2_out6;
+    const double rod2_out10 = -j2_pa_2 * rod2_out7;
     // outlined_chain.mbg:25:7  articulated-body elimination, body rod1: 1 / pivot of the joint's accelerations
     const double rod1_pivot1 = 1.0 / (rod1_inertia_3_3 + j1_pb_2 * (rod1_mass * j1_pb_2 + rod2_out5 + rod2_out6 * j1_pb_2) + rod2_out8 + rod2_out9 * j1_pb_2);
     // outlined_chain.mbg:25:7  articulated-body elimination, body rod1: joint acceleration as an affine function of the parent's motion
@@ -380,41 +369,41 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  joint acceleration of body rod2 from its parent's motion (articulated-body form)
     const double der_j2_theta_rate_rate = rod2_accel4 + rod2_accel2 * der_j1_theta_rate_rate + rod2_accel3 * der_j1_m2_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m3: f2 = T f1]
-    const double der_j2_m3_f2_1 = cse7 * der_j1_m2_f2_1 - cse62;
+    const double der_j2_m3_f2_1 = -j2_pa_2 * der_j1_theta_rate_rate;
+    // outlined_chain.mbg:27:9  d/dt of [0 j2.vpa: flows in = flows out]
+    const double der_j2_m4_f1_1 = der_j1_m2_f2_1 + der_j2_m3_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m4: f2 = T f1]
-    const double der_j2_m4_f2_1 = -cse10 * der_j1_theta_rate_rate + cse63;
+    const double der_j2_m4_f2_1 = cse7 * der_j2_m4_f1_1 - cse54;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.wsum: flows in = flows out]
     const double der_j2_reaction_t_f_3 = der_j1_theta_rate_rate + der_j2_theta_rate_rate;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m5: f2 = T f1]
     const double der_j2_m5_f2_1 = j2_pb_2 * der_j2_reaction_t_f_3;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vsum: flows in = flows out]
-    const double der_j2_reaction_f_f_1 = der_j2_m3_f2_1 + der_j2_m4_f2_1 + der_j2_m5_f2_1;
-    // outlined_chain.mbg:27:9  d/dt of [MTF j2.m3: f2 = T f1]
-    const double der_j2_m3_f2_2 = -cse8 * der_j1_m2_f2_1 - cse65;
+    const double der_j2_reaction_f_f_1 = der_j2_m4_f2_1 + der_j2_m5_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m4: f2 = T f1]
-    const double der_j2_m4_f2_2 = cse12 * der_j1_theta_rate_rate + cse66;
+    const double der_j2_m4_f2_2 = -cse8 * der_j2_m4_f1_1 - cse55;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vsum: flows in = flows out]
-    const double der_j2_reaction_f_f_2 = der_j2_m3_f2_2 + der_j2_m4_f2_2;
-    rod2_acc[26] = der_j2_theta_rate_rate;
-    rod2_acc[27] = der_j2_reaction_t_f_3;
-    rod2_acc[28] = der_j2_reaction_f_f_1;
-    rod2_acc[29] = der_j2_reaction_f_f_2;
+    const double der_j2_reaction_f_f_2 = der_j2_m4_f2_2;
+    rod2_acc[28] = der_j2_theta_rate_rate;
+    rod2_acc[29] = der_j2_reaction_t_f_3;
+    rod2_acc[30] = der_j2_reaction_f_f_1;
+    rod2_acc[31] = der_j2_reaction_f_f_2;
     // outlined_chain.mbg:27:9  body rod3: derivative_shape3() (the same equations as 2 bodies)
-    double rod3_in_3[4] = {j3_theta_q, j3_theta_rate_rate, j3_pa_2, j3_pb_2};
-    derivative_shape3(rod3_in_3, rod3_elim, rod2_acc, rod2_kin, rod3_acc);
+    double rod3_in_3[4] = {j3_pa_2, j3_theta_q, j3_theta_rate_rate, j3_pb_2};
+    derivative_shape3(rod3_in_3, rod3_elim, rod2_acc, rod3_kin, rod3_acc);
     // outlined_chain.mbg:27:9  body rod4: derivative_shape3() (the same equations as 2 bodies)
-    double rod4_in_3[4] = {j4_theta_q, j4_theta_rate_rate, j4_pa_2, j4_pb_2};
-    derivative_shape3(rod4_in_3, rod4_elim, rod3_acc, rod3_kin, rod4_acc);
+    double rod4_in_3[4] = {j4_pa_2, j4_theta_q, j4_theta_rate_rate, j4_pb_2};
+    derivative_shape3(rod4_in_3, rod4_elim, rod3_acc, rod4_kin, rod4_acc);
     // outlined_chain.mbg:27:9  joint acceleration of body rod5 from its parent's motion (articulated-body form)
-    const double der_j5_theta_rate_rate = rod5_accel5 + rod5_accel2 * rod4_acc[27] + rod5_accel3 * rod4_acc[28] + rod5_accel4 * rod4_acc[29];
+    const double der_j5_theta_rate_rate = rod5_accel5 + rod5_accel2 * rod4_acc[29] + rod5_accel3 * rod4_acc[30] + rod5_accel4 * rod4_acc[31];
     // state derivatives
     xdot[0] = der_j1_theta_rate_rate;
     xdot[1] = j1_theta_rate_rate;
     xdot[2] = der_j2_theta_rate_rate;
     xdot[3] = j2_theta_rate_rate;
-    xdot[4] = rod3_acc[26];
+    xdot[4] = rod3_acc[28];
     xdot[5] = j3_theta_rate_rate;
-    xdot[6] = rod4_acc[26];
+    xdot[6] = rod4_acc[28];
     xdot[7] = j4_theta_rate_rate;
     xdot[8] = der_j5_theta_rate_rate;
     xdot[9] = j5_theta_rate_rate;
@@ -437,23 +426,23 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod1_pose_R22 = std::cos(j1_theta_q);
     // outlined_chain.mbg:27:9  signal rod2.pose.R21
     // (cseN: a subexpression several equations below share)
-    const double cse79 = std::cos(j2_theta_q);
-    const double cse80 = std::sin(j2_theta_q);
-    const double rod2_pose_R21 = rod1_pose_R21 * cse79 + rod1_pose_R22 * cse80;
+    const double cse60 = std::cos(j2_theta_q);
+    const double cse61 = std::sin(j2_theta_q);
+    const double rod2_pose_R21 = rod1_pose_R21 * cse60 + rod1_pose_R22 * cse61;
     // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double rod2_pose_R22 = -rod1_pose_R21 * cse80 + rod1_pose_R22 * cse79;
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse61 + rod1_pose_R22 * cse60;
     // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double cse81 = std::cos(j3_theta_q);
-    const double cse82 = std::sin(j3_theta_q);
-    const double rod3_pose_R21 = rod2_pose_R21 * cse81 + rod2_pose_R22 * cse82;
+    const double cse62 = std::cos(j3_theta_q);
+    const double cse63 = std::sin(j3_theta_q);
+    const double rod3_pose_R21 = rod2_pose_R21 * cse62 + rod2_pose_R22 * cse63;
     // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double rod3_pose_R22 = -rod2_pose_R21 * cse82 + rod2_pose_R22 * cse81;
+    const double rod3_pose_R22 = -rod2_pose_R21 * cse63 + rod2_pose_R22 * cse62;
     // outlined_chain.mbg:27:9  signal rod4.pose.R21
-    const double cse83 = std::cos(j4_theta_q);
-    const double cse84 = std::sin(j4_theta_q);
-    const double rod4_pose_R21 = rod3_pose_R21 * cse83 + rod3_pose_R22 * cse84;
+    const double cse64 = std::cos(j4_theta_q);
+    const double cse65 = std::sin(j4_theta_q);
+    const double rod4_pose_R21 = rod3_pose_R21 * cse64 + rod3_pose_R22 * cse65;
     // outlined_chain.mbg:27:9  signal rod4.pose.R22
-    const double rod4_pose_R22 = -rod3_pose_R21 * cse84 + rod3_pose_R22 * cse83;
+    const double rod4_pose_R22 = -rod3_pose_R21 * cse65 + rod3_pose_R22 * cse64;
     // outlined_chain.mbg:27:9  signal rod5.pose.R22
     const double rod5_pose_R22 = -rod4_pose_R21 * std::sin(j5_theta_q) + rod4_pose_R22 * std::cos(j5_theta_q);
     // outlined_chain.mbg:25:7  signal rod1.pose.r2
@@ -477,33 +466,35 @@ class outlined_chain_model final : public mbgrt::Model {
   }
 
  private:
-  // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: pose_R21, pose_R22, j3_reaction_f_f_2, j3_reaction_t_f_3, ejs_v_e_1, j3_reaction_f_f_1, ejs_v_e_2, weight_e_1, weight_e_2.
+  // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: j3_m4_f1_1, j3_m4_f1_2, pose_R21, pose_R22, j3_reaction_f_f_2, j3_reaction_t_f_3, ejs_v_e_1, j3_reaction_f_f_1, ejs_v_e_2, weight_e_1, weight_e_2.
   static void derivative_shape1(const double* in, const double* s0, double* out) {
     // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
-    // (cseN: a subexpression several equations below share)
-    const double cse13 = std::cos(in[0]);
-    const double cse14 = std::sin(in[0]);
-    const double j3_m3_f2_1 = cse13 * s0[5] + cse14 * s0[2];
-    const double j3_m3_f2_2 = -cse14 * s0[5] + cse13 * s0[2];
+    const double j3_m3_f2_1 = -in[0] * s0[4];
+    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
+    const double j3_m4_f1_1 = s0[6] + j3_m3_f2_1;
+    const double j3_m4_f1_2 = s0[3];
     // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
-    const double j3_m4_f2_1 = -cse13 * in[1] * s0[3];
-    const double j3_m4_f2_2 = cse14 * in[1] * s0[3];
+    // (cseN: a subexpression several equations below share)
+    const double cse10 = std::cos(in[1]);
+    const double cse11 = std::sin(in[1]);
+    const double j3_m4_f2_1 = cse10 * j3_m4_f1_1 + cse11 * j3_m4_f1_2;
+    const double j3_m4_f2_2 = -cse11 * j3_m4_f1_1 + cse10 * j3_m4_f1_2;
     // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double pose_R21 = s0[0] * cse13 + s0[1] * cse14;
+    const double pose_R21 = s0[1] * cse10 + s0[2] * cse11;
     // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double pose_R22 = -s0[0] * cse14 + s0[1] * cse13;
+    const double pose_R22 = -s0[1] * cse11 + s0[2] * cse10;
     // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
-    const double j3_reaction_f_f_2 = j3_m3_f2_2 + j3_m4_f2_2;
+    const double j3_reaction_f_f_2 = j3_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
     const double m_p_2 = in[2] * j3_reaction_f_f_2;
     // outlined_chain.mbg:27:9  0 j3.wsum: flows in = flows out
-    const double j3_reaction_t_f_3 = s0[3] + in[3];
+    const double j3_reaction_t_f_3 = s0[4] + in[3];
     // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
     const double ejs_v_e_1 = -j3_reaction_t_f_3 * m_p_2;
     // outlined_chain.mbg:27:9  MTF j3.m5: f2 = T f1
     const double j3_m5_f2_1 = in[4] * j3_reaction_t_f_3;
     // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
-    const double j3_reaction_f_f_1 = j3_m3_f2_1 + j3_m4_f2_1 + j3_m5_f2_1;
+    const double j3_reaction_f_f_1 = j3_m4_f2_1 + j3_m5_f2_1;
     // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
     const double m_p_1 = in[2] * j3_reaction_f_f_1;
     // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
@@ -511,122 +502,121 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:17:8  Se rod3.weight: e = value
     const double weight_e_1 = -in[2] * (9.81 * pose_R21);
     const double weight_e_2 = -in[2] * (9.81 * pose_R22);
-    out[0] = pose_R21;
-    out[1] = pose_R22;
-    out[2] = j3_reaction_f_f_2;
-    out[3] = j3_reaction_t_f_3;
-    out[4] = ejs_v_e_1;
-    out[5] = j3_reaction_f_f_1;
-    out[6] = ejs_v_e_2;
-    out[7] = weight_e_1;
-    out[8] = weight_e_2;
+    out[0] = j3_m4_f1_1;
+    out[10] = j3_m4_f1_2;
+    out[1] = pose_R21;
+    out[2] = pose_R22;
+    out[3] = j3_reaction_f_f_2;
+    out[4] = j3_reaction_t_f_3;
+    out[5] = ejs_v_e_1;
+    out[6] = j3_reaction_f_f_1;
+    out[7] = ejs_v_e_2;
+    out[8] = weight_e_1;
+    out[9] = weight_e_2;
   }
   // Equations of bodies rod4, rod3, the same up to their names (written with rod4's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: accel2, accel3, accel4, accel5, out6, out7, out8, out9, out10, out11, out12, out13, out14, out15, out16, out17.
-  static void derivative_shape2(const double* in, const double* s0, const double* s1, const double* s2, double* out) {
+  static void derivative_shape2(const double* in, const double* s0, const double* s1, double* out) {
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: 1 / pivot of the joint's accelerations
     // (cseN: a subexpression several equations below share)
-    const double cse36 = in[2] + s0[13] + s0[14] * in[1];
-    const double pivot1 = 1.0 / (in[0] + in[1] * cse36 + s0[21] + s0[22] * in[1]);
+    const double cse29 = in[2] + s0[15] + s0[16] * in[1];
+    const double pivot1 = 1.0 / (in[0] + in[1] * cse29 + s0[23] + s0[24] * in[1]);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: joint acceleration as an affine function of the parent's motion
-    const double cse37 = std::cos(in[4]);
-    const double cse38 = cse37 * in[5];
-    const double cse39 = -cse38 + in[1];
-    const double cse40 = std::sin(in[4]);
-    const double cse41 = cse40 * in[5];
-    const double cse42 = in[3] * cse39 + s0[13] + s0[14] * cse39 + s0[15] * cse41;
-    const double accel2 = -pivot1 * (in[0] + in[1] * cse42 + s0[21] + s0[22] * cse39 + s0[23] * cse41);
-    const double cse43 = in[3] * cse37;
-    const double cse44 = cse43 + s0[14] * cse37 - s0[15] * cse40;
-    const double accel3 = -pivot1 * (in[1] * cse44 + s0[22] * cse37 - s0[23] * cse40);
-    const double cse45 = in[3] * cse40;
-    const double cse46 = cse45 + s0[14] * cse40 + s0[15] * cse37;
-    const double accel4 = -pivot1 * (in[1] * cse46 + s0[22] * cse40 + s0[23] * cse37);
-    const double cse47 = (-cse40 * s2[5] + cse37 * s2[2]) * in[6] + cse41 * s2[3] * in[6];
-    const double cse48 = (-cse37 * s2[5] - cse40 * s2[2]) * in[6] + cse38 * s2[3] * in[6];
-    const double cse49 = -(s1[7] - s1[4]) + s0[16] + in[3] * cse47 + s0[14] * cse47 + s0[15] * cse48;
-    const double accel5 = -pivot1 * (s0[24] + in[1] * cse49 + s0[22] * cse47 + s0[23] * cse48);
+    const double cse30 = std::cos(in[4]);
+    const double cse31 = -cse30 * in[5] + in[1];
+    const double cse32 = std::sin(in[4]);
+    const double cse33 = cse32 * in[5];
+    const double cse34 = in[3] * cse31 + s0[15] + s0[16] * cse31 + s0[17] * cse33;
+    const double accel2 = -pivot1 * (in[0] + in[1] * cse34 + s0[23] + s0[24] * cse31 + s0[25] * cse33);
+    const double cse35 = in[3] * cse30;
+    const double cse36 = cse35 + s0[16] * cse30 - s0[17] * cse32;
+    const double accel3 = -pivot1 * (in[1] * cse36 + s0[24] * cse30 - s0[25] * cse32);
+    const double cse37 = in[3] * cse32;
+    const double cse38 = cse37 + s0[16] * cse32 + s0[17] * cse30;
+    const double accel4 = -pivot1 * (in[1] * cse38 + s0[24] * cse32 + s0[25] * cse30);
+    const double cse39 = (-cse32 * s1[0] + cse30 * s1[10]) * in[6];
+    const double cse40 = (-cse30 * s1[0] - cse32 * s1[10]) * in[6];
+    const double cse41 = -(s1[8] - s1[5]) + s0[18] + in[3] * cse39 + s0[16] * cse39 + s0[17] * cse40;
+    const double accel5 = -pivot1 * (s0[26] + in[1] * cse41 + s0[24] * cse39 + s0[25] * cse40);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse50 = s0[17] + s0[18] * in[1];
-    const double cse51 = cse37 * cse36 - cse40 * cse50;
-    const double cse52 = in[3] * cse41 + s0[17] + s0[18] * cse39 + s0[19] * cse41;
-    const double out6 = cse51 * accel2 + (cse37 * cse42 - cse40 * cse52);
-    const double cse53 = -cse45 + s0[18] * cse37 - s0[19] * cse40;
-    const double out7 = cse51 * accel3 + (cse37 * cse44 - cse40 * cse53);
-    const double cse54 = cse43 + s0[18] * cse40 + s0[19] * cse37;
-    const double out8 = cse51 * accel4 + (cse37 * cse46 - cse40 * cse54);
-    const double cse55 = -(s1[8] - s1[6]) + s0[20] + in[3] * cse48 + s0[18] * cse47 + s0[19] * cse48;
-    const double out9 = cse37 * cse49 - cse40 * cse55 + cse51 * accel5;
-    const double cse56 = cse40 * cse36 + cse37 * cse50;
-    const double out10 = cse56 * accel2 + (cse40 * cse42 + cse37 * cse52);
-    const double out11 = cse56 * accel3 + (cse40 * cse44 + cse37 * cse53);
-    const double out12 = cse56 * accel4 + (cse40 * cse46 + cse37 * cse54);
-    const double out13 = cse40 * cse49 + cse37 * cse55 + cse56 * accel5;
-    const double cse57 = -cse38 * cse36 + cse41 * cse50;
-    const double out14 = cse57 * accel2 + (-cse38 * cse42 + cse41 * cse52);
-    const double out15 = cse57 * accel3 + (-cse38 * cse44 + cse41 * cse53);
-    const double out16 = cse57 * accel4 + (-cse38 * cse46 + cse41 * cse54);
-    const double out17 = -cse38 * cse49 + cse41 * cse55 + cse57 * accel5;
-    out[9] = accel2;
-    out[10] = accel3;
-    out[11] = accel4;
-    out[12] = accel5;
-    out[13] = out6;
-    out[14] = out7;
-    out[15] = out8;
-    out[16] = out9;
-    out[17] = out10;
-    out[18] = out11;
-    out[19] = out12;
-    out[20] = out13;
-    out[21] = out14;
-    out[22] = out15;
-    out[23] = out16;
-    out[24] = out17;
+    const double cse42 = s0[19] + s0[20] * in[1];
+    const double cse43 = cse30 * cse29 - cse32 * cse42;
+    const double cse44 = in[3] * cse33 + s0[19] + s0[20] * cse31 + s0[21] * cse33;
+    const double out6 = cse43 * accel2 + (cse30 * cse34 - cse32 * cse44);
+    const double cse45 = -cse37 + s0[20] * cse30 - s0[21] * cse32;
+    const double out7 = cse43 * accel3 + (cse30 * cse36 - cse32 * cse45);
+    const double cse46 = cse35 + s0[20] * cse32 + s0[21] * cse30;
+    const double out8 = cse43 * accel4 + (cse30 * cse38 - cse32 * cse46);
+    const double cse47 = -(s1[9] - s1[7]) + s0[22] + in[3] * cse40 + s0[20] * cse39 + s0[21] * cse40;
+    const double out9 = cse30 * cse41 - cse32 * cse47 + cse43 * accel5;
+    const double cse48 = cse32 * cse29 + cse30 * cse42;
+    const double out10 = cse48 * accel2 + (cse32 * cse34 + cse30 * cse44);
+    const double out11 = cse48 * accel3 + (cse32 * cse36 + cse30 * cse45);
+    const double out12 = cse48 * accel4 + (cse32 * cse38 + cse30 * cse46);
+    const double out13 = cse32 * cse41 + cse30 * cse47 + cse48 * accel5;
+    const double out14 = -in[5] * out6;
+    const double out15 = -in[5] * out7;
+    const double out16 = -in[5] * out8;
+    const double out17 = -in[5] * out9;
+    out[11] = accel2;
+    out[12] = accel3;
+    out[13] = accel4;
+    out[14] = accel5;
+    out[15] = out6;
+    out[16] = out7;
+    out[17] = out8;
+    out[18] = out9;
+    out[19] = out10;
+    out[20] = out11;
+    out[21] = out12;
+    out[22] = out13;
+    out[23] = out14;
+    out[24] = out15;
+    out[25] = out16;
+    out[26] = out17;
   }
   // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: der_j3_theta_rate_rate, der_j3_reaction_t_f_3, der_j3_reaction_f_f_1, der_j3_reaction_f_f_2.
   static void derivative_shape3(const double* in, const double* s0, const double* s1, const double* s2, double* out) {
     // outlined_chain.mbg:27:9  joint acceleration of body rod3 from its parent's motion (articulated-body form)
-    const double der_j3_theta_rate_rate = s0[12] + s0[9] * s1[27] + s0[10] * s1[28] + s0[11] * s1[29];
+    const double der_j3_theta_rate_rate = s0[14] + s0[11] * s1[29] + s0[12] * s1[30] + s0[13] * s1[31];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m3: f2 = T f1]
-    // (cseN: a subexpression several equations below share)
-    const double cse75 = std::cos(in[0]);
-    const double cse76 = std::sin(in[0]);
-    const double der_j3_m3_f2_1 = cse75 * s1[28] + cse76 * s1[29] + (-cse76 * s2[5] + cse75 * s2[2]) * in[1];
+    const double der_j3_m3_f2_1 = -in[0] * s1[29];
+    // outlined_chain.mbg:27:9  d/dt of [0 j3.vpa: flows in = flows out]
+    const double der_j3_m4_f1_1 = s1[30] + der_j3_m3_f2_1;
+    const double der_j3_m4_f1_2 = s1[31];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m4: f2 = T f1]
-    const double cse77 = cse75 * in[2];
-    const double cse78 = cse76 * in[2];
-    const double der_j3_m4_f2_1 = -cse77 * s1[27] + cse78 * s2[3] * in[1];
+    // (cseN: a subexpression several equations below share)
+    const double cse58 = std::cos(in[1]);
+    const double cse59 = std::sin(in[1]);
+    const double der_j3_m4_f2_1 = cse58 * der_j3_m4_f1_1 + cse59 * der_j3_m4_f1_2 + (-cse59 * s2[0] + cse58 * s2[10]) * in[2];
     // outlined_chain.mbg:27:9  d/dt of [0 j3.wsum: flows in = flows out]
-    const double der_j3_reaction_t_f_3 = s1[27] + der_j3_theta_rate_rate;
+    const double der_j3_reaction_t_f_3 = s1[29] + der_j3_theta_rate_rate;
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m5: f2 = T f1]
     const double der_j3_m5_f2_1 = in[3] * der_j3_reaction_t_f_3;
     // outlined_chain.mbg:27:9  d/dt of [0 j3.vsum: flows in = flows out]
-    const double der_j3_reaction_f_f_1 = der_j3_m3_f2_1 + der_j3_m4_f2_1 + der_j3_m5_f2_1;
-    // outlined_chain.mbg:27:9  d/dt of [MTF j3.m3: f2 = T f1]
-    const double der_j3_m3_f2_2 = -cse76 * s1[28] + cse75 * s1[29] + (-cse75 * s2[5] - cse76 * s2[2]) * in[1];
+    const double der_j3_reaction_f_f_1 = der_j3_m4_f2_1 + der_j3_m5_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m4: f2 = T f1]
-    const double der_j3_m4_f2_2 = cse78 * s1[27] + cse77 * s2[3] * in[1];
+    const double der_j3_m4_f2_2 = -cse59 * der_j3_m4_f1_1 + cse58 * der_j3_m4_f1_2 + (-cse58 * s2[0] - cse59 * s2[10]) * in[2];
     // outlined_chain.mbg:27:9  d/dt of [0 j3.vsum: flows in = flows out]
-    const double der_j3_reaction_f_f_2 = der_j3_m3_f2_2 + der_j3_m4_f2_2;
-    out[26] = der_j3_theta_rate_rate;
-    out[27] = der_j3_reaction_t_f_3;
-    out[28] = der_j3_reaction_f_f_1;
-    out[29] = der_j3_reaction_f_f_2;
+    const double der_j3_reaction_f_f_2 = der_j3_m4_f2_2;
+    out[28] = der_j3_theta_rate_rate;
+    out[29] = der_j3_reaction_t_f_3;
+    out[30] = der_j3_reaction_f_f_1;
+    out[31] = der_j3_reaction_f_f_2;
   }
   double param(std::size_t i, double model_value) const {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
   // bodies' eliminations computed by one function per shape: what the rest reads of them
-  double rod2_kin[9] = {};  // derivative(): what the rest reads of body rod2's kinematics
-  double rod3_kin[9] = {};  // derivative(): what the rest reads of body rod3's kinematics
-  double rod4_kin[9] = {};  // derivative(): what the rest reads of body rod4's kinematics
-  double rod5_kin[25] = {};  // derivative(): what the rest reads of body rod5's kinematics
-  double rod4_elim[25] = {};  // derivative(): what the rest reads of body rod4's elimination
-  double rod3_elim[25] = {};  // derivative(): what the rest reads of body rod3's elimination
-  double rod2_acc[30] = {};  // derivative(): what the rest reads of body rod2's accelerations
-  double rod3_acc[30] = {};  // derivative(): what the rest reads of body rod3's accelerations
-  double rod4_acc[30] = {};  // derivative(): what the rest reads of body rod4's accelerations
+  double rod2_kin[10] = {};  // derivative(): what the rest reads of body rod2's kinematics
+  double rod3_kin[11] = {};  // derivative(): what the rest reads of body rod3's kinematics
+  double rod4_kin[11] = {};  // derivative(): what the rest reads of body rod4's kinematics
+  double rod5_kin[27] = {};  // derivative(): what the rest reads of body rod5's kinematics
+  double rod4_elim[27] = {};  // derivative(): what the rest reads of body rod4's elimination
+  double rod3_elim[27] = {};  // derivative(): what the rest reads of body rod3's elimination
+  double rod2_acc[32] = {};  // derivative(): what the rest reads of body rod2's accelerations
+  double rod3_acc[32] = {};  // derivative(): what the rest reads of body rod3's accelerations
+  double rod4_acc[32] = {};  // derivative(): what the rest reads of body rod4's accelerations
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/(rod5.inertia[3,3] + j5.pb[2]*(rod5.mass*j5.pb[2]))
   // parameters (set in initial())
