@@ -493,12 +493,22 @@ Expr neg(const Expr& a) {
   return make1(Op::Neg, a);
 }
 
+/// The argument u if e is fn(u)*fn(u), else null.
+static const Node* square_of_call(const Expr& e, Fn fn) {
+  if (e->op != Op::Mul || e->args[0].get() != e->args[1].get()) return nullptr;
+  const Expr& f = e->args[0];
+  return f->op == Op::Call && f->fn == fn ? f->args[0].get() : nullptr;
+}
+
 Expr add(const Expr& a, const Expr& b) {
   double x = 0.0, y = 0.0;
   bool ca = cval(a, x), cb = cval(b, y);
   if (ca && cb) return constant(x + y);
   if (ca && x == 0.0) return b;
   if (cb && y == 0.0) return a;
+  // cos(u)^2 + sin(u)^2 = 1 (a universal joint's turned axis, unit by construction)
+  if (const Node* u = square_of_call(a, Fn::Cos); u && u == square_of_call(b, Fn::Sin)) return constant(1);
+  if (const Node* u = square_of_call(a, Fn::Sin); u && u == square_of_call(b, Fn::Cos)) return constant(1);
   if (b->op == Op::Neg) return sub(a, b->args[0]);
   if (cb && y < 0.0) return sub(a, constant(-y));
   return make2(Op::Add, a, b);

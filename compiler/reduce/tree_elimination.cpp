@@ -201,6 +201,72 @@ class Eliminator {
       if (all) zero_.insert(u);
     }
     for (int u : zero_) zero_values_[u] = constant(0);
+    find_pairs();
+  }
+
+  /// A joint's row that, once its zero unknowns are dropped (and followed
+  /// through unknowns that are constant multiples of one other), reads two
+  /// unknowns of its body, a v1 + b v2 = 0 (a universal joint's first axis:
+  /// the torque across it, cos(beta) t1 + sin(beta) t2, is zero). Then
+  /// (v1, v2) = (-b, a) mu with mu = (a v2 - b v1) / (a^2 + b^2): whatever
+  /// reads only v1 and v2 (the torque the parent reads, R t) is a multiple
+  /// of mu, one form instead of one per unknown.
+  void find_pairs() {
+    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
+      const int t = loop_.tears[k];
+      if (multipliers_.count(t) || body_.at(t) < 0) continue;
+      Expr e = loop_.tear_residuals[k];
+      std::vector<int> refs = refs_.at(t);
+      for (int depth = 0; depth < 8; ++depth) {
+        std::vector<Expr> c;
+        Expr rest;
+        if (!affine_in(e, refs, c, rest) || !is_zero(rest)) break;
+        std::vector<std::pair<int, Expr>> all, terms;  // the terms; those not zero
+        for (std::size_t j = 0; j < refs.size(); ++j)
+          if (!is_zero(c[j])) {
+            all.push_back({refs[j], c[j]});
+            if (!zero_.count(refs[j])) terms.push_back({refs[j], c[j]});
+          }
+        auto own = [&](int v) { return body_.at(v) == body_.at(t) && !tear_index_.count(v) && loop_.solution.count(v); };
+        if (all.size() == 1 && is_const(all[0].second) && own(all[0].first)) {  // follow v = c w
+          e = loop_.solution.at(all[0].first);
+          refs = refs_.at(all[0].first);
+          continue;
+        }
+        if (terms.size() == 2 && own(terms[0].first) && own(terms[1].first) && !paired_.count(terms[0].first) &&
+            !paired_.count(terms[1].first)) {
+          const std::size_t index = pairs_.size();
+          pairs_.push_back({body_.at(t), terms[0].first, terms[1].first, terms[0].second, terms[1].second});
+          paired_[terms[0].first] = index;
+          paired_[terms[1].first] = index;
+        }
+        break;
+      }
+    }
+  }
+
+  /// The multiple of mu that unknown y is, if it reads only a pair's two
+  /// unknowns (and zeros), with no other term.
+  std::optional<std::pair<std::size_t, Expr>> multiple_of_pair(int y) const {
+    if (pairs_.empty() || t_form_.count(y) || zero_.count(y)) return std::nullopt;
+    auto s = loop_.solution.find(y);
+    if (s == loop_.solution.end()) return std::nullopt;
+    const std::vector<int>& refs = refs_.at(y);
+    std::vector<Expr> c;
+    Expr rest;
+    if (refs.empty() || !affine_in(s->second, refs, c, rest) || !is_zero(rest)) return std::nullopt;
+    std::optional<std::size_t> pair;
+    Expr c1 = constant(0), c2 = constant(0);
+    for (std::size_t k = 0; k < refs.size(); ++k) {
+      if (is_zero(c[k]) || zero_.count(refs[k])) continue;
+      auto p = paired_.find(refs[k]);
+      if (p == paired_.end() || (pair && *pair != p->second)) return std::nullopt;
+      pair = p->second;
+      (pairs_[p->second].v1 == refs[k] ? c1 : c2) = c[k];
+    }
+    if (!pair) return std::nullopt;
+    const Pair& q = pairs_[*pair];
+    return std::make_pair(*pair, sub(mul(c2, q.a), mul(c1, q.b)));  // c1 v1 + c2 v2 = (a c2 - b c1) mu
   }
 
   /// A body's equations read its own unknowns, its parent's (X) and its
@@ -435,12 +501,33 @@ class Eliminator {
       std::vector<std::pair<int, Expr>> of;
       if (combination_of_outputs(y, n, in_sum, of)) derived.emplace(y, std::move(of));
     }
+    std::map<int, std::pair<std::size_t, Expr>> of_mu;  // output -> (pair, its multiple of mu)
+    for (int y : outputs_[n])
+      if (auto m = multiple_of_pair(y); m && !derived.count(y)) of_mu.emplace(y, *m);
+    for (const auto& [y, m] : of_mu) {
+      if (mu_form_.count(m.first)) continue;
+      const Pair& q = pairs_[m.first];
+      Form num;  // a v2 - b v1
+      num.add_scaled(form_.at(q.v2), q.a);
+      num.add_scaled(form_.at(q.v1), neg(q.b));
+      Form mu;
+      mu.add_scaled(eliminated(num), name(div(constant(1), add(mul(q.a, q.a), mul(q.b, q.b))), n, "pivot"));
+      name_all(mu, n, "out");
+      mu_form_.emplace(m.first, std::move(mu));
+    }
     for (int y : outputs_[n]) {
       if (auto t = t_form_.find(y); t != t_form_.end()) {
         out_form_.emplace(y, t->second);
         continue;
       }
       if (in_sum.count(y) || derived.count(y)) continue;
+      if (auto m = of_mu.find(y); m != of_mu.end()) {
+        Form o;
+        o.add_scaled(mu_form_.at(m->second.first), m->second.second);
+        name_all(o, n, "out");
+        out_form_.emplace(y, std::move(o));
+        continue;
+      }
       if (zero_.count(y)) {
         out_form_.emplace(y, Form{});
         continue;
@@ -464,6 +551,7 @@ class Eliminator {
       Form after;  // the members that are combinations of other outputs, from their eliminated forms
       for (const auto& [y, c] : members) {
         if (auto d = derived.find(y); d != derived.end()) combination(d->second, c, after);
+        else if (auto m = of_mu.find(y); m != of_mu.end()) after.add_scaled(mu_form_.at(m->second.first), mul(c, m->second.second));
         else sum.add_scaled(form_.at(y), c);
         group_of_[y] = u;
       }
@@ -654,6 +742,13 @@ class Eliminator {
   int missing_ = -1;  // an unknown read before its form was known (for the diagnosis)
   static constexpr int kGlobal = -2;                // body_ of the multipliers and what only their rows read
   std::unordered_set<int> multipliers_, global_;    // the cut joints' multipliers; they and what only their rows read
+  struct Pair {  // a v1 + b v2 = 0 at the solution (find_pairs)
+    int body, v1, v2;
+    Expr a, b;
+  };
+  std::vector<Pair> pairs_;
+  std::unordered_map<int, std::size_t> paired_;     // v1 or v2 -> its pair
+  std::map<std::size_t, Form> mu_form_;              // pair -> mu, eliminated, affine in the parent's motion
   std::unordered_set<int> zero_;                    // unknowns that vanish at the solution (find_zeros)
   std::unordered_map<int, Expr> zero_values_;       // each of them -> 0
   std::unordered_map<int, Form> lambda_form_;       // unknown -> affine in the multipliers alone

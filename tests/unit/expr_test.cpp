@@ -464,6 +464,18 @@ TEST(ExprFold, ArityAndNames) {
 
 // ---- identities -----------------------------------------------------------------
 
+TEST(ExprIdentity, PythagoreanSumOfSquaresIsOne) {
+  const Expr c = call(Fn::Cos, {var(X)}), s = call(Fn::Sin, {var(X)});
+  EXPECT_TRUE(is_one(add(mul(c, c), mul(s, s))));
+  EXPECT_TRUE(is_one(add(mul(s, s), mul(c, c))));
+  // not for different arguments, nor for one function twice, nor for a difference
+  const Expr s2 = call(Fn::Sin, {var(Y)});
+  EXPECT_FALSE(is_one(add(mul(c, c), mul(s2, s2))));
+  EXPECT_FALSE(is_one(add(mul(c, c), mul(c, c))));
+  EXPECT_FALSE(is_one(sub(mul(c, c), mul(s, s))));
+  EXPECT_FALSE(is_one(add(mul(c, s), mul(s, c))));
+}
+
 TEST(ExprIdentity, AddSub) {
   const Expr x = var(X), y = var(Y);
   EXPECT_EQ(add(x, k(0)), x);

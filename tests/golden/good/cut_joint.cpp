@@ -304,7 +304,7 @@ class cut_joint_model final : public mbgrt::Model {
     const double coupler_out8 = -cse4 * coupler_pose_R21 - cse5 * coupler_pose_R22 + cse15 * coupler_accel3;
     const double cse18 = 0.1 * cse4;
     const double coupler_out9 = cse4 * cse18 + cse5 * cse14 + cse15 * coupler_accel4;
-    const double coupler_out10 = cse15 * coupler_accel5 + (cse4 * cse4 + cse5 * cse5);
+    const double coupler_out10 = cse15 * coupler_accel5 + 1.0;
     const double cse19 = j2_m4_f2_2 * j2_theta_rate_rate;
     const double coupler_out11 = cse4 * (-(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse19) + cse5 * cse17 + cse15 * coupler_accel6;
     const double coupler_out12 = 0.1 * coupler_out7;
