@@ -1,5 +1,6 @@
 #include "graph/build_graph.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <functional>
 #include <map>
@@ -403,6 +404,7 @@ class Builder {
           names.push_back(n + "." + q);
         }
       }
+      std::sort(names.begin(), names.end());  // (from hash maps: the suggestion must not depend on their order)
       std::string near = closest_name(name, names);
       diags_.error(loc, fmt::format("unknown name `{}`", name),
                    near.empty() ? "refer to parameters, signals, t, or quantities like element.e, element.f, inertia.p"
@@ -746,7 +748,7 @@ class Builder {
   const SourceManager& sources_;
   Diagnostics& diags_;
   BondGraph g_;
-  std::map<std::string, int> signal_var_;
+  std::unordered_map<std::string, int> signal_var_;
 };
 
 }  // namespace

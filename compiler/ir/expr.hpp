@@ -120,6 +120,23 @@ std::size_t size(const Expr& e);
 // ---- transformation -----------------------------------------------------------
 /// Replace Var leaves by the mapped expressions (others unchanged).
 Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var);
+/// The same substitution applied to many expressions: what substitute() sets
+/// up from the whole map on every call (a mask of its variables) is set up
+/// once, and the rewritten sub-expressions are remembered between calls
+/// (a pass that substitutes into each of N equations stays linear in N).
+class Substitution {
+ public:
+  explicit Substitution(std::unordered_map<int, Expr> by_var);
+  ~Substitution();
+  Substitution(Substitution&&) noexcept;
+  Substitution& operator=(Substitution&&) noexcept;
+  Expr operator()(const Expr& e);
+  bool empty() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 /// Generic rewrite: f is called on every node, top-down; it returns nullptr to
 /// keep the node (its operands are then visited and the node rebuilt through
 /// the smart constructors), else the replacement, which is not visited further.

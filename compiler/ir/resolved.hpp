@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <unordered_map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,9 +62,9 @@ struct ResolvedModel {
   std::string source_file;
   std::vector<Scope> scopes;               // scopes[0] is the top level
   std::vector<Parameter> params;           // scalar parameters, dependencies first
-  std::map<std::string, Value> param_values;  // full name -> value over Param leaves
+  std::unordered_map<std::string, Value> param_values;  // full name -> value over Param leaves
   std::vector<ResolvedNode> nodes;
-  std::map<std::string, int> node_index;   // full name -> nodes index
+  std::unordered_map<std::string, int> node_index;   // full name -> nodes index
   std::vector<ResolvedBond> bonds;
   std::vector<ResolvedExpr> signals;
   std::vector<ResolvedExpr> outputs;

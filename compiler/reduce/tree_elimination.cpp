@@ -200,7 +200,9 @@ class Eliminator {
       for (std::size_t k = 0; k < refs.size() && all; ++k) all = is_zero(c[k]) || zero_.count(refs[k]);
       if (all) zero_.insert(u);
     }
-    for (int u : zero_) zero_values_[u] = constant(0);
+    std::unordered_map<int, Expr> to_zero;
+    for (int u : zero_) to_zero[u] = constant(0);
+    zero_values_ = Substitution(std::move(to_zero));
     find_pairs();
   }
 
@@ -707,10 +709,7 @@ class Eliminator {
   }
 
   /// e with the unknowns that vanish at the solution set to 0.
-  Expr without_zeros(const Expr& e) const {
-    if (zero_values_.empty()) return e;
-    return substitute(e, zero_values_);
-  }
+  Expr without_zeros(const Expr& e) { return zero_values_(e); }
 
   const TornLoop& loop_;
   const TreeLayout& tree_;
@@ -750,7 +749,7 @@ class Eliminator {
   std::unordered_map<int, std::size_t> paired_;     // v1 or v2 -> its pair
   std::map<std::size_t, Form> mu_form_;              // pair -> mu, eliminated, affine in the parent's motion
   std::unordered_set<int> zero_;                    // unknowns that vanish at the solution (find_zeros)
-  std::unordered_map<int, Expr> zero_values_;       // each of them -> 0
+  Substitution zero_values_{{}};                    // each of them -> 0
   std::unordered_map<int, Form> lambda_form_;       // unknown -> affine in the multipliers alone
 };
 

@@ -1,5 +1,6 @@
 #include "sema/resolve.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <functional>
 #include <set>
@@ -422,6 +423,7 @@ class Resolver {
     for (const auto& [n, i] : m_.node_index)
       if (n.rfind(sc.prefix, 0) == 0) names.push_back(n.substr(sc.prefix.size()));
     for (const auto& [n, b] : ports) names.push_back(n);
+    std::sort(names.begin(), names.end());  // (node_index is a hash map: the suggestion must not depend on its order)
     std::string near = closest_name(path, names);
     diags_.error(end.ep.loc, fmt::format("bond to nowhere: no element or junction named `{}`", path),
                  near.empty() ? "declare it, or fix the name" : fmt::format("did you mean `{}`?", near));
