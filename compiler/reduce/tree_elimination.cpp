@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "reduce/row_facts.hpp"
+
 namespace mbgc::reduce {
 namespace {
 
@@ -43,7 +45,7 @@ class Eliminator {
 
   std::optional<TreeElimination> run(std::string* why) {
     if (!assign_bodies(why) || !check_structure(why)) return std::nullopt;
-    find_zeros();
+    facts_.emplace(loop_, refs_, body_, multipliers_, kGlobal);
     std::vector<int> bodies(in_loop_.begin(), in_loop_.end());
     std::stable_sort(bodies.begin(), bodies.end(), [&](int a, int b) { return depth_[a] > depth_[b]; });
     for (int n : bodies)
@@ -152,125 +154,6 @@ class Eliminator {
     return out;
   }
 
-  /// The unknowns that vanish once the loop is solved. A joint direction
-  /// that is free, with no element on it, says so in its row: the effort
-  /// along it is zero (the row is that one unknown, times a constant). So is
-  /// every unknown that is that effort times a constant, or a combination
-  /// of such unknowns alone (a ball joint passes no torque to its parent).
-  /// What a body reads of another after that one is solved (its parent's
-  /// motion, its children's outputs) then reads 0 for them: exact, and the
-  /// articulated-body form of a ball joint loses its torque rows.
-  void find_zeros() {
-    // the one unknown e is a nonzero constant multiple of, or -1
-    auto multiple_of = [](const Expr& e, const std::vector<int>& refs) {
-      std::vector<Expr> c;
-      Expr rest;
-      if (!affine_in(e, refs, c, rest) || !is_zero(rest)) return -1;
-      int found = -1;
-      for (std::size_t k = 0; k < refs.size(); ++k) {
-        if (is_zero(c[k])) continue;
-        double value = 0;
-        if (found >= 0 || !is_const(c[k], &value) || value == 0) return -1;
-        found = refs[k];
-      }
-      return found;
-    };
-    std::vector<int> work;
-    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
-      const int t = loop_.tears[k];
-      if (multipliers_.count(t)) continue;
-      const int w = multiple_of(loop_.tear_residuals[k], refs_.at(t));
-      if (w >= 0 && !tear_index_.count(w) && zero_.insert(w).second) work.push_back(w);
-    }
-    while (!work.empty()) {  // v = c w with v zero: w is zero
-      const int v = work.back();
-      work.pop_back();
-      auto s = loop_.solution.find(v);
-      if (s == loop_.solution.end()) continue;
-      const int w = multiple_of(s->second, refs_.at(v));
-      if (w >= 0 && !tear_index_.count(w) && zero_.insert(w).second) work.push_back(w);
-    }
-    for (int u : loop_.order) {  // (the order computes every unknown after those it reads)
-      if (zero_.count(u) || body_.at(u) == kGlobal) continue;
-      const std::vector<int>& refs = refs_.at(u);
-      std::vector<Expr> c;
-      Expr rest;
-      if (refs.empty() || !affine_in(loop_.solution.at(u), refs, c, rest) || !is_zero(rest)) continue;
-      bool all = true;
-      for (std::size_t k = 0; k < refs.size() && all; ++k) all = is_zero(c[k]) || zero_.count(refs[k]);
-      if (all) zero_.insert(u);
-    }
-    std::unordered_map<int, Expr> to_zero;
-    for (int u : zero_) to_zero[u] = constant(0);
-    zero_values_ = Substitution(std::move(to_zero));
-    find_pairs();
-  }
-
-  /// A joint's row that, once its zero unknowns are dropped (and followed
-  /// through unknowns that are constant multiples of one other), reads two
-  /// unknowns of its body, a v1 + b v2 = 0 (a universal joint's first axis:
-  /// the torque across it, cos(beta) t1 + sin(beta) t2, is zero). Then
-  /// (v1, v2) = (-b, a) mu with mu = (a v2 - b v1) / (a^2 + b^2): whatever
-  /// reads only v1 and v2 (the torque the parent reads, R t) is a multiple
-  /// of mu, one form instead of one per unknown.
-  void find_pairs() {
-    for (std::size_t k = 0; k < loop_.tears.size(); ++k) {
-      const int t = loop_.tears[k];
-      if (multipliers_.count(t) || body_.at(t) < 0) continue;
-      Expr e = loop_.tear_residuals[k];
-      std::vector<int> refs = refs_.at(t);
-      for (int depth = 0; depth < 8; ++depth) {
-        std::vector<Expr> c;
-        Expr rest;
-        if (!affine_in(e, refs, c, rest) || !is_zero(rest)) break;
-        std::vector<std::pair<int, Expr>> all, terms;  // the terms; those not zero
-        for (std::size_t j = 0; j < refs.size(); ++j)
-          if (!is_zero(c[j])) {
-            all.push_back({refs[j], c[j]});
-            if (!zero_.count(refs[j])) terms.push_back({refs[j], c[j]});
-          }
-        auto own = [&](int v) { return body_.at(v) == body_.at(t) && !tear_index_.count(v) && loop_.solution.count(v); };
-        if (all.size() == 1 && is_const(all[0].second) && own(all[0].first)) {  // follow v = c w
-          e = loop_.solution.at(all[0].first);
-          refs = refs_.at(all[0].first);
-          continue;
-        }
-        if (terms.size() == 2 && own(terms[0].first) && own(terms[1].first) && !paired_.count(terms[0].first) &&
-            !paired_.count(terms[1].first)) {
-          const std::size_t index = pairs_.size();
-          pairs_.push_back({body_.at(t), terms[0].first, terms[1].first, terms[0].second, terms[1].second});
-          paired_[terms[0].first] = index;
-          paired_[terms[1].first] = index;
-        }
-        break;
-      }
-    }
-  }
-
-  /// The multiple of mu that unknown y is, if it reads only a pair's two
-  /// unknowns (and zeros), with no other term.
-  std::optional<std::pair<std::size_t, Expr>> multiple_of_pair(int y) const {
-    if (pairs_.empty() || t_form_.count(y) || zero_.count(y)) return std::nullopt;
-    auto s = loop_.solution.find(y);
-    if (s == loop_.solution.end()) return std::nullopt;
-    const std::vector<int>& refs = refs_.at(y);
-    std::vector<Expr> c;
-    Expr rest;
-    if (refs.empty() || !affine_in(s->second, refs, c, rest) || !is_zero(rest)) return std::nullopt;
-    std::optional<std::size_t> pair;
-    Expr c1 = constant(0), c2 = constant(0);
-    for (std::size_t k = 0; k < refs.size(); ++k) {
-      if (is_zero(c[k]) || zero_.count(refs[k])) continue;
-      auto p = paired_.find(refs[k]);
-      if (p == paired_.end() || (pair && *pair != p->second)) return std::nullopt;
-      pair = p->second;
-      (pairs_[p->second].v1 == refs[k] ? c1 : c2) = c[k];
-    }
-    if (!pair) return std::nullopt;
-    const Pair& q = pairs_[*pair];
-    return std::make_pair(*pair, sub(mul(c2, q.a), mul(c1, q.b)));  // c1 v1 + c2 v2 = (a c2 - b c1) mu
-  }
-
   /// A body's equations read its own unknowns, its parent's (X) and its
   /// children's (each child's outputs Y); anything else is not a tree.
   bool check_structure(std::string* why) {
@@ -338,7 +221,7 @@ class Eliminator {
     for (std::size_t k = 0; k < refs.size(); ++k) {
       const int w = refs[k];
       if (is_zero(c[k])) continue;
-      if (zero_.count(w) && body_.at(w) != n) continue;  // read once solved: 0
+      if (facts_->zero(w) && body_.at(w) != n) continue;  // read once solved: 0
       if (auto g = group_of_.find(w); g != group_of_.end() && g->second == u) {  // in a sum this unknown reads
         const int child = body_.at(w);
         if (sums_added.insert(child).second) add_form(group_form_.at({u, child}), shallow);
@@ -481,7 +364,7 @@ class Eliminator {
     // per output.
     std::map<int, std::vector<std::pair<int, Expr>>> sums;  // parent unknown -> (output, coefficient)
     for (int y : outputs_[n]) {
-      if (zero_.count(y)) continue;
+      if (facts_->zero(y)) continue;
       const int u = sole_parent_reader(y, n);
       Expr c;
       if (u >= 0 && !t_form_.count(y) && constant_coefficient(u, y, c)) sums[u].push_back({y, c});
@@ -505,10 +388,10 @@ class Eliminator {
     }
     std::map<int, std::pair<std::size_t, Expr>> of_mu;  // output -> (pair, its multiple of mu)
     for (int y : outputs_[n])
-      if (auto m = multiple_of_pair(y); m && !derived.count(y)) of_mu.emplace(y, *m);
+      if (auto m = facts_->multiple_of_pair(y); m && !derived.count(y)) of_mu.emplace(y, *m);
     for (const auto& [y, m] : of_mu) {
       if (mu_form_.count(m.first)) continue;
-      const Pair& q = pairs_[m.first];
+      const RowFacts::Pair& q = facts_->pair(m.first);
       Form num;  // a v2 - b v1
       num.add_scaled(form_.at(q.v2), q.a);
       num.add_scaled(form_.at(q.v1), neg(q.b));
@@ -530,7 +413,7 @@ class Eliminator {
         out_form_.emplace(y, std::move(o));
         continue;
       }
-      if (zero_.count(y)) {
+      if (facts_->zero(y)) {
         out_form_.emplace(y, Form{});
         continue;
       }
@@ -569,7 +452,7 @@ class Eliminator {
   /// other outputs of n that are passed on alone (not in a sum, not tears)?
   bool combination_of_outputs(int y, int n, const std::set<int>& in_sum, std::vector<std::pair<int, Expr>>& of) const {
     auto s = loop_.solution.find(y);
-    if (s == loop_.solution.end() || t_form_.count(y) || zero_.count(y)) return false;
+    if (s == loop_.solution.end() || t_form_.count(y) || facts_->zero(y)) return false;
     const std::vector<int>& refs = refs_.at(y);
     std::vector<Expr> c;
     Expr rest;
@@ -702,14 +585,11 @@ class Eliminator {
     }
     for (int u : order_[n]) {
       const auto& [loc, origin] = loop_.source.at(u);
-      if (zero_.count(u)) outward_.push_back({u, constant(0), loc, origin + " [zero: a free joint direction's effort]", -1});
+      if (facts_->zero(u)) outward_.push_back({u, constant(0), loc, origin + " [zero: a free joint direction's effort]", -1});
       else if (reads_child_.count(u)) outward_.push_back({u, form_.at(u).value(), loc, origin + " [after the body's elimination]", -1});
-      else outward_.push_back({u, without_zeros(loop_.solution.at(u)), loc, origin, -1});
+      else outward_.push_back({u, facts_->without_zeros(loop_.solution.at(u)), loc, origin, -1});
     }
   }
-
-  /// e with the unknowns that vanish at the solution set to 0.
-  Expr without_zeros(const Expr& e) { return zero_values_(e); }
 
   const TornLoop& loop_;
   const TreeLayout& tree_;
@@ -741,15 +621,8 @@ class Eliminator {
   int missing_ = -1;  // an unknown read before its form was known (for the diagnosis)
   static constexpr int kGlobal = -2;                // body_ of the multipliers and what only their rows read
   std::unordered_set<int> multipliers_, global_;    // the cut joints' multipliers; they and what only their rows read
-  struct Pair {  // a v1 + b v2 = 0 at the solution (find_pairs)
-    int body, v1, v2;
-    Expr a, b;
-  };
-  std::vector<Pair> pairs_;
-  std::unordered_map<int, std::size_t> paired_;     // v1 or v2 -> its pair
+  std::optional<RowFacts> facts_;                   // what the joints' rows say: zeros, pairs confined to one direction
   std::map<std::size_t, Form> mu_form_;              // pair -> mu, eliminated, affine in the parent's motion
-  std::unordered_set<int> zero_;                    // unknowns that vanish at the solution (find_zeros)
-  Substitution zero_values_{{}};                    // each of them -> 0
   std::unordered_map<int, Form> lambda_form_;       // unknown -> affine in the multipliers alone
 };
 
