@@ -858,9 +858,9 @@ Expr substitute(const Expr& e, const std::unordered_map<int, Expr>& by_var) {
   return Substituter(by_var).run(e);
 }
 
-struct Substitution::Impl {
+struct Substitution::Impl {  // on the heap: the substituter refers to the map, which must not move
   std::unordered_map<int, Expr> by_var;
-  Substituter substituter{by_var};
+  Substituter substituter;
   explicit Impl(std::unordered_map<int, Expr> m) : by_var(std::move(m)), substituter(by_var) {}
 };
 Substitution::Substitution(std::unordered_map<int, Expr> by_var) : impl_(std::make_unique<Impl>(std::move(by_var))) {}
@@ -868,7 +868,6 @@ Substitution::~Substitution() = default;
 Substitution::Substitution(Substitution&&) noexcept = default;
 Substitution& Substitution::operator=(Substitution&&) noexcept = default;
 Expr Substitution::operator()(const Expr& e) { return impl_->by_var.empty() ? e : impl_->substituter.run(e); }
-bool Substitution::empty() const { return impl_->by_var.empty(); }
 
 Expr rewrite(const Expr& e, const std::function<Expr(const Expr&)>& f) {
   return Rewriter(f).run(e);

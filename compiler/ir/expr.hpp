@@ -131,7 +131,6 @@ class Substitution {
   Substitution(Substitution&&) noexcept;
   Substitution& operator=(Substitution&&) noexcept;
   Expr operator()(const Expr& e);
-  bool empty() const;
 
  private:
   struct Impl;

@@ -198,6 +198,7 @@ class Eliminator {
     if (w == "row") return "reduced row of the joint's equations";
     if (w == "accel") return "joint acceleration as an affine function of the parent's motion";
     if (w == "column") return "the cut joints' columns: an unknown their rows read, affine in their multipliers";
+    if (w == "norm") return "1 / squared length of the one direction a joint's row leaves two efforts";
     return "what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)";
   }
   void name_all(Form& f, int n, const char* what) {
@@ -396,23 +397,30 @@ class Eliminator {
       num.add_scaled(form_.at(q.v2), q.a);
       num.add_scaled(form_.at(q.v1), neg(q.b));
       Form mu;
-      mu.add_scaled(eliminated(num), name(div(constant(1), add(mul(q.a, q.a), mul(q.b, q.b))), n, "pivot"));
+      mu.add_scaled(eliminated(num), name(div(constant(1), add(mul(q.a, q.a), mul(q.b, q.b))), n, "norm"));
       name_all(mu, n, "out");
       mu_form_.emplace(m.first, std::move(mu));
     }
-    for (int y : outputs_[n]) {
+    // y's eliminated form, scaled, added to `into` when it is built from
+    // forms already eliminated (the combination of other outputs, or the
+    // multiple of a confined pair's mu); false for any other output.
+    auto add_after = [&](int y, const Expr& scale, Form& into) {
+      if (auto d = derived.find(y); d != derived.end()) {
+        for (const auto& [x, c] : d->second) into.add_scaled(out_form_.at(x), mul(scale, c));
+        return true;
+      }
+      if (auto m = of_mu.find(y); m != of_mu.end()) {
+        into.add_scaled(mu_form_.at(m->second.first), mul(scale, m->second.second));
+        return true;
+      }
+      return false;
+    };
+    for (int y : outputs_[n]) {  // those eliminated from their own forms
       if (auto t = t_form_.find(y); t != t_form_.end()) {
         out_form_.emplace(y, t->second);
         continue;
       }
-      if (in_sum.count(y) || derived.count(y)) continue;
-      if (auto m = of_mu.find(y); m != of_mu.end()) {
-        Form o;
-        o.add_scaled(mu_form_.at(m->second.first), m->second.second);
-        name_all(o, n, "out");
-        out_form_.emplace(y, std::move(o));
-        continue;
-      }
+      if (in_sum.count(y) || derived.count(y) || of_mu.count(y)) continue;
       if (facts_->zero(y)) {
         out_form_.emplace(y, Form{});
         continue;
@@ -421,23 +429,17 @@ class Eliminator {
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
     }
-    auto combination = [&](const std::vector<std::pair<int, Expr>>& of, const Expr& scale, Form& into) {
-      for (const auto& [x, c] : of) into.add_scaled(out_form_.at(x), mul(scale, c));
-    };
-    for (const auto& [y, of] : derived) {
-      if (in_sum.count(y)) continue;
+    for (int y : outputs_[n]) {  // those built from eliminated forms
       Form o;
-      combination(of, constant(1), o);
+      if (in_sum.count(y) || !add_after(y, constant(1), o)) continue;
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
     }
     for (const auto& [u, members] : sums) {
       Form sum;    // summed before the joint accelerations are eliminated: one coefficient per acceleration
-      Form after;  // the members that are combinations of other outputs, from their eliminated forms
+      Form after;  // the members built from eliminated forms
       for (const auto& [y, c] : members) {
-        if (auto d = derived.find(y); d != derived.end()) combination(d->second, c, after);
-        else if (auto m = of_mu.find(y); m != of_mu.end()) after.add_scaled(mu_form_.at(m->second.first), mul(c, m->second.second));
-        else sum.add_scaled(form_.at(y), c);
+        if (!add_after(y, c, after)) sum.add_scaled(form_.at(y), c);
         group_of_[y] = u;
       }
       Form z = eliminated(sum);
@@ -464,14 +466,9 @@ class Eliminator {
       of.push_back({x, c[k]});
     }
     // (a primary output is computed from its own form: it reads no output)
-    for (const auto& [x, cx] : of) {
-      std::vector<Expr> cc;
-      Expr rr;
-      const std::vector<int>& xr = refs_.at(x);
-      if (loop_.solution.count(x) && affine_in(loop_.solution.at(x), xr, cc, rr))
-        for (std::size_t k = 0; k < xr.size(); ++k)
-          if (!is_zero(cc[k]) && outputs_.at(n).count(xr[k])) return false;
-    }
+    for (const auto& [x, cx] : of)
+      for (int r : refs_.at(x))
+        if (outputs_.at(n).count(r)) return false;
     return !of.empty();
   }
 
