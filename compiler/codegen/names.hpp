@@ -3,9 +3,9 @@
 // identifiers, strings and doubles written exactly.
 #pragma once
 
-#include <map>
-#include <set>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace mbgc::codegen {
 
@@ -19,8 +19,8 @@ class Mangler {
   std::string get(const std::string& key, const std::string& model_name);
 
  private:
-  std::map<std::string, std::string> given_;
-  std::set<std::string> used_;
+  std::unordered_map<std::string, std::string> given_;  // looked up only: hashed (N = 1000 rods: 300k names)
+  std::unordered_set<std::string> used_;
 };
 
 std::string cpp_string(const std::string& s);  ///< a C++ string literal

@@ -154,8 +154,8 @@ Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn 
   InternTable& table = intern_table();
   std::size_t slot = 0;
   const InternTable::Key key{static_cast<std::uint64_t>(static_cast<std::size_t>(h)), op, value, id, fn, args};
-  if (const Node* existing = table.find(key, slot)) return existing->shared_from_this();
-  auto n = std::make_shared<Node>();
+  if (const Node* existing = table.find(key, slot)) return Expr(existing);
+  Node* n = new Node();
   n->op = op;
   n->args = std::move(args);
   switch (op) {
@@ -189,10 +189,10 @@ Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn 
   }
   n->flags = flags;
   n->var_mask = mask;
-  table.insert_at(slot, n.get());
+  table.insert_at(slot, n);
   n->interned = true;
   n->canonical = canonical;
-  return n;
+  return Expr(n);
 }
 
 Expr make1(Op op, const Expr& a) { return make(op, {a}); }

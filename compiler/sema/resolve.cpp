@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <functional>
 #include <set>
+#include <unordered_map>
 
 namespace mbgc::sema {
 namespace {
@@ -322,6 +323,7 @@ class Resolver {
     }
     std::vector<std::string> names;
     for (const auto& [n, i] : param_by_name_) names.push_back(n);
+    std::sort(names.begin(), names.end());  // (from a hash map: the suggestion must not depend on its order)
     std::string near = closest_name(name, names);
     if (m_.node_index.count(tries.front()) || m_.node_index.count(name) || name.find('.') != std::string::npos) {
       diags_.error(loc, fmt::format("`{}` is not a parameter", name),
@@ -447,11 +449,11 @@ class Resolver {
   Diagnostics& diags_;
   ResolvedModel& m_;
   std::map<std::string, std::shared_ptr<const AstComponent>> components_;
-  std::map<std::string, SourceLoc> declared_;
+  std::unordered_map<std::string, SourceLoc> declared_;  // looked up only
   std::vector<std::map<std::string, PendingEnd>> port_bindings_;  // per scope
   std::set<std::string> unconnected_ports_;                      // "u1.b": reported once
   std::vector<PendingParam> pending_params_;
-  std::map<std::string, std::size_t> param_by_name_;
+  std::unordered_map<std::string, std::size_t> param_by_name_;
   std::vector<int> state_;
   std::vector<std::size_t> eval_stack_;
   bool cycle_reported_ = false;

@@ -248,13 +248,13 @@ Expr parse(const std::string& s) { return Parser(s).parse(); }
 // ---- raw (unsimplified) trees for property tests ------------------------------
 
 Expr raw(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn f = Fn::Sin) {
-  auto n = std::make_shared<Node>();
+  auto* n = new Node();
   n->op = op;
   n->args = std::move(args);
   n->value = value;
   n->id = id;
   n->fn = f;
-  return n;
+  return Expr(n);
 }
 
 // Rebuild a raw tree bottom-up through the smart constructors.
