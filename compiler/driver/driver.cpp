@@ -148,7 +148,10 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   if (opt.dump == Dump::Graph) return finish(ir::print_graph_dot(causal.graph, /*with_causality=*/true));
 
-  ir::EquationSystem equations = equations::generate(causal, diags);
+  // The causality dump is written after reduce (it lists the loops), from
+  // this text; otherwise the graph moves on instead of being copied.
+  const std::string causality_text = opt.dump == Dump::Causality ? ir::print_causality(causal) : std::string();
+  ir::EquationSystem equations = equations::generate(std::move(causal), diags);
   timed("equations");
   if (failed()) return 1;
   if (opt.dump == Dump::Equations) return finish(ir::print_equations(equations));
@@ -158,7 +161,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   if (opt.dump == Dump::Causality) {
     // The causality report includes the algebraic loops, found when sorting.
-    std::string text = ir::print_causality(causal);
+    std::string text = causality_text;
     if (!strategy_report.empty()) text += strategy_report + "\n";
     text += "algebraic loops:";
     if (reduced.loops.empty()) text += " none\n";

@@ -304,6 +304,7 @@ class Builder {
     for (const ResolvedExpr& s : m_.signals) {
       signal_var_[s.name] = g_.add_var(s.name, VarKind::Signal, s.loc);
     }
+    for (std::size_t b = 0; b < g_.bonds.size(); ++b) bond_index_.emplace(g_.bonds[b].name, static_cast<int>(b));  // the first of a name
   }
 
   Value bond_value(int bond, bool effort, int sign) const {
@@ -371,10 +372,9 @@ class Builder {
                     : n.kind == NodeKind::C ? "a C element has e, f and its displacement q"
                                             : "this element has e and f");
     }
-    for (std::size_t b = 0; b < g_.bonds.size(); ++b) {
-      if (g_.bonds[b].name != stem) continue;
-      if (q == "e") return bond_value(static_cast<int>(b), true, 1);
-      if (q == "f") return bond_value(static_cast<int>(b), false, 1);
+    if (auto it = bond_index_.find(stem); it != bond_index_.end()) {
+      if (q == "e") return bond_value(it->second, true, 1);
+      if (q == "f") return bond_value(it->second, false, 1);
       return report(fmt::format("bond `{}` has no quantity `{}`", stem, q), "a bond has e and f");
     }
     return std::nullopt;
@@ -749,6 +749,7 @@ class Builder {
   Diagnostics& diags_;
   BondGraph g_;
   std::unordered_map<std::string, int> signal_var_;
+  std::unordered_map<std::string, int> bond_index_;  // bond name -> index (the first bond of that name)
 };
 
 }  // namespace
