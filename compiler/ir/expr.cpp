@@ -157,7 +157,7 @@ Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn 
   if (const Node* existing = table.find(key, slot)) return Expr(existing);
   Node* n = new Node();
   n->op = op;
-  n->args = std::move(args);
+  n->args = Operands(std::move(args));
   switch (op) {
     case Op::Const: n->value = value; break;
     case Op::Param:
@@ -468,6 +468,13 @@ class Differentiator {
 };
 
 }  // namespace
+
+static_assert(sizeof(void*) != 8 || sizeof(Node) == 64, "a node is one cache line");
+
+Operands::Operands(std::vector<Expr> v) {
+  if (v.size() > kMax) throw std::invalid_argument(fmt::format("mbgc::ir::Operands: {} operands, at most {}", v.size(), kMax));
+  for (std::size_t i = 0; i < v.size(); ++i) a_[i] = std::move(v[i]);
+}
 
 // ---- construction ---------------------------------------------------------------
 

@@ -83,13 +83,35 @@ class Expr {
   const Node* p_ = nullptr;
 };
 
+/// A node's operands: none for leaves, one for Neg and Der, two for the binary
+/// operators, a function's arity (one or two) for Call. Never more than two,
+/// so they live in the node itself: a walk reads one cache line per node.
+class Operands {
+ public:
+  static constexpr std::size_t kMax = 2;
+  Operands() = default;
+  /// Throws std::invalid_argument for more than kMax operands (a caller bug).
+  explicit Operands(std::vector<Expr> v);
+  std::size_t size() const noexcept { return a_[1] ? 2 : (a_[0] ? 1 : 0); }
+  bool empty() const noexcept { return !a_[0]; }
+  const Expr& operator[](std::size_t i) const noexcept { return a_[i]; }
+  const Expr* begin() const noexcept { return a_; }
+  const Expr* end() const noexcept { return a_ + size(); }
+  /// A copy as a vector (what the smart constructors take).
+  std::vector<Expr> to_vector() const { return std::vector<Expr>(begin(), end()); }
+  operator std::vector<Expr>() const { return to_vector(); }  // NOLINT: reads like the vector it was
+
+ private:
+  Expr a_[kMax];  // the operands in order; null past the last
+};
+
 /// The constructors below hash-cons: a node they make is the only live node
 /// of its structure (op, constant bits, id, function and operand pointers), so
 /// structurally equal trees they build are one shared DAG, and a walk or memo
 /// by pointer visits each distinct sub-expression once.
 ///
-/// Laid out small (72 bytes and its operands' array): a 1000-rod chain makes
-/// about half a million of them, and every pass walks them.
+/// Laid out in one 64-byte cache line, operands included: a 1000-rod chain
+/// makes about half a million of them, and every pass walks them.
 struct Node {
   mutable std::uint32_t refs = 0;  // the Exprs that point here (Expr maintains it)
   Op op = Op::Const;
@@ -99,7 +121,7 @@ struct Node {
   bool canonical = false;   // interned, and so are its operands, recursively: equal() is pointer equality
   int id = -1;              // Param, Var
   double value = 0.0;       // Const
-  std::vector<Expr> args;   // operands (1 for Neg/Der, 2 for binary, n for Call)
+  Operands args;            // operands (1 for Neg/Der, 2 for binary, the arity for Call)
   std::size_t hash = 0;     // structural hash, set by the constructors
   // Summaries of the sub-tree, set by the constructors (valid when canonical),
   // so that walks skip the parts that cannot matter to them:

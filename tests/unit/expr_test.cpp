@@ -250,7 +250,7 @@ Expr parse(const std::string& s) { return Parser(s).parse(); }
 Expr raw(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn f = Fn::Sin) {
   auto* n = new Node();
   n->op = op;
-  n->args = std::move(args);
+  n->args = Operands(std::move(args));
   n->value = value;
   n->id = id;
   n->fn = f;
