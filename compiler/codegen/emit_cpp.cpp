@@ -231,6 +231,13 @@ class Emitter {
   }
 
   // ---- sections with equations ------------------------------------------------------------
+  static std::vector<Expr> result_values(const std::vector<std::pair<std::string, Expr>>& results) {
+    std::vector<Expr> values;
+    values.reserve(results.size());
+    for (const auto& r : results) values.push_back(r.second);
+    return values;
+  }
+
   /// Read the unknowns a section uses, compute its assignments, then its results.
   void section(std::vector<CppStmt>& body, const std::vector<int>& assignment_indices,
                const std::vector<std::pair<std::string, Expr>>& results, const std::string& results_comment) {
@@ -242,7 +249,7 @@ class Emitter {
       if (a.block >= 0 && !blocks_read.insert(a.block).second) continue;
       assignment_inputs(s_, a, used);
     }
-    for (const auto& [target, e] : results) collect_vars(e, used);
+    collect_vars(result_values(results), used);
     const char* y = s_.dae ? "y" : "x";
     bool any_read = false;
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
@@ -356,7 +363,7 @@ class Emitter {
     ReadsOf reads;
     for (const Assignment* a : list) assignment_inputs(s_, *a, reads[a]);
     std::unordered_set<int> results_read;
-    for (const auto& [target, e] : results) collect_vars(e, results_read);
+    collect_vars(result_values(results), results_read);
     auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels) {
       Outlining o = find_outlined_runs(order, reads, results_read, labels, s_.tree->names, g_);
       return o.shapes.empty() ? Outlining{} : o;  // nothing shared: nothing stored either

@@ -128,9 +128,7 @@ class Reducer {
         int unknown = eq.unknown, other = eq.unknown == a ? b : a;
         // unknown = (sa*sb) * other
         Expr target = resolve(sa * sb > 0 ? var(other) : neg(var(other)));
-        std::unordered_set<int> in_target;
-        collect_vars(target, in_target);
-        if (!in_target.count(unknown)) {
+        if (!mentions_var(target, unknown)) {
           alias[unknown] = target;
           ++aliases_;
           continue;
@@ -854,15 +852,12 @@ class Reducer {
     auto needed_by = [&](const std::vector<Expr>& roots) {
       std::set<int> need;
       std::vector<int> work;
-      auto visit = [&](const Expr& e) {
-        std::unordered_set<int> vars;
-        collect_vars(e, vars);
-        for (int id : vars) {
-          auto it = assignment_of.find(id);
-          if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
-        }
-      };
-      for (const Expr& r : roots) visit(r);
+      std::unordered_set<int> root_vars;
+      collect_vars(roots, root_vars);  // one walk over all roots: they share sub-expressions
+      for (int id : root_vars) {
+        auto it = assignment_of.find(id);
+        if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
+      }
       std::set<int> blocks_read;
       while (!work.empty()) {
         int i = work.back();
