@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "codegen/cpp.hpp"
+#include "codegen/events.hpp"
 #include "codegen/identity.hpp"
 #include "codegen/names.hpp"
 #include "codegen/outline.hpp"
@@ -43,6 +44,7 @@ class Emitter {
     c.base = "mbgrt::Model";
     add_identity_methods(c, s_, opt_);
     find_parameter_expressions();
+    for (std::size_t k = 0; k < s_.events.size(); ++k) hoisted_[s_.events[k].step] = event_mode_name(k);  // printed as their modes
     c.public_methods.push_back(initial());
     add_long_method(c, s_.dae ? residual() : derivative());
     if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity());
@@ -51,6 +53,8 @@ class Emitter {
       add_long_method(c, jacobian());
     }
     c.public_methods.push_back(outputs());
+    if (!s_.events.empty()) c.public_methods.push_back(event_functions());
+    add_event_methods(c, s_);
     if (!s_.constraints.empty()) constraint_functions(c);
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
@@ -651,6 +655,17 @@ class Emitter {
     for (std::size_t i = 0; i < g_.outputs.size(); ++i) results.push_back({fmt::format("out[{}]", i), g_.outputs[i].value});
     if (results.empty()) f.body.push_back(CppStmt::line("(void)out;"));
     section(f.body, s_.for_outputs, results, "outputs, in declaration order");
+    return f;
+  }
+
+  CppFunction event_functions() {
+    CppFunction f{"EVENTS: the zero-crossing functions, one per event (its step's argument).",
+                  fmt::format("void event_functions(double t, const double* {}, const double* yp, double* g) override", s_.dae ? "y" : "x"),
+                  {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
+    const Counting counting = count_into(f);
+    std::vector<std::pair<std::string, Expr>> results;
+    for (std::size_t k = 0; k < s_.events.size(); ++k) results.push_back({fmt::format("g[{}]", k), s_.events[k].arg});
+    section(f.body, s_.for_events, results, "zero-crossing functions, in event order");
     return f;
   }
 

@@ -311,6 +311,10 @@ std::string print_reduced(const ReducedSystem& s) {
   }
   out += "outputs:\n";
   for (const Output& o : g.outputs) out += fmt::format("  {} = {}\n", o.name, to_string(o.value, n));
+  if (!s.events.empty()) out += "events (each step a mode, switched where its argument crosses 0):\n";
+  for (std::size_t k = 0; k < s.events.size(); ++k)
+    out += fmt::format("  mode {}: {}, argument {}{}\n", k, to_string(s.events[k].step, n), to_string(s.events[k].arg, n),
+                       s.events[k].time_event ? " (time event)" : "");
   return out;
 }
 

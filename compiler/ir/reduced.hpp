@@ -62,6 +62,14 @@ struct BodyTree {
 inline constexpr std::string_view kTreeEliminationOrigin = "articulated-body elimination";
 inline bool from_tree_elimination(const Assignment& a) { return a.origin.starts_with(kTreeEliminationOrigin); }
 
+/// A discontinuity of the model: step(arg), held as a mode (0 or 1) between
+/// the zero crossings of arg, which the integrators locate (reduce/events).
+struct EventRelation {
+  Expr step;              // the step(arg) node, printed as its mode
+  Expr arg;               // the zero-crossing function
+  bool time_event = false;  // arg = t - t0: its time is known in advance
+};
+
 /// The variables an assignment reads (its value, or its whole block).
 void assignment_inputs(const struct ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out);
 
@@ -92,6 +100,8 @@ struct ReducedSystem {
   // mu), monitored for penalty rows.
   std::vector<ConstraintRow> constraints;
   std::vector<int> for_constraints;       // indices into assignments, in order
+  std::vector<EventRelation> events;      // the model's discontinuities (reduce/events)
+  std::vector<int> for_events;            // indices into assignments, in order: what the events' args need
   std::vector<AlgebraicLoop> loops;
   std::optional<BodyTree> tree;           // set when a loop was eliminated along a kinematic tree
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled

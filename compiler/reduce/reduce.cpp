@@ -1,5 +1,6 @@
 #include "reduce/reduce.hpp"
 
+#include "reduce/events.hpp"
 #include "reduce/sparsity.hpp"
 #include "reduce/tree_elimination.hpp"
 
@@ -33,6 +34,7 @@ class Reducer {
     sort_and_solve();
     if (diags_.has_errors()) return;
     differentiate_for_jacobian();
+    out_.events = find_events(out_);
     slice();
   }
 
@@ -886,10 +888,14 @@ class Reducer {
       constraint_roots.push_back(row.g);  // (a cut joint's g reads the tree's pose signals)
     }
     out_.for_constraints = needed_by(constraint_roots);
+    std::vector<Expr> event_roots;
+    for (const EventRelation& ev : out_.events) event_roots.push_back(ev.arg);
+    out_.for_events = needed_by(event_roots);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
     used.insert(out_.for_constraints.begin(), out_.for_constraints.end());
     used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
     used.insert(out_.for_jacobian.begin(), out_.for_jacobian.end());
+    used.insert(out_.for_events.begin(), out_.for_events.end());
     // Drop what nobody needs; renumber the slices.
     std::vector<Assignment> kept;
     std::map<int, int> renumber;
@@ -904,6 +910,7 @@ class Reducer {
     for (int& i : out_.for_outputs) i = renumber.at(i);
     for (int& i : out_.for_jacobian) i = renumber.at(i);
     for (int& i : out_.for_constraints) i = renumber.at(i);
+    for (int& i : out_.for_events) i = renumber.at(i);
     out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
   }
 

@@ -137,6 +137,9 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_option("--constraint-report", o.constraint_report_path,
                  "Write t,max_abs_g,max_abs_gdot (joint constraints at each output time) as CSV")
       ->type_name("FILE.csv");
+  app.add_option("--event-log", o.event_log_path,
+                 "Write t,event,name,state (every switch of the model's events) as CSV")
+      ->type_name("FILE.csv");
   app.add_flag("--quiet", o.quiet, "Do not print the run summary on stderr");
   app.add_flag("--list-parameters", o.list_parameters,
                "Print the parameters as NAME,DEFAULT lines and exit");

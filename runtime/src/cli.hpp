@@ -20,6 +20,7 @@ struct Options {
   std::vector<std::pair<std::string, double>> overrides;  ///< --set, in command-line order
   std::string out_path;                                   ///< empty: stdout
   std::string constraint_report_path;                     ///< --constraint-report; empty: none
+  std::string event_log_path;                             ///< --event-log; empty: none
   bool quiet = false;
   bool list_parameters = false;
   std::optional<double> linearize_at;

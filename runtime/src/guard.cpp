@@ -21,7 +21,8 @@ GuardedModel::GuardedModel(Model& model)
       n_(model.size()),
       dae_(model.is_dae()),
       ids_(n_, 1.0),
-      shape_(mbgrt::detail::constraint_shape(model)) {
+      shape_(mbgrt::detail::constraint_shape(model)),
+      events_(model) {
   if (dae_) model_.differential_ids(ids_.data());
   limits_.reserve(n_);
   for (std::size_t i = 0; i < n_; ++i) limits_.push_back(model_.state_limit(i));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "constraints.hpp"
+#include "events.hpp"
 #include "mbgrt/model.hpp"
 
 namespace mbgrt::detail {
@@ -59,6 +60,10 @@ class GuardedModel {
   /// non-finite or a state is beyond the limit of its model's validity.
   bool check_state(double t, const double* y);
 
+  /// The model's events (none for most models): modes, switches, their log.
+  Events& events() { return events_; }
+  const Events& events() const { return events_; }
+
   /// The first recorded problem; later ones are consequences and are ignored.
   const std::optional<Blame>& blame() const { return blame_; }
 
@@ -78,6 +83,7 @@ class GuardedModel {
   ConstraintShape shape_;
   std::optional<Blame> blame_;
   bool finite_differences_ = false;
+  Events events_;
 };
 
 }  // namespace mbgrt::detail

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "guard.hpp"
 #include "mbgrt/model.hpp"
@@ -56,6 +57,16 @@ class Integrator {
   virtual SolverStats stats() const = 0;
   virtual const SolverFailure& failure() const = 0;
 };
+
+/// The events a root finder reported at t (root_info[k]: +1 rising, -1
+/// falling, 0 none) switched and logged. False, with `failure` set, when the
+/// modes chatter (Events::chattering).
+bool fire_events(Events& events, double t, const std::vector<int>& root_info, SolverFailure& failure);
+/// The same for one event located by a method without a root finder.
+bool chatter_failure(const Events& events, double t, SolverFailure& failure);
+/// st += before, counter by counter (counters a method lacks, -1, add nothing):
+/// what a method counted before a restart zeroed its counters.
+void add_counts(SolverStats& st, const SolverStats& before);
 
 /// Settings::t_end_s is used as the stop time the integrator never steps past.
 std::unique_ptr<Integrator> make_rk4(GuardedModel& model, const Settings& s);

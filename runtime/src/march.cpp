@@ -24,6 +24,11 @@ Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
   // A NaN in the initial values would otherwise surface as an obscure first-step failure.
   if (!guard.check_state(s.t_start_s, y0.data())) return {false, false, false};
   r.started = true;
+  // The modes of the model's steps from the state it starts in.
+  if (!guard.events().start(s.t_start_s, y0.data(), yp0.empty() ? nullptr : yp0.data())) {
+    print_error("an event function (the argument of a step) is not finite at the start");
+    return {false, false, false};
+  }
   r.solver_failed = !integrator.init(s.t_start_s, y0.data(), yp0.data());
   r.ok = !r.solver_failed;
   if (r.ok) on_point();
@@ -50,6 +55,7 @@ ConstrainedStart prepare_constrained_start(Model& model, GuardedModel& guard, do
   }
   // A non-finite initial value is reported by the run loop, in model terms.
   if (!all_finite(y0)) return start;
+  guard.events().start(t0, y0.data(), yp0.empty() ? nullptr : yp0.data());  // the residual below reads the modes
   start.assembly = assemble(model, shape, t0, y0.data());
   if (!start.assembly->ok) {
     print_error(start.assembly->error);

@@ -1,5 +1,7 @@
 #include "report.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include <string_view>
@@ -39,6 +41,17 @@ void note(std::FILE* err, std::string_view text) {
 }  // namespace
 
 std::string format_time(double t) { return fmt::format("{:.9g}", t); }
+
+/// The switches of the model's events, the first kListed of them one a line.
+void print_events(std::FILE* err, const Events& events) {
+  constexpr std::size_t kListed = 10;
+  const auto& log = events.log();
+  fmt::print(err, "  events       {} switch{} of {} event{}{}\n", log.size(), log.size() == 1 ? "" : "es", events.count(),
+             events.count() == 1 ? "" : "s", log.empty() ? "" : ":");
+  for (std::size_t i = 0; i < std::min(log.size(), kListed); ++i) fmt::print(err, "               {}\n", events.describe(log[i]));
+  if (log.size() > kListed)
+    fmt::print(err, "               and {} more (--event-log FILE.csv writes them all)\n", log.size() - kListed);
+}
 
 void print_summary(std::FILE* err, const RunRecord& run) {
   const Integrator& integ = *run.integrator;
@@ -87,6 +100,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
                rl->size(), format_time(rl->lowest_t()), rl->rows(), one ? "was" : "were",
                one ? "its multiplier" : "their multipliers");
   }
+  if (run.events && run.events->count() > 0) print_events(err, *run.events);
   fmt::print(err, "  output       {}\n", run.output);
   fmt::print(err, "  wall time    {:.3g} s\n", run.wall_s);
 }

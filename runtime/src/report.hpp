@@ -24,6 +24,7 @@ struct RunRecord {
   const RedundancyReport* redundancy = nullptr;
   const InitialValuesReport* initial_values = nullptr;
   const ConstraintMonitor* constraints = nullptr;
+  const Events* events = nullptr;  ///< models with events: their switches, listed
 };
 
 void print_summary(std::FILE* err, const RunRecord& run);

@@ -89,7 +89,14 @@ std::string describe_small_states(const Model& model, const std::vector<double>&
                      100 * atol / peak[worst]);
 }
 
-int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out) {
+/// --event-log: one row per switch, in the order they happened.
+void write_event_log(OutputFile& file, const Events& events) {
+  file.write("t,event,name,state\n");
+  for (const EventRecord& e : events.log())
+    file.write(fmt::format("{},{},\"{}\",{}\n", e.t, e.index, events.model_name(e.index), e.on ? "on" : "off"));
+}
+
+int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out, OutputFile* event_out) {
   Settings s = o.settings;
   const bool linearize = o.linearize_at.has_value();
   if (linearize) s.t_end_s = *o.linearize_at;  // integrate only as far as the linearization point
@@ -203,8 +210,10 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     if (start.redundancy) record.redundancy = &*start.redundancy;
     if (start.initial_values) record.initial_values = &*start.initial_values;
     if (guard.constraint_shape().any()) record.constraints = &monitor;
+    record.events = &guard.events();
     print_summary(stderr, record);
   }
+  if (event_out) write_event_log(*event_out, guard.events());
   if (!r.ok) print_stop_message(stderr, guard, *integrator, r.solver_failed, stop_note);
   return r.ok ? kExitSuccess : kExitRunFailed;
 }
@@ -217,16 +226,17 @@ int run(Model& model, int argc, char** argv) {
   if (o.list_parameters) return list_parameters(model);
   if (!apply_overrides(model, o) || !check_model_fits(model, o)) return kExitUsage;
 
-  std::optional<OutputFile> out, constraint_out;
+  std::optional<OutputFile> out, constraint_out, event_out;
   try {
     out.emplace(o.out_path);
     if (!o.constraint_report_path.empty()) constraint_out.emplace(o.constraint_report_path);
+    if (!o.event_log_path.empty()) event_out.emplace(o.event_log_path);
   } catch (const std::runtime_error& e) {
     print_error(e.what());
     return kExitUsage;
   }
   if (o.work_precision) return work_precision(model, o, *out);
-  return simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr);
+  return simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr, event_out ? &*event_out : nullptr);
 }
 
 }  // namespace

@@ -170,6 +170,21 @@ class Model {
   /// derivative for DAEs and null for ODEs (the model recomputes what it needs).
   virtual void outputs(double t, const double* y, const double* yp, double* out) = 0;
 
+  // ---- events (optional) ----------------------------------------------------
+  /// The model's discontinuities: each is a step(x) the model holds as a mode
+  /// (1 while on) between the zero crossings of x, which the integrators
+  /// locate; the runtime switches the mode there and restarts the method, so
+  /// that no step straddles a jump.
+  virtual std::size_t event_count() const { return 0; }
+  /// EVENTS: g[k] = x of event k at (t, y); yp as for outputs(). Must not throw.
+  virtual void event_functions(double t, const double* y, const double* yp, double* g) {
+    (void)t; (void)y; (void)yp; (void)g;
+  }
+  /// Event k in model terms, e.g. "step(t - t_bump) (time event)".
+  virtual std::string event_name(std::size_t k) const { return "event " + std::to_string(k); }
+  /// Switches event k's mode on or off; false if it already was.
+  virtual bool set_event_mode(std::size_t k, bool on) { (void)k; (void)on; return false; }
+
   /// TERMINAL: called once after the run (successful or not).
   virtual void terminal(double t, const double* y) { (void)t; (void)y; }
 

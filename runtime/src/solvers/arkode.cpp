@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "solvers/sundials_util.hpp"
@@ -15,6 +16,11 @@ namespace {
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* m = static_cast<GuardedModel*>(user_data);
   return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
+  auto* m = static_cast<GuardedModel*>(user_data);
+  return m->events().functions(t, N_VGetArrayPointer(y), nullptr, g) ? 0 : -1;
 }
 
 class Dopri5 final : public Integrator {
@@ -45,11 +51,22 @@ class Dopri5 final : public Integrator {
     // interval, so an input that is zero at the start (a bump, a late step)
     // cannot be jumped over by an ever-growing step.
     check_setup(ERKStepSetMaxStep(mem_, s_.interval_s), "ERKStepSetMaxStep", sink_);
+    if (const std::size_t k = m_.events().count(); k > 0) {
+      check_setup(ERKStepRootInit(mem_, static_cast<int>(k), roots), "ERKStepRootInit", sink_);
+      root_info_.assign(k, 0);
+    }
     return true;
   }
 
   bool advance_to(double t_out) override {
     int flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);
+    while (flag == ARK_ROOT_RETURN) {  // an event: switch its mode, restart there (counters kept)
+      ERKStepGetRootInfo(mem_, root_info_.data());
+      if (!fire_events(m_.events(), t_, root_info_, failure_)) return false;
+      check_setup(ERKStepReset(mem_, t_, y_.get()), "ERKStepReset", sink_);
+      if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
+      flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);
+    }
     if (flag < 0) {
       // On failure ARKODE returns the last accepted y but the time of the
       // failed stage, and it offers no getter for the accepted step's time.
@@ -98,6 +115,7 @@ class Dopri5 final : public Integrator {
   double t_good_ = 0.0;
   std::vector<double> y_good_;
   SolverFailure failure_;
+  std::vector<int> root_info_;  // per event: +1 rising, -1 falling, 0 no root (ERKStepGetRootInfo)
 };
 
 }  // namespace

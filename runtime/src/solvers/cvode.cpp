@@ -8,6 +8,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "solvers/sundials_util.hpp"
@@ -34,6 +35,11 @@ int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* user_data, 
     for (std::size_t j = 0; j < n; ++j)
       SM_ELEMENT_D(J, static_cast<sunindextype>(i), static_cast<sunindextype>(j)) = row_major[i * n + j];
   return 0;
+}
+
+int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
+  auto* m = static_cast<GuardedModel*>(user_data);
+  return m->events().functions(t, N_VGetArrayPointer(y), nullptr, g) ? 0 : -1;
 }
 
 class Cvode final : public Integrator {
@@ -75,11 +81,25 @@ class Cvode final : public Integrator {
     check_setup(ls_, "SUNLinSol_Dense");
     check_setup(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver", sink_);
     if (m_.has_jacobian()) check_setup(CVodeSetJacFn(mem_, jacobian), "CVodeSetJacFn", sink_);
+    if (const std::size_t k = m_.events().count(); k > 0) {
+      check_setup(CVodeRootInit(mem_, static_cast<int>(k), roots), "CVodeRootInit", sink_);
+      root_info_.assign(k, 0);
+    }
     return true;
   }
 
   bool advance_to(double t_out) override {
     int flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
+    while (flag == CV_ROOT_RETURN) {  // an event: switch its mode, restart there
+      CVodeGetRootInfo(mem_, root_info_.data());
+      if (!fire_events(m_.events(), t_, root_info_, failure_)) return false;
+      SolverStats counted = stats();
+      check_setup(CVodeReInit(mem_, t_, y_.get()), "CVodeReInit", sink_);
+      check_setup(CVodeSetStopTime(mem_, s_.t_end_s), "CVodeSetStopTime", sink_);  // (ReInit clears it)
+      before_restart_ = counted;
+      if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
+      flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
+    }
     if (flag < 0) {
       double t_now = t_;
       CVodeGetCurrentTime(mem_, &t_now);
@@ -108,6 +128,7 @@ class Cvode final : public Integrator {
     CVodeGetNumNonlinSolvConvFails(mem_, &st.nonlin_conv_fails);
     CVodeGetNumErrTestFails(mem_, &st.err_test_fails);
     CVodeGetLastStep(mem_, &st.last_step);
+    add_counts(st, before_restart_);  // CVodeReInit (at events) zeroes CVODE's counters
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
@@ -123,6 +144,8 @@ class Cvode final : public Integrator {
   SUNLinearSolver ls_ = nullptr;
   double t_ = 0.0;
   SolverFailure failure_;
+  std::vector<int> root_info_;  // per event: +1 rising, -1 falling, 0 no root (CVodeGetRootInfo)
+  SolverStats before_restart_;  // counted before the latest restart (at an event)
 };
 
 }  // namespace

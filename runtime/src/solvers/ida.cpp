@@ -105,12 +105,23 @@ class Ida final : public Integrator {
       check_setup(IDASetLinearSolver(mem_, ls_, A_), "IDASetLinearSolver", sink_);
     }
 
+    if (const std::size_t k = m_.events().count(); k > 0) {
+      check_setup(IDARootInit(mem_, static_cast<int>(k), roots), "IDARootInit", sink_);
+      root_info_.assign(k, 0);
+    }
     if (m_.is_dae()) return consistent_initial_values(t0);
     return true;
   }
 
   bool advance_to(double t_out) override {
     int flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+    while (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
+      IDAGetRootInfo(mem_, root_info_.data());
+      if (!fire_events(m_.events(), t_, root_info_, failure_)) return false;
+      if (!restart_after_event()) return false;
+      if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
+      flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+    }
     if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two())
       flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
     if (flag < 0) return fail(flag);
@@ -148,6 +159,41 @@ class Ida final : public Integrator {
   const SolverFailure& failure() const override { return failure_; }
 
  private:
+  static int roots(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype* g, void* user_data) {
+    auto* self = static_cast<Ida*>(user_data);
+    const double* ypv = self->m_.is_dae() ? N_VGetArrayPointer(yp) : nullptr;
+    return self->m_.events().functions(t, N_VGetArrayPointer(y), ypv, g) ? 0 : -1;
+  }
+
+  /// After an event: y' jumps with the switched mode. An ODE takes f(t, y);
+  /// a DAE new consistent y' and algebraic unknowns (IDACalcIC, or the
+  /// runtime's own solve for the index-2 form), then IDA restarts at order 1.
+  bool restart_after_event() {
+    const std::size_t n = m_.size();
+    SolverStats counted = stats();
+    if (sparse_) counted.fd_jac_evals -= sparse_->evaluations();  // counted on by stats() itself
+    if (!m_.is_dae()) {
+      if (m_.derivative(t_, y_.data(), yp_.data()) != 0) return fail_at_event("the derivative after the event is not finite");
+    } else if (m_.constraint_shape().any()) {
+      std::vector<double> y(y_.data(), y_.data() + n), yp(yp_.data(), yp_.data() + n);
+      const InitialValuesReport r = detail::consistent_initial_values(m_.model(), m_.constraint_shape(), t_, y.data(), yp.data());
+      if (!r.ok) return fail_at_event("no consistent y' after the event: " + r.error);
+      std::copy(y.begin(), y.end(), y_.data());
+      std::copy(yp.begin(), yp.end(), yp_.data());
+    }
+    if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return fail_at_event("IDAReInit failed");
+    before_restart_ = counted;
+    if (m_.is_dae() && !m_.constraint_shape().any()) {
+      if (int flag = IDACalcIC(mem_, IDA_YA_YDP_INIT, t_ + s_.interval_s); flag < 0) return fail(flag);
+      check_setup(IDAGetConsistentIC(mem_, y_.get(), yp_.get()), "IDAGetConsistentIC", sink_);
+    }
+    return true;
+  }
+  bool fail_at_event(const std::string& why) {
+    failure_ = SolverFailure{t_, "IDA_EVENT_RESTART", "restarting after an event: " + why, {}, -1};
+    return false;
+  }
+
   static int residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* user_data) {
     auto* self = static_cast<Ida*>(user_data);
     const double* yv = N_VGetArrayPointer(y);
@@ -357,6 +403,7 @@ class Ida final : public Integrator {
   std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
   /// IDA's counters up to the restart (zero until then).
   SolverStats before_restart_{0, 0, 0, 0, 0, 0, 0, 0.0, 0, {}};
+  std::vector<int> root_info_;  // per event: +1 rising, -1 falling, 0 no root (IDAGetRootInfo)
   SolverFailure failure_;
 };
 

@@ -34,20 +34,28 @@ class Rk4 final : public Integrator {
   bool init(double t0, const double* y0, const double*) override {
     t_ = t0;
     std::copy(y0, y0 + n_, y_.begin());
+    if (events_.count() > 0) {
+      g_.resize(events_.count());
+      g_new_.resize(events_.count());
+      if (!events_.functions(t_, y_.data(), nullptr, g_.data())) return fail();
+    }
     return true;
   }
 
   bool advance_to(double t_out) override {
-    const double span = t_out - t_;
-    if (span <= 0.0) return true;
     // Equal substeps, the last one forced onto t_out, so every communication
-    // point is hit exactly and the step never exceeds the requested one.
-    const auto count = static_cast<long long>(std::max(1.0, std::ceil(span / h_ - 1e-9)));
-    const double h = span / static_cast<double>(count);
-    for (long long i = 0; i < count; ++i) {
-      const double t_next = (i + 1 == count) ? t_out : t_ + h;
-      if (!step(t_next - t_)) return false;
-      t_ = t_next;
+    // point is hit exactly and the step never exceeds the requested one; an
+    // event cuts a step short, and the rest of the span is divided again.
+    for (bool event = true; event;) {
+      event = false;
+      const double span = t_out - t_;
+      if (span <= 0.0) return true;
+      const auto count = static_cast<long long>(std::max(1.0, std::ceil(span / h_ - 1e-9)));
+      const double h = span / static_cast<double>(count);
+      for (long long i = 0; i < count && !event; ++i) {
+        const double t_next = (i + 1 == count) ? t_out : t_ + h;
+        if (!step(t_next - t_, t_next, event)) return false;
+      }
     }
     return true;
   }
@@ -65,7 +73,63 @@ class Rk4 final : public Integrator {
   const SolverFailure& failure() const override { return failure_; }
 
  private:
-  bool step(double h) {
+  /// One step of h from (t_, y_) to t_next (= t_ + h, exactly): y_ and t_
+  /// move there, or to the first event inside it (`event` set).
+  bool step(double h, double t_next, bool& event) {
+    if (!trial(h)) return false;
+    if (!events_.count()) return accept(t_next, h);
+    if (!events_.functions(t_next, tmp_.data(), nullptr, g_new_.data())) return fail();
+    double first = 2.0;  // fraction of h where the first crossing is, once located
+    for (std::size_t k = 0; k < g_.size(); ++k)
+      if ((g_[k] >= 0.0) != (g_new_[k] >= 0.0)) first = std::min(first, locate(k, h));
+    if (first > 1.0) {
+      g_.swap(g_new_);
+      return accept(t_next, h);
+    }
+    // Every event whose function has crossed by then switches there (the
+    // trial state and functions again: locate() left its last try in them).
+    const double t_event = first == 1.0 ? t_next : t_ + first * h;
+    if (!trial(t_event - t_)) return false;
+    if (!events_.functions(t_event, tmp_.data(), nullptr, g_new_.data())) return fail();
+    const double t0 = t_;
+    if (!accept(t_event, t_event - t0)) return false;
+    for (std::size_t k = 0; k < g_.size(); ++k)
+      if ((g_[k] >= 0.0) != (g_new_[k] >= 0.0)) events_.fire(t_, k, g_new_[k] >= 0.0);
+    if (!chatter_check()) return false;
+    event = true;
+    return events_.functions(t_, y_.data(), nullptr, g_.data()) || fail();
+  }
+
+  /// The fraction of h at which event k's function crosses zero: Illinois
+  /// (regula falsi) on steps of a fraction of h from (t_, y_), each an RK4
+  /// step, to 1e-14 of the time. Returns the end of the bracket past the
+  /// crossing, so that the function has changed sign there.
+  double locate(std::size_t k, double h) {
+    const bool before = g_[k] >= 0.0;
+    double a = 0.0, fa = g_[k], b = 1.0, fb = g_new_[k];
+    int side = 0;
+    const double tol = 1e-14 * std::max(1.0, std::abs(t_)) / std::abs(h);
+    for (int it = 0; it < 100 && b - a > tol; ++it) {
+      double c = (fb != fa) ? b - fb * (b - a) / (fb - fa) : 0.5 * (a + b);
+      if (!(c > a && c < b)) c = 0.5 * (a + b);
+      if (!trial(c * h) || !events_.functions(t_ + c * h, tmp_.data(), nullptr, g_new_.data())) break;
+      const double fc = g_new_[k];
+      if ((fc >= 0.0) == before) {
+        a = c, fa = fc;
+        if (side == 1) fb /= 2;
+        side = 1;
+      } else {
+        b = c, fb = fc;
+        if (side == -1) fa /= 2;
+        side = -1;
+      }
+    }
+    ++located_;
+    return b;
+  }
+
+  /// tmp_ = the RK4 step of h from (t_, y_).
+  bool trial(double h) {
     if (!eval(t_, y_.data(), k1_.data())) return false;
     axpy(y_, h / 2, k1_);
     if (!eval(t_ + h / 2, tmp_.data(), k2_.data())) return false;
@@ -75,13 +139,21 @@ class Rk4 final : public Integrator {
     if (!eval(t_ + h, tmp_.data(), k4_.data())) return false;
     for (std::size_t i = 0; i < n_; ++i)
       tmp_[i] = y_[i] + h / 6 * (k1_[i] + 2 * k2_[i] + 2 * k3_[i] + k4_[i]);
+    return true;
+  }
+
+  /// The trial state becomes the state at t_next.
+  bool accept(double t_next, double h) {
     // Keep the last finite state in y_ so terminal() and the report see it.
-    if (!m_.check_state(t_ + h, tmp_.data())) return fail();
+    if (!m_.check_state(t_next, tmp_.data())) return fail();
     y_.swap(tmp_);
+    t_ = t_next;
     ++steps_;
     last_h_ = h;
     return true;
   }
+
+  bool chatter_check() { return chatter_failure(events_, t_, failure_); }
 
   /// tmp = base + a * k
   void axpy(const std::vector<double>& base, double a, const std::vector<double>& k) {
@@ -107,6 +179,9 @@ class Rk4 final : public Integrator {
   }
 
   GuardedModel& m_;
+  Events& events_ = m_.events();
+  std::vector<double> g_, g_new_;  // event functions at (t_, y_) and at the trial state
+  long located_ = 0;               // crossings located (each by a few trial steps)
   double h_;
   std::size_t n_;
   double t_ = 0.0;

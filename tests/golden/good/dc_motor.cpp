@@ -101,7 +101,7 @@ class dc_motor_model final : public mbgrt::Model {
     const double armature_l_p = x[0];
     const double rotor_p = x[1];
     // dc_motor.mbg:13:4  Se supply: e = value
-    const double supply_e = V_supply * ((t) >= 0.0 ? 1.0 : 0.0);
+    const double supply_e = V_supply * mode_[0];
     // dc_motor.mbg:15:4  I armature_l: p = I f
     const double armature_l_f = armature_l_p / L_a;
     // dc_motor.mbg:14:4  R armature_r: e = R f
@@ -156,6 +156,33 @@ class dc_motor_model final : public mbgrt::Model {
     out[1] = rotor_f;
   }
 
+  // EVENTS: the zero-crossing functions, one per event (its step's argument).
+  void event_functions(double t, const double* x, const double* yp, double* g) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // zero-crossing functions, in event order
+    g[0] = t;
+  }
+
+  // EVENTS: the model's discontinuities, each a step held as a mode between the zero crossings of its argument.
+  std::size_t event_count() const override {
+    return 1;
+  }
+
+  std::string event_name(std::size_t k) const override {
+    static const char* const names[1] = {
+        "heaviside(t) (time event)",
+    };
+    return k < 1 ? names[k] : std::string();
+  }
+
+  bool set_event_mode(std::size_t k, bool on) override {
+    if (k >= 1 || (mode_[k] != 0.0) == on) return false;
+    mode_[k] = on ? 1.0 : 0.0;
+    return true;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;
@@ -167,6 +194,8 @@ class dc_motor_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // event modes: each step(x) of the model, 1 while x >= 0 (switched by the runtime at x's zero crossings)
+  double mode_[1] = {};
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = -R_a*(1/L_a)
   double derived2_ = 0.0;  // = -K_m*(1/J)

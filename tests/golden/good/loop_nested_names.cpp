@@ -114,7 +114,7 @@ class loop_nested_names_model final : public mbgrt::Model {
     const double spring2_2_q = x[6];
     const double mass2_2_p = x[7];
     // loop_nested_names.mbg:12:8  Se force1_1: e = value
-    const double force1_1_e = ((t) >= 0.0 ? 1.0 : 0.0);
+    const double force1_1_e = mode_[0];
     // loop_nested_names.mbg:13:8  C spring1_1: q = C e
     const double spring1_1_e = spring1_1_q / derived1_;
     // loop_nested_names.mbg:15:8  R damper1_1: e = R f
@@ -122,7 +122,7 @@ class loop_nested_names_model final : public mbgrt::Model {
     // loop_nested_names.mbg:16:8  1 node1_1: efforts in = efforts out
     const double mass1_1_e = force1_1_e - (spring1_1_e + damper1_1_e);
     // loop_nested_names.mbg:12:8  Se force1_2: e = value
-    const double force1_2_e = force1_1_e;
+    const double force1_2_e = mode_[0];
     // loop_nested_names.mbg:13:8  C spring1_2: q = C e
     const double spring1_2_e = spring1_2_q / derived2_;
     // loop_nested_names.mbg:15:8  R damper1_2: e = R f
@@ -130,7 +130,7 @@ class loop_nested_names_model final : public mbgrt::Model {
     // loop_nested_names.mbg:16:8  1 node1_2: efforts in = efforts out
     const double mass1_2_e = force1_2_e - (spring1_2_e + damper1_2_e);
     // loop_nested_names.mbg:12:8  Se force2_1: e = value
-    const double force2_1_e = 2.0 * force1_1_e;
+    const double force2_1_e = 2.0 * mode_[0];
     // loop_nested_names.mbg:13:8  C spring2_1: q = C e
     const double spring2_1_e = spring2_1_q / derived3_;
     // loop_nested_names.mbg:15:8  R damper2_1: e = R f
@@ -199,6 +199,33 @@ class loop_nested_names_model final : public mbgrt::Model {
     out[5] = spring2_2_q;
   }
 
+  // EVENTS: the zero-crossing functions, one per event (its step's argument).
+  void event_functions(double t, const double* x, const double* yp, double* g) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // zero-crossing functions, in event order
+    g[0] = t;
+  }
+
+  // EVENTS: the model's discontinuities, each a step held as a mode between the zero crossings of its argument.
+  std::size_t event_count() const override {
+    return 1;
+  }
+
+  std::string event_name(std::size_t k) const override {
+    static const char* const names[1] = {
+        "heaviside(t) (time event)",
+    };
+    return k < 1 ? names[k] : std::string();
+  }
+
+  bool set_event_mode(std::size_t k, bool on) override {
+    if (k >= 1 || (mode_[k] != 0.0) == on) return false;
+    mode_[k] = on ? 1.0 : 0.0;
+    return true;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;
@@ -210,6 +237,8 @@ class loop_nested_names_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  // event modes: each step(x) of the model, 1 while x >= 0 (switched by the runtime at x's zero crossings)
+  double mode_[1] = {};
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/k1_1
   double derived2_ = 0.0;  // = 1/k1_2

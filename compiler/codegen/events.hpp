@@ -1,0 +1,21 @@
+// codegen/events.hpp — the generated model's events (reduce/events): one mode
+// per discontinuity, the methods the runtime switches them through, and their
+// names in model terms. The zero-crossing functions themselves are a section
+// of equations, written by the emitter like the outputs.
+#pragma once
+
+#include <string>
+
+#include "codegen/cpp.hpp"
+#include "ir/reduced.hpp"
+
+namespace mbgc::codegen {
+
+/// How event k's mode is written in expressions: "mode_[k]".
+std::string event_mode_name(std::size_t k);
+
+/// event_count(), event_name(), set_event_mode() and the modes' member array
+/// (nothing when the model has no events).
+void add_event_methods(CppClass& c, const ir::ReducedSystem& s);
+
+}  // namespace mbgc::codegen

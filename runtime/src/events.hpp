@@ -1,0 +1,56 @@
+// The model's events during a run (Model::event_count): their modes set from
+// the signs of the zero-crossing functions at the start, switched where an
+// integrator locates a crossing, and every switch logged for the run summary
+// and --event-log.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mbgrt/model.hpp"
+
+namespace mbgrt::detail {
+
+struct EventRecord {
+  double t = 0.0;
+  std::size_t index = 0;  ///< which event (Model::event_name)
+  bool on = false;        ///< its step switched on (x rose through 0) or off
+};
+
+class Events {
+ public:
+  explicit Events(Model& model) : model_(model), n_(model.event_count()), g_(n_) {}
+
+  std::size_t count() const { return n_; }
+  Model& model() { return model_; }
+
+  /// The zero-crossing functions at (t, y[, yp]); false if one is not finite.
+  bool functions(double t, const double* y, const double* yp, double* g);
+  /// Each mode from the sign of its function at the start of the run (x >= 0:
+  /// on, as step(x) is); not logged.
+  bool start(double t, const double* y, const double* yp);
+  /// Event k's function crossed zero at t, rising (on) or falling: switches
+  /// its mode and logs it. False if the mode already was so (nothing logged).
+  bool fire(double t, std::size_t k, bool on);
+  /// More than kMaxAtOneInstant switches at one time: the modes chatter (a
+  /// relation that turns itself off when on), and the run must stop.
+  bool chattering() const { return at_instant_ > kMaxAtOneInstant; }
+  static constexpr long kMaxAtOneInstant = 100;
+
+  const std::vector<EventRecord>& log() const { return log_; }
+  /// "t = 0.5 s: step(t - t_bump) (time event) on"
+  std::string describe(const EventRecord& e) const;
+  /// Event k in model terms (Model::event_name).
+  std::string model_name(std::size_t k) const { return model_.event_name(k); }
+
+ private:
+  Model& model_;
+  std::size_t n_;
+  std::vector<double> g_;
+  std::vector<EventRecord> log_;
+  double instant_ = 0.0;  ///< time of the latest switch
+  long at_instant_ = 0;   ///< switches at that time
+};
+
+}  // namespace mbgrt::detail
