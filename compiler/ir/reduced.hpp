@@ -67,7 +67,7 @@ inline bool from_tree_elimination(const Assignment& a) { return a.origin.starts_
 struct EventRelation {
   Expr step;              // the step(arg) node, printed as its mode
   Expr arg;               // the zero-crossing function
-  bool time_event = false;  // arg = t - t0: its time is known in advance
+  bool time_event = false;  // arg is a function of time alone: its crossings are known in advance
 };
 
 /// The variables an assignment reads (its value, or its whole block).

@@ -1,7 +1,9 @@
 // reduce/events.cpp — see events.hpp.
 #include "reduce/events.hpp"
 
+#include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 namespace mbgc::reduce {
 
@@ -34,18 +36,62 @@ class Finder {
     collect_vars(x, vars);
     return !vars.empty() || depends_on_time(x);
   }
-  /// x = t - t0 (or any x whose rate is 1 and that reads no variable).
+  /// x a function of time alone (t - t0, t0 - t, ...): its crossings are known before the run.
   static bool is_time_event(const Expr& x) {
     std::unordered_set<int> vars;
     collect_vars(x, vars);
-    return vars.empty() && is_one(diff_time(x));
+    return vars.empty() && depends_on_time(x);
   }
 
   std::vector<EventRelation>& out_;
   std::unordered_set<const Node*> seen_;
 };
 
+/// min/max of arguments whose difference is a function of time alone, as steps.
+class TimeKinks {
+ public:
+  Expr operator()(const Expr& e) {
+    if (!e || !depends_on_time(e)) return e;
+    if (auto it = memo_.find(e.get()); it != memo_.end()) return it->second.second;
+    std::vector<Expr> args;
+    for (const Expr& a : e->args) args.push_back((*this)(a));
+    Expr r = with_operands(e, std::move(args));
+    if (r->op == Op::Call && (r->fn == Fn::Min || r->fn == Fn::Max)) {
+      const Expr &a = r->args[0], &b = r->args[1];
+      const Expr d = sub(a, b);
+      std::unordered_set<int> vars;
+      collect_vars(d, vars);
+      if (vars.empty() && depends_on_time(d)) {
+        const Expr h = call(Fn::Step, {d});
+        r = r->fn == Fn::Min ? add(a, mul(sub(b, a), h)) : add(b, mul(d, h));
+      }
+    }
+    memo_.emplace(e.get(), std::make_pair(e, r));  // the key kept alive: no new node reuses its address
+    return r;
+  }
+
+ private:
+  std::unordered_map<const Node*, std::pair<Expr, Expr>> memo_;
+};
+
 }  // namespace
+
+void steps_for_time_kinks(ReducedSystem& s) {
+  TimeKinks f;
+  for (Assignment& a : s.assignments) a.value = f(a.value);
+  for (LinearBlock& lb : s.linear_blocks) {
+    for (Expr& e : lb.a) e = f(e);
+    for (Expr& e : lb.b) e = f(e);
+  }
+  for (Expr& e : s.state_derivative) e = f(e);
+  for (Expr& e : s.jacobian) e = f(e);
+  for (Residual& r : s.residuals) r.value = f(r.value);
+  for (Output& o : s.graph.outputs) o.value = f(o.value);
+  for (ConstraintRow& row : s.constraints) {
+    row.g = f(row.g);
+    row.gdot = f(row.gdot);
+  }
+}
 
 std::vector<EventRelation> find_events(const ReducedSystem& s) {
   std::vector<EventRelation> events;

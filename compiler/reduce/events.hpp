@@ -12,6 +12,11 @@
 
 namespace mbgc::reduce {
 
+/// Kinks in time become events too: min(a, b) and max(a, b) whose a - b
+/// reads t but no variable (a motion profile's end, ramp(t0)) are rewritten
+/// in s as a + (b - a) step(a - b) and b + (a - b) step(a - b).
+void steps_for_time_kinks(ir::ReducedSystem& s);
+
 /// The step nodes of s's expressions whose argument reads t or a variable,
 /// each once, in the order first met (assignments in order, then state
 /// derivatives, residuals, outputs, constraint rows).

@@ -34,6 +34,7 @@ class Reducer {
     sort_and_solve();
     if (diags_.has_errors()) return;
     differentiate_for_jacobian();
+    steps_for_time_kinks(out_);
     out_.events = find_events(out_);
     slice();
   }

@@ -87,4 +87,20 @@ TEST(Events, LocatedSwitchesMakeRk4ExactWhereStepsStraddlingThemMissByAMillivolt
   RecordProperty("rk4_error_located", std::to_string(located));
 }
 
+TEST(Events, ATimeKinkIsAnEventTooSoRk4IntegratesARampExactly) {
+  // ramp(t0) = max(0, t - t0): the kink at t0 = 0.35 s lies inside the step
+  // from 0.3 to 0.4 s. As an event the step is cut there and both pieces are
+  // polynomials of degree 1, whose integral RK4 gets exactly (a step across
+  // the kink would carry an error of order h^2 / C).
+  SimRun r = run(EVENTS_RAMP_SIM, "--event-log \"" + work_file("events_ramp", "_events.csv") + "\"", "events_ramp");
+  ASSERT_EQ(r.status, 0) << r.log;
+  for (const auto& row : r.csv.rows) {
+    const double t = row[0], d = std::max(0.0, t - 0.35);
+    EXPECT_NEAR(row[r.csv.col("v")], d * d / (2 * 2.0), 1e-14) << "at t = " << t;
+  }
+  const Csv events = read_csv(work_file("events_ramp", "_events.csv"));
+  ASSERT_EQ(events.rows.size(), 1u);
+  EXPECT_NEAR(events.rows[0][0], 0.35, 1e-14);
+}
+
 }  // namespace

@@ -183,6 +183,11 @@ class Ida final : public Integrator {
     }
     if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return fail_at_event("IDAReInit failed");
     before_restart_ = counted;
+    IDASetStopTime(mem_, s_.t_end_s);  // (ReInit clears it)
+    if (m_.is_dae() && m_.constraint_shape().any()) {  // a first step as at the start (setup_index_two)
+      h0_ = initial_step(t_);
+      if (h0_ > 0.0) IDASetInitStep(mem_, h0_);
+    }
     if (m_.is_dae() && !m_.constraint_shape().any()) {
       if (int flag = IDACalcIC(mem_, IDA_YA_YDP_INIT, t_ + s_.interval_s); flag < 0) return fail(flag);
       check_setup(IDAGetConsistentIC(mem_, y_.get(), yp_.get()), "IDAGetConsistentIC", sink_);
