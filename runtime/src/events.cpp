@@ -15,14 +15,19 @@ bool Events::functions(double t, const double* y, const double* yp, double* g) {
 }
 
 bool Events::start(double t, const double* y, const double* yp) {
+  log_.clear();
+  at_instant_ = 0;
+  jumped_ = false;
   if (n_ == 0) return true;
   if (!functions(t, y, yp, g_.data())) return false;
   for (std::size_t k = 0; k < n_; ++k) model_.set_event_mode(k, g_[k] >= 0.0);
   return true;
 }
 
-bool Events::fire(double t, std::size_t k, bool on) {
+bool Events::fire(double t, std::size_t k, bool on, double* y) {
   if (!model_.set_event_mode(k, on)) return false;
+  const bool jump = model_.event_jump(k, on, t, y);
+  jumped_ = jumped_ || jump;
   // One instant: equal times, up to the rounding of a located root.
   if (!log_.empty() && std::abs(t - instant_) <= 1e-12 * std::max(1.0, std::abs(t))) {
     ++at_instant_;
@@ -30,12 +35,12 @@ bool Events::fire(double t, std::size_t k, bool on) {
     instant_ = t;
     at_instant_ = 1;
   }
-  log_.push_back({t, k, on});
+  log_.push_back({t, k, on, jump});
   return true;
 }
 
 std::string Events::describe(const EventRecord& e) const {
-  return fmt::format("t = {:.9g} s: {} {}", e.t, model_.event_name(e.index), e.on ? "on" : "off");
+  return fmt::format("t = {:.9g} s: {} {}{}", e.t, model_.event_name(e.index), e.on ? "on" : "off", e.jump ? ", jump" : "");
 }
 
 bool chatter_failure(const Events& events, double t, SolverFailure& failure) {
@@ -49,9 +54,10 @@ bool chatter_failure(const Events& events, double t, SolverFailure& failure) {
   return false;
 }
 
-bool fire_events(Events& events, double t, const std::vector<int>& root_info, SolverFailure& failure) {
+bool fire_events(Events& events, double t, double* y, const std::vector<int>& root_info, SolverFailure& failure) {
   for (std::size_t k = 0; k < root_info.size(); ++k)
-    if (root_info[k] != 0) events.fire(t, k, root_info[k] > 0);
+    if (root_info[k] != 0) events.fire(t, k, root_info[k] > 0, y);
+  events.take_jump();  // the method restarts from y whether it jumped or not
   return chatter_failure(events, t, failure);
 }
 

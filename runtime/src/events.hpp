@@ -16,6 +16,7 @@ struct EventRecord {
   double t = 0.0;
   std::size_t index = 0;  ///< which event (Model::event_name)
   bool on = false;        ///< its step switched on (x rose through 0) or off
+  bool jump = false;      ///< the unknowns jumped there (Model::event_jump)
 };
 
 class Events {
@@ -31,8 +32,15 @@ class Events {
   /// on, as step(x) is); not logged.
   bool start(double t, const double* y, const double* yp);
   /// Event k's function crossed zero at t, rising (on) or falling: switches
-  /// its mode and logs it. False if the mode already was so (nothing logged).
-  bool fire(double t, std::size_t k, bool on);
+  /// its mode, lets the model change y (Model::event_jump) and logs it. False
+  /// if the mode already was so (nothing logged).
+  bool fire(double t, std::size_t k, bool on, double* y);
+  /// Whether a fire() since the last call changed the unknowns (and clears it).
+  bool take_jump() {
+    const bool j = jumped_;
+    jumped_ = false;
+    return j;
+  }
   /// More than kMaxAtOneInstant switches at one time: the modes chatter (a
   /// relation that turns itself off when on), and the run must stop.
   bool chattering() const { return at_instant_ > kMaxAtOneInstant; }
@@ -51,6 +59,7 @@ class Events {
   std::vector<EventRecord> log_;
   double instant_ = 0.0;  ///< time of the latest switch
   long at_instant_ = 0;   ///< switches at that time
+  bool jumped_ = false;   ///< a fire() changed y (take_jump)
 };
 
 }  // namespace mbgrt::detail

@@ -58,10 +58,10 @@ class Integrator {
   virtual const SolverFailure& failure() const = 0;
 };
 
-/// The events a root finder reported at t (root_info[k]: +1 rising, -1
-/// falling, 0 none) switched and logged. False, with `failure` set, when the
+/// The events a root finder reported at (t, y) (root_info[k]: +1 rising,
+/// -1 falling, 0 none) switched and logged; y may jump (Model::event_jump). False, with `failure` set, when the
 /// modes chatter (Events::chattering).
-bool fire_events(Events& events, double t, const std::vector<int>& root_info, SolverFailure& failure);
+bool fire_events(Events& events, double t, double* y, const std::vector<int>& root_info, SolverFailure& failure);
 /// The same for one event located by a method without a root finder.
 bool chatter_failure(const Events& events, double t, SolverFailure& failure);
 /// st += before, counter by counter (counters a method lacks, -1, add nothing):

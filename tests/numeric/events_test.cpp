@@ -46,15 +46,15 @@ TEST_P(EventsBySolver, ThePiecewiseLinearVoltageIsExactAndTheSwitchesAreWhereThe
   for (const auto& row : r.csv.rows) EXPECT_NEAR(row[r.csv.col("v")], voltage(row[0]), tol) << solver << " at t = " << row[0];
   // The log: three switches, in order, at the closed form's times.
   const Csv events = read_csv(log_path);
-  ASSERT_EQ(events.header, (std::vector<std::string>{"t", "event", "name", "state"}));
+  ASSERT_EQ(events.header, (std::vector<std::string>{"t", "event", "name", "state", "jump"}));
   ASSERT_EQ(events.rows.size(), 3u) << slurp(log_path);
   EXPECT_NEAR(events.rows[0][0], kT1, 1e-9);
   EXPECT_NEAR(events.rows[1][0], kTOff, 1e-12);  // a time event: t - t_off, located where it is 0
   EXPECT_NEAR(events.rows[2][0], kT2, 1e-9);
   const std::string text = slurp(log_path);
-  EXPECT_TRUE(contains(text, "\"heaviside(cap.e - v1)\",on")) << text;
-  EXPECT_TRUE(contains(text, "\"heaviside(t - t_off) (time event)\",on")) << text;
-  EXPECT_TRUE(contains(text, "\"heaviside(v2 - cap.e)\",off")) << text;
+  EXPECT_TRUE(contains(text, "\"heaviside(cap.e - v1)\",on,0")) << text;
+  EXPECT_TRUE(contains(text, "\"heaviside(t - t_off) (time event)\",on,0")) << text;
+  EXPECT_TRUE(contains(text, "\"heaviside(v2 - cap.e)\",off,0")) << text;
   // The run summary lists them in model terms.
   EXPECT_TRUE(contains(r.log, "events       3 switches of 3 events:")) << r.log;
   EXPECT_TRUE(contains(r.log, "heaviside(v2 - cap.e) off")) << r.log;

@@ -184,6 +184,18 @@ class Model {
   virtual std::string event_name(std::size_t k) const { return "event " + std::to_string(k); }
   /// Switches event k's mode on or off; false if it already was.
   virtual bool set_event_mode(std::size_t k, bool on) { (void)k; (void)on; return false; }
+  /// JUMP: what event k's switch does to the unknowns besides its mode (an
+  /// impact's velocity jump by Newton's restitution law), written into y at t
+  /// right after set_event_mode switched it. True if y changed; the runtime
+  /// then restarts the integrator from the new y (for a DAE with y' and the
+  /// algebraic unknowns made consistent again). Leave y on the side of the
+  /// crossing its mode now says (an impact puts the contact point on the
+  /// surface, not at the rounding level where the root was found), so that
+  /// the next crossing is seen; a jump may switch modes back itself.
+  virtual bool event_jump(std::size_t k, bool on, double t, double* y) {
+    (void)k; (void)on; (void)t; (void)y;
+    return false;
+  }
 
   /// TERMINAL: called once after the run (successful or not).
   virtual void terminal(double t, const double* y) { (void)t; (void)y; }

@@ -62,7 +62,7 @@ class Dopri5 final : public Integrator {
     int flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);
     while (flag == ARK_ROOT_RETURN) {  // an event: switch its mode, restart there (counters kept)
       ERKStepGetRootInfo(mem_, root_info_.data());
-      if (!fire_events(m_.events(), t_, root_info_, failure_)) return false;
+      if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       check_setup(ERKStepReset(mem_, t_, y_.get()), "ERKStepReset", sink_);
       if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
       flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);

@@ -92,7 +92,7 @@ class Cvode final : public Integrator {
     int flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
     while (flag == CV_ROOT_RETURN) {  // an event: switch its mode, restart there
       CVodeGetRootInfo(mem_, root_info_.data());
-      if (!fire_events(m_.events(), t_, root_info_, failure_)) return false;
+      if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       SolverStats counted = stats();
       check_setup(CVodeReInit(mem_, t_, y_.get()), "CVodeReInit", sink_);
       check_setup(CVodeSetStopTime(mem_, s_.t_end_s), "CVodeSetStopTime", sink_);  // (ReInit clears it)

@@ -117,7 +117,7 @@ class Ida final : public Integrator {
     int flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
     while (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
       IDAGetRootInfo(mem_, root_info_.data());
-      if (!fire_events(m_.events(), t_, root_info_, failure_)) return false;
+      if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       if (!restart_after_event()) return false;
       if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
       flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);

@@ -88,13 +88,16 @@ class Rk4 final : public Integrator {
     }
     // Every event whose function has crossed by then switches there (the
     // trial state and functions again: locate() left its last try in them).
-    const double t_event = first == 1.0 ? t_next : t_ + first * h;
+    // (at least a few ulps past t_: a root at the step's start, where the
+    // function sits at rounding level after a jump, must not stall the run)
+    const double t_event = first == 1.0 ? t_next : std::max(t_ + first * h, std::nextafter(std::nextafter(t_, t_next), t_next));
     if (!trial(t_event - t_)) return false;
     if (!events_.functions(t_event, tmp_.data(), nullptr, g_new_.data())) return fail();
     const double t0 = t_;
     if (!accept(t_event, t_event - t0)) return false;
     for (std::size_t k = 0; k < g_.size(); ++k)
-      if ((g_[k] >= 0.0) != (g_new_[k] >= 0.0)) events_.fire(t_, k, g_new_[k] >= 0.0);
+      if ((g_[k] >= 0.0) != (g_new_[k] >= 0.0)) events_.fire(t_, k, g_new_[k] >= 0.0, y_.data());
+    if (events_.take_jump() && !m_.check_state(t_, y_.data())) return fail();
     if (!chatter_check()) return false;
     event = true;
     return events_.functions(t_, y_.data(), nullptr, g_.data()) || fail();
