@@ -17,7 +17,12 @@ bool Events::functions(double t, const double* y, const double* yp, double* g) {
 bool Events::start(double t, const double* y, const double* yp) {
   log_.clear();
   at_instant_ = 0;
+  roots_at_instant_ = 0;
   jumped_ = false;
+  last_t_.assign(n_, std::nan(""));
+  last_dt_.assign(n_, std::nan(""));
+  shrinking_.assign(n_, 0);
+  zeno_event_ = -1;
   if (n_ == 0) return true;
   if (!functions(t, y, yp, g_.data())) return false;
   for (std::size_t k = 0; k < n_; ++k) model_.set_event_mode(k, g_[k] >= 0.0);
@@ -36,7 +41,22 @@ bool Events::fire(double t, std::size_t k, bool on, double* y) {
     at_instant_ = 1;
   }
   log_.push_back({t, k, on, jump});
+  const double dt = t - last_t_[k];
+  shrinking_[k] = dt < last_dt_[k] ? shrinking_[k] + 1 : 0;  // (false while either is NaN)
+  last_t_[k] = t;
+  last_dt_[k] = dt;
+  if (shrinking_[k] >= kZenoCount && dt <= kZenoInterval * std::max(1.0, std::abs(t)) && zeno_event_ < 0)
+    zeno_event_ = static_cast<long>(k);
   return true;
+}
+
+void Events::note_roots(double t) {
+  if (roots_at_instant_ > 0 && std::abs(t - root_instant_) <= 1e-12 * std::max(1.0, std::abs(t))) {
+    ++roots_at_instant_;
+  } else {
+    root_instant_ = t;
+    roots_at_instant_ = 1;
+  }
 }
 
 std::string Events::describe(const EventRecord& e) const {
@@ -44,7 +64,24 @@ std::string Events::describe(const EventRecord& e) const {
 }
 
 bool chatter_failure(const Events& events, double t, SolverFailure& failure) {
+  if (events.accumulating()) {
+    const std::size_t k = events.accumulating_event();
+    failure = SolverFailure{t, "EVENTS_ACCUMULATE",
+                            fmt::format("events accumulate (Zeno): `{}` switched {} times in a row, each sooner after the "
+                                        "one before, the last {:.3g} s apart, at t = {:.9g} s; its switches would never end (a "
+                                        "bouncing ball that loses energy at every impact): a model must let it rest there",
+                                        events.model_name(k), Events::kZenoCount + 1, events.last_interval(k), t),
+                            {}, -1};
+    return false;
+  }
   if (!events.chattering()) return true;
+  if (events.log().empty()) {
+    failure = SolverFailure{t, "EVENTS_CHATTER",
+                            fmt::format("the root finder reported more than {} crossings at t = {:.9g} s without any "
+                                        "event switching", Events::kMaxAtOneInstant, t),
+                            {}, -1};
+    return false;
+  }
   const EventRecord& last = events.log().back();
   failure = SolverFailure{t, "EVENTS_CHATTER",
                           fmt::format("more than {} events at one instant, the last {}: a mode that switches "
@@ -55,6 +92,7 @@ bool chatter_failure(const Events& events, double t, SolverFailure& failure) {
 }
 
 bool fire_events(Events& events, double t, double* y, const std::vector<int>& root_info, SolverFailure& failure) {
+  events.note_roots(t);
   for (std::size_t k = 0; k < root_info.size(); ++k)
     if (root_info[k] != 0) events.fire(t, k, root_info[k] > 0, y);
   events.take_jump();  // the method restarts from y whether it jumped or not

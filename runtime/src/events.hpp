@@ -41,10 +41,23 @@ class Events {
     jumped_ = false;
     return j;
   }
-  /// More than kMaxAtOneInstant switches at one time: the modes chatter (a
-  /// relation that turns itself off when on), and the run must stop.
-  bool chattering() const { return at_instant_ > kMaxAtOneInstant; }
+  /// More than kMaxAtOneInstant switches (or root reports) at one time: the
+  /// modes chatter (a relation that turns itself off when on), and the run
+  /// must stop.
+  bool chattering() const { return at_instant_ > kMaxAtOneInstant || roots_at_instant_ > kMaxAtOneInstant; }
   static constexpr long kMaxAtOneInstant = 100;
+  /// One event switched kZenoCount times in a row, each sooner after the one
+  /// before than that one was after its own, the last within kZenoInterval
+  /// (times max(1, |t|)): its switches accumulate (Zeno's bouncing ball)
+  /// and will soon be closer than a root finder can tell apart.
+  bool accumulating() const { return zeno_event_ >= 0; }
+  std::size_t accumulating_event() const { return static_cast<std::size_t>(zeno_event_); }
+  /// Time between event k's last two switches (NaN before its second).
+  double last_interval(std::size_t k) const { return last_dt_[k]; }
+  static constexpr long kZenoCount = 10;
+  static constexpr double kZenoInterval = 1e-6;
+  /// A root finder reported crossings at t (switching something or not).
+  void note_roots(double t);
 
   const std::vector<EventRecord>& log() const { return log_; }
   /// "t = 0.5 s: step(t - t_bump) (time event) on"
@@ -60,6 +73,12 @@ class Events {
   double instant_ = 0.0;  ///< time of the latest switch
   long at_instant_ = 0;   ///< switches at that time
   bool jumped_ = false;   ///< a fire() changed y (take_jump)
+  double root_instant_ = 0.0;
+  long roots_at_instant_ = 0;      ///< root reports at root_instant_
+  std::vector<double> last_t_;     ///< per event: when it last switched (NaN: never)
+  std::vector<double> last_dt_;    ///< per event: the interval before that switch (NaN: none)
+  std::vector<long> shrinking_;    ///< per event: switches in a row, each interval shorter than the one before
+  long zeno_event_ = -1;           ///< the event whose switches accumulate (-1: none)
 };
 
 }  // namespace mbgrt::detail

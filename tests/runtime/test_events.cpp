@@ -137,5 +137,19 @@ TEST_P(EventJumps, ABouncingBallsImpactsAndApexesAreTheClosedForms) {
 
 INSTANTIATE_TEST_SUITE_P(Solvers, EventJumps, ::testing::Values("rk4", "dopri5", "cvode", "ida"));
 
+TEST_P(EventJumps, ZenosBouncingWithoutARestingSpeedStopsWithADiagnosisNotAHang) {
+  BouncingBall ball;  // v_rest = 0: it never rests, its impacts accumulate at t = 4.06 s
+  const std::string solver = GetParam();
+  std::vector<std::string> args{"--solver", solver, "--set", "v_rest=0"};
+  if (solver == "rk4") args.insert(args.end(), {"--step", "1e-3"});
+  RunResult r = run(ball, args);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_TRUE(Contains(r.err, "events accumulate (Zeno): `ball.floor` switched 11 times in a row")) << r.err;
+  // ... just before the closed form's accumulation point v1/g (1 + 2e/(1 - e)).
+  const double v1 = std::sqrt(2 * kG * 1.0), t_inf = v1 / kG * (1 + 2 * 0.8 / (1 - 0.8));
+  EXPECT_LT(reported_time(r.err), t_inf);
+  EXPECT_NEAR(reported_time(r.err), t_inf, 1e-4) << r.err;
+}
+
 }  // namespace
 }  // namespace mbgrt::test

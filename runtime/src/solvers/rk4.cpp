@@ -95,6 +95,7 @@ class Rk4 final : public Integrator {
     if (!events_.functions(t_event, tmp_.data(), nullptr, g_new_.data())) return fail();
     const double t0 = t_;
     if (!accept(t_event, t_event - t0)) return false;
+    events_.note_roots(t_);
     for (std::size_t k = 0; k < g_.size(); ++k)
       if ((g_[k] >= 0.0) != (g_new_[k] >= 0.0)) events_.fire(t_, k, g_new_[k] >= 0.0, y_.data());
     if (events_.take_jump() && !m_.check_state(t_, y_.data())) return fail();
