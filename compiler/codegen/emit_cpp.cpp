@@ -54,7 +54,7 @@ class Emitter {
     }
     c.public_methods.push_back(outputs());
     if (!s_.events.empty()) c.public_methods.push_back(event_functions());
-    add_event_methods(c, s_);
+    add_event_methods(c, s_, [this](const SourceLoc& loc) { return where(loc); });
     if (!s_.constraints.empty()) constraint_functions(c);
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});

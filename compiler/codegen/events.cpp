@@ -10,7 +10,18 @@ namespace mbgc::codegen {
 
 std::string event_mode_name(std::size_t k) { return fmt::format("mode_[{}]", k); }
 
-void add_event_methods(CppClass& c, const ir::ReducedSystem& s) {
+/// "heaviside(t - t_off) (time event), Sf src (events.mbg:15:4)"
+static std::string event_name(const ir::EventRelation& ev, const ir::Namer& names,
+                              const std::function<std::string(const ir::SourceLoc&)>& where) {
+  std::string name = to_string(ev.step, names) + (ev.time_event ? " (time event)" : "");
+  const std::string element = ev.origin.substr(0, ev.origin.find(':'));
+  if (!element.empty()) name += ", " + element;
+  if (ev.loc.valid()) name += " (" + where(ev.loc) + ")";
+  return name;
+}
+
+void add_event_methods(CppClass& c, const ir::ReducedSystem& s,
+                       const std::function<std::string(const ir::SourceLoc&)>& where) {
   if (s.events.empty()) return;
   const std::size_t n = s.events.size();
   const ir::Namer names = names_for_dump(s.graph);
@@ -21,8 +32,7 @@ void add_event_methods(CppClass& c, const ir::ReducedSystem& s) {
   CppFunction name{"", "std::string event_name(std::size_t k) const override", {}};
   name.body.push_back(CppStmt::line(fmt::format("static const char* const names[{}] = {{", n)));
   for (std::size_t k = 0; k < n; ++k) {
-    const ir::EventRelation& ev = s.events[k];
-    name.body.push_back(CppStmt::line(fmt::format("    {},", cpp_string(to_string(ev.step, names) + (ev.time_event ? " (time event)" : "")))));
+    name.body.push_back(CppStmt::line(fmt::format("    {},", cpp_string(event_name(s.events[k], names, where)))));
   }
   name.body.push_back(CppStmt::line("};"));
   name.body.push_back(CppStmt::line("return k < " + std::to_string(n) + " ? names[k] : std::string();"));

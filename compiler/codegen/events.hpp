@@ -4,6 +4,7 @@
 // of equations, written by the emitter like the outputs.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "codegen/cpp.hpp"
@@ -15,7 +16,10 @@ namespace mbgc::codegen {
 std::string event_mode_name(std::size_t k);
 
 /// event_count(), event_name(), set_event_mode() and the modes' member array
-/// (nothing when the model has no events).
-void add_event_methods(CppClass& c, const ir::ReducedSystem& s);
+/// (nothing when the model has no events). An event's name is its step and
+/// the element and model line it comes from, `where` writing the line
+/// ("heaviside(cap.e - v1), Sf src (events.mbg:15:4)").
+void add_event_methods(CppClass& c, const ir::ReducedSystem& s,
+                       const std::function<std::string(const ir::SourceLoc&)>& where);
 
 }  // namespace mbgc::codegen

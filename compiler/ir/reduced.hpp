@@ -68,6 +68,8 @@ struct EventRelation {
   Expr step;              // the step(arg) node, printed as its mode
   Expr arg;               // the zero-crossing function
   bool time_event = false;  // arg is a function of time alone: its crossings are known in advance
+  SourceLoc loc;            // the model line of the first equation it is in (invalid: none has one)
+  std::string origin;       // that equation's origin ("Sf src: f = value")
 };
 
 /// The variables an assignment reads (its value, or its whole block).

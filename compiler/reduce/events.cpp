@@ -15,7 +15,8 @@ class Finder {
  public:
   explicit Finder(std::vector<EventRelation>& out) : out_(out) {}
 
-  void scan(const Expr& e) {
+  /// The steps in e, found first in an equation from `loc` (`origin`).
+  void scan(const Expr& e, const SourceLoc& loc = {}, const std::string& origin = {}) {
     if (!e) return;
     std::vector<const Node*> stack{e.get()};
     while (!stack.empty()) {
@@ -23,7 +24,7 @@ class Finder {
       stack.pop_back();
       if (!seen_.insert(n).second) continue;
       if (n->op == Op::Call && n->fn == Fn::Step && changes(n->args[0])) {
-        out_.push_back({Expr(n), n->args[0], is_time_event(n->args[0])});
+        out_.push_back({Expr(n), n->args[0], is_time_event(n->args[0]), loc, origin});
         continue;  // a step inside the argument of a step: its mode decides only where the outer one is
       }
       for (const Expr& a : n->args) stack.push_back(a.get());
@@ -96,14 +97,14 @@ void steps_for_time_kinks(ReducedSystem& s) {
 std::vector<EventRelation> find_events(const ReducedSystem& s) {
   std::vector<EventRelation> events;
   Finder f(events);
-  for (const Assignment& a : s.assignments) f.scan(a.value);
+  for (const Assignment& a : s.assignments) f.scan(a.value, a.loc, a.origin);
   for (const LinearBlock& lb : s.linear_blocks) {
     for (const Expr& e : lb.a) f.scan(e);
     for (const Expr& e : lb.b) f.scan(e);
   }
   for (const Expr& e : s.state_derivative) f.scan(e);
-  for (const Residual& r : s.residuals) f.scan(r.value);
-  for (const Output& o : s.graph.outputs) f.scan(o.value);
+  for (const Residual& r : s.residuals) f.scan(r.value, r.loc, r.origin);
+  for (const Output& o : s.graph.outputs) f.scan(o.value, o.loc, "output " + o.name);
   for (const ConstraintRow& row : s.constraints) {
     f.scan(row.g);
     f.scan(row.gdot);

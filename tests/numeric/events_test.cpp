@@ -52,12 +52,15 @@ TEST_P(EventsBySolver, ThePiecewiseLinearVoltageIsExactAndTheSwitchesAreWhereThe
   EXPECT_NEAR(events.rows[1][0], kTOff, 1e-12);  // a time event: t - t_off, located where it is 0
   EXPECT_NEAR(events.rows[2][0], kT2, 1e-9);
   const std::string text = slurp(log_path);
-  EXPECT_TRUE(contains(text, "\"heaviside(cap.e - v1)\",on,0")) << text;
-  EXPECT_TRUE(contains(text, "\"heaviside(t - t_off) (time event)\",on,0")) << text;
-  EXPECT_TRUE(contains(text, "\"heaviside(v2 - cap.e)\",off,0")) << text;
+  // each named by its step, the element and the model line it is in
+  EXPECT_TRUE(contains(text, ",\"heaviside(cap.e - v1), Sf src (")) << text;
+  EXPECT_TRUE(contains(text, ",\"heaviside(t - t_off) (time event), Sf src (")) << text;
+  EXPECT_TRUE(contains(text, ",\"heaviside(v2 - cap.e), Sf src (")) << text;
+  EXPECT_TRUE(contains(text, "events.mbg:15:4)\",on,0")) << text;
+  EXPECT_TRUE(contains(text, "events.mbg:15:4)\",off,0")) << text;
   // The run summary lists them in model terms.
   EXPECT_TRUE(contains(r.log, "events       3 switches of 3 events:")) << r.log;
-  EXPECT_TRUE(contains(r.log, "heaviside(v2 - cap.e) off")) << r.log;
+  EXPECT_TRUE(contains(r.log, "heaviside(v2 - cap.e), Sf src (")) << r.log;
 }
 
 INSTANTIATE_TEST_SUITE_P(Solvers, EventsBySolver, ::testing::Values("rk4", "dopri5", "cvode", "ida"));

@@ -172,7 +172,7 @@ class dc_motor_model final : public mbgrt::Model {
 
   std::string event_name(std::size_t k) const override {
     static const char* const names[1] = {
-        "heaviside(t) (time event)",
+        "heaviside(t) (time event), Se supply (dc_motor.mbg:13:4)",
     };
     return k < 1 ? names[k] : std::string();
   }

@@ -215,7 +215,7 @@ class loop_nested_names_model final : public mbgrt::Model {
 
   std::string event_name(std::size_t k) const override {
     static const char* const names[1] = {
-        "heaviside(t) (time event)",
+        "heaviside(t) (time event), Se force1_1 (loop_nested_names.mbg:12:8)",
     };
     return k < 1 ? names[k] : std::string();
   }
