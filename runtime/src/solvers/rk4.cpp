@@ -128,7 +128,6 @@ class Rk4 final : public Integrator {
         side = -1;
       }
     }
-    ++located_;
     return b;
   }
 
@@ -185,7 +184,6 @@ class Rk4 final : public Integrator {
   GuardedModel& m_;
   Events& events_ = m_.events();
   std::vector<double> g_, g_new_;  // event functions at (t_, y_) and at the trial state
-  long located_ = 0;               // crossings located (each by a few trial steps)
   double h_;
   std::size_t n_;
   double t_ = 0.0;
