@@ -647,25 +647,30 @@ class Emitter {
   }
 
   CppFunction outputs() {
-    CppFunction f{"OUTPUT: the declared outputs at (t, y).",
-                  fmt::format("void outputs(double t, const double* {}, const double* yp, double* out) override", s_.dae ? "y" : "x"),
-                  {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
-    const Counting counting = count_into(f);
-    std::vector<std::pair<std::string, Expr>> results;
-    for (std::size_t i = 0; i < g_.outputs.size(); ++i) results.push_back({fmt::format("out[{}]", i), g_.outputs[i].value});
-    if (results.empty()) f.body.push_back(CppStmt::line("(void)out;"));
-    section(f.body, s_.for_outputs, results, "outputs, in declaration order");
-    return f;
+    std::vector<Expr> values;
+    for (const Output& o : g_.outputs) values.push_back(o.value);
+    return values_at("OUTPUT: the declared outputs at (t, y).", "outputs", "out", values, s_.for_outputs,
+                     "outputs, in declaration order");
   }
 
   CppFunction event_functions() {
-    CppFunction f{"EVENTS: the zero-crossing functions, one per event (its step's argument).",
-                  fmt::format("void event_functions(double t, const double* {}, const double* yp, double* g) override", s_.dae ? "y" : "x"),
+    std::vector<Expr> values;
+    for (const EventRelation& ev : s_.events) values.push_back(ev.arg);
+    return values_at("EVENTS: the zero-crossing functions, one per event (its step's argument).", "event_functions", "g",
+                     values, s_.for_events, "zero-crossing functions, in event order");
+  }
+
+  /// `void NAME(double t, const double* x, const double* yp, double* OUT)`:
+  /// OUT[i] = values[i] at (t, y), after the assignments `slice` they need.
+  CppFunction values_at(const char* doc, const char* name, const char* out, const std::vector<Expr>& values,
+                        const std::vector<int>& slice, const char* comment) {
+    CppFunction f{doc, fmt::format("void {}(double t, const double* {}, const double* yp, double* {}) override", name, s_.dae ? "y" : "x", out),
                   {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
     const Counting counting = count_into(f);
     std::vector<std::pair<std::string, Expr>> results;
-    for (std::size_t k = 0; k < s_.events.size(); ++k) results.push_back({fmt::format("g[{}]", k), s_.events[k].arg});
-    section(f.body, s_.for_events, results, "zero-crossing functions, in event order");
+    for (std::size_t i = 0; i < values.size(); ++i) results.push_back({fmt::format("{}[{}]", out, i), values[i]});
+    if (results.empty()) f.body.push_back(CppStmt::line(fmt::format("(void){};", out)));
+    section(f.body, slice, results, comment);
     return f;
   }
 

@@ -11,6 +11,14 @@ using namespace mbgc::ir;
 
 namespace {
 
+bool reads_variable(const Expr& x) {
+  std::unordered_set<int> vars;
+  collect_vars(x, vars);
+  return !vars.empty();
+}
+/// x a function of time alone (t - t0, t0 - t, ...): its crossings are known before the run.
+bool time_only(const Expr& x) { return depends_on_time(x) && !reads_variable(x); }
+
 class Finder {
  public:
   explicit Finder(std::vector<EventRelation>& out) : out_(out) {}
@@ -23,8 +31,9 @@ class Finder {
       const Node* n = stack.back();
       stack.pop_back();
       if (!seen_.insert(n).second) continue;
-      if (n->op == Op::Call && n->fn == Fn::Step && changes(n->args[0])) {
-        out_.push_back({Expr(n), n->args[0], is_time_event(n->args[0]), loc, origin});
+      const Expr& x = n->args[0];
+      if (n->op == Op::Call && n->fn == Fn::Step && (depends_on_time(x) || reads_variable(x))) {
+        out_.push_back({Expr(n), x, time_only(x), loc, origin});
         continue;  // a step inside the argument of a step: its mode decides only where the outer one is
       }
       for (const Expr& a : n->args) stack.push_back(a.get());
@@ -32,18 +41,6 @@ class Finder {
   }
 
  private:
-  static bool changes(const Expr& x) {
-    std::unordered_set<int> vars;
-    collect_vars(x, vars);
-    return !vars.empty() || depends_on_time(x);
-  }
-  /// x a function of time alone (t - t0, t0 - t, ...): its crossings are known before the run.
-  static bool is_time_event(const Expr& x) {
-    std::unordered_set<int> vars;
-    collect_vars(x, vars);
-    return vars.empty() && depends_on_time(x);
-  }
-
   std::vector<EventRelation>& out_;
   std::unordered_set<const Node*> seen_;
 };
@@ -60,9 +57,7 @@ class TimeKinks {
     if (r->op == Op::Call && (r->fn == Fn::Min || r->fn == Fn::Max)) {
       const Expr &a = r->args[0], &b = r->args[1];
       const Expr d = sub(a, b);
-      std::unordered_set<int> vars;
-      collect_vars(d, vars);
-      if (vars.empty() && depends_on_time(d)) {
+      if (time_only(d)) {
         const Expr h = call(Fn::Step, {d});
         r = r->fn == Fn::Min ? add(a, mul(sub(b, a), h)) : add(b, mul(d, h));
       }

@@ -18,7 +18,6 @@ bool Events::start(double t, const double* y, const double* yp) {
   log_.clear();
   at_instant_ = 0;
   roots_at_instant_ = 0;
-  jumped_ = false;
   last_t_.assign(n_, std::nan(""));
   last_dt_.assign(n_, std::nan(""));
   shrinking_.assign(n_, 0);
@@ -32,7 +31,6 @@ bool Events::start(double t, const double* y, const double* yp) {
 bool Events::fire(double t, std::size_t k, bool on, double* y) {
   if (!model_.set_event_mode(k, on)) return false;
   const bool jump = model_.event_jump(k, on, t, y);
-  jumped_ = jumped_ || jump;
   // One instant: equal times, up to the rounding of a located root.
   if (!log_.empty() && std::abs(t - instant_) <= 1e-12 * std::max(1.0, std::abs(t))) {
     ++at_instant_;
@@ -95,7 +93,6 @@ bool fire_events(Events& events, double t, double* y, const std::vector<int>& ro
   events.note_roots(t);
   for (std::size_t k = 0; k < root_info.size(); ++k)
     if (root_info[k] != 0) events.fire(t, k, root_info[k] > 0, y);
-  events.take_jump();  // the method restarts from y whether it jumped or not
   return chatter_failure(events, t, failure);
 }
 

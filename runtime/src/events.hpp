@@ -35,12 +35,6 @@ class Events {
   /// its mode, lets the model change y (Model::event_jump) and logs it. False
   /// if the mode already was so (nothing logged).
   bool fire(double t, std::size_t k, bool on, double* y);
-  /// Whether a fire() since the last call changed the unknowns (and clears it).
-  bool take_jump() {
-    const bool j = jumped_;
-    jumped_ = false;
-    return j;
-  }
   /// More than kMaxAtOneInstant switches (or root reports) at one time: the
   /// modes chatter (a relation that turns itself off when on), and the run
   /// must stop.
@@ -72,7 +66,6 @@ class Events {
   std::vector<EventRecord> log_;
   double instant_ = 0.0;  ///< time of the latest switch
   long at_instant_ = 0;   ///< switches at that time
-  bool jumped_ = false;   ///< a fire() changed y (take_jump)
   double root_instant_ = 0.0;
   long roots_at_instant_ = 0;      ///< root reports at root_instant_
   std::vector<double> last_t_;     ///< per event: when it last switched (NaN: never)

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
 #include "solvers/sundials_util.hpp"
@@ -16,11 +15,6 @@ namespace {
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* m = static_cast<GuardedModel*>(user_data);
   return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
-}
-
-int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
-  auto* m = static_cast<GuardedModel*>(user_data);
-  return m->events().functions(t, N_VGetArrayPointer(y), nullptr, g) ? 0 : -1;
 }
 
 class Dopri5 final : public Integrator {
@@ -52,7 +46,7 @@ class Dopri5 final : public Integrator {
     // cannot be jumped over by an ever-growing step.
     check_setup(ERKStepSetMaxStep(mem_, s_.interval_s), "ERKStepSetMaxStep", sink_);
     if (const std::size_t k = m_.events().count(); k > 0) {
-      check_setup(ERKStepRootInit(mem_, static_cast<int>(k), roots), "ERKStepRootInit", sink_);
+      check_setup(ERKStepRootInit(mem_, static_cast<int>(k), event_roots), "ERKStepRootInit", sink_);
       root_info_.assign(k, 0);
     }
     return true;
@@ -64,7 +58,7 @@ class Dopri5 final : public Integrator {
       ERKStepGetRootInfo(mem_, root_info_.data());
       if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       check_setup(ERKStepReset(mem_, t_, y_.get()), "ERKStepReset", sink_);
-      if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
+      if (reached(t_, t_out)) return true;  // the event is at the communication point
       flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);
     }
     if (flag < 0) {

@@ -8,7 +8,6 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
 #include "solvers/sundials_util.hpp"
@@ -35,11 +34,6 @@ int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* user_data, 
     for (std::size_t j = 0; j < n; ++j)
       SM_ELEMENT_D(J, static_cast<sunindextype>(i), static_cast<sunindextype>(j)) = row_major[i * n + j];
   return 0;
-}
-
-int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
-  auto* m = static_cast<GuardedModel*>(user_data);
-  return m->events().functions(t, N_VGetArrayPointer(y), nullptr, g) ? 0 : -1;
 }
 
 class Cvode final : public Integrator {
@@ -82,7 +76,7 @@ class Cvode final : public Integrator {
     check_setup(CVodeSetLinearSolver(mem_, ls_, A_), "CVodeSetLinearSolver", sink_);
     if (m_.has_jacobian()) check_setup(CVodeSetJacFn(mem_, jacobian), "CVodeSetJacFn", sink_);
     if (const std::size_t k = m_.events().count(); k > 0) {
-      check_setup(CVodeRootInit(mem_, static_cast<int>(k), roots), "CVodeRootInit", sink_);
+      check_setup(CVodeRootInit(mem_, static_cast<int>(k), event_roots), "CVodeRootInit", sink_);
       root_info_.assign(k, 0);
     }
     return true;
@@ -97,7 +91,7 @@ class Cvode final : public Integrator {
       check_setup(CVodeReInit(mem_, t_, y_.get()), "CVodeReInit", sink_);
       check_setup(CVodeSetStopTime(mem_, s_.t_end_s), "CVodeSetStopTime", sink_);  // (ReInit clears it)
       before_restart_ = counted;
-      if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
+      if (reached(t_, t_out)) return true;  // the event is at the communication point
       flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
     }
     if (flag < 0) {

@@ -119,7 +119,7 @@ class Ida final : public Integrator {
       IDAGetRootInfo(mem_, root_info_.data());
       if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       if (!restart_after_event()) return false;
-      if (t_out - t_ <= 1e-12 * std::max(1.0, std::abs(t_out))) return true;  // the event is at the communication point
+      if (reached(t_, t_out)) return true;  // the event is at the communication point
       flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
     }
     if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two())
@@ -147,13 +147,7 @@ class Ida final : public Integrator {
     IDAGetNumErrTestFails(mem_, &st.err_test_fails);
     IDAGetLastStep(mem_, &st.last_step);
     // IDAReInit (relax_index_two) zeroes IDA's counters: add what came before.
-    st.steps += before_restart_.steps;
-    st.rhs_evals += before_restart_.rhs_evals;
-    st.fd_jac_evals += before_restart_.fd_jac_evals;
-    st.jac_evals += before_restart_.jac_evals;
-    st.nonlin_iters += before_restart_.nonlin_iters;
-    st.nonlin_conv_fails += before_restart_.nonlin_conv_fails;
-    st.err_test_fails += before_restart_.err_test_fails;
+    add_counts(st, before_restart_);
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
@@ -170,11 +164,12 @@ class Ida final : public Integrator {
   /// runtime's own solve for the index-2 form), then IDA restarts at order 1.
   bool restart_after_event() {
     const std::size_t n = m_.size();
+    const bool index_two = m_.is_dae() && m_.constraint_shape().any();
     SolverStats counted = stats();
     if (sparse_) counted.fd_jac_evals -= sparse_->evaluations();  // counted on by stats() itself
     if (!m_.is_dae()) {
       if (m_.derivative(t_, y_.data(), yp_.data()) != 0) return fail_at_event("the derivative after the event is not finite");
-    } else if (m_.constraint_shape().any()) {
+    } else if (index_two) {
       std::vector<double> y(y_.data(), y_.data() + n), yp(yp_.data(), yp_.data() + n);
       const InitialValuesReport r = detail::consistent_initial_values(m_.model(), m_.constraint_shape(), t_, y.data(), yp.data());
       if (!r.ok) return fail_at_event("no consistent y' after the event: " + r.error);
@@ -184,11 +179,10 @@ class Ida final : public Integrator {
     if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return fail_at_event("IDAReInit failed");
     before_restart_ = counted;
     IDASetStopTime(mem_, s_.t_end_s);  // (ReInit clears it)
-    if (m_.is_dae() && m_.constraint_shape().any()) {  // a first step as at the start (setup_index_two)
+    if (index_two) {  // a first step as at the start (setup_index_two)
       h0_ = initial_step(t_);
       if (h0_ > 0.0) IDASetInitStep(mem_, h0_);
-    }
-    if (m_.is_dae() && !m_.constraint_shape().any()) {
+    } else if (m_.is_dae()) {
       if (int flag = IDACalcIC(mem_, IDA_YA_YDP_INIT, t_ + s_.interval_s); flag < 0) return fail(flag);
       check_setup(IDAGetConsistentIC(mem_, y_.get(), yp_.get()), "IDAGetConsistentIC", sink_);
     }

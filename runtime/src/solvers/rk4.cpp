@@ -98,8 +98,8 @@ class Rk4 final : public Integrator {
     events_.note_roots(t_);
     for (std::size_t k = 0; k < g_.size(); ++k)
       if ((g_[k] >= 0.0) != (g_new_[k] >= 0.0)) events_.fire(t_, k, g_new_[k] >= 0.0, y_.data());
-    if (events_.take_jump() && !m_.check_state(t_, y_.data())) return fail();
-    if (!chatter_check()) return false;
+    if (!m_.check_state(t_, y_.data())) return fail();  // (a jump may have changed it)
+    if (!chatter_failure(events_, t_, failure_)) return false;
     event = true;
     return events_.functions(t_, y_.data(), nullptr, g_.data()) || fail();
   }
@@ -156,7 +156,6 @@ class Rk4 final : public Integrator {
     return true;
   }
 
-  bool chatter_check() { return chatter_failure(events_, t_, failure_); }
 
   /// tmp = base + a * k
   void axpy(const std::vector<double>& base, double a, const std::vector<double>& k) {

@@ -124,4 +124,9 @@ void check_setup(const void* ptr, const char* what) {
   if (!ptr) throw std::runtime_error(fmt::format("{} failed (out of memory?)", what));
 }
 
+int event_roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
+  auto* m = static_cast<GuardedModel*>(user_data);
+  return m->events().functions(t, N_VGetArrayPointer(y), nullptr, g) ? 0 : -1;
+}
+
 }  // namespace mbgrt::detail

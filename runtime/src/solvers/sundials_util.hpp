@@ -4,6 +4,8 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -62,6 +64,14 @@ SolverFailure make_failure(double t, char* flag_name, const MessageSink& sink);
 /// Index of the largest |local error| * weight: the unknown that forced the
 /// solver's steps down — the one to name when a run fails without a NaN.
 int largest_weighted_error(N_Vector local_errors, N_Vector weights);
+
+/// The model's event functions for CVODE's and ARKODE's root finders
+/// (user_data: the GuardedModel); -1 if one is not finite.
+int event_roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data);
+
+/// Has a restart at t (an event) reached the communication point t_out, up
+/// to the rounding of a located root? Then the solver is not called again.
+inline bool reached(double t, double t_out) { return t_out - t <= 1e-12 * std::max(1.0, std::abs(t_out)); }
 
 /// Throws std::runtime_error naming `what` when a set-up call fails: these
 /// failures are programming or input errors, not numerical events.
