@@ -151,5 +151,19 @@ TEST_P(EventJumps, ZenosBouncingWithoutARestingSpeedStopsWithADiagnosisNotAHang)
   EXPECT_NEAR(reported_time(r.err), t_inf, 1e-4) << r.err;
 }
 
+/// An event function that is not a number from the start.
+class NanEvent : public BouncingBall {
+ public:
+  void event_functions(double, const double*, const double*, double* g) override { g[0] = std::nan(""); }
+};
+
+TEST(Events, AnEventFunctionThatIsNotFiniteAtTheStartStopsTheRunBeforeItBegins) {
+  NanEvent model;
+  RunResult r = run(model, {"--solver", "cvode"});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_TRUE(Contains(r.err, "error: an event function (the argument of a step) is not finite at the start"));
+  EXPECT_EQ(parse_csv(r.csv).rows.size(), 0u);  // nothing integrated, no row written
+}
+
 }  // namespace
 }  // namespace mbgrt::test
