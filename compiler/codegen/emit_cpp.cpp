@@ -32,6 +32,7 @@ class Emitter {
     for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get(fmt::format("v{}", i), g_.vars[i].name);
     names_.var = [this](int id) {
       if (auto it = stored_name_.find(id); it != stored_name_.end()) return it->second;
+      if (auto it = discrete_name_.find(id); it != discrete_name_.end()) return it->second;
       return mangle_.get(fmt::format("v{}", id), "");
     };
     names_.param = [this](int id) { return mangle_.get(fmt::format("p{}", id), ""); };
@@ -45,6 +46,7 @@ class Emitter {
     add_identity_methods(c, s_, opt_);
     find_parameter_expressions();
     for (std::size_t k = 0; k < s_.events.size(); ++k) hoisted_[s_.events[k].step] = event_mode_name(k);  // printed as their modes
+    discrete_name_ = contact_member_names(s_);
     c.public_methods.push_back(initial());
     add_long_method(c, s_.dae ? residual() : derivative());
     if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity());
@@ -55,6 +57,7 @@ class Emitter {
     c.public_methods.push_back(outputs());
     if (!s_.events.empty()) c.public_methods.push_back(event_functions());
     add_event_methods(c, s_, [this](const SourceLoc& loc) { return where(loc); });
+    if (!s_.contacts.empty()) add_contact_methods(c, s_, contact_speeds());
     if (!s_.constraints.empty()) constraint_functions(c);
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
@@ -202,6 +205,7 @@ class Emitter {
     for (const Parameter& p : g_.params) shared.count(p.value);
     for (const Expr& e : hoisted_order_) shared.count(e);
     for (const StateVar& st : s_.states) shared.count(st.initial);
+    for (const ContactRow& c : s_.contacts) shared.count(c.restitution);
     shared.finish_counting();
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
@@ -217,6 +221,9 @@ class Emitter {
       f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), value)));
       if (shared_whole) shared.name_whole(e, hoisted_.at(e));
     }
+    for (std::size_t c = 0; c < s_.contacts.size(); ++c)
+      f.body.push_back(CppStmt::line(fmt::format("contact_restitution_[{}] = {};  // {}", c, shared.print(s_.contacts[c].restitution, f.body),
+                                                 where(s_.contacts[c].loc))));
     if (!s_.states.empty()) f.body.push_back(CppStmt::comment("INITIAL STATE"));
     const char* y = s_.dae ? "y" : "x";
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
@@ -660,6 +667,13 @@ class Emitter {
                      values, s_.for_events, "zero-crossing functions, in event order");
   }
 
+  CppFunction contact_speeds() {
+    std::vector<Expr> values;
+    for (const ContactRow& c : s_.contacts) values.push_back(c.rate);
+    return values_at("CONTACT SPEEDS: dg/dt of each contact's gap.", "contact_speeds", "v", values, s_.for_contacts,
+                     "contact speeds, in contact order");
+  }
+
   /// `void NAME(double t, const double* x, const double* yp, double* OUT)`:
   /// OUT[i] = values[i] at (t, y), after the assignments `slice` they need.
   CppFunction values_at(const char* doc, const char* name, const char* out, const std::vector<Expr>& values,
@@ -765,6 +779,7 @@ class Emitter {
   std::string cost_signature_;         // its signature
   std::vector<CppFunction> outlined_;  // the shapes' functions (codegen/outline), private
   std::vector<CppStmt> stores_;        // the member arrays of their runs' outputs
+  std::unordered_map<int, std::string> discrete_name_;  // a contact's discrete variables -> their members
   std::unordered_map<int, std::string> stored_name_;  // while a section is printed: an outlined output -> its place
   std::map<std::string, CppOps> shape_cost_;  // per shape function: the operations of one call
   std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member

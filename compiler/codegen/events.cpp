@@ -13,6 +13,7 @@ std::string event_mode_name(std::size_t k) { return fmt::format("mode_[{}]", k);
 /// "heaviside(t - t_off) (time event), Sf src (events.mbg:15:4)"
 static std::string event_name(const ir::EventRelation& ev, const ir::Namer& names,
                               const std::function<std::string(const ir::SourceLoc&)>& where) {
+  if (ev.contact >= 0) return ev.origin + (ev.loc.valid() ? " (" + where(ev.loc) + ")" : std::string());
   std::string name = to_string(ev.step, names) + (ev.time_event ? " (time event)" : "");
   const std::string element = ev.origin.substr(0, ev.origin.find(':'));
   if (!element.empty()) name += ", " + element;
@@ -42,6 +43,53 @@ void add_event_methods(CppClass& c, const ir::ReducedSystem& s,
                                CppStmt::line("mode_[k] = on ? 1.0 : 0.0;"), CppStmt::line("return true;")}});
   c.private_members.push_back(CppStmt::comment("event modes: each step(x) of the model, 1 while x >= 0 (switched by the runtime at x's zero crossings)"));
   c.private_members.push_back(CppStmt::line(fmt::format("double mode_[{}] = {{}};", n)));
+}
+
+std::unordered_map<int, std::string> contact_member_names(const ir::ReducedSystem& s) {
+  std::unordered_map<int, std::string> names;
+  for (std::size_t k = 0; k < s.events.size(); ++k)
+    if (s.events[k].contact >= 0) names[s.contacts[static_cast<std::size_t>(s.events[k].contact)].closed] = event_mode_name(k);
+  for (std::size_t c = 0; c < s.contacts.size(); ++c) {
+    if (s.contacts[c].bias >= 0) names[s.contacts[c].bias] = fmt::format("contact_bias_[{}]", c);
+    if (s.contacts[c].lift >= 0) names[s.contacts[c].lift] = fmt::format("contact_lift_[{}]", c);
+    if (s.contacts[c].damping >= 0) names[s.contacts[c].damping] = fmt::format("contact_damping_[{}]", c);
+  }
+  return names;
+}
+
+void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds) {
+  const std::size_t n = s.contacts.size();
+  std::vector<std::size_t> event(n);
+  for (std::size_t k = 0; k < s.events.size(); ++k)
+    if (s.events[k].contact >= 0) event[static_cast<std::size_t>(s.events[k].contact)] = k;
+  c.public_methods.push_back({"CONTACTS: each a gap g >= 0 whose mode is an event's; the runtime switches it and applies "
+                              "the impacts.",
+                              "std::size_t contact_count() const override",
+                              {CppStmt::line(fmt::format("return {};", n))}});
+  CppFunction info{"", "mbgrt::ContactInfo contact(std::size_t c) const override", {}};
+  info.body.push_back(CppStmt::line(fmt::format("static const mbgrt::ContactInfo kInfo[{}] = {{", n)));
+  for (std::size_t i = 0; i < n; ++i)
+    info.body.push_back(CppStmt::line(fmt::format("    {{{}, {}, 0.0}},  // {}", event[i], s.contacts[i].compliant ? "true" : "false",
+                                                  s.contacts[i].name)));
+  info.body.push_back(CppStmt::line("};"));
+  info.body.push_back(CppStmt::line("mbgrt::ContactInfo r = kInfo[c];"));
+  info.body.push_back(CppStmt::line("r.restitution = contact_restitution_[c];"));
+  info.body.push_back(CppStmt::line("return r;"));
+  c.public_methods.push_back(std::move(info));
+  c.public_methods.push_back(std::move(speeds));
+  c.public_methods.push_back({"", "void set_contact_bias(std::size_t c, double b) override",
+                              {CppStmt::line(fmt::format("if (c < {}) contact_bias_[c] = b;", n))}});
+  c.public_methods.push_back({"", "void set_contact_lift(std::size_t c, double h) override",
+                              {CppStmt::line(fmt::format("if (c < {}) contact_lift_[c] = h;", n))}});
+  c.public_methods.push_back({"", "void set_contact_damping(std::size_t c, double d) override",
+                              {CppStmt::line(fmt::format("if (c < {}) contact_damping_[c] = d;", n))}});
+  c.private_members.push_back(CppStmt::comment("contacts: restitution (per run); unilateral: the row's added normal "
+                                               "acceleration (the runtime's impulse probe) and the open gap's lift; "
+                                               "compliant: Hunt-Crossley's chi / v-"));
+  c.private_members.push_back(CppStmt::line(fmt::format("double contact_restitution_[{}] = {{}};", n)));
+  c.private_members.push_back(CppStmt::line(fmt::format("double contact_bias_[{}] = {{}};", n)));
+  c.private_members.push_back(CppStmt::line(fmt::format("double contact_lift_[{}] = {{}};", n)));
+  c.private_members.push_back(CppStmt::line(fmt::format("double contact_damping_[{}] = {{}};", n)));
 }
 
 }  // namespace mbgc::codegen

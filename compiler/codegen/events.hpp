@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <unordered_map>
 
 #include "codegen/cpp.hpp"
 #include "ir/reduced.hpp"
@@ -21,5 +22,14 @@ std::string event_mode_name(std::size_t k);
 /// ("heaviside(cap.e - v1), Sf src (events.mbg:15:4)").
 void add_event_methods(CppClass& c, const ir::ReducedSystem& s,
                        const std::function<std::string(const ir::SourceLoc&)>& where);
+
+/// How a contact's discrete variables are written: its mode (closed) as its
+/// event's mode, its bias and damping as members the runtime sets.
+std::unordered_map<int, std::string> contact_member_names(const ir::ReducedSystem& s);
+
+/// contact_count(), contact(c), set_contact_bias(), set_contact_damping(),
+/// the members they write, and `speeds` (the contacts' dg/dt, a section of
+/// equations the emitter wrote). initial() fills contact_restitution_.
+void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds);
 
 }  // namespace mbgc::codegen

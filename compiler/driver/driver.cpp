@@ -121,7 +121,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   timed("unroll");
   if (failed()) return 1;
   std::string strategy_report;  // what constraints = auto chose, for the causality report
-  ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, &strategy_report});
+  ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, opt.contacts, &strategy_report});
   timed("expand");
   if (failed()) return 1;
   if (opt.dump == Dump::Expanded) return finish(ir::print_ast(ast));

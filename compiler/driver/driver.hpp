@@ -35,6 +35,7 @@ struct Options {
   std::map<std::string, double> overrides;  ///< --set NAME=VALUE: top-level parameters fixed at compile time
   std::vector<std::string> search_dirs;              ///< -I: where modal-data files are looked for
   std::optional<multibody::Strategy> constraints;  ///< --constraints: replaces the model's `constraints = ...`
+  std::optional<multibody::ContactStrategy> contacts;  ///< --contacts: of every contact without its own `strategy`
   bool stats = false;         ///< --stats: print each generated method's operations and size instead of C++
   bool stats_csv = false;     ///< --stats-format=csv
 };

@@ -46,6 +46,11 @@ int main(int argc, char** argv) {
                  "auto|lagrange|penalty|coordinates: how joint constraints are enforced, replacing the model's "
                  "`constraints = ...` (a joint's own `constraint = ...` still wins; auto: coordinates for a tree, else lagrange)")
       ->check(CLI::IsMember({"auto", "lagrange", "penalty", "coordinates"}));
+  std::string contacts;
+  app.add_option("--contacts", contacts,
+                 "unilateral|compliant: how contacts act, for every contact without its own `strategy = ...` "
+                 "(default: unilateral)")
+      ->check(CLI::IsMember({"unilateral", "compliant"}));
   app.add_option("-I,--include-dir", opt.search_dirs,
                  "a directory where modal-data files (flexible = modal(\"file.mbm\")) are looked for, after the model's own")
       ->allow_extra_args(false);
@@ -85,6 +90,8 @@ int main(int argc, char** argv) {
   if (constraints == "coordinates") opt.constraints = mbgc::multibody::Strategy::Coordinates;
   if (constraints == "lagrange") opt.constraints = mbgc::multibody::Strategy::Lagrange;
   if (constraints == "penalty") opt.constraints = mbgc::multibody::Strategy::Penalty;
+  if (contacts == "unilateral") opt.contacts = mbgc::multibody::ContactStrategy::Unilateral;
+  if (contacts == "compliant") opt.contacts = mbgc::multibody::ContactStrategy::Compliant;
   static const std::map<std::string, Dump> dumps = {{"none", Dump::None},           {"ast", Dump::Ast}, {"expanded", Dump::Expanded},
                                                     {"graph", Dump::Graph},         {"causality", Dump::Causality},
                                                     {"equations", Dump::Equations}, {"reduced", Dump::Reduced}};

@@ -68,6 +68,10 @@ class Generator {
     int b = nd.bonds[0];
     int s = sign(n, b);
     bool lagrange = nd.law == LawForm::Constraint;
+    if (nd.law == LawForm::Unilateral || nd.law == LawForm::Compliant) {
+      contact(n);
+      return;
+    }
     for (int k = 0; k < nd.dim; ++k) {
       std::string row = nd.dim == 1 ? nd.name : fmt::format("{}[{}]", nd.name, k + 1);
       s_.constraints.push_back({row, nd.loc, nd.constraint_g.items[static_cast<std::size_t>(k)], f_id(b, k), lagrange ? e_id(b, k) : -1, nullptr, -1});
@@ -92,6 +96,48 @@ class Generator {
         emit(e(b, k), nd.law_rhs[static_cast<std::size_t>(k)], e_id(b, k), nd.loc, label(nd, "e = stiffness g + damping f (penalty)"));
       }
     }
+  }
+
+  /// A contact (a CN with a restitution, one row g >= 0). Its normal force
+  /// F = -s e pushes the sides apart (s: the sign that makes the flow dg/dt).
+  /// Unilateral: while closed e keeps g'' + 2 w g' + w^2 g = bias (solved with
+  /// the accelerations, as a cut joint's row), while open e = 0:
+  ///   closed (g'' + 2 w g' + w^2 g - bias) + (1 - closed) e = 0.
+  /// Compliant: F = closed max(0, k max(0, -g)^n (1 - damping g')), Hunt-Crossley.
+  void contact(int n) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    const int b = nd.bonds[0];
+    const int s = sign(n, b);
+    ContactRow c;
+    c.name = nd.name;
+    c.loc = nd.loc;
+    c.compliant = nd.law == LawForm::Compliant;
+    c.gap = nd.constraint_g.items[0];
+    c.rate = signed_(s, f(b, 0));
+    c.normal_force = signed_(-s, e(b, 0));
+    c.restitution = nd.law_rhs.back();
+    c.closed = g_.add_var(nd.name + ".closed", VarKind::Discrete, nd.loc);
+    const Expr closed = var(c.closed);
+    if (c.compliant) {
+      c.damping = g_.add_var(nd.name + ".damping", VarKind::Discrete, nd.loc);
+      const Expr& k = nd.law_rhs[0];
+      const Expr& exponent = nd.law_rhs[1];
+      const Expr depth = call(Fn::Max, {constant(0), neg(c.gap)});
+      const Expr push = mul(mul(k, pow(depth, exponent)), sub(constant(1), mul(var(c.damping), c.rate)));
+      const Expr force = mul(closed, call(Fn::Max, {constant(0), push}));
+      emit(e(b, 0), signed_(-s, force), e_id(b, 0), nd.loc,
+           label(nd, "e = -F, F = closed max(0, k max(0, -g)^n (1 - damping g')) (Hunt-Crossley contact)"));
+    } else {
+      c.bias = g_.add_var(nd.name + ".bias", VarKind::Discrete, nd.loc);
+      c.lift = g_.add_var(nd.name + ".lift", VarKind::Discrete, nd.loc);
+      const Expr& w = nd.law_rhs[0];
+      const Expr row = sub(add(add(der(c.rate), mul(mul(constant(2), w), c.rate)), mul(mul(w, w), c.gap)), var(c.bias));
+      Equation eq{add(mul(closed, row), mul(sub(constant(1), closed), e(b, 0))), constant(0), e_id(b, 0), nd.loc,
+                  label(nd, "closed: g'' + 2 w g' + w^2 g = bias, open: e = 0 (unilateral contact)"), /*constraint=*/true};
+      eq.in_loop = true;
+      s_.equations.push_back(std::move(eq));
+    }
+    s_.contacts.push_back(std::move(c));
   }
 
   void source(int n) {

@@ -502,7 +502,10 @@ class Builder {
             n.constraint_g = Value{n.dim, 1, n.law_rhs};
             n.law_rhs.clear();
             n.law = LawForm::Constraint;
-            const bool stabilised = std::any_of(el.attrs.begin(), el.attrs.end(), [](const AstAttr& x) { return x.key == "stabilisation"; });
+            // (a cut joint's or a contact's g may read the pose signals of bodies moved by joint coordinates)
+            const bool stabilised = std::any_of(el.attrs.begin(), el.attrs.end(), [](const AstAttr& x) {
+              return x.key == "stabilisation" || x.key == "restitution";
+            });
             check_constraint_inputs(n, a, /*signals_too=*/stabilised);
             continue;
           }
@@ -536,17 +539,32 @@ class Builder {
   }
 
   static bool is_penalty_key(NodeKind k, const std::string& key) {
-    return k == NodeKind::CN && (key == "stiffness" || key == "damping" || key == "stabilisation");
+    return k == NodeKind::CN && (key == "stiffness" || key == "damping" || key == "stabilisation" || key == "restitution" ||
+                                 key == "exponent");
   }
 
   /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
   /// e = stiffness * g + damping * f per component, an ODE instead of a multiplier.
+  ///
+  /// A CN with a `restitution` is a contact (a unilateral row g >= 0): with a
+  /// `stiffness` (and `exponent`) a compliant Hunt-Crossley force, else a
+  /// row held while it pushes (LawForm::Unilateral, Compliant).
   void lower_penalty(GraphNode& n, const AstElement& el, const NameLookup& lookup, std::map<std::string, Value>& locals) {
-    std::optional<Value> k, d, w;
+    std::optional<Value> k, d, w, e, x;
     for (const AstAttr& a : el.attrs) {
       if (!is_penalty_key(n.kind, a.key)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
+      if (a.key == "restitution" || a.key == "exponent") {
+        if (!v->is_scalar() || !only_params(*v)) {
+          diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name),
+                       a.key == "restitution" ? "restitution = 0.8: the normal speed after an impact is -0.8 times the one before"
+                                              : "exponent = 1.5 (Hertz: a sphere on a plane)");
+          return;
+        }
+        (a.key == "restitution" ? e : x) = v;
+        continue;
+      }
       if (a.key == "stabilisation") {
         if (!v->is_scalar() || !only_params(*v)) {
           diags_.error(a.value->loc, fmt::format("the stabilisation of `{}` must be a constant scalar (rad/s)", n.name),
@@ -563,6 +581,31 @@ class Builder {
         return;
       }
       (a.key == "stiffness" ? k : d) = v;
+    }
+    if (e) {
+      if (n.dim != 1) {
+        diags_.error(n.loc, fmt::format("contact CN `{}` has {} rows", n.name, n.dim),
+                     "a contact is one unilateral row g >= 0: give it a scalar g");
+        return;
+      }
+      if (d) {
+        diags_.error(n.loc, fmt::format("contact CN `{}` has a damping", n.name),
+                     "a contact's damping follows from its restitution (Hunt-Crossley): remove `damping`");
+        return;
+      }
+      if (k) {
+        n.law = LawForm::Compliant;
+        n.law_rhs = {k->items[0], x ? x->items[0] : constant(1.5), e->items[0]};
+      } else {
+        n.law = LawForm::Unilateral;
+        n.law_rhs = {w ? w->items[0] : constant(20), e->items[0]};
+      }
+      return;
+    }
+    if (x) {
+      diags_.error(n.loc, fmt::format("CN `{}` has an exponent but no restitution", n.name),
+                   "the exponent belongs to a compliant contact: add restitution = e (and stiffness = k)");
+      return;
     }
     if (w) {
       n.law = LawForm::Stabilised;

@@ -162,14 +162,25 @@ struct AstBody {
   std::vector<std::shared_ptr<AstPointFor>> loops;  // empty after unroll
 };
 
+/// What connects two bodies: a joint, a force element or a contact. They
+/// share one statement shape (`keyword name[ type](a, b) { settings }`) and
+/// one namespace.
+enum class Connector { Joint, Force, Contact };
+/// "joint", "force element", "contact"
+inline const char* connector_noun(Connector c) {
+  return c == Connector::Joint ? "joint" : c == Connector::Force ? "force element" : "contact";
+}
+
 /// `joint j1 revolute(ground.pivot, crank.a) { axis = [0, 0, 1]; q0 = 0.3 }`:
 /// a joint between a point on body a and a point on body b (an endpoint is
-/// `body.point`, `body` (its frame origin) or `ground`/`ground.point`).
+/// `body.point`, `body` (its frame origin) or `ground`/`ground.point`);
+/// `force f(a, b) { ... }` and `contact c(a, b) { ... }` have the same shape.
 struct AstJoint {
+  Connector connector = Connector::Joint;
   std::string name;
   SourceLoc loc;          // of the name
-  SourceLoc kind_loc;     // of `joint`
-  std::string type;       // revolute, spherical, ...
+  SourceLoc kind_loc;     // of `joint` / `force` / `contact`
+  std::string type;       // joints: revolute, spherical, ... (empty for forces and contacts)
   SourceLoc type_loc;
   AstEndpoint a, b;
   std::vector<AstAttr> attrs;

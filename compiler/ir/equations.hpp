@@ -35,6 +35,25 @@ struct ConstraintRow {
   int stabiliser = -1;  // set by reduce (lagrange, DAE): the GGL multiplier mu of the row
 };
 
+/// A contact: a CN whose row g >= 0 acts only while closed (LawForm::Unilateral,
+/// Compliant). Its mode and the values the runtime sets at its events are
+/// discrete variables; the runtime switches them where the event function
+/// crosses zero (reduce/events adds one event per contact).
+struct ContactRow {
+  std::string name;     // the CN's: "hit.cn"
+  SourceLoc loc;
+  bool compliant = false;
+  Expr gap;             // g, position level (states and pose signals)
+  Expr rate;            // dg/dt (the CN's flow, signed); reduce replaces it by its value after aliases
+  Expr normal_force;    // the push, >= 0 while closed: +-e of the CN (its effort variable)
+  Expr restitution;     // parameters only
+  int closed = -1;      // discrete: 1 while in contact
+  int bias = -1;        // discrete, unilateral: added to the row's g'' (the runtime's probe for impulses)
+  int lift = -1;        // discrete, unilateral: added to the gap in the event function while open (set
+                        // when it opens, so that a flight shorter than a step still changes its sign)
+  int damping = -1;     // discrete, compliant: Hunt-Crossley's chi / v- (set when the contact closes)
+};
+
 struct StateVar {
   int var = -1;         // the state (momentum p, displacement q)
   int der = -1;         // its time derivative variable
@@ -48,6 +67,7 @@ struct EquationSystem {
   std::vector<StateVar> states;
   std::vector<Equation> equations;
   std::vector<ConstraintRow> constraints;
+  std::vector<ContactRow> contacts;
 };
 
 }  // namespace mbgc::ir

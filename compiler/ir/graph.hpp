@@ -38,6 +38,11 @@ enum class LawForm {
   Penalty,         // CN, penalty: e = stiffness * g + damping * f
   Stabilised,      // CN, a cut joint on a tree in joint coordinates: e is a multiplier that keeps
                    // der(f) + 2 w f + w^2 g = 0 (Baumgarte; w = law_rhs[0]); g may read signals
+  Unilateral,      // CN with a restitution: a contact, g >= 0. While closed (a mode the runtime
+                   // switches) e keeps g'' + 2 w g' + w^2 g = 0 as Stabilised does, while open
+                   // e = 0; impacts are impulses by Newton's law (law_rhs = {w, restitution})
+  Compliant,       // CN with a restitution and a stiffness: a contact whose e is a Hunt-Crossley
+                   // force while g < 0, 0 otherwise (law_rhs = {stiffness, exponent, restitution})
   FreeRate,        // Sf { rate0 = ... }: the flow is a state (an independent joint rate) and
                    // the effort must vanish; the rate's derivative is found from e = 0
 };
@@ -74,7 +79,9 @@ struct Bond {
   int effort_setter = -1;
 };
 
-enum class VarKind { Effort, Flow, State, Derivative, Signal, Auxiliary };
+/// Discrete: a value the model holds between events and only the runtime
+/// changes, there (a contact's mode, its approach speed).
+enum class VarKind { Effort, Flow, State, Derivative, Signal, Auxiliary, Discrete };
 
 struct Variable {
   std::string name;   // model terms: "armature_l.p", "b3.e[2]", "der(rotor.p)"

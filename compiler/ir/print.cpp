@@ -99,8 +99,11 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
             if (st.name == "ground") out += fmt::format("{}ground {{ {} }}\n", pad, fmt::join(parts, "; "));
             else out += fmt::format("{}body {} {{ {} }}\n", pad, st.name, fmt::join(parts, "; "));
           } else if constexpr (std::is_same_v<T, AstJoint>) {
-            if (st.type == "force") out += fmt::format("{}force {}({}, {})", pad, st.name, st.a.path, st.b.path);
-            else out += fmt::format("{}joint {} {}({}, {})", pad, st.name, st.type, st.a.path, st.b.path);
+            if (st.connector == Connector::Joint)
+              out += fmt::format("{}joint {} {}({}, {})", pad, st.name, st.type, st.a.path, st.b.path);
+            else
+              out += fmt::format("{}{} {}({}, {})", pad, st.connector == Connector::Force ? "force" : "contact", st.name,
+                                 st.a.path, st.b.path);
             if (!st.attrs.empty()) out += " " + attrs(st.attrs);
             out += "\n";
           } else if constexpr (std::is_same_v<T, AstSetting>) {
@@ -151,6 +154,13 @@ static std::string law_text(const GraphNode& nd, const Namer& n) {
     case LawForm::FlowOfState: return "f = " + rhs();
     case LawForm::Constraint: return "f = d/dt g = 0 (lagrange), g = " + value_text(nd.constraint_g, n);
     case LawForm::Penalty: return "e = " + rhs() + " (penalty), g = " + value_text(nd.constraint_g, n);
+    case LawForm::Unilateral:
+      return fmt::format("contact g >= 0 (unilateral: a row while it pushes, impacts with restitution {}), g = {}",
+                         to_string(nd.law_rhs[1], n), value_text(nd.constraint_g, n));
+    case LawForm::Compliant:
+      return fmt::format("contact g >= 0 (compliant: Hunt-Crossley, stiffness {}, exponent {}, restitution {}), g = {}",
+                         to_string(nd.law_rhs[0], n), to_string(nd.law_rhs[1], n), to_string(nd.law_rhs[2], n),
+                         value_text(nd.constraint_g, n));
     default: return value_text(nd.value, n);
   }
 }

@@ -70,6 +70,8 @@ struct EventRelation {
   bool time_event = false;  // arg is a function of time alone: its crossings are known in advance
   SourceLoc loc;            // the model line of the first equation it is in (invalid: none has one)
   std::string origin;       // that equation's origin ("Sf src: f = value")
+  int contact = -1;         // a contact's event (ReducedSystem::contacts): step is its `closed` variable and
+                            // arg its gap while open, its normal force while a unilateral one is closed
 };
 
 /// The variables an assignment reads (its value, or its whole block).
@@ -104,6 +106,8 @@ struct ReducedSystem {
   std::vector<int> for_constraints;       // indices into assignments, in order
   std::vector<EventRelation> events;      // the model's discontinuities (reduce/events)
   std::vector<int> for_events;            // indices into assignments, in order: what the events' args need
+  std::vector<ContactRow> contacts;       // contacts (CN with a restitution), each with its event
+  std::vector<int> for_contacts;          // indices into assignments, in order: what the contacts' rates need
   std::vector<AlgebraicLoop> loops;
   std::optional<BodyTree> tree;           // set when a loop was eliminated along a kinematic tree
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled

@@ -31,14 +31,18 @@ void Expander::collect(const AstProgram& in) {
   for (const AstStmt& s : in.stmts) {
     auto* j = std::get_if<AstJoint>(&s);
     if (!j || !connector_name_ok(*j, connectors)) continue;
-    j->type == "force" ? add_force(*j) : add_joint(*j);
+    switch (j->connector) {
+      case Connector::Joint: add_joint(*j); break;
+      case Connector::Force: add_force(*j); break;
+      case Connector::Contact: add_contact(*j); break;
+    }
   }
 }
 
 /// Joints and force elements name the parts they generate (`j1.cn`, `j1.angle`):
 /// their names must differ from each other's and from the bodies'.
 bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen) {
-  const char* what = j.type == "force" ? "force element" : "joint";
+  const char* what = connector_noun(j.connector);
   if (j.name == "ground") {
     diags_.error(j.loc, fmt::format("a {} cannot be named `ground`", what), "`ground` is the fixed frame: choose another name");
     return false;
@@ -47,7 +51,7 @@ bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const 
     auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a body", what, j.name),
                            fmt::format("bodies, joints and force elements share one namespace (`{}.angle`, `{}.position`): "
                                        "rename the {}, e.g. `{}_{}`",
-                                       j.name, j.name, what, j.name, j.type == "force" ? "force" : "joint"));
+                                       j.name, j.name, what, j.name, j.connector == Connector::Joint ? "joint" : j.connector == Connector::Force ? "force" : "contact"));
     d.notes.push_back({b->second.decl->loc, "the body is declared here"});
     return false;
   }
@@ -60,10 +64,10 @@ bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const 
   }
   auto [it, fresh] = seen.emplace(j.name, &j);
   if (!fresh) {
-    const char* first = it->second->type == "force" ? "force element" : "joint";
+    const char* first = connector_noun(it->second->connector);
     if (std::string(first) != what) {
       auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a {}", what, j.name, first),
-                             fmt::format("joints and force elements share one namespace (`{}.force`): rename one of them",
+                             fmt::format("joints, force elements and contacts share one namespace (`{}.force`): rename one of them",
                                          j.name));
       d.notes.push_back({it->second->loc, fmt::format("the {} is declared here", first)});
       return false;

@@ -38,12 +38,20 @@ namespace mbgc::multibody {
 /// move, else Lagrange; ExpandOptions::strategy_report says which and why.
 enum class Strategy { Auto, Lagrange, Penalty, Coordinates };
 
+/// How contacts act (a contact's `strategy = ...`, or mbgc --contacts).
+enum class ContactStrategy {
+  Unilateral,  // a constraint row while it pushes; impacts by Newton's restitution law (an impulse)
+  Compliant,   // a Hunt-Crossley force: its stiffness and the damping that gives its restitution
+};
+
 struct ExpandOptions {
   /// mbgc --constraints: replaces the model-level setting; a joint's own
   /// `constraint = ...` still wins over both.
   std::optional<Strategy> constraints;
   /// mbgc -I: directories searched for modal-data files after the model's own.
   std::vector<std::string> search_dirs;
+  /// mbgc --contacts: the strategy of every contact that does not name its own.
+  std::optional<ContactStrategy> contacts;
   /// If set: what `constraints = auto` chose and why (empty when no joint was left to auto).
   std::string* strategy_report = nullptr;
 };

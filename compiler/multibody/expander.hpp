@@ -90,7 +90,8 @@ class Expander {
  public:
   Expander(ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options)
       : sources_(sources), diags_(diags), search_dirs_(options.search_dirs), override_(options.constraints),
-        strategy_(options.constraints.value_or(Strategy::Auto)), strategy_report_(options.strategy_report) {}
+        strategy_(options.constraints.value_or(Strategy::Auto)), strategy_report_(options.strategy_report),
+        contact_strategy_(options.contacts.value_or(ContactStrategy::Unilateral)) {}
 
   AstProgram run(const AstProgram& in);
 
@@ -108,7 +109,7 @@ class Expander {
   void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {});
   void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to);
 
-  // ---- 1. collect and check bodies, joints, force elements and settings (collect.cpp)
+  // ---- 1. collect and check bodies, joints, force elements and settings (collect.cpp; contacts: contacts.cpp)
   void collect(const AstProgram& in);
   bool connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen);
   void duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first);
@@ -188,6 +189,11 @@ class Expander {
   // ---- 5. force elements (forces.cpp)
   std::pair<E, E> world_point(const Build& B, const Side& s);
   void emit_force(const ForceElement& f);
+  void apply_load(const Build& B, const std::string& base, const Side& s, E force, E torque, double sign);
+
+  // ---- 5b. contacts (contacts.cpp)
+  void add_contact(const AstJoint& c);
+  void emit_contact(const Contact& c);
 
   // ---- 6. quantities users may name (quantities.cpp)
   void define_quantities();
@@ -202,6 +208,7 @@ class Expander {
   std::vector<std::string> body_order_;
   std::vector<Joint> joints_;
   std::vector<ForceElement> forces_;
+  std::vector<Contact> contacts_;
   std::map<std::string, std::vector<std::string>> loads_;  // body -> force elements acting on it
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
@@ -220,6 +227,7 @@ class Expander {
   std::optional<Strategy> override_;  // mbgc --constraints
   Strategy strategy_;                  // the model-level strategy
   std::string* strategy_report_;       // ExpandOptions::strategy_report
+  ContactStrategy contact_strategy_;   // of contacts without their own (mbgc --contacts)
   std::vector<AstStmt> generated_;
   // While a body moved by joint coordinates (and its tree joint) is written:
   // the tree body and its parent every element and junction is tagged with.

@@ -58,25 +58,30 @@ void Expander::emit_force(const ForceElement& f) {
   E torque = user("torque");
   quantity_[fn + ".force"] = force;
   if (torque) quantity_[fn + ".torque"] = torque;
-  for (const auto& [s, sign] : {std::pair{&f.a, -1.0}, std::pair{&f.b, 1.0}}) {
-    const Body& body = bodies_.at(s->body);
-    if (body.ground) continue;
-    const std::string base = fn + ".on_" + s->body;
-    auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
-    if (body.flex) {
-      element(B, "Se", base, signed_(flexible_load(B, s->body, s->point, force, torque)));
-      continue;
-    }
-    element(B, "Se", base + "_f",
-            signed_(body_frame_velocity(body) ? B.op('*', B.call("transpose", {rotation(B, s->body)}), force) : force));
-    if (body.particle) continue;
-    E Rt = B.call("transpose", {rotation(B, s->body)});
-    E local = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
-    E arm = B.op('-', local, B.name(s->body + ".com"));
-    E moment = B.call("cross", {arm, B.op('*', Rt, force)});
-    if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
-    element(B, "Se", base + "_t", signed_(moment));
+  apply_load(B, fn + ".on_" + f.a.body, f.a, force, torque, -1.0);
+  apply_load(B, fn + ".on_" + f.b.body, f.b, force, torque, 1.0);
+}
+
+/// `sign` times a world force at side s's point and a world torque (may be
+/// null) on its body, as effort sources `base_f`, `base_t` (a flexible body:
+/// one source `base` on its whole junction); nothing on ground.
+void Expander::apply_load(const Build& B, const std::string& base, const Side& s, E force, E torque, double sign) {
+  const Body& body = bodies_.at(s.body);
+  if (body.ground) return;
+  auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
+  if (body.flex) {
+    element(B, "Se", base, signed_(flexible_load(B, s.body, s.point, force, torque)));
+    return;
   }
+  element(B, "Se", base + "_f",
+          signed_(body_frame_velocity(body) ? B.op('*', B.call("transpose", {rotation(B, s.body)}), force) : force));
+  if (body.particle) return;
+  E Rt = B.call("transpose", {rotation(B, s.body)});
+  E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
+  E arm = B.op('-', local, B.name(s.body + ".com"));
+  E moment = B.call("cross", {arm, B.op('*', Rt, force)});
+  if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
+  element(B, "Se", base + "_t", signed_(moment));
 }
 
 }  // namespace mbgc::multibody::detail

@@ -59,6 +59,21 @@ struct ForceElement {
   std::map<std::string, const ir::AstAttr*> attrs;
 };
 
+/// `contact NAME(a.P, b.Q) { radius; surface; normal | axis; surface_radius;
+/// strategy; restitution; stiffness; exponent; friction; slip_speed;
+/// stabilisation }`: a sphere of `radius` around point P of body a touching a
+/// surface through point Q of body b (a plane, a sphere or a cylinder). The gap
+/// between them is a position-level function; the normal force acts only
+/// while it is closed (see docs/notes/contact.md).
+enum class Surface { Plane, Sphere, Cylinder };
+struct Contact {
+  const ir::AstJoint* decl = nullptr;
+  Side a, b;
+  Surface surface = Surface::Plane;
+  ContactStrategy strategy = ContactStrategy::Unilateral;
+  std::map<std::string, const ir::AstAttr*> attrs;
+};
+
 /// A body's setting `key` (null: not given).
 inline E attr(const ir::AstBody& b, const std::string& key) {
   for (const ir::AstAttr& a : b.attrs)

@@ -1,6 +1,8 @@
 // reduce/events.cpp — see events.hpp.
 #include "reduce/events.hpp"
 
+#include <fmt/format.h>
+
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -87,6 +89,10 @@ void steps_for_time_kinks(ReducedSystem& s) {
     row.g = f(row.g);
     row.gdot = f(row.gdot);
   }
+  for (ContactRow& c : s.contacts) {
+    c.gap = f(c.gap);
+    c.rate = f(c.rate);
+  }
 }
 
 std::vector<EventRelation> find_events(const ReducedSystem& s) {
@@ -103,6 +109,15 @@ std::vector<EventRelation> find_events(const ReducedSystem& s) {
   for (const ConstraintRow& row : s.constraints) {
     f.scan(row.g);
     f.scan(row.gdot);
+  }
+  for (std::size_t c = 0; c < s.contacts.size(); ++c) {
+    const ContactRow& row = s.contacts[c];
+    const Expr closed = var(row.closed);
+    // a unilateral contact while closed: its normal force, which must not pull
+    const Expr arg = row.compliant ? row.gap
+                                   : add(mul(closed, row.normal_force), mul(sub(constant(1), closed), add(row.gap, var(row.lift))));
+    const std::string element = row.name.substr(0, row.name.rfind('.'));
+    events.push_back({closed, arg, false, row.loc, fmt::format("contact {}", element), static_cast<int>(c)});
   }
   return events;
 }

@@ -24,8 +24,12 @@ class Reducer {
     out_.causality = std::move(sys_.causality);
     out_.states = sys_.states;
     out_.constraints = std::move(sys_.constraints);
+    out_.contacts = std::move(sys_.contacts);
     eqs_ = std::move(sys_.equations);
-    for (const StateVar& s : out_.states) is_state_.insert(s.var);
+    for (const StateVar& s : out_.states) known_.insert(s.var);
+    for (const ContactRow& c : out_.contacts)
+      for (int id : {c.closed, c.bias, c.lift, c.damping})
+        if (id >= 0) known_.insert(id);  // discrete: the runtime sets them
     for (const Signal& s : out_.graph.signals)
       if (s.rate) rate_of_[s.var] = s.rate;
     if (!check_each_unknown_once()) return;
@@ -77,7 +81,7 @@ class Reducer {
       collect_vars(eqs_[i].lhs, vars);
       collect_vars(eqs_[i].rhs, vars);
       for (int id : vars)
-        if (id != eqs_[i].unknown && !is_state_.count(id)) readers[id].push_back(static_cast<int>(i));
+        if (id != eqs_[i].unknown && !known_.count(id)) readers[id].push_back(static_cast<int>(i));
       if (!eqs_[i].constraint || eqs_[i].in_loop) ready.push_back(static_cast<int>(i));
     }
     const auto fold = [&](const Expr& e) {
@@ -169,6 +173,11 @@ class Reducer {
     for (ConstraintRow& row : out_.constraints) {
       row.gdot = resolve_all(var(row.flow));
       row.g = resolve_all(row.g);  // (a cut joint's g reads signals, some now constants)
+    }
+    for (ContactRow& c : out_.contacts) {
+      c.gap = resolve_all(c.gap);
+      c.rate = resolve_all(c.rate);
+      c.normal_force = resolve_all(c.normal_force);
     }
     alias_ = std::move(alias);
     out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
@@ -290,7 +299,7 @@ class Reducer {
       collect_vars(eqs_[i].lhs, vars);
       collect_vars(eqs_[i].rhs, vars);
       for (int id : vars) {
-        if (is_state_.count(id)) continue;
+        if (known_.count(id)) continue;
         auto it = eq_of_.find(id);
         if (it == eq_of_.end()) {
           diags_.error(v(id).loc, fmt::format("internal error: nothing computes `{}`", v(id).name),
@@ -351,10 +360,23 @@ class Reducer {
     for (const auto& block : blocks) solve_block(block);
     if (out_.dae) finish_dae();
     if (out_.dae) check_solver_for_dae();
+    if (out_.dae) check_contacts_for_dae();
     int linear = 0, nonlinear = 0;
     for (const AlgebraicLoop& l : out_.loops) (l.linear ? linear : nonlinear)++;
     out_.log.push_back(fmt::format("sorting: {} equations in {} blocks; {} linear algebraic loop{} solved symbolically, {} nonlinear left to IDA",
                                    n, blocks.size(), linear, linear == 1 ? "" : "s", nonlinear));
+  }
+
+  /// A unilateral contact's impacts are impulses the runtime finds from the
+  /// state derivative, which a DAE does not have.
+  void check_contacts_for_dae() {
+    for (const ContactRow& c : out_.contacts) {
+      if (c.compliant) continue;
+      diags_.error(c.loc, fmt::format("unilateral contact `{}` in a model solved as a DAE", c.name.substr(0, c.name.rfind('.'))),
+                   "its impacts are impulses through the ODE's mass matrix, which a DAE (joints held by lagrange rows) "
+                   "does not have: use constraints = coordinates (or penalty) for the joints, or strategy = compliant "
+                   "for the contact");
+    }
   }
 
   void solve_block(const std::vector<int>& block) {
@@ -892,11 +914,15 @@ class Reducer {
     std::vector<Expr> event_roots;
     for (const EventRelation& ev : out_.events) event_roots.push_back(ev.arg);
     out_.for_events = needed_by(event_roots);
+    std::vector<Expr> contact_roots;
+    for (const ContactRow& c : out_.contacts) contact_roots.push_back(c.rate);
+    out_.for_contacts = needed_by(contact_roots);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
     used.insert(out_.for_constraints.begin(), out_.for_constraints.end());
     used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
     used.insert(out_.for_jacobian.begin(), out_.for_jacobian.end());
     used.insert(out_.for_events.begin(), out_.for_events.end());
+    used.insert(out_.for_contacts.begin(), out_.for_contacts.end());
     // Drop what nobody needs; renumber the slices.
     std::vector<Assignment> kept;
     std::map<int, int> renumber;
@@ -910,6 +936,7 @@ class Reducer {
     for (int& i : out_.for_derivative) i = renumber.at(i);
     for (int& i : out_.for_outputs) i = renumber.at(i);
     for (int& i : out_.for_jacobian) i = renumber.at(i);
+    for (int& i : out_.for_contacts) i = renumber.at(i);
     for (int& i : out_.for_constraints) i = renumber.at(i);
     for (int& i : out_.for_events) i = renumber.at(i);
     out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
@@ -919,7 +946,7 @@ class Reducer {
   ReducedSystem& out_;
   Diagnostics& diags_;
   std::vector<Equation> eqs_;
-  std::unordered_set<int> is_state_;
+  std::unordered_set<int> known_;  // what no equation computes: the states and the discrete variables
   std::unordered_map<int, Expr> alias_;
   std::unordered_map<int, int> eq_of_;
   std::unordered_map<int, std::size_t> state_index_;  // state variable -> index in out_.states

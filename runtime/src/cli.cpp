@@ -138,7 +138,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                  "Write t,max_abs_g,max_abs_gdot (joint constraints at each output time) as CSV")
       ->type_name("FILE.csv");
   app.add_option("--event-log", o.event_log_path,
-                 "Write t,event,name,state,jump (every switch of the model's events) as CSV")
+                 "Write t,event,name,state,jump,note (every switch of the model's events; note: what a contact did) as CSV")
       ->type_name("FILE.csv");
   app.add_flag("--quiet", o.quiet, "Do not print the run summary on stderr");
   app.add_flag("--list-parameters", o.list_parameters,

@@ -24,13 +24,26 @@ bool Events::start(double t, const double* y, const double* yp) {
   zeno_event_ = -1;
   if (n_ == 0) return true;
   if (!functions(t, y, yp, g_.data())) return false;
-  for (std::size_t k = 0; k < n_; ++k) model_.set_event_mode(k, g_[k] >= 0.0);
+  for (std::size_t k = 0; k < n_; ++k)
+    if (contacts_.of_event(k) < 0) model_.set_event_mode(k, g_[k] >= 0.0);
+  contacts_.start(t, y, yp);
   return true;
 }
 
 bool Events::fire(double t, std::size_t k, bool on, double* y) {
+  if (const long c = contacts_.of_event(k); c >= 0) {
+    const ContactSwitch s = contacts_.fire(t, static_cast<std::size_t>(c), on, y);
+    if (s.kind == ContactSwitch::None) return false;
+    record(t, k, contacts_.closed(static_cast<std::size_t>(c)),
+           s.kind == ContactSwitch::Bounce || s.kind == ContactSwitch::Rest, Contacts::describe(s));
+    return true;
+  }
   if (!model_.set_event_mode(k, on)) return false;
-  const bool jump = model_.event_jump(k, on, t, y);
+  record(t, k, on, model_.event_jump(k, on, t, y), {});
+  return true;
+}
+
+void Events::record(double t, std::size_t k, bool on, bool jump, std::string note) {
   // One instant: equal times, up to the rounding of a located root.
   if (!log_.empty() && std::abs(t - instant_) <= 1e-12 * std::max(1.0, std::abs(t))) {
     ++at_instant_;
@@ -38,14 +51,13 @@ bool Events::fire(double t, std::size_t k, bool on, double* y) {
     instant_ = t;
     at_instant_ = 1;
   }
-  log_.push_back({t, k, on, jump});
+  log_.push_back({t, k, on, jump, std::move(note)});
   const double dt = t - last_t_[k];
   shrinking_[k] = dt < last_dt_[k] ? shrinking_[k] + 1 : 0;  // (false while either is NaN)
   last_t_[k] = t;
   last_dt_[k] = dt;
   if (shrinking_[k] >= kZenoCount && dt <= kZenoInterval * std::max(1.0, std::abs(t)) && zeno_event_ < 0)
     zeno_event_ = static_cast<long>(k);
-  return true;
 }
 
 void Events::note_roots(double t) {
@@ -58,7 +70,8 @@ void Events::note_roots(double t) {
 }
 
 std::string Events::describe(const EventRecord& e) const {
-  return fmt::format("t = {:.9g} s: {} {}{}", e.t, model_.event_name(e.index), e.on ? "on" : "off", e.jump ? ", jump" : "");
+  return fmt::format("t = {:.9g} s: {} {}{}{}", e.t, model_.event_name(e.index), e.on ? "on" : "off", e.jump ? ", jump" : "",
+                     e.note.empty() ? "" : ": " + e.note);
 }
 
 bool chatter_failure(const Events& events, double t, SolverFailure& failure) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "contacts.hpp"
 #include "mbgrt/model.hpp"
 
 namespace mbgrt::detail {
@@ -16,12 +17,13 @@ struct EventRecord {
   double t = 0.0;
   std::size_t index = 0;  ///< which event (Model::event_name)
   bool on = false;        ///< its step switched on (x rose through 0) or off
-  bool jump = false;      ///< the unknowns jumped there (Model::event_jump)
+  bool jump = false;      ///< the unknowns jumped there (Model::event_jump, a contact's impact)
+  std::string note;       ///< a contact's: what happened ("impact at 4.43 m/s: bounces")
 };
 
 class Events {
  public:
-  explicit Events(Model& model) : model_(model), n_(model.event_count()), g_(n_) {}
+  explicit Events(Model& model) : model_(model), n_(model.event_count()), g_(n_), contacts_(model) {}
 
   std::size_t count() const { return n_; }
   Model& model() { return model_; }
@@ -29,12 +31,14 @@ class Events {
   /// The zero-crossing functions at (t, y[, yp]); false if one is not finite.
   bool functions(double t, const double* y, const double* yp, double* g);
   /// Each mode from the sign of its function at the start of the run (x >= 0:
-  /// on, as step(x) is); not logged.
+  /// on, as step(x) is), a contact's from its gap (Contacts::start); not logged.
   bool start(double t, const double* y, const double* yp);
   /// Event k's function crossed zero at t, rising (on) or falling: switches
   /// its mode, lets the model change y (Model::event_jump) and logs it. False
-  /// if the mode already was so (nothing logged).
+  /// if the mode already was so (nothing logged). A contact's event does what
+  /// Contacts::fire says (an impact changes y).
   bool fire(double t, std::size_t k, bool on, double* y);
+  const Contacts& contacts() const { return contacts_; }
   /// More than kMaxAtOneInstant switches (or root reports) at one time: the
   /// modes chatter (a relation that turns itself off when on), and the run
   /// must stop.
@@ -61,9 +65,12 @@ class Events {
 
  private:
   Model& model_;
+  void record(double t, std::size_t k, bool on, bool jump, std::string note);
+
   std::size_t n_;
   std::vector<double> g_;
   std::vector<EventRecord> log_;
+  Contacts contacts_;
   double instant_ = 0.0;  ///< time of the latest switch
   long at_instant_ = 0;   ///< switches at that time
   double root_instant_ = 0.0;

@@ -50,7 +50,9 @@ void print_events(std::FILE* err, const Events& events) {
              events.count() == 1 ? "" : "s", log.empty() ? "" : ":");
   for (std::size_t i = 0; i < std::min(log.size(), kListed); ++i) fmt::print(err, "               {}\n", events.describe(log[i]));
   if (log.size() > kListed)
-    fmt::print(err, "               and {} more (--event-log FILE.csv writes them all)\n", log.size() - kListed);
+    fmt::print(err, "               and {} more (--event-log FILE.csv writes them all), the last:\n"
+                    "               {}\n",
+               log.size() - kListed, events.describe(log.back()));
 }
 
 void print_summary(std::FILE* err, const RunRecord& run) {

@@ -91,9 +91,10 @@ std::string describe_small_states(const Model& model, const std::vector<double>&
 
 /// --event-log: one row per switch, in the order they happened.
 void write_event_log(OutputFile& file, const Events& events) {
-  file.write("t,event,name,state,jump\n");
+  file.write("t,event,name,state,jump,note\n");
   for (const EventRecord& e : events.log())
-    file.write(fmt::format("{},{},\"{}\",{},{}\n", e.t, e.index, events.model_name(e.index), e.on ? "on" : "off", e.jump ? 1 : 0));
+    file.write(fmt::format("{},{},\"{}\",{},{},\"{}\"\n", e.t, e.index, events.model_name(e.index), e.on ? "on" : "off",
+                           e.jump ? 1 : 0, e.note));
 }
 
 int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out, OutputFile* event_out) {

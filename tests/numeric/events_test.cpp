@@ -46,7 +46,7 @@ TEST_P(EventsBySolver, ThePiecewiseLinearVoltageIsExactAndTheSwitchesAreWhereThe
   for (const auto& row : r.csv.rows) EXPECT_NEAR(row[r.csv.col("v")], voltage(row[0]), tol) << solver << " at t = " << row[0];
   // The log: three switches, in order, at the closed form's times.
   const Csv events = read_csv(log_path);
-  ASSERT_EQ(events.header, (std::vector<std::string>{"t", "event", "name", "state", "jump"}));
+  ASSERT_EQ(events.header, (std::vector<std::string>{"t", "event", "name", "state", "jump", "note"}));
   ASSERT_EQ(events.rows.size(), 3u) << slurp(log_path);
   EXPECT_NEAR(events.rows[0][0], kT1, 1e-9);
   EXPECT_NEAR(events.rows[1][0], kTOff, 1e-12);  // a time event: t - t_off, located where it is 0

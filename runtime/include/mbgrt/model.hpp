@@ -92,6 +92,14 @@ struct Settings {
 };
 
 /// A named, overridable model parameter (`--set NAME=VALUE`).
+/// A contact of the model (Model::contact): a gap g >= 0 between two bodies
+/// whose mode is one of the model's events.
+struct ContactInfo {
+  std::size_t event = 0;     ///< its event (Model::event_name); the event's mode is 1 while the contact is closed
+  bool compliant = false;    ///< Hunt-Crossley force (else unilateral: a row while it pushes, impacts as impulses)
+  double restitution = 0.0;  ///< Newton's coefficient: normal speed after an impact / before
+};
+
 struct ParameterInfo {
   std::string name;
   double default_value;      ///< value from the model text (NaN if it is computed from other parameters)
@@ -196,6 +204,26 @@ class Model {
     (void)k; (void)on; (void)t; (void)y;
     return false;
   }
+
+  // ---- contacts (optional) ---------------------------------------------------
+  /// Each contact's event function is its gap g while open (plus a lift) and, for a
+  /// unilateral contact while closed, its normal force (which must not pull).
+  /// The runtime (runtime/src/contacts.cpp) switches the modes and applies the
+  /// impacts: an impulse is found from the state derivative with the contact
+  /// closed and its row's bias, the extra normal acceleration it imposes.
+  virtual std::size_t contact_count() const { return 0; }
+  virtual ContactInfo contact(std::size_t c) const { (void)c; return {}; }
+  /// CONTACT SPEEDS: v[c] = dg/dt of contact c at (t, y); yp as for outputs().
+  virtual void contact_speeds(double t, const double* y, const double* yp, double* v) {
+    (void)t; (void)y; (void)yp; (void)v;
+  }
+  /// Unilateral contact c while closed: its row keeps g'' + 2 w g' + w^2 g = b.
+  virtual void set_contact_bias(std::size_t c, double b) { (void)c; (void)b; }
+  /// Unilateral contact c while open: its event function is g + h (h >= 0,
+  /// tiny, set when it opens so that the function starts positive).
+  virtual void set_contact_lift(std::size_t c, double h) { (void)c; (void)h; }
+  /// Compliant contact c: its Hunt-Crossley damping chi / v- (1/(m/s)), set when it closes.
+  virtual void set_contact_damping(std::size_t c, double d) { (void)c; (void)d; }
 
   /// TERMINAL: called once after the run (successful or not).
   virtual void terminal(double t, const double* y) { (void)t; (void)y; }

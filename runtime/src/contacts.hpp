@@ -1,0 +1,79 @@
+// The model's contacts during a run (Model::contact_count): which event is
+// whose, their modes at the start, and what a located crossing of a contact's
+// event function does. Written once over every model and solver:
+//
+// * unilateral, open, gap falling through 0: an impact. Newton's law sets the
+//   normal speed after it to -e times the one before, by an impulse through
+//   the mass matrix: the state derivative with the contact closed is affine in
+//   the row's bias b (the normal acceleration the row imposes), and so is the
+//   velocity change an impulse makes; their column dy/db is the change per unit
+//   of normal speed (positions do not jump). An impact whose rebound would fly
+//   for less than kRestFlight (scaled by max(1, |t|)) ends plastically and
+//   closes the contact: it comes to rest (Zeno's accumulation avoided).
+// * unilateral, closed, normal force falling through 0: released (opens).
+// * compliant, gap falling through 0: closes, Hunt-Crossley's damping set from
+//   the approach speed; gap rising through 0: opens.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mbgrt/model.hpp"
+
+namespace mbgrt::detail {
+
+/// Hunt-Crossley's chi for restitution e in (0, 1]: with the force
+/// k d^n (1 + chi d'/v-), a contact without other forces ends at -e v-.
+/// From the phase-plane integral (m d' dd'/dd = -k d^n (1 + a d'), a = chi / v-):
+/// chi - ln(1 + chi) = -chi e - ln(1 - chi e), the root in (0, 1/e).
+double hunt_crossley_chi(double e);
+
+/// What a contact's event did.
+struct ContactSwitch {
+  enum Kind { None, Bounce, Rest, Close, Release, Open } kind = None;
+  double speed = 0.0;  ///< impacts and closings: the approach speed -dg/dt before (m/s)
+};
+
+class Contacts {
+ public:
+  explicit Contacts(Model& model);
+
+  std::size_t count() const { return info_.size(); }
+  /// The contact whose event is k, or -1.
+  long of_event(std::size_t k) const { return k < contact_of_event_.size() ? contact_of_event_[k] : -1; }
+  /// Modes from the state the run starts in: closed where the gap is <= 0 (a
+  /// unilateral contact only if it then pushes).
+  void start(double t, const double* y, const double* yp);
+  /// Contact c's event function crossed zero at t, rising or not: switches its
+  /// mode and applies an impact to y (ODE models).
+  ContactSwitch fire(double t, std::size_t c, bool rising, double* y);
+  bool closed(std::size_t c) const { return closed_[c] != 0; }
+  /// "impact at 4.43 m/s: bounces", "closes at 1.2 m/s", ... (no commas: a CSV cell)
+  static std::string describe(const ContactSwitch& s);
+
+  /// A rebound shorter than this (times max(1, |t|)) ends in rest.
+  static constexpr double kRestFlight = 1e-4;
+  /// Unilateral, when it opens: its event function starts at least this
+  /// above 0 (m; the gap's rounding after an impact is far below it), so that a
+  /// flight shorter than a step still changes its sign between two steps.
+  static constexpr double kLift = 1e-12;
+  /// Compliant: the approach speed Hunt-Crossley's damping divides by is at least this (m/s).
+  static constexpr double kMinApproachSpeed = 1e-4;
+
+ private:
+  void set_closed(std::size_t c, bool on);
+  /// Opens unilateral contact c with its event function lifted to kLift.
+  void open_lifted(double t, const double* y, std::size_t c);
+  double speed(double t, const double* y, std::size_t c);
+  double event_function(double t, const double* y, std::size_t c);
+  ContactSwitch impact(double t, std::size_t c, double* y);
+
+  Model& m_;
+  std::vector<ContactInfo> info_;
+  std::vector<long> contact_of_event_;
+  std::vector<char> closed_;
+  std::vector<double> v_, g_, d0_, d1_, y1_;
+};
+
+}  // namespace mbgrt::detail
