@@ -127,4 +127,43 @@ TEST(BouncingBallCompliant, ConvergesToTheClosedFormAsTheStiffnessGrows) {
   EXPECT_LT(last_error, 1e-4);
 }
 
+/// examples/rocking_rod: a rod released tilted falls onto one end, then
+/// rocks and bounces from end to end until it lies on the floor.
+TEST(RockingRod, TheFirstImpactIsTheClosedFormsAndEnergyNeverRises) {
+  const double L = 1, m = 1, theta = 30 * M_PI / 180, h0 = 0.3, e = 0.5;
+  const std::string log_path = work_file("rocking_rod", "_events.csv");
+  SimRun r = run(ROD_SIM, "--event-log \"" + log_path + "\"", "rocking_rod");
+  ASSERT_EQ(r.status, 0) << r.log;
+  const std::vector<Switch> log = switches(log_path);
+  ASSERT_GE(log.size(), 4u);
+  // End a falls h0 from rest: it hits at sqrt(2 h0 / g) with the centre's speed.
+  const double t_a = std::sqrt(2 * h0 / kG), v_minus = -kG * t_a;
+  EXPECT_NEAR(log[0].t, t_a, 1e-8 * t_a);
+  const std::string text = slurp(log_path);
+  EXPECT_TRUE(contains(text.substr(text.find('\n') + 1), "contact end_a")) << text;
+  // A vertical impulse at end a: P (1/m + (L/2 cos theta)^2 / I) = -(1 + e) v-.
+  const double P = -(1 + e) * v_minus * m / (1 + 3 * std::cos(theta) * std::cos(theta));
+  const double vz = v_minus + P / m, wy = 6 * std::cos(theta) * P / (m * L);
+  int checked = 0;
+  for (const auto& row : r.csv.rows) {
+    if (row[0] <= log[0].t || row[0] >= log[1].t) continue;  // the flight after the first impact
+    EXPECT_NEAR(row[r.csv.col("wy")], wy, 1e-8 * std::abs(wy)) << "t = " << row[0];
+    EXPECT_NEAR(row[r.csv.col("vz")], vz - kG * (row[0] - log[0].t), 1e-8) << "t = " << row[0];
+    ++checked;
+  }
+  EXPECT_GT(checked, 50);
+  // Energy never rises (the floor is frictionless: it is lost at the impacts only).
+  const std::size_t E = r.csv.col("E");
+  for (std::size_t i = 1; i < r.csv.rows.size(); ++i) EXPECT_LE(r.csv.rows[i][E], r.csv.rows[i - 1][E] + 1e-9) << i;
+  // Both ends come to rest, the rod on the floor, each end carrying half its weight.
+  int rests = 0;
+  for (const Switch& s : log) rests += contains(s.note, "comes to rest");
+  EXPECT_EQ(rests, 2) << text;
+  const auto& last = r.csv.rows.back();
+  EXPECT_NEAR(last[r.csv.col("za")], 0, 1e-9);
+  EXPECT_NEAR(last[r.csv.col("zb")], 0, 1e-9);
+  EXPECT_NEAR(last[r.csv.col("Fa")], m * kG / 2, 1e-6);
+  EXPECT_NEAR(last[r.csv.col("Fb")], m * kG / 2, 1e-6);
+}
+
 }  // namespace
