@@ -57,7 +57,10 @@ class Emitter {
     c.public_methods.push_back(outputs());
     if (!s_.events.empty()) c.public_methods.push_back(event_functions());
     add_event_methods(c, s_, [this](const SourceLoc& loc) { return where(loc); });
-    if (!s_.contacts.empty()) add_contact_methods(c, s_, contact_speeds());
+    if (!s_.contacts.empty()) {
+      const bool friction = std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const ContactRow& r) { return bool(r.friction); });
+      add_contact_methods(c, s_, contact_speeds(), friction ? std::optional<CppFunction>(contact_tangents()) : std::nullopt);
+    }
     if (!s_.constraints.empty()) constraint_functions(c);
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
@@ -514,7 +517,7 @@ class Emitter {
       body.push_back(CppStmt::line(
           fmt::format("const int {0}_rank = mbgrt::solve_rank_revealing<{1}>({0}_a, {0}_x, 1e-10, {0}_dependent);", id, n)));
       body.push_back(CppStmt::line(fmt::format(
-          "if ({0}_rank < {1}) rank_loss_.record(t, \"the cut joints' {1} x {1} multiplier system\", {0}_rank, {1}, "
+          "if ({0}_rank < {1}) rank_loss_.record(t, \"the {1} x {1} system of the constraint multipliers\", {0}_rank, {1}, "
           "{0}_dependent, {0}_rows);",
           id, n)));
       has_rank_loss_ = true;
@@ -672,6 +675,17 @@ class Emitter {
     for (const ContactRow& c : s_.contacts) values.push_back(c.rate);
     return values_at("CONTACT SPEEDS: dg/dt of each contact's gap.", "contact_speeds", "v", values, s_.for_contacts,
                      "contact speeds, in contact order");
+  }
+
+  CppFunction contact_tangents() {
+    std::vector<Expr> values;
+    for (const ContactRow& c : s_.contacts)
+      for (int k = 0; k < 2; ++k) values.push_back(c.friction ? c.tangent_rate[k] : constant(0));
+    for (const ContactRow& c : s_.contacts)
+      for (int k = 0; k < 2; ++k) values.push_back(c.friction ? c.tangent_force[k] : constant(0));
+    return values_at("CONTACT TANGENTS: each contact's sliding velocity along its two tangents, then each one's friction "
+                     "along them (zeros without friction rows).",
+                     "contact_tangents", "out", values, s_.for_tangents, "sliding velocities, then friction forces");
   }
 
   /// `void NAME(double t, const double* x, const double* yp, double* OUT)`:

@@ -47,21 +47,30 @@ void add_event_methods(CppClass& c, const ir::ReducedSystem& s,
 
 std::unordered_map<int, std::string> contact_member_names(const ir::ReducedSystem& s) {
   std::unordered_map<int, std::string> names;
-  for (std::size_t k = 0; k < s.events.size(); ++k)
-    if (s.events[k].contact >= 0) names[s.contacts[static_cast<std::size_t>(s.events[k].contact)].closed] = event_mode_name(k);
+  for (std::size_t k = 0; k < s.events.size(); ++k) {
+    if (s.events[k].contact < 0) continue;
+    const ir::ContactRow& row = s.contacts[static_cast<std::size_t>(s.events[k].contact)];
+    names[s.events[k].friction ? row.stick : row.closed] = event_mode_name(k);
+  }
   for (std::size_t c = 0; c < s.contacts.size(); ++c) {
+    if (s.contacts[c].slip1 >= 0) names[s.contacts[c].slip1] = fmt::format("contact_slip_[{}][0]", c);
+    if (s.contacts[c].slip2 >= 0) names[s.contacts[c].slip2] = fmt::format("contact_slip_[{}][1]", c);
     if (s.contacts[c].bias >= 0) names[s.contacts[c].bias] = fmt::format("contact_bias_[{}]", c);
-    if (s.contacts[c].lift >= 0) names[s.contacts[c].lift] = fmt::format("contact_lift_[{}]", c);
     if (s.contacts[c].damping >= 0) names[s.contacts[c].damping] = fmt::format("contact_damping_[{}]", c);
   }
   return names;
 }
 
-void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds) {
+void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds, std::optional<CppFunction> tangents) {
   const std::size_t n = s.contacts.size();
   std::vector<std::size_t> event(n);
-  for (std::size_t k = 0; k < s.events.size(); ++k)
-    if (s.events[k].contact >= 0) event[static_cast<std::size_t>(s.events[k].contact)] = k;
+  std::vector<long> friction_event(n, -1);
+  for (std::size_t k = 0; k < s.events.size(); ++k) {
+    if (s.events[k].contact < 0) continue;
+    const auto i = static_cast<std::size_t>(s.events[k].contact);
+    if (s.events[k].friction) friction_event[i] = static_cast<long>(k);
+    else event[i] = k;
+  }
   c.public_methods.push_back({"CONTACTS: each a gap g >= 0 whose mode is an event's; the runtime switches it and applies "
                               "the impacts.",
                               "std::size_t contact_count() const override",
@@ -69,27 +78,34 @@ void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction sp
   CppFunction info{"", "mbgrt::ContactInfo contact(std::size_t c) const override", {}};
   info.body.push_back(CppStmt::line(fmt::format("static const mbgrt::ContactInfo kInfo[{}] = {{", n)));
   for (std::size_t i = 0; i < n; ++i)
-    info.body.push_back(CppStmt::line(fmt::format("    {{{}, {}, 0.0}},  // {}", event[i], s.contacts[i].compliant ? "true" : "false",
-                                                  s.contacts[i].name)));
+    info.body.push_back(CppStmt::line(fmt::format("    {{{}, {}, 0.0, {}}},  // {}", event[i], s.contacts[i].compliant ? "true" : "false",
+                                                  friction_event[i], s.contacts[i].name)));
   info.body.push_back(CppStmt::line("};"));
   info.body.push_back(CppStmt::line("mbgrt::ContactInfo r = kInfo[c];"));
   info.body.push_back(CppStmt::line("r.restitution = contact_restitution_[c];"));
   info.body.push_back(CppStmt::line("return r;"));
   c.public_methods.push_back(std::move(info));
   c.public_methods.push_back(std::move(speeds));
+  if (tangents) {
+    c.public_methods.push_back(std::move(*tangents));
+    c.public_methods.push_back({"", "void set_contact_slip(std::size_t c, double d1, double d2) override",
+                                {CppStmt::line(fmt::format("if (c >= {}) return;", n)), CppStmt::line("contact_slip_[c][0] = d1;"),
+                                 CppStmt::line("contact_slip_[c][1] = d2;")}});
+  }
   c.public_methods.push_back({"", "void set_contact_bias(std::size_t c, double b) override",
                               {CppStmt::line(fmt::format("if (c < {}) contact_bias_[c] = b;", n))}});
-  c.public_methods.push_back({"", "void set_contact_lift(std::size_t c, double h) override",
-                              {CppStmt::line(fmt::format("if (c < {}) contact_lift_[c] = h;", n))}});
   c.public_methods.push_back({"", "void set_contact_damping(std::size_t c, double d) override",
                               {CppStmt::line(fmt::format("if (c < {}) contact_damping_[c] = d;", n))}});
   c.private_members.push_back(CppStmt::comment("contacts: restitution (per run); unilateral: the row's added normal "
-                                               "acceleration (the runtime's impulse probe) and the open gap's lift; "
+                                               "acceleration (the runtime's impulse probe); "
                                                "compliant: Hunt-Crossley's chi / v-"));
   c.private_members.push_back(CppStmt::line(fmt::format("double contact_restitution_[{}] = {{}};", n)));
   c.private_members.push_back(CppStmt::line(fmt::format("double contact_bias_[{}] = {{}};", n)));
-  c.private_members.push_back(CppStmt::line(fmt::format("double contact_lift_[{}] = {{}};", n)));
   c.private_members.push_back(CppStmt::line(fmt::format("double contact_damping_[{}] = {{}};", n)));
+  if (tangents) {
+    c.private_members.push_back(CppStmt::comment("unilateral contacts with friction: the slip direction while sliding (in the rows' tangent basis)"));
+    c.private_members.push_back(CppStmt::line(fmt::format("double contact_slip_[{}][2] = {{}};", n)));
+  }
 }
 
 }  // namespace mbgc::codegen

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -30,6 +31,7 @@ std::unordered_map<int, std::string> contact_member_names(const ir::ReducedSyste
 /// contact_count(), contact(c), set_contact_bias(), set_contact_damping(),
 /// the members they write, and `speeds` (the contacts' dg/dt, a section of
 /// equations the emitter wrote). initial() fills contact_restitution_.
-void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds);
+/// `tangents`: the sliding velocities and frictions, when a contact has friction rows.
+void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds, std::optional<CppFunction> tangents);
 
 }  // namespace mbgc::codegen

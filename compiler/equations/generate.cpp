@@ -115,11 +115,11 @@ class Generator {
     c.gap = nd.constraint_g.items[0];
     c.rate = signed_(s, f(b, 0));
     c.normal_force = signed_(-s, e(b, 0));
-    c.restitution = nd.law_rhs.back();
-    c.closed = g_.add_var(nd.name + ".closed", VarKind::Discrete, nd.loc);
+    c.restitution = nd.law_rhs[c.compliant ? 2 : 1];
+    c.closed = nd.discrete[0];
     const Expr closed = var(c.closed);
     if (c.compliant) {
-      c.damping = g_.add_var(nd.name + ".damping", VarKind::Discrete, nd.loc);
+      c.damping = nd.discrete[1];
       const Expr& k = nd.law_rhs[0];
       const Expr& exponent = nd.law_rhs[1];
       const Expr depth = call(Fn::Max, {constant(0), neg(c.gap)});
@@ -128,16 +128,46 @@ class Generator {
       emit(e(b, 0), signed_(-s, force), e_id(b, 0), nd.loc,
            label(nd, "e = -F, F = closed max(0, k max(0, -g)^n (1 - damping g')) (Hunt-Crossley contact)"));
     } else {
-      c.bias = g_.add_var(nd.name + ".bias", VarKind::Discrete, nd.loc);
-      c.lift = g_.add_var(nd.name + ".lift", VarKind::Discrete, nd.loc);
+      c.bias = nd.discrete[1];
       const Expr& w = nd.law_rhs[0];
       const Expr row = sub(add(add(der(c.rate), mul(mul(constant(2), w), c.rate)), mul(mul(w, w), c.gap)), var(c.bias));
       Equation eq{add(mul(closed, row), mul(sub(constant(1), closed), e(b, 0))), constant(0), e_id(b, 0), nd.loc,
                   label(nd, "closed: g'' + 2 w g' + w^2 g = bias, open: e = 0 (unilateral contact)"), /*constraint=*/true};
       eq.in_loop = true;
       s_.equations.push_back(std::move(eq));
+      if (nd.law_rhs.size() > 2) friction_rows(n, c);
     }
     s_.contacts.push_back(std::move(c));
+  }
+
+  /// A unilateral contact's tangential rows 2 and 3 (e: the friction, -s e on
+  /// the first side): while closed and stuck their rate keeps der(f) + 2 w f = 0,
+  /// while closed and sliding e = mu push slip (Coulomb, against the slip
+  /// direction), while open e = 0:
+  ///   closed (stick (f' + 2 w f) + (1 - stick) (e - s mu push slip)) + (1 - closed) e = 0.
+  void friction_rows(int n, ContactRow& c) {
+    const GraphNode& nd = g_.nodes[static_cast<std::size_t>(n)];
+    const int b = nd.bonds[0];
+    const int s = sign(n, b);
+    const Expr& w = nd.law_rhs[0];
+    c.friction = nd.law_rhs[2];
+    c.stick = nd.discrete[2];
+    c.slip1 = nd.discrete[3];
+    c.slip2 = nd.discrete[4];
+    const Expr closed = var(c.closed), stick = var(c.stick);
+    for (int k = 1; k <= 2; ++k) {
+      const Expr rate = signed_(s, f(b, k));
+      c.tangent_rate[k - 1] = rate;
+      c.tangent_force[k - 1] = signed_(-s, e(b, k));
+      const Expr held = add(der(rate), mul(mul(constant(2), w), rate));
+      // (the friction on the first side, -s e, is -mu push slip)
+      const Expr sliding = sub(e(b, k), signed_(s, mul(mul(c.friction, c.normal_force), var(k == 1 ? c.slip1 : c.slip2))));
+      const Expr closed_row = add(mul(stick, held), mul(sub(constant(1), stick), sliding));
+      Equation eq{add(mul(closed, closed_row), mul(sub(constant(1), closed), e(b, k))), constant(0), e_id(b, k), nd.loc,
+                  label(nd, "stuck: f' + 2 w f = 0, sliding: e = mu push slip, open: e = 0 (friction)"), /*constraint=*/true};
+      eq.in_loop = true;
+      s_.equations.push_back(std::move(eq));
+    }
   }
 
   void source(int n) {

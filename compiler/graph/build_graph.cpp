@@ -360,6 +360,8 @@ class Builder {
                       "two-ports have e1, f1 (port p1) and e2, f2 (port p2)");
       }
       int sign = flow_sign(g_, it->second, n.bonds[0]);
+      if (!n.discrete.empty() && q == "closed") return Value::scalar(var(n.discrete[0]));  // a contact: 1 while closed
+      if (n.discrete.size() > 2 && q == "stick") return Value::scalar(var(n.discrete[2]));  // ... 1 while stuck
       if (q == "e") return bond_value(n.bonds[0], true, 1);
       if (q == "f") return bond_value(n.bonds[0], false, sign);
       if ((q == "p" && n.kind == NodeKind::I) || (q == "q" && n.kind == NodeKind::C)) {
@@ -540,7 +542,7 @@ class Builder {
 
   static bool is_penalty_key(NodeKind k, const std::string& key) {
     return k == NodeKind::CN && (key == "stiffness" || key == "damping" || key == "stabilisation" || key == "restitution" ||
-                                 key == "exponent");
+                                 key == "exponent" || key == "friction");
   }
 
   /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
@@ -550,19 +552,20 @@ class Builder {
   /// `stiffness` (and `exponent`) a compliant Hunt-Crossley force, else a
   /// row held while it pushes (LawForm::Unilateral, Compliant).
   void lower_penalty(GraphNode& n, const AstElement& el, const NameLookup& lookup, std::map<std::string, Value>& locals) {
-    std::optional<Value> k, d, w, e, x;
+    std::optional<Value> k, d, w, e, x, mu;
     for (const AstAttr& a : el.attrs) {
       if (!is_penalty_key(n.kind, a.key)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
-      if (a.key == "restitution" || a.key == "exponent") {
+      if (a.key == "restitution" || a.key == "exponent" || a.key == "friction") {
         if (!v->is_scalar() || !only_params(*v)) {
           diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name),
                        a.key == "restitution" ? "restitution = 0.8: the normal speed after an impact is -0.8 times the one before"
-                                              : "exponent = 1.5 (Hertz: a sphere on a plane)");
+                       : a.key == "exponent"  ? "exponent = 1.5 (Hertz: a sphere on a plane)"
+                                              : "friction = 0.3: Coulomb's coefficient");
           return;
         }
-        (a.key == "restitution" ? e : x) = v;
+        (a.key == "restitution" ? e : a.key == "exponent" ? x : mu) = v;
         continue;
       }
       if (a.key == "stabilisation") {
@@ -582,10 +585,17 @@ class Builder {
       }
       (a.key == "stiffness" ? k : d) = v;
     }
+    if (mu && (!e || k)) {
+      diags_.error(n.loc, fmt::format("CN `{}` has a friction but is not a unilateral contact", n.name),
+                   "friction rows belong to a unilateral contact CN: g = [gap, tangential rows], a restitution, no stiffness");
+      return;
+    }
     if (e) {
-      if (n.dim != 1) {
+      if (n.dim != (mu ? 3 : 1)) {
         diags_.error(n.loc, fmt::format("contact CN `{}` has {} rows", n.name, n.dim),
-                     "a contact is one unilateral row g >= 0: give it a scalar g");
+                     mu ? "a contact with friction has three rows: its gap g >= 0 and two tangential rows whose rate is the "
+                          "sliding velocity"
+                        : "a contact is one unilateral row g >= 0: give it a scalar g");
         return;
       }
       if (d) {
@@ -599,7 +609,11 @@ class Builder {
       } else {
         n.law = LawForm::Unilateral;
         n.law_rhs = {w ? w->items[0] : constant(20), e->items[0]};
+        if (mu) n.law_rhs.push_back(mu->items[0]);
       }
+      std::vector<std::string> names = {"closed", k ? "damping" : "bias"};
+      if (mu) names.insert(names.end(), {"stick", "slip[1]", "slip[2]"});
+      for (const std::string& d : names) n.discrete.push_back(g_.add_var(n.name + "." + d, VarKind::Discrete, n.loc));
       return;
     }
     if (x) {

@@ -49,9 +49,14 @@ struct ContactRow {
   Expr restitution;     // parameters only
   int closed = -1;      // discrete: 1 while in contact
   int bias = -1;        // discrete, unilateral: added to the row's g'' (the runtime's probe for impulses)
-  int lift = -1;        // discrete, unilateral: added to the gap in the event function while open (set
-                        // when it opens, so that a flight shorter than a step still changes its sign)
   int damping = -1;     // discrete, compliant: Hunt-Crossley's chi / v- (set when the contact closes)
+  // Unilateral with friction: rows 2 and 3 are tangential. While stuck
+  // (`stick` = 1) their rate is held at 0; while sliding the friction is
+  // -mu * push along the slip direction (slip1, slip2 in the rows' tangent basis).
+  Expr friction;        // mu (parameters only); null: frictionless
+  int stick = -1, slip1 = -1, slip2 = -1;  // discrete
+  Expr tangent_rate[2];   // the sliding velocity along the two tangents
+  Expr tangent_force[2];  // the friction on the first side along them (-s e)
 };
 
 struct StateVar {

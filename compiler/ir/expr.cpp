@@ -233,6 +233,8 @@ double eval_fn(Fn fn, const double* x) {
     case Fn::Min: return std::fmin(x[0], x[1]);
     case Fn::Max: return std::fmax(x[0], x[1]);
     case Fn::Step: return x[0] >= 0.0 ? 1.0 : 0.0;
+    case Fn::Frozen: return x[0];
+    case Fn::Select: return x[0] >= 0.0 ? 1.0 : 0.0;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
@@ -423,12 +425,15 @@ class Differentiator {
         return div(sub(mul(xx, dy), mul(y, dx)),
                    add(pow(xx, constant(2.0)), pow(y, constant(2.0))));
       }
+      case Fn::Frozen:
+        return zero();
       case Fn::Min:
       case Fn::Max: {
         const Expr &a = x[0], &b = x[1];
         Expr da = d(a), db = d(b);
         if (is_zero(da) && is_zero(db)) return zero();
-        Expr s = e->fn == Fn::Min ? call(Fn::Step, {sub(b, a)}) : call(Fn::Step, {sub(a, b)});
+        // (a kink of min/max is integrated through, not an event: its derivative selects a side)
+        Expr s = e->fn == Fn::Min ? call(Fn::Select, {sub(b, a)}) : call(Fn::Select, {sub(a, b)});
         return add(mul(s, da), mul(sub(one(), s), db));
       }
       default:
@@ -454,7 +459,9 @@ class Differentiator {
       case Fn::Sqrt: return div(da, mul(two, e));
       case Fn::Abs: fp = call(Fn::Sign, {a}); break;
       case Fn::Sign:
-      case Fn::Step: return zero();
+      case Fn::Step:
+      case Fn::Select:
+      case Fn::Frozen: return zero();
       case Fn::Atan2:
       case Fn::Min:
       case Fn::Max: return zero();  // handled above
@@ -672,6 +679,8 @@ const char* fn_name(Fn fn) {
     case Fn::Min: return "min";
     case Fn::Max: return "max";
     case Fn::Step: return "heaviside";
+    case Fn::Frozen: return "frozen";
+    case Fn::Select: return "select";
   }
   return "?";
 }
@@ -905,8 +914,8 @@ bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr
     memo.emplace(n, r);
     return r;
   };
-  // Dependence the derivative does not see: Der is opaque, and step/sign have
-  // derivative 0 almost everywhere but are not affine.
+  // Dependence the derivative does not see: Der is opaque, step/sign/select
+  // have derivative 0 almost everywhere but are not affine, frozen is x.
   // Only sub-trees that mention an unknown can hide one.
   bool hidden = false;
   {
@@ -918,7 +927,8 @@ bool affine_in(const Expr& e, const std::vector<int>& unknowns, std::vector<Expr
       stack.pop_back();
       if (!seen.insert(n).second) continue;
       bool opaque = n->op == Op::Der ||
-                    (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign));
+                    (n->op == Op::Call && (n->fn == Fn::Step || n->fn == Fn::Sign || n->fn == Fn::Select ||
+                                           n->fn == Fn::Frozen));
       if (opaque) hidden = true;  // it mentions an unknown: only such nodes are pushed
       for (const Expr& a : n->args)
         if (mentions(a.get())) stack.push_back(a.get());

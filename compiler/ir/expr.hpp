@@ -39,6 +39,10 @@ enum class Fn : unsigned char {
   Sin, Cos, Tan, Asin, Acos, Atan, Atan2, Sinh, Cosh, Tanh,
   Exp, Log, Sqrt, Abs, Sign, Min, Max,
   Step,   // heaviside(x): 1 if x >= 0 else 0 (the language's step(t0) is heaviside(t - t0))
+  Select, // select(x): 1 if x >= 0 else 0 like heaviside, but not an event: a choice between two
+          // expressions that agree where x = 0 (a contact polygon's nearest edge)
+  Frozen, // frozen(x): x, with derivative 0 (a contact's tangent directions and arms: the rows
+          // of a material point's relative velocity)
 };
 
 struct Node;

@@ -159,7 +159,10 @@ class Printer {
         ops_->compare += 2;
         return {"((" + x + ") > 0.0 ? 1.0 : ((" + x + ") < 0.0 ? -1.0 : 0.0))", kAtom, false};
       }
+      case Fn::Frozen:
+        return print(e->args[0]);  // (its derivative was 0 where it mattered; its value is x)
       case Fn::Step:
+      case Fn::Select:
         ++ops_->compare;
         return {"((" + print(e->args[0]).s + ") >= 0.0 ? 1.0 : 0.0)", kAtom, false};
       case Fn::Abs: f = "std::fabs"; break;

@@ -40,7 +40,9 @@ enum class LawForm {
                    // der(f) + 2 w f + w^2 g = 0 (Baumgarte; w = law_rhs[0]); g may read signals
   Unilateral,      // CN with a restitution: a contact, g >= 0. While closed (a mode the runtime
                    // switches) e keeps g'' + 2 w g' + w^2 g = 0 as Stabilised does, while open
-                   // e = 0; impacts are impulses by Newton's law (law_rhs = {w, restitution})
+                   // e = 0; impacts are impulses by Newton's law (law_rhs = {w, restitution[,
+                   // friction]}). With friction, rows 2 and 3 are tangential: while stuck their
+                   // rate is held at 0, while sliding e is Coulomb's mu * push along the slip
   Compliant,       // CN with a restitution and a stiffness: a contact whose e is a Hunt-Crossley
                    // force while g < 0, 0 otherwise (law_rhs = {stiffness, exponent, restitution})
   FreeRate,        // Sf { rate0 = ... }: the flow is a state (an independent joint rate) and
@@ -61,6 +63,9 @@ struct GraphNode {
   Value constraint_g;      // CN: the position-level constraint g(states), dim x 1 (f = dg/dt)
   Value initial;           // initial state (storage elements), shaped dim x 1
   std::vector<int> state_vars;  // storage: one variable per component
+  // A contact CN's discrete variables (VarKind::Discrete): closed, then bias
+  // (unilateral) or damping (compliant), then stick, slip[1], slip[2] (friction).
+  std::vector<int> discrete;
   std::vector<std::pair<double, std::string>> state_limits;  // per component: |state| bound and why (may be empty)
   // The body of a kinematic tree in joint coordinates this node belongs to,
   // and its parent body ("" for ground); empty for nodes outside such a tree.

@@ -72,6 +72,7 @@ struct EventRelation {
   std::string origin;       // that equation's origin ("Sf src: f = value")
   int contact = -1;         // a contact's event (ReducedSystem::contacts): step is its `closed` variable and
                             // arg its gap while open, its normal force while a unilateral one is closed
+  bool friction = false;    // ... or its friction's: step is its `stick` variable (reduce/events.cpp)
 };
 
 /// The variables an assignment reads (its value, or its whole block).
@@ -108,6 +109,7 @@ struct ReducedSystem {
   std::vector<int> for_events;            // indices into assignments, in order: what the events' args need
   std::vector<ContactRow> contacts;       // contacts (CN with a restitution), each with its event
   std::vector<int> for_contacts;          // indices into assignments, in order: what the contacts' rates need
+  std::vector<int> for_tangents;          // ... and their tangential rows' rates and efforts (friction)
   std::vector<AlgebraicLoop> loops;
   std::optional<BodyTree> tree;           // set when a loop was eliminated along a kinematic tree
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled

@@ -29,7 +29,7 @@ const std::map<std::string, FnInfo> kFunctions = {
     {"atan", {1, 1}},  {"atan2", {2, 2}}, {"sinh", {1, 1}}, {"cosh", {1, 1}}, {"tanh", {1, 1}},
     {"exp", {1, 1}},   {"log", {1, 1}},   {"sqrt", {1, 1}}, {"abs", {1, 1}},  {"sign", {1, 1}},
     {"min", {2, 2}},   {"max", {2, 2}},   {"step", {1, 2}}, {"ramp", {1, 2}}, {"sine", {2, 3}},
-    {"diag", {1, 1000}}, {"heaviside", {1, 1}},
+    {"diag", {1, 1000}}, {"heaviside", {1, 1}}, {"select", {1, 1}},
     // shaped
     {"eye", {1, 1, true}},        {"zeros", {1, 2, true}},     {"transpose", {1, 1, true}},
     {"dot", {2, 2, true}},        {"cross", {2, 2, true}},     {"skew", {1, 1, true}},
@@ -37,7 +37,7 @@ const std::map<std::string, FnInfo> kFunctions = {
     {"rotq", {1, 1, true}},       {"quat_rate", {1, 1, true}}, {"quat_mul", {2, 2, true}},
     {"quat_conj", {1, 1, true}},  {"quat_axis_angle", {2, 2, true}}, {"rot_axis_angle", {2, 2, true}},
     {"quat_arc", {1, 1, true}},   {"bryant", {1, 1, true}},    {"jacobian", {2, 2, true}},
-    {"partial_t", {1, 1, true}},
+    {"partial_t", {1, 1, true}},  {"frozen", {1, 1, true}},
 };
 
 // Largest dimension eye() and zeros() build (a typo must not exhaust memory).
@@ -135,7 +135,7 @@ const std::map<std::string, Fn> kScalarFns = {
     {"acos", Fn::Acos}, {"atan", Fn::Atan}, {"atan2", Fn::Atan2}, {"sinh", Fn::Sinh},
     {"cosh", Fn::Cosh}, {"tanh", Fn::Tanh}, {"exp", Fn::Exp},     {"log", Fn::Log},
     {"sqrt", Fn::Sqrt}, {"abs", Fn::Abs},   {"sign", Fn::Sign},   {"min", Fn::Min},
-    {"max", Fn::Max},     {"heaviside", Fn::Step},
+    {"max", Fn::Max},     {"heaviside", Fn::Step}, {"select", Fn::Select},
 };
 
 class Lowerer {
@@ -375,6 +375,11 @@ class Lowerer {
       Value r{*rows, cols, {}};
       for (int i = 0; i < *rows; ++i)
         for (int j = 0; j < cols; ++j) r.items.push_back(constant(f == "eye" && i == j ? 1 : 0));
+      return r;
+    }
+    if (f == "frozen") {  // x, each entry with derivative 0
+      Value r = args[0];
+      for (Expr& x : r.items) x = call(Fn::Frozen, {x});
       return r;
     }
     if (f == "transpose") {

@@ -13,11 +13,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
+#include <tuple>
+
 namespace mbgc::multibody::detail {
 
 namespace {
 
-const std::vector<std::string> kContactSettings = {"radius", "surface", "normal", "axis", "surface_radius",
+const std::vector<std::string> kContactSettings = {"radius", "surface", "normal", "axis", "surface_radius", "vertices",
                                                    "strategy", "restitution", "stiffness", "exponent",
                                                    "friction", "slip_speed", "stabilisation"};
 const std::map<std::string, Expected> kContactShapes = {
@@ -34,6 +38,46 @@ const std::map<std::string, Expected> kContactShapes = {
 };
 
 }  // namespace
+
+/// `vertices = [[x1, z1], [x2, z2], ...]`: at least three corners of a convex
+/// polygon in the surface body's x-z plane, counter-clockwise (x to the right,
+/// z up); when they are numbers, checked.
+void Expander::check_polygon(const Contact& contact) {
+  const AstJoint& c = *contact.decl;
+  auto it = contact.attrs.find("vertices");
+  const char* how = "write vertices = [[x1, z1], [x2, z2], [x3, z3], ...]: the corners of a convex polygon in the "
+                    "surface body's x-z plane, counter-clockwise (x to the right, z up); it is extruded along y";
+  if (it == contact.attrs.end()) {
+    diags_.error(c.loc, fmt::format("the polygon of contact `{}` has no vertices", c.name), how);
+    return;
+  }
+  const AstExpr& v = *it->second->value;
+  const bool listed = v.kind == AstExpr::Kind::List && v.args.size() >= 3 &&
+                      std::all_of(v.args.begin(), v.args.end(), [](const E& p) { return p->kind == AstExpr::Kind::List && p->args.size() == 2; });
+  if (!listed) {
+    diags_.error(v.loc, fmt::format("the vertices of contact `{}` are not a list of three or more [x, z] pairs", c.name), how);
+    return;
+  }
+  std::vector<std::array<double, 2>> corners;
+  for (const E& p : v.args) {
+    auto x = constant_of(*p->args[0]), z = constant_of(*p->args[1]);
+    if (!x || !z) return;  // (parameters: not checked)
+    corners.push_back({*x, *z});
+  }
+  const std::size_t n = corners.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& a = corners[i];
+    const auto& b = corners[(i + 1) % n];
+    const auto& d = corners[(i + 2) % n];
+    const double turn = (b[0] - a[0]) * (d[1] - b[1]) - (b[1] - a[1]) * (d[0] - b[0]);
+    if (turn <= 0) {
+      diags_.error(v.args[(i + 1) % n]->loc,
+                   fmt::format("the polygon of contact `{}` turns {} at vertex {}", c.name, turn < 0 ? "clockwise" : "straight", (i + 1) % n + 1),
+                   how);
+      return;
+    }
+  }
+}
 
 void Expander::add_contact(const AstJoint& c) {
   auto a = side(c.a);
@@ -63,7 +107,7 @@ void Expander::add_contact(const AstJoint& c) {
     contact.attrs[at.key] = &at;
     if (at.key == "surface" || at.key == "strategy") {
       const bool surface = at.key == "surface";
-      const std::vector<std::string> choices = surface ? std::vector<std::string>{"plane", "sphere", "cylinder"}
+      const std::vector<std::string> choices = surface ? std::vector<std::string>{"plane", "sphere", "cylinder", "polygon"}
                                                        : std::vector<std::string>{"unilateral", "compliant"};
       const std::string word = at.value->kind == AstExpr::Kind::Name ? at.value->name : "";
       auto it = std::find(choices.begin(), choices.end(), word);
@@ -82,6 +126,7 @@ void Expander::add_contact(const AstJoint& c) {
       else contact.strategy = static_cast<ContactStrategy>(index);
       continue;
     }
+    if (at.key == "vertices") continue;  // (checked below, with the surface)
     check_shape(*at.value, fmt::format("`{}` of contact `{}`", at.key, c.name), kContactShapes.at(at.key));
   }
   if (!ok) return;
@@ -91,7 +136,10 @@ void Expander::add_contact(const AstJoint& c) {
   };
   auto error_at = [&](const char* key) { return given(key) ? contact.attrs.at(key)->value->loc : c.loc; };
   const Body& surface_body = bodies_.at(b->body);
-  const char* surface_name = contact.surface == Surface::Plane ? "plane" : contact.surface == Surface::Sphere ? "sphere" : "cylinder";
+  const char* surface_name = contact.surface == Surface::Plane    ? "plane"
+                             : contact.surface == Surface::Sphere ? "sphere"
+                             : contact.surface == Surface::Cylinder ? "cylinder"
+                                                                    : "polygon";
   if (surface_body.particle && contact.surface != Surface::Sphere)
     diags_.error(c.loc, fmt::format("a {} on `{}`, which is a particle", surface_name, b->body),
                  fmt::format("a particle has no orientation to carry a {}: put a sphere on it (surface = sphere; "
@@ -103,12 +151,17 @@ void Expander::add_contact(const AstJoint& c) {
   if (contact.surface == Surface::Cylinder && !given("axis"))
     diags_.error(c.loc, fmt::format("the cylinder of contact `{}` has no axis", c.name),
                  fmt::format("give its axis in `{}`'s frame, e.g. axis = [0, 0, 1]", b->body));
-  if (contact.surface != Surface::Plane && !given("surface_radius"))
+  const bool round = contact.surface == Surface::Sphere || contact.surface == Surface::Cylinder;
+  if (round && !given("surface_radius"))
     diags_.error(c.loc, fmt::format("the {} of contact `{}` has no radius", surface_name, c.name),
                  "give it: surface_radius = R (m)");
-  if (contact.surface == Surface::Plane && given("surface_radius"))
-    diags_.error(contact.attrs.at("surface_radius")->loc, fmt::format("a plane has no radius (contact `{}`)", c.name),
+  if (!round && given("surface_radius"))
+    diags_.error(contact.attrs.at("surface_radius")->loc, fmt::format("a {} has no radius (contact `{}`)", surface_name, c.name),
                  "remove surface_radius, or make the surface a sphere or a cylinder");
+  if (contact.surface == Surface::Polygon) check_polygon(contact);
+  else if (given("vertices"))
+    diags_.error(contact.attrs.at("vertices")->loc, fmt::format("a {} has no vertices (contact `{}`)", surface_name, c.name),
+                 "vertices belong to surface = polygon");
   for (const char* key : {"radius", "surface_radius", "friction", "slip_speed", "stiffness"}) {
     auto v = constant(key);
     if (!v) continue;
@@ -139,10 +192,54 @@ void Expander::add_contact(const AstJoint& c) {
   if (given("slip_speed") && !given("friction"))
     diags_.error(contact.attrs.at("slip_speed")->loc, fmt::format("contact `{}` has a slip speed but no friction", c.name),
                  "add friction = mu, or remove slip_speed");
-  if (given("friction"))  // (the normal force comes through the row; friction is a load on each body)
+  if (given("friction") && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
     for (const Side* sd : {&contact.a, &contact.b})
       if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(c.name + ".friction");
   if (!diags_.has_errors()) contacts_.push_back(std::move(contact));
+}
+
+/// A convex polygon's signed distance to local point d (in its x-z plane),
+/// and the outward normal there (local): outside, the distance to the nearest
+/// edge (the normal: the edge's, or from its nearest end where that is
+/// nearest); inside, the largest of the signed distances to the edges' lines.
+/// C1 outside; a sphere of radius r around the point keeps the distance >= r
+/// while it touches, so the direction to a corner is always defined.
+std::pair<E, E> Expander::polygon_gap(const Build& B, const Contact& c, E d) {
+  const AstExpr& v = *c.attrs.at("vertices")->value;
+  const std::size_t n = v.args.size();
+  const E X = B.at(d, 1), Z = B.at(d, 3);
+  auto step = [&](E x) { return B.call("select", {x}); };  // (continuous choices: not events)
+  auto pick = [&](E w, E a, E b) { return B.op('+', B.op('*', w, a), B.op('*', B.op('-', B.num(1), w), b)); };
+  E dist, near_normal, inside, inside_normal;
+  for (std::size_t i = 0; i < n; ++i) {
+    const AstExpr& a = *v.args[i];
+    const AstExpr& b = *v.args[(i + 1) % n];
+    E ax = a.args[0], az = a.args[1];
+    E ex = B.op('-', b.args[0], ax), ez = B.op('-', b.args[1], az);
+    E len2 = B.op('+', B.op('*', ex, ex), B.op('*', ez, ez)), len = B.call("sqrt", {len2});
+    E rx = B.op('-', X, ax), rz = B.op('-', Z, az);
+    E along = B.op('/', B.op('+', B.op('*', rx, ex), B.op('*', rz, ez)), len2);
+    E s = B.call("min", {B.num(1), B.call("max", {B.num(0), along})});
+    E px = B.op('-', rx, B.op('*', s, ex)), pz = B.op('-', rz, B.op('*', s, ez));  // from the nearest point of the edge
+    E di = B.call("sqrt", {B.op('+', B.op('*', px, px), B.op('*', pz, pz))});
+    E face = B.list({B.op('/', ez, len), B.num(0), B.op('/', B.neg(ex), len)});  // outward (counter-clockwise)
+    E at_end = B.op('+', step(B.neg(along)), step(B.op('-', along, B.num(1))));  // 1 beyond either end
+    E corner = B.list({B.op('/', px, di), B.num(0), B.op('/', pz, di)});
+    E ni = pick(at_end, corner, face);
+    E hi = B.op('/', B.op('-', B.op('*', rx, ez), B.op('*', rz, ex)), len);  // signed, to the edge's line
+    if (i == 0) {
+      dist = di, near_normal = ni, inside = hi, inside_normal = face;
+      continue;
+    }
+    E closer = step(B.op('-', dist, di));  // 1 where this edge is nearer
+    near_normal = pick(closer, ni, near_normal);
+    dist = B.call("min", {dist, di});
+    E higher = step(B.op('-', hi, inside));
+    inside_normal = pick(higher, face, inside_normal);
+    inside = B.call("max", {inside, hi});
+  }
+  E out = step(inside);  // 1 outside (or on it)
+  return {pick(out, dist, inside), pick(out, near_normal, inside_normal)};
 }
 
 void Expander::emit_contact(const Contact& c) {
@@ -162,7 +259,10 @@ void Expander::emit_contact(const Contact& c) {
   auto turned = [&](E local) { return Rb ? B.op('*', Rb, local) : local; };
   E d = B.op('-', pa, pb);
   E gap, normal;
-  if (c.surface == Surface::Plane) {
+  if (c.surface == Surface::Polygon) {
+    std::tie(gap, normal) = polygon_gap(B, c, Rb ? B.op('*', B.call("transpose", {Rb}), d) : d);
+    normal = turned(normal);
+  } else if (c.surface == Surface::Plane) {
     E n = setting("normal", nullptr);
     property(B, cn + ".normal_b", B.op('/', n, B.call("norm", {n})));
     normal = turned(B.name(cn + ".normal_b"));
@@ -181,9 +281,52 @@ void Expander::emit_contact(const Contact& c) {
     gap = B.op('-', len, B.name(cn + ".surface_radius"));
   }
   gap = B.op('-', gap, B.name(cn + ".radius"));
-  // the row: body junctions -> MTFs (d gap / d position) -> 0-junction -> CN
-  E rows = B.list({gap});
-  junction(B, '0', cn + ".c", 1, {}, {cn + ".cn"});
+  const bool unilateral = c.strategy == ContactStrategy::Unilateral;
+  const bool friction = c.attrs.count("friction") > 0;
+  if (friction) param(B, cn + ".friction", setting("friction", nullptr));
+  // the contact point: on A's sphere, towards the surface
+  E point = B.op('-', pa, B.op('*', B.name(cn + ".radius"), normal));
+  // The rows: the gap and, for a unilateral contact with friction, the two
+  // tangential rows whose rate is the sliding velocity of the bodies' material
+  // points at the contact: t_i . (a's point - b's point), the tangents and the
+  // points' arms frozen (their rates are the bodies' own motion, not the
+  // contact point's travel over them).
+  std::vector<E> rows = {gap};
+  if (unilateral && friction) {
+    E t1, t2;
+    if (c.surface == Surface::Cylinder) {
+      t1 = turned(B.name(cn + ".axis_b"));
+    } else if (c.surface == Surface::Polygon) {
+      t1 = turned(B.vec(0, 1, 0));  // the extrusion
+    } else {
+      // a fixed direction of the surface body not along the normal: its x axis, or y near the x axis
+      E n_b = c.surface == Surface::Plane ? B.name(cn + ".normal_b") : B.vec(0, 0, 1);
+      E pick = B.op('+', B.vec(1, 0, 0),
+                    B.op('*', B.call("heaviside", {B.op('-', B.call("abs", {B.at(n_b, 1)}), B.num(0.9))}), B.vec(-1, 1, 0)));
+      if (c.surface == Surface::Plane) {
+        E across = B.call("cross", {n_b, pick});
+        property(B, cn + ".tangent_b", B.op('/', across, B.call("norm", {across})));
+        t1 = turned(B.name(cn + ".tangent_b"));
+      } else {
+        E across = B.call("cross", {normal, turned(pick)});
+        t1 = B.op('/', across, B.call("norm", {across}));
+      }
+    }
+    t2 = B.call("cross", {normal, t1});
+    quantity_[cn + ".tangents"] = B.call("hcat", {t1, t2});
+    auto material = [&](const Body& body, const Side& s, E p) -> E {  // the body's point now at `point`
+      if (body.ground || body.particle) return B.op('+', p, B.call("frozen", {B.op('-', point, p)}));
+      E R = rotation(B, s.body);
+      return B.op('+', p, B.op('*', R, B.call("frozen", {B.op('*', B.call("transpose", {R}), B.op('-', point, p))})));
+    };
+    E slide = B.op('-', material(a, c.a, pa), material(b, c.b, pb));
+    rows.push_back(B.dot(B.call("frozen", {t1}), slide));
+    rows.push_back(B.dot(B.call("frozen", {t2}), slide));
+  }
+  const int dim = static_cast<int>(rows.size());
+  E rows_vec = B.list(rows);
+  // the row(s): body junctions -> MTFs (d rows / d position) -> 0-junction -> CN
+  junction(B, '0', cn + ".c", dim, {}, {cn + ".cn"});
   auto frame_of = [&](const Side& s, const Body& body) {
     Frame f;
     f.ground = body.ground;
@@ -191,9 +334,9 @@ void Expander::emit_contact(const Contact& c) {
     f.body = s.body;
     return f;
   };
-  rates_into(B, cn + ".ca", rows, frame_of(c.a, a), cn + ".c", true, true);
-  rates_into(B, cn + ".cb", rows, frame_of(c.b, b), cn + ".c", true, true);
-  std::vector<AstAttr> law = {kv("g", rows, B.loc()), kv("restitution", B.name(cn + ".restitution"), B.loc())};
+  rates_into(B, cn + ".ca", rows_vec, frame_of(c.a, a), cn + ".c", true, true);
+  rates_into(B, cn + ".cb", rows_vec, frame_of(c.b, b), cn + ".c", true, true);
+  std::vector<AstAttr> law = {kv("g", rows_vec, B.loc()), kv("restitution", B.name(cn + ".restitution"), B.loc())};
   if (c.strategy == ContactStrategy::Compliant) {
     param(B, cn + ".stiffness", setting("stiffness", nullptr));
     param(B, cn + ".exponent", setting("exponent", B.num(1.5)));
@@ -202,16 +345,18 @@ void Expander::emit_contact(const Contact& c) {
   } else {
     param(B, cn + ".stabilisation", setting("stabilisation", B.num(20)));
     law.push_back(kv("stabilisation", B.name(cn + ".stabilisation"), B.loc()));
+    if (friction) law.push_back(kv("friction", B.name(cn + ".friction"), B.loc()));
   }
   element(B, "CN", cn + ".cn", nullptr, law);
   // The push (>= 0): the CN's effort, signed so that it parts the bodies
-  // (power e f into the CN is -push * g').
-  E push = B.neg(B.name(cn + ".cn.e"));
+  // (power e f into the CN is -push * g'); the friction likewise.
+  E effort = B.name(cn + ".cn.e");
+  E push = B.neg(dim == 1 ? effort : B.at(effort, 1));
   quantity_[cn + ".gap"] = gap;
   quantity_[cn + ".normal"] = normal;
   quantity_[cn + ".normal_force"] = push;
-  // the contact point: on A's sphere, towards the surface
-  E point = B.op('-', pa, B.op('*', B.name(cn + ".radius"), normal));
+  quantity_[cn + ".closed"] = B.name(cn + ".cn.closed");  // 1 while in contact
+  if (unilateral && friction) quantity_[cn + ".stuck"] = B.name(cn + ".cn.stick");
   auto spin = [&](const Body& body, const Side& s) -> E {  // world angular velocity
     if (body.ground || body.particle) return nullptr;
     return B.op('*', rotation(B, s.body), B.name(s.body + ".w.f"));
@@ -221,9 +366,12 @@ void Expander::emit_contact(const Contact& c) {
   E tangential = B.op('-', slip, B.op('*', B.dot(normal, slip), normal));
   quantity_[cn + ".slip_velocity"] = tangential;
   E friction_force = B.vec(0, 0, 0);
-  if (c.attrs.count("friction")) {
+  if (friction && unilateral) {
+    // the CN's tangential rows: their efforts (signed like the push) along the tangents
+    E tangents = quantity_.at(cn + ".tangents");
+    friction_force = B.neg(B.op('*', tangents, B.list({B.at(effort, 2), B.at(effort, 3)})));
+  } else if (friction) {
     // regularised Coulomb: -mu push vt / sqrt(|vt|^2 + eps^2) on A, its opposite on B
-    param(B, cn + ".friction", setting("friction", nullptr));
     param(B, cn + ".slip_speed", setting("slip_speed", B.num(1e-4)));
     E eps = B.name(cn + ".slip_speed");
     E scale = B.call("sqrt", {B.op('+', B.dot(tangential, tangential), B.op('*', eps, eps))});

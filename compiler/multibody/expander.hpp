@@ -194,6 +194,8 @@ class Expander {
   // ---- 5b. contacts (contacts.cpp)
   void add_contact(const AstJoint& c);
   void emit_contact(const Contact& c);
+  void check_polygon(const Contact& c);
+  std::pair<E, E> polygon_gap(const Build& B, const Contact& c, E d);
 
   // ---- 6. quantities users may name (quantities.cpp)
   void define_quantities();

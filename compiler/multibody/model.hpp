@@ -59,13 +59,14 @@ struct ForceElement {
   std::map<std::string, const ir::AstAttr*> attrs;
 };
 
-/// `contact NAME(a.P, b.Q) { radius; surface; normal | axis; surface_radius;
+/// `contact NAME(a.P, b.Q) { radius; surface; normal | axis | vertices; surface_radius;
 /// strategy; restitution; stiffness; exponent; friction; slip_speed;
 /// stabilisation }`: a sphere of `radius` around point P of body a touching a
-/// surface through point Q of body b (a plane, a sphere or a cylinder). The gap
+/// surface through point Q of body b (a plane, a sphere, a cylinder, or a
+/// convex polygon in b's x-z plane extruded along its y axis). The gap
 /// between them is a position-level function; the normal force acts only
 /// while it is closed (see docs/notes/contact.md).
-enum class Surface { Plane, Sphere, Cylinder };
+enum class Surface { Plane, Sphere, Cylinder, Polygon };
 struct Contact {
   const ir::AstJoint* decl = nullptr;
   Side a, b;

@@ -63,7 +63,7 @@ std::optional<Shape> Expander::shape_of(const AstExpr& e, int depth) const {
     case AstExpr::Kind::Call: {
       static const std::set<std::string> scalar_fns = {
           "sin", "cos",  "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",      "exp", "log",
-          "sqrt", "abs", "sign", "min", "max",  "step", "ramp",  "sine", "dot",  "heaviside", "norm"};
+          "sqrt", "abs", "sign", "min", "max",  "step", "ramp",  "sine", "dot",  "heaviside", "select", "norm"};
       const std::string& f = e.name;
       if (scalar_fns.count(f)) return Shape{};
       auto count = [&](std::size_t k) -> std::optional<int> {
@@ -83,6 +83,7 @@ std::optional<Shape> Expander::shape_of(const AstExpr& e, int depth) const {
         if (r && c) return Shape{*r, *c};
         return std::nullopt;
       }
+      if (f == "frozen") return sub(0);
       if (f == "transpose") {
         auto a = sub(0);
         if (a) return Shape{a->cols, a->rows};

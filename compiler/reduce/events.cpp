@@ -92,6 +92,8 @@ void steps_for_time_kinks(ReducedSystem& s) {
   for (ContactRow& c : s.contacts) {
     c.gap = f(c.gap);
     c.rate = f(c.rate);
+    for (Expr& x : c.tangent_rate)
+      if (x) x = f(x);
   }
 }
 
@@ -115,9 +117,21 @@ std::vector<EventRelation> find_events(const ReducedSystem& s) {
     const Expr closed = var(row.closed);
     // a unilateral contact while closed: its normal force, which must not pull
     const Expr arg = row.compliant ? row.gap
-                                   : add(mul(closed, row.normal_force), mul(sub(constant(1), closed), add(row.gap, var(row.lift))));
+                                   : add(mul(closed, row.normal_force), mul(sub(constant(1), closed), row.gap));
     const std::string element = row.name.substr(0, row.name.rfind('.'));
     events.push_back({closed, arg, false, row.loc, fmt::format("contact {}", element), static_cast<int>(c)});
+    if (!row.friction) continue;
+    // Its friction: while stuck, mu push - |friction| (sliding starts where it
+    // falls through 0); while sliding, the sliding speed along its direction
+    // (it sticks where that falls through 0); while open, 1 (nothing happens).
+    const Expr stick = var(row.stick);
+    const Expr& f1 = row.tangent_force[0];
+    const Expr& f2 = row.tangent_force[1];
+    const Expr margin = sub(mul(row.friction, row.normal_force), call(Fn::Sqrt, {add(mul(f1, f1), mul(f2, f2))}));
+    const Expr along = add(mul(row.tangent_rate[0], var(row.slip1)), mul(row.tangent_rate[1], var(row.slip2)));
+    const Expr friction = add(mul(stick, margin), mul(sub(constant(1), stick), along));
+    const Expr friction_arg = add(mul(closed, friction), sub(constant(1), closed));
+    events.push_back({stick, friction_arg, false, row.loc, fmt::format("friction {}", element), static_cast<int>(c), true});
   }
   return events;
 }

@@ -27,9 +27,13 @@ class Reducer {
     out_.contacts = std::move(sys_.contacts);
     eqs_ = std::move(sys_.equations);
     for (const StateVar& s : out_.states) known_.insert(s.var);
-    for (const ContactRow& c : out_.contacts)
-      for (int id : {c.closed, c.bias, c.lift, c.damping})
+    for (const ContactRow& c : out_.contacts) {
+      for (int id : {c.closed, c.bias, c.damping, c.stick, c.slip1, c.slip2})
         if (id >= 0) known_.insert(id);  // discrete: the runtime sets them
+      if (!c.compliant) collect_vars(c.normal_force, contact_multipliers_);
+      if (c.friction)
+        for (const Expr& f : c.tangent_force) collect_vars(f, contact_multipliers_);
+    }
     for (const Signal& s : out_.graph.signals)
       if (s.rate) rate_of_[s.var] = s.rate;
     if (!check_each_unknown_once()) return;
@@ -178,6 +182,10 @@ class Reducer {
       c.gap = resolve_all(c.gap);
       c.rate = resolve_all(c.rate);
       c.normal_force = resolve_all(c.normal_force);
+      for (Expr& x : c.tangent_rate)
+        if (x) x = resolve_all(x);
+      for (Expr& x : c.tangent_force)
+        if (x) x = resolve_all(x);
     }
     alias_ = std::move(alias);
     out_.log.push_back(fmt::format("alias elimination: {} equation{} of the form a = ±b removed", aliases_, aliases_ == 1 ? "" : "s"));
@@ -392,7 +400,9 @@ class Reducer {
       }
       return;
     }
-    if (block.size() == 1) {
+    // (a contact's row alone: its coefficient vanishes in some modes (a
+    // tangential row no body can move along, while stuck): solved rank-revealing)
+    if (block.size() == 1 && !contact_multipliers_.count(eqs_[static_cast<std::size_t>(block[0])].unknown)) {
       const Equation& eq = eqs_[static_cast<std::size_t>(block[0])];
       if (auto sol = solve_single(eq)) {
         if (!mentions_var(*sol, eq.unknown)) {
@@ -532,6 +542,7 @@ class Reducer {
     }
     LinearBlock lb;
     lb.unknowns = tears;
+    lb.rank_revealing = any_contact_multiplier(tears);
     for (int i : tear_eqs) {
       const Equation& eq = eqs_[static_cast<std::size_t>(i)];
       Affine r;
@@ -707,6 +718,7 @@ class Reducer {
     if (!constant_pivots) {
       LinearBlock lb;
       lb.unknowns = unknowns;
+      lb.rank_revealing = any_contact_multiplier(unknowns);
       for (std::size_t r = 0; r < n; ++r)
         for (std::size_t c = 0; c < n; ++c) lb.a.push_back(a0[r][c]);
       lb.b = b0;
@@ -915,14 +927,23 @@ class Reducer {
     for (const EventRelation& ev : out_.events) event_roots.push_back(ev.arg);
     out_.for_events = needed_by(event_roots);
     std::vector<Expr> contact_roots;
-    for (const ContactRow& c : out_.contacts) contact_roots.push_back(c.rate);
+    std::vector<Expr> tangent_roots;
+    for (const ContactRow& c : out_.contacts) {
+      contact_roots.push_back(c.rate);
+      for (const Expr& x : c.tangent_rate)
+        if (x) tangent_roots.push_back(x);
+      for (const Expr& x : c.tangent_force)
+        if (x) tangent_roots.push_back(x);
+    }
     out_.for_contacts = needed_by(contact_roots);
+    out_.for_tangents = needed_by(tangent_roots);
     std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
     used.insert(out_.for_constraints.begin(), out_.for_constraints.end());
     used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
     used.insert(out_.for_jacobian.begin(), out_.for_jacobian.end());
     used.insert(out_.for_events.begin(), out_.for_events.end());
     used.insert(out_.for_contacts.begin(), out_.for_contacts.end());
+    used.insert(out_.for_tangents.begin(), out_.for_tangents.end());
     // Drop what nobody needs; renumber the slices.
     std::vector<Assignment> kept;
     std::map<int, int> renumber;
@@ -937,6 +958,7 @@ class Reducer {
     for (int& i : out_.for_outputs) i = renumber.at(i);
     for (int& i : out_.for_jacobian) i = renumber.at(i);
     for (int& i : out_.for_contacts) i = renumber.at(i);
+    for (int& i : out_.for_tangents) i = renumber.at(i);
     for (int& i : out_.for_constraints) i = renumber.at(i);
     for (int& i : out_.for_events) i = renumber.at(i);
     out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
@@ -947,6 +969,12 @@ class Reducer {
   Diagnostics& diags_;
   std::vector<Equation> eqs_;
   std::unordered_set<int> known_;  // what no equation computes: the states and the discrete variables
+  // Unilateral contacts' multipliers: a loop with them is solved rank-revealing,
+  // since contacts are often redundant (a block's four corners on the floor).
+  std::unordered_set<int> contact_multipliers_;
+  bool any_contact_multiplier(const std::vector<int>& unknowns) const {
+    return std::any_of(unknowns.begin(), unknowns.end(), [&](int u) { return contact_multipliers_.count(u) > 0; });
+  }
   std::unordered_map<int, Expr> alias_;
   std::unordered_map<int, int> eq_of_;
   std::unordered_map<int, std::size_t> state_index_;  // state variable -> index in out_.states

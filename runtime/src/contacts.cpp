@@ -32,11 +32,18 @@ Contacts::Contacts(Model& model) : m_(model) {
   const std::size_t n = m_.contact_count();
   info_.resize(n);
   closed_.assign(n, 0);
+  stuck_.assign(n, 0);
   contact_of_event_.assign(m_.event_count(), -1);
+  friction_event_.assign(m_.event_count(), 0);
   for (std::size_t c = 0; c < n; ++c) {
     info_[c] = m_.contact(c);
     if (info_[c].event < contact_of_event_.size()) contact_of_event_[info_[c].event] = static_cast<long>(c);
+    if (const long k = info_[c].friction_event; k >= 0 && static_cast<std::size_t>(k) < contact_of_event_.size()) {
+      contact_of_event_[static_cast<std::size_t>(k)] = static_cast<long>(c);
+      friction_event_[static_cast<std::size_t>(k)] = 1;
+    }
   }
+  tangents_.resize(4 * n);
   v_.resize(n);
   g_.resize(m_.event_count());
 }
@@ -46,10 +53,103 @@ void Contacts::set_closed(std::size_t c, bool on) {
   m_.set_event_mode(info_[c].event, on);
 }
 
-void Contacts::open_lifted(double t, const double* y, std::size_t c) {
+void Contacts::tangents(double t, const double* y, std::size_t c, double v[2], double f[2]) {
+  const std::size_t n = info_.size();
+  m_.contact_tangents(t, y, nullptr, tangents_.data());
+  v[0] = tangents_[2 * c];
+  v[1] = tangents_[2 * c + 1];
+  f[0] = tangents_[2 * n + 2 * c];
+  f[1] = tangents_[2 * n + 2 * c + 1];
+}
+
+void Contacts::set_sliding(std::size_t c, double d1, double d2) {
+  stuck_[c] = 0;
+  m_.set_event_mode(static_cast<std::size_t>(info_[c].friction_event), false);
+  m_.set_contact_slip(c, d1, d2);
+}
+
+void Contacts::set_stuck(std::size_t c) {
+  stuck_[c] = 1;
+  m_.set_event_mode(static_cast<std::size_t>(info_[c].friction_event), true);
+  m_.set_contact_slip(c, 0.0, 0.0);
+}
+
+bool Contacts::slide_if_slipping(double t, const double* y, std::size_t c) {
+  m_.event_functions(t, y, nullptr, g_.data());
+  if (g_[static_cast<std::size_t>(info_[c].friction_event)] >= 0.0) return false;
+  double v[2], f[2];
+  tangents(t, y, c, v, f);
+  const double norm = std::hypot(f[0], f[1]);
+  if (!(norm > 0.0)) return false;
+  set_sliding(c, -f[0] / norm, -f[1] / norm);
+  return true;
+}
+
+void Contacts::start_friction(double t, const double* y, std::size_t c) {
+  if (!has_friction(c)) return;
+  double v[2], f[2];
+  tangents(t, y, c, v, f);
+  const double speed = std::hypot(v[0], v[1]);
+  if (speed > kStickSpeed) {
+    set_sliding(c, v[0] / speed, v[1] / speed);
+    return;
+  }
+  set_stuck(c);
+  slide_if_slipping(t, y, c);
+}
+
+ContactSwitch Contacts::fire_friction(double t, std::size_t c, bool rising, double* y) {
+  if (!closed(c) || rising) return {};
+  if (stuck_[c]) {
+    double v[2], f[2];
+    tangents(t, y, c, v, f);
+    const double norm = std::hypot(f[0], f[1]);
+    if (!(norm > 0.0)) return {};
+    set_sliding(c, -f[0] / norm, -f[1] / norm);
+    return {ContactSwitch::Slide, 0.0};
+  }
+  set_stuck(c);
+  if (slide_if_slipping(t, y, c)) return {ContactSwitch::Slide, 0.0};  // (the other way)
+  return {ContactSwitch::Stick, 0.0};
+}
+
+void Contacts::normal_response(double t, std::size_t c, const double* y) {
+  constexpr double kProbe = 1e6;  // (affine: any size; large, the difference is exact to rounding)
+  const std::size_t n = m_.size();
+  d0_.resize(n);
+  d1_.resize(n);
+  col_.resize(n);
+  const bool was_closed = closed(c);
+  set_closed(c, true);
+  if (has_friction(c)) set_sliding(c, 0.0, 0.0);  // impulses are frictionless
+  m_.set_contact_bias(c, 0.0);
+  m_.derivative(t, y, d0_.data());
+  m_.set_contact_bias(c, kProbe);
+  m_.derivative(t, y, d1_.data());
+  m_.set_contact_bias(c, 0.0);
+  set_closed(c, was_closed);
+  for (std::size_t i = 0; i < n; ++i) col_[i] = (d1_[i] - d0_[i]) / kProbe;
+  // (the friction's modes are set again when the contact closes)
+}
+
+void Contacts::open_separated(double t, std::size_t c, double* y) {
   set_closed(c, false);
-  m_.set_contact_lift(c, 0.0);
-  m_.set_contact_lift(c, std::max(0.0, kLift - event_function(t, y, c)));
+  const double g = event_function(t, y, c);  // open: the gap
+  if (g >= kLift) return;
+  // Positions moved by s times the rate change a unit of normal speed makes
+  // raise the gap by s (to first order: g' is affine in the velocities).
+  const std::size_t n = m_.size();
+  y1_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) y1_[i] = y[i] + col_[i];
+  m_.derivative(t, y, d0_.data());
+  m_.derivative(t, y1_.data(), d1_.data());
+  y1_.assign(y, y + n);
+  for (double lift = kLift; lift < 1e-6; lift *= 2) {
+    const double s = lift - g;
+    for (std::size_t i = 0; i < n; ++i)
+      if (col_[i] == 0.0) y[i] = y1_[i] + s * (d1_[i] - d0_[i]);
+    if (event_function(t, y, c) > 0.0) return;
+  }
 }
 
 double Contacts::speed(double t, const double* y, std::size_t c) {
@@ -67,7 +167,6 @@ void Contacts::start(double t, const double* y, const double* yp) {
   for (std::size_t c = 0; c < n; ++c) {
     info_[c] = m_.contact(c);  // (its restitution is the run's: initial() computed it)
     m_.set_contact_bias(c, 0.0);
-    m_.set_contact_lift(c, 0.0);
     m_.set_contact_damping(c, 0.0);
     set_closed(c, false);
   }
@@ -87,9 +186,13 @@ void Contacts::start(double t, const double* y, const double* yp) {
     }
   }
   // a unilateral contact that starts closed but would pull is open
+  for (std::size_t c = 0; c < n; ++c)
+    if (has_friction(c)) set_sliding(c, 0.0, 0.0);
   m_.event_functions(t, y, yp, g_.data());
   for (std::size_t c = 0; c < n; ++c)
     if (!info_[c].compliant && closed(c) && g_[info_[c].event] < 0.0) set_closed(c, false);
+  for (std::size_t c = 0; c < n; ++c)
+    if (closed(c)) start_friction(t, y, c);
 }
 
 ContactSwitch Contacts::fire(double t, std::size_t c, bool rising, double* y) {
@@ -109,7 +212,8 @@ ContactSwitch Contacts::fire(double t, std::size_t c, bool rising, double* y) {
   }
   if (!is_closed && !rising) return impact(t, c, y);
   if (is_closed && !rising) {
-    open_lifted(t, y, c);
+    normal_response(t, c, y);
+    open_separated(t, c, y);
     return {ContactSwitch::Release, 0.0};
   }
   return {};
@@ -130,22 +234,17 @@ ContactSwitch Contacts::impact(double t, std::size_t c, double* y) {
   const double a = (speed(t + h, y1_.data(), c) - v) / h;
   const double e = info_[c].restitution;
   const double flight = a < 0.0 ? 2.0 * e * -v / -a : std::numeric_limits<double>::infinity();
-  const bool rest = flight < kRestFlight * std::max(1.0, std::abs(t));
-  // dy per unit of normal speed: the closed row's response to its bias.
-  constexpr double kProbe = 1e6;
-  set_closed(c, true);
-  m_.set_contact_bias(c, 0.0);
-  m_.derivative(t, y, d0_.data());
-  m_.set_contact_bias(c, kProbe);
-  m_.derivative(t, y, d1_.data());
-  m_.set_contact_bias(c, 0.0);
+  const bool rest = e == 0.0 || flight < kRestFlight * std::max(1.0, std::abs(t));  // (plastic: it stays)
+  normal_response(t, c, y);
   const double dv = rest ? -v : -(1.0 + e) * v;
-  for (std::size_t i = 0; i < n; ++i) y[i] += dv * (d1_[i] - d0_[i]) / kProbe;
+  for (std::size_t i = 0; i < n; ++i) y[i] += dv * col_[i];
   if (!rest) {
-    open_lifted(t, y, c);
+    open_separated(t, c, y);
     return {ContactSwitch::Bounce, -v};
   }
-  if (event_function(t, y, c) < 0.0) open_lifted(t, y, c);  // at rest, but nothing presses it on
+  set_closed(c, true);
+  if (event_function(t, y, c) < 0.0) open_separated(t, c, y);  // at rest, but nothing presses it on
+  else start_friction(t, y, c);
   return {ContactSwitch::Rest, -v};
 }
 
@@ -157,6 +256,8 @@ std::string Contacts::describe(const ContactSwitch& s) {
     case ContactSwitch::Close: return fmt::format("closes at {:.6g} m/s", s.speed);
     case ContactSwitch::Release: return "released (its normal force would pull)";
     case ContactSwitch::Open: return "opens";
+    case ContactSwitch::Stick: return "sticks";
+    case ContactSwitch::Slide: return "slides";
     case ContactSwitch::None: break;
   }
   return {};

@@ -13,6 +13,11 @@
 // * unilateral, closed, normal force falling through 0: released (opens).
 // * compliant, gap falling through 0: closes, Hunt-Crossley's damping set from
 //   the approach speed; gap rising through 0: opens.
+// * friction of a closed unilateral contact (its second event): stuck, when
+//   mu push - |friction| falls through 0 it slides, against the friction it
+//   had; sliding, when the speed along the slip direction falls through 0 it
+//   sticks (and slides on at once, the other way, if sticking needs more than
+//   mu push). Impulses are frictionless.
 #pragma once
 
 #include <cstddef>
@@ -31,7 +36,7 @@ double hunt_crossley_chi(double e);
 
 /// What a contact's event did.
 struct ContactSwitch {
-  enum Kind { None, Bounce, Rest, Close, Release, Open } kind = None;
+  enum Kind { None, Bounce, Rest, Close, Release, Open, Stick, Slide } kind = None;
   double speed = 0.0;  ///< impacts and closings: the approach speed -dg/dt before (m/s)
 };
 
@@ -40,31 +45,54 @@ class Contacts {
   explicit Contacts(Model& model);
 
   std::size_t count() const { return info_.size(); }
-  /// The contact whose event is k, or -1.
+  /// The contact whose event (or friction's event) is k, or -1.
   long of_event(std::size_t k) const { return k < contact_of_event_.size() ? contact_of_event_[k] : -1; }
+  bool is_friction_event(std::size_t k) const { return k < friction_event_.size() && friction_event_[k]; }
   /// Modes from the state the run starts in: closed where the gap is <= 0 (a
   /// unilateral contact only if it then pushes).
   void start(double t, const double* y, const double* yp);
   /// Contact c's event function crossed zero at t, rising or not: switches its
   /// mode and applies an impact to y (ODE models).
   ContactSwitch fire(double t, std::size_t c, bool rising, double* y);
+  /// Contact c's friction event crossed zero: sticks or slides.
+  ContactSwitch fire_friction(double t, std::size_t c, bool rising, double* y);
   bool closed(std::size_t c) const { return closed_[c] != 0; }
   /// "impact at 4.43 m/s: bounces", "closes at 1.2 m/s", ... (no commas: a CSV cell)
   static std::string describe(const ContactSwitch& s);
 
   /// A rebound shorter than this (times max(1, |t|)) ends in rest.
   static constexpr double kRestFlight = 1e-4;
-  /// Unilateral, when it opens: its event function starts at least this
-  /// above 0 (m; the gap's rounding after an impact is far below it), so that a
-  /// flight shorter than a step still changes its sign between two steps.
-  static constexpr double kLift = 1e-12;
+  /// Unilateral, when it opens: its gap is put at least this far above 0 (m;
+  /// doubled until the positions can tell it from 0), so that a flight
+  /// shorter than a step still changes its sign between two steps, and the
+  /// contact point leaves from the surface, not through it. Small: the lift
+  /// adds m g kLift to the energy at each bounce (an elastic ball bouncing
+  /// a thousand times gained 1e-8 J with 1e-12 m).
+  static constexpr double kLift = 1e-15;
+  /// A contact that closes slower than this along the surface (m/s) sticks.
+  static constexpr double kStickSpeed = 1e-8;
   /// Compliant: the approach speed Hunt-Crossley's damping divides by is at least this (m/s).
   static constexpr double kMinApproachSpeed = 1e-4;
 
  private:
   void set_closed(std::size_t c, bool on);
-  /// Opens unilateral contact c with its event function lifted to kLift.
-  void open_lifted(double t, const double* y, std::size_t c);
+  bool has_friction(std::size_t c) const { return info_[c].friction_event >= 0; }
+  /// Contact c's sliding velocity and friction in its tangent basis (tangents_).
+  void tangents(double t, const double* y, std::size_t c, double v[2], double f[2]);
+  void set_sliding(std::size_t c, double d1, double d2);
+  void set_stuck(std::size_t c);
+  /// Contact c just closed (or starts closed): sticks if it barely slides and
+  /// mu push holds it, else slides along its motion (or against its friction).
+  void start_friction(double t, const double* y, std::size_t c);
+  /// Stuck contact c whose friction would exceed mu push slides against it.
+  bool slide_if_slipping(double t, const double* y, std::size_t c);
+  /// The change of y per unit of contact c's normal speed (an impulse; zero
+  /// in the entries it leaves alone, the positions among them): the state
+  /// derivative with c closed is affine in its row's bias. In col_.
+  void normal_response(double t, std::size_t c, const double* y);
+  /// Opens unilateral contact c, its gap moved to kLift along the motion the
+  /// velocity change col_ makes (positions only: the entries col_ leaves alone).
+  void open_separated(double t, std::size_t c, double* y);
   double speed(double t, const double* y, std::size_t c);
   double event_function(double t, const double* y, std::size_t c);
   ContactSwitch impact(double t, std::size_t c, double* y);
@@ -73,7 +101,9 @@ class Contacts {
   std::vector<ContactInfo> info_;
   std::vector<long> contact_of_event_;
   std::vector<char> closed_;
-  std::vector<double> v_, g_, d0_, d1_, y1_;
+  std::vector<char> stuck_;
+  std::vector<char> friction_event_;  // per event: a contact's friction
+  std::vector<double> v_, g_, d0_, d1_, y1_, col_, tangents_;
 };
 
 }  // namespace mbgrt::detail

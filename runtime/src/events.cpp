@@ -32,9 +32,11 @@ bool Events::start(double t, const double* y, const double* yp) {
 
 bool Events::fire(double t, std::size_t k, bool on, double* y) {
   if (const long c = contacts_.of_event(k); c >= 0) {
-    const ContactSwitch s = contacts_.fire(t, static_cast<std::size_t>(c), on, y);
+    const auto i = static_cast<std::size_t>(c);
+    const bool friction = contacts_.is_friction_event(k);
+    const ContactSwitch s = friction ? contacts_.fire_friction(t, i, on, y) : contacts_.fire(t, i, on, y);
     if (s.kind == ContactSwitch::None) return false;
-    record(t, k, contacts_.closed(static_cast<std::size_t>(c)),
+    record(t, k, friction ? s.kind == ContactSwitch::Stick : contacts_.closed(i),
            s.kind == ContactSwitch::Bounce || s.kind == ContactSwitch::Rest, Contacts::describe(s));
     return true;
   }

@@ -60,3 +60,33 @@ TEST(FindEvents, AModelWithoutStepsHasNone) {
 }
 
 }  // namespace
+
+TEST(FindEvents, SelectIsAChoiceNotAnEventAndNeitherIsTheKinkOfAMinInADerivative) {
+  // select(x) picks between two expressions that agree at x = 0; a min of a
+  // state in a law whose derivative is taken (its MTF's modulus, its
+  // Jacobian) selects a side by select, not heaviside.
+  auto c = reduce("param C = 2\nparam vmax = 1\n"
+                  "Sf src = select(cap.e - vmax) * vmax + (1 - select(cap.e - vmax)) * cap.e + min(cap.e, vmax)\n"
+                  "C cap = C\n0 n : src -> cap\noutput v = cap.e\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  EXPECT_TRUE(c->reduced.events.empty());
+  EXPECT_FALSE(c->reduced.jacobian.empty());
+}
+
+TEST(FindEvents, AUnilateralContactIsOneEventAndItsFrictionAnother) {
+  auto c = reduce("Se f = [1, 1, 0]\nI m = diag(1, 1, 1)\nC s = diag(1, 1, 1) { q0 = [1, 1, 1] }\n"
+                  "CN stop { g = s.q; restitution = 0.5; friction = 0.3 }\n"
+                  "1 v : f -> m, s, stop\noutput closed = stop.closed\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  const ir::ReducedSystem& r = c->reduced;
+  ASSERT_EQ(r.contacts.size(), 1u);
+  ASSERT_EQ(r.events.size(), 2u);
+  EXPECT_EQ(r.events[0].contact, 0);
+  EXPECT_FALSE(r.events[0].friction);
+  EXPECT_EQ(r.events[1].contact, 0);
+  EXPECT_TRUE(r.events[1].friction);
+  EXPECT_EQ(r.events[0].origin, "contact stop");
+  EXPECT_EQ(str(r.events[0].step, r.graph), "stop.closed");
+  EXPECT_EQ(str(r.events[1].step, r.graph), "stop.stick");
+  EXPECT_TRUE(r.contacts[0].friction);
+}

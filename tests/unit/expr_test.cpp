@@ -111,6 +111,8 @@ double eval_node(const Expr& e, const Env& env, bool* degenerate) {
     case Fn::Min: return std::fmin(x, y);
     case Fn::Max: return std::fmax(x, y);
     case Fn::Step: return x >= 0 ? 1.0 : 0.0;
+    case Fn::Select: return x >= 0 ? 1.0 : 0.0;
+    case Fn::Frozen: return x;
   }
   throw std::logic_error("eval: bad fn");
 }
@@ -395,7 +397,7 @@ TEST(ExprFold, CallsOfConstants) {
   ASSERT_TRUE(is_const(fn(Fn::Sign, k(7)), &v));
   EXPECT_EQ(v, 1);
   // every function folds, with the evaluator's semantics
-  for (int f = 0; f <= static_cast<int>(Fn::Step); ++f) {
+  for (int f = 0; f <= static_cast<int>(Fn::Select); ++f) {  // (Frozen's derivative is 0 by design)
     const Fn ff = static_cast<Fn>(f);
     std::vector<Expr> args{k(0.3)};
     if (arity(ff) == 2) args.push_back(k(0.7));
@@ -746,9 +748,13 @@ TEST(ExprDiff, Basics) {
   EXPECT_TRUE(equal(diff_var(fn(Fn::Abs, x), X), fn(Fn::Sign, x)));
   EXPECT_TRUE(is_zero(diff_var(fn(Fn::Sign, x), X)));
   EXPECT_TRUE(is_zero(diff_var(fn(Fn::Step, x), X)));
-  EXPECT_TRUE(equal(diff_var(fn(Fn::Min, x, y), X), fn(Fn::Step, sub(y, x))));
-  EXPECT_TRUE(equal(diff_var(fn(Fn::Max, x, y), X), fn(Fn::Step, sub(x, y))));
-  EXPECT_TRUE(equal(diff_var(fn(Fn::Min, x, y), Y), sub(k(1), fn(Fn::Step, sub(y, x)))));
+  // (a kink of min/max selects a side: select, not an event's heaviside)
+  EXPECT_TRUE(equal(diff_var(fn(Fn::Min, x, y), X), fn(Fn::Select, sub(y, x))));
+  EXPECT_TRUE(equal(diff_var(fn(Fn::Max, x, y), X), fn(Fn::Select, sub(x, y))));
+  EXPECT_TRUE(equal(diff_var(fn(Fn::Min, x, y), Y), sub(k(1), fn(Fn::Select, sub(y, x)))));
+  EXPECT_TRUE(is_zero(diff_var(fn(Fn::Select, x), X)));
+  EXPECT_TRUE(is_zero(diff_var(fn(Fn::Frozen, x), X)));  // its value is x, its derivative 0
+  EXPECT_TRUE(is_zero(diff_var(fn(Fn::Frozen, mul(x, x)), X)));
   EXPECT_TRUE(equal(diff_var(fn(Fn::Log, x), X), div(k(1), x)));
   EXPECT_TRUE(equal(diff_var(fn(Fn::Exp, mul(k(2), x)), X), mul(k(2), fn(Fn::Exp, mul(k(2), x)))));
   EXPECT_TRUE(equal(diff_var(div(x, param(P)), X), div(k(1), param(P))));
@@ -795,7 +801,7 @@ TEST(ExprDiff, EveryFunctionAgainstFiniteDifferences) {
     }
   }
   // the nonsmooth ones also where their argument is negative
-  for (Fn ff : {Fn::Abs, Fn::Sign, Fn::Step}) {
+  for (Fn ff : {Fn::Abs, Fn::Sign, Fn::Step, Fn::Select}) {
     const Expr e = call(ff, {inner_v()});
     const Expr de = diff_var(e, X);
     Env env = sample_points()[0];

@@ -98,6 +98,7 @@ struct ContactInfo {
   std::size_t event = 0;     ///< its event (Model::event_name); the event's mode is 1 while the contact is closed
   bool compliant = false;    ///< Hunt-Crossley force (else unilateral: a row while it pushes, impacts as impulses)
   double restitution = 0.0;  ///< Newton's coefficient: normal speed after an impact / before
+  long friction_event = -1;  ///< unilateral with friction: the event whose mode is 1 while it sticks
 };
 
 struct ParameterInfo {
@@ -206,7 +207,7 @@ class Model {
   }
 
   // ---- contacts (optional) ---------------------------------------------------
-  /// Each contact's event function is its gap g while open (plus a lift) and, for a
+  /// Each contact's event function is its gap g while open and, for a
   /// unilateral contact while closed, its normal force (which must not pull).
   /// The runtime (runtime/src/contacts.cpp) switches the modes and applies the
   /// impacts: an impulse is found from the state derivative with the contact
@@ -217,11 +218,17 @@ class Model {
   virtual void contact_speeds(double t, const double* y, const double* yp, double* v) {
     (void)t; (void)y; (void)yp; (void)v;
   }
+  /// CONTACT TANGENTS: out[2c], out[2c + 1] = contact c's sliding velocity
+  /// along its two tangents, out[2C + 2c], out[2C + 2c + 1] = its friction
+  /// along them (C = contact_count(); zeros for a contact without friction rows).
+  virtual void contact_tangents(double t, const double* y, const double* yp, double* out) {
+    (void)t; (void)y; (void)yp; (void)out;
+  }
+  /// Unilateral contact c with friction, sliding: the slip direction (unit,
+  /// in its tangent basis); the friction is -mu push along it.
+  virtual void set_contact_slip(std::size_t c, double d1, double d2) { (void)c; (void)d1; (void)d2; }
   /// Unilateral contact c while closed: its row keeps g'' + 2 w g' + w^2 g = b.
   virtual void set_contact_bias(std::size_t c, double b) { (void)c; (void)b; }
-  /// Unilateral contact c while open: its event function is g + h (h >= 0,
-  /// tiny, set when it opens so that the function starts positive).
-  virtual void set_contact_lift(std::size_t c, double h) { (void)c; (void)h; }
   /// Compliant contact c: its Hunt-Crossley damping chi / v- (1/(m/s)), set when it closes.
   virtual void set_contact_damping(std::size_t c, double d) { (void)c; (void)d; }
 

@@ -357,7 +357,7 @@ class cut_joint_model final : public mbgrt::Model {
     static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
     int blk1_dependent[2];
     const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
-    if (blk1_rank < 2) rank_loss_.record(t, "the cut joints' 2 x 2 multiplier system", blk1_rank, 2, blk1_dependent, blk1_rows);
+    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
     const double j3_cn_e_1 = blk1_x[0];
     const double j3_cn_e_2 = blk1_x[1];
     // cut_joint.mbg:17:7  joint acceleration of body rocker from its parent's motion (articulated-body form)
