@@ -243,8 +243,11 @@ ContactSwitch Contacts::impact(double t, std::size_t c, double* y) {
     return {ContactSwitch::Bounce, -v};
   }
   set_closed(c, true);
-  if (event_function(t, y, c) < 0.0) open_separated(t, c, y);  // at rest, but nothing presses it on
-  else start_friction(t, y, c);
+  if (event_function(t, y, c) < 0.0) {  // stopped, but nothing presses it on
+    open_separated(t, c, y);
+    return {ContactSwitch::Stop, -v};
+  }
+  start_friction(t, y, c);
   return {ContactSwitch::Rest, -v};
 }
 
@@ -253,6 +256,8 @@ std::string Contacts::describe(const ContactSwitch& s) {
     case ContactSwitch::Bounce: return fmt::format("impact at {:.6g} m/s: bounces", s.speed);
     case ContactSwitch::Rest: return fmt::format("impact at {:.6g} m/s: comes to rest (its rebound would be shorter than {:g} s)",
                                                  s.speed, kRestFlight);
+    case ContactSwitch::Stop:
+      return fmt::format("impact at {:.6g} m/s: stops dead, and nothing presses it on", s.speed);
     case ContactSwitch::Close: return fmt::format("closes at {:.6g} m/s", s.speed);
     case ContactSwitch::Release: return "released (its normal force would pull)";
     case ContactSwitch::Open: return "opens";

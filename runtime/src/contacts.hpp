@@ -36,7 +36,7 @@ double hunt_crossley_chi(double e);
 
 /// What a contact's event did.
 struct ContactSwitch {
-  enum Kind { None, Bounce, Rest, Close, Release, Open, Stick, Slide } kind = None;
+  enum Kind { None, Bounce, Rest, Stop, Close, Release, Open, Stick, Slide } kind = None;
   double speed = 0.0;  ///< impacts and closings: the approach speed -dg/dt before (m/s)
 };
 

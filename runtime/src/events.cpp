@@ -37,7 +37,8 @@ bool Events::fire(double t, std::size_t k, bool on, double* y) {
     const ContactSwitch s = friction ? contacts_.fire_friction(t, i, on, y) : contacts_.fire(t, i, on, y);
     if (s.kind == ContactSwitch::None) return false;
     record(t, k, friction ? s.kind == ContactSwitch::Stick : contacts_.closed(i),
-           s.kind == ContactSwitch::Bounce || s.kind == ContactSwitch::Rest, Contacts::describe(s));
+           s.kind == ContactSwitch::Bounce || s.kind == ContactSwitch::Rest || s.kind == ContactSwitch::Stop,
+           Contacts::describe(s));
     return true;
   }
   if (!model_.set_event_mode(k, on)) return false;
