@@ -114,7 +114,7 @@ void Expander::add_contact(const AstJoint& c) {
       if (it == choices.end()) {
         std::string near = word.empty() ? "" : closest_name(word, choices);
         diags_.error(at.value->loc,
-                     word.empty() ? fmt::format("the {} of contact `{}` is a word", at.key, c.name)
+                     word.empty() ? fmt::format("the {} of contact `{}` must be a word", at.key, c.name)
                                   : fmt::format("unknown contact {} `{}`", at.key, word),
                      near.empty() ? fmt::format("write {} = {}", at.key, fmt::join(choices, " | "))
                                   : fmt::format("did you mean `{}`?", near));
