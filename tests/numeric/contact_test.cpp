@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -374,6 +375,37 @@ TEST(ContactOnFlexibleBodies, ABeamAndAModalBodyPropOnTheSameStopAsTheClosedForm
   const auto& last = beam.csv.rows.back();
   EXPECT_NEAR(last[beam.csv.col("tip_z")], -depth, 1e-9);
   EXPECT_NEAR(last[beam.csv.col("push")], R, 0.01 * R);  // two modes: measured 0.26 % off
+}
+
+/// Every surface: balls dropped 1 m onto a plane, the top of a sphere and
+/// of a cylinder (the same first two impacts: the closed form's), and onto a
+/// plane on a moving body (a platform rising at V: it meets the ball where
+/// 1 - g t^2 / 2 = V t, and the relative speed after is e times the one
+/// before, whatever the platform's mass).
+TEST(ContactSurfaces, PlaneSphereCylinderAndAMovingPlatformHitWhereTheClosedFormsSay) {
+  const std::string log_path = work_file("contact_surfaces", "_events.csv");
+  SimRun r = run(SURFACES_SIM, "--event-log \"" + log_path + "\"", "contact_surfaces");
+  ASSERT_EQ(r.status, 0) << r.log;
+  const std::string text = slurp(log_path);
+  std::map<std::string, std::vector<double>> impacts;
+  std::size_t line = text.find('\n') + 1;
+  while (line < text.size()) {
+    const std::size_t end = text.find('\n', line);
+    const std::string row = text.substr(line, end - line);
+    const std::size_t name = row.find("\"contact ") + 9;
+    impacts[row.substr(name, row.find(' ', name) - name)].push_back(std::stod(row.substr(0, row.find(','))));
+    line = end + 1;
+  }
+  const double t1 = kT0 + 2 * kE * kV0 / kG;
+  for (const char* c : {"on_plane", "on_sphere", "on_drum"}) {
+    ASSERT_EQ(impacts[c].size(), 2u) << c << "\n" << text;
+    EXPECT_NEAR(impacts[c][0], kT0, 1e-9 * kT0) << c;
+    EXPECT_NEAR(impacts[c][1], t1, 1e-9 * t1) << c;
+  }
+  const double V = 0.5, tm = (-V + std::sqrt(V * V + 2 * kG)) / kG, v_rel = kG * tm + V;
+  ASSERT_EQ(impacts["on_platform"].size(), 2u) << text;
+  EXPECT_NEAR(impacts["on_platform"][0], tm, 1e-9 * tm);
+  EXPECT_NEAR(impacts["on_platform"][1], tm + 2 * kE * v_rel / kG, 1e-9);
 }
 
 }  // namespace
