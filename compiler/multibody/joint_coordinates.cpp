@@ -186,13 +186,21 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const std::string wsum = jn + ".wsum", vsum = jn + ".vsum";
   const bool parent_turns = !P.ground && !P.particle;
   E RrelT = T(Rrel);  // R_PC^T: parent axes -> child axes
-  if (!C.particle) {
+  // Nothing turns the child when the parent does not turn and the joint has
+  // no rotation (a prismatic joint from ground): its angular velocity is 0,
+  // a flow source that takes whatever torque holds it (else its 0-junction
+  // would have no bond to set its effort).
+  const bool turns = parent_turns || seat.turn || own_seat.turn ||
+                     std::any_of(rates.begin(), rates.end(), [](const Mobilizer::Rate& r) { return bool(r.W); });
+  if (!C.particle && turns) {
     junction(B, '0', wsum, 3, {}, {});
     if (parent_turns) feed(parent + ".w", RrelT, wsum);
     // in the child's axes, R_PC^T Fa W = Fb R^T W: where the kind gives R^T W
     // (Wb), no product of the rotation with its transpose is left to fold
     for (const Mobilizer::Rate& r : rates)
       if (r.W) feed(r.junction, fwd ? (r.Wb ? times(Fb, r.Wb) : times(times(RrelT, Fa), r.W)) : B.neg(times(Fa, r.W)), wsum);
+  } else if (!C.particle) {
+    element(B, "Sf", jn + ".still", B.vec(0, 0, 0));
   }
   junction(B, '0', vsum, 3, {}, {});
   if (!C.particle) {
@@ -226,7 +234,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       feed(child + ".etadot", B.neg(B.call("jacobian", {fwd ? pb : pa, q})), vsum);
       if (own_seat.turn) feed(child + ".etadot", B.neg(times(own_seat.turn_rate, B.call("jacobian", {own_seat.slope, q}))), wsum);
     }
-    named_bond(B, jn + ".reaction_t", wsum, child + ".w");
+    named_bond(B, jn + ".reaction_t", turns ? wsum : jn + ".still", child + ".w");
   } else {  // world axes
     if (seat.point) feed(parent + ".etadot", times(RP, B.call("jacobian", {fwd ? pa : pb, B.name(parent + ".eta.q")})), vsum);
     if (!P.ground) feed(parent + ".v", body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
