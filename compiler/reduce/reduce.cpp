@@ -1,6 +1,7 @@
 #include "reduce/reduce.hpp"
 
 #include "reduce/events.hpp"
+#include "reduce/slice.hpp"
 #include "reduce/sparsity.hpp"
 #include "reduce/tree_elimination.hpp"
 
@@ -44,7 +45,7 @@ class Reducer {
     differentiate_for_jacobian();
     steps_for_time_kinks(out_);
     out_.events = find_events(out_);
-    slice();
+    slice(out_);
   }
 
  private:
@@ -882,88 +883,6 @@ class Reducer {
     out_.log.push_back(fmt::format("jacobian: {} of {} entries nonzero, by symbolic differentiation", nonzero, n * n));
   }
 
-  // ---- 4. dead equations ---------------------------------------------------------------
-  void slice() {
-    std::map<int, int> assignment_of;
-    for (std::size_t i = 0; i < out_.assignments.size(); ++i) assignment_of[out_.assignments[i].var] = static_cast<int>(i);
-    auto needed_by = [&](const std::vector<Expr>& roots) {
-      std::set<int> need;
-      std::vector<int> work;
-      std::unordered_set<int> root_vars;
-      collect_vars(roots, root_vars);  // one walk over all roots: they share sub-expressions
-      for (int id : root_vars) {
-        auto it = assignment_of.find(id);
-        if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
-      }
-      std::set<int> blocks_read;
-      while (!work.empty()) {
-        int i = work.back();
-        work.pop_back();
-        const Assignment& a = out_.assignments[static_cast<std::size_t>(i)];
-        if (a.block >= 0 && !blocks_read.insert(a.block).second) continue;  // same inputs as its first unknown
-        std::unordered_set<int> inputs;
-        assignment_inputs(out_, a, inputs);
-        for (int id : inputs) {
-          auto it = assignment_of.find(id);
-          if (it != assignment_of.end() && need.insert(it->second).second) work.push_back(it->second);
-        }
-      }
-      return std::vector<int>(need.begin(), need.end());  // assignment order = sorted order
-    };
-    std::vector<Expr> deriv_roots = out_.state_derivative;
-    for (const Residual& r : out_.residuals) deriv_roots.push_back(r.value);
-    std::vector<Expr> output_roots;
-    for (const Output& o : out_.graph.outputs) output_roots.push_back(o.value);
-    out_.for_derivative = needed_by(deriv_roots);
-    out_.for_outputs = needed_by(output_roots);
-    out_.for_jacobian = needed_by(out_.jacobian);
-    std::vector<Expr> constraint_roots;
-    for (const ConstraintRow& row : out_.constraints) {
-      constraint_roots.push_back(row.gdot);
-      constraint_roots.push_back(row.g);  // (a cut joint's g reads the tree's pose signals)
-    }
-    out_.for_constraints = needed_by(constraint_roots);
-    std::vector<Expr> event_roots;
-    for (const EventRelation& ev : out_.events) event_roots.push_back(ev.arg);
-    out_.for_events = needed_by(event_roots);
-    std::vector<Expr> contact_roots;
-    std::vector<Expr> tangent_roots;
-    for (const ContactRow& c : out_.contacts) {
-      contact_roots.push_back(c.rate);
-      for (const Expr& x : c.tangent_rate)
-        if (x) tangent_roots.push_back(x);
-      for (const Expr& x : c.tangent_force)
-        if (x) tangent_roots.push_back(x);
-    }
-    out_.for_contacts = needed_by(contact_roots);
-    out_.for_tangents = needed_by(tangent_roots);
-    std::set<int> used(out_.for_derivative.begin(), out_.for_derivative.end());
-    used.insert(out_.for_constraints.begin(), out_.for_constraints.end());
-    used.insert(out_.for_outputs.begin(), out_.for_outputs.end());
-    used.insert(out_.for_jacobian.begin(), out_.for_jacobian.end());
-    used.insert(out_.for_events.begin(), out_.for_events.end());
-    used.insert(out_.for_contacts.begin(), out_.for_contacts.end());
-    used.insert(out_.for_tangents.begin(), out_.for_tangents.end());
-    // Drop what nobody needs; renumber the slices.
-    std::vector<Assignment> kept;
-    std::map<int, int> renumber;
-    for (std::size_t i = 0; i < out_.assignments.size(); ++i) {
-      if (!used.count(static_cast<int>(i))) continue;
-      renumber[static_cast<int>(i)] = static_cast<int>(kept.size());
-      kept.push_back(out_.assignments[i]);
-    }
-    std::size_t dropped = out_.assignments.size() - kept.size();
-    out_.assignments = std::move(kept);
-    for (int& i : out_.for_derivative) i = renumber.at(i);
-    for (int& i : out_.for_outputs) i = renumber.at(i);
-    for (int& i : out_.for_jacobian) i = renumber.at(i);
-    for (int& i : out_.for_contacts) i = renumber.at(i);
-    for (int& i : out_.for_tangents) i = renumber.at(i);
-    for (int& i : out_.for_constraints) i = renumber.at(i);
-    for (int& i : out_.for_events) i = renumber.at(i);
-    out_.log.push_back(fmt::format("dead-equation removal: {} assignment{} nothing needs removed", dropped, dropped == 1 ? "" : "s"));
-  }
-
   EquationSystem& sys_;
   ReducedSystem& out_;
   Diagnostics& diags_;
@@ -990,20 +909,6 @@ class Reducer {
 
 }  // namespace
 }  // namespace mbgc::reduce
-
-namespace mbgc::ir {
-void assignment_inputs(const ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out) {
-  if (a.block < 0) {
-    collect_vars(a.value, out);
-    return;
-  }
-  const LinearBlock& lb = s.linear_blocks[static_cast<std::size_t>(a.block)];
-  std::vector<Expr> all(lb.a);
-  all.insert(all.end(), lb.b.begin(), lb.b.end());
-  collect_vars(all, out);
-  for (int u : lb.unknowns) out.erase(u);
-}
-}  // namespace mbgc::ir
 
 namespace mbgc::reduce {
 

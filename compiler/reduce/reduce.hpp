@@ -8,8 +8,9 @@
 //     is solved for its unknown; a larger block is an algebraic loop, solved
 //     symbolically by Gaussian elimination when linear in its unknowns, else
 //     left to IDA as a DAE (the model becomes a DAE);
-//  4. dead-equation removal: only what the states' derivatives (or the DAE
-//     residuals) and the outputs need is kept.
+//  4. dead-equation removal (reduce/slice.hpp): only what the states'
+//     derivatives (or the DAE residuals), the outputs, the events and the
+//     contacts need is kept.
 // Constant folding happens in every expression constructor; common
 // subexpressions are shared when the emitter prints.
 #pragma once

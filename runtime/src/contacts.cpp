@@ -74,15 +74,19 @@ void Contacts::set_stuck(std::size_t c) {
   m_.set_contact_slip(c, 0.0, 0.0);
 }
 
-bool Contacts::slide_if_slipping(double t, const double* y, std::size_t c) {
-  m_.event_functions(t, y, nullptr, g_.data());
-  if (g_[static_cast<std::size_t>(info_[c].friction_event)] >= 0.0) return false;
+bool Contacts::slide_against_friction(double t, const double* y, std::size_t c) {
   double v[2], f[2];
   tangents(t, y, c, v, f);
   const double norm = std::hypot(f[0], f[1]);
   if (!(norm > 0.0)) return false;
   set_sliding(c, -f[0] / norm, -f[1] / norm);
   return true;
+}
+
+bool Contacts::slide_if_slipping(double t, const double* y, std::size_t c) {
+  m_.event_functions(t, y, nullptr, g_.data());
+  if (g_[static_cast<std::size_t>(info_[c].friction_event)] >= 0.0) return false;
+  return slide_against_friction(t, y, c);
 }
 
 void Contacts::start_friction(double t, const double* y, std::size_t c) {
@@ -100,14 +104,7 @@ void Contacts::start_friction(double t, const double* y, std::size_t c) {
 
 ContactSwitch Contacts::fire_friction(double t, std::size_t c, bool rising, double* y) {
   if (!closed(c) || rising) return {};
-  if (stuck_[c]) {
-    double v[2], f[2];
-    tangents(t, y, c, v, f);
-    const double norm = std::hypot(f[0], f[1]);
-    if (!(norm > 0.0)) return {};
-    set_sliding(c, -f[0] / norm, -f[1] / norm);
-    return {ContactSwitch::Slide, 0.0};
-  }
+  if (stuck_[c]) return slide_against_friction(t, y, c) ? ContactSwitch{ContactSwitch::Slide, 0.0} : ContactSwitch{};
   set_stuck(c);
   if (slide_if_slipping(t, y, c)) return {ContactSwitch::Slide, 0.0};  // (the other way)
   return {ContactSwitch::Stick, 0.0};

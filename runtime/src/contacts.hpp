@@ -84,6 +84,8 @@ class Contacts {
   /// Contact c just closed (or starts closed): sticks if it barely slides and
   /// mu push holds it, else slides along its motion (or against its friction).
   void start_friction(double t, const double* y, std::size_t c);
+  /// Contact c slides the way its friction (as it is now) resists; false if it has none.
+  bool slide_against_friction(double t, const double* y, std::size_t c);
   /// Stuck contact c whose friction would exceed mu push slides against it.
   bool slide_if_slipping(double t, const double* y, std::size_t c);
   /// The change of y per unit of contact c's normal speed (an impulse; zero
