@@ -28,7 +28,7 @@ std::string SourceManager::line_text(int file_id, int line) const {
 }
 
 std::string SourceManager::where(const SourceLoc& loc) const {
-  if (!loc.valid()) return "mbgc";
+  if (!loc.valid()) return tool_name_;
   return fmt::format("{}:{}:{}", file(loc.file).display_path, loc.line, loc.col);
 }
 

@@ -36,11 +36,14 @@ class SourceManager {
   int count() const { return static_cast<int>(files_.size()); }
   /// The text of `line` (1-based) without its newline.
   std::string line_text(int file, int line) const;
-  /// "path:line:col"
+  /// "path:line:col", or the tool's name for a message without a place
   std::string where(const SourceLoc& loc) const;
+  /// The name shown for messages without a place (the command line): "mbgc" unless set.
+  void set_tool_name(std::string name) { tool_name_ = std::move(name); }
 
  private:
   std::vector<SourceFile> files_;
+  std::string tool_name_ = "mbgc";
 };
 
 enum class Severity { Error, Warning, Note };
