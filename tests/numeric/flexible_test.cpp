@@ -791,6 +791,13 @@ INSTANTIATE_TEST_SUITE_P(
                         "--t-end 2 --rtol 1e-10 --atol 1e-12", {"deflection_1", "deflection_2", "tip_x", "tip_z"}, 2e-7},
         CoordinatesCase{"space_manipulator", SPACE_MANIPULATOR_COORDINATES_SIM, SPACE_MANIPULATOR_SIM, "--t-end 6 --rtol 1e-9 --atol 1e-11",
                         {"tip_deviation", "link2_mid", "link3_mid"}, 1e-10},
+        // reduced FE arms (mbgc-reduce) on every joint kind, to ground, to each other and to rigid
+        // bodies (issue 17, point 2); measured at rtol 1e-11: 3.5e-8 m and 3.7e-8 m of bending
+        CoordinatesCase{"reduced_joints", REDUCED_JOINTS_COORDINATES_SIM, REDUCED_JOINTS_SIM, "--rtol 1e-11 --atol 1e-13",
+                        {"tip2[3]", "tip3[1]", "tip4[3]", "bend1", "bend3[3]", "bend4[3]", "bob_position[1]"}, 1e-7},
+        // and closed by a connection rod, the cut joint in coordinates; measured 2.3e-9 m, 1.7e-9 m of bending
+        CoordinatesCase{"reduced_loop", REDUCED_LOOP_COORDINATES_SIM, REDUCED_LOOP_SIM, "--rtol 1e-9 --atol 1e-11",
+                        {"tip2[1]", "tip2[3]", "bend1", "bend2[3]"}, 2e-8},
         // a loop: j3 is a cut joint on the coupler's pinned end (multipliers at acceleration level)
         CoordinatesCase{"crank_rocker_flexible", CRANK_ROCKER_FLEXIBLE_COORDINATES_SIM, CRANK_ROCKER_FLEXIBLE_SIM,
                         kTight, {"omega_rocker", "deflection_mid", "eta1"}, 2e-7}),
