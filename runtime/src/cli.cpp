@@ -77,6 +77,11 @@ void validate(const Options& o, bool step_given) {
   }
   require(!(o.linearize_at && o.work_precision),
           "--linearize-at and --work-precision are two different runs: give one of them");
+  if (o.realtime) {
+    require(std::isfinite(*o.realtime) && *o.realtime > 0,
+            fmt::format("--realtime {}: the factor must be a positive number (1: real time)", *o.realtime));
+    require(!o.linearize_at && !o.work_precision, "--realtime paces a simulation run, not --linearize-at or --work-precision");
+  }
   if (o.linearize_at)
     require(std::isfinite(*o.linearize_at) && *o.linearize_at >= s.t_start_s,
             fmt::format("--linearize-at {} is before the start time {} s", *o.linearize_at,
@@ -105,6 +110,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   std::string linear_solver = "auto";
   std::vector<std::string> sets;
   double linearize_at = 0.0;
+  std::string realtime;  // empty when --realtime is given without a factor
 
   app.add_option("--t-end", s.t_end_s, "Stop time [s]")
       ->type_name("SECONDS")
@@ -147,6 +153,12 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                              "Integrate to this time [s], then write the eigenvalues of the "
                              "Jacobian as CSV (index,omega_rad_s,f_hz,damping_ratio)")
                   ->type_name("SECONDS");
+  auto* paced = app.add_option("--realtime", realtime,
+                               "Pace the rows to the wall clock, FACTOR times faster than real time (default 1); "
+                               "report points computed after their moment (overruns) and the median and worst "
+                               "compute time per frame")
+                    ->type_name("[FACTOR]")
+                    ->expected(0, 1);
   app.add_flag("--fd-jacobian", o.fd_jacobian,
                "Implicit solvers: use finite-difference Jacobians even where the model generates one "
                "(to measure what the generated Jacobian saves)");
@@ -162,6 +174,19 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
     s.linear_solver = linear_solver_from_name(linear_solver);
     for (const std::string& arg : sets) o.overrides.push_back(parse_override(arg));
     if (lin->count() > 0) o.linearize_at = linearize_at;
+    if (paced->count() > 0) {
+      o.realtime = 1.0;
+      if (!realtime.empty()) {
+        std::size_t used = 0;
+        try {
+          o.realtime = std::stod(realtime, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        require(used == realtime.size() && used > 0,
+                fmt::format("--realtime {}: the factor is a number (1: real time, 10: ten times faster)", realtime));
+      }
+    }
     validate(o, step->count() > 0);
     if (s.linear_solver == LinearSolver::sparse) {
       std::vector<long> starts, rows;

@@ -26,6 +26,7 @@ struct Options {
   std::optional<double> linearize_at;
   bool work_precision = false;  ///< --work-precision: sweep solvers and tolerances, CSV of cost and error
   bool fd_jacobian = false;     ///< --fd-jacobian: finite differences even where the model has a Jacobian
+  std::optional<double> realtime;  ///< --realtime [FACTOR]: pace the rows to FACTOR x the wall clock
 };
 
 /// Options to run with, or the exit status to return at once (after --help,

@@ -105,6 +105,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   if (run.events && run.events->count() > 0) print_events(err, *run.events);
   fmt::print(err, "  output       {}\n", run.output);
   fmt::print(err, "  wall time    {:.3g} s\n", run.wall_s);
+  if (!run.realtime.empty()) fmt::print(err, "  real time    {}\n", run.realtime);
 }
 
 void print_stop_message(std::FILE* err, const GuardedModel& model, const Integrator& integrator,

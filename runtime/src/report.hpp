@@ -19,6 +19,7 @@ struct RunRecord {
   std::string output;  ///< e.g. "101 rows to out.csv"
   std::string stability;  ///< non-empty if an explicit solver's steps were bounded by stability
   std::string small_states;  ///< non-empty if states moved but stayed within a few atol
+  std::string realtime;  ///< --realtime: pacing, overruns, compute per frame
   // Constrained models only (null otherwise):
   const AssemblyReport* assembly = nullptr;
   const RedundancyReport* redundancy = nullptr;

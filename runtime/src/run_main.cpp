@@ -20,6 +20,7 @@
 #include "integrator.hpp"
 #include "linearize.hpp"
 #include "march.hpp"
+#include "realtime.hpp"
 #include "mbgrt/model.hpp"
 #include "report.hpp"
 #include "stiffness.hpp"
@@ -147,6 +148,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   };
 
   const auto started = std::chrono::steady_clock::now();
+  std::optional<Pacer> pacer;
   Outcome r;
   std::vector<Mode> modes;
   if (linearize) {
@@ -161,6 +163,13 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
       if (r.ok) modes = modes_of(jac, n);
     }
     if (r.ok) write_modes(out, modes);
+  } else if (o.realtime) {
+    csv.header("t", names);
+    pacer.emplace(*o.realtime, s.t_start_s, OutputGrid(s.t_start_s, s.t_end_s, s.interval_s).size());
+    r = march(guard, *integrator, s, y0, yp0, [&] {
+      write_row();
+      pacer->frame_done(integrator->t());
+    });
   } else {
     csv.header("t", names);
     r = march(guard, *integrator, s, y0, yp0, write_row);
@@ -204,6 +213,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.settings = s;
     record.wall_s = wall_s;
     record.stability = stability;
+    if (pacer) record.realtime = pacer->summary();
     record.small_states = describe_small_states(model, state_peak, s.atol);
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());

@@ -2,6 +2,7 @@
 // input with a readable message, --set and --list-parameters.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "harness.hpp"
@@ -39,6 +40,8 @@ TEST(Cli, BadValuesExit2WithMessage) {
       {"--solver", "rk4", "--step", "0"},
       {"--linearize-at", "-1"},
       {"--t-end", "nan"},
+      {"--realtime", "0"},
+      {"--realtime", "fast"},
   };
   for (const auto& args : cases) {
     Decay m;
@@ -47,6 +50,30 @@ TEST(Cli, BadValuesExit2WithMessage) {
     EXPECT_TRUE(Contains(r.err, "mbgrt: error:")) << args[0];
     EXPECT_TRUE(r.csv.empty()) << "no CSV may be written for a usage error: " << args[0];
   }
+}
+
+TEST(Cli, RealtimePacesTheRowsToTheWallClock) {
+  // 0.4 s of simulated time at 2x real time cannot take less than 0.2 s: the
+  // rows wait for their moment. (A lower bound only; no timing is asserted
+  // that a busy machine could miss.)
+  Decay m;
+  const auto start = std::chrono::steady_clock::now();
+  RunResult r = run(m, {"--t-end", "0.4", "--interval", "0.05", "--realtime", "2"});
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(parse_csv(r.csv).rows.size(), 9u);
+  EXPECT_GE(wall, 0.2);
+  EXPECT_TRUE(Contains(r.err, "real time    paced at 2x the wall clock:")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "overruns of 9 points") || Contains(r.err, "overrun of 9 points")) << r.err;
+  EXPECT_TRUE(Contains(r.err, "compute per frame: median")) << r.err;
+}
+
+TEST(Cli, RealtimeReportsOverruns) {
+  // a billion times faster than real time: every point after the initial one is late
+  Decay m;
+  RunResult r = run(m, {"--t-end", "1", "--realtime", "1e9"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(r.err, "paced at 1e+09x the wall clock: 10 overruns of 11 points (latest by")) << r.err;
 }
 
 TEST(Cli, UnknownSolverIsNamedInTheMessage) {
