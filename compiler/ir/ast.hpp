@@ -162,14 +162,22 @@ struct AstBody {
   std::vector<std::shared_ptr<AstPointFor>> loops;  // empty after unroll
 };
 
-/// What connects two bodies: a joint, a force element or a contact. They
-/// share one statement shape (`keyword name[ type](a, b) { settings }`) and
-/// one namespace.
-enum class Connector { Joint, Force, Contact };
-/// "joint", "force element", "contact"
+/// What connects two bodies: a joint, a force element, a contact or a tyre.
+/// They share one statement shape (`keyword name[ type](a, b) { settings }`)
+/// and one namespace.
+enum class Connector { Joint, Force, Contact, Tyre };
+/// "joint", "force element", "contact", "tyre"
 inline const char* connector_noun(Connector c) {
-  return c == Connector::Joint ? "joint" : c == Connector::Force ? "force element" : "contact";
+  switch (c) {
+    case Connector::Joint: return "joint";
+    case Connector::Force: return "force element";
+    case Connector::Contact: return "contact";
+    case Connector::Tyre: return "tyre";
+  }
+  return "joint";
 }
+/// The statement's keyword: "joint", "force", "contact", "tyre"
+inline const char* connector_keyword(Connector c) { return c == Connector::Force ? "force" : connector_noun(c); }
 
 /// `joint j1 revolute(ground.pivot, crank.a) { axis = [0, 0, 1]; q0 = 0.3 }`:
 /// a joint between a point on body a and a point on body b (an endpoint is

@@ -102,7 +102,7 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
             if (st.connector == Connector::Joint)
               out += fmt::format("{}joint {} {}({}, {})", pad, st.name, st.type, st.a.path, st.b.path);
             else
-              out += fmt::format("{}{} {}({}, {})", pad, st.connector == Connector::Force ? "force" : "contact", st.name,
+              out += fmt::format("{}{} {}({}, {})", pad, connector_keyword(st.connector), st.name,
                                  st.a.path, st.b.path);
             if (!st.attrs.empty()) out += " " + attrs(st.attrs);
             out += "\n";

@@ -37,8 +37,11 @@ const std::map<std::string, FnInfo> kFunctions = {
     {"rotq", {1, 1, true}},       {"quat_rate", {1, 1, true}}, {"quat_mul", {2, 2, true}},
     {"quat_conj", {1, 1, true}},  {"quat_axis_angle", {2, 2, true}}, {"rot_axis_angle", {2, 2, true}},
     {"quat_arc", {1, 1, true}},   {"bryant", {1, 1, true}},    {"jacobian", {2, 2, true}},
-    {"partial_t", {1, 1, true}},  {"frozen", {1, 1, true}},
+    {"partial_t", {1, 1, true}},  {"frozen", {1, 1, true}},   {"table", {2, 2, true}},
 };
+
+// Most points a table() may list (a typo must not write a huge expression).
+constexpr int kMaxTablePoints = 10000;
 
 // Largest dimension eye() and zeros() build (a typo must not exhaust memory).
 constexpr int kMaxDimension = 1000;
@@ -318,6 +321,7 @@ class Lowerer {
         {"bryant", "write bryant(q) with a quaternion q = [w, x, y, z]"},
         {"jacobian", "write jacobian(f, x): f a vector of expressions, x a vector of model variables"},
         {"partial_t", "write partial_t(f): the explicit time derivative of f (variables held fixed)"},
+        {"table", "write table(x, [[x1, y1], [x2, y2], ...]): y linear between the points (x increasing), constant outside"},
     };
     if (auto h = kHints.find(fn); h != kHints.end()) return h->second;
     if (fn == "step") return "write step(t0) or step(t0, height)";
@@ -361,6 +365,41 @@ class Lowerer {
     return std::nullopt;
   }
 
+  /// table(x, [[x1, y1], ..., [xn, yn]]): y piecewise linear in x through the
+  /// points (x increasing), y1 before x1 and yn after xn, written as
+  /// y1 + sum_k s_k (max(0, x - x_k) - max(0, x - x_k+1)): the kinks are
+  /// exact, and a table of time is a chain of time events (the max of a
+  /// function of time), which the integrators locate.
+  std::optional<Value> table(const AstExpr& e, const std::vector<Value>& args) {
+    if (!args[0].is_scalar()) {
+      diags_.error(e.args[0]->loc, fmt::format("`table` looks up a scalar, this is {}", args[0].shape()), call_hint("table"));
+      return std::nullopt;
+    }
+    const Value& pts = args[1];
+    if (pts.cols != 2 || pts.rows < 2 || pts.rows > kMaxTablePoints) {
+      diags_.error(e.args[1]->loc,
+                   fmt::format("the points of `table` are {}: a list of 2 to {} pairs [x, y] is needed", pts.shape(), kMaxTablePoints),
+                   call_hint("table"));
+      return std::nullopt;
+    }
+    for (int k = 0; k + 1 < pts.rows; ++k) {
+      double a = 0, b = 0;
+      if (is_const(pts.at(k, 0), &a) && is_const(pts.at(k + 1, 0), &b) && !(b > a)) {
+        diags_.error(e.args[1]->loc, fmt::format("the x of `table`'s points must increase: point {} has x = {}, point {} x = {}", k + 1, a, k + 2, b),
+                     call_hint("table"));
+        return std::nullopt;
+      }
+    }
+    const Expr& x = args[0].items[0];
+    Expr y = pts.at(0, 1);
+    for (int k = 0; k + 1 < pts.rows; ++k) {
+      const Expr slope = div(sub(pts.at(k + 1, 1), pts.at(k, 1)), sub(pts.at(k + 1, 0), pts.at(k, 0)));
+      y = add(y, mul(slope, sub(call(Fn::Max, {constant(0), sub(x, pts.at(k, 0))}),
+                                call(Fn::Max, {constant(0), sub(x, pts.at(k + 1, 0))}))));
+    }
+    return Value::scalar(y);
+  }
+
   std::optional<Value> shaped_fn(const AstExpr& e, const std::vector<Value>& args) {
     const std::string& f = e.name;
     if (f == "eye" || f == "zeros") {
@@ -377,6 +416,7 @@ class Lowerer {
         for (int j = 0; j < cols; ++j) r.items.push_back(constant(f == "eye" && i == j ? 1 : 0));
       return r;
     }
+    if (f == "table") return table(e, args);
     if (f == "frozen") {  // x, each entry with derivative 0
       Value r = args[0];
       for (Expr& x : r.items) x = call(Fn::Frozen, {x});

@@ -35,6 +35,7 @@ void Expander::collect(const AstProgram& in) {
       case Connector::Joint: add_joint(*j); break;
       case Connector::Force: add_force(*j); break;
       case Connector::Contact: add_contact(*j); break;
+      case Connector::Tyre: add_tyre(*j); break;
     }
   }
 }
@@ -51,7 +52,7 @@ bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const 
     auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a body", what, j.name),
                            fmt::format("bodies, joints and force elements share one namespace (`{}.angle`, `{}.position`): "
                                        "rename the {}, e.g. `{}_{}`",
-                                       j.name, j.name, what, j.name, j.connector == Connector::Joint ? "joint" : j.connector == Connector::Force ? "force" : "contact"));
+                                       j.name, j.name, what, j.name, connector_keyword(j.connector)));
     d.notes.push_back({b->second.decl->loc, "the body is declared here"});
     return false;
   }

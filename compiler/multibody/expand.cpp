@@ -12,7 +12,7 @@ namespace detail {
 AstProgram Expander::run(const AstProgram& in) {
   collect(in);
   if (diags_.has_errors()) return {};
-  if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && contacts_.empty() && !gravity_) return in;  // nothing multibody here
+  if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && contacts_.empty() && tyres_.empty() && !gravity_) return in;  // nothing multibody here
   if (gravity_) property(Build(gravity_loc_), "gravity", gravity_);
   for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), "ground." + p, v);
   find_tree();
@@ -29,6 +29,7 @@ AstProgram Expander::run(const AstProgram& in) {
   }
   for (const ForceElement& f : forces_) emit_force(f);
   for (const Contact& c : contacts_) emit_contact(c);
+  for (const Tyre& t : tyres_) emit_tyre(t);
   AstProgram out;
   for (const AstStmt& s : in.stmts) {
     if (std::holds_alternative<AstBody>(s) || std::holds_alternative<AstJoint>(s) || std::holds_alternative<AstSetting>(s)) continue;

@@ -59,6 +59,9 @@ inline const std::map<std::string, Expected> kJointSettingShapes = {
     {"axis_a", {{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}},
     {"axis_b", {{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}},
     {"rot0", {{4, 1}, "the initial relative rotation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.5)"}},
+    {"r0", {{3, 1}, "the initial position of the second point from the first is a 3-vector in the first body's joint axes"}},
+    {"v0", {{3, 1}, "the initial velocity of the second point relative to the first is a 3-vector in the first body's joint axes"}},
+    {"w0", {{3, 1}, "the initial relative angular velocity is a 3-vector in the second body's axes (rad/s)"}},
     {"q0", {{1, 1}, "the initial joint coordinate is a scalar, e.g. q0 = 0.3"}},
     {"rate0", {{1, 1}, "the initial joint rate is a scalar, e.g. rate0 = 0"}},
     {"d0", {{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}},
@@ -197,6 +200,12 @@ class Expander {
   void check_polygon(const Contact& c);
   std::pair<E, E> polygon_gap(const Build& B, const Contact& c, E d);
 
+  // ---- 5c. tyres (tyres.cpp)
+  void add_tyre(const AstJoint& t);
+  void check_profile(const Tyre& t, const AstExpr& v);
+  void emit_tyre(const Tyre& t);
+  E sig_vector(const Build& B, const std::string& name, E value);
+
   // ---- 6. quantities users may name (quantities.cpp)
   void define_quantities();
   void check_known(const AstExpr& e);
@@ -211,6 +220,7 @@ class Expander {
   std::vector<Joint> joints_;
   std::vector<ForceElement> forces_;
   std::vector<Contact> contacts_;
+  std::vector<Tyre> tyres_;
   std::map<std::string, std::vector<std::string>> loads_;  // body -> force elements acting on it
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;

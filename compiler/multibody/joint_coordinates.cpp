@@ -61,7 +61,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       const std::string jn = joint.decl->name;
       const SourceLoc& at = joint.decl->loc;
       const std::string spin = jn + ".spin";
-      x_.element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", B.vec(0, 0, 0), at)});
+      x_.element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", setting_or("w0", B.vec(0, 0, 0)), at)});
       x_.element(B, "C", jn + ".rot", nullptr,
                  {kv("e", B.list({zero, zero, zero, zero}), at),
                   kv("q0", setting_or("rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), at)});

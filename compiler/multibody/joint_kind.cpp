@@ -9,6 +9,7 @@ namespace mbgc::multibody::detail {
 const JointKind& cylindrical_joint();
 const JointKind& distance_joint();
 const JointKind& fixed_joint();
+const JointKind& free_joint();
 const JointKind& planar_joint();
 const JointKind& prismatic_joint();
 const JointKind& revolute_joint();
@@ -20,7 +21,7 @@ namespace {
 const std::map<std::string, const JointKind*, std::less<>>& registry() {
   static const std::map<std::string, const JointKind*, std::less<>> kinds = [] {
     std::map<std::string, const JointKind*, std::less<>> m;
-    for (const JointKind* k : {&cylindrical_joint(), &distance_joint(), &fixed_joint(), &planar_joint(), &prismatic_joint(),
+    for (const JointKind* k : {&cylindrical_joint(), &distance_joint(), &fixed_joint(), &free_joint(), &planar_joint(), &prismatic_joint(),
                                &revolute_joint(), &screw_joint(), &spherical_joint(), &universal_joint()})
       m.emplace(std::string(k->name()), k);
     return m;

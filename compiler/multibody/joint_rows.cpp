@@ -156,6 +156,15 @@ void Expander::emit_joint(Joint& j) {
     return;
   }
   std::vector<E> g = rows(B, j, A, Bf);
+  if (g.empty()) {
+    diags_.error(d.loc, fmt::format("free joint `{}` constrains nothing, so it has no rows for {}", jn,
+                                    j.strategy == Strategy::Coordinates ? "closing a loop" : "multipliers"),
+                 j.strategy == Strategy::Coordinates
+                     ? "a free joint belongs on a tree from ground: attach its body to nothing else that reaches ground"
+                     : "give it joint coordinates (constraints = coordinates), or remove it: with multipliers a floating body "
+                       "needs no joint (body settings r0, v0, q0, w0)");
+    return;
+  }
   int k = static_cast<int>(g.size());
   E gvec = B.list(g);
   // constraint fragment: body junctions -> MTFs -> 0-junction -> CN

@@ -75,6 +75,14 @@ struct Contact {
   std::map<std::string, const ir::AstAttr*> attrs;
 };
 
+/// `tyre NAME(wheel.centre, ground) { axis; profile; FNOMIN; ...; PTY2 }`:
+/// Magic Formula road loads on a rigid wheel (tyres.cpp, docs/notes/tyre.md).
+struct Tyre {
+  const ir::AstJoint* decl = nullptr;
+  Side wheel;
+  std::map<std::string, const ir::AstAttr*> attrs;
+};
+
 /// A body's setting `key` (null: not given).
 inline E attr(const ir::AstBody& b, const std::string& key) {
   for (const ir::AstAttr& a : b.attrs)

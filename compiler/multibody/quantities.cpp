@@ -66,7 +66,11 @@ void Expander::define_quantities() {
         quantity_[jn + ".angle"] = cv->second.angle;
         quantity_[jn + ".rate"] = cv->second.rate;
       }
-      if (j.kind->has_displacement()) quantity_[jn + ".displacement"] = cv->second.displacement;
+      if (j.kind->has_displacement()) {
+        quantity_[jn + ".displacement"] = cv->second.displacement;
+        // its rate (a spring-damper in the joint's `force`): a state here, joint coordinates only
+        if (cv->second.displacement_rate) quantity_[jn + ".displacement_rate"] = cv->second.displacement_rate;
+      }
       continue;
     }
     // reaction on the second body (on the first, negated, if the second is ground)

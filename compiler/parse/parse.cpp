@@ -26,13 +26,13 @@ using ir::AstExprPtr;
 const std::set<std::string> kElementKinds = {"Se", "Sf", "I", "C", "R", "TF", "GY", "MTF", "MGY", "CN"};
 const std::set<std::string> kKeywords = {"model", "import", "param", "signal", "output", "bond",
                                          "simulate", "component", "instance", "body", "ground",
-                                         "joint", "force", "contact", "gravity", "constraints", "for", "scene"};
+                                         "joint", "force", "contact", "tyre", "gravity", "constraints", "for", "scene"};
 /// The multibody keywords are also ordinary names in bond-graph models
 /// (`I body = m`, `Se gravity = ...`), so they start a statement only in their
 /// statement's shape: followed, on the same line, by this token.
 const std::map<std::string, Tok> kShapedKeywords = {
     {"body", Tok::Ident},    {"joint", Tok::Ident},   {"for", Tok::Ident},     {"force", Tok::Ident},
-    {"contact", Tok::Ident},
+    {"contact", Tok::Ident}, {"tyre", Tok::Ident},
     {"ground", Tok::LBrace}, {"gravity", Tok::Assign}, {"constraints", Tok::Assign}, {"scene", Tok::Ident}};
 /// Statements a `for` loop cannot repeat.
 const std::set<std::string> kNotInLoop = {"model", "import", "component", "simulate", "scene"};
@@ -223,6 +223,7 @@ class Parser {
     if (t.text == "joint") return joint();
     if (t.text == "force") return connector(ir::Connector::Force);
     if (t.text == "contact") return connector(ir::Connector::Contact);
+    if (t.text == "tyre") return connector(ir::Connector::Tyre);
     if (t.text == "gravity" || t.text == "constraints") return setting();
     if (t.text == "for") return for_loop(in_component);
     if (t.text == "point")
@@ -230,7 +231,7 @@ class Parser {
            "write body name { point p = [x, y, z] } or ground { point p = [x, y, z] }");
     const std::string starts =
         "a statement starts with model, import, param, signal, output, bond, simulate, scene, component, instance, "
-        "body, ground, joint, force, contact, gravity, constraints, for, an element kind (Se Sf I C R TF GY MTF MGY CN) "
+        "body, ground, joint, force, contact, tyre, gravity, constraints, for, an element kind (Se Sf I C R TF GY MTF MGY CN) "
         "or a junction (0 or 1)";
     std::vector<std::string> words(kKeywords.begin(), kKeywords.end());
     std::string near = ir::closest_name(t.text, words);
@@ -593,10 +594,10 @@ class Parser {
     const Token& type = expect(Tok::Ident, "(the joint's type)", form);
     j.type = type.text;
     j.type_loc = type.loc;
-    if (j.type == "force" || j.type == "contact") {
+    if (j.type == "force" || j.type == "contact" || j.type == "tyre") {
       diags_.error(type.loc, fmt::format("`{}` is not a joint type", j.type),
                    fmt::format("a {} is a statement of its own: {} name(body_a.point, body_b.point) {{ ... }}",
-                               j.type == "force" ? "force element" : "contact", j.type));
+                               j.type == "force" ? "force element" : j.type, j.type));
       throw ParseError{};
     }
     expect(Tok::LParen, fmt::format("after the joint's type `{}`", j.type).c_str(), form);
@@ -608,24 +609,30 @@ class Parser {
     return j;
   }
 
-  /// `force name(a, b) { key = value ... }` and `contact name(a, b) { ... }`:
-  /// joints without a type (same endpoints and settings shape).
+  /// `force name(a, b) { key = value ... }`, `contact name(a, b) { ... }` and
+  /// `tyre name(wheel.centre, ground) { ... }`: joints without a type (same
+  /// endpoints and settings shape).
   ir::AstStmt connector(ir::Connector kind) {
-    const bool force = kind == ir::Connector::Force;
+    const bool force = kind == ir::Connector::Force, tyre = kind == ir::Connector::Tyre;
     const char* what = ir::connector_noun(kind);
-    const std::string form = force ? "write force name(body_a.point, body_b.point) { force = [fx, fy, fz] }"
-                                   : "write contact name(ball.centre, ground.floor) { radius = 0.1; normal = [0, 0, 1] }";
+    const std::string form = force  ? "write force name(body_a.point, body_b.point) { force = [fx, fy, fz] }"
+                             : tyre ? "write tyre name(wheel.centre, ground) { UNLOADED_RADIUS = 0.3 }"
+                                    : "write contact name(ball.centre, ground.floor) { radius = 0.1; normal = [0, 0, 1] }";
     ir::AstJoint f;
     f.connector = kind;
     f.kind_loc = next().loc;
-    Name n = name(fmt::format("(the {}'s name) after `{}`", what, force ? "force" : "contact").c_str(), form);
+    Name n = name(fmt::format("(the {}'s name) after `{}`", what, ir::connector_keyword(kind)).c_str(), form);
     f.name = n.text;
     f.loc = n.loc;
     f.type_loc = f.kind_loc;
     expect(Tok::LParen, fmt::format("after the {}'s name", what).c_str(), form);
-    f.a = endpoint(force ? "(the first point: the reaction acts here)" : "(the touching point: a sphere of `radius` around it)");
+    f.a = endpoint(force  ? "(the first point: the reaction acts here)"
+                   : tyre ? "(the wheel's centre: a point on the wheel's axle)"
+                          : "(the touching point: a sphere of `radius` around it)");
     expect(Tok::Comma, fmt::format("between the {}'s two points", what).c_str(), form);
-    f.b = endpoint(force ? "(the second point: the force acts here)" : "(the surface's point: the plane, sphere or cylinder goes through it)");
+    f.b = endpoint(force  ? "(the second point: the force acts here)"
+                   : tyre ? "(the road: ground)"
+                          : "(the surface's point: the plane, sphere or cylinder goes through it)");
     expect(Tok::RParen, fmt::format("after the {}'s points", what).c_str(), form);
     if (at(Tok::LBrace)) f.attrs = attr_block("");
     return f;

@@ -24,8 +24,19 @@ bool Events::start(double t, const double* y, const double* yp) {
   zeno_event_ = -1;
   if (n_ == 0) return true;
   if (!functions(t, y, yp, g_.data())) return false;
+  // An argument that is exactly 0 at the start (ramp(0), a table of time
+  // from t = 0) takes the side it moves to: its sign a moment later, the
+  // state held. The integrators' root finding never reports a root at the
+  // start, so a wrong side here would never be corrected.
+  bool on_edge = false;
+  for (std::size_t k = 0; k < n_; ++k) on_edge = on_edge || (g_[k] == 0.0 && contacts_.of_event(k) < 0);
+  std::vector<double> later;
+  if (on_edge) {
+    later.resize(n_);
+    if (!functions(t + 1e-9 * std::max(1.0, std::abs(t)), y, yp, later.data())) return false;
+  }
   for (std::size_t k = 0; k < n_; ++k)
-    if (contacts_.of_event(k) < 0) model_.set_event_mode(k, g_[k] >= 0.0);
+    if (contacts_.of_event(k) < 0) model_.set_event_mode(k, (g_[k] == 0.0 && later[k] != 0.0 ? later[k] : g_[k]) >= 0.0);
   contacts_.start(t, y, yp);
   return true;
 }

@@ -106,4 +106,23 @@ TEST(Events, ATimeKinkIsAnEventTooSoRk4IntegratesARampExactly) {
   EXPECT_NEAR(events.rows[0][0], 0.35, 1e-14);
 }
 
+TEST(EventsTable, ATableOfTimeIsExactWithEverySolverFromItsFirstPoint) {
+  // table(t, [[0, 0], [1, 2], [3, 2], [4, 0]]): a ramp up, a plateau, a ramp
+  // down, then 0, integrated. Its first kink is at the start time, where the
+  // argument of max(0, t - 0) is exactly 0: the runtime must take the side
+  // the argument moves to (a ramp from t = 0 once stayed at 0).
+  auto y = [](double t) { return t < 1 ? 2 * t : t < 3 ? 2.0 : t < 4 ? 2 * (4 - t) : 0.0; };
+  auto q = [](double t) {
+    return t < 1 ? t * t : t < 3 ? 1 + 2 * (t - 1) : t < 4 ? 6 - (4 - t) * (4 - t) : 6.0;
+  };
+  for (const char* solver : {"cvode", "dopri5", "rk4"}) {
+    SimRun r = run(EVENTS_TABLE_SIM, std::string("--solver ") + solver, std::string("events_table_") + solver);
+    ASSERT_EQ(r.status, 0) << r.log;
+    for (const auto& row : r.csv.rows) {
+      EXPECT_NEAR(row[r.csv.col("y")], y(row[0]), 1e-12) << solver << " at t = " << row[0];
+      EXPECT_NEAR(row[r.csv.col("q")], q(row[0]), 1e-8) << solver << " at t = " << row[0];
+    }
+  }
+}
+
 }  // namespace

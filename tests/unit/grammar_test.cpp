@@ -71,7 +71,7 @@ TEST(Grammar, StatementKeywordsMatchTheParser) {
   // Keywords are the first terminal of each statement rule.
   std::set<std::string> keywords;
   for (const char* rule : {"model decl", "import", "parameter", "signal", "output", "bond", "simulate", "component",
-                           "instance", "body", "ground", "joint", "force element", "contact", "gravity", "constraints", "for loop",
+                           "instance", "body", "ground", "joint", "force element", "contact", "tyre", "gravity", "constraints", "for loop",
                            "scene"}) {
     std::smatch m;
     std::regex first(std::string("\\n") + rule + "\\s*=\\s*\"([^\"]+)\"");

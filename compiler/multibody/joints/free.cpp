@@ -1,0 +1,49 @@
+// joints/free.cpp — six coordinates: B's frame moves and turns freely
+// relative to A's (from ground: a floating body, such as a car's body, as
+// the root of a tree in joint coordinates). Three slides along A's axes and
+// a ball joint's relative rotation. It constrains nothing, so it has no
+// rows: with multipliers a floating body simply has no joint.
+#include "multibody/joint_kind.hpp"
+
+namespace mbgc::multibody::detail {
+namespace {
+
+class Free final : public JointKind {
+ public:
+  std::string_view name() const override { return "free"; }
+  std::vector<std::string> settings() const override { return {"r0", "v0", "rot0", "w0"}; }
+  bool needs_orientation() const override { return false; }
+  std::string initial_settings() const override {
+    return "r0 and v0 (B's point from A's, and its velocity, in A's joint axes), rot0 (relative rotation), w0 (B's "
+           "angular velocity, B's axes)";
+  }
+  void rows(const JointFrames& /*f*/, std::vector<E>& /*r*/) const override {}
+  void mobilize(Mobilizer& m) const override {
+    const std::string jn = m.joint.decl->name;
+    const E r0 = m.setting_or("r0", m.B.vec(0, 0, 0)), v0 = m.setting_or("v0", m.B.vec(0, 0, 0));
+    const char* names[3] = {"x", "y", "z"};
+    const E axes[3] = {m.ex, m.ey, m.ez};
+    std::vector<E> disp;
+    for (int i = 0; i < 3; ++i) {
+      Mobilizer::Rate& s = m.rate(jn + "." + names[i] + "dot", names[i], m.B.at(r0, i + 1), m.B.at(v0, i + 1), false);
+      s.V = axes[i];
+      disp.push_back(s.value);
+    }
+    m.disp = m.B.list(disp);
+    m.ball();
+  }
+  InitialMotion initial(const Build& B, const Joint& j) const override {
+    InitialMotion m = JointKind::initial(B, j);
+    m.qrel = setting_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    return m;
+  }
+};
+
+}  // namespace
+
+const JointKind& free_joint() {
+  static const Free kind;
+  return kind;
+}
+
+}  // namespace mbgc::multibody::detail
