@@ -35,12 +35,15 @@ void Pacer::frame_done(double t) {
 std::string Pacer::summary() const {
   std::vector<double> sorted = compute_s_;
   if (sorted.size() > 1) sorted.erase(sorted.begin());  // the first point is the start, not a frame
+  // after the first 10 frames: the first ones pay for cold caches and lazy binding
+  const double settled = sorted.size() > 10 ? *std::max_element(sorted.begin() + 10, sorted.end()) : 0;
   std::sort(sorted.begin(), sorted.end());
   const double median = sorted.empty() ? 0 : sorted[sorted.size() / 2], worst = sorted.empty() ? 0 : sorted.back();
   std::string s = fmt::format("paced at {:g}x the wall clock: {} overrun{} of {} points", factor_, overruns_,
                               overruns_ == 1 ? "" : "s", compute_s_.size());
   if (overruns_ > 0) s += fmt::format(" (latest by {:.3g} s)", latest_s_);
   s += fmt::format("; compute per frame: median {:.3g} s, worst {:.3g} s", median, worst);
+  if (sorted.size() > 10) s += fmt::format(" ({:.3g} s after the first 10)", settled);
   return s;
 }
 
