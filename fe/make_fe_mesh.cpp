@@ -5,6 +5,13 @@
 //   make_fe_mesh beam DIR L rho E nu width_y height_z elements
 //       A straight bar along x from 0 to L of 3-D Euler–Bernoulli frame
 //       elements (6 DOFs per node; node IDs 1 .. elements + 1).
+//   make_fe_mesh ladder DIR rho E nu width_y height_z length half_track x_front x_rear element
+//       A vehicle's ladder frame of frame elements (6 DOFs per node): two
+//       rails along x from -length/2 to length/2 at y = +-half_track, and
+//       cross members at both ends, at x_front, at x_rear and at x = 0;
+//       elements of about `element` m. The suspension mounts are the rails'
+//       nodes at x_front and x_rear: their IDs in DIR/fl.txt, fr.txt, rl.txt,
+//       rr.txt (l: y > 0).
 //   make_fe_mesh solid DIR L rho E nu width_y height_z nx ny nz
 //       The box [0, L] x [-width_y/2, width_y/2] x [-height_z/2, height_z/2]
 //       of nx x ny x nz 20-node brick elements (serendipity, 3 x 3 x 3 Gauss
@@ -37,7 +44,8 @@ namespace {
 [[noreturn]] void usage(const std::string& message) {
   std::cerr << "make_fe_mesh: " << message << "\n"
             << "usage: make_fe_mesh beam DIR L rho E nu width_y height_z elements\n"
-            << "       make_fe_mesh solid DIR L rho E nu width_y height_z nx ny nz\n";
+            << "       make_fe_mesh solid DIR L rho E nu width_y height_z nx ny nz\n"
+            << "       make_fe_mesh ladder DIR rho E nu width_y height_z length half_track x_front x_rear element\n";
   std::exit(2);
 }
 
@@ -298,6 +306,58 @@ void solid(const std::filesystem::path& dir, double length, double rho, double y
   }
 }
 
+/// The ladder frame (see the header). Nodes are shared where members meet.
+void ladder(const std::filesystem::path& dir, double rho, double youngs, double nu, double width_y, double height_z,
+            double length, double half_track, double x_front, double x_rear, double element) {
+  if (!(x_front < length / 2 && x_front > 0 && x_rear > -length / 2 && x_rear < 0))
+    usage("ladder: x_front must lie in (0, length/2) and x_rear in (-length/2, 0)");
+  Model model(6);
+  const Section s = rectangle(width_y, height_z);
+  const Material mat{rho, youngs, youngs / (2 * (1 + nu))};
+  // stations along the rails: the ends, the cross members and the mounts, then filled to `element`
+  std::vector<double> stations = {-length / 2, x_rear, 0, x_front, length / 2};
+  std::vector<double> xs;
+  for (std::size_t k = 0; k + 1 < stations.size(); ++k) {
+    const int n = std::max(1, static_cast<int>(std::ceil((stations[k + 1] - stations[k]) / element)));
+    for (int i = 0; i < n; ++i) xs.push_back(stations[k] + (stations[k + 1] - stations[k]) * i / n);
+  }
+  xs.push_back(length / 2);
+  std::vector<int> rail[2];
+  for (int side = 0; side < 2; ++side)
+    for (double x : xs) rail[side].push_back(model.add_node({x, side == 0 ? half_track : -half_track, 0}));
+  for (int side = 0; side < 2; ++side)
+    for (std::size_t i = 0; i + 1 < xs.size(); ++i) model.frame(rail[side][i], rail[side][i + 1], s, mat);
+  auto index_of = [&](double x) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < xs.size(); ++i)
+      if (std::abs(xs[i] - x) < std::abs(xs[best] - x)) best = i;
+    return best;
+  };
+  // cross members between the rails' nodes at the stations, elements of about `element`
+  for (double x : stations) {
+    const std::size_t i = index_of(x);
+    const int n = std::max(1, static_cast<int>(std::ceil(2 * half_track / element)));
+    int previous = rail[0][i];
+    for (int k = 1; k <= n; ++k) {
+      const int node = k == n ? rail[1][i] : model.add_node({xs[i], half_track - 2 * half_track * k / n, 0});
+      model.frame(previous, node, s, mat);
+      previous = node;
+    }
+  }
+  model.write(dir);
+  const struct {
+    const char* file;
+    int side;
+    double x;
+  } mounts[] = {{"fl.txt", 0, x_front}, {"fr.txt", 1, x_front}, {"rl.txt", 0, x_rear}, {"rr.txt", 1, x_rear}};
+  for (const auto& m : mounts) {
+    std::FILE* f = std::fopen((dir / m.file).c_str(), "w");
+    if (!f) usage(std::string("cannot write ") + (dir / m.file).string());
+    std::fprintf(f, "%d\n", rail[m.side][index_of(m.x)] + 1);
+    std::fclose(f);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -314,6 +374,14 @@ int main(int argc, char** argv) {
     for (int i = 0; i <= elements; ++i) model.add_node({length * i / elements, 0, 0});
     for (int i = 0; i < elements; ++i) model.frame(i, i + 1, s, {rho, e, e / (2 * (1 + nu))});
     model.write(dir);
+    return 0;
+  }
+  if (kind == "ladder") {
+    if (argc != 13) usage("ladder takes 11 arguments");
+    ladder(argv[2], number(argv[3], "rho", 1e-12), number(argv[4], "E", 1e-12), number(argv[5], "nu", 0),
+           number(argv[6], "width_y", 1e-12), number(argv[7], "height_z", 1e-12), number(argv[8], "length", 1e-12),
+           number(argv[9], "half_track", 1e-12), number(argv[10], "x_front", 1e-12), std::strtod(argv[11], nullptr),
+           number(argv[12], "element", 1e-12));
     return 0;
   }
   if (kind == "solid") {
