@@ -207,6 +207,16 @@ void Expander::emit_tyre(const Tyre& tyre) {
   auto div = [&](E a, E b) { return B.op('/', std::move(a), std::move(b)); };
   auto fn = [&](const char* f, E a) { return B.call(f, {std::move(a)}); };
   auto num = [&](double v) { return B.num(v); };
+  // Identities that save a transcendental call each: cos(atan u) = 1 / sqrt(1 + u^2),
+  // sin(2 atan u) = 2 u / (1 + u^2).
+  auto cos_atan = [&](E u) { return div(num(1), fn("sqrt", add(num(1), mul(u, u)))); };
+  auto sin_2atan = [&](E u) { return div(mul(num(2), u), add(num(1), mul(u, u))); };
+  auto is_one = [&](const char* key) {  // a setting that is (by default or literally) 1
+    auto it = tyre.attrs.find(key);
+    if (it == tyre.attrs.end()) return true;
+    auto v = constant_of(*it->second->value);
+    return v && *v == 1;
+  };
 
   // The wheel: its centre, its velocity, its axle and angular velocity (world).
   auto [centre, v_centre] = world_point(B, tyre.wheel);
@@ -253,7 +263,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   E sigma_kappa = sig("sigma_kappa", B.call("max", {floor, mul(mul(mul(fz, add(p("PTX1"), mul(p("PTX2"), dfz))),
                                                                        fn("exp", B.neg(mul(p("PTX3"), dfz)))),
                                                                    div(p("UNLOADED_RADIUS"), p("FNOMIN")))}));
-  E sigma_alpha = sig("sigma_alpha", B.call("max", {floor, mul(mul(p("PTY1"), fn("sin", mul(num(2), fn("atan", div(fz, mul(p("PTY2"), p("FNOMIN"))))))),
+  E sigma_alpha = sig("sigma_alpha", B.call("max", {floor, mul(mul(p("PTY1"), sin_2atan(div(fz, mul(p("PTY2"), p("FNOMIN"))))),
                                                                p("UNLOADED_RADIUS"))}));
   auto lag = [&](const std::string& name, E rate) {
     const SourceLoc& at = tyre.decl->loc;
@@ -291,19 +301,20 @@ void Expander::emit_tyre(const Tyre& tyre) {
   E muy = sig("mu_y", mul(add(p("PDY1"), mul(p("PDY2"), dfz)), p("LMUY")));
   E dy = sig("Dy", mul(muy, fz));
   E ey_ = mul(add(p("PEY1"), mul(p("PEY2"), dfz)), signed_("PEY3", ay));
-  E kya = sig("Ky", mul(mul(p("PKY1"), p("FNOMIN")), fn("sin", mul(num(2), fn("atan", div(fz, mul(p("PKY2"), p("FNOMIN"))))))));
+  E kya = sig("Ky", mul(mul(p("PKY1"), p("FNOMIN")), sin_2atan(div(fz, mul(p("PKY2"), p("FNOMIN"))))));
   E by = div(kya, add(mul(p("PCY1"), dy), num(1e-9)));
   E fy0 = sig("Fy0", add(magic(by, p("PCY1"), dy, ey_, ay), mul(fz, add(p("PVY1"), mul(p("PVY2"), dfz)))));
 
   // Combined slip: cosine weights.
-  auto weight = [&](E b, E c, E shift, E x) {  // cos(C atan(B (x + S))) / cos(C atan(B S))
-    return div(fn("cos", mul(c, fn("atan", mul(b, add(x, shift))))), fn("cos", mul(c, fn("atan", mul(b, shift)))));
+  auto weight = [&](E b, const char* c, E shift, E x) {  // cos(C atan(B (x + S))) / cos(C atan(B S))
+    if (is_one(c)) return div(cos_atan(mul(b, add(x, shift))), cos_atan(mul(b, shift)));
+    return div(fn("cos", mul(p(c), fn("atan", mul(b, add(x, shift))))), fn("cos", mul(p(c), fn("atan", mul(b, shift)))));
   };
-  E bxa = mul(p("RBX1"), fn("cos", fn("atan", mul(p("RBX2"), kappa))));
-  E gxa = sig("Gx", weight(bxa, p("RCX1"), p("RHX1"), alpha));
-  E byk = mul(p("RBY1"), fn("cos", fn("atan", mul(p("RBY2"), sub(alpha, p("RBY3"))))));
-  E gyk = sig("Gy", weight(byk, p("RCY1"), add(p("RHY1"), mul(p("RHY2"), dfz)), kappa));
-  E dvyk = mul(mul(dy, add(p("RVY1"), mul(p("RVY2"), dfz))), fn("cos", fn("atan", mul(p("RVY4"), alpha))));
+  E bxa = mul(p("RBX1"), cos_atan(mul(p("RBX2"), kappa)));
+  E gxa = sig("Gx", weight(bxa, "RCX1", p("RHX1"), alpha));
+  E byk = mul(p("RBY1"), cos_atan(mul(p("RBY2"), sub(alpha, p("RBY3")))));
+  E gyk = sig("Gy", weight(byk, "RCY1", add(p("RHY1"), mul(p("RHY2"), dfz)), kappa));
+  E dvyk = mul(mul(dy, add(p("RVY1"), mul(p("RVY2"), dfz))), cos_atan(mul(p("RVY4"), alpha)));
   E svyk = mul(dvyk, fn("sin", mul(p("RVY5"), fn("atan", mul(p("RVY6"), kappa)))));
   E fx = sig("Fx", mul(gxa, fx0));
   E fy = sig("Fy", add(mul(gyk, fy0), svyk));

@@ -154,8 +154,19 @@ class Eliminator {
     return out;
   }
 
+  /// Whether m is an ancestor of n (its parent, its parent's parent, ...).
+  bool is_ancestor(int m, int n) const {
+    for (int k = parent(n); k >= 0; k = parent(k))
+      if (k == m) return true;
+    return false;
+  }
+
   /// A body's equations read its own unknowns, its parent's (X) and its
-  /// children's (each child's outputs Y); anything else is not a tree.
+  /// children's (each child's outputs Y); anything else is not a tree. An
+  /// ancestor's unknown is read like the parent's: it joins the X of every
+  /// body on the way up, so each of them carries it in its affine forms (a
+  /// body on a prismatic joint shares its parent's angular velocity, and
+  /// after alias elimination its children read the grandparent's).
   bool check_structure(std::string* why) {
     for (int u : all_) {  // in the loop's order: the first offence reported is always the same
       const int n = body_.at(u);
@@ -170,6 +181,8 @@ class Eliminator {
         }
         if (m == parent(n)) x_[n].insert(w);
         else if (parent(m) == n) outputs_[m].insert(w), reads_child_.insert(u);
+        else if (m >= 0 && is_ancestor(m, n))
+          for (int k = n; k != m; k = parent(k)) x_[k].insert(w);
         else {
           *why = fmt::format("`{}` (body {}) reads `{}` (body {}), neither its parent nor a child",
                              graph_.vars[static_cast<std::size_t>(u)].name, body_name(n),
@@ -276,8 +289,8 @@ class Eliminator {
         const int m = body_.at(w);
         if (m == n && loop_.solution.count(w)) visit(w);
         else if (m >= 0 && m != n && parent(m) == n)
-          for (int x : x_[m])
-            if (loop_.solution.count(x)) visit(x);
+          for (int x : x_[m])  // (an ancestor's unknown in a child's X is not this body's to order)
+            if (loop_.solution.count(x) && body_.at(x) == n) visit(x);
       }
       state[u] = 2;
       out.push_back(u);
