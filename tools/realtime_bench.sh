@@ -41,8 +41,8 @@ run() {  # name simulator step [extra options]
 }
 run two_track "$build/examples/two_track" 1e-3
 run two_track_lane_change "$build/examples/two_track_lane_change" 1e-3
+run two_track_frame "$build/examples/two_track_frame" 1e-3
 run single_track "$build/examples/single_track" 1e-3
 run tyre_rig "$build/tests/numeric/tyre_rig" 1e-3
 # flexible bodies in joint coordinates: four reduced FE arms and three rigid bodies
-# (no flexible two-track yet: the 100x case is not built)
 run reduced_joints "$build/tests/numeric/reduced_joints_coordinates" 1e-4
