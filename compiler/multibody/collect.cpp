@@ -268,6 +268,29 @@ std::optional<Side> Expander::side(const AstEndpoint& ep) {
   return Side{body, point};
 }
 
+bool Expander::collect_settings(const AstJoint& c, const std::vector<std::string>& keys,
+                                std::map<std::string, const AstAttr*>& attrs, const std::string& unknown_hint) {
+  bool ok = true;
+  for (const AstAttr& at : c.attrs) {
+    if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
+      std::string near = closest_name(at.key, keys);
+      diags_.error(at.loc, fmt::format("a {} has no setting `{}`", connector_noun(c.connector), at.key),
+                   near.empty() ? unknown_hint : fmt::format("did you mean `{}`?", near));
+      ok = false;
+      continue;
+    }
+    if (auto first = attrs.find(at.key); first != attrs.end()) {
+      auto& d = diags_.error(at.loc, fmt::format("`{}` of {} `{}` is given twice", at.key, connector_noun(c.connector), c.name),
+                             "keep one of them");
+      d.notes.push_back({first->second->loc, "first given here"});
+      ok = false;
+      continue;
+    }
+    attrs[at.key] = &at;
+  }
+  return ok;
+}
+
 void Expander::add_force(const AstJoint& f) {
   auto a = side(f.a);
   auto b = side(f.b);
@@ -279,15 +302,7 @@ void Expander::add_force(const AstJoint& f) {
   }
   ForceElement fe{&f, *a, *b, {}};
   static const std::vector<std::string> keys = {"force", "torque", "stiffness", "damping", "length"};
-  for (const AstAttr& at : f.attrs) {
-    if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
-      std::string near = closest_name(at.key, keys);
-      diags_.error(at.loc, fmt::format("a force element has no setting `{}`", at.key),
-                   near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
-      continue;
-    }
-    fe.attrs[at.key] = &at;
-  }
+  collect_settings(f, keys, fe.attrs, fmt::format("it takes {}", fmt::join(keys, ", ")));
   if (fe.attrs.count("stiffness") && !fe.attrs.count("length"))
     diags_.error(fe.attrs.at("stiffness")->loc, fmt::format("the spring of `{}` has no free length", f.name),
                  "add length = L0 (m): the spring pushes the points apart below it and pulls them together above it");

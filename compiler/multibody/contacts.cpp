@@ -89,22 +89,9 @@ void Expander::add_contact(const AstJoint& c) {
     return;
   }
   Contact contact{&c, *a, *b, Surface::Plane, contact_strategy_, {}};
-  bool ok = true;
-  for (const AstAttr& at : c.attrs) {
-    if (std::find(kContactSettings.begin(), kContactSettings.end(), at.key) == kContactSettings.end()) {
-      std::string near = closest_name(at.key, kContactSettings);
-      diags_.error(at.loc, fmt::format("a contact has no setting `{}`", at.key),
-                   near.empty() ? fmt::format("it takes {}", fmt::join(kContactSettings, ", ")) : fmt::format("did you mean `{}`?", near));
-      ok = false;
-      continue;
-    }
-    if (auto first = contact.attrs.find(at.key); first != contact.attrs.end()) {
-      auto& d = diags_.error(at.loc, fmt::format("`{}` of contact `{}` is given twice", at.key, c.name), "keep one of them");
-      d.notes.push_back({first->second->loc, "first given here"});
-      ok = false;
-      continue;
-    }
-    contact.attrs[at.key] = &at;
+  bool ok = collect_settings(c, kContactSettings, contact.attrs, fmt::format("it takes {}", fmt::join(kContactSettings, ", ")));
+  for (const AstAttr& at : c.attrs) {  // in the text's order, each collected setting once
+    if (auto it = contact.attrs.find(at.key); it == contact.attrs.end() || it->second != &at) continue;
     if (at.key == "surface" || at.key == "strategy") {
       const bool surface = at.key == "surface";
       const std::vector<std::string> choices = surface ? std::vector<std::string>{"plane", "sphere", "cylinder", "polygon"}

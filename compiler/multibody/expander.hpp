@@ -122,6 +122,10 @@ class Expander {
   void add_points(Body& body, const AstBody& b, const std::string& owner);
   std::optional<Side> side(const AstEndpoint& ep);
   void add_force(const AstJoint& f);
+  /// A connector's settings by key into `attrs`: an unknown key (with a
+  /// did-you-mean, else `unknown_hint`) or a key given twice is an error.
+  bool collect_settings(const AstJoint& c, const std::vector<std::string>& keys,
+                        std::map<std::string, const AstAttr*>& attrs, const std::string& unknown_hint);
   void check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at);
   void add_joint(const AstJoint& j);
 

@@ -120,25 +120,12 @@ void Expander::add_tyre(const AstJoint& t) {
     return;
   }
   Tyre tyre{&t, *wheel, {}};
-  const std::vector<std::string> names = tyre_setting_names();
-  bool ok = true;
-  for (const AstAttr& at : t.attrs) {
-    if (std::find(names.begin(), names.end(), at.key) == names.end()) {
-      std::string near = closest_name(at.key, names);
-      diags_.error(at.loc, fmt::format("a tyre has no setting `{}`", at.key),
-                   near.empty() ? "its settings are axis, profile and the Magic Formula's coefficients as a .tir file names them "
-                                  "(FNOMIN, UNLOADED_RADIUS, VERTICAL_STIFFNESS, PCX1, PDX1, ..., PKY1, ..., RBX1, ..., PTX1, PTY1)"
-                                : fmt::format("did you mean `{}`?", near));
-      ok = false;
-      continue;
-    }
-    if (auto first = tyre.attrs.find(at.key); first != tyre.attrs.end()) {
-      auto& d = diags_.error(at.loc, fmt::format("`{}` of tyre `{}` is given twice", at.key, t.name), "keep one of them");
-      d.notes.push_back({first->second->loc, "first given here"});
-      ok = false;
-      continue;
-    }
-    tyre.attrs[at.key] = &at;
+  const bool ok = collect_settings(t, tyre_setting_names(), tyre.attrs,
+                                   "its settings are axis, profile and the Magic Formula's coefficients as a .tir file names "
+                                   "them (FNOMIN, UNLOADED_RADIUS, VERTICAL_STIFFNESS, PCX1, PDX1, ..., PKY1, ..., RBX1, ..., "
+                                   "PTX1, PTY1)");
+  for (const AstAttr& at : t.attrs) {  // in the text's order, each collected setting once
+    if (auto it = tyre.attrs.find(at.key); it == tyre.attrs.end() || it->second != &at) continue;
     if (at.key == "axis")
       check_shape(*at.value, fmt::format("`axis` of tyre `{}`", t.name),
                   {{3, 1}, "the wheel's axle is a direction [x, y, z] in the wheel's frame, e.g. axis = [0, 1, 0]"});
