@@ -1,7 +1,9 @@
 // fe/mesh.cpp
 #include "mesh.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
+#include <iterator>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -63,8 +65,10 @@ std::optional<Attachment> parse_attachment(const std::string& spec, bool interfa
                 fmt::format("e.g. {} root=1 (a node ID of the node file)", option));
     return std::nullopt;
   }
-  // NAME=@FILE: the node IDs are in FILE (a node set), separated by commas or white space.
-  std::string list = spec.substr(eq + 1);
+  // The IDs as written: NAME=ID,ID,... (an empty one is an error), or
+  // NAME=@FILE, a node set: IDs separated by commas or white space.
+  const std::string list = spec.substr(eq + 1);
+  std::vector<std::string> words;
   if (!list.empty() && list[0] == '@') {
     std::ifstream in(list.substr(1));
     if (!in) {
@@ -72,20 +76,24 @@ std::optional<Attachment> parse_attachment(const std::string& spec, bool interfa
                   "NAME=@FILE reads the node IDs from FILE, relative to the working directory");
       return std::nullopt;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    list = text.str();
-    for (char& c : list)
-      if (std::isspace(static_cast<unsigned char>(c))) c = ',';
-    while (!list.empty() && list.back() == ',') list.pop_back();
-    while (!list.empty() && list.front() == ',') list.erase(0, 1);
-    for (std::size_t k = list.find(",,"); k != std::string::npos; k = list.find(",,")) list.erase(k, 1);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::replace(text.begin(), text.end(), ',', ' ');
+    std::istringstream ids(text);
+    for (std::string w; ids >> w;) words.push_back(w);
+    if (words.empty()) {
+      diags.error({}, fmt::format("{} {}: the node set `{}` holds no node IDs", option, a.name, list.substr(1)),
+                  "a node set lists node IDs of the node file, separated by commas or white space");
+      return std::nullopt;
+    }
+  } else {
+    for (std::size_t start = 0; start <= list.size();) {
+      const std::size_t comma = std::min(list.find(',', start), list.size());
+      words.push_back(list.substr(start, comma - start));
+      start = comma + 1;
+    }
   }
   std::set<int> seen;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', start), list.size());
-    const std::string text = list.substr(start, comma - start);
+  for (const std::string& text : words) {
     char* end = nullptr;
     const long long id = std::strtoll(text.c_str(), &end, 10);
     if (text.empty() || end != text.c_str() + text.size()) {
@@ -103,7 +111,6 @@ std::optional<Attachment> parse_attachment(const std::string& spec, bool interfa
       return std::nullopt;
     }
     a.nodes.push_back(found->second);
-    start = comma + 1;
   }
   for (int n : a.nodes) a.at += mesh.position[static_cast<std::size_t>(n)];
   a.at /= static_cast<double>(a.nodes.size());

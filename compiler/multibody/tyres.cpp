@@ -217,15 +217,12 @@ void Expander::emit_tyre(const Tyre& tyre) {
   if (auto it = tyre.attrs.find("profile"); it != tyre.attrs.end()) {
     const AstExpr& pts = *it->second->value;
     E x = sig("x", B.at(centre, 1));
-    h = pts.args.front()->args[1];
+    h = sig("road_height", B.call("table", {x, it->second->value}));  // the language's table: exact kinks
+    // its slope: each segment's between its two points (select: a step that is no event)
     for (std::size_t k = 0; k + 1 < pts.args.size(); ++k) {
       const E &x0 = pts.args[k]->args[0], &h0 = pts.args[k]->args[1], &x1 = pts.args[k + 1]->args[0], &h1 = pts.args[k + 1]->args[1];
-      E s = div(sub(h1, h0), sub(x1, x0));
-      // s (clamp(x, x0, x1) - x0), written with max so that the kinks are exact
-      h = add(h, mul(s, sub(B.call("max", {num(0), sub(x, x0)}), B.call("max", {num(0), sub(x, x1)}))));
-      slope = add(slope, mul(s, sub(fn("select", sub(x, x0)), fn("select", sub(x, x1)))));
+      slope = add(slope, mul(div(sub(h1, h0), sub(x1, x0)), sub(fn("select", sub(x, x0)), fn("select", sub(x, x1)))));
     }
-    h = sig("road_height", h);
     slope = sig("road_slope", slope);
   }
   E root = fn("sqrt", add(num(1), mul(slope, slope)));
