@@ -7,6 +7,7 @@
 set -euo pipefail
 # shellcheck source=tools/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+BUILD_DIR=${BUILD_DIR:-build}
 
 mbgc_install_packages
 mbgc_configure_and_build "$@"
