@@ -76,6 +76,8 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   const std::size_t unknowns = s.states.size() + s.algebraic.size();
   c.public_methods.push_back({"", "const char* name() const override", {CppStmt::line(fmt::format("return {};", cpp_string(g.model_name)))}});
   c.public_methods.push_back({"", "const char* source_file() const override", {CppStmt::line(fmt::format("return {};", cpp_string(opt.source_display)))}});
+  c.public_methods.push_back({"", "std::unique_ptr<mbgrt::Model> make_new() const override",
+                              {CppStmt::line(fmt::format("return std::make_unique<{}>();", c.name))}});
   c.public_methods.push_back({"", "std::size_t size() const override", {CppStmt::line(fmt::format("return {};", unknowns))}});
   std::vector<std::string> unknown_names;
   for (const StateVar& st : s.states) unknown_names.push_back(cpp_string(g.vars[static_cast<std::size_t>(st.var)].name));

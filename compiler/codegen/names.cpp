@@ -32,7 +32,7 @@ const std::set<std::string> kReserved = {
     // names the generated code uses itself
     "t", "x", "xdot", "xp", "y", "yp", "r", "jac_out", "rows_out", "out", "id", "i", "s", "value", "std", "mbgrt", "mbgc_model",
     "main", "model", "argc", "argv", "param", "overrides_", "overridden_", "kNames", "kParams",
-    "name", "source_file", "size", "variable_name", "output_names", "parameters", "is_dae",
+    "name", "source_file", "make_new", "size", "variable_name", "output_names", "parameters", "is_dae",
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
     "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
     "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason",

@@ -54,6 +54,28 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw UsageError(message);
 }
 
+/// NAME=FROM:TO:COUNT
+SweepAxis parse_sweep(const std::string& arg) {
+  const auto eq = arg.find('=');
+  const auto c1 = arg.find(':', eq == std::string::npos ? 0 : eq);
+  const auto c2 = c1 == std::string::npos ? c1 : arg.find(':', c1 + 1);
+  if (eq == std::string::npos || eq == 0 || c1 == std::string::npos || c2 == std::string::npos ||
+      arg.find(':', c2 + 1) != std::string::npos)
+    throw UsageError(fmt::format("--sweep '{}': expected NAME=FROM:TO:COUNT (e.g. k=100:1000:10)", arg));
+  SweepAxis axis;
+  axis.name = arg.substr(0, eq);
+  const std::string what = fmt::format("--sweep {}", axis.name);
+  axis.from = parse_number(arg.substr(eq + 1, c1 - eq - 1), what + " FROM");
+  axis.to = parse_number(arg.substr(c1 + 1, c2 - c1 - 1), what + " TO");
+  const std::string count = arg.substr(c2 + 1);
+  auto [ptr, ec] = std::from_chars(count.data(), count.data() + count.size(), axis.count);
+  require(ec == std::errc() && ptr == count.data() + count.size() && axis.count >= 1 && axis.count <= kMaxSweepCases,
+          fmt::format("{} COUNT: '{}' is not a whole number from 1 to {}", what, count, kMaxSweepCases));
+  require(axis.count > 1 || axis.from == axis.to,
+          fmt::format("{}: COUNT 1 takes one value, but FROM {} and TO {} differ", what, axis.from, axis.to));
+  return axis;
+}
+
 void validate(const Options& o, bool step_given) {
   const Settings& s = o.settings;
   require(std::isfinite(s.t_end_s) && s.t_end_s >= s.t_start_s,
@@ -82,6 +104,23 @@ void validate(const Options& o, bool step_given) {
             fmt::format("--realtime {}: the factor must be a positive number (1: real time)", *o.realtime));
     require(!o.linearize_at && !o.work_precision, "--realtime paces a simulation run, not --linearize-at or --work-precision");
   }
+  if (o.sweeping()) {
+    require(o.sweep.empty() || o.sweep_file.empty(), "--sweep and --sweep-file are two ways to give the cases: use one");
+    require(!o.linearize_at && !o.work_precision && !o.realtime,
+            "a sweep runs simulations: not with --linearize-at, --work-precision or --realtime");
+    require(o.constraint_report_path.empty() && o.event_log_path.empty(),
+            "--constraint-report and --event-log are for one run; a sweep's per-case files go to --case-dir");
+    double cases = 1;
+    for (std::size_t i = 0; i < o.sweep.size(); ++i) {
+      cases *= static_cast<double>(o.sweep[i].count);
+      for (std::size_t j = 0; j < i; ++j)
+        require(o.sweep[j].name != o.sweep[i].name, fmt::format("--sweep {}: given twice", o.sweep[i].name));
+    }
+    require(cases <= static_cast<double>(kMaxSweepCases),
+            fmt::format("--sweep: the grid has {:.0f} cases, more than the {} a sweep may run", cases, kMaxSweepCases));
+  } else {
+    require(o.case_dir.empty(), "--case-dir applies to a sweep (--sweep or --sweep-file)");
+  }
   if (o.linearize_at)
     require(std::isfinite(*o.linearize_at) && *o.linearize_at >= s.t_start_s,
             fmt::format("--linearize-at {} is before the start time {} s", *o.linearize_at,
@@ -90,7 +129,18 @@ void validate(const Options& o, bool step_given) {
 
 }  // namespace
 
+namespace {
+thread_local std::FILE* error_stream = nullptr;  // ErrorRedirect's target, if any
+}  // namespace
+
+ErrorRedirect::ErrorRedirect(std::FILE* to) : previous_(error_stream) { error_stream = to; }
+ErrorRedirect::~ErrorRedirect() { error_stream = previous_; }
+
 void print_error(const std::string& message) {
+  if (error_stream) {
+    fmt::print(error_stream, "mbgrt: error: {}\n", message);
+    return;
+  }
   std::fflush(stdout);
   fmt::print(stderr, "mbgrt: error: {}\n", message);
 }
@@ -108,7 +158,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
 
   std::string solver = solver_name(s.solver);
   std::string linear_solver = "auto";
-  std::vector<std::string> sets;
+  std::vector<std::string> sets, sweeps;
   double linearize_at = 0.0;
   std::string realtime;  // empty when --realtime is given without a factor
 
@@ -146,7 +196,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_option("--event-log", o.event_log_path,
                  "Write t,event,name,state,jump,note (every switch of the model's events; note: what a contact did) as CSV")
       ->type_name("FILE.csv");
-  app.add_flag("--quiet", o.quiet, "Do not print the run summary on stderr");
+  app.add_flag("--quiet", o.quiet, "Do not print the run summary or the progress line on stderr");
   app.add_flag("--list-parameters", o.list_parameters,
                "Print the parameters as NAME,DEFAULT lines and exit");
   auto* lin = app.add_option("--linearize-at", linearize_at,
@@ -168,8 +218,25 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                "steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status); the error "
                "is against a reference run at rtol 1e-12");
 
+  app.add_option("--sweep", sweeps,
+                 "Run one case per value of parameter NAME, COUNT values from FROM to TO (repeatable: the grid of "
+                 "every combination, the first varying slowest); --out is then the summary CSV, one row per case")
+      ->type_name("NAME=FROM:TO:COUNT")
+      ->allow_extra_args(false);
+  app.add_option("--sweep-file", o.sweep_file,
+                 "Run one case per row of a CSV file whose header names the parameters it sets")
+      ->type_name("FILE.csv");
+  app.add_option("--case-dir", o.case_dir,
+                 "With a sweep: write each case's CSV and run report to DIR/case_0001.csv, .log, ...")
+      ->type_name("DIR");
+  auto* jobs = app.add_option("--jobs", o.jobs, "With a sweep: cases run at once (default: one per core)")
+                   ->type_name("N");
+
   try {
     app.parse(argc, argv);
+    for (const std::string& arg : sweeps) o.sweep.push_back(parse_sweep(arg));
+    require(jobs->count() == 0 || o.jobs >= 1, "--jobs must be at least 1");
+    require(jobs->count() == 0 || !o.sweep.empty() || !o.sweep_file.empty(), "--jobs applies to a sweep (--sweep or --sweep-file)");
     s.solver = solver_from_name(solver);
     s.linear_solver = linear_solver_from_name(linear_solver);
     for (const std::string& arg : sets) o.overrides.push_back(parse_override(arg));

@@ -2,6 +2,7 @@
 // the model except to read its defaults and names.
 #pragma once
 
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,6 +16,16 @@ inline constexpr int kExitSuccess = 0;
 inline constexpr int kExitRunFailed = 1;  ///< solver failure or divergence
 inline constexpr int kExitUsage = 2;      ///< bad command line or bad option value
 
+/// --sweep NAME=FROM:TO:COUNT: COUNT values from FROM to TO, evenly spaced.
+struct SweepAxis {
+  std::string name;
+  double from = 0, to = 0;
+  long count = 1;
+  double value(long k) const { return count == 1 ? from : from + (to - from) * static_cast<double>(k) / static_cast<double>(count - 1); }
+};
+
+inline constexpr long kMaxSweepCases = 1'000'000;
+
 struct Options {
   Settings settings;
   std::vector<std::pair<std::string, double>> overrides;  ///< --set, in command-line order
@@ -27,6 +38,11 @@ struct Options {
   bool work_precision = false;  ///< --work-precision: sweep solvers and tolerances, CSV of cost and error
   bool fd_jacobian = false;     ///< --fd-jacobian: finite differences even where the model has a Jacobian
   std::optional<double> realtime;  ///< --realtime [FACTOR]: pace the rows to FACTOR x the wall clock
+  std::vector<SweepAxis> sweep;    ///< --sweep, in command-line order (the first varies slowest)
+  std::string sweep_file;          ///< --sweep-file: one case per row
+  std::string case_dir;            ///< --case-dir: each case's CSV and run report
+  unsigned jobs = 0;               ///< --jobs: threads for a sweep (0: one per core)
+  bool sweeping() const { return !sweep.empty() || !sweep_file.empty(); }
 };
 
 /// Options to run with, or the exit status to return at once (after --help,
@@ -38,7 +54,20 @@ struct ParseOutcome {
 
 ParseOutcome parse_command_line(const Model& model, int argc, char** argv);
 
-/// Prints "mbgrt: error: <message>" on stderr.
+/// Prints "mbgrt: error: <message>" on stderr, or on the stream an
+/// ErrorRedirect of this thread names.
 void print_error(const std::string& message);
+
+/// While alive, print_error on this thread writes to `to` (a sweep case's report).
+class ErrorRedirect {
+ public:
+  explicit ErrorRedirect(std::FILE* to);
+  ~ErrorRedirect();
+  ErrorRedirect(const ErrorRedirect&) = delete;
+  ErrorRedirect& operator=(const ErrorRedirect&) = delete;
+
+ private:
+  std::FILE* previous_;
+};
 
 }  // namespace mbgrt::detail

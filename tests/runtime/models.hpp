@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -53,6 +54,7 @@ class Decay : public TestModel {
     settings.interval_s = 0.1;
   }
   const char* name() const override { return "decay"; }
+  std::unique_ptr<Model> make_new() const override { return std::make_unique<Decay>(); }
   std::size_t size() const override { return 1; }
   std::string variable_name(std::size_t) const override { return "x"; }
   std::vector<std::string> output_names() const override { return {"x"}; }

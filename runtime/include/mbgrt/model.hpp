@@ -29,6 +29,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,9 @@ class Model {
   // ---- identity ---------------------------------------------------------
   virtual const char* name() const = 0;         ///< model name from the .mbg file
   virtual const char* source_file() const = 0;  ///< .mbg file it was generated from
+  /// A new instance of the same model class with its default parameters (a
+  /// parameter sweep runs one per thread); nullptr if the class cannot.
+  virtual std::unique_ptr<Model> make_new() const { return nullptr; }
 
   // ---- sizes and names -----------------------------------------------------
   /// Number of unknowns handed to the integrator: states (ODE) or y (DAE).

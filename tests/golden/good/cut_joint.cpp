@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ class cut_joint_model final : public mbgrt::Model {
 
   const char* source_file() const override {
     return "cut_joint.mbg";
+  }
+
+  std::unique_ptr<mbgrt::Model> make_new() const override {
+    return std::make_unique<cut_joint_model>();
   }
 
   std::size_t size() const override {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ class decay_sine_model final : public mbgrt::Model {
 
   const char* source_file() const override {
     return "decay_sine.mbg";
+  }
+
+  std::unique_ptr<mbgrt::Model> make_new() const override {
+    return std::make_unique<decay_sine_model>();
   }
 
   std::size_t size() const override {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ class loop_scene_outputs_model final : public mbgrt::Model {
 
   const char* source_file() const override {
     return "loop_scene_outputs.mbg";
+  }
+
+  std::unique_ptr<mbgrt::Model> make_new() const override {
+    return std::make_unique<loop_scene_outputs_model>();
   }
 
   std::size_t size() const override {

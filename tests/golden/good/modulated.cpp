@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ class modulated_model final : public mbgrt::Model {
 
   const char* source_file() const override {
     return "modulated.mbg";
+  }
+
+  std::unique_ptr<mbgrt::Model> make_new() const override {
+    return std::make_unique<modulated_model>();
   }
 
   std::size_t size() const override {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ class resistive_network_model final : public mbgrt::Model {
 
   const char* source_file() const override {
     return "resistive_network.mbg";
+  }
+
+  std::unique_ptr<mbgrt::Model> make_new() const override {
+    return std::make_unique<resistive_network_model>();
   }
 
   std::size_t size() const override {

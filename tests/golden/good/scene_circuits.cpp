@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ class scene_circuits_model final : public mbgrt::Model {
 
   const char* source_file() const override {
     return "scene_circuits.mbg";
+  }
+
+  std::unique_ptr<mbgrt::Model> make_new() const override {
+    return std::make_unique<scene_circuits_model>();
   }
 
   std::size_t size() const override {

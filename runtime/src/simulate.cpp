@@ -1,0 +1,232 @@
+#include "simulate.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "constraints.hpp"
+#include "grid.hpp"
+#include "guard.hpp"
+#include "integrator.hpp"
+#include "linearize.hpp"
+#include "march.hpp"
+#include "progress.hpp"
+#include "realtime.hpp"
+#include "report.hpp"
+#include "stiffness.hpp"
+
+namespace mbgrt::detail {
+
+namespace {
+
+/// States that moved but never rose far above atol: one absolute tolerance
+/// for every unknown resolves them only to atol / |value| (a 1e-9 kg body's
+/// momenta at atol 1e-10: 10%). Empty if there are none.
+std::string describe_small_states(const Model& model, const std::vector<double>& peak, double atol) {
+  constexpr double kFactor = 100;
+  std::size_t count = 0, worst = 0;
+  for (std::size_t i = 0; i < peak.size(); ++i) {
+    if (!(peak[i] > atol && peak[i] <= kFactor * atol)) continue;
+    if (count == 0 || peak[i] < peak[worst]) worst = i;
+    ++count;
+  }
+  if (count == 0) return {};
+  return fmt::format("{} state{} peaked within {}x atol (smallest: '{}', {:.2g}); their relative error may reach "
+                     "atol / |value| ({:.0f}%): lower --atol if they matter",
+                     count, count == 1 ? "" : "s", kFactor, model.variable_name(worst), peak[worst],
+                     100 * atol / peak[worst]);
+}
+
+/// --event-log: one row per switch, in the order they happened.
+void write_event_log(OutputFile& file, const Events& events) {
+  file.write("t,event,name,state,jump,note\n");
+  for (const EventRecord& e : events.log())
+    file.write(fmt::format("{},{},\"{}\",{},{},\"{}\"\n", e.t, e.index, events.model_name(e.index), e.on ? "on" : "off",
+                           e.jump ? 1 : 0, e.note));
+}
+
+}  // namespace
+
+void OutputRanges::add(const std::vector<double>& row) {
+  if (rows++ == 0) {
+    final = min = max = row;
+    return;
+  }
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    final[k] = row[k];
+    // a NaN, once seen, stays: a case whose output went non-finite must not look clean
+    if (std::isnan(row[k]) || row[k] < min[k]) min[k] = row[k];
+    if (std::isnan(row[k]) || row[k] > max[k]) max[k] = row[k];
+  }
+}
+
+bool apply_overrides(Model& model, const Options& o) {
+  for (const auto& [name, value] : o.overrides) {
+    if (model.set_parameter(name, value)) continue;
+    std::string known;
+    for (const ParameterInfo& p : model.parameters()) known += (known.empty() ? "" : ", ") + p.name;
+    print_error(fmt::format("--set {}: unknown parameter '{}'; known parameters: {}", name, name,
+                            known.empty() ? "(none)" : known));
+    return false;
+  }
+  return true;
+}
+
+/// Rejects solver/model combinations that cannot work, before any output is written.
+bool check_model_fits(const Model& model, const Options& o) {
+  if (!model.is_dae()) return true;
+  if (o.settings.solver != Solver::ida) {
+    print_error(
+        fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has "
+                    "algebraic unknowns); use --solver ida",
+                    solver_name(o.settings.solver), model.name()));
+    return false;
+  }
+  return true;
+}
+
+int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out, OutputFile* event_out,
+             const RunHooks& hooks) {
+  Settings s = o.settings;
+  const bool linearize = o.linearize_at.has_value();
+  if (linearize) s.t_end_s = *o.linearize_at;  // integrate only as far as the linearization point
+
+  GuardedModel guard(model);
+  if (o.fd_jacobian) guard.use_finite_differences();
+  const std::size_t n = model.size();
+  std::vector<double> y0(n), yp0(model.is_dae() ? n : 0);
+  model.initial(s.t_start_s, y0.data(), model.is_dae() ? yp0.data() : nullptr);
+  const ConstrainedStart start = prepare_constrained_start(model, guard, s.t_start_s, y0, yp0);
+  if (!start.ok) {  // nothing is integrated from a state that violates its joints
+    model.terminal(s.t_start_s, y0.data());
+    return kExitRunFailed;
+  }
+  auto integrator = make_integrator(guard, s);
+
+  CsvWriter csv(out);
+  const std::vector<std::string> names = model.output_names();
+  std::vector<double> outputs(names.size());
+  ConstraintMonitor monitor(model, guard.constraint_shape());
+  std::optional<CsvWriter> constraint_csv;
+  if (constraint_out) {
+    constraint_csv.emplace(*constraint_out);
+    const std::vector<std::string> columns{"max_abs_g", "max_abs_gdot"};
+    constraint_csv->header("t", columns);
+  }
+  auto observe_constraints = [&] {
+    monitor.observe(integrator->t(), integrator->y());
+    if (constraint_csv) {
+      const double row[] = {monitor.last_position(), monitor.last_velocity()};
+      constraint_csv->row(integrator->t(), row);
+    }
+  };
+  // The state at the last row written: where a stop message estimates how
+  // stiff the model was (the state the run stopped at may be garbage).
+  std::vector<double> last_row_y = y0;
+  std::vector<double> state_peak(model.state_count(), 0.0);  // largest |state| over the rows
+  double last_row_t = s.t_start_s;
+  ProgressLine progress(hooks.progress && !linearize);
+  auto write_row = [&] {
+    std::copy(integrator->y(), integrator->y() + n, last_row_y.begin());
+    for (std::size_t i = 0; i < state_peak.size(); ++i)
+      state_peak[i] = std::max(state_peak[i], std::abs(integrator->y()[i]));
+    last_row_t = integrator->t();
+    model.outputs(integrator->t(), integrator->y(), integrator->yp(), outputs.data());
+    csv.row(integrator->t(), outputs);
+    if (hooks.ranges) hooks.ranges->add(outputs);
+    observe_constraints();
+    if (progress.enabled() && s.t_end_s > s.t_start_s)
+      progress.update((integrator->t() - s.t_start_s) / (s.t_end_s - s.t_start_s),
+                      fmt::format("t = {} s of {} s", format_time(integrator->t()), format_time(s.t_end_s)));
+  };
+
+  const auto started = std::chrono::steady_clock::now();
+  std::optional<Pacer> pacer;
+  Outcome r;
+  std::vector<Mode> modes;
+  if (linearize) {
+    r = march(guard, *integrator, s, y0, yp0, observe_constraints);
+    if (model.is_dae()) {
+      std::vector<double> a, b;
+      if (r.ok) r.ok = numeric_pencil(guard, integrator->t(), integrator->y(), integrator->yp(), a, b);
+      if (r.ok) modes = modes_of_pencil(a, b, n);
+    } else {
+      std::vector<double> jac;
+      if (r.ok) r.ok = numeric_jacobian(guard, integrator->t(), integrator->y(), jac);
+      if (r.ok) modes = modes_of(jac, n);
+    }
+    if (r.ok) write_modes(out, modes);
+  } else if (o.realtime) {
+    csv.header("t", names);
+    pacer.emplace(*o.realtime, s.t_start_s, OutputGrid(s.t_start_s, s.t_end_s, s.interval_s).size());
+    r = march(guard, *integrator, s, y0, yp0, [&] {
+      write_row();
+      pacer->frame_done(integrator->t());
+    });
+  } else {
+    csv.header("t", names);
+    r = march(guard, *integrator, s, y0, yp0, write_row);
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  progress.clear();
+
+  if (r.started)
+    model.terminal(integrator->t(), integrator->y());
+  else
+    model.terminal(s.t_start_s, y0.data());
+
+  // Why the run stopped (or crept), in model terms: the fastest mode against
+  // an explicit method's stability limit; joint rows losing rank.
+  const bool penalty_joints = model.position_constraint_count() > 0 && !model.constraints_enforced();
+  std::string stop_note, stability;
+  if (!model.is_dae() && !linearize) {
+    const auto& blame = guard.blame();
+    const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception;
+    if (!r.ok && r.started && (r.solver_failed || blew_up))
+      stop_note = describe_stiffness(estimate_stiffness(model, last_row_t, last_row_y.data()), integrator->name(),
+                                     s.solver == Solver::rk4 ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0,
+                                     penalty_joints);
+    else if (r.ok)
+      stability = stability_limited_note(model, *integrator, s.t_start_s, penalty_joints);
+  }
+  if (!r.ok && r.started) {
+    // where the solver gave up (its last accepted state), else the last row
+    const double* y_end = integrator->y();
+    double t_end = integrator->t();
+    if (!std::all_of(y_end, y_end + n, [](double v) { return std::isfinite(v); }))
+      y_end = last_row_y.data(), t_end = last_row_t;
+    const std::string rank = rank_loss_note(model, guard.constraint_shape(), s.t_start_s, y0.data(), t_end, y_end);
+    if (!rank.empty()) stop_note += (stop_note.empty() ? "" : "; ") + rank;
+  }
+
+  if (!o.quiet) {
+    RunRecord record;
+    record.model = &model;
+    record.integrator = integrator.get();
+    record.settings = s;
+    record.wall_s = wall_s;
+    record.stability = stability;
+    if (pacer) record.realtime = pacer->summary();
+    record.small_states = describe_small_states(model, state_peak, s.atol);
+    record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
+                              : fmt::format("{} rows to {}", csv.rows(), out.display_name());
+    if (start.assembly) record.assembly = &*start.assembly;
+    if (start.redundancy) record.redundancy = &*start.redundancy;
+    if (start.initial_values) record.initial_values = &*start.initial_values;
+    if (guard.constraint_shape().any()) record.constraints = &monitor;
+    record.events = &guard.events();
+    print_summary(hooks.report, record);
+  }
+  if (event_out) write_event_log(*event_out, guard.events());
+  if (!r.ok) print_stop_message(hooks.report, guard, *integrator, r.solver_failed, stop_note);
+  return r.ok ? kExitSuccess : kExitRunFailed;
+}
+
+
+}  // namespace mbgrt::detail
