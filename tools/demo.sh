@@ -17,7 +17,7 @@ BUILD_DIR=${BUILD_DIR:-build-demo}
 mbgc_install_packages
 # Only mbgc, its runtime and the one example, at -O1: the quick start takes
 # about 2 minutes on 2 cores instead of tools/test.sh's 9 (README).
-mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -- "$@"
+mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DMBGC_MPI=OFF -- "$@"
 mbgc_build mbgc mbgrt
 
 DEMO=$BUILD_DIR/demo
@@ -38,20 +38,18 @@ if [ "${MBGC_DEMO_BY_HAND:-0}" != 1 ] && grep -Eq '^(\.\.\. )?dc_motor(:|$| )' <
   SIM=$(find "$BUILD_DIR/examples" -type f -name dc_motor -perm -u+x | head -n 1)
   [ -n "$SIM" ] || die "built target dc_motor, but found no executable dc_motor under $BUILD_DIR/examples"
 else
-  step "Building the simulator: c++ $DEMO/dc_motor.cpp + $BUILD_DIR/runtime/libmbgrt.a"
-  libs=(-lsundials_arkode -lsundials_cvode -lsundials_ida -lsundials_nvecserial
-        -lsundials_sunmatrixdense -lsundials_sunlinsoldense)
-  if compgen -G '/usr/lib/*/libsundials_core.so' >/dev/null ||
-     compgen -G '/usr/lib/libsundials_core.so' >/dev/null; then
-    libs+=(-lsundials_core)    # SUNDIALS 7 and later
-  fi
+  # what a user without CMake does: the runtime's flags from pkg-config
+  # (mbgrt-uninstalled.pc of this build tree; mbgrt.pc once installed)
+  PKG_CONFIG_PATH="$(cd "$BUILD_DIR" && pwd)/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
+  export PKG_CONFIG_PATH
+  step "Building the simulator: c++ -O2 $DEMO/dc_motor.cpp \$(pkg-config --cflags --libs mbgrt)"
   flags=()
   if grep -q '^MBGC_SANITIZE:BOOL=ON' "$BUILD_DIR/CMakeCache.txt"; then
     flags=("-fsanitize=address,undefined")
   fi
   SIM=$DEMO/dc_motor
-  c++ -std=c++17 -O2 "${flags[@]}" -I runtime/include "$DEMO/dc_motor.cpp" \
-      "$BUILD_DIR/runtime/libmbgrt.a" "${libs[@]}" -lfmt -o "$SIM"
+  # shellcheck disable=SC2046  # pkg-config's output is a list of words
+  c++ -O2 "${flags[@]}" "$DEMO/dc_motor.cpp" $(pkg-config --cflags --libs mbgrt) -o "$SIM"
 fi
 
 # 3. Simulate: the model's own simulate { } settings, CSV out, summary on stderr.

@@ -12,13 +12,16 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "progress.hpp"
 #include "simulate.hpp"
+#include "sweep_cluster.hpp"
 
 namespace mbgrt::detail {
 
@@ -155,6 +158,24 @@ std::string summary_row(const SweepPlan& plan, std::size_t k, const CaseResult& 
 
 }  // namespace
 
+std::vector<std::string> lines_in_case_order(const std::string& text, std::size_t total) {
+  std::vector<std::string> lines(total);
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const auto end = std::min(text.find('\n', start), text.size());
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    std::size_t k = 0;
+    auto [ptr, ec] = std::from_chars(line.data(), line.data() + line.size(), k);
+    if (ec != std::errc() || k < 1 || k > total || !lines[k - 1].empty())
+      throw std::runtime_error(fmt::format("sweep: a gathered row is not one of cases 1 to {} or came twice: {}", total, line));
+    lines[k - 1] = std::move(line);
+  }
+  for (std::size_t k = 0; k < total; ++k)
+    if (lines[k].empty()) throw std::runtime_error(fmt::format("sweep: no row came back for case {}", k + 1));
+  return lines;
+}
+
 SweepPlan grid_plan(const std::vector<SweepAxis>& axes) {
   SweepPlan plan;
   std::size_t total = 1;
@@ -218,23 +239,26 @@ SweepPlan read_sweep_file(const std::string& path) {
   return plan;
 }
 
-int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
+namespace {
+
+/// The plan, checked before any case runs: the parameters known, the solver
+/// fit for the model, the case directory made. nullopt after an error printed.
+std::optional<SweepPlan> prepare(const Model& prototype, const Options& o) {
   SweepPlan plan;
   try {
     plan = o.sweep_file.empty() ? grid_plan(o.sweep) : read_sweep_file(o.sweep_file);
   } catch (const std::runtime_error& e) {
     print_error(e.what());
-    return kExitUsage;
+    return std::nullopt;
   }
-  // Names and solver checked once, on an instance of its own, before any case runs.
-  std::unique_ptr<Model> probe = prototype.make_new();
+  std::unique_ptr<Model> probe = prototype.make_new();  // an instance of its own
   if (!probe) {
     print_error(fmt::format("model '{}' cannot make new instances of itself (Model::make_new): regenerate it with "
                             "this version of mbgc to run a sweep",
                             prototype.name()));
-    return kExitUsage;
+    return std::nullopt;
   }
-  if (!apply_overrides(*probe, o) || !check_model_fits(*probe, o)) return kExitUsage;
+  if (!apply_overrides(*probe, o) || !check_model_fits(*probe, o)) return std::nullopt;
   for (std::size_t i = 0; i < plan.names.size(); ++i)
     if (!probe->set_parameter(plan.names[i], plan.cases[0][i])) {
       std::string known;
@@ -242,57 +266,55 @@ int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
       print_error(fmt::format("{}: unknown parameter '{}'; known parameters: {}",
                               o.sweep_file.empty() ? "--sweep" : "--sweep-file " + o.sweep_file, plan.names[i],
                               known.empty() ? "(none)" : known));
-      return kExitUsage;
+      return std::nullopt;
     }
   if (!o.case_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(o.case_dir, ec);
     if (ec || !std::filesystem::is_directory(o.case_dir)) {
       print_error(fmt::format("--case-dir {}: cannot create the directory{}", o.case_dir, ec ? ": " + ec.message() : ""));
-      return kExitUsage;
+      return std::nullopt;
     }
   }
+  return plan;
+}
 
-  const std::size_t n = plan.cases.size();
-  const std::vector<std::string> outputs = prototype.output_names();
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t jobs = std::min<std::size_t>(o.jobs > 0 ? o.jobs : cores, n);
-
+/// Runs the cases `mine` (indices into plan.cases) on `jobs` threads and
+/// calls `finished(k, result)` on this thread for each, in the order of
+/// `mine`, as soon as it and every case before it is done. Returns how many failed.
+std::size_t run_cases(const Model& prototype, const Options& o, const SweepPlan& plan,
+                      const std::vector<std::size_t>& mine, std::size_t jobs, ProgressLine& progress,
+                      const std::function<void(std::size_t, const CaseResult&)>& finished) {
+  const std::size_t n = mine.size();
   std::vector<CaseResult> results(n);
   std::atomic<std::size_t> next{0};
-  std::size_t finished = 0, failed = 0;  // under `lock`
+  std::size_t done = 0, failed = 0;  // under `lock`
   std::mutex lock;
   std::condition_variable changed;
   auto worker = [&] {
-    for (std::size_t k; (k = next++) < n;) {
-      CaseResult r = run_case(prototype, o, plan, k);
+    for (std::size_t i; (i = next++) < n;) {
+      CaseResult r = run_case(prototype, o, plan, mine[i]);
       {
         std::lock_guard<std::mutex> hold(lock);
         failed += r.ok ? 0 : 1;
-        ++finished;
-        results[k] = std::move(r);
+        ++done;
+        results[i] = std::move(r);
       }
       changed.notify_one();
     }
   };
-
-  const auto started = std::chrono::steady_clock::now();
   std::vector<std::thread> threads;
-  for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(worker);
-  ProgressLine progress(is_terminal(stderr) && !o.quiet);
+  for (std::size_t j = 0; j < std::min(jobs, n); ++j) threads.emplace_back(worker);
   try {
-    summary.write(summary_header(plan, outputs));
-    // rows in case order, each as soon as it and every case before it is done
     std::unique_lock<std::mutex> hold(lock);
     for (std::size_t written = 0; written < n;) {
       changed.wait_for(hold, std::chrono::milliseconds(100), [&] { return results[written].done; });
-      while (written < n && results[written].done) {
-        summary.write(summary_row(plan, written, results[written], outputs.size()));
-        results[written].ranges = {};  // the row is out: keep no more than it
-        ++written;
+      for (; written < n && results[written].done; ++written) {
+        finished(mine[written], results[written]);
+        results[written].ranges = {};  // reported: keep no more than that
       }
-      progress.update(static_cast<double>(finished) / static_cast<double>(n),
-                      fmt::format("sweep: {} of {} cases done{}", finished, n,
+      progress.update(static_cast<double>(done) / static_cast<double>(n),
+                      fmt::format("sweep: {} of {} cases done{}", done, n,
                                   failed ? fmt::format(", {} failed", failed) : std::string()));
     }
   } catch (...) {
@@ -302,10 +324,56 @@ int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
   }
   for (std::thread& t : threads) t.join();
   progress.clear();
+  return failed;
+}
+
+}  // namespace
+
+int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
+  Cluster cluster;  // one process, or this rank's share of an MPI launch
+  // Every rank checks the same things; rank 0 alone says what is wrong.
+  std::FILE* quiet = cluster.rank() == 0 ? nullptr : std::fopen("/dev/null", "w");
+  std::optional<ErrorRedirect> silent;
+  if (quiet) silent.emplace(quiet);
+  std::optional<SweepPlan> plan = prepare(prototype, o);
+  silent.reset();
+  if (quiet) std::fclose(quiet);
+  if (!plan) return kExitUsage;
+
+  const std::size_t n = plan->cases.size(), ranks = static_cast<std::size_t>(cluster.size());
+  std::vector<std::size_t> mine;  // round robin over the ranks
+  for (std::size_t k = static_cast<std::size_t>(cluster.rank()); k < n; k += ranks) mine.push_back(k);
+  // threads: one per core alone; under MPI the ranks are the parallelism unless --jobs says otherwise
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t jobs = std::max<std::size_t>(1, o.jobs > 0 ? o.jobs : ranks > 1 ? 1 : cores);
+  const std::vector<std::string> outputs = prototype.output_names();
+  ProgressLine progress(cluster.rank() == 0 && is_terminal(stderr) && !o.quiet);
+
+  const auto started = std::chrono::steady_clock::now();
+  std::size_t failed = 0;
+  if (ranks == 1) {
+    summary.write(summary_header(*plan, outputs));
+    failed = run_cases(prototype, o, *plan, mine, jobs, progress, [&](std::size_t k, const CaseResult& r) {
+      summary.write(summary_row(*plan, k, r, outputs.size()));
+    });
+  } else {
+    std::string rows;  // this rank's, one line per case
+    failed = run_cases(prototype, o, *plan, mine, jobs, progress, [&](std::size_t k, const CaseResult& r) {
+      rows += summary_row(*plan, k, r, outputs.size());
+    });
+    const std::vector<std::string> all = cluster.gather_lines(rows, n);  // rank 0: every case's, in case order
+    failed = static_cast<std::size_t>(cluster.sum(static_cast<long>(failed)));
+    if (cluster.rank() == 0) {
+      std::string text = summary_header(*plan, outputs);
+      for (const std::string& line : all) text += line + "\n";
+      summary.write(text);
+    }
+  }
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  if (!o.quiet)
-    fmt::print(stderr, "mbgrt: sweep of model '{}': {} case{} on {} thread{} in {}; {}\n", prototype.name(), n,
-               n == 1 ? "" : "s", jobs, jobs == 1 ? "" : "s", format_duration(wall_s),
+  if (!o.quiet && cluster.rank() == 0)
+    fmt::print(stderr, "mbgrt: sweep of model '{}': {} case{} on {}{} thread{} in {}; {}\n", prototype.name(), n,
+               n == 1 ? "" : "s", ranks > 1 ? fmt::format("{} MPI ranks x ", ranks) : std::string(), jobs,
+               jobs == 1 ? "" : "s", format_duration(wall_s),
                failed ? fmt::format("{} failed (the summary's message column says why)", failed)
                       : std::string("all ran to the end"));
   return failed ? kExitRunFailed : kExitSuccess;

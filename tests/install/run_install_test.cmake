@@ -181,7 +181,8 @@ foreach(f
     ${INSTALL_LIBDIR}/cmake/mbgc/mbgcConfig.cmake
     ${INSTALL_LIBDIR}/cmake/mbgc/mbgcConfigVersion.cmake
     ${INSTALL_LIBDIR}/cmake/mbgc/mbgcTargets.cmake
-    ${INSTALL_LIBDIR}/cmake/mbgc/mbgcFunctions.cmake)
+    ${INSTALL_LIBDIR}/cmake/mbgc/mbgcFunctions.cmake
+    ${INSTALL_LIBDIR}/pkgconfig/mbgrt.pc)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "install test: ${prefix}/${f} was not installed")
   endif()
@@ -237,6 +238,23 @@ foreach(sim rc rc_embedded)
     COMMAND ${exe} --t-end 1 --out ${WORK_DIR}/${sim}.csv)
   check_csv(${WORK_DIR}/${sim}.csv)
 endforeach()
+
+# ---- 3b. without CMake: the installed mbgc, then c++ with pkg-config's flags ----------
+find_program(PKG_CONFIG pkg-config REQUIRED)
+run("installed mbgc rc.mbg -o rc_by_hand.cpp"
+  COMMAND ${prefix}/${INSTALL_BINDIR}/${COMPILER_FILE_NAME} ${src}/rc.mbg -o ${WORK_DIR}/rc_by_hand.cpp)
+set(ENV{PKG_CONFIG_PATH} ${prefix}/${INSTALL_LIBDIR}/pkgconfig)
+run("pkg-config --cflags --libs mbgrt" OUTPUT_VARIABLE flags
+  COMMAND ${PKG_CONFIG} --cflags --libs mbgrt)
+if(NOT flags MATCHES "-I${prefix}/")
+  message(FATAL_ERROR "install test: pkg-config's flags do not name the prefix ${prefix}:\n${flags}")
+endif()
+separate_arguments(flags UNIX_COMMAND "${flags}")
+run("c++ rc_by_hand.cpp $(pkg-config --cflags --libs mbgrt)"
+  COMMAND ${CXX_COMPILER} -O1 ${WORK_DIR}/rc_by_hand.cpp ${flags} -o ${WORK_DIR}/rc_by_hand)
+run("rc_by_hand --t-end 1 --out rc_by_hand.csv"
+  COMMAND ${WORK_DIR}/rc_by_hand --t-end 1 --out ${WORK_DIR}/rc_by_hand.csv)
+check_csv(${WORK_DIR}/rc_by_hand.csv)
 
 # ---- 4. touching the model regenerates the C++ -------------------------------------
 set(generated ${bld}/rc.cpp ${bld}/rc_lib_include/rc_lib.hpp)
