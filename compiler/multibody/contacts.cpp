@@ -10,6 +10,7 @@
 // bodies, particles, beams and modal bodies, in body or joint coordinates.
 // Friction is a regularised Coulomb load at the contact point (apply_load).
 #include "multibody/expander.hpp"
+#include "multibody/setting_names.hpp"
 
 #include <fmt/format.h>
 
@@ -38,6 +39,8 @@ const std::map<std::string, Expected> kContactShapes = {
 };
 
 }  // namespace
+
+std::vector<std::string> contact_setting_names() { return kContactSettings; }
 
 /// `vertices = [[x1, z1], [x2, z2], ...]`: at least three corners of a convex
 /// polygon in the surface body's x-z plane, counter-clockwise (x to the right,

@@ -17,6 +17,7 @@
 // The force Fx e_x + Fy e_y + Fz n acts at the contact point, below the
 // centre: on the wheel, the same force at the centre and its moment.
 #include "multibody/expander.hpp"
+#include "multibody/setting_names.hpp"
 
 #include <fmt/format.h>
 
@@ -93,13 +94,14 @@ const std::vector<TyreSetting> kTyreSettings = {
     {"PTY2", 1.7, "load (/ FNOMIN) at which it is largest"},
 };
 
+
+}  // namespace
+
 std::vector<std::string> tyre_setting_names() {
   std::vector<std::string> names = {"axis", "profile"};
   for (const TyreSetting& s : kTyreSettings) names.push_back(s.name);
   return names;
 }
-
-}  // namespace
 
 void Expander::add_tyre(const AstJoint& t) {
   auto wheel = side(t.a);
