@@ -690,7 +690,7 @@ class Builder {
       case NodeKind::R: return {"e", "f"};
       case NodeKind::C: return {"e", "q0", "e0"};
       case NodeKind::I: return {"f", "p0", "f0"};
-      case NodeKind::CN: return {"g", "stiffness", "damping", "stabilisation"};
+      case NodeKind::CN: return {"g", "stiffness", "damping", "stabilisation", "restitution", "exponent", "friction"};
       case NodeKind::Sf: return {"rate0"};
       default: return {};
     }
