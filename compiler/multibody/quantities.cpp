@@ -51,7 +51,8 @@ void Expander::define_quantities() {
     Build B(j.decl->loc);
     const auto& [A, Bf] = frames_.at(jn);
     const Frame& body_side = Bf.ground ? A : Bf;
-    quantity_[jn + ".violation"] = B.list(rows(B, j, A, Bf));
+    // a joint with no rows (free) constrains nothing: it has no violation
+    if (std::vector<E> r = rows(B, j, A, Bf); !r.empty()) quantity_[jn + ".violation"] = B.list(r);
     if (auto cv = coordinate_values_.find(jn); cv != coordinate_values_.end()) {
       // joint coordinates: the reaction is the effort on the bonds into the
       // child's junctions (force world, torque body frame); on b, by Newton's third law
