@@ -108,8 +108,8 @@ void validate(const Options& o, bool step_given) {
     require(o.sweep.empty() || o.sweep_file.empty(), "--sweep and --sweep-file are two ways to give the cases: use one");
     require(!o.linearize_at && !o.work_precision && !o.realtime,
             "a sweep runs simulations: not with --linearize-at, --work-precision or --realtime");
-    require(o.constraint_report_path.empty() && o.event_log_path.empty(),
-            "--constraint-report and --event-log are for one run; a sweep's per-case files go to --case-dir");
+    require(o.constraint_report_path.empty() && o.event_log_path.empty() && o.animate_path.empty(),
+            "--constraint-report, --event-log and --animate are for one run; a sweep's per-case files go to --case-dir");
     double cases = 1;
     for (std::size_t i = 0; i < o.sweep.size(); ++i) {
       cases *= static_cast<double>(o.sweep[i].count);
@@ -121,6 +121,8 @@ void validate(const Options& o, bool step_given) {
   } else {
     require(o.case_dir.empty(), "--case-dir applies to a sweep (--sweep or --sweep-file)");
   }
+  require(o.animate_path.empty() || (!o.linearize_at && !o.work_precision),
+          "--animate records a simulation run, not --linearize-at or --work-precision");
   if (o.linearize_at)
     require(std::isfinite(*o.linearize_at) && *o.linearize_at >= s.t_start_s,
             fmt::format("--linearize-at {} is before the start time {} s", *o.linearize_at,
@@ -196,6 +198,10 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_option("--event-log", o.event_log_path,
                  "Write t,event,name,state,jump,note (every switch of the model's events; note: what a contact did) as CSV")
       ->type_name("FILE.csv");
+  app.add_option("--animate", o.animate_path,
+                 "Write the motion of every body as binary glTF 2.0 (a node per body, keyframed at the rows; a "
+                 "flexible body's modes as morph targets), for any glTF viewer")
+      ->type_name("FILE.glb");
   app.add_flag("--quiet", o.quiet, "Do not print the run summary or the progress line on stderr");
   app.add_flag("--list-parameters", o.list_parameters,
                "Print the parameters as NAME,DEFAULT lines and exit");

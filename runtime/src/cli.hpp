@@ -32,6 +32,7 @@ struct Options {
   std::string out_path;                                   ///< empty: stdout
   std::string constraint_report_path;                     ///< --constraint-report; empty: none
   std::string event_log_path;                             ///< --event-log; empty: none
+  std::string animate_path;                               ///< --animate: the bodies' motion as glTF; empty: none
   bool quiet = false;
   bool list_parameters = false;
   std::optional<double> linearize_at;

@@ -46,6 +46,12 @@ int run(Model& model, int argc, char** argv) {
 
   if (o.list_parameters) return list_parameters(model);
   if (!apply_overrides(model, o) || !check_model_fits(model, o)) return kExitUsage;
+  if (!o.animate_path.empty() && model.body_count() == 0) {
+    print_error(fmt::format("--animate: model '{}' describes no bodies to draw (a bond graph has none; mbgc does not "
+                            "yet describe a multibody model's bodies: docs/notes/animation.md)",
+                            model.name()));
+    return kExitUsage;
+  }
 
   std::optional<OutputFile> out, constraint_out, event_out;
   try {

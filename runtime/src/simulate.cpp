@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "animation.hpp"
 #include "constraints.hpp"
 #include "grid.hpp"
 #include "guard.hpp"
@@ -131,6 +132,8 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   std::vector<double> state_peak(model.state_count(), 0.0);  // largest |state| over the rows
   double last_row_t = s.t_start_s;
   ProgressLine progress(hooks.progress && !linearize);
+  std::optional<AnimationRecorder> animation;
+  if (!o.animate_path.empty()) animation.emplace(model);
   auto write_row = [&] {
     std::copy(integrator->y(), integrator->y() + n, last_row_y.begin());
     for (std::size_t i = 0; i < state_peak.size(); ++i)
@@ -139,6 +142,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     model.outputs(integrator->t(), integrator->y(), integrator->yp(), outputs.data());
     csv.row(integrator->t(), outputs);
     if (hooks.ranges) hooks.ranges->add(outputs);
+    if (animation) animation->record(integrator->t(), integrator->y(), integrator->yp());
     observe_constraints();
     if (progress.enabled() && s.t_end_s > s.t_start_s)
       progress.update((integrator->t() - s.t_start_s) / (s.t_end_s - s.t_start_s),
@@ -175,6 +179,8 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   progress.clear();
+  // the motion so far, also of a run that stopped early: it shows where
+  if (animation) animation->write(o.animate_path);
 
   if (r.started)
     model.terminal(integrator->t(), integrator->y());
@@ -216,6 +222,9 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.small_states = describe_small_states(model, state_peak, s.atol);
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());
+    if (animation)
+      record.output += fmt::format("; {} bod{} in {} frames to {}", animation->bodies(),
+                                   animation->bodies() == 1 ? "y" : "ies", animation->frames(), o.animate_path);
     if (start.assembly) record.assembly = &*start.assembly;
     if (start.redundancy) record.redundancy = &*start.redundancy;
     if (start.initial_values) record.initial_values = &*start.initial_values;

@@ -92,7 +92,28 @@ struct Settings {
   LinearSolver linear_solver = LinearSolver::automatic;  ///< IDA only
 };
 
-/// A named, overridable model parameter (`--set NAME=VALUE`).
+/// How a body is drawn in an animation (Model::body_visual, --animate): a
+/// shape in the body's axes, placed by the body's pose at each output row.
+/// A flexible body also gives a surface that deforms with its modes: the
+/// undeformed vertex positions and, per mode, each vertex's displacement per
+/// unit modal coordinate (glTF morph targets).
+struct BodyVisual {
+  enum class Shape { box, cylinder, sphere, mesh };
+  std::string name;
+  Shape shape = Shape::box;
+  /// box: edge lengths along body x, y, z; cylinder: radius, length (along body z);
+  /// sphere: radius (m)
+  double size[3] = {0.1, 0.1, 0.1};
+  double centre[3] = {0, 0, 0};  ///< where the shape's centre is, body axes (m)
+  double colour[3] = {0.6, 0.6, 0.65};  ///< linear RGB in [0, 1]
+  /// Shape::mesh: triangles over `vertices` (3 indices each); a flexible
+  /// body's surface. Vertices: 3 numbers each, body axes (m).
+  std::vector<double> vertices;
+  std::vector<unsigned> triangles;
+  /// Per mode (Model::body_poses' modal coordinates, in order): 3 numbers per vertex.
+  std::vector<std::vector<double>> mode_shapes;
+};
+
 /// A contact of the model (Model::contact): a gap g >= 0 between two bodies
 /// whose mode is one of the model's events.
 struct ContactInfo {
@@ -102,6 +123,7 @@ struct ContactInfo {
   long friction_event = -1;  ///< unilateral with friction: the event whose mode is 1 while it sticks
 };
 
+/// A named, overridable model parameter (`--set NAME=VALUE`).
 struct ParameterInfo {
   std::string name;
   double default_value;      ///< value from the model text (NaN if it is computed from other parameters)
@@ -208,6 +230,17 @@ class Model {
   virtual bool event_jump(std::size_t k, bool on, double t, double* y) {
     (void)k; (void)on; (void)t; (void)y;
     return false;
+  }
+
+  // ---- bodies, for animation (optional) --------------------------------------
+  /// Bodies to draw (--animate); 0: none (a bond graph).
+  virtual std::size_t body_count() const { return 0; }
+  virtual BodyVisual body_visual(std::size_t i) const { (void)i; return {}; }
+  /// Per body, in order: its frame's origin (3, world, m) and its rotation
+  /// (9, body to world, row-major); then every body's modal coordinates, as
+  /// many as its visual's mode_shapes, in body order.
+  virtual void body_poses(double t, const double* y, const double* yp, double* out) {
+    (void)t; (void)y; (void)yp; (void)out;
   }
 
   // ---- contacts (optional) ---------------------------------------------------
