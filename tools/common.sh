@@ -6,8 +6,9 @@
 #               for tools/demo.sh; a relative path is taken from the repository
 #               root)
 #   BUILD_TYPE  CMAKE_BUILD_TYPE (default: the build directory's own; for a new
-#               one RelWithDebInfo, and for tools/demo.sh's Release at -O1,
-#               which builds mbgc in two thirds of the time -O2 takes)
+#               one Release, and for tools/demo.sh's Release at -O1, which
+#               builds mbgc in two thirds of the time -O2 takes. Debug
+#               information costs half again: BUILD_TYPE=RelWithDebInfo for gdb)
 #   JOBS        parallel build jobs and ctest jobs (default: 2)
 
 MBGC_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -74,6 +75,6 @@ mbgc_build() {
 
 # Configure and build everything. Extra arguments go to the cmake configure step.
 mbgc_configure_and_build() {
-  mbgc_configure -DCMAKE_BUILD_TYPE=RelWithDebInfo -- "$@"
+  mbgc_configure -DCMAKE_BUILD_TYPE=Release -- "$@"
   mbgc_build
 }
