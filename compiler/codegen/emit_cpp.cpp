@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "codegen/cpp.hpp"
+#include "codegen/drawings.hpp"
 #include "codegen/events.hpp"
 #include "codegen/identity.hpp"
 #include "codegen/names.hpp"
@@ -55,6 +56,7 @@ class Emitter {
       add_long_method(c, jacobian());
     }
     c.public_methods.push_back(outputs());
+    if (!g_.drawings.empty()) add_drawing_methods(c, s_, body_poses());
     if (!s_.events.empty()) c.public_methods.push_back(event_functions());
     add_event_methods(c, s_, [this](const SourceLoc& loc) { return where(loc); });
     if (!s_.contacts.empty()) {
@@ -661,6 +663,16 @@ class Emitter {
     for (const Output& o : g_.outputs) values.push_back(o.value);
     return values_at("OUTPUT: the declared outputs at (t, y).", "outputs", "out", values, s_.for_outputs,
                      "outputs, in declaration order");
+  }
+
+  CppFunction body_poses() {
+    std::vector<Expr> values;
+    for (const DrawnBody& d : g_.drawings)
+      for (const Expr& e : d.pose) values.push_back(e);
+    for (const DrawnBody& d : g_.drawings)
+      for (const Expr& e : d.modes) values.push_back(e);
+    return values_at("POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.", "body_poses",
+                     "out", values, s_.for_drawings, "12 per body (origin, rotation row-major), then every modal coordinate");
   }
 
   CppFunction event_functions() {

@@ -1,6 +1,8 @@
 // flex/modal_file.cpp — the `.mbm` reader (format: docs/modal_format.md).
 #include "flex/modal_file.hpp"
 
+#include "ir/find_file.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -328,27 +330,11 @@ ModalMassTerms modal_mass_terms(const ModalData& d) {
 std::optional<ModalData> read_modal_file(const std::string& name, const ir::SourceLoc& named_at,
                                          const std::vector<std::string>& search_dirs, ir::SourceManager& sources,
                                          ir::Diagnostics& diags) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> tried;
-  if (named_at.valid()) tried.push_back(fs::path(sources.file(named_at.file).display_path).parent_path() / name);
-  for (const std::string& d : search_dirs) tried.push_back(fs::path(d) / name);
-  if (fs::path(name).is_absolute()) tried = {fs::path(name)};
-  for (const fs::path& p : tried) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) continue;
-    std::ostringstream text;
-    text << in.rdbuf();
-    const std::string path = p.lexically_normal().string();
-    int id = sources.add(path, text.str());
-    ModalData data;
-    data.path = path;
-    return Reader(tokenize(sources.file(id).text, id), id, diags).run(std::move(data));
-  }
-  std::string where;
-  for (const fs::path& p : tried) where += (where.empty() ? "" : ", ") + fmt::format("`{}`", p.lexically_normal().string());
-  diags.error(named_at, fmt::format("cannot read the modal-data file \"{}\" (tried {})", name, where),
-              "the path is relative to the model file, then to each directory given with mbgc -I");
-  return std::nullopt;
+  auto id = ir::read_named_file(name, named_at, search_dirs, sources, diags, "modal-data file");
+  if (!id) return std::nullopt;
+  ModalData data;
+  data.path = sources.file(*id).display_path;
+  return Reader(tokenize(sources.file(*id).text, *id), *id, diags).run(std::move(data));
 }
 
 }  // namespace mbgc::flex

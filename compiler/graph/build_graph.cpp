@@ -799,6 +799,20 @@ class Builder {
           g_.outputs.push_back({col, o.loc, v->at(r, c)});
         }
     }
+    for (const ResolvedDrawing& d : m_.drawings) {
+      auto pose = lower(*d.pose, lookup_in(d.scope), diags_);  // hcat(R, p): 3 x 4
+      if (!pose) continue;
+      DrawnBody body{d.drawing, d.loc, {}, {}};
+      for (int r = 0; r < 3; ++r) body.pose.push_back(pose->at(r, 3));
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) body.pose.push_back(pose->at(r, c));
+      if (d.modes) {
+        auto modes = lower(*d.modes, lookup_in(d.scope), diags_);
+        if (!modes) continue;
+        body.modes = modes->items;
+      }
+      g_.drawings.push_back(std::move(body));
+    }
   }
 
   const ResolvedModel& m_;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ir/diagnostics.hpp"
+#include "ir/drawing.hpp"
 
 namespace mbgc::ir {
 
@@ -65,7 +66,16 @@ struct AstParam {
 /// signal's time derivative in closed form (a body's rotation: R skew(omega)),
 /// is used for d/dt instead of the chain rule through `value`.
 struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; AstExprPtr rate = nullptr; };
-struct AstOutput { std::string name; SourceLoc loc; AstExprPtr value; };
+/// `output NAME = value`. The multibody layer also writes one per body it
+/// draws (`drawing` set): value is hcat(R, p), the pose of the point the
+/// drawing is measured from, and `modes` a flexible body's modal coordinates.
+struct AstOutput {
+  std::string name;
+  SourceLoc loc;
+  AstExprPtr value;
+  std::shared_ptr<const Drawing> drawing = nullptr;
+  AstExprPtr modes = nullptr;
+};
 
 /// `Se supply = expr`, `R fr { e = c*f^2 }`, `C k = 1/k_s { q0 = 0.1 }`.
 struct AstElement {

@@ -4,11 +4,13 @@
 // causality, read by equations and emit.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "ir/diagnostics.hpp"
+#include "ir/drawing.hpp"
 #include "ir/expr.hpp"
 #include "ir/value.hpp"
 
@@ -117,6 +119,26 @@ struct Output {
   Expr value;
 };
 
+/// A drawn body (ir/drawing.hpp): where it is, as expressions over the
+/// unknowns, for mbgrt::Model::body_poses.
+struct DrawnBody {
+  std::shared_ptr<const Drawing> drawing;
+  SourceLoc loc;
+  std::vector<Expr> pose;   // origin (3, world) then the rotation body -> world (9, row-major)
+  std::vector<Expr> modes;  // a flexible body's modal coordinates
+  /// Calls f on every expression: the pose's, then the modes'.
+  template <class F>
+  void for_each_expr(F&& f) {
+    for (Expr& e : pose) f(e);
+    for (Expr& e : modes) f(e);
+  }
+  template <class F>
+  void for_each_expr(F&& f) const {
+    for (const Expr& e : pose) f(e);
+    for (const Expr& e : modes) f(e);
+  }
+};
+
 struct SimSettings {
   std::optional<double> t_end, interval, rtol, atol, step;
   std::optional<std::string> solver;
@@ -132,6 +154,7 @@ struct BondGraph {
   std::vector<Variable> vars;
   std::vector<Signal> signals;
   std::vector<Output> outputs;
+  std::vector<DrawnBody> drawings;
   SimSettings settings;
 
   int add_var(std::string name, VarKind kind, SourceLoc loc, int of = -1) {

@@ -278,9 +278,10 @@ std::string print_reduced(const ReducedSystem& s) {
     const Assignment& a = s.assignments[i];
     bool d = std::find(s.for_derivative.begin(), s.for_derivative.end(), static_cast<int>(i)) != s.for_derivative.end();
     bool o = std::find(s.for_outputs.begin(), s.for_outputs.end(), static_cast<int>(i)) != s.for_outputs.end();
+    bool p = std::find(s.for_drawings.begin(), s.for_drawings.end(), static_cast<int>(i)) != s.for_drawings.end();
     std::string value = a.block >= 0 ? fmt::format("solve(block {})", a.block + 1) : to_string(a.value, n);
-    out += fmt::format("  {} := {}    ; {}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, value, a.origin,
-                       d ? " [derivative]" : "", o ? " [outputs]" : "");
+    out += fmt::format("  {} := {}    ; {}{}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, value, a.origin,
+                       d ? " [derivative]" : "", o ? " [outputs]" : "", p ? " [poses]" : "");
   }
   // A torn loop's entries are DAGs whose printed trees can be huge (a long
   // chain's mass matrix): past this size an entry prints as its node count.
@@ -321,6 +322,14 @@ std::string print_reduced(const ReducedSystem& s) {
   }
   out += "outputs:\n";
   for (const Output& o : g.outputs) out += fmt::format("  {} = {}\n", o.name, to_string(o.value, n));
+  if (!g.drawings.empty()) out += "poses of the drawn bodies (origin, rotation row-major; modal coordinates):\n";
+  for (const DrawnBody& d : g.drawings) {
+    std::vector<std::string> pose, modes;
+    for (const Expr& e : d.pose) pose.push_back(to_string(e, n));
+    for (const Expr& e : d.modes) modes.push_back(to_string(e, n));
+    out += fmt::format("  {}: [{}]{}\n", d.drawing->body, fmt::join(pose, ", "),
+                       modes.empty() ? "" : fmt::format("; [{}]", fmt::join(modes, ", ")));
+  }
   if (!s.events.empty()) out += "events (each step a mode, switched where its argument crosses 0):\n";
   for (std::size_t k = 0; k < s.events.size(); ++k)
     out += fmt::format("  mode {}: {}, argument {}{}\n", k, to_string(s.events[k].step, n), to_string(s.events[k].arg, n),

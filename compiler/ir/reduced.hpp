@@ -87,6 +87,7 @@ struct ReducedSystem {
   std::vector<LinearBlock> linear_blocks; // loops solved numerically (see Assignment::block)
   std::vector<int> for_derivative;        // indices into assignments, in order
   std::vector<int> for_outputs;           // indices into assignments, in order
+  std::vector<int> for_drawings;          // ... what the drawn bodies' poses need
   // d(state derivative i)/d(state j), row-major n x n, for ODEs whose loops are
   // all solved symbolically (empty otherwise: the solver uses finite differences).
   std::vector<Expr> jacobian;

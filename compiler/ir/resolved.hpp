@@ -7,6 +7,7 @@
 
 #include <map>
 #include <unordered_map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -57,6 +58,14 @@ struct ResolvedExpr {
   AstExprPtr rate;       // a signal's closed-form time derivative, if the multibody layer gave one
 };
 
+/// A body the multibody layer draws (AstOutput::drawing).
+struct ResolvedDrawing {
+  std::shared_ptr<const Drawing> drawing;
+  SourceLoc loc;
+  AstExprPtr pose, modes;  // hcat(R, p); the modal coordinates (may be null)
+  int scope = 0;
+};
+
 struct ResolvedModel {
   std::string model_name;
   std::string source_file;
@@ -68,6 +77,7 @@ struct ResolvedModel {
   std::vector<ResolvedBond> bonds;
   std::vector<ResolvedExpr> signals;
   std::vector<ResolvedExpr> outputs;
+  std::vector<ResolvedDrawing> drawings;
   SimSettings settings;
   std::vector<std::shared_ptr<const AstComponent>> components;  // keeps ASTs alive
 };

@@ -1,5 +1,6 @@
 // multibody/beam.cpp — the built-in beam: modal integrals, M(eta), points and limits.
 #include "multibody/beam.hpp"
+#include "multibody/drawing.hpp"
 #include "multibody/model.hpp"
 
 #include <algorithm>
@@ -422,6 +423,44 @@ void Beam::stiffness_and_damping(const Build& B, const std::string& n, Rows& K, 
         K[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".stiffness"), i + 1, j + 1);
         D[static_cast<std::size_t>(off + i)][static_cast<std::size_t>(off + j)] = idx2(B, B.name(n + "." + group + ".damping"), i + 1, j + 1);
       }
+}
+
+}  // namespace mbgc::multibody::detail
+
+namespace mbgc::multibody::detail {
+
+/// A flat tube along the beam (width L/25 along y, L/50 along z, 24
+/// sections), each section moved by every mode as a whole: bending along y
+/// or z, stretch along x, and twist turning the section about x.
+ir::Drawing Beam::drawing(double) const {
+  ir::Drawing d;
+  d.shape = ir::Drawing::Shape::Mesh;
+  constexpr int kSections = 24;
+  const double hy = length_m / 50, hz = length_m / 100;
+  std::vector<double> x;
+  for (int k = 0; k <= kSections; ++k) x.push_back(length_m * k / kSections);
+  std::vector<double> body_x;
+  for (double xk : x) body_x.push_back(xk - origin_m);
+  add_tube(d, body_x, hy, hz);
+  const std::size_t vertices = d.vertices.size() / 3;
+  auto field = [&](auto displacement) {  // displacement(x, y, z) -> [dx, dy, dz] of the vertex at beam station x
+    std::vector<double> out(3 * vertices);
+    for (std::size_t v = 0; v < vertices; ++v) {
+      const std::array<double, 3> u = displacement(x[v / 4], d.vertices[3 * v + 1], d.vertices[3 * v + 2]);
+      for (std::size_t c = 0; c < 3; ++c) out[3 * v + c] = std::abs(u[c]) <= 1e-12 ? 0.0 : u[c];  // (a clamped root's rounding)
+    }
+    d.mode_shapes.push_back(std::move(out));
+  };
+  for (int i = 0; i < (y ? y->count() : 0); ++i) field([&](double s, double, double) { return std::array<double, 3>{0, y->shape(i, s), 0}; });
+  for (int i = 0; i < (z ? z->count() : 0); ++i) field([&](double s, double, double) { return std::array<double, 3>{0, 0, z->shape(i, s)}; });
+  for (int i = 0; i < (axial ? axial->count() : 0); ++i)
+    field([&](double s, double, double) { return std::array<double, 3>{axial->shape(i, s), 0, 0}; });
+  for (int i = 0; i < (torsion ? torsion->count() : 0); ++i)
+    field([&](double s, double py, double pz) {
+      const double twist = torsion->shape(i, s);
+      return std::array<double, 3>{0, -twist * pz, twist * py};
+    });
+  return d;
 }
 
 }  // namespace mbgc::multibody::detail

@@ -32,6 +32,7 @@ class Beam final : public Deformation {
   bool origin_fixed() const override;
   Limits limits(const std::string& n) const override;
   void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const override;
+  ir::Drawing drawing(double scale) const override;
 
   // eta = [eta_y; eta_z; eta_axial; eta_torsion]
   int offset_z() const { return y ? y->count() : 0; }

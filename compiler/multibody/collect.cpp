@@ -156,7 +156,7 @@ void Expander::add_body(const AstBody& b) {
       add_flexible_body(body, b, a);
       return;
     }
-  static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0"};
+  static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0", "shape"};
   bool has_mass = false, has_inertia = false, mass_misspelt = false;
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {
@@ -170,6 +170,10 @@ void Expander::add_body(const AstBody& b) {
     if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
       auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
       d.notes.push_back({first->second->loc, "first given here"});
+      continue;
+    }
+    if (a.key == "shape") {
+      body.shape = read_shape(b, *a.value);
       continue;
     }
     has_mass |= a.key == "mass";

@@ -22,6 +22,7 @@
 
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
+#include "ir/drawing.hpp"
 #include "multibody/build.hpp"
 #include "multibody/modal_algebra.hpp"
 
@@ -70,6 +71,10 @@ class Deformation {
   virtual Limits limits(const std::string& n) const = 0;
   /// The modal stiffness and damping matrices, count x count, from the parameters.
   virtual void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const = 0;
+  /// How it is drawn (--animate): a surface in body axes from the frame
+  /// origin with one displacement field per modal coordinate. `scale`: the
+  /// model's size, for parts the field does not give.
+  virtual ir::Drawing drawing(double scale) const = 0;
   /// The file a modal-data body's points come from (empty for other kinds).
   virtual std::string point_file() const { return {}; }
 

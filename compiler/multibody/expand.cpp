@@ -23,6 +23,7 @@ AstProgram Expander::run(const AstProgram& in) {
   for (Joint& j : joints_) emit_joint(j);
   place_bodies();
   define_quantities();
+  draw_bodies();
   for (std::size_t k : applied_) {
     auto& el = std::get<AstElement>(generated_[k]);
     el.value = rewrite_expr(el.value);

@@ -5,6 +5,7 @@
 // named in the section comments below; expand.hpp is the pass's interface.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -209,6 +210,13 @@ class Expander {
   void check_profile(const Tyre& t, const AstExpr& v);
   void emit_tyre(const Tyre& t);
   E sig_vector(const Build& B, const std::string& name, E value);
+
+  // ---- 6b. how bodies are drawn for --animate (drawing.cpp)
+  std::optional<std::array<double, 3>> constant_point(const AstExpr& e, int depth = 0) const;
+  std::shared_ptr<Drawing> read_shape(const AstBody& b, const AstExpr& v);
+  Drawing default_drawing(const Body& body, double scale) const;
+  double model_scale() const;
+  void draw_bodies();
 
   // ---- 6. quantities users may name (quantities.cpp)
   void define_quantities();

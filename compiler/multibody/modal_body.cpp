@@ -1,5 +1,6 @@
 // multibody/modal_body.cpp — bodies from modal-data files.
 #include "multibody/modal_body.hpp"
+#include "multibody/drawing.hpp"
 #include "multibody/model.hpp"
 
 #include <algorithm>
@@ -161,6 +162,31 @@ void ModalBody::stiffness_and_damping(const Build& B, const std::string& n, Rows
       K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".stiffness"), i + 1, j + 1);
       D[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = idx2(B, B.name(n + ".damping"), i + 1, j + 1);
     }
+}
+
+}  // namespace mbgc::multibody::detail
+
+namespace mbgc::multibody::detail {
+
+/// Each node of the file as a small octahedron that its modes move (the
+/// file gives the field at its nodes only).
+ir::Drawing ModalBody::drawing(double scale) const {
+  ir::Drawing d;
+  d.shape = ir::Drawing::Shape::Mesh;
+  double extent = 0;
+  for (const auto& [name, p] : data_->points)
+    for (double c : p.position) extent = std::max(extent, std::abs(c));
+  const double r = 0.04 * (extent > 0 ? extent : scale);
+  for (const auto& [name, p] : data_->points) add_octahedron(d, p.position, r);
+  d.mode_shapes.assign(static_cast<std::size_t>(data_->count), std::vector<double>(d.vertices.size()));
+  std::size_t node = 0;
+  for (const auto& [name, p] : data_->points) {
+    for (std::size_t corner = 0; corner < 6; ++corner)
+      for (std::size_t k = 0; k < d.mode_shapes.size(); ++k)
+        for (std::size_t c = 0; c < 3; ++c) d.mode_shapes[k][3 * (6 * node + corner) + c] = p.shape[c][k];
+    ++node;
+  }
+  return d;
 }
 
 }  // namespace mbgc::multibody::detail

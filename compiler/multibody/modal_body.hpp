@@ -29,6 +29,7 @@ class ModalBody final : public Deformation {
   bool origin_fixed() const override { return false; }  // the file does not say how the origin moves
   Limits limits(const std::string& n) const override;
   void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const override;
+  ir::Drawing drawing(double scale) const override;
   std::string point_file() const override { return data_->path; }
 
  private:

@@ -34,6 +34,7 @@ struct Body {
   bool by_coordinates = false;           // its pose is a function of joint coordinates (no states of its own)
   std::string tree_parent;               // by_coordinates: its parent body in the tree ("" for ground)
   bool points_unknown = false;           // a modal body whose file could not be read (its error is out already)
+  std::shared_ptr<ir::Drawing> shape;    // its `shape` setting (null: drawn by default, multibody/drawing.cpp)
 };
 
 struct Side {

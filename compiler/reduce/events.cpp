@@ -85,6 +85,7 @@ void steps_for_time_kinks(ReducedSystem& s) {
   for (Expr& e : s.jacobian) e = f(e);
   for (Residual& r : s.residuals) r.value = f(r.value);
   for (Output& o : s.graph.outputs) o.value = f(o.value);
+  for (DrawnBody& d : s.graph.drawings) d.for_each_expr([&](Expr& e) { e = f(e); });
   for (ConstraintRow& row : s.constraints) {
     row.g = f(row.g);
     row.gdot = f(row.gdot);

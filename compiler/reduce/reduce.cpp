@@ -174,6 +174,7 @@ class Reducer {
     eqs_ = std::move(kept);
     for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve_all(var(s.der)));
     for (Output& o : out_.graph.outputs) o.value = resolve_all(o.value);
+    for (DrawnBody& d : out_.graph.drawings) d.for_each_expr([&](Expr& e) { e = resolve_all(e); });
     for (auto& [id, rate] : rate_of_) rate = resolve_all(rate);
     for (ConstraintRow& row : out_.constraints) {
       row.gdot = resolve_all(var(row.flow));

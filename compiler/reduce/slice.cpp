@@ -58,6 +58,8 @@ void slice(ReducedSystem& s) {
   for (const Residual& r : s.residuals) deriv_roots.push_back(r.value);
   std::vector<Expr> output_roots;
   for (const Output& o : s.graph.outputs) output_roots.push_back(o.value);
+  std::vector<Expr> drawing_roots;
+  for (const DrawnBody& d : s.graph.drawings) d.for_each_expr([&](const Expr& e) { drawing_roots.push_back(e); });
   std::vector<Expr> constraint_roots;
   for (const ConstraintRow& row : s.constraints) {
     constraint_roots.push_back(row.gdot);
@@ -75,13 +77,14 @@ void slice(ReducedSystem& s) {
   }
   s.for_derivative = needed_by(deriv_roots);
   s.for_outputs = needed_by(output_roots);
+  s.for_drawings = needed_by(drawing_roots);
   s.for_jacobian = needed_by(s.jacobian);
   s.for_constraints = needed_by(constraint_roots);
   s.for_events = needed_by(event_roots);
   s.for_contacts = needed_by(contact_roots);
   s.for_tangents = needed_by(tangent_roots);
-  const std::vector<std::vector<int>*> slices = {&s.for_derivative, &s.for_outputs, &s.for_jacobian, &s.for_constraints,
-                                                 &s.for_events,     &s.for_contacts, &s.for_tangents};
+  const std::vector<std::vector<int>*> slices = {&s.for_derivative, &s.for_outputs,  &s.for_jacobian, &s.for_constraints,
+                                                 &s.for_events,     &s.for_contacts, &s.for_tangents, &s.for_drawings};
   std::set<int> used;
   for (const std::vector<int>* sl : slices) used.insert(sl->begin(), sl->end());
   // Drop what nobody needs; renumber the slices.

@@ -236,6 +236,15 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
     if (keep_output[i]) kept_outputs.push_back(std::move(g.outputs[i]));
   }
   g.outputs = std::move(kept_outputs);
+  // A drawn body stays if everything its pose reads is kept.
+  std::vector<DrawnBody> kept_drawings;
+  for (DrawnBody& d : g.drawings) {
+    std::unordered_set<int> reads;
+    d.for_each_expr([&](const Expr& e) { collect_vars(e, reads); });
+    if (std::all_of(reads.begin(), reads.end(), [&](int v) { return need_var[at(v)] != 0; }))
+      kept_drawings.push_back(std::move(d));
+  }
+  g.drawings = std::move(kept_drawings);
 
   // Parameters nothing kept reads any more (directly or through other parameters).
   std::unordered_set<int> read;
@@ -245,6 +254,7 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
     for (const Expr& e : {s.value, s.rate})
       if (e) collect_params(e, read);
   for (const Output& o : g.outputs) collect_params(o.value, read);
+  for (const DrawnBody& d : g.drawings) d.for_each_expr([&](const Expr& e) { collect_params(e, read); });
   for (std::size_t p = g.params.size(); p-- > 0;)  // dependencies come first: walk back
     if (read.count(static_cast<int>(p)) && g.params[p].value) collect_params(g.params[p].value, read);
   // ... are removed too (a scene's simulator refuses --set for them), and
@@ -272,6 +282,7 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
   }
   for (Signal& s : g.signals) renumber(s.value), renumber(s.rate);
   for (Output& o : g.outputs) renumber(o.value);
+  for (DrawnBody& d : g.drawings) d.for_each_expr(renumber);
 
   rep.nodes_after = static_cast<int>(g.nodes.size());
   rep.bonds_after = static_cast<int>(g.bonds.size());

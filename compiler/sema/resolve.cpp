@@ -102,7 +102,9 @@ class Resolver {
               if (claim_name(prefix + st.name, st.loc, "signal"))
                 m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, st.rate});
             } else if constexpr (std::is_same_v<T, AstOutput>) {
-              if (claim_name("output " + prefix + st.name, st.loc, "output"))
+              if (st.drawing)
+                m_.drawings.push_back({st.drawing, st.loc, st.value, st.modes, scope});
+              else if (claim_name("output " + prefix + st.name, st.loc, "output"))
                 m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope, nullptr});
             } else if constexpr (std::is_same_v<T, AstElement>) {
               if (!claim_name(prefix + st.name, st.loc, "element")) return;

@@ -445,6 +445,175 @@ class ball_chain_model final : public mbgrt::Model {
     out[1] = lower_pose_r1;
   }
 
+  // DRAWN BODIES (--animate): how many.
+  std::size_t body_count() const override {
+    return 2;
+  }
+
+  // How body i is drawn: its shape in body axes from the point body_poses gives.
+  mbgrt::BodyVisual body_visual(std::size_t i) const override {
+    mbgrt::BodyVisual v;
+    if (i == 0) {  // upper
+      v.name = "upper";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.5;
+      v.size[1] = 0.025;
+      v.size[2] = 0.025;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.8;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.15;
+    }
+    if (i == 1) {  // lower
+      v.name = "lower";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.2;
+      v.size[1] = 0.010000000000000002;
+      v.size[2] = 0.010000000000000002;
+      v.centre[0] = -0.1;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.15;
+      v.colour[1] = 0.4;
+      v.colour[2] = 0.8;
+    }
+    return v;
+  }
+
+  // POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.
+  void body_poses(double t, const double* x, const double* yp, double* out) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double shoulder_rot_q_1 = x[3];
+    const double shoulder_rot_q_2 = x[4];
+    const double shoulder_rot_q_3 = x[5];
+    const double shoulder_rot_q_4 = x[6];
+    const double elbow_rot_q_1 = x[10];
+    const double elbow_rot_q_2 = x[11];
+    const double elbow_rot_q_3 = x[12];
+    const double elbow_rot_q_4 = x[13];
+    // ball_chain.mbg:26:7  signal shoulder.Rpc31
+    // (cseN: a subexpression several equations below share)
+    const double cse63 = shoulder_rot_q_2 * shoulder_rot_q_4;
+    const double cse64 = shoulder_rot_q_1 * shoulder_rot_q_3;
+    const double cse65 = shoulder_rot_q_1 * shoulder_rot_q_1;
+    const double cse66 = shoulder_rot_q_2 * shoulder_rot_q_2;
+    const double cse67 = cse65 + cse66;
+    const double cse68 = shoulder_rot_q_3 * shoulder_rot_q_3;
+    const double cse69 = shoulder_rot_q_4 * shoulder_rot_q_4;
+    const double cse70 = cse67 + cse68 + cse69;
+    const double shoulder_Rpc31 = 2.0 * (cse63 - cse64) / cse70;
+    // ball_chain.mbg:27:7  signal elbow.Rpc21
+    const double cse71 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse72 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse73 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse74 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse75 = cse73 + cse74;
+    const double cse76 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse77 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse78 = cse75 + cse76 + cse77;
+    const double elbow_Rpc21 = 2.0 * (cse71 + cse72) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc31
+    const double cse79 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse80 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse79 - cse80) / cse78;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc32
+    const double cse81 = shoulder_rot_q_3 * shoulder_rot_q_4;
+    const double cse82 = shoulder_rot_q_1 * shoulder_rot_q_2;
+    const double shoulder_Rpc32 = 2.0 * (cse81 + cse82) / cse70;
+    // ball_chain.mbg:27:7  signal elbow.Rpc22
+    const double elbow_Rpc22 = (cse73 + cse76 - cse74 - cse77) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc32
+    const double cse83 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse84 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse83 + cse84) / cse78;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc33
+    const double shoulder_Rpc33 = (cse65 + cse69 - cse66 - cse68) / cse70;
+    // ball_chain.mbg:27:7  signal elbow.Rpc23
+    const double elbow_Rpc23 = 2.0 * (cse83 - cse84) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc33
+    const double elbow_Rpc33 = (cse73 + cse77 - cse74 - cse76) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc11
+    const double elbow_Rpc11 = (cse75 - cse76 - cse77) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc13
+    const double elbow_Rpc13 = 2.0 * (cse79 + cse80) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc12
+    const double elbow_Rpc12 = 2.0 * (cse71 - cse72) / cse78;
+    // ball_chain.mbg:27:7  signal lower.pose.R33
+    const double lower_pose_R33 = shoulder_Rpc31 * elbow_Rpc13 + shoulder_Rpc32 * elbow_Rpc23 + shoulder_Rpc33 * elbow_Rpc33;
+    // ball_chain.mbg:27:7  signal lower.pose.R32
+    const double lower_pose_R32 = shoulder_Rpc31 * elbow_Rpc12 + shoulder_Rpc32 * elbow_Rpc22 + shoulder_Rpc33 * elbow_Rpc32;
+    // ball_chain.mbg:27:7  signal lower.pose.R31
+    const double lower_pose_R31 = shoulder_Rpc31 * elbow_Rpc11 + shoulder_Rpc32 * elbow_Rpc21 + shoulder_Rpc33 * elbow_Rpc31;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc11
+    const double shoulder_Rpc11 = (cse67 - cse68 - cse69) / cse70;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc12
+    const double cse85 = shoulder_rot_q_2 * shoulder_rot_q_3;
+    const double cse86 = shoulder_rot_q_1 * shoulder_rot_q_4;
+    const double shoulder_Rpc12 = 2.0 * (cse85 - cse86) / cse70;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc13
+    const double shoulder_Rpc13 = 2.0 * (cse63 + cse64) / cse70;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc21
+    const double shoulder_Rpc21 = 2.0 * (cse85 + cse86) / cse70;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc22
+    const double shoulder_Rpc22 = (cse65 + cse68 - cse66 - cse69) / cse70;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc23
+    const double shoulder_Rpc23 = 2.0 * (cse81 - cse82) / cse70;
+    // ball_chain.mbg:26:7  signal upper.pose.r1
+    const double upper_pose_r1 = 0.25 * shoulder_Rpc11;
+    // ball_chain.mbg:26:7  signal upper.pose.r2
+    const double upper_pose_r2 = 0.25 * shoulder_Rpc21;
+    // ball_chain.mbg:26:7  signal upper.pose.r3
+    const double upper_pose_r3 = 0.25 * shoulder_Rpc31;
+    // ball_chain.mbg:27:7  signal lower.pose.R11
+    const double lower_pose_R11 = shoulder_Rpc11 * elbow_Rpc11 + shoulder_Rpc12 * elbow_Rpc21 + shoulder_Rpc13 * elbow_Rpc31;
+    // ball_chain.mbg:27:7  signal lower.pose.R12
+    const double lower_pose_R12 = shoulder_Rpc11 * elbow_Rpc12 + shoulder_Rpc12 * elbow_Rpc22 + shoulder_Rpc13 * elbow_Rpc32;
+    // ball_chain.mbg:27:7  signal lower.pose.R13
+    const double lower_pose_R13 = shoulder_Rpc11 * elbow_Rpc13 + shoulder_Rpc12 * elbow_Rpc23 + shoulder_Rpc13 * elbow_Rpc33;
+    // ball_chain.mbg:27:7  signal lower.pose.R21
+    const double lower_pose_R21 = shoulder_Rpc21 * elbow_Rpc11 + shoulder_Rpc22 * elbow_Rpc21 + shoulder_Rpc23 * elbow_Rpc31;
+    // ball_chain.mbg:27:7  signal lower.pose.R22
+    const double lower_pose_R22 = shoulder_Rpc21 * elbow_Rpc12 + shoulder_Rpc22 * elbow_Rpc22 + shoulder_Rpc23 * elbow_Rpc32;
+    // ball_chain.mbg:27:7  signal lower.pose.R23
+    const double lower_pose_R23 = shoulder_Rpc21 * elbow_Rpc13 + shoulder_Rpc22 * elbow_Rpc23 + shoulder_Rpc23 * elbow_Rpc33;
+    // ball_chain.mbg:27:7  signal lower.pose.r1
+    const double lower_pose_r1 = upper_pose_r1 + upper_pose_r1 + 0.2 * lower_pose_R11;
+    // ball_chain.mbg:27:7  signal lower.pose.r2
+    const double lower_pose_r2 = upper_pose_r2 + upper_pose_r2 + 0.2 * lower_pose_R21;
+    // ball_chain.mbg:27:7  signal lower.pose.r3
+    const double lower_pose_r3 = upper_pose_r3 + upper_pose_r3 + 0.2 * lower_pose_R31;
+    // 12 per body (origin, rotation row-major), then every modal coordinate
+    out[0] = upper_pose_r1;
+    out[1] = upper_pose_r2;
+    out[2] = upper_pose_r3;
+    out[3] = shoulder_Rpc11;
+    out[4] = shoulder_Rpc12;
+    out[5] = shoulder_Rpc13;
+    out[6] = shoulder_Rpc21;
+    out[7] = shoulder_Rpc22;
+    out[8] = shoulder_Rpc23;
+    out[9] = shoulder_Rpc31;
+    out[10] = shoulder_Rpc32;
+    out[11] = shoulder_Rpc33;
+    out[12] = lower_pose_r1;
+    out[13] = lower_pose_r2;
+    out[14] = lower_pose_r3;
+    out[15] = lower_pose_R11;
+    out[16] = lower_pose_R12;
+    out[17] = lower_pose_R13;
+    out[18] = lower_pose_R21;
+    out[19] = lower_pose_R22;
+    out[20] = lower_pose_R23;
+    out[21] = lower_pose_R31;
+    out[22] = lower_pose_R32;
+    out[23] = lower_pose_R33;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

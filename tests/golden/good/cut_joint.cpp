@@ -433,6 +433,144 @@ class cut_joint_model final : public mbgrt::Model {
     out[2] = std::sqrt(cse27 * cse27 + cse28 * cse28);
   }
 
+  // DRAWN BODIES (--animate): how many.
+  std::size_t body_count() const override {
+    return 3;
+  }
+
+  // How body i is drawn: its shape in body axes from the point body_poses gives.
+  mbgrt::BodyVisual body_visual(std::size_t i) const override {
+    mbgrt::BodyVisual v;
+    if (i == 0) {  // crank
+      v.name = "crank";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.2;
+      v.size[1] = 0.010000000000000002;
+      v.size[2] = 0.010000000000000002;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.8;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.15;
+    }
+    if (i == 1) {  // coupler
+      v.name = "coupler";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 1;
+      v.size[1] = 0.05;
+      v.size[2] = 0.05;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.15;
+      v.colour[1] = 0.4;
+      v.colour[2] = 0.8;
+    }
+    if (i == 2) {  // rocker
+      v.name = "rocker";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.2;
+      v.size[1] = 0.010000000000000002;
+      v.size[2] = 0.010000000000000002;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.2;
+      v.colour[1] = 0.65;
+      v.colour[2] = 0.25;
+    }
+    return v;
+  }
+
+  // POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.
+  void body_poses(double t, const double* x, const double* yp, double* out) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double j1_theta_q = x[1];
+    const double j2_theta_q = x[3];
+    const double j4_theta_q = x[5];
+    // cut_joint.mbg:14:7  signal crank.pose.R21
+    const double crank_pose_R21 = std::sin(j1_theta_q);
+    // cut_joint.mbg:14:7  signal crank.pose.R22
+    const double crank_pose_R22 = std::cos(j1_theta_q);
+    // cut_joint.mbg:15:7  signal coupler.pose.R22
+    // (cseN: a subexpression several equations below share)
+    const double cse29 = std::sin(j2_theta_q);
+    const double cse30 = std::cos(j2_theta_q);
+    const double coupler_pose_R22 = -crank_pose_R21 * cse29 + crank_pose_R22 * cse30;
+    // cut_joint.mbg:14:7  signal crank.pose.R11
+    const double crank_pose_R11 = crank_pose_R22;
+    // cut_joint.mbg:14:7  signal crank.pose.R12
+    const double crank_pose_R12 = -crank_pose_R21;
+    // cut_joint.mbg:15:7  signal coupler.pose.R11
+    const double coupler_pose_R11 = crank_pose_R11 * cse30 + crank_pose_R12 * cse29;
+    // cut_joint.mbg:15:7  signal coupler.pose.R12
+    const double coupler_pose_R12 = -crank_pose_R11 * cse29 + crank_pose_R12 * cse30;
+    // cut_joint.mbg:17:7  signal rocker.pose.R12
+    const double cse31 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse31;
+    // cut_joint.mbg:14:7  signal crank.pose.r1
+    const double crank_pose_r1 = 0.1 * crank_pose_R11;
+    // cut_joint.mbg:15:7  signal coupler.pose.r1
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + 0.5 * coupler_pose_R11;
+    // cut_joint.mbg:17:7  signal rocker.pose.R11
+    const double rocker_pose_R11 = std::cos(j4_theta_q);
+    // cut_joint.mbg:17:7  signal rocker.pose.r1
+    const double rocker_pose_r1 = 1.0 + 0.1 * rocker_pose_R11;
+    // cut_joint.mbg:15:7  signal coupler.pose.R21
+    const double coupler_pose_R21 = crank_pose_R21 * cse30 + crank_pose_R22 * cse29;
+    // cut_joint.mbg:17:7  signal rocker.pose.R22
+    const double rocker_pose_R22 = rocker_pose_R11;
+    // cut_joint.mbg:14:7  signal crank.pose.r2
+    const double crank_pose_r2 = 0.1 * crank_pose_R21;
+    // cut_joint.mbg:15:7  signal coupler.pose.r2
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + 0.5 * coupler_pose_R21;
+    // cut_joint.mbg:17:7  signal rocker.pose.R21
+    const double rocker_pose_R21 = cse31;
+    // cut_joint.mbg:17:7  signal rocker.pose.r2
+    const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
+    // 12 per body (origin, rotation row-major), then every modal coordinate
+    out[0] = crank_pose_r1;
+    out[1] = crank_pose_r2;
+    out[2] = 0.0;
+    out[3] = crank_pose_R11;
+    out[4] = crank_pose_R12;
+    out[5] = 0.0;
+    out[6] = crank_pose_R21;
+    out[7] = crank_pose_R22;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 1.0;
+    out[12] = coupler_pose_r1;
+    out[13] = coupler_pose_r2;
+    out[14] = 0.0;
+    out[15] = coupler_pose_R11;
+    out[16] = coupler_pose_R12;
+    out[17] = 0.0;
+    out[18] = coupler_pose_R21;
+    out[19] = coupler_pose_R22;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 1.0;
+    out[24] = rocker_pose_r1;
+    out[25] = rocker_pose_r2;
+    out[26] = 0.0;
+    out[27] = rocker_pose_R11;
+    out[28] = rocker_pose_R12;
+    out[29] = 0.0;
+    out[30] = rocker_pose_R21;
+    out[31] = rocker_pose_R22;
+    out[32] = 0.0;
+    out[33] = 0.0;
+    out[34] = 0.0;
+    out[35] = 1.0;
+  }
+
   std::size_t position_constraint_count() const override {
     return 5;
   }
@@ -474,17 +612,17 @@ class cut_joint_model final : public mbgrt::Model {
     const double crank_pose_R22 = std::cos(j1_theta_q);
     // cut_joint.mbg:15:7  signal coupler.pose.R22
     // (cseN: a subexpression several equations below share)
-    const double cse29 = std::sin(j2_theta_q);
-    const double cse30 = std::cos(j2_theta_q);
-    const double coupler_pose_R22 = -crank_pose_R21 * cse29 + crank_pose_R22 * cse30;
+    const double cse32 = std::sin(j2_theta_q);
+    const double cse33 = std::cos(j2_theta_q);
+    const double coupler_pose_R22 = -crank_pose_R21 * cse32 + crank_pose_R22 * cse33;
     // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
     const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_1 = cse29 * j2_m4_f1_2;
+    const double j2_m4_f2_1 = cse32 * j2_m4_f1_2;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
     const double j2_reaction_f_f_1 = j2_m4_f2_1;
     // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_2 = cse30 * j2_m4_f1_2;
+    const double j2_m4_f2_2 = cse33 * j2_m4_f1_2;
     // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
     // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
@@ -494,9 +632,9 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.R12
     const double crank_pose_R12 = -crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.R11
-    const double coupler_pose_R11 = crank_pose_R11 * cse30 + crank_pose_R12 * cse29;
+    const double coupler_pose_R11 = crank_pose_R11 * cse33 + crank_pose_R12 * cse32;
     // cut_joint.mbg:15:7  signal coupler.pose.R12
-    const double coupler_pose_R12 = -crank_pose_R11 * cse29 + crank_pose_R12 * cse30;
+    const double coupler_pose_R12 = -crank_pose_R11 * cse32 + crank_pose_R12 * cse33;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -504,8 +642,8 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
     const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
     // cut_joint.mbg:17:7  signal rocker.pose.R12
-    const double cse31 = std::sin(j4_theta_q);
-    const double rocker_pose_R12 = -cse31;
+    const double cse34 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse34;
     // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
     const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
     // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
@@ -515,15 +653,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.1 * crank_pose_R11;
     // cut_joint.mbg:15:7  signal coupler.pose.r1
-    const double cse32 = 0.5 * coupler_pose_R11;
-    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse32;
+    const double cse35 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse35;
     // cut_joint.mbg:17:7  signal rocker.pose.R11
     const double rocker_pose_R11 = std::cos(j4_theta_q);
     // cut_joint.mbg:17:7  signal rocker.pose.r1
-    const double cse33 = 0.1 * rocker_pose_R11;
-    const double rocker_pose_r1 = 1.0 + cse33;
+    const double cse36 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse36;
     // cut_joint.mbg:15:7  signal coupler.pose.R21
-    const double coupler_pose_R21 = crank_pose_R21 * cse30 + crank_pose_R22 * cse29;
+    const double coupler_pose_R21 = crank_pose_R21 * cse33 + crank_pose_R22 * cse32;
     // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
     const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
     // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
@@ -539,15 +677,15 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:14:7  signal crank.pose.r2
     const double crank_pose_r2 = 0.1 * crank_pose_R21;
     // cut_joint.mbg:15:7  signal coupler.pose.r2
-    const double cse34 = 0.5 * coupler_pose_R21;
-    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse34;
+    const double cse37 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse37;
     // cut_joint.mbg:17:7  signal rocker.pose.R21
-    const double rocker_pose_R21 = cse31;
+    const double rocker_pose_R21 = cse34;
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
     // g, then gdot
-    rows_out[0] = rocker_pose_r1 + cse33 - (coupler_pose_r1 + cse32);
-    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse34);
+    rows_out[0] = rocker_pose_r1 + cse36 - (coupler_pose_r1 + cse35);
+    rows_out[1] = rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse37);
     rows_out[2] = 0.0;
     rows_out[3] = 0.0;
     rows_out[4] = 0.0;

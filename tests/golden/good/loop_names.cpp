@@ -698,6 +698,171 @@ class loop_names_model final : public mbgrt::Model {
     out[3] = plate2_r_q_1 + ((cse102 - cse103 - cse104) / cse105 * plate2_corner2_2_1 + 2.0 * (plate2_q_q_2 * plate2_q_q_3 - plate2_q_q_1 * plate2_q_q_4) / cse105 * plate2_corner2_2_2) - plate2_r_q_1;
   }
 
+  // DRAWN BODIES (--animate): how many.
+  std::size_t body_count() const override {
+    return 4;
+  }
+
+  // How body i is drawn: its shape in body axes from the point body_poses gives.
+  mbgrt::BodyVisual body_visual(std::size_t i) const override {
+    mbgrt::BodyVisual v;
+    if (i == 0) {  // bob1
+      v.name = "bob1";
+      v.shape = mbgrt::BodyVisual::Shape::sphere;
+      v.size[0] = 0.06;
+      v.size[1] = 0;
+      v.size[2] = 0;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.8;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.15;
+    }
+    if (i == 1) {  // plate1
+      v.name = "plate1";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.4;
+      v.size[1] = 0.2;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.15;
+      v.colour[1] = 0.4;
+      v.colour[2] = 0.8;
+    }
+    if (i == 2) {  // bob2
+      v.name = "bob2";
+      v.shape = mbgrt::BodyVisual::Shape::sphere;
+      v.size[0] = 0.06;
+      v.size[1] = 0;
+      v.size[2] = 0;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.2;
+      v.colour[1] = 0.65;
+      v.colour[2] = 0.25;
+    }
+    if (i == 3) {  // plate2
+      v.name = "plate2";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.4;
+      v.size[1] = 0.2;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.85;
+      v.colour[1] = 0.6;
+      v.colour[2] = 0.1;
+    }
+    return v;
+  }
+
+  // POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.
+  void body_poses(double t, const double* x, const double* yp, double* out) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bob1_r_q_1 = x[3];
+    const double bob1_r_q_2 = x[4];
+    const double bob1_r_q_3 = x[5];
+    const double plate1_r_q_1 = x[9];
+    const double plate1_r_q_2 = x[10];
+    const double plate1_r_q_3 = x[11];
+    const double plate1_q_q_1 = x[15];
+    const double plate1_q_q_2 = x[16];
+    const double plate1_q_q_3 = x[17];
+    const double plate1_q_q_4 = x[18];
+    const double bob2_r_q_1 = x[22];
+    const double bob2_r_q_2 = x[23];
+    const double bob2_r_q_3 = x[24];
+    const double plate2_r_q_1 = x[28];
+    const double plate2_r_q_2 = x[29];
+    const double plate2_r_q_3 = x[30];
+    const double plate2_q_q_1 = x[34];
+    const double plate2_q_q_2 = x[35];
+    const double plate2_q_q_3 = x[36];
+    const double plate2_q_q_4 = x[37];
+    // 12 per body (origin, rotation row-major), then every modal coordinate
+    out[0] = bob1_r_q_1;
+    out[1] = bob1_r_q_2;
+    out[2] = bob1_r_q_3;
+    out[3] = 1.0;
+    out[4] = 0.0;
+    out[5] = 0.0;
+    out[6] = 0.0;
+    out[7] = 1.0;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 1.0;
+    out[12] = plate1_r_q_1;
+    out[13] = plate1_r_q_2;
+    out[14] = plate1_r_q_3;
+    // (cseN: a subexpression several equations below share)
+    const double cse106 = plate1_q_q_1 * plate1_q_q_1;
+    const double cse107 = plate1_q_q_2 * plate1_q_q_2;
+    const double cse108 = cse106 + cse107;
+    const double cse109 = plate1_q_q_3 * plate1_q_q_3;
+    const double cse110 = plate1_q_q_4 * plate1_q_q_4;
+    const double cse111 = cse108 + cse109 + cse110;
+    out[15] = (cse108 - cse109 - cse110) / cse111;
+    const double cse112 = plate1_q_q_2 * plate1_q_q_3;
+    const double cse113 = plate1_q_q_1 * plate1_q_q_4;
+    out[16] = 2.0 * (cse112 - cse113) / cse111;
+    const double cse114 = plate1_q_q_2 * plate1_q_q_4;
+    const double cse115 = plate1_q_q_1 * plate1_q_q_3;
+    out[17] = 2.0 * (cse114 + cse115) / cse111;
+    out[18] = 2.0 * (cse112 + cse113) / cse111;
+    out[19] = (cse106 + cse109 - cse107 - cse110) / cse111;
+    const double cse116 = plate1_q_q_3 * plate1_q_q_4;
+    const double cse117 = plate1_q_q_1 * plate1_q_q_2;
+    out[20] = 2.0 * (cse116 - cse117) / cse111;
+    out[21] = 2.0 * (cse114 - cse115) / cse111;
+    out[22] = 2.0 * (cse116 + cse117) / cse111;
+    out[23] = (cse106 + cse110 - cse107 - cse109) / cse111;
+    out[24] = bob2_r_q_1;
+    out[25] = bob2_r_q_2;
+    out[26] = bob2_r_q_3;
+    out[27] = 1.0;
+    out[28] = 0.0;
+    out[29] = 0.0;
+    out[30] = 0.0;
+    out[31] = 1.0;
+    out[32] = 0.0;
+    out[33] = 0.0;
+    out[34] = 0.0;
+    out[35] = 1.0;
+    out[36] = plate2_r_q_1;
+    out[37] = plate2_r_q_2;
+    out[38] = plate2_r_q_3;
+    const double cse118 = plate2_q_q_1 * plate2_q_q_1;
+    const double cse119 = plate2_q_q_2 * plate2_q_q_2;
+    const double cse120 = cse118 + cse119;
+    const double cse121 = plate2_q_q_3 * plate2_q_q_3;
+    const double cse122 = plate2_q_q_4 * plate2_q_q_4;
+    const double cse123 = cse120 + cse121 + cse122;
+    out[39] = (cse120 - cse121 - cse122) / cse123;
+    const double cse124 = plate2_q_q_2 * plate2_q_q_3;
+    const double cse125 = plate2_q_q_1 * plate2_q_q_4;
+    out[40] = 2.0 * (cse124 - cse125) / cse123;
+    const double cse126 = plate2_q_q_2 * plate2_q_q_4;
+    const double cse127 = plate2_q_q_1 * plate2_q_q_3;
+    out[41] = 2.0 * (cse126 + cse127) / cse123;
+    out[42] = 2.0 * (cse124 + cse125) / cse123;
+    out[43] = (cse118 + cse121 - cse119 - cse122) / cse123;
+    const double cse128 = plate2_q_q_3 * plate2_q_q_4;
+    const double cse129 = plate2_q_q_1 * plate2_q_q_2;
+    out[44] = 2.0 * (cse128 - cse129) / cse123;
+    out[45] = 2.0 * (cse126 - cse127) / cse123;
+    out[46] = 2.0 * (cse128 + cse129) / cse123;
+    out[47] = (cse118 + cse122 - cse119 - cse121) / cse123;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

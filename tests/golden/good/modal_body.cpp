@@ -540,6 +540,96 @@ class modal_body_model final : public mbgrt::Model {
     out[5] = bar_eta_q_2;
   }
 
+  // DRAWN BODIES (--animate): how many.
+  std::size_t body_count() const override {
+    return 1;
+  }
+
+  // How body i is drawn: its shape in body axes from the point body_poses gives.
+  mbgrt::BodyVisual body_visual(std::size_t i) const override {
+    mbgrt::BodyVisual v;
+    if (i == 0) {  // bar
+      v.name = "bar";
+      v.shape = mbgrt::BodyVisual::Shape::mesh;
+      v.size[0] = 0.1;
+      v.size[1] = 0.1;
+      v.size[2] = 0.1;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.8;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.15;
+      v.vertices.assign({
+          0.04, 0, 0, -0.04, 0, 0, 0, 0.04, 0, 0, -0.04, 0,
+          0, 0, 0.04, 0, 0, -0.04, 1.04, 0, 0, 0.96, 0, 0,
+          1, 0.04, 0, 1, -0.04, 0, 1, 0, 0.04, 1, 0, -0.04,
+      });
+      v.triangles.assign({
+          0, 2, 4, 0, 5, 2, 0, 4, 3, 0, 3, 5, 1, 4, 2, 1, 2, 5, 1, 3, 4, 1, 5, 3,
+          6, 8, 10, 6, 11, 8, 6, 10, 9, 6, 9, 11, 7, 10, 8, 7, 8, 11, 7, 9, 10, 7, 11, 9,
+      });
+      // modal coordinate 1: each vertex's displacement per unit
+      v.mode_shapes.push_back(std::vector<double>{
+          0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+          0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 0,
+          0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0,
+      });
+      // modal coordinate 2: each vertex's displacement per unit
+      v.mode_shapes.push_back(std::vector<double>{
+          0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+          0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1,
+          0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1,
+      });
+    }
+    return v;
+  }
+
+  // POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.
+  void body_poses(double t, const double* y, const double* yp, double* out) override {
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double bar_r_q_1 = y[8];
+    const double bar_r_q_2 = y[9];
+    const double bar_r_q_3 = y[10];
+    const double bar_q_q_1 = y[11];
+    const double bar_q_q_2 = y[12];
+    const double bar_q_q_3 = y[13];
+    const double bar_q_q_4 = y[14];
+    const double bar_eta_q_1 = y[15];
+    const double bar_eta_q_2 = y[16];
+    // 12 per body (origin, rotation row-major), then every modal coordinate
+    out[0] = bar_r_q_1;
+    out[1] = bar_r_q_2;
+    out[2] = bar_r_q_3;
+    // (cseN: a subexpression several equations below share)
+    const double cse95 = bar_q_q_1 * bar_q_q_1;
+    const double cse96 = bar_q_q_2 * bar_q_q_2;
+    const double cse97 = cse95 + cse96;
+    const double cse98 = bar_q_q_3 * bar_q_q_3;
+    const double cse99 = bar_q_q_4 * bar_q_q_4;
+    const double cse100 = cse97 + cse98 + cse99;
+    out[3] = (cse97 - cse98 - cse99) / cse100;
+    const double cse101 = bar_q_q_2 * bar_q_q_3;
+    const double cse102 = bar_q_q_1 * bar_q_q_4;
+    out[4] = 2.0 * (cse101 - cse102) / cse100;
+    const double cse103 = bar_q_q_2 * bar_q_q_4;
+    const double cse104 = bar_q_q_1 * bar_q_q_3;
+    out[5] = 2.0 * (cse103 + cse104) / cse100;
+    out[6] = 2.0 * (cse101 + cse102) / cse100;
+    out[7] = (cse95 + cse98 - cse96 - cse99) / cse100;
+    const double cse105 = bar_q_q_3 * bar_q_q_4;
+    const double cse106 = bar_q_q_1 * bar_q_q_2;
+    out[8] = 2.0 * (cse105 - cse106) / cse100;
+    out[9] = 2.0 * (cse103 - cse104) / cse100;
+    out[10] = 2.0 * (cse105 + cse106) / cse100;
+    out[11] = (cse95 + cse99 - cse96 - cse98) / cse100;
+    out[12] = bar_eta_q_1;
+    out[13] = bar_eta_q_2;
+  }
+
   std::size_t state_count() const override {
     return 17;
   }
@@ -599,21 +689,21 @@ class modal_body_model final : public mbgrt::Model {
     // modal_body.mbg:7:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[2], bar.M.f[3], bar.M.f[4], bar.M.f[5], bar.M.f[6], bar.M.f[7], bar.M.f[8])
     // (cseN: a subexpression several equations below share)
-    const double cse95 = 0.78 * bar_eta_q_2;
-    const double cse96 = -cse95;
-    const double cse97 = 0.78 * bar_eta_q_1;
-    const double cse98 = -cse97;
-    const double cse99 = 0.5 * bar_eta_q_1 * bar_eta_q_1;
-    const double cse100 = 0.5 * bar_eta_q_2 * bar_eta_q_2;
-    const double cse101 = 0.57 * bar_eta_q_1;
-    const double cse102 = 0.57 * bar_eta_q_2;
+    const double cse107 = 0.78 * bar_eta_q_2;
+    const double cse108 = -cse107;
+    const double cse109 = 0.78 * bar_eta_q_1;
+    const double cse110 = -cse109;
+    const double cse111 = 0.5 * bar_eta_q_1 * bar_eta_q_1;
+    const double cse112 = 0.5 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse113 = 0.57 * bar_eta_q_1;
+    const double cse114 = 0.57 * bar_eta_q_2;
     double blk1_a[64] = {
-        -2.0, 0.0, 0.0, 0.0, cse96, cse97, 0.0, 0.0,
-        0.0, -2.0, 0.0, cse95, 0.0, -1.0, -0.78, 0.0,
-        0.0, 0.0, -2.0, cse98, 1.0, 0.0, 0.0, -0.78,
-        0.0, cse95, cse98, -(0.01 + (cse99 + cse100)), cse101, cse102, 0.0, 0.0,
-        cse96, 0.0, 1.0, cse101, -(0.67 + cse100), 0.0, 0.0, 0.57,
-        cse97, -1.0, 0.0, cse102, 0.0, -(0.67 + cse99), -0.57, 0.0,
+        -2.0, 0.0, 0.0, 0.0, cse108, cse109, 0.0, 0.0,
+        0.0, -2.0, 0.0, cse107, 0.0, -1.0, -0.78, 0.0,
+        0.0, 0.0, -2.0, cse110, 1.0, 0.0, 0.0, -0.78,
+        0.0, cse107, cse110, -(0.01 + (cse111 + cse112)), cse113, cse114, 0.0, 0.0,
+        cse108, 0.0, 1.0, cse113, -(0.67 + cse112), 0.0, 0.0, 0.57,
+        cse109, -1.0, 0.0, cse114, 0.0, -(0.67 + cse111), -0.57, 0.0,
         0.0, -0.78, 0.0, 0.0, 0.0, -0.57, -0.5, 0.0,
         0.0, 0.0, -0.78, 0.0, 0.57, 0.0, 0.0, -0.5,
     };
@@ -626,68 +716,68 @@ class modal_body_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[4];
     const double bar_M_f_6 = blk1_x[5];
     // modal_body.mbg:7:6  MTF bar.sv: f2 = T f1
-    const double cse103 = bar_q_q_1 * bar_q_q_1;
-    const double cse104 = bar_q_q_2 * bar_q_q_2;
-    const double cse105 = cse103 + cse104;
-    const double cse106 = bar_q_q_3 * bar_q_q_3;
-    const double cse107 = bar_q_q_4 * bar_q_q_4;
-    const double cse108 = cse105 + cse106 + cse107;
-    const double cse109 = bar_q_q_2 * bar_q_q_3;
-    const double cse110 = bar_q_q_1 * bar_q_q_4;
-    const double cse111 = bar_q_q_2 * bar_q_q_4;
-    const double cse112 = bar_q_q_1 * bar_q_q_3;
-    const double bar_sv_f2_1 = (cse105 - cse106 - cse107) / cse108 * bar_M_f_1 + 2.0 * (cse109 - cse110) / cse108 * bar_M_f_2 + 2.0 * (cse111 + cse112) / cse108 * bar_M_f_3;
+    const double cse115 = bar_q_q_1 * bar_q_q_1;
+    const double cse116 = bar_q_q_2 * bar_q_q_2;
+    const double cse117 = cse115 + cse116;
+    const double cse118 = bar_q_q_3 * bar_q_q_3;
+    const double cse119 = bar_q_q_4 * bar_q_q_4;
+    const double cse120 = cse117 + cse118 + cse119;
+    const double cse121 = bar_q_q_2 * bar_q_q_3;
+    const double cse122 = bar_q_q_1 * bar_q_q_4;
+    const double cse123 = bar_q_q_2 * bar_q_q_4;
+    const double cse124 = bar_q_q_1 * bar_q_q_3;
+    const double bar_sv_f2_1 = (cse117 - cse118 - cse119) / cse120 * bar_M_f_1 + 2.0 * (cse121 - cse122) / cse120 * bar_M_f_2 + 2.0 * (cse123 + cse124) / cse120 * bar_M_f_3;
     // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
     const double hinge_cn_f_1 = bar_sv_f2_1;
     // modal_body.mbg:7:6  MTF bar.sv: f2 = T f1
-    const double cse113 = 2.0 * (cse109 + cse110);
-    const double cse114 = cse113 / cse108;
-    const double cse115 = bar_q_q_3 * bar_q_q_4;
-    const double cse116 = bar_q_q_1 * bar_q_q_2;
-    const double cse117 = 2.0 * (cse115 - cse116);
-    const double cse118 = cse117 / cse108;
-    const double bar_sv_f2_2 = cse114 * bar_M_f_1 + (cse103 + cse106 - cse104 - cse107) / cse108 * bar_M_f_2 + cse118 * bar_M_f_3;
+    const double cse125 = 2.0 * (cse121 + cse122);
+    const double cse126 = cse125 / cse120;
+    const double cse127 = bar_q_q_3 * bar_q_q_4;
+    const double cse128 = bar_q_q_1 * bar_q_q_2;
+    const double cse129 = 2.0 * (cse127 - cse128);
+    const double cse130 = cse129 / cse120;
+    const double bar_sv_f2_2 = cse126 * bar_M_f_1 + (cse115 + cse118 - cse116 - cse119) / cse120 * bar_M_f_2 + cse130 * bar_M_f_3;
     // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
     const double hinge_cn_f_2 = bar_sv_f2_2;
     // modal_body.mbg:7:6  MTF bar.sv: f2 = T f1
-    const double bar_sv_f2_3 = 2.0 * (cse111 - cse112) / cse108 * bar_M_f_1 + 2.0 * (cse115 + cse116) / cse108 * bar_M_f_2 + (cse103 + cse107 - cse104 - cse106) / cse108 * bar_M_f_3;
+    const double bar_sv_f2_3 = 2.0 * (cse123 - cse124) / cse120 * bar_M_f_1 + 2.0 * (cse127 + cse128) / cse120 * bar_M_f_2 + (cse115 + cse119 - cse116 - cse118) / cse120 * bar_M_f_3;
     // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
     const double hinge_cn_f_3 = bar_sv_f2_3;
     // modal_body.mbg:11:7  MTF hinge.cbr: f2 = T f1
-    const double cse119 = 2.0 * bar_q_q_4 * cse108;
-    const double cse120 = bar_q_q_1 + bar_q_q_1;
-    const double cse121 = (cse108*cse108);
-    const double cse122 = 0.4743416490252569 * ((cse119 - cse113 * cse120) / cse121);
-    const double cse123 = 0.5 * bar_q_q_2;
-    const double cse124 = 2.0 * bar_q_q_3 * cse108;
-    const double cse125 = bar_q_q_2 + bar_q_q_2;
-    const double cse126 = 0.4743416490252569 * ((cse124 - cse113 * cse125) / cse121);
-    const double cse127 = 0.5 * bar_q_q_1;
-    const double cse128 = 2.0 * bar_q_q_2 * cse108;
-    const double cse129 = bar_q_q_3 + bar_q_q_3;
-    const double cse130 = 0.4743416490252569 * ((cse128 - cse113 * cse129) / cse121);
-    const double cse131 = 0.5 * bar_q_q_4;
-    const double cse132 = 2.0 * bar_q_q_1 * cse108;
-    const double cse133 = bar_q_q_4 + bar_q_q_4;
-    const double cse134 = 0.4743416490252569 * ((cse132 - cse113 * cse133) / cse121);
-    const double cse135 = 0.5 * bar_q_q_3;
-    const double hinge_cbr_f2_4 = (-cse122 * cse123 + cse126 * cse127 + cse130 * cse131 - cse134 * cse135) * bar_M_f_4 + (-cse122 * cse135 - cse126 * cse131 + cse130 * cse127 + cse134 * cse123) * bar_M_f_5 + (-cse122 * cse131 + cse126 * cse135 - cse130 * cse123 + cse134 * cse127) * bar_M_f_6;
+    const double cse131 = 2.0 * bar_q_q_4 * cse120;
+    const double cse132 = bar_q_q_1 + bar_q_q_1;
+    const double cse133 = (cse120*cse120);
+    const double cse134 = 0.4743416490252569 * ((cse131 - cse125 * cse132) / cse133);
+    const double cse135 = 0.5 * bar_q_q_2;
+    const double cse136 = 2.0 * bar_q_q_3 * cse120;
+    const double cse137 = bar_q_q_2 + bar_q_q_2;
+    const double cse138 = 0.4743416490252569 * ((cse136 - cse125 * cse137) / cse133);
+    const double cse139 = 0.5 * bar_q_q_1;
+    const double cse140 = 2.0 * bar_q_q_2 * cse120;
+    const double cse141 = bar_q_q_3 + bar_q_q_3;
+    const double cse142 = 0.4743416490252569 * ((cse140 - cse125 * cse141) / cse133);
+    const double cse143 = 0.5 * bar_q_q_4;
+    const double cse144 = 2.0 * bar_q_q_1 * cse120;
+    const double cse145 = bar_q_q_4 + bar_q_q_4;
+    const double cse146 = 0.4743416490252569 * ((cse144 - cse125 * cse145) / cse133);
+    const double cse147 = 0.5 * bar_q_q_3;
+    const double hinge_cbr_f2_4 = (-cse134 * cse135 + cse138 * cse139 + cse142 * cse143 - cse146 * cse147) * bar_M_f_4 + (-cse134 * cse147 - cse138 * cse143 + cse142 * cse139 + cse146 * cse135) * bar_M_f_5 + (-cse134 * cse143 + cse138 * cse147 - cse142 * cse135 + cse146 * cse139) * bar_M_f_6;
     // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
     const double hinge_cn_f_4 = hinge_cbr_f2_4;
     // modal_body.mbg:11:7  MTF hinge.cbr: f2 = T f1
-    const double cse136 = 0.4743416490252569 * ((-cse128 - cse117 * cse120) / cse121);
-    const double cse137 = 0.4743416490252569 * ((-cse132 - cse117 * cse125) / cse121);
-    const double cse138 = 0.4743416490252569 * ((cse119 - cse117 * cse129) / cse121);
-    const double cse139 = 0.4743416490252569 * ((cse124 - cse117 * cse133) / cse121);
-    const double hinge_cbr_f2_5 = (cse136 * cse123 - cse137 * cse127 - cse138 * cse131 + cse139 * cse135) * bar_M_f_4 + (cse136 * cse135 + cse137 * cse131 - cse138 * cse127 - cse139 * cse123) * bar_M_f_5 + (cse136 * cse131 - cse137 * cse135 + cse138 * cse123 - cse139 * cse127) * bar_M_f_6;
+    const double cse148 = 0.4743416490252569 * ((-cse140 - cse129 * cse132) / cse133);
+    const double cse149 = 0.4743416490252569 * ((-cse144 - cse129 * cse137) / cse133);
+    const double cse150 = 0.4743416490252569 * ((cse131 - cse129 * cse141) / cse133);
+    const double cse151 = 0.4743416490252569 * ((cse136 - cse129 * cse145) / cse133);
+    const double hinge_cbr_f2_5 = (cse148 * cse135 - cse149 * cse139 - cse150 * cse143 + cse151 * cse147) * bar_M_f_4 + (cse148 * cse147 + cse149 * cse143 - cse150 * cse139 - cse151 * cse135) * bar_M_f_5 + (cse148 * cse143 - cse149 * cse147 + cse150 * cse135 - cse151 * cse139) * bar_M_f_6;
     // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
     const double hinge_cn_f_5 = hinge_cbr_f2_5;
     // g, then gdot
     rows_out[0] = bar_r_q_1;
     rows_out[1] = bar_r_q_2;
     rows_out[2] = bar_r_q_3;
-    rows_out[3] = 0.4743416490252569 * cse114;
-    rows_out[4] = -0.4743416490252569 * cse118;
+    rows_out[3] = 0.4743416490252569 * cse126;
+    rows_out[4] = -0.4743416490252569 * cse130;
     rows_out[5] = hinge_cn_f_1;
     rows_out[6] = hinge_cn_f_2;
     rows_out[7] = hinge_cn_f_3;

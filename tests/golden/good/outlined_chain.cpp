@@ -464,6 +464,225 @@ class outlined_chain_model final : public mbgrt::Model {
     out[0] = rod5_pose_r2;
   }
 
+  // DRAWN BODIES (--animate): how many.
+  std::size_t body_count() const override {
+    return 5;
+  }
+
+  // How body i is drawn: its shape in body axes from the point body_poses gives.
+  mbgrt::BodyVisual body_visual(std::size_t i) const override {
+    mbgrt::BodyVisual v;
+    if (i == 0) {  // rod1
+      v.name = "rod1";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.020000000000000004;
+      v.size[1] = 0.4;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.8;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.15;
+    }
+    if (i == 1) {  // rod2
+      v.name = "rod2";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.020000000000000004;
+      v.size[1] = 0.4;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.15;
+      v.colour[1] = 0.4;
+      v.colour[2] = 0.8;
+    }
+    if (i == 2) {  // rod3
+      v.name = "rod3";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.020000000000000004;
+      v.size[1] = 0.4;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.2;
+      v.colour[1] = 0.65;
+      v.colour[2] = 0.25;
+    }
+    if (i == 3) {  // rod4
+      v.name = "rod4";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.020000000000000004;
+      v.size[1] = 0.4;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.85;
+      v.colour[1] = 0.6;
+      v.colour[2] = 0.1;
+    }
+    if (i == 4) {  // rod5
+      v.name = "rod5";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.020000000000000004;
+      v.size[1] = 0.4;
+      v.size[2] = 0.020000000000000004;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.55;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.7;
+    }
+    return v;
+  }
+
+  // POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.
+  void body_poses(double t, const double* x, const double* yp, double* out) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double j1_theta_q = x[1];
+    const double j2_theta_q = x[3];
+    const double j3_theta_q = x[5];
+    const double j4_theta_q = x[7];
+    const double j5_theta_q = x[9];
+    // outlined_chain.mbg:25:7  signal rod1.pose.R21
+    const double rod1_pose_R21 = std::sin(j1_theta_q);
+    // outlined_chain.mbg:25:7  signal rod1.pose.R22
+    const double rod1_pose_R22 = std::cos(j1_theta_q);
+    // outlined_chain.mbg:27:9  signal rod2.pose.R21
+    // (cseN: a subexpression several equations below share)
+    const double cse66 = std::cos(j2_theta_q);
+    const double cse67 = std::sin(j2_theta_q);
+    const double rod2_pose_R21 = rod1_pose_R21 * cse66 + rod1_pose_R22 * cse67;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R22
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse67 + rod1_pose_R22 * cse66;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R21
+    const double cse68 = std::cos(j3_theta_q);
+    const double cse69 = std::sin(j3_theta_q);
+    const double rod3_pose_R21 = rod2_pose_R21 * cse68 + rod2_pose_R22 * cse69;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R22
+    const double rod3_pose_R22 = -rod2_pose_R21 * cse69 + rod2_pose_R22 * cse68;
+    // outlined_chain.mbg:27:9  signal rod4.pose.R21
+    const double cse70 = std::cos(j4_theta_q);
+    const double cse71 = std::sin(j4_theta_q);
+    const double rod4_pose_R21 = rod3_pose_R21 * cse70 + rod3_pose_R22 * cse71;
+    // outlined_chain.mbg:27:9  signal rod4.pose.R22
+    const double rod4_pose_R22 = -rod3_pose_R21 * cse71 + rod3_pose_R22 * cse70;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R21
+    const double cse72 = std::cos(j5_theta_q);
+    const double cse73 = std::sin(j5_theta_q);
+    const double rod5_pose_R21 = rod4_pose_R21 * cse72 + rod4_pose_R22 * cse73;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R22
+    const double rod5_pose_R22 = -rod4_pose_R21 * cse73 + rod4_pose_R22 * cse72;
+    // outlined_chain.mbg:25:7  signal rod1.pose.R11
+    const double rod1_pose_R11 = rod1_pose_R22;
+    // outlined_chain.mbg:25:7  signal rod1.pose.R12
+    const double rod1_pose_R12 = -rod1_pose_R21;
+    // outlined_chain.mbg:25:7  signal rod1.pose.r1
+    const double rod1_pose_r1 = -rod1_pose_R12 * j1_pb_2;
+    // outlined_chain.mbg:25:7  signal rod1.pose.r2
+    const double rod1_pose_r2 = -rod1_pose_R22 * j1_pb_2;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R11
+    const double rod2_pose_R11 = rod1_pose_R11 * cse66 + rod1_pose_R12 * cse67;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R12
+    const double rod2_pose_R12 = -rod1_pose_R11 * cse67 + rod1_pose_R12 * cse66;
+    // outlined_chain.mbg:27:9  signal rod2.pose.r1
+    const double rod2_pose_r1 = rod1_pose_r1 + rod1_pose_R12 * j2_pa_2 - rod2_pose_R12 * j2_pb_2;
+    // outlined_chain.mbg:27:9  signal rod2.pose.r2
+    const double rod2_pose_r2 = rod1_pose_r2 + rod1_pose_R22 * j2_pa_2 - rod2_pose_R22 * j2_pb_2;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R11
+    const double rod3_pose_R11 = rod2_pose_R11 * cse68 + rod2_pose_R12 * cse69;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R12
+    const double rod3_pose_R12 = -rod2_pose_R11 * cse69 + rod2_pose_R12 * cse68;
+    // outlined_chain.mbg:27:9  signal rod3.pose.r1
+    const double rod3_pose_r1 = rod2_pose_r1 + rod2_pose_R12 * j3_pa_2 - rod3_pose_R12 * j3_pb_2;
+    // outlined_chain.mbg:27:9  signal rod3.pose.r2
+    const double rod3_pose_r2 = rod2_pose_r2 + rod2_pose_R22 * j3_pa_2 - rod3_pose_R22 * j3_pb_2;
+    // outlined_chain.mbg:27:9  signal rod4.pose.R11
+    const double rod4_pose_R11 = rod3_pose_R11 * cse70 + rod3_pose_R12 * cse71;
+    // outlined_chain.mbg:27:9  signal rod4.pose.R12
+    const double rod4_pose_R12 = -rod3_pose_R11 * cse71 + rod3_pose_R12 * cse70;
+    // outlined_chain.mbg:27:9  signal rod4.pose.r1
+    const double rod4_pose_r1 = rod3_pose_r1 + rod3_pose_R12 * j4_pa_2 - rod4_pose_R12 * j4_pb_2;
+    // outlined_chain.mbg:27:9  signal rod4.pose.r2
+    const double rod4_pose_r2 = rod3_pose_r2 + rod3_pose_R22 * j4_pa_2 - rod4_pose_R22 * j4_pb_2;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R11
+    const double rod5_pose_R11 = rod4_pose_R11 * cse72 + rod4_pose_R12 * cse73;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R12
+    const double rod5_pose_R12 = -rod4_pose_R11 * cse73 + rod4_pose_R12 * cse72;
+    // outlined_chain.mbg:27:9  signal rod5.pose.r1
+    const double rod5_pose_r1 = rod4_pose_r1 + rod4_pose_R12 * j5_pa_2 - rod5_pose_R12 * j5_pb_2;
+    // outlined_chain.mbg:27:9  signal rod5.pose.r2
+    const double rod5_pose_r2 = rod4_pose_r2 + rod4_pose_R22 * j5_pa_2 - rod5_pose_R22 * j5_pb_2;
+    // 12 per body (origin, rotation row-major), then every modal coordinate
+    out[0] = rod1_pose_r1;
+    out[1] = rod1_pose_r2;
+    out[2] = 0.0;
+    out[3] = rod1_pose_R11;
+    out[4] = rod1_pose_R12;
+    out[5] = 0.0;
+    out[6] = rod1_pose_R21;
+    out[7] = rod1_pose_R22;
+    out[8] = 0.0;
+    out[9] = 0.0;
+    out[10] = 0.0;
+    out[11] = 1.0;
+    out[12] = rod2_pose_r1;
+    out[13] = rod2_pose_r2;
+    out[14] = 0.0;
+    out[15] = rod2_pose_R11;
+    out[16] = rod2_pose_R12;
+    out[17] = 0.0;
+    out[18] = rod2_pose_R21;
+    out[19] = rod2_pose_R22;
+    out[20] = 0.0;
+    out[21] = 0.0;
+    out[22] = 0.0;
+    out[23] = 1.0;
+    out[24] = rod3_pose_r1;
+    out[25] = rod3_pose_r2;
+    out[26] = 0.0;
+    out[27] = rod3_pose_R11;
+    out[28] = rod3_pose_R12;
+    out[29] = 0.0;
+    out[30] = rod3_pose_R21;
+    out[31] = rod3_pose_R22;
+    out[32] = 0.0;
+    out[33] = 0.0;
+    out[34] = 0.0;
+    out[35] = 1.0;
+    out[36] = rod4_pose_r1;
+    out[37] = rod4_pose_r2;
+    out[38] = 0.0;
+    out[39] = rod4_pose_R11;
+    out[40] = rod4_pose_R12;
+    out[41] = 0.0;
+    out[42] = rod4_pose_R21;
+    out[43] = rod4_pose_R22;
+    out[44] = 0.0;
+    out[45] = 0.0;
+    out[46] = 0.0;
+    out[47] = 1.0;
+    out[48] = rod5_pose_r1;
+    out[49] = rod5_pose_r2;
+    out[50] = 0.0;
+    out[51] = rod5_pose_R11;
+    out[52] = rod5_pose_R12;
+    out[53] = 0.0;
+    out[54] = rod5_pose_R21;
+    out[55] = rod5_pose_R22;
+    out[56] = 0.0;
+    out[57] = 0.0;
+    out[58] = 0.0;
+    out[59] = 1.0;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -626,6 +626,167 @@ class tree_grandparent_model final : public mbgrt::Model {
     out[1] = float_z_q;
   }
 
+  // DRAWN BODIES (--animate): how many.
+  std::size_t body_count() const override {
+    return 3;
+  }
+
+  // How body i is drawn: its shape in body axes from the point body_poses gives.
+  mbgrt::BodyVisual body_visual(std::size_t i) const override {
+    mbgrt::BodyVisual v;
+    if (i == 0) {  // base
+      v.name = "base";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 1.5491933384829668;
+      v.size[1] = 1.0954451150103321;
+      v.size[2] = 0.07745966692414835;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.8;
+      v.colour[1] = 0.25;
+      v.colour[2] = 0.15;
+    }
+    if (i == 1) {  // slider
+      v.name = "slider";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.5477225575051662;
+      v.size[1] = 0.5477225575051662;
+      v.size[2] = 0.5477225575051662;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.15;
+      v.colour[1] = 0.4;
+      v.colour[2] = 0.8;
+    }
+    if (i == 2) {  // arm
+      v.name = "arm";
+      v.shape = mbgrt::BodyVisual::Shape::box;
+      v.size[0] = 0.7348469228349535;
+      v.size[1] = 0.2449489742783179;
+      v.size[2] = 0.2449489742783179;
+      v.centre[0] = 0;
+      v.centre[1] = 0;
+      v.centre[2] = 0;
+      v.colour[0] = 0.2;
+      v.colour[1] = 0.65;
+      v.colour[2] = 0.25;
+    }
+    return v;
+  }
+
+  // POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.
+  void body_poses(double t, const double* x, const double* yp, double* out) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double float_x_q = x[1];
+    const double float_y_q = x[3];
+    const double float_z_q = x[5];
+    const double float_rot_q_1 = x[9];
+    const double float_rot_q_2 = x[10];
+    const double float_rot_q_3 = x[11];
+    const double float_rot_q_4 = x[12];
+    const double slide_s_q = x[14];
+    const double hinge_theta_q = x[16];
+    // tree_grandparent.mbg:16:7  signal float.Rpc12
+    // (cseN: a subexpression several equations below share)
+    const double cse68 = float_rot_q_2 * float_rot_q_3;
+    const double cse69 = float_rot_q_1 * float_rot_q_4;
+    const double cse70 = float_rot_q_1 * float_rot_q_1;
+    const double cse71 = float_rot_q_2 * float_rot_q_2;
+    const double cse72 = cse70 + cse71;
+    const double cse73 = float_rot_q_3 * float_rot_q_3;
+    const double cse74 = float_rot_q_4 * float_rot_q_4;
+    const double cse75 = cse72 + cse73 + cse74;
+    const double float_Rpc12 = 2.0 * (cse68 - cse69) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc11
+    const double float_Rpc11 = (cse72 - cse73 - cse74) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc13
+    const double cse76 = float_rot_q_2 * float_rot_q_4;
+    const double cse77 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse76 + cse77) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc23
+    const double cse78 = float_rot_q_3 * float_rot_q_4;
+    const double cse79 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse78 - cse79) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc21
+    const double float_Rpc21 = 2.0 * (cse68 + cse69) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc22
+    const double float_Rpc22 = (cse70 + cse73 - cse71 - cse74) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc31
+    const double float_Rpc31 = 2.0 * (cse76 - cse77) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc32
+    const double float_Rpc32 = 2.0 * (cse78 + cse79) / cse75;
+    // tree_grandparent.mbg:16:7  signal float.Rpc33
+    const double float_Rpc33 = (cse70 + cse74 - cse71 - cse73) / cse75;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R33
+    const double cse80 = std::sin(hinge_theta_q);
+    const double cse81 = std::cos(hinge_theta_q);
+    const double arm_pose_R33 = float_Rpc31 * cse80 + float_Rpc33 * cse81;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R31
+    const double arm_pose_R31 = float_Rpc31 * cse81 - float_Rpc33 * cse80;
+    // tree_grandparent.mbg:17:7  signal slider.pose.r1
+    const double slider_pose_r1 = float_x_q + float_Rpc13 * slide_s_q;
+    // tree_grandparent.mbg:17:7  signal slider.pose.r2
+    const double slider_pose_r2 = float_y_q + float_Rpc23 * slide_s_q;
+    // tree_grandparent.mbg:17:7  signal slider.pose.r3
+    const double slider_pose_r3 = float_z_q + float_Rpc33 * slide_s_q;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R11
+    const double arm_pose_R11 = float_Rpc11 * cse81 - float_Rpc13 * cse80;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R13
+    const double arm_pose_R13 = float_Rpc11 * cse80 + float_Rpc13 * cse81;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R21
+    const double arm_pose_R21 = float_Rpc21 * cse81 - float_Rpc23 * cse80;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R23
+    const double arm_pose_R23 = float_Rpc21 * cse80 + float_Rpc23 * cse81;
+    // tree_grandparent.mbg:18:7  signal arm.pose.r1
+    const double arm_pose_r1 = slider_pose_r1 + 0.2 * arm_pose_R11;
+    // tree_grandparent.mbg:18:7  signal arm.pose.r2
+    const double arm_pose_r2 = slider_pose_r2 + 0.2 * arm_pose_R21;
+    // tree_grandparent.mbg:18:7  signal arm.pose.r3
+    const double arm_pose_r3 = slider_pose_r3 + 0.2 * arm_pose_R31;
+    // 12 per body (origin, rotation row-major), then every modal coordinate
+    out[0] = float_x_q;
+    out[1] = float_y_q;
+    out[2] = float_z_q;
+    out[3] = float_Rpc11;
+    out[4] = float_Rpc12;
+    out[5] = float_Rpc13;
+    out[6] = float_Rpc21;
+    out[7] = float_Rpc22;
+    out[8] = float_Rpc23;
+    out[9] = float_Rpc31;
+    out[10] = float_Rpc32;
+    out[11] = float_Rpc33;
+    out[12] = slider_pose_r1;
+    out[13] = slider_pose_r2;
+    out[14] = slider_pose_r3;
+    out[15] = float_Rpc11;
+    out[16] = float_Rpc12;
+    out[17] = float_Rpc13;
+    out[18] = float_Rpc21;
+    out[19] = float_Rpc22;
+    out[20] = float_Rpc23;
+    out[21] = float_Rpc31;
+    out[22] = float_Rpc32;
+    out[23] = float_Rpc33;
+    out[24] = arm_pose_r1;
+    out[25] = arm_pose_r2;
+    out[26] = arm_pose_r3;
+    out[27] = arm_pose_R11;
+    out[28] = float_Rpc12;
+    out[29] = arm_pose_R13;
+    out[30] = arm_pose_R21;
+    out[31] = float_Rpc22;
+    out[32] = arm_pose_R23;
+    out[33] = arm_pose_R31;
+    out[34] = float_Rpc32;
+    out[35] = arm_pose_R33;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

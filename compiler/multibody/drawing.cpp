@@ -1,0 +1,206 @@
+// multibody/drawing.cpp — how bodies are drawn (--animate): the `shape`
+// setting, the default shape of a body without one, and the pose each
+// drawing follows, written as an AstOutput with its Drawing (ir/drawing.hpp).
+#include "multibody/drawing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "multibody/expander.hpp"
+#include "multibody/mesh_file.hpp"
+
+namespace mbgc::multibody::detail {
+
+void add_tube(ir::Drawing& d, const std::vector<double>& x, double hy, double hz) {
+  const auto base = static_cast<unsigned>(d.vertices.size() / 3);
+  static constexpr double kCorner[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (double xk : x)
+    for (const auto& c : kCorner) d.vertices.insert(d.vertices.end(), {xk, c[0] * hy, c[1] * hz});
+  auto v = [&](std::size_t k, unsigned c) { return base + static_cast<unsigned>(4 * k) + c % 4; };
+  for (std::size_t k = 0; k + 1 < x.size(); ++k)
+    for (unsigned c = 0; c < 4; ++c)
+      d.triangles.insert(d.triangles.end(), {v(k, c), v(k + 1, c), v(k + 1, c + 1), v(k, c), v(k + 1, c + 1), v(k, c + 1)});
+  const std::size_t last = x.size() - 1;
+  d.triangles.insert(d.triangles.end(), {v(0, 0), v(0, 2), v(0, 1), v(0, 0), v(0, 3), v(0, 2)});
+  d.triangles.insert(d.triangles.end(), {v(last, 0), v(last, 1), v(last, 2), v(last, 0), v(last, 2), v(last, 3)});
+}
+
+void add_octahedron(ir::Drawing& d, const std::array<double, 3>& c, double r) {
+  const auto base = static_cast<unsigned>(d.vertices.size() / 3);
+  for (int axis = 0; axis < 3; ++axis)
+    for (double s : {1.0, -1.0}) {
+      std::array<double, 3> p = c;
+      p[static_cast<std::size_t>(axis)] += s * r;
+      d.vertices.insert(d.vertices.end(), p.begin(), p.end());
+    }
+  // faces: one per octant, (x, y, z) vertices counter-clockwise seen from outside
+  for (unsigned xs : {0u, 1u})
+    for (unsigned ys : {2u, 3u})
+      for (unsigned zs : {4u, 5u}) {
+        const bool flip = (xs + ys + zs) % 2 == 0;  // an even number of negative axes keeps the order
+        if (flip) d.triangles.insert(d.triangles.end(), {base + xs, base + ys, base + zs});
+        else d.triangles.insert(d.triangles.end(), {base + xs, base + zs, base + ys});
+      }
+}
+
+namespace {
+
+/// Distinct colours for bodies in declaration order (linear RGB).
+std::array<double, 3> palette(std::size_t i) {
+  static constexpr std::array<std::array<double, 3>, 8> kColours = {{{0.80, 0.25, 0.15},
+                                                                     {0.15, 0.40, 0.80},
+                                                                     {0.20, 0.65, 0.25},
+                                                                     {0.85, 0.60, 0.10},
+                                                                     {0.55, 0.25, 0.70},
+                                                                     {0.10, 0.65, 0.65},
+                                                                     {0.75, 0.35, 0.55},
+                                                                     {0.45, 0.45, 0.45}}};
+  return kColours[i % kColours.size()];
+}
+
+const std::vector<std::string> kShapeKinds = {"box", "cylinder", "sphere", "mesh"};
+
+}  // namespace
+
+std::optional<std::array<double, 3>> Expander::constant_point(const AstExpr& e, int depth) const {
+  if (depth > 50) return std::nullopt;
+  if (e.kind == AstExpr::Kind::Name) {
+    auto p = params_.find(e.name);
+    if (p == params_.end() || !p->second) return std::nullopt;
+    return constant_point(*p->second, depth + 1);
+  }
+  if (e.kind != AstExpr::Kind::List || e.args.size() != 3) return std::nullopt;
+  std::array<double, 3> out{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    auto v = constant_of(*e.args[k]);
+    if (!v) return std::nullopt;
+    out[k] = *v;
+  }
+  return out;
+}
+
+/// `shape = box(a, b, c) | cylinder(radius, length) | sphere(radius) |
+/// mesh("file.obj")`, centred on the centre of mass (a mesh: its own
+/// coordinates, body axes from the centre of mass). Errors go to diags_.
+std::shared_ptr<Drawing> Expander::read_shape(const AstBody& b, const AstExpr& v) {
+  const std::string how = "write shape = box(a, b, c), cylinder(radius, length), sphere(radius) or mesh(\"file.obj\")";
+  if (v.kind != AstExpr::Kind::Call) {
+    diags_.error(v.loc, fmt::format("the shape of body `{}` is not one of the shapes", b.name), how);
+    return nullptr;
+  }
+  if (std::find(kShapeKinds.begin(), kShapeKinds.end(), v.name) == kShapeKinds.end()) {
+    const std::string near = closest_name(v.name, kShapeKinds);
+    diags_.error(v.loc, fmt::format("body `{}` has no shape `{}`", b.name, v.name),
+                 near.empty() ? how : fmt::format("did you mean `{}`?", near));
+    return nullptr;
+  }
+  auto d = std::make_shared<Drawing>();
+  if (v.name == "mesh") {
+    if (v.args.size() != 1 || v.args[0]->kind != AstExpr::Kind::String) {
+      diags_.error(v.loc, "mesh(...) takes the name of a Wavefront OBJ file", "write shape = mesh(\"wheel.obj\")");
+      return nullptr;
+    }
+    d->shape = Drawing::Shape::Mesh;
+    if (!read_mesh_file(v.args[0]->name, v.args[0]->loc, search_dirs_, sources_, diags_, *d)) return nullptr;
+    return d;
+  }
+  const std::size_t want = v.name == "box" ? 3 : v.name == "cylinder" ? 2 : 1;
+  const char* what = v.name == "box" ? "three edge lengths (m)" : v.name == "cylinder" ? "a radius and a length (m)" : "a radius (m)";
+  if (v.args.size() != want) {
+    diags_.error(v.loc, fmt::format("{}(...) takes {}, not {} argument{}", v.name, what, v.args.size(), v.args.size() == 1 ? "" : "s"),
+                 how);
+    return nullptr;
+  }
+  d->shape = v.name == "box" ? Drawing::Shape::Box : v.name == "cylinder" ? Drawing::Shape::Cylinder : Drawing::Shape::Sphere;
+  for (std::size_t k = 0; k < want; ++k) {
+    auto x = constant_of(*v.args[k]);
+    if (!x || !std::isfinite(*x) || !(*x > 0)) {
+      diags_.error(v.args[k]->loc,
+                   x ? fmt::format("a dimension of body `{}`'s {} is {}", b.name, v.name, *x)
+                     : fmt::format("a dimension of body `{}`'s {} is not a number known when compiling", b.name, v.name),
+                   "a shape's dimensions are positive lengths in metres, numbers or parameters with a literal value");
+      return nullptr;
+    }
+    d->size[k] = *x;
+  }
+  return d;
+}
+
+/// A rigid body without a shape: a box around its points and its centre of
+/// mass (at least 5 % of the largest edge thick), or with no points the box
+/// of the same inertia, a_i = sqrt(6 (tr J - 2 J_ii) / m). A particle: a ball.
+Drawing Expander::default_drawing(const Body& body, double scale) const {
+  Drawing d;
+  if (body.particle) {
+    d.shape = Drawing::Shape::Sphere;
+    d.size = {0.03 * scale, 0, 0};
+    return d;
+  }
+  const std::array<double, 3> com = [&] {
+    const E c = attr(*body.decl, "com");
+    auto p = c ? constant_point(*c) : std::optional<std::array<double, 3>>(std::array<double, 3>{});
+    return p.value_or(std::array<double, 3>{});
+  }();
+  std::array<double, 3> lo{}, hi{};  // around the centre of mass
+  bool any = false;
+  for (const auto& [name, x] : body.points)
+    if (auto p = constant_point(*x)) {
+      any = true;
+      for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], (*p)[k] - com[k]), hi[k] = std::max(hi[k], (*p)[k] - com[k]);
+    }
+  std::array<double, 3> edge{};
+  for (std::size_t k = 0; k < 3; ++k) edge[k] = hi[k] - lo[k], d.centre[k] = 0.5 * (hi[k] + lo[k]);
+  if (!any) {  // the box of the same inertia
+    const E in = attr(*body.decl, "inertia"), m = attr(*body.decl, "mass");
+    auto mass = m ? constant_of(*m) : std::nullopt;
+    if (in && mass && *mass > 0 && in->kind == AstExpr::Kind::Call && in->name == "diag" && in->args.size() == 3) {
+      std::array<double, 3> J{};
+      bool ok = true;
+      for (std::size_t k = 0; k < 3; ++k) {
+        auto v = constant_of(*in->args[k]);
+        ok = ok && v.has_value();
+        J[k] = v.value_or(0);
+      }
+      const double trace = J[0] + J[1] + J[2];
+      for (std::size_t k = 0; ok && k < 3; ++k) edge[k] = std::sqrt(std::max(0.0, 6 * (trace - 2 * J[k]) / *mass));
+    }
+  }
+  const double largest = std::max({edge[0], edge[1], edge[2], 0.05 * scale});
+  for (std::size_t k = 0; k < 3; ++k) d.size[k] = std::max(edge[k], 0.05 * largest);
+  return d;
+}
+
+/// The length the model's geometry spans (its points and initial positions), for default sizes.
+double Expander::model_scale() const {
+  double scale = 0;
+  for (const auto& [n, body] : bodies_) {
+    if (const E r0 = body.decl ? attr(*body.decl, "r0") : nullptr)
+      if (auto v = constant_point(*r0)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
+    for (const auto& [p, x] : body.points)
+      if (auto v = constant_point(*x)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
+    if (body.flex)
+      for (const auto& [p, x] : body.flex->points()) scale = std::max({scale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+  }
+  return scale > 0 ? scale : 1.0;
+}
+
+void Expander::draw_bodies() {
+  const double scale = model_scale();
+  std::size_t index = 0;
+  for (const std::string& n : body_order_) {
+    const Body& body = bodies_.at(n);
+    if (body.ground || body.points_unknown) continue;
+    Build B(body.decl->loc);
+    auto d = std::make_shared<Drawing>(body.flex ? body.flex->drawing(scale) : body.shape ? *body.shape : default_drawing(body, scale));
+    d->body = n;
+    d->colour = palette(index++);
+    E R = body.particle ? B.call("eye", {B.num(3)}) : rotation(B, n);
+    AstOutput out{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)}), d, body.flex ? B.name(n + ".eta.q") : nullptr};
+    generated_.push_back(std::move(out));
+  }
+}
+
+}  // namespace mbgc::multibody::detail
