@@ -19,7 +19,7 @@ JOBS=${JOBS:-2}
 # Debian packages the build, the tests and the demo's plot need.
 MBGC_PACKAGES=(g++ cmake ninja-build pkg-config libeigen3-dev libfmt-dev libcli11-dev
                libsundials-dev libsuitesparse-dev libgtest-dev gnuplot-nox libjemalloc-dev libspectra-dev
-               libopenmpi-dev openmpi-bin libtinygltf-dev)
+               libopenmpi-dev openmpi-bin libtinygltf-dev nodejs chromium-headless-shell)
 
 step() { printf '\n==> %s\n' "$*"; }
 die() { printf 'error: %s\n' "$*" >&2; exit 1; }

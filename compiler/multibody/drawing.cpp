@@ -28,6 +28,35 @@ void add_tube(ir::Drawing& d, const std::vector<double>& x, double hy, double hz
   d.triangles.insert(d.triangles.end(), {v(last, 0), v(last, 1), v(last, 2), v(last, 0), v(last, 2), v(last, 3)});
 }
 
+void add_bar(ir::Drawing& d, const std::array<double, 3>& a, const std::array<double, 3>& b, double h) {
+  // two unit vectors across the bar: u from the axis and the world axis least along it, w = axis x u
+  std::array<double, 3> axis{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+  if (!(length > 0)) return;
+  for (double& c : axis) c /= length;
+  std::size_t least = 0;
+  for (std::size_t k = 1; k < 3; ++k)
+    if (std::abs(axis[k]) < std::abs(axis[least])) least = k;
+  std::array<double, 3> e{};
+  e[least] = 1;
+  auto cross = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    return std::array<double, 3>{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+  };
+  std::array<double, 3> u = cross(axis, e);
+  const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  for (double& c : u) c /= nu;
+  const std::array<double, 3> w = cross(axis, u);
+  const auto base = static_cast<unsigned>(d.vertices.size() / 3);
+  static constexpr double kCorner[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (const auto* end : {&a, &b})
+    for (const auto& c : kCorner)
+      for (std::size_t k = 0; k < 3; ++k) d.vertices.push_back((*end)[k] + h * (c[0] * u[k] + c[1] * w[k]));
+  auto v = [&](unsigned end, unsigned c) { return base + 4 * end + c % 4; };
+  for (unsigned c = 0; c < 4; ++c) d.triangles.insert(d.triangles.end(), {v(0, c), v(1, c), v(1, c + 1), v(0, c), v(1, c + 1), v(0, c + 1)});
+  d.triangles.insert(d.triangles.end(), {v(0, 0), v(0, 2), v(0, 1), v(0, 0), v(0, 3), v(0, 2)});
+  d.triangles.insert(d.triangles.end(), {v(1, 0), v(1, 1), v(1, 2), v(1, 0), v(1, 2), v(1, 3)});
+}
+
 void add_octahedron(ir::Drawing& d, const std::array<double, 3>& c, double r) {
   const auto base = static_cast<unsigned>(d.vertices.size() / 3);
   for (int axis = 0; axis < 3; ++axis)

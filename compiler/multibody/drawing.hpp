@@ -14,6 +14,10 @@ namespace mbgc::multibody::detail {
 /// sides and both ends triangulated. Appends to d's vertices and triangles.
 void add_tube(ir::Drawing& d, const std::vector<double>& x, double hy, double hz);
 
+/// A square bar of half-width h from a to b (4 vertices at a, then 4 at b),
+/// its sides and ends triangulated.
+void add_bar(ir::Drawing& d, const std::array<double, 3>& a, const std::array<double, 3>& b, double h);
+
 /// An octahedron of radius r around c (6 vertices: +x, -x, +y, -y, +z, -z).
 void add_octahedron(ir::Drawing& d, const std::array<double, 3>& c, double r);
 

@@ -168,24 +168,48 @@ void ModalBody::stiffness_and_damping(const Build& B, const std::string& n, Rows
 
 namespace mbgc::multibody::detail {
 
-/// Each node of the file as a small octahedron that its modes move (the
-/// file gives the field at its nodes only).
+/// The file gives the field at its nodes only: each node is drawn as a
+/// small octahedron its modes move, and the nodes are joined by bars along
+/// the shortest tree through them (Prim), each end moving with its node.
 ir::Drawing ModalBody::drawing(double scale) const {
   ir::Drawing d;
   d.shape = ir::Drawing::Shape::Mesh;
+  std::vector<const flex::ModalPoint*> nodes;
   double extent = 0;
-  for (const auto& [name, p] : data_->points)
-    for (double c : p.position) extent = std::max(extent, std::abs(c));
-  const double r = 0.04 * (extent > 0 ? extent : scale);
-  for (const auto& [name, p] : data_->points) add_octahedron(d, p.position, r);
-  d.mode_shapes.assign(static_cast<std::size_t>(data_->count), std::vector<double>(d.vertices.size()));
-  std::size_t node = 0;
   for (const auto& [name, p] : data_->points) {
-    for (std::size_t corner = 0; corner < 6; ++corner)
-      for (std::size_t k = 0; k < d.mode_shapes.size(); ++k)
-        for (std::size_t c = 0; c < 3; ++c) d.mode_shapes[k][3 * (6 * node + corner) + c] = p.shape[c][k];
-    ++node;
+    nodes.push_back(&p);
+    for (double c : p.position) extent = std::max(extent, std::abs(c));
   }
+  const double r = 0.04 * (extent > 0 ? extent : scale);
+  std::vector<const flex::ModalPoint*> owner;  // per vertex: the node whose motion it follows
+  for (const flex::ModalPoint* p : nodes) {
+    add_octahedron(d, p->position, r);
+    owner.resize(d.vertices.size() / 3, p);
+  }
+  auto distance = [](const flex::ModalPoint* p, const flex::ModalPoint* q) {
+    double s = 0;
+    for (std::size_t k = 0; k < 3; ++k) s += (p->position[k] - q->position[k]) * (p->position[k] - q->position[k]);
+    return s;
+  };
+  std::vector<bool> joined(nodes.size(), false);
+  if (!nodes.empty()) joined[0] = true;
+  for (std::size_t added = 1; added < nodes.size(); ++added) {
+    std::size_t from = 0, to = 0;
+    double best = -1;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (std::size_t j = 0; j < nodes.size() && joined[i]; ++j)
+        if (!joined[j] && (best < 0 || distance(nodes[i], nodes[j]) < best)) best = distance(nodes[i], nodes[j]), from = i, to = j;
+    joined[to] = true;
+    const std::size_t before = d.vertices.size() / 3;
+    add_bar(d, nodes[from]->position, nodes[to]->position, r / 3);
+    if (d.vertices.size() / 3 == before) continue;  // two nodes at one place: no bar
+    owner.resize(before + 4, nodes[from]);
+    owner.resize(before + 8, nodes[to]);
+  }
+  d.mode_shapes.assign(static_cast<std::size_t>(data_->count), std::vector<double>(d.vertices.size()));
+  for (std::size_t v = 0; v < owner.size(); ++v)
+    for (std::size_t k = 0; k < d.mode_shapes.size(); ++k)
+      for (std::size_t c = 0; c < 3; ++c) d.mode_shapes[k][3 * v + c] = owner[v]->shape[c][k];
   return d;
 }
 
