@@ -16,7 +16,10 @@ void matrix(std::string& out, const std::string& record, const Eigen::MatrixXd& 
   out += record + "\n";
   for (long i = 0; i < m.rows(); ++i) {  // row by row, as the format asks
     out += " ";
-    for (long j = 0; j < m.cols(); ++j) out += " " + num(m(i, j));
+    for (long j = 0; j < m.cols(); ++j) {
+      out += ' ';  // (not " " + num(...): GCC 12 at -O3 reports a false -Wstringop-overflow there)
+      out += num(m(i, j));
+    }
     out += "\n";
   }
 }
