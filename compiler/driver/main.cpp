@@ -1,8 +1,9 @@
 // mbgc — the multibond-graph compiler. Command line only; the work is in
 // driver::compile.
 #include <CLI/CLI.hpp>
-#include <iostream>
+#include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <map>
 #include <string>
 #include <vector>
@@ -82,6 +83,11 @@ int main(int argc, char** argv) {
     double v = eq == std::string::npos ? 0.0 : std::strtod(s.c_str() + eq + 1, &end);
     if (eq == std::string::npos || eq == 0 || end == s.c_str() + eq + 1 || *end != '\0') {
       std::cerr << "mbgc: error: --set expects NAME=NUMBER, got `" << s << "`\n";
+      return 2;
+    }
+    if (!std::isfinite(v)) {
+      std::cerr << "mbgc: error: --set " << s.substr(0, eq) << ": `" << s.substr(eq + 1)
+                << "` is not a finite number (the largest double is about 1.8e308)\n";
       return 2;
     }
     opt.overrides[s.substr(0, eq)] = v;

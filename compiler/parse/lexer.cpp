@@ -1,6 +1,7 @@
 #include "parse/lexer.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -96,6 +97,14 @@ std::vector<Token> lex(const ir::SourceManager& sources, int file_id, ir::Diagno
       if (end != t.text.c_str() + t.text.size()) {
         diags.error(loc_at(start, i - start), fmt::format("malformed number `{}`", t.text),
                     "write numbers like 12, 0.4 or 6.5e-3");
+        t.kind = Tok::Bad;
+      } else if (!std::isfinite(t.number)) {
+        diags.error(loc_at(start, i - start), fmt::format("number `{}` is too large for a double", t.text),
+                    "the largest finite double is about 1.8e308; give the value in other units, or check the exponent");
+        t.kind = Tok::Bad;
+      } else if (t.number == 0 && t.text.find_first_of("123456789") < t.text.find_first_of("eE")) {
+        diags.error(loc_at(start, i - start), fmt::format("number `{}` is too small for a double: it would be 0", t.text),
+                    "the smallest positive double is about 4.9e-324; write 0 if zero is meant, or check the exponent");
         t.kind = Tok::Bad;
       }
     } else if (c == '"') {

@@ -15,6 +15,7 @@ namespace mbgrt::detail {
 inline constexpr int kExitSuccess = 0;
 inline constexpr int kExitRunFailed = 1;  ///< solver failure or divergence
 inline constexpr int kExitUsage = 2;      ///< bad command line or bad option value
+inline constexpr int kExitInterrupted = 130;  ///< a sweep stopped by Ctrl-C (128 + SIGINT, as shells report it)
 
 /// --sweep NAME=FROM:TO:COUNT: COUNT values from FROM to TO, evenly spaced.
 struct SweepAxis {

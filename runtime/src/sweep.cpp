@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -80,6 +81,7 @@ std::string first_error(const std::string& report) {
 struct CaseResult {
   bool done = false;
   bool ok = false;
+  bool not_run = false;  // the sweep was interrupted before this case started
   OutputRanges ranges;
   double wall_s = 0;
   std::string message;
@@ -146,7 +148,7 @@ std::string summary_header(const SweepPlan& plan, const std::vector<std::string>
 std::string summary_row(const SweepPlan& plan, std::size_t k, const CaseResult& r, std::size_t outputs) {
   std::string row = fmt::format("{}", k + 1);
   for (double v : plan.cases[k]) row += fmt::format(",{}", v);
-  row += r.ok ? ",ok" : ",failed";
+  row += r.not_run ? ",not_run" : r.ok ? ",ok" : ",failed";
   for (std::size_t j = 0; j < outputs; ++j) {
     if (r.ranges.rows > 0)
       row += fmt::format(",{},{},{}", r.ranges.final[j], r.ranges.min[j], r.ranges.max[j]);
@@ -155,6 +157,27 @@ std::string summary_row(const SweepPlan& plan, std::size_t k, const CaseResult& 
   }
   return row + fmt::format(",{:.3g},{}\n", r.wall_s, r.message.empty() ? std::string() : quoted(r.message));
 }
+
+// ---- Ctrl-C: the cases running finish, no new one starts, the summary says which did not run.
+std::atomic<bool> interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_interrupt(int) {
+  interrupted = true;
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+/// SIGINT handled as above while it lives (the previous handler after).
+class InterruptScope {
+ public:
+  InterruptScope() : previous_(std::signal(SIGINT, on_interrupt)) { interrupted = false; }
+  ~InterruptScope() { std::signal(SIGINT, previous_); }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  void (*previous_)(int);
+};
 
 }  // namespace
 
@@ -293,10 +316,16 @@ std::size_t run_cases(const Model& prototype, const Options& o, const SweepPlan&
   std::condition_variable changed;
   auto worker = [&] {
     for (std::size_t i; (i = next++) < n;) {
-      CaseResult r = run_case(prototype, o, plan, mine[i]);
+      CaseResult r;
+      if (interrupted) {
+        r.done = r.not_run = true;
+        r.message = "not run: the sweep was interrupted (Ctrl-C) before it started";
+      } else {
+        r = run_case(prototype, o, plan, mine[i]);
+      }
       {
         std::lock_guard<std::mutex> hold(lock);
-        failed += r.ok ? 0 : 1;
+        failed += r.ok || r.not_run ? 0 : 1;
         ++done;
         results[i] = std::move(r);
       }
@@ -350,19 +379,23 @@ int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
   ProgressLine progress(cluster.rank() == 0 && is_terminal(stderr) && !o.quiet);
 
   const auto started = std::chrono::steady_clock::now();
-  std::size_t failed = 0;
+  std::size_t failed = 0, not_run = 0;
+  InterruptScope ctrl_c;
   if (ranks == 1) {
     summary.write(summary_header(*plan, outputs));
     failed = run_cases(prototype, o, *plan, mine, jobs, progress, [&](std::size_t k, const CaseResult& r) {
       summary.write(summary_row(*plan, k, r, outputs.size()));
+      not_run += r.not_run ? 1 : 0;
     });
   } else {
     std::string rows;  // this rank's, one line per case
     failed = run_cases(prototype, o, *plan, mine, jobs, progress, [&](std::size_t k, const CaseResult& r) {
       rows += summary_row(*plan, k, r, outputs.size());
+      not_run += r.not_run ? 1 : 0;
     });
     const std::vector<std::string> all = cluster.gather_lines(rows, n);  // rank 0: every case's, in case order
     failed = static_cast<std::size_t>(cluster.sum(static_cast<long>(failed)));
+    not_run = static_cast<std::size_t>(cluster.sum(static_cast<long>(not_run)));
     if (cluster.rank() == 0) {
       std::string text = summary_header(*plan, outputs);
       for (const std::string& line : all) text += line + "\n";
@@ -375,7 +408,11 @@ int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
                n == 1 ? "" : "s", ranks > 1 ? fmt::format("{} MPI ranks x ", ranks) : std::string(), jobs,
                jobs == 1 ? "" : "s", format_duration(wall_s),
                failed ? fmt::format("{} failed (the summary's message column says why)", failed)
-                      : std::string("all ran to the end"));
+                      : not_run ? std::string("none failed") : std::string("all ran to the end"));
+  if (not_run > 0 && cluster.rank() == 0)  // said even with --quiet: the summary is not whole
+    fmt::print(stderr, "mbgrt: sweep interrupted (Ctrl-C): {} of {} case{} not run (status not_run in the summary); "
+               "the {} finished are kept\n", not_run, n, n == 1 ? "" : "s", n - not_run);
+  if (not_run > 0) return kExitInterrupted;
   return failed ? kExitRunFailed : kExitSuccess;
 }
 

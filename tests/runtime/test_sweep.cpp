@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -118,6 +119,42 @@ TEST(Sweep, FailingCaseIsReportedAndTheOthersRun) {
   EXPECT_NEAR(std::stod(table[3][column(table, "x_final")]), 2.0 * std::exp(-2.0), 1e-6);
   EXPECT_TRUE(Contains(r.err, "1 failed"));
   std::filesystem::remove(path);
+}
+
+/// Decay whose case k = 3 presses Ctrl-C (raises SIGINT, once) as it starts.
+class InterruptedDecay : public Decay {
+ public:
+  std::unique_ptr<Model> make_new() const override { return std::make_unique<InterruptedDecay>(); }
+  void initial(double t, double* y, double* yp) override {
+    if (p("k") == 3 && !pressed_) pressed_ = true, std::raise(SIGINT);
+    Decay::initial(t, y, yp);
+  }
+
+ private:
+  bool pressed_ = false;
+};
+
+TEST(Sweep, CtrlCKeepsTheFinishedCasesAndSaysWhichWereNotRun) {
+  InterruptedDecay m;
+  RunResult r = run(m, {"--sweep", "k=1:6:6", "--jobs", "1"});
+  EXPECT_EQ(r.status, 130) << r.err;
+  const auto table = cells(r.csv);
+  ASSERT_EQ(table.size(), 7u) << r.csv;  // every case has its row
+  const std::size_t status = column(table, "status"), message = column(table, "message");
+  for (std::size_t c = 1; c <= 3; ++c) {  // the case running when Ctrl-C came finishes
+    EXPECT_EQ(table[c][status], "ok") << "case " << c;
+    EXPECT_NEAR(std::stod(table[c][column(table, "x_final")]), 2.0 * std::exp(-2.0 * static_cast<double>(c)), 1e-5);
+  }
+  for (std::size_t c = 4; c <= 6; ++c) {
+    EXPECT_EQ(table[c][status], "not_run") << "case " << c;
+    EXPECT_EQ(table[c][column(table, "x_final")], "") << "case " << c;
+    EXPECT_TRUE(Contains(table[c].at(message), "interrupted")) << "case " << c;
+  }
+  EXPECT_TRUE(Contains(r.err, "sweep interrupted (Ctrl-C): 3 of 6 cases not run")) << r.err;
+  // and Ctrl-C is the process's own again afterwards
+  struct sigaction now {};
+  sigaction(SIGINT, nullptr, &now);
+  EXPECT_EQ(now.sa_handler, SIG_DFL);
 }
 
 TEST(Sweep, BadSweepsExit2WithAMessage) {
