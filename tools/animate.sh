@@ -15,7 +15,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 BUILD_DIR=${BUILD_DIR:-build-demo}
 
 mbgc_install_packages
-mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DMBGC_MPI=OFF -- -DMBGC_VIEWER=ON "$@"
+mbgc_configure_quick_start -DMBGC_VIEWER=ON "$@"
 mbgc_build mbgc mbgrt mbgc_viewer rotating_beam
 
 DEMO=$BUILD_DIR/demo

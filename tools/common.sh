@@ -75,6 +75,12 @@ mbgc_build() {
   cmake --build "$BUILD_DIR" --parallel "$JOBS" "${targets[@]}"
 }
 
+# The quick start's build (tools/demo.sh, tools/animate.sh): Release at -O1
+# without MPI. Extra arguments go to the cmake configure step.
+mbgc_configure_quick_start() {
+  mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DMBGC_MPI=OFF -- "$@"
+}
+
 # Configure and build everything. Extra arguments go to the cmake configure step.
 mbgc_configure_and_build() {
   mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG" -- "$@"

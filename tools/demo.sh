@@ -17,7 +17,7 @@ BUILD_DIR=${BUILD_DIR:-build-demo}
 mbgc_install_packages
 # Only mbgc, its runtime and the one example, at -O1: the quick start takes
 # about 2 minutes on 2 cores instead of tools/test.sh's 9 (README).
-mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DMBGC_MPI=OFF -- "$@"
+mbgc_configure_quick_start "$@"
 mbgc_build mbgc mbgrt
 
 DEMO=$BUILD_DIR/demo
