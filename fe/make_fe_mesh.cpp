@@ -23,10 +23,14 @@
 // Frame element: axial and torsion linear, bending Hermite cubic; consistent
 // mass of the translations (no rotary inertia of bending, as an
 // Euler–Bernoulli beam) and of torsion (rho Ip).
+#if defined(__GNUC__) && !defined(__clang__)  // a false warning of GCC's inside Eigen
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <Eigen/Dense>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 #include <algorithm>
 #include <array>

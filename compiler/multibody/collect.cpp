@@ -6,7 +6,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <ranges>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -255,14 +254,13 @@ std::optional<Side> Expander::side(const AstEndpoint& ep) {
   }
   if (!point.empty() && it->second.points_unknown) return Side{body, point};
   if (!point.empty() && !it->second.points.count(point)) {
-    if (it->second.flex && !it->second.flex->point_file().empty()) {
-      diags_.error(ep.loc, fmt::format("modal body `{}` has no point `{}`", body, point),
-                   fmt::format("its points are the nodes of {}: {}", it->second.flex->point_file(),
-                               fmt::join(std::views::keys(it->second.points), ", ")));
-      return std::nullopt;
-    }
     std::vector<std::string> names;
     for (const auto& [n, x] : it->second.points) names.push_back(n);
+    if (it->second.flex && !it->second.flex->point_file().empty()) {
+      diags_.error(ep.loc, fmt::format("modal body `{}` has no point `{}`", body, point),
+                   fmt::format("its points are the nodes of {}: {}", it->second.flex->point_file(), fmt::join(names, ", ")));
+      return std::nullopt;
+    }
     std::string near = closest_name(point, names);
     diags_.error(ep.loc, fmt::format("`{}` has no point `{}`", body, point),
                  near.empty() ? fmt::format("declare it: point {} = [x, y, z] inside {}", point, body == "ground" ? "ground { }" : "the body") 

@@ -30,7 +30,7 @@ class Cluster {
 
  private:
   int rank_ = 0, size_ = 1;
-  bool initialised_ = false;  ///< MPI_Init was called here
+  [[maybe_unused]] bool initialised_ = false;  ///< MPI_Init was called here (only the MPI build reads it)
 };
 
 /// Splits `text` into lines and orders them by their leading case number

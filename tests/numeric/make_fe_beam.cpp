@@ -26,10 +26,14 @@
 // Eigen's eigensolvers trip GCC's -Wmaybe-uninitialized (a false positive).
 // CMake's Eigen3::Eigen target hides it with -isystem, but a plain
 // `g++ -I/usr/include/eigen3 -Werror` build needs this.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <Eigen/Dense>
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
 
 #include <algorithm>
 #include <cerrno>

@@ -173,6 +173,8 @@ inline double eval(const ir::Expr& e, const Env& env) {
     case Fn::Min: return std::fmin(x, y);
     case Fn::Max: return std::fmax(x, y);
     case Fn::Step: return x >= 0 ? 1.0 : 0.0;
+    case Fn::Select: return x >= 0 ? 1.0 : 0.0;
+    case Fn::Frozen: return x;
   }
   throw std::logic_error("eval: bad function");
 }
