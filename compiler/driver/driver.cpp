@@ -117,7 +117,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
     for (const auto& [name, value] : selected->overrides) overrides.emplace(name, value);
   }
 
-  ast = elaborate::unroll_loops(ast, overrides, diags);
+  ast = elaborate::unroll_loops(ast, overrides, diags, opt.limits);
   timed("unroll");
   if (failed()) return 1;
   std::string strategy_report;  // what constraints = auto chose, for the causality report
@@ -126,7 +126,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   if (opt.dump == Dump::Expanded) return finish(ir::print_ast(ast));
 
-  ir::ResolvedModel resolved = sema::resolve(ast, opt.input, diags);
+  ir::ResolvedModel resolved = sema::resolve(ast, opt.input, diags, opt.limits);
   timed("resolve");
   if (failed()) return 1;
   ir::BondGraph graph = graph::build_graph(resolved, sources, diags);

@@ -12,6 +12,7 @@
 #include <ostream>
 #include <string>
 
+#include "ir/limits.hpp"
 #include "multibody/expand.hpp"
 
 namespace mbgc::driver {
@@ -38,6 +39,7 @@ struct Options {
   std::optional<multibody::ContactStrategy> contacts;  ///< --contacts: of every contact without its own `strategy`
   bool stats = false;         ///< --stats: print each generated method's operations and size instead of C++
   bool stats_csv = false;     ///< --stats-format=csv
+  ir::Limits limits;          ///< how large a model may grow (the fuzz targets lower them)
 };
 
 /// Runs the compiler. Returns the exit status: 0 ok, 1 errors in the model,

@@ -14,13 +14,14 @@ namespace {
 
 using namespace mbgc::ir;
 
-constexpr long kMaxIterations = 100000;  // a typo like 1..1e9 must not hang the compiler
-constexpr long kMaxWork = 200000;        // iterations and statements of all loops together (nested loops)
+// limits_.loop_iterations: a typo like 1..1e9 must not hang the compiler;
+// limits_.unrolled_work: iterations and statements of all loops together (nested loops)
 constexpr double kMaxIndex = 1e9;        // largest loop bound or name index
 
 class Unroller {
  public:
-  Unroller(const std::map<std::string, double>& overrides, Diagnostics& diags) : overrides_(overrides), diags_(diags) {}
+  Unroller(const std::map<std::string, double>& overrides, const Limits& limits, Diagnostics& diags)
+      : overrides_(overrides), limits_(limits), diags_(diags) {}
 
   AstProgram run(const AstProgram& p) {
     for (const AstStmt& s : p.stmts)
@@ -344,7 +345,7 @@ class Unroller {
 
   /// A loop's bounds, or nullopt after reporting why it cannot be unrolled:
   /// its variable hides an outer one, a bound is not a constant integer, or
-  /// it would repeat more than kMaxIterations times. (A loop of statements or of points.)
+  /// it would repeat more than limits_.loop_iterations times. (A loop of statements or of points.)
   template <class Loop>
   std::optional<std::pair<long, long>> loop_range(const Loop& f, const std::map<std::string, long>& env) {
     if (env.count(f.var)) {
@@ -355,9 +356,9 @@ class Unroller {
     auto from = eval_integer(*f.from, env, "a loop's lower bound");
     auto to = eval_integer(*f.to, env, "a loop's upper bound");
     if (!from || !to) return std::nullopt;
-    if (*to - *from >= kMaxIterations) {
+    if (*to - *from >= limits_.loop_iterations) {
       error(f.loc, fmt::format("this loop would repeat its body {} times", *to - *from + 1),
-            fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", kMaxIterations));
+            fmt::format("mbgc writes out every repetition at compile time: at most {} per loop", limits_.loop_iterations));
       return std::nullopt;
     }
     return std::pair{*from, *to};
@@ -382,7 +383,7 @@ class Unroller {
         const auto [from, to] = *range;
         const SourceLoc& top = outermost ? *outermost : f.loc;
         for (long i = from; i <= to; ++i) {
-          if (++work_ > kMaxWork) {
+          if (++work_ > limits_.unrolled_work) {
             give_up(top);
             return out;
           }
@@ -444,7 +445,7 @@ class Unroller {
         const auto [from, to] = *range;
         const AstFor* top = outermost ? outermost : &f;
         for (long i = from; i <= to; ++i) {
-          if (++work_ > kMaxWork) return give_up(top->loc);
+          if (++work_ > limits_.unrolled_work) return give_up(top->loc);
           std::map<std::string, long> inner = env;
           inner[f.var] = i;
           const std::string outer_var = std::exchange(loop_var_, f.var);
@@ -456,7 +457,7 @@ class Unroller {
         }
         continue;
       }
-      if (outermost && ++work_ > kMaxWork) return give_up(outermost->loc);
+      if (outermost && ++work_ > limits_.unrolled_work) return give_up(outermost->loc);
       if (auto* b = std::get_if<AstBody>(&s)) {
         out.push_back(flatten_body(*b, env, outermost));
         continue;
@@ -484,7 +485,7 @@ class Unroller {
   void give_up(const SourceLoc& outermost) {
     if (gave_up_) return;
     gave_up_ = true;
-    error(outermost, fmt::format("these nested loops unroll into more than {} statements and iterations", kMaxWork),
+    error(outermost, fmt::format("these nested loops unroll into more than {} statements and iterations", limits_.unrolled_work),
           "mbgc writes out every repetition at compile time: make the ranges smaller");
   }
 
@@ -503,6 +504,7 @@ class Unroller {
   }
 
   const std::map<std::string, double>& overrides_;
+  const Limits& limits_;
   Diagnostics& diags_;
   std::map<std::string, const AstParam*> params_;
   std::map<std::string, std::optional<double>> cache_;  // parameter values (nullopt: failed, reported)
@@ -520,8 +522,9 @@ class Unroller {
 
 }  // namespace
 
-AstProgram unroll_loops(const AstProgram& program, const std::map<std::string, double>& overrides, Diagnostics& diags) {
-  Unroller u(overrides, diags);
+AstProgram unroll_loops(const AstProgram& program, const std::map<std::string, double>& overrides, Diagnostics& diags,
+                        const Limits& limits) {
+  Unroller u(overrides, limits, diags);
   return u.run(program);
 }
 

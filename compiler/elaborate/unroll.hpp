@@ -15,10 +15,13 @@
 
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
+#include "ir/limits.hpp"
 
 namespace mbgc::elaborate {
 
+/// A loop longer than limits.loop_iterations, or nested loops that unroll
+/// into more than limits.unrolled_work statements, is an error at the loop.
 ir::AstProgram unroll_loops(const ir::AstProgram& program, const std::map<std::string, double>& overrides,
-                            ir::Diagnostics& diags);
+                            ir::Diagnostics& diags, const ir::Limits& limits = {});
 
 }  // namespace mbgc::elaborate

@@ -332,9 +332,13 @@ std::optional<ModalData> read_modal_file(const std::string& name, const ir::Sour
                                          ir::Diagnostics& diags) {
   auto id = ir::read_named_file(name, named_at, search_dirs, sources, diags, "modal-data file");
   if (!id) return std::nullopt;
+  return read_modal_source(sources, *id, diags);
+}
+
+std::optional<ModalData> read_modal_source(const ir::SourceManager& sources, int file_id, ir::Diagnostics& diags) {
   ModalData data;
-  data.path = sources.file(*id).display_path;
-  return Reader(tokenize(sources.file(*id).text, *id), *id, diags).run(std::move(data));
+  data.path = sources.file(file_id).display_path;
+  return Reader(tokenize(sources.file(file_id).text, file_id), file_id, diags).run(std::move(data));
 }
 
 }  // namespace mbgc::flex

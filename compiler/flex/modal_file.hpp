@@ -63,4 +63,8 @@ std::optional<ModalData> read_modal_file(const std::string& name, const ir::Sour
                                          const std::vector<std::string>& search_dirs, ir::SourceManager& sources,
                                          ir::Diagnostics& diags);
 
+/// Reads and checks the modal data already in `sources` as `file_id` (what
+/// read_modal_file does once the file is found; the fuzz target's entry).
+std::optional<ModalData> read_modal_source(const ir::SourceManager& sources, int file_id, ir::Diagnostics& diags);
+
 }  // namespace mbgc::flex

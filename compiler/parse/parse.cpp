@@ -8,13 +8,14 @@
 // text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
 #include "parse/parse.hpp"
 
+#include "ir/find_file.hpp"
+
 #include <filesystem>
 #include <fmt/format.h>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
+#include "ir/find_file.hpp"
 #include "parse/lexer.hpp"
 
 namespace mbgc::parse {
@@ -856,15 +857,6 @@ ir::AstProgram parse_source(const ir::SourceManager& sources, int file_id, ir::D
 
 namespace {
 
-bool read_file(const std::string& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  text = ss.str();
-  return true;
-}
-
 void load_into(const std::string& path, const ir::SourceLoc& imported_at, ir::SourceManager& sources,
                ir::Diagnostics& diags, std::set<std::string>& seen, std::vector<std::string>& stack,
                ir::AstProgram& out) {
@@ -882,9 +874,16 @@ void load_into(const std::string& path, const ir::SourceLoc& imported_at, ir::So
   if (seen.count(canonical)) return;  // imported once already
   seen.insert(canonical);
   std::string text;
-  if (!read_file(path, text)) {
+  std::uintmax_t bytes = 0;
+  const ir::ReadStatus status = ir::read_text_file(path, text, bytes);
+  if (status == ir::ReadStatus::Unreadable) {
     diags.error(imported_at, fmt::format("cannot read `{}`", path),
                 imported_at.valid() ? "the path is relative to the importing file" : "check the file name");
+    return;
+  }
+  if (status == ir::ReadStatus::TooLarge) {
+    diags.error(imported_at, ir::too_large_message(path, bytes),
+                "is this the model you meant? Models this large are not written by hand");
     return;
   }
   int id = sources.add(path, std::move(text));

@@ -49,7 +49,7 @@ struct PendingBond {
 
 class Resolver {
  public:
-  Resolver(Diagnostics& diags, ResolvedModel& out) : diags_(diags), m_(out) {}
+  Resolver(Diagnostics& diags, ResolvedModel& out, const Limits& limits) : diags_(diags), m_(out), limits_(limits) {}
 
   void run(const AstProgram& prog) {
     m_.scopes.push_back({"", ""});
@@ -67,6 +67,7 @@ class Resolver {
       }
     }
     flatten(prog.stmts, 0, 0);
+    if (too_big_) return;  // the model is not whole: nothing more to say about it
     evaluate_params();
     bind_bonds();
   }
@@ -88,9 +89,12 @@ class Resolver {
   void flatten(const std::vector<AstStmt>& stmts, int scope, int depth) {
     const std::string prefix = m_.scopes[static_cast<std::size_t>(scope)].prefix;
     for (const AstStmt& s : stmts) {
+      if (too_big_) return;
       std::visit(
           [&](const auto& st) {
             using T = std::decay_t<decltype(st)>;
+            if constexpr (requires { st.loc; })
+              if (depth == 0) top_loc_ = st.loc;
             if constexpr (std::is_same_v<T, AstModel>) {
               if (m_.model_name.empty()) m_.model_name = st.name;
             } else if constexpr (std::is_same_v<T, AstImport>) {
@@ -159,7 +163,21 @@ class Resolver {
             }
           },
           s);
+      check_size();
     }
+  }
+
+  /// Past limits_.model_size elements, junctions and bonds the model stops
+  /// here, at the top-level statement that grew it (a loop's statement, a body,
+  /// an instance of components within components).
+  void check_size() {
+    const std::size_t size = m_.nodes.size() + bonds_.size();
+    if (too_big_ || size <= static_cast<std::size_t>(limits_.model_size)) return;
+    too_big_ = true;
+    diags_.error(top_loc_,
+                 fmt::format("the model grows past {} elements, junctions and bonds here", limits_.model_size),
+                 "mbgc writes each of them into the generated C++ (the 2000-rod chain has 80000 and makes 115 MB "
+                 "of it): make the loops shorter or the components' instances fewer");
   }
 
   void add_node(ResolvedNode n) {
@@ -461,15 +479,19 @@ class Resolver {
   bool cycle_reported_ = false;
   std::vector<PendingBond> bonds_;
   std::vector<std::string> stack_;
+  const Limits& limits_;
+  SourceLoc top_loc_;     ///< the top-level statement being flattened
+  bool too_big_ = false;  ///< past limits_.model_size: reported, flattening stopped
   std::vector<std::pair<std::optional<double>*, AstAttr>> settings_;
 };
 
 }  // namespace
 
-ResolvedModel resolve(const AstProgram& program, const std::string& source_file, Diagnostics& diags) {
+ResolvedModel resolve(const AstProgram& program, const std::string& source_file, Diagnostics& diags,
+                      const Limits& limits) {
   ResolvedModel m;
   m.source_file = source_file;
-  Resolver r(diags, m);
+  Resolver r(diags, m, limits);
   r.run(program);
   if (m.model_name.empty()) m.model_name = "model";
   return m;

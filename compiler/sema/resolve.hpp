@@ -7,11 +7,14 @@
 
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
+#include "ir/limits.hpp"
 #include "ir/resolved.hpp"
 
 namespace mbgc::sema {
 
+/// A model that grows past limits.model_size elements, junctions and bonds
+/// is an error at the top-level statement that grew it.
 ir::ResolvedModel resolve(const ir::AstProgram& program, const std::string& source_file,
-                          ir::Diagnostics& diags);
+                          ir::Diagnostics& diags, const ir::Limits& limits = {});
 
 }  // namespace mbgc::sema

@@ -13,6 +13,9 @@
 #       no output file may be written.
 # Both: extra mbgc arguments (e.g. --set N=2.5, --scene tip) may be given in
 #       <NAME>.args, one per line.
+#       <NAME>.sparse ("file-name bytes") makes a sparse file of that size in a
+#       folder of the build tree, passed with -I; the folder is shown as
+#       <sparse> in stderr (a file too large to commit, for the size limit).
 # With the environment variable MBGC_BLESS=1 the expected files are rewritten
 # from the actual output instead (review the diff before committing).
 cmake_minimum_required(VERSION 3.20)
@@ -22,6 +25,21 @@ include(${CMAKE_CURRENT_LIST_DIR}/golden_check.cmake)
 set(extra_args "")
 if(EXISTS ${DIR}/${NAME}.args)
   file(STRINGS ${DIR}/${NAME}.args extra_args)
+endif()
+set(sparse_dir "")
+if(EXISTS ${DIR}/${NAME}.sparse)
+  file(STRINGS ${DIR}/${NAME}.sparse sparse)
+  separate_arguments(sparse)
+  list(GET sparse 0 sparse_name)
+  list(GET sparse 1 sparse_bytes)
+  set(sparse_dir ${CMAKE_CURRENT_BINARY_DIR}/golden-sparse-${NAME})
+  file(REMOVE_RECURSE ${sparse_dir})
+  file(MAKE_DIRECTORY ${sparse_dir})
+  execute_process(COMMAND truncate -s ${sparse_bytes} ${sparse_dir}/${sparse_name} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "cannot make the sparse file ${sparse_dir}/${sparse_name}")
+  endif()
+  list(APPEND extra_args -I ${sparse_dir})
 endif()
 
 if(KIND STREQUAL "good")
@@ -81,6 +99,10 @@ elseif(KIND STREQUAL "bad")
   endif()
   if(EXISTS ${out_file})
     message(FATAL_ERROR "mbgc wrote an output file for bad model ${NAME}.mbg")
+  endif()
+  if(sparse_dir)
+    string(REPLACE "${sparse_dir}" "<sparse>" err "${err}")
+    file(REMOVE_RECURSE ${sparse_dir})
   endif()
   check(${NAME}.stderr "${err}")
   check(${NAME}.status "${rc}\n")
