@@ -19,7 +19,7 @@ bool all_finite(const std::vector<double>& v) {
 
 Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
               const std::vector<double>& y0, const std::vector<double>& yp0,
-              const std::function<void()>& on_point) {
+              const std::function<void()>& on_point, const std::atomic<int>* stop) {
   Outcome r;
   // A NaN in the initial values would otherwise surface as an obscure first-step failure.
   if (!guard.check_state(s.t_start_s, y0.data())) return {false, false, false};
@@ -35,6 +35,7 @@ Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
 
   const OutputGrid grid(s.t_start_s, s.t_end_s, s.interval_s);
   for (std::size_t k = 1; r.ok && k < grid.size(); ++k) {
+    if (stop && (r.signal = stop->load()) != 0) break;
     r.solver_failed = !integrator.advance_to(grid[k]);
     r.ok = !r.solver_failed && guard.check_state(integrator.t(), integrator.y());
     if (r.ok) on_point();

@@ -4,6 +4,7 @@
 // output grid.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -18,13 +19,16 @@ struct Outcome {
   bool ok = true;
   bool started = false;        ///< init() was reached: the integrator holds the state
   bool solver_failed = false;  ///< the integrator gave up (vs. the runtime stopping it)
+  int signal = 0;              ///< the stop signal that ended the march after a row (ok stays true)
 };
 
 /// Starts the integrator at s.t_start_s and marches it over the output grid,
-/// calling `on_point` at every communication point reached.
+/// calling `on_point` at every communication point reached. With `stop`
+/// (interrupt.hpp's flag), a signal caught ends the march after the point
+/// being written, so that output ends with a whole row.
 Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
               const std::vector<double>& y0, const std::vector<double>& yp0,
-              const std::function<void()>& on_point);
+              const std::function<void()>& on_point, const std::atomic<int>* stop = nullptr);
 
 /// What the runtime does to the initial values of a model with joint
 /// constraints before the integrator starts: assembly (all models), then y'

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -12,6 +13,7 @@
 
 #include "cli.hpp"
 #include "csv.hpp"
+#include "interrupt.hpp"
 #include "mbgrt/model.hpp"
 #include "progress.hpp"
 #include "simulate.hpp"
@@ -66,6 +68,8 @@ int run(Model& model, int argc, char** argv) {
   if (o.sweeping()) return run_sweep(model, o, *out);
   RunHooks hooks;
   hooks.progress = is_terminal(stderr) && !o.quiet;
+  const StopSignals stop_signals({SIGINT, SIGTERM, SIGHUP});  // a run asked to stop ends after a whole row
+  hooks.stop = &StopSignals::flag();
   return simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr, event_out ? &*event_out : nullptr,
                   hooks);
 }

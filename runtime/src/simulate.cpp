@@ -14,6 +14,7 @@
 #include "grid.hpp"
 #include "guard.hpp"
 #include "integrator.hpp"
+#include "interrupt.hpp"
 #include "linearize.hpp"
 #include "march.hpp"
 #include "progress.hpp"
@@ -171,10 +172,10 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     r = march(guard, *integrator, s, y0, yp0, [&] {
       write_row();
       pacer->frame_done(integrator->t());
-    });
+    }, hooks.stop);
   } else {
     csv.header("t", names);
-    r = march(guard, *integrator, s, y0, yp0, write_row);
+    r = march(guard, *integrator, s, y0, yp0, write_row, hooks.stop);
   }
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -234,6 +235,11 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   }
   if (event_out) write_event_log(*event_out, guard.events());
   if (!r.ok) print_stop_message(hooks.report, guard, *integrator, r.solver_failed, stop_note);
+  if (r.signal != 0) {  // said even with --quiet: the output is not the whole run
+    fmt::print(hooks.report, "mbgrt: stopped by {} at t = {} s of {} s; the {} rows written are whole\n",
+               signal_name(r.signal), format_time(last_row_t), format_time(s.t_end_s), csv.rows());
+    return 128 + r.signal;
+  }
   return r.ok ? kExitSuccess : kExitRunFailed;
 }
 

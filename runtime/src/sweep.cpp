@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "interrupt.hpp"
 #include "progress.hpp"
 #include "simulate.hpp"
 #include "sweep_cluster.hpp"
@@ -157,27 +158,6 @@ std::string summary_row(const SweepPlan& plan, std::size_t k, const CaseResult& 
   }
   return row + fmt::format(",{:.3g},{}\n", r.wall_s, r.message.empty() ? std::string() : quoted(r.message));
 }
-
-// ---- Ctrl-C: the cases running finish, no new one starts, the summary says which did not run.
-std::atomic<bool> interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
-
-extern "C" void on_interrupt(int) {
-  interrupted = true;
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
-}
-
-/// SIGINT handled as above while it lives (the previous handler after).
-class InterruptScope {
- public:
-  InterruptScope() : previous_(std::signal(SIGINT, on_interrupt)) { interrupted = false; }
-  ~InterruptScope() { std::signal(SIGINT, previous_); }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
-
- private:
-  void (*previous_)(int);
-};
 
 }  // namespace
 
@@ -317,7 +297,7 @@ std::size_t run_cases(const Model& prototype, const Options& o, const SweepPlan&
   auto worker = [&] {
     for (std::size_t i; (i = next++) < n;) {
       CaseResult r;
-      if (interrupted) {
+      if (StopSignals::caught() != 0) {  // Ctrl-C: the cases running finish, no new one starts
         r.done = r.not_run = true;
         r.message = "not run: the sweep was interrupted (Ctrl-C) before it started";
       } else {
@@ -380,7 +360,7 @@ int run_sweep(const Model& prototype, const Options& o, OutputFile& summary) {
 
   const auto started = std::chrono::steady_clock::now();
   std::size_t failed = 0, not_run = 0;
-  InterruptScope ctrl_c;
+  StopSignals ctrl_c({SIGINT});
   if (ranks == 1) {
     summary.write(summary_header(*plan, outputs));
     failed = run_cases(prototype, o, *plan, mine, jobs, progress, [&](std::size_t k, const CaseResult& r) {

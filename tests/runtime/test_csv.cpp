@@ -2,6 +2,7 @@
 // point from t_start to t_end, numbers that read back exactly.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <sstream>
 
@@ -70,6 +71,42 @@ TEST(Csv, WithoutOutFileTheCsvGoesToStdout) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out,
             "t,a.b,third_of_t\n0,0,0\n0.1,0.1,0.03333333333333333\n0.2,0.2,0.06666666666666667\n");
+}
+
+/// Decay that is sent `signal` (once) when the integrator first passes t = 0.55.
+class SignalledDecay : public Decay {
+ public:
+  explicit SignalledDecay(int signal) : signal_(signal) {}
+  void derivative(double t, const double* y, double* dy) override {
+    if (t > 0.55 && !sent_) sent_ = true, std::raise(signal_);
+    Decay::derivative(t, y, dy);
+  }
+
+ private:
+  int signal_;
+  bool sent_ = false;
+};
+
+TEST(Csv, ARunAskedToStopEndsAfterAWholeRowAndSaysSo) {
+  for (const auto& [signal, name] : {std::pair{SIGTERM, "SIGTERM"}, {SIGINT, "SIGINT (Ctrl-C)"}, {SIGHUP, "SIGHUP"}}) {
+    SignalledDecay m(signal);
+    RunResult r = run(m, {"--solver", "rk4", "--quiet"});
+    EXPECT_EQ(r.status, 128 + signal) << name << "\n" << r.err;
+    // every row whole and the file ending with its newline: the signal came
+    // inside a step, the run stopped after that step's row
+    ASSERT_FALSE(r.csv.empty());
+    EXPECT_EQ(r.csv.back(), '\n') << name;
+    const Csv csv = parse_csv(r.csv);
+    ASSERT_EQ(csv.rows.size(), 7u) << name << "\n" << r.csv;  // t = 0 to 0.6
+    for (const auto& row : csv.rows) EXPECT_NEAR(row[1], m.exact(row[0]), 1e-6) << name;
+    EXPECT_DOUBLE_EQ(csv.rows.back()[0], 0.6) << name;
+    EXPECT_TRUE(Contains(r.err, std::string("stopped by ") + name + " at t = 0.6 s of 2 s; the 7 rows written are whole"))
+        << r.err;
+    // and the signal is the process's own again afterwards
+    struct sigaction now {};
+    sigaction(signal, nullptr, &now);
+    EXPECT_EQ(now.sa_handler, SIG_DFL) << name;
+  }
 }
 
 }  // namespace
