@@ -442,11 +442,16 @@ class Eliminator {
       name_all(o, n, "out");
       out_form_.emplace(y, std::move(o));
     }
-    for (int y : outputs_[n]) {  // those built from eliminated forms
-      Form o;
-      if (in_sum.count(y) || !add_after(y, constant(1), o)) continue;
-      name_all(o, n, "out");
-      out_form_.emplace(y, std::move(o));
+    // Those built from eliminated forms: the multiples of a pair's mu first,
+    // since a combination of outputs may read one (a planar joint below a
+    // moving body: its confined pair's outputs, and their combination).
+    for (const bool combinations : {false, true}) {
+      for (int y : outputs_[n]) {
+        Form o;
+        if (in_sum.count(y) || derived.count(y) != combinations || !add_after(y, constant(1), o)) continue;
+        name_all(o, n, "out");
+        out_form_.emplace(y, std::move(o));
+      }
     }
     for (const auto& [u, members] : sums) {
       Form sum;    // summed before the joint accelerations are eliminated: one coefficient per acceleration
