@@ -4,7 +4,9 @@
 #                       [DEPENDS <files or targets>...])
 #       a simulator executable (generated C++ with main()). DEPENDS names files
 #       the model reads that the build itself makes (a modal-data file written
-#       by a custom command, found with OPTIONS -I <its directory>).
+#       by a custom command, found with OPTIONS -I <its directory>). The
+#       model itself may be written by the build too: the OUTPUT of an
+#       add_custom_command in the same directory (tests/random).
 #   mbgc_add_model(<target> MODEL <file.mbg> [OPTIONS ...] [DEPENDS ...])
 #       an INTERFACE library whose header <target>.hpp holds the model class
 #       (mbgc --library), for embedding a model in your own program.
@@ -25,7 +27,10 @@ endif()
 function(_mbgc_generate target model_in out_file)
   cmake_parse_arguments(ARG "" "" "OPTIONS;DEPENDS" ${ARGN})
   get_filename_component(model ${model_in} ABSOLUTE)
-  if(NOT EXISTS ${model})
+  # a model the build writes (the OUTPUT of an add_custom_command in the same
+  # directory, as tests/random does) need not exist yet
+  get_source_file_property(generated ${model} GENERATED)
+  if(NOT EXISTS ${model} AND NOT generated)
     message(FATAL_ERROR "mbgc: model file ${model_in} not found (for target ${target})")
   endif()
   set(depfile ${CMAKE_CURRENT_BINARY_DIR}/${target}.mbgc.d)
