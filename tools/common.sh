@@ -22,6 +22,8 @@ JOBS=${JOBS:-2}
 MBGC_PACKAGES=(g++ cmake ninja-build pkg-config libeigen3-dev libfmt-dev libcli11-dev
                libsundials-dev libsuitesparse-dev libgtest-dev gnuplot-nox libjemalloc-dev libspectra-dev
                libopenmpi-dev openmpi-bin libtinygltf-dev nodejs chromium-headless-shell)
+# The sanitizer pass of .ci/run is built by clang, for libFuzzer (fuzz/).
+MBGC_FUZZ_PACKAGES=(clang libclang-rt-14-dev)
 
 step() { printf '\n==> %s\n' "$*"; }
 die() { printf 'error: %s\n' "$*" >&2; exit 1; }
