@@ -10,7 +10,8 @@
 # appended to fuzz/campaign.csv: executions, the coverage reached (libFuzzer's
 # `cov`, edges, and `ft`, features), the corpus and the crashes, timeouts
 # and out-of-memory kills found. Targets run one after another unless
-# PARALLEL=2 (two at once: the machine's two cores).
+# PARALLEL=2 (two at once: the machine's two cores). REPORT_ONLY=1 writes
+# the CSV lines of the campaigns already in BUILD_DIR without fuzzing.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:?usage: fuzz/campaign.sh BUILD_DIR [SECONDS] [TARGET...]}"
@@ -31,25 +32,32 @@ seeds_of() {
   esac
 }
 
+# The CSV line of a finished campaign, from fork mode's last status line:
+# "#N: cov: C ft: F corp: K exec/s E oom/timeout/crash: O/T/X time: Ss job: J"
+summarise() {
+  local t="$1" log="$build/fuzz/campaign/$1/log.txt" last
+  last=$(grep -E '^#[0-9]+: cov:' "$log" | tail -1 || true)
+  [ -n "$last" ] || { echo "$t: no status line in $log" >&2; return 1; }
+  local execs cov ft corp oom timeout crash
+  execs=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$last")
+  cov=$(sed -E 's/.* cov: ([0-9]+).*/\1/' <<<"$last")
+  ft=$(sed -E 's/.* ft: ([0-9]+).*/\1/' <<<"$last")
+  corp=$(sed -E 's/.* corp: ([0-9]+).*/\1/' <<<"$last")
+  IFS=/ read -r oom timeout crash <<<"$(sed -E 's#.* oom/timeout/crash: ([0-9]+/[0-9]+/[0-9]+).*#\1#' <<<"$last")"
+  echo "$(date -u +%F),$commit,$t,$seconds,$execs,$cov,$ft,$corp,$crash,$timeout,$oom" | tee -a "$csv"
+}
+
 one() {
   local t="$1" dir="$build/fuzz/campaign/$1"
-  rm -rf "$dir"
-  mkdir -p "$dir/corpus" "$dir/artifacts"
-  echo "==> $t: $seconds s (log: $dir/log.txt)"
-  (cd "$dir" && "$build/fuzz/$t" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
-    -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -close_fd_mask=3 \
-    -artifact_prefix="$dir/artifacts/" "$dir/corpus" "$(seeds_of "$t")" > "$dir/log.txt" 2>&1) || true
-  # fork mode's last status line: "#N: cov: C ft: F corp: K exec/s: E oom/timeout/crash: O/T/X time: S job: J"
-  local last execs
-  last=$(grep -E '^#[0-9]+: cov:' "$dir/log.txt" | tail -1)
-  execs=$(grep -Eo 'stat::number_of_executed_units: [0-9]+' "$dir/log.txt" | awk '{s += $2} END {print s + 0}')
-  [ "$execs" -gt 0 ] || execs=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$last")
-  local cov ft corp oom timeout crash
-  cov=$(grep -Eo 'cov: [0-9]+' <<<"$last" | awk '{print $2}')
-  ft=$(grep -Eo 'ft: [0-9]+' <<<"$last" | awk '{print $2}')
-  corp=$(grep -Eo 'corp: [0-9]+' <<<"$last" | awk '{print $2}')
-  IFS=/ read -r oom timeout crash < <(grep -Eo 'oom/timeout/crash: [0-9]+/[0-9]+/[0-9]+' <<<"$last" | awk '{print $2}')
-  echo "$(date -u +%F),$commit,$t,$seconds,$execs,$cov,$ft,$corp,$crash,$timeout,$oom" | tee -a "$csv"
+  if [ -z "${REPORT_ONLY:-}" ]; then
+    rm -rf "$dir"
+    mkdir -p "$dir/corpus" "$dir/artifacts"
+    echo "==> $t: $seconds s (log: $dir/log.txt)"
+    (cd "$dir" && "$build/fuzz/$t" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+      -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -close_fd_mask=3 \
+      -artifact_prefix="$dir/artifacts/" "$dir/corpus" "$(seeds_of "$t")" > "$dir/log.txt" 2>&1) || true
+  fi
+  summarise "$t"
 }
 
 if [ "${PARALLEL:-1}" = 2 ]; then
