@@ -113,11 +113,19 @@ std::vector<Expander::Problem> Expander::coordinate_problems() const {
     if (j.strategy == Strategy::Coordinates && j.tree && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
         if (bodies_.at(s->body).particle) {
-          out.push_back({d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
-                         fmt::format("a particle has no angular-velocity junction for the joint's rotation rates to "
-                                     "drive, so they would carry no inertia: give `{}` an inertia, or write "
-                                     "constraints = lagrange or penalty for this model",
-                                     s->body)});
+          const bool parent = (s == &j.a) == j.a_is_parent;
+          if (parent)
+            out.push_back({d.loc, fmt::format("joint `{}` hangs `{}` from the particle `{}`, which joint coordinates "
+                                              "cannot do", d.name, (j.a_is_parent ? j.b : j.a).body, s->body),
+                           fmt::format("a particle has no orientation for the joint's frame to turn with: give `{}` "
+                                       "an inertia, or write constraints = lagrange or penalty for this model",
+                                       s->body)});
+          else
+            out.push_back({d.loc, fmt::format("joint `{}` cannot move the particle `{}` by joint coordinates", d.name, s->body),
+                           fmt::format("a particle has no angular-velocity junction for the joint's rotation rates to "
+                                       "drive, so they would carry no inertia: give `{}` an inertia, or write "
+                                       "constraints = lagrange or penalty for this model",
+                                       s->body)});
           break;
         }
     if (j.strategy != Strategy::Coordinates)
