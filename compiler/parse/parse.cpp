@@ -8,8 +8,6 @@
 // text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
 #include "parse/parse.hpp"
 
-#include "ir/find_file.hpp"
-
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>

@@ -31,7 +31,7 @@ class StopSignals {
   std::vector<std::pair<int, void (*)(int)>> previous_;
 };
 
-/// "SIGINT (Ctrl-C)", "SIGTERM", "SIGHUP", or "signal N".
+/// "SIGINT (Ctrl-C)", "SIGTERM", "SIGHUP", or "a signal" for any other.
 const char* signal_name(int signal);
 
 }  // namespace mbgrt::detail
