@@ -14,7 +14,9 @@
 # The generated source is rebuilt when the model, any file it imports or reads
 # (modal-data files), or the compiler changes (add_custom_command with DEPENDS and a depfile).
 # MBGC_COMPILER_TARGET names the mbgc executable target: `mbgc` inside this
-# project, `mbgc::mbgc` after find_package(mbgc).
+# project, `mbgc::mbgc` after find_package(mbgc). MBGC_GENERATED_COMPILE_OPTIONS,
+# if set, are added to the compile of each generated simulator source only
+# (this project's sanitizer build sets -fno-sanitize=undefined there).
 include_guard(GLOBAL)
 
 if(NOT DEFINED MBGC_COMPILER_TARGET)
@@ -62,6 +64,9 @@ function(mbgc_add_simulation target)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}.cpp)
   _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS ${ARG_OPTIONS} DEPENDS ${ARG_DEPENDS})
   add_executable(${target} ${out})
+  if(MBGC_GENERATED_COMPILE_OPTIONS)
+    set_source_files_properties(${out} PROPERTIES COMPILE_OPTIONS "${MBGC_GENERATED_COMPILE_OPTIONS}")
+  endif()
   target_link_libraries(${target} PRIVATE ${MBGC_RUNTIME_TARGET})
 endfunction()
 
