@@ -586,16 +586,8 @@ class Emitter {
                               rows.size(), s_.residual_pattern.size() * s_.residual_pattern.size()),
                   "bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override",
                   {}};
-    auto table = [&](const char* name, const std::vector<long>& v) {
-      f.body.push_back(CppStmt::line(fmt::format("static const long {}[] = {{", name)));
-      for (std::size_t i = 0; i < v.size(); i += 20) {
-        std::vector<long> line(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(std::min(v.size(), i + 20)));
-        f.body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
-      }
-      f.body.push_back(CppStmt::line("};"));
-    };
-    table("kStarts", starts);
-    table("kRows", rows);
+    static_table(f.body, "kStarts", starts);
+    static_table(f.body, "kRows", rows);
     f.body.push_back(CppStmt::line(fmt::format("column_starts.assign(kStarts, kStarts + {});", starts.size())));
     f.body.push_back(CppStmt::line(fmt::format("rows.assign(kRows, kRows + {});", rows.size())));
     f.body.push_back(CppStmt::line("return true;"));
@@ -635,6 +627,51 @@ class Emitter {
     for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", n + i), s_.constraints[i].gdot});
     section(f.body, s_.for_constraints, results, "g, then gdot");
     c.public_methods.push_back(f);
+    constraint_jacobian(c);
+  }
+
+  /// G = dg/dx, symbolically (reduce/constraint_jacobian): its pattern by row,
+  /// then its values in that order.
+  void constraint_jacobian(CppClass& c) {
+    const std::size_t n = s_.constraints.size();
+    std::vector<long> starts{0}, columns;
+    std::vector<std::pair<std::string, Expr>> results;
+    for (std::size_t r = 0, k = 0; r < n; ++r) {
+      for (; k < s_.constraint_jacobian.size() && s_.constraint_jacobian[k].row == static_cast<int>(r); ++k) {
+        columns.push_back(s_.constraint_jacobian[k].state);
+        results.push_back({fmt::format("values[{}]", results.size()), s_.constraint_jacobian[k].value});
+      }
+      starts.push_back(static_cast<long>(columns.size()));
+    }
+    CppFunction pattern{fmt::format("CONSTRAINT JACOBIAN: which states each CN row's g reads ({} entries, by row)",
+                                    columns.size()),
+                        "void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const override",
+                        {}};
+    static_table(pattern.body, "kStarts", starts);
+    static_table(pattern.body, "kColumns", columns);
+    pattern.body.push_back(CppStmt::line(fmt::format("row_starts.assign(kStarts, kStarts + {});", starts.size())));
+    pattern.body.push_back(CppStmt::line(fmt::format("columns.assign(kColumns, kColumns + {});", columns.size())));
+    c.public_methods.push_back(pattern);
+    const char* y = s_.dae ? "y" : "x";
+    CppFunction f{"CONSTRAINT JACOBIAN: dg/dx at (t, x), by symbolic differentiation, in the pattern's order.",
+                  fmt::format("void constraint_jacobian(double t, const double* {}, double* values) override", y),
+                  {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
+    if (results.empty()) f.body.push_back(CppStmt::line("(void)values;"));
+    {
+      const Counting counting = count_into(f);
+      section(f.body, s_.for_constraint_jacobian, results, "dg/dx, by row");
+    }
+    add_long_method(c, std::move(f));
+  }
+
+  /// `static const long NAME[] = {...};`, twenty numbers a line.
+  static void static_table(std::vector<CppStmt>& body, const char* name, const std::vector<long>& v) {
+    body.push_back(CppStmt::line(fmt::format("static const long {}[] = {{", name)));
+    for (std::size_t i = 0; i < v.size(); i += 20) {
+      std::vector<long> line(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(std::min(v.size(), i + 20)));
+      body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
+    }
+    body.push_back(CppStmt::line("};"));
   }
 
   /// Where each CN row's multipliers sit in y (lagrange rows; -1 for penalty

@@ -62,6 +62,42 @@ std::string computed_doc(const Parameter& p, const BondGraph& g) {
   return fmt::format("= a function of {}", fmt::join(from, ", "));
 }
 
+/// LAYOUT: what each unknown is, from the element that holds it: q of a C is
+/// a position (a displacement), p of an I and an independent joint rate are
+/// velocities; the DAE's algebraic unknowns are multipliers where a CN row
+/// puts them.
+void unknown_roles(CppClass& c, const ReducedSystem& s) {
+  std::vector<std::string> roles;
+  for (const StateVar& st : s.states)
+    roles.push_back(s.graph.nodes[static_cast<std::size_t>(st.node)].kind == NodeKind::C ? "position" : "velocity");
+  for (int a : s.algebraic) {
+    const char* role = "algebraic";
+    for (const ConstraintRow& r : s.constraints) {
+      if (r.multiplier == a) role = "multiplier";
+      if (r.stabiliser == a) role = "stabiliser";
+    }
+    roles.push_back(role);
+  }
+  CppFunction f{"LAYOUT: what each unknown is (the runtime is told, not left to find out).",
+                "mbgrt::UnknownRole unknown_role(std::size_t i) const override", {}};
+  if (roles.empty()) {
+    f.body.push_back(CppStmt::line("(void)i;"));
+    f.body.push_back(CppStmt::line("return mbgrt::UnknownRole::unspecified;"));
+    c.public_methods.push_back(f);
+    return;
+  }
+  f.body.push_back(CppStmt::line("using R = mbgrt::UnknownRole;"));
+  f.body.push_back(CppStmt::line("static const R kRoles[] = {"));
+  for (std::size_t i = 0; i < roles.size(); i += 8) {
+    std::vector<std::string> line;
+    for (std::size_t k = i; k < std::min(roles.size(), i + 8); ++k) line.push_back("R::" + roles[k]);
+    f.body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
+  }
+  f.body.push_back(CppStmt::line("};"));
+  f.body.push_back(CppStmt::line(fmt::format("return i < {} ? kRoles[i] : R::unspecified;", roles.size())));
+  c.public_methods.push_back(f);
+}
+
 }  // namespace
 
 ir::Namer names_for_dump(const ir::BondGraph& g) {
@@ -91,6 +127,7 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
     vn.body.push_back(CppStmt::line(fmt::format("return i < {} ? kNames[i] : \"?\";", unknown_names.size())));
   }
   c.public_methods.push_back(vn);
+  unknown_roles(c, s);
   state_limits(c, s);
   std::vector<std::string> outs;
   for (const Output& o : g.outputs) outs.push_back(cpp_string(o.name));

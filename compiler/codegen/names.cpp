@@ -36,7 +36,9 @@ const std::set<std::string> kReserved = {
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
     "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
     "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason",
-    "residual_sparsity", "column_starts", "rows", "kStarts", "kRows", "rank_loss", "rank_loss_"};
+    "residual_sparsity", "column_starts", "rows", "kStarts", "kRows", "rank_loss", "rank_loss_",
+    "multiplier_index", "stabiliser_index", "kIndex", "row", "unknown_role", "kRoles", "R",
+    "constraint_jacobian", "constraint_jacobian_pattern", "row_starts", "columns", "kColumns", "values"};
 
 }  // namespace
 
@@ -46,7 +48,7 @@ bool reserved(const std::string& id) {
   if (id.size() > 1 && id[0] == '_' && (std::isupper(static_cast<unsigned char>(id[1])) || id[1] == '_')) return true;
   if (id.find("__") != std::string::npos) return true;
   // the parts of a long method (codegen/split.hpp): derivative_part1, ...
-  for (const char* method : {"derivative_part", "residual_part", "jacobian_part"})
+  for (const char* method : {"derivative_part", "residual_part", "jacobian_part", "constraint_jacobian_part"})
     if (id.rfind(method, 0) == 0) return true;
   // <cmath>/<cfloat>/<cstdint> macro families: M_PI, FP_NAN, DBL_MAX, INT8_MAX, ...
   for (const char* prefix : {"M_", "FP_", "DBL_", "FLT_", "LDBL_", "INT", "UINT", "SIZE_", "PTRDIFF_"})

@@ -106,6 +106,16 @@ struct ReducedSystem {
   // mu), monitored for penalty rows.
   std::vector<ConstraintRow> constraints;
   std::vector<int> for_constraints;       // indices into assignments, in order
+  // G = dg/dx: per constraint row, its nonzero derivatives by the states, by
+  // row, then state (reduce/constraint_jacobian), after the assignments in
+  // for_constraint_jacobian (a cut joint's g reads the tree's pose signals).
+  struct JacobianEntry {
+    int row = -1;    // index into constraints
+    int state = -1;  // index into states
+    Expr value;
+  };
+  std::vector<JacobianEntry> constraint_jacobian;
+  std::vector<int> for_constraint_jacobian;  // indices into assignments, in order
   std::vector<EventRelation> events;      // the model's discontinuities (reduce/events)
   std::vector<int> for_events;            // indices into assignments, in order: what the events' args need
   std::vector<ContactRow> contacts;       // contacts (CN with a restitution), each with its event

@@ -2,6 +2,8 @@
 
 #include "reduce/events.hpp"
 #include "reduce/slice.hpp"
+#include "reduce/constraint_jacobian.hpp"
+#include "reduce/forward_diff.hpp"
 #include "reduce/sparsity.hpp"
 #include "reduce/tree_elimination.hpp"
 
@@ -44,6 +46,7 @@ class Reducer {
     if (diags_.has_errors()) return;
     differentiate_for_jacobian();
     steps_for_time_kinks(out_);
+    differentiate_constraints();
     out_.events = find_events(out_);
     slice(out_);
   }
@@ -835,53 +838,34 @@ class Reducer {
 
   // ---- 5. Jacobian for the implicit solvers ------------------------------------------------
   /// d(xdot_i)/d(x_j) by forward-mode symbolic differentiation through the
-  /// sorted assignments (chain rule), for ODEs whose assignments are all
-  /// explicit. The result refers to assignment variables, so the emitter
-  /// computes it after the same assignments the derivative uses.
+  /// sorted assignments (reduce/forward_diff.hpp), for ODEs whose assignments
+  /// are all explicit.
   void differentiate_for_jacobian() {
     // (after a tree elimination a symbolic Jacobian would be dense in the
     // bodies: the implicit solvers difference the derivative instead)
     if (out_.dae || !out_.linear_blocks.empty() || tree_eliminated_) return;
     std::size_t n = out_.states.size();
     if (n == 0) return;
-    std::unordered_map<int, std::size_t> state_index;
-    for (std::size_t j = 0; j < n; ++j) state_index[out_.states[j].var] = j;
-    std::unordered_map<int, const Assignment*> assignment_of;
-    for (const Assignment& a : out_.assignments) assignment_of[a.var] = &a;
-    // memo: variable -> its derivative with respect to each state
-    std::unordered_map<int, std::vector<Expr>> d_var;
-    std::function<const std::vector<Expr>&(int)> d_of_var;
-    auto d_of_expr = [&](const Expr& e) {
-      std::vector<Expr> d(n, constant(0));
-      std::unordered_set<int> vars;
-      collect_vars(e, vars);
-      std::vector<int> sorted(vars.begin(), vars.end());
-      std::sort(sorted.begin(), sorted.end());  // deterministic term order
-      for (int u : sorted) {
-        const std::vector<Expr>& du = d_of_var(u);
-        Expr partial;
-        for (std::size_t j = 0; j < n; ++j) {
-          if (is_zero(du[j])) continue;
-          if (!partial) partial = diff_var(e, u);
-          d[j] = add(d[j], mul(partial, du[j]));
-        }
-      }
-      return d;
-    };
-    d_of_var = [&](int u) -> const std::vector<Expr>& {
-      if (auto it = d_var.find(u); it != d_var.end()) return it->second;
-      std::vector<Expr> d(n, constant(0));
-      if (auto s = state_index.find(u); s != state_index.end()) d[s->second] = constant(1);
-      else if (auto a = assignment_of.find(u); a != assignment_of.end()) d = d_of_expr(a->second->value);
-      return d_var.emplace(u, std::move(d)).first->second;
-    };
-    out_.jacobian.reserve(n * n);
+    ForwardDiff d(out_);
+    out_.jacobian.assign(n * n, constant(0));
+    std::size_t nonzero = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      std::vector<Expr> row = d_of_expr(out_.state_derivative[i]);
-      for (const Expr& e : row) out_.jacobian.push_back(e);
+      std::optional<ForwardDiff::Derivatives> row = d.of(out_.state_derivative[i]);  // (no linear block: always)
+      for (auto& [j, value] : *row) {
+        out_.jacobian[i * n + static_cast<std::size_t>(j)] = std::move(value);
+        ++nonzero;
+      }
     }
-    std::size_t nonzero = std::count_if(out_.jacobian.begin(), out_.jacobian.end(), [](const Expr& e) { return !is_zero(e); });
     out_.log.push_back(fmt::format("jacobian: {} of {} entries nonzero, by symbolic differentiation", nonzero, n * n));
+  }
+
+  /// G = dg/dx for the runtime (reduce/constraint_jacobian.hpp).
+  void differentiate_constraints() {
+    if (const std::optional<std::size_t> row = constraint_jacobian(out_)) {
+      const ConstraintRow& r = out_.constraints[*row];
+      diags_.error(r.loc, fmt::format("internal error: constraint `{}` depends on a variable solved numerically, so it cannot be differentiated", r.name),
+                   "please report this model to the mbgc developers");
+    }
   }
 
   EquationSystem& sys_;

@@ -65,6 +65,8 @@ void slice(ReducedSystem& s) {
     constraint_roots.push_back(row.gdot);
     constraint_roots.push_back(row.g);  // (a cut joint's g reads the tree's pose signals)
   }
+  std::vector<Expr> constraint_jacobian_roots;
+  for (const ReducedSystem::JacobianEntry& e : s.constraint_jacobian) constraint_jacobian_roots.push_back(e.value);
   std::vector<Expr> event_roots;
   for (const EventRelation& ev : s.events) event_roots.push_back(ev.arg);
   std::vector<Expr> contact_roots, tangent_roots;
@@ -80,11 +82,13 @@ void slice(ReducedSystem& s) {
   s.for_drawings = needed_by(drawing_roots);
   s.for_jacobian = needed_by(s.jacobian);
   s.for_constraints = needed_by(constraint_roots);
+  s.for_constraint_jacobian = needed_by(constraint_jacobian_roots);
   s.for_events = needed_by(event_roots);
   s.for_contacts = needed_by(contact_roots);
   s.for_tangents = needed_by(tangent_roots);
-  const std::vector<std::vector<int>*> slices = {&s.for_derivative, &s.for_outputs,  &s.for_jacobian, &s.for_constraints,
-                                                 &s.for_events,     &s.for_contacts, &s.for_tangents, &s.for_drawings};
+  const std::vector<std::vector<int>*> slices = {&s.for_derivative,  &s.for_outputs,  &s.for_jacobian,
+                                                 &s.for_constraints, &s.for_constraint_jacobian,
+                                                 &s.for_events,      &s.for_contacts, &s.for_tangents, &s.for_drawings};
   std::set<int> used;
   for (const std::vector<int>* sl : slices) used.insert(sl->begin(), sl->end());
   // Drop what nobody needs; renumber the slices.

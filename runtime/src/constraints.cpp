@@ -36,22 +36,20 @@ Index ix(std::size_t i) { return static_cast<Index>(i); }
 std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
 
 /// Jacobian of rows [row0, row0 + rows) of f with respect to v[cols], by
-/// central differences around v, plus which entries depend on the column at
-/// all: a row that does not read v[j] gives bit-identical values either side.
+/// central differences around v: the Newton matrices of the velocity phase
+/// and of the initial values (numbers, not structure: which unknowns and rows
+/// are which is the model's layout).
 struct Linearization {
   Mat J;
-  Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> depends;
   bool finite = true;
 };
 
 template <class Fn>
-Linearization linearize(Fn&& f, Vec v, const Vec& f0, Index row0, Index rows,
-                        const std::vector<Index>& cols) {
+Linearization linearize(Fn&& f, Vec v, Index out_size, Index row0, Index rows, const std::vector<Index>& cols) {
   Linearization L;
   const auto m = ix(cols.size());
   L.J = Mat::Zero(rows, m);
-  L.depends = Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>::Constant(rows, m, false);
-  Vec fp(f0.size()), fm(f0.size());
+  Vec fp(out_size), fm(out_size);
   for (Index c = 0; c < m; ++c) {
     const Index j = cols[sz(c)];
     const double v0 = v[j], h = fd_step(v0);
@@ -66,14 +64,35 @@ Linearization linearize(Fn&& f, Vec v, const Vec& f0, Index row0, Index rows,
       L.finite = false;
       return L;
     }
-    for (Index i = 0; i < rows; ++i) {
-      const double a = fp[row0 + i], b = fm[row0 + i], base = f0[row0 + i];
-      L.J(i, c) = (a - b) / (up - down);
-      L.depends(i, c) = a != base || b != base;
-    }
+    L.J.col(c) = (fp.segment(row0, rows) - fm.segment(row0, rows)) / (up - down);
   }
   return L;
 }
+
+/// G = dg/dx at (t, y) over the states `cols` (the model's symbolic
+/// constraint_jacobian), as a dense P x cols.size() matrix.
+struct SymbolicG {
+  Model& model;
+  const ConstraintShape& shape;
+  double t;
+  std::vector<double> values = std::vector<double>(shape.g_columns.size());
+  std::vector<Index> column_of = std::vector<Index>(shape.ns, -1);
+
+  bool operator()(const Vec& y, const std::vector<Index>& cols, Mat& J) {
+    std::fill(column_of.begin(), column_of.end(), Index{-1});
+    for (std::size_t k = 0; k < cols.size(); ++k) column_of[sz(cols[k])] = ix(k);
+    model.constraint_jacobian(t, y.data(), values.data());
+    J = Mat::Zero(ix(shape.np), ix(cols.size()));
+    for (std::size_t r = 0; r < shape.np; ++r)
+      for (long e = shape.g_row_starts[r]; e < shape.g_row_starts[r + 1]; ++e) {
+        const double v = values[static_cast<std::size_t>(e)];
+        if (!std::isfinite(v)) return false;
+        if (const Index c = column_of[static_cast<std::size_t>(shape.g_columns[static_cast<std::size_t>(e)])]; c >= 0)
+          J(ix(r), c) = v;
+      }
+    return true;
+  }
+};
 
 /// Minimum-norm least-squares solution s of J s = -r. Rows are equilibrated
 /// first (which leaves the solution of a consistent system unchanged), so a
@@ -154,8 +173,9 @@ struct Phase {
   Index worst = 0;  ///< row (relative to row0) with the largest |residual|
 };
 
-template <class Eval>
-void run_phase(Eval& eval, Vec& y, Vec& c, Phase& ph) {
+/// `jacobian(y, J)` gives the phase's rows' derivatives by its columns.
+template <class Eval, class Jacobian>
+void run_phase(Eval& eval, Jacobian&& jacobian, Vec& y, Vec& c, Phase& ph) {
   Vec trial_y(y.size()), trial_c(c.size());
   for (;;) {
     ph.residual = max_abs(c.segment(ph.row0, ph.rows), &ph.worst);
@@ -164,9 +184,9 @@ void run_phase(Eval& eval, Vec& y, Vec& c, Phase& ph) {
       return;
     }
     if (ph.iterations >= kAssemblyMaxIterations || ph.cols.empty()) return;
-    Linearization L = linearize(eval, y, c, ph.row0, ph.rows, ph.cols);
-    if (!L.finite) return;
-    const Vec step = min_norm_step(L.J, c.segment(ph.row0, ph.rows));
+    Mat J;
+    if (!jacobian(y, J)) return;
+    const Vec step = min_norm_step(J, c.segment(ph.row0, ph.rows));
     const double norm0 = c.segment(ph.row0, ph.rows).norm();
     bool accepted = false;
     double alpha = 1.0;
@@ -191,6 +211,13 @@ std::string g2(double v) { return fmt::format("{:.2g}", v); }
 
 }  // namespace
 
+std::vector<std::size_t> ConstraintShape::states_with(UnknownRole r) const {
+  std::vector<std::size_t> out;
+  for (std::size_t j = 0; j < ns && j < role.size(); ++j)
+    if (role[j] == r) out.push_back(j);
+  return out;
+}
+
 ConstraintShape constraint_shape(const Model& model) {
   ConstraintShape s;
   s.n = model.size();
@@ -199,42 +226,116 @@ ConstraintShape constraint_shape(const Model& model) {
   s.np = model.position_constraint_count();
   s.nv = model.velocity_constraint_count();
   s.enforced = model.constraints_enforced();
+  if (!s.any()) return s;
+  for (std::size_t i = 0; i < s.n; ++i) s.role.push_back(model.unknown_role(i));
   if (s.dae)
     for (std::size_t k = 0; k < s.np; ++k) {
       s.lambda_at.push_back(model.multiplier_index(k));
       s.mu_at.push_back(model.stabiliser_index(k));
     }
+  model.constraint_jacobian_pattern(s.g_row_starts, s.g_columns);
   return s;
 }
+
+namespace {
+
+const char* role_name(UnknownRole r) {
+  switch (r) {
+    case UnknownRole::unspecified: return "unspecified";
+    case UnknownRole::position: return "a position";
+    case UnknownRole::velocity: return "a velocity";
+    case UnknownRole::algebraic: return "algebraic";
+    case UnknownRole::multiplier: return "a multiplier";
+    case UnknownRole::stabiliser: return "a stabiliser";
+  }
+  return "?";
+}
+
+bool is_state_role(UnknownRole r) { return r == UnknownRole::position || r == UnknownRole::velocity; }
+
+/// What the layout (roles, multipliers, G's pattern) gets wrong, or empty.
+std::string layout_violation(const Model& model, const ConstraintShape& s) {
+  for (std::size_t i = 0; i < s.n; ++i) {
+    const UnknownRole r = s.role[i];
+    const bool state = i < s.ns;
+    if (r == UnknownRole::unspecified || is_state_role(r) != state)
+      return fmt::format("unknown_role() says '{}' (entry {}) is {}, but it is {}", model.variable_name(i), i,
+                         role_name(r), state ? "a state (a position or a velocity)" : "an algebraic unknown");
+  }
+  for (std::size_t k = 0; k < s.lambda_at.size(); ++k)
+    for (auto [at, role] : {std::pair{s.lambda_at[k], UnknownRole::multiplier}, {s.mu_at[k], UnknownRole::stabiliser}})
+      if (at >= 0 && (static_cast<std::size_t>(at) >= s.n || s.role[static_cast<std::size_t>(at)] != role))
+        return fmt::format("constraint '{}' puts its {} at entry {}, which unknown_role() does not call {}",
+                           model.constraint_name(k), role_name(role), at, role_name(role));
+  std::vector<int> claimed(s.n, 0);
+  for (std::size_t k = 0; k < s.lambda_at.size(); ++k)
+    for (long at : {s.lambda_at[k], s.mu_at[k]})
+      if (at >= 0 && ++claimed[static_cast<std::size_t>(at)] > 1)
+        return fmt::format("two constraint rows put a multiplier at entry {} ('{}')", at,
+                           model.variable_name(static_cast<std::size_t>(at)));
+  for (std::size_t i = 0; i < s.n; ++i)
+    if ((s.role[i] == UnknownRole::multiplier || s.role[i] == UnknownRole::stabiliser) && claimed[i] == 0)
+      return fmt::format("unknown_role() calls '{}' (entry {}) {}, but no constraint row puts its multiplier there",
+                         model.variable_name(i), i, role_name(s.role[i]));
+  if (s.np == 0) return {};
+  if (s.g_row_starts.size() != s.np + 1 || s.g_row_starts.front() != 0 ||
+      s.g_row_starts.back() != static_cast<long>(s.g_columns.size()))
+    return fmt::format("constraint_jacobian_pattern() gives {} row starts for {} position constraints (expected {}, "
+                       "the last one the number of entries)",
+                       s.g_row_starts.size(), s.np, s.np + 1);
+  for (std::size_t r = 0; r < s.np; ++r) {
+    if (s.g_row_starts[r] > s.g_row_starts[r + 1])
+      return fmt::format("constraint_jacobian_pattern(): the row starts decrease at row {}", r);
+    for (long e = s.g_row_starts[r]; e < s.g_row_starts[r + 1]; ++e) {
+      const long j = s.g_columns[static_cast<std::size_t>(e)];
+      if (j < 0 || static_cast<std::size_t>(j) >= s.ns ||
+          (e > s.g_row_starts[r] && j <= s.g_columns[static_cast<std::size_t>(e - 1)]))
+        return fmt::format("constraint_jacobian_pattern(): row {} ('{}') lists column {}, not an ascending state index",
+                           r, model.constraint_name(r), j);
+      if (s.role[static_cast<std::size_t>(j)] != UnknownRole::position)
+        return fmt::format("constraint '{}' reads '{}', which unknown_role() calls {}: a position constraint reads "
+                           "positions only",
+                           model.constraint_name(r), model.variable_name(static_cast<std::size_t>(j)),
+                           role_name(s.role[static_cast<std::size_t>(j)]));
+    }
+  }
+  return {};
+}
+
+}  // namespace
 
 std::string contract_violation(const Model& model, const ConstraintShape& s,
                                const std::vector<double>& ids) {
   if (!s.any()) return {};
-  if (s.ns > s.n)
-    return fmt::format("model '{}' breaks the runtime contract: state_count() = {} exceeds size() = {}",
-                       model.name(), s.ns, s.n);
-  if (!s.dae) return {};
-  for (std::size_t i = 0; i < s.n && i < ids.size(); ++i)
-    if ((ids[i] != 0.0) != (i < s.ns))
-      return fmt::format(
-          "model '{}' breaks the runtime contract: y must be [states; algebraic unknowns] with "
-          "state_count() = {} states first, but differential_ids() marks '{}' (entry {}) as {}",
-          model.name(), s.ns, model.variable_name(i), i, ids[i] != 0.0 ? "differential" : "algebraic");
+  auto broken = [&](const std::string& what) {
+    return fmt::format("model '{}' breaks the runtime contract: {}", model.name(), what);
+  };
+  if (s.ns > s.n) return broken(fmt::format("state_count() = {} exceeds size() = {}", s.ns, s.n));
+  if (s.dae)
+    for (std::size_t i = 0; i < s.n && i < ids.size(); ++i)
+      if ((ids[i] != 0.0) != (i < s.ns))
+        return broken(fmt::format(
+            "y must be [states; algebraic unknowns] with state_count() = {} states first, but differential_ids() "
+            "marks '{}' (entry {}) as {}",
+            s.ns, model.variable_name(i), i, ids[i] != 0.0 ? "differential" : "algebraic"));
+  if (std::string what = layout_violation(model, s); !what.empty()) return broken(what);
   return {};
 }
 
-std::string residual_row_name(const Model& model, const ConstraintShape& s, std::size_t row) {
+RowRole residual_row_role(const ConstraintShape& s, std::size_t row) {
   for (std::size_t k = 0; k < s.lambda_at.size(); ++k) {
-    if (s.lambda_at[k] == static_cast<long>(row))
-      return fmt::format("constraint '{}'", model.constraint_name(s.np + k));
-    if (s.mu_at[k] == static_cast<long>(row))
-      return fmt::format("constraint '{}'", model.constraint_name(k));
+    if (s.lambda_at[k] == static_cast<long>(row)) return {RowRole::velocity_constraint, k};
+    if (s.mu_at[k] == static_cast<long>(row)) return {RowRole::position_constraint, k};
   }
-  if (s.ggl_layout() && row >= s.ns && row < s.n) {
-    const std::size_t k = row - s.ns;
-    // rows of lambda: gdot (velocity constraints), then rows of mu: g (positions)
-    const std::size_t c = k < s.nv ? s.np + k : k - s.nv;
-    return fmt::format("constraint '{}'", model.constraint_name(c));
+  return {RowRole::equation, row};
+}
+
+std::string residual_row_name(const Model& model, const ConstraintShape& s, std::size_t row) {
+  const RowRole r = residual_row_role(s, row);
+  switch (r.kind) {
+    case RowRole::velocity_constraint: return fmt::format("constraint '{}'", model.constraint_name(s.np + r.row));
+    case RowRole::position_constraint: return fmt::format("constraint '{}'", model.constraint_name(r.row));
+    case RowRole::equation: break;
   }
   return fmt::format("the equation of '{}'", model.variable_name(row));
 }
@@ -256,16 +357,12 @@ RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape&
   RedundancyReport rep;
   const Index np = ix(s.np), nv = ix(s.nv);
   if (s.lambda_at.empty() || np == 0) return rep;
-  Vec y = Eigen::Map<const Vec>(y_in, ix(s.n)), c(np + nv);
-  auto eval = [&](const Vec& yy, Vec& cc) {
-    model.constraints(t, yy.data(), cc.data());
-    return cc.allFinite();
-  };
-  if (!eval(y, c)) return rep;
+  (void)nv;
+  const Vec y = Eigen::Map<const Vec>(y_in, ix(s.n));
   std::vector<Index> all(s.ns);
   for (std::size_t j = 0; j < s.ns; ++j) all[j] = ix(j);
-  const Linearization G = linearize(eval, y, c, 0, np, all);
-  if (!G.finite) return rep;
+  Mat G;
+  if (!SymbolicG{model, s, t}(y, all, G)) return rep;
   // Gram-Schmidt over the equilibrated gradients, in row order, so the rows
   // dropped are the later ones (normally those of the loop-closing joint).
   Mat basis(ix(s.ns), 0);
@@ -273,7 +370,7 @@ RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape&
   for (Index k = 0; k < np; ++k) {
     if (s.lambda_at[sz(k)] < 0) continue;  // penalty rows are forces, never singular
     ++rep.lagrange_rows;
-    Vec v = G.J.row(k).transpose();
+    Vec v = G.row(k).transpose();
     const double big = v.cwiseAbs().maxCoeff();
     if (big == 0.0) continue;  // depends on no state: assembly has reported it if violated
     v /= v.norm();
@@ -324,22 +421,20 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
     return rep;
   }
 
-  // Which states are positions: the columns of dg/dx that are not zero at the start.
-  std::vector<Index> all(s.ns), positions, velocities;
-  for (std::size_t j = 0; j < s.ns; ++j) all[j] = ix(j);
-  Linearization structure;
-  if (np > 0) structure = linearize(eval, y, c, 0, np, all);
-  if (!structure.finite) {
-    rep.error = fmt::format(
-        "assembly failed: a position constraint is not finite near the initial values (t = {} "
-        "s); check the initial joint coordinates",
-        format_time(t));
-    return rep;
+  // The positions g reads (the columns of G's pattern) and the velocities:
+  // the model's layout.
+  std::vector<Index> positions, velocities;
+  {
+    std::vector<bool> read(s.ns, false);
+    for (long j : s.g_columns) read[static_cast<std::size_t>(j)] = true;
+    for (std::size_t j : s.states_with(UnknownRole::position))
+      if (read[j]) positions.push_back(ix(j));
+    for (std::size_t j : s.states_with(UnknownRole::velocity)) velocities.push_back(ix(j));
   }
-  for (Index j = 0; j < ix(s.ns); ++j)
-    (np > 0 && structure.depends.col(j).any() ? positions : velocities).push_back(j);
   rep.position_states = positions.size();
   rep.velocity_states = velocities.size();
+  SymbolicG symbolic{model, s, t};
+  auto position_jacobian = [&](const Vec& yy, Mat& J) { return symbolic(yy, positions, J); };
 
   // (a) positions
   Phase pos;
@@ -347,11 +442,16 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
   pos.rows = np;
   pos.cols = positions;
   if (np > 0) {
-    Mat Jp(np, ix(positions.size()));
-    for (std::size_t k = 0; k < positions.size(); ++k)
-      Jp.col(ix(k)) = structure.J.col(positions[k]);
+    Mat Jp;
+    if (!position_jacobian(y, Jp)) {
+      rep.error = fmt::format(
+          "assembly failed: the derivative of a position constraint is not finite at the initial values (t = {} "
+          "s); check the initial joint coordinates",
+          format_time(t));
+      return rep;
+    }
     pos.tol = 1e-12 * (1.0 + term_scale(Jp, y, positions));
-    run_phase(eval, y, c, pos);
+    run_phase(eval, position_jacobian, y, c, pos);
   }
   rep.position_iterations = pos.iterations;
   if (np > 0 && !pos.converged) {
@@ -362,15 +462,20 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
     return rep;
   }
 
-  // (b) velocities: gdot is affine in the states g does not depend on.
+  // (b) velocities: gdot is affine in them.
   Phase vel;
   vel.row0 = np;
   vel.rows = nv;
   vel.cols = velocities;
+  auto velocity_jacobian = [&](const Vec& yy, Mat& J) {
+    Linearization L = linearize(eval, yy, np + nv, np, nv, velocities);
+    J = std::move(L.J);
+    return L.finite;
+  };
   if (nv > 0) {
-    Linearization L = linearize(eval, y, c, np, nv, velocities);
-    vel.tol = 1e-12 * (1.0 + (L.finite ? term_scale(L.J, y, velocities) : 0.0));
-    run_phase(eval, y, c, vel);
+    Mat Jv;
+    vel.tol = 1e-12 * (1.0 + (velocity_jacobian(y, Jv) ? term_scale(Jv, y, velocities) : 0.0));
+    run_phase(eval, velocity_jacobian, y, c, vel);
     if (!vel.converged) {
       rep.velocity_iterations = vel.iterations;
       rep.error = fmt::format(
@@ -427,21 +532,18 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
   }
   std::vector<Index> zcols(s.n);
   for (std::size_t j = 0; j < s.n; ++j) zcols[j] = ix(j);
-  Linearization Lz = linearize(residual_at_z, z, r0, 0, n, zcols);
-  if (!Lz.finite) {
-    rep.error = fmt::format(
-        "consistent initial values: the residual is not finite near the assembled initial values "
-        "(t = {} s)",
-        format_time(t));
-    return rep;
-  }
 
-  // Rows that depend on neither y' nor an algebraic unknown (g, gdot) are
-  // replaced by their time derivative: dr/dt + (dr/dy_states) y'_states = 0.
-  // Their coefficients do not depend on z, so they are computed once here.
+  // The constraint rows (g, gdot) depend on neither y' nor an algebraic
+  // unknown: each is replaced by its time derivative dr/dt + (dr/dy_states)
+  // y'_states = 0. Their coefficients do not depend on z, so they are
+  // computed once here. A redundant row's are not constraint rows any more
+  // (pin_redundant_multipliers made them lambda = 0 and mu = 0).
+  std::vector<bool> redundant(s.np, false);
+  for (std::size_t k : s.redundant) redundant[k] = true;
   std::vector<Index> pure;
   for (Index k = 0; k < n; ++k)
-    if (!Lz.depends.row(k).any()) pure.push_back(k);
+    if (const RowRole role = residual_row_role(s, sz(k)); role.kind != RowRole::equation && !redundant[role.row])
+      pure.push_back(k);
   rep.differentiated_rows = pure.size();
   const Index nd = ix(pure.size());
   Mat A = Mat::Zero(nd, n);  // d r_k / d y_states in the z_states columns
@@ -453,7 +555,7 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
     };
     std::vector<Index> scols(s.ns);
     for (std::size_t j = 0; j < s.ns; ++j) scols[j] = ix(j);
-    Linearization Ly = linearize(residual_at_y, Y, r0, 0, n, scols);
+    Linearization Ly = linearize(residual_at_y, Y, n, 0, n, scols);
     const double h = fd_step(t);
     const double up = t + h, down = t - h;
     Vec rp(n), rm(n);
@@ -494,7 +596,7 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
   constexpr double kTight = 1e-14, kAccept = 1e-9;
   double scale = 0.0;
   for (;;) {
-    Linearization L = linearize(residual_at_z, z, F, 0, n, zcols);
+    Linearization L = linearize(residual_at_z, z, n, 0, n, zcols);
     if (!L.finite) break;
     Mat J = L.J;
     for (Index d = 0; d < nd; ++d) J.row(pure[sz(d)]) = A.row(d);

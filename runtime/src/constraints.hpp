@@ -12,7 +12,9 @@
 
 namespace mbgrt::detail {
 
-/// The sizes the constraint code works with, read once from the model.
+/// The layout the constraint code works with, read once from the model: the
+/// sizes, what each unknown is, where the multipliers sit and the pattern of
+/// G = dg/dx. All of it is stated by the model; none is discovered.
 struct ConstraintShape {
   std::size_t n = 0;   ///< unknowns handed to the integrator (Model::size())
   std::size_t ns = 0;  ///< states: the leading entries of y that constraints() reads
@@ -21,29 +23,43 @@ struct ConstraintShape {
   bool dae = false;
   bool enforced = false;  ///< lagrange (drift) rather than penalty (violation)
 
+  /// Per unknown (Model::unknown_role); filled only for a model with constraints.
+  std::vector<UnknownRole> role;
   /// DAE: per position row, the index in y of its multipliers lambda and mu
   /// (-1 for a penalty row); empty for an ODE.
   std::vector<long> lambda_at, mu_at;
+  /// G's pattern (Model::constraint_jacobian_pattern): row r reads the states
+  /// g_columns[g_row_starts[r] .. g_row_starts[r + 1]).
+  std::vector<long> g_row_starts, g_columns;
   /// Lagrange rows implied by the others (found after assembly): their
   /// multipliers are held at 0 (see pin_redundant_multipliers).
   std::vector<std::size_t> redundant;
 
   std::size_t count() const { return np + nv; }
   bool any() const { return count() > 0; }
-  /// The residual rows follow the lagrange layout [states; gdot rows; g rows].
-  bool ggl_layout() const { return dae && any() && n - ns == np + nv; }
+  /// The states of the given role, ascending.
+  std::vector<std::size_t> states_with(UnknownRole r) const;
 };
+
+/// What a residual row of a DAE is: the equation of the unknown of its index,
+/// or (at a lagrange row's lambda) that row's gdot = 0, or (at its mu) g = 0.
+struct RowRole {
+  enum Kind { equation, velocity_constraint, position_constraint } kind = equation;
+  std::size_t row = 0;  ///< the constraint row (a position row's index), for the constraint kinds
+};
+RowRole residual_row_role(const ConstraintShape& shape, std::size_t row);
 
 ConstraintShape constraint_shape(const Model& model);
 
-/// Empty when the model keeps the constraint part of the contract; otherwise
-/// what it breaks (a code generator bug, reported before anything runs).
-/// `ids` are the model's differential ids (all 1 for an ODE).
+/// Empty when the model keeps the constraint part of the contract (the
+/// layout above, consistent with `ids`, the model's differential ids, all 1
+/// for an ODE; G's pattern over position states); otherwise what it breaks (a
+/// code generator bug, reported before anything runs).
 std::string contract_violation(const Model& model, const ConstraintShape& shape,
                                const std::vector<double>& ids);
 
 /// "constraint 'j1.gdot[0]'" for a residual row of a lagrange DAE that is a
-/// constraint row, otherwise "the equation of 'name'" (row i belongs to unknown i).
+/// constraint row (residual_row_role), otherwise "the equation of 'name'".
 std::string residual_row_name(const Model& model, const ConstraintShape& shape, std::size_t row);
 
 /// After model.residual(): for each redundant row, its lambda and mu rows
@@ -60,8 +76,8 @@ struct AssemblyReport {
   bool ok = false;
   int position_iterations = 0;
   int velocity_iterations = 0;
-  std::size_t position_states = 0;  ///< states g depends on
-  std::size_t velocity_states = 0;  ///< the others (momenta, velocities, ...)
+  std::size_t position_states = 0;  ///< position states g reads
+  std::size_t velocity_states = 0;  ///< velocity states (momenta, joint rates)
   double g_residual = 0.0;          ///< max |g| after assembly
   double gdot_residual = 0.0;       ///< max |gdot| after assembly
   double moved_positions = 0.0;     ///< max |change| of a position state
@@ -72,10 +88,10 @@ struct AssemblyReport {
 /// Moves the states in y (the first shape.ns entries; the rest is untouched)
 /// so that g = 0, then gdot = 0:
 ///   (a) positions: Gauss-Newton with the minimum-norm step on g(x) = 0 over
-///       the states g depends on (a column of dg/dx that is zero at the start
-///       marks a momentum or velocity, which this phase does not touch);
-///   (b) velocities: the same on gdot(x) = 0 over those other states (gdot is
-///       affine in them, so one or two steps).
+///       the position states g reads, with the model's symbolic G = dg/dx;
+///   (b) velocities: the same on gdot(x) = 0 over the velocity states (gdot
+///       is affine in them, so one or two steps; its derivatives by them are
+///       central differences, exact up to rounding for an affine function).
 /// Convergence: max |residual| <= 1e-12 * (1 + scale), where scale is the
 /// size of the terms the rows balance, max_i sum_j |dr_i/dx_j| |x_j| over the
 /// states the phase moves (for g = (x^2 + y^2 - L^2)/2 that is about L^2).
@@ -91,8 +107,9 @@ struct RedundancyReport {
 /// Rows of a planar loop of revolute joints in 3-D (and any over-determined
 /// set) are linearly dependent, which makes the DAE's Newton matrix singular.
 /// At the assembled state this picks, in row order, the lagrange rows whose
-/// gradient dg/dx is a combination of the rows before it (relative residual
-/// below kRedundantRowThreshold after row equilibration).
+/// gradient dg/dx (the model's symbolic G) is a combination of the rows
+/// before it (relative residual below kRedundantRowThreshold after row
+/// equilibration).
 RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape& shape, double t,
                                             const double* y);
 
@@ -114,9 +131,10 @@ struct InitialValuesReport {
 
 /// For a constrained DAE at an assembled y: computes y' of the states and the
 /// algebraic unknowns (z = [y'_states; y_algebraic]) from the residual rows,
-/// each row that depends on no entry of z being replaced by its time
-/// derivative dr/dt + (dr/dy_states) y'_states = 0. Newton with a
-/// finite-difference Jacobian. y' of the algebraic unknowns is left as given.
+/// each constraint row (residual_row_role; they depend on no entry of z)
+/// being replaced by its time derivative dr/dt + (dr/dy_states) y'_states = 0.
+/// Newton with a finite-difference Jacobian. y' of the algebraic unknowns is
+/// left as given.
 InitialValuesReport consistent_initial_values(Model& model, const ConstraintShape& shape, double t,
                                               double* y, double* yp);
 

@@ -104,10 +104,9 @@ std::string GuardedModel::describe(const Blame& b) const {
   if (b.site == BlameSite::limit)
     return fmt::format("state '{}' = {:.6g} is beyond its limit {:.6g}: {}", model_.variable_name(b.index), b.value,
                        limits_.at(b.index), model_.state_limit_reason(b.index));
-  // A residual row of a lagrange DAE past the states is a constraint row:
-  // name the constraint rather than the multiplier the row happens to share an index with.
-  if (b.site == BlameSite::residual && (shape_.ggl_layout() || !shape_.lambda_at.empty()) &&
-      b.index >= shape_.ns)
+  // A constraint row of a lagrange DAE (at its multiplier's index): name the
+  // constraint rather than the multiplier the row happens to share an index with.
+  if (b.site == BlameSite::residual && residual_row_role(shape_, b.index).kind != RowRole::equation)
     return fmt::format("the residual of {} became {}", residual_row_name(model_, shape_, b.index),
                        value_word(b.value));
   const char* kind = ids_.at(b.index) != 0.0 ? "state" : "algebraic variable";

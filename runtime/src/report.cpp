@@ -129,10 +129,10 @@ void print_stop_message(std::FILE* err, const GuardedModel& model, const Integra
   if (solver_failed && blame && f.t != blame->t)
     note(err, fmt::format("the last accepted solution is at t = {} s", format_time(f.t)));
   if (blame && blame->site != BlameSite::exception && blame->site != BlameSite::limit) {
-    // A residual row of a lagrange DAE past the states is a joint constraint.
+    // A constraint row of a lagrange DAE is named as the joint constraint.
     const ConstraintShape& shape = model.constraint_shape();
     const std::string culprit =
-        blame->site == BlameSite::residual && shape.ggl_layout() && blame->index >= shape.ns
+        blame->site == BlameSite::residual && residual_row_role(shape, blame->index).kind != RowRole::equation
             ? residual_row_name(model.model(), shape, blame->index)
             : fmt::format("'{}'", model.model().variable_name(blame->index));
     note(err,

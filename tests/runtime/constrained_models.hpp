@@ -44,6 +44,25 @@ class PlanarMass : public TestModel {
       c[k_ + i] = gx * s[2] + gy * s[3];
     }
   }
+  /// x and y are positions, u and v velocities; the multipliers of a DAE
+  /// (lambda_0..k-1, then mu_0..k-1) follow the states.
+  UnknownRole unknown_role(std::size_t i) const override {
+    if (i < 4) return i < 2 ? UnknownRole::position : UnknownRole::velocity;
+    return i - 4 < k_ ? UnknownRole::multiplier : UnknownRole::stabiliser;
+  }
+  /// G: every row reads x and y.
+  void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const override {
+    row_starts.clear();
+    columns.clear();
+    for (std::size_t i = 0; i < k_; ++i) {
+      row_starts.push_back(static_cast<long>(columns.size()));
+      columns.insert(columns.end(), {0, 1});
+    }
+    row_starts.push_back(static_cast<long>(columns.size()));
+  }
+  void constraint_jacobian(double, const double* s, double* values) override {
+    for (std::size_t i = 0; i < k_; ++i) g(i, s[0], s[1], values[2 * i], values[2 * i + 1]);
+  }
 
  protected:
   /// g_i at (x, y), and its gradient.
@@ -152,7 +171,7 @@ class GglPendulum : public PlanarMass {
 /// Newton matrix of the DAE is singular unless the runtime finds row 1
 /// redundant and holds its multipliers at 0. `hide_multipliers` makes the
 /// model withhold where they are (as a model compiled before
-/// multiplier_index() existed), so nothing can be dropped.
+/// multiplier_index() existed): the runtime must refuse it.
 class TwinRodPendulum : public GglPendulum {
  public:
   explicit TwinRodPendulum(bool hide_multipliers = false) : GglPendulum(true), hide_(hide_multipliers) {

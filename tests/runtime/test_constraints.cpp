@@ -283,14 +283,17 @@ TEST(Lagrange, ARedundantRowIsFoundAndItsMultipliersHeldAtZero) {
   EXPECT_LT(column_max(two.report, "max_abs_g"), 1e-9);
 }
 
-TEST(Lagrange, RedundantRowsCannotBeDroppedWithoutTheMultiplierIndices) {
-  // The same model hiding where its multipliers are: the Newton matrix is
-  // singular and the run must stop with a report, not produce numbers.
+TEST(Lagrange, AModelHidingWhereItsMultipliersSitIsRejectedBeforeItRuns) {
+  // The same model not saying where its multipliers are: the runtime cannot
+  // tell the constraint rows from the others, nor drop the redundant one. It
+  // does not guess from sizes: it stops before the run, naming what is wrong.
   TwinRodPendulum twin(/*hide_multipliers=*/true);
   RunResult r = run(twin, {"--t-end", "1"});
-  EXPECT_NE(r.status, 0) << r.err;
-  EXPECT_EQ(r.err.find("redundant constraints:"), std::string::npos);
-  EXPECT_TRUE(Contains(r.err, "the multipliers are not unique (redundant constraints?)")) << r.err;
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_TRUE(Contains(r.err, "breaks the runtime contract: unknown_role() calls 'rod.lambda' (entry 4) a "
+                              "multiplier, but no constraint row puts its multiplier there"))
+      << r.err;
+  EXPECT_TRUE(parse_csv(r.csv).rows.empty());
 }
 
 struct ReleaseCase {
@@ -361,6 +364,67 @@ TEST(Lagrange, AModelBreakingTheStateLayoutIsRejected) {
   EXPECT_TRUE(Contains(r.err, "breaks the runtime contract"));
   EXPECT_TRUE(Contains(r.err, "'rod.lambda'"));
   EXPECT_EQ(r.csv, "");
+}
+
+/// Generator bugs in the layout the runtime is told (it discovers none of it).
+class JacobianlessPendulum : public GglPendulum {
+ public:
+  void constraint_jacobian_pattern(std::vector<long>& starts, std::vector<long>& columns) const override {
+    starts.clear();
+    columns.clear();
+  }
+};
+class VelocityReadingPendulum : public GglPendulum {
+ public:
+  void constraint_jacobian_pattern(std::vector<long>& starts, std::vector<long>& columns) const override {
+    starts = {0, 3};
+    columns = {0, 1, 2};
+  }
+};
+class UnsaidPenaltyPendulum : public PenaltyPendulum {
+ public:
+  UnknownRole unknown_role(std::size_t) const override { return UnknownRole::unspecified; }
+};
+
+TEST(Lagrange, ALayoutTheModelDoesNotStateIsRejectedBeforeItRuns) {
+  JacobianlessPendulum no_jacobian;
+  VelocityReadingPendulum reads_velocity;
+  UnsaidPenaltyPendulum unsaid;
+  const std::pair<Model*, std::string> cases[] = {
+      {&no_jacobian, "constraint_jacobian_pattern() gives 0 row starts for 1 position constraints"},
+      {&reads_velocity, "constraint 'rod.g[0]' reads 'mass.u', which unknown_role() calls a velocity: a position "
+                        "constraint reads positions only"},
+      {&unsaid, "unknown_role() says 'mass.x' (entry 0) is unspecified, but it is a state"},
+  };
+  for (const auto& [model, message] : cases) {
+    RunResult r = run(*model, {});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_TRUE(Contains(r.err, "breaks the runtime contract: " + message)) << r.err;
+    EXPECT_EQ(r.csv, "");
+  }
+}
+
+/// G with the wrong sign: Gauss-Newton then walks away from g = 0.
+class FlippedJacobianPendulum : public GglPendulum {
+ public:
+  void constraint_jacobian(double t, const double* x, double* values) override {
+    GglPendulum::constraint_jacobian(t, x, values);
+    values[0] = -values[0];
+    values[1] = -values[1];
+  }
+};
+
+TEST(Assembly, MovesThePositionsAlongTheModelsOwnJacobian) {
+  // The runtime takes G from the model, not from differences: a wrong G
+  // cannot close the rod from a start off the circle...
+  FlippedJacobianPendulum flipped;
+  RunResult bad = run(flipped, {"--set", "x0=1.2"});
+  EXPECT_EQ(bad.status, 1) << bad.err;
+  EXPECT_TRUE(Contains(bad.err, "assembly failed: constraint `rod.g[0]` residual")) << bad.err;
+  // ... while the right one does.
+  GglPendulum right;
+  RunResult good = run(right, {"--set", "x0=1.2", "--t-end", "0.1"});
+  EXPECT_EQ(good.status, 0) << good.err;
 }
 
 // ---- penalty: violation against stiffness ---------------------------------------------

@@ -13,18 +13,23 @@
 //   * `lagrange`: a DAE in the stabilised index-2 form of Gear-Gupta-Leimkuhler,
 //     y = [states; lambda; mu], residual rows = [x' - f(x, lambda) - G(x)^T mu
 //     for the states; gdot(x) = 0 (the rows of lambda); g(x) = 0 (the rows of
-//     mu)], constraints_enforced() == true. When size() - state_count() equals
-//     the number of constraint rows, residual row state_count() + j is taken
-//     to be gdot_j and the rows after them g_j (only to name them in reports).
-//     The residual must not depend on y' of the algebraic unknowns;
+//     mu)], constraints_enforced() == true. multiplier_index() and
+//     stabiliser_index() say where each row's lambda and mu sit in y, and so
+//     which residual rows are the constraint rows (the row of lambda_j is
+//     gdot_j = 0, the row of mu_j is g_j = 0; every other residual row is the
+//     equation of the unknown of its index). The residual must not depend on
+//     y' of the algebraic unknowns;
 //   * `penalty`: an ODE with stiff spring-dampers; the constraints are only
 //     monitored, constraints_enforced() == false.
-// For such models the runtime (1) assembles the initial state: it moves the
-// position states so that g = 0, then the velocity states so that gdot = 0,
-// both by minimum-norm Gauss-Newton steps; (2) for DAEs computes y' and the
-// algebraic unknowns itself (IDACalcIC cannot handle rows that depend on
-// neither y' nor an algebraic unknown); (3) evaluates g and gdot at every
-// output point and reports the drift (lagrange) or violation (penalty).
+// Such a model states its layout (unknown_role: which unknowns are positions,
+// velocities, multipliers) and G = dg/dx symbolically (constraint_jacobian);
+// the runtime does not discover either. It (1) assembles the initial state:
+// it moves the position states so that g = 0, then the velocity states so
+// that gdot = 0, both by minimum-norm Gauss-Newton steps; (2) for DAEs
+// computes y' and the algebraic unknowns itself (IDACalcIC cannot handle the
+// constraint rows, which depend on neither y' nor an algebraic unknown);
+// (3) evaluates g and gdot at every output point and reports the drift
+// (lagrange) or violation (penalty).
 #pragma once
 
 #include <cmath>
@@ -123,6 +128,17 @@ struct ContactInfo {
   long friction_event = -1;  ///< unilateral with friction: the event whose mode is 1 while it sticks
 };
 
+/// What an unknown of y is (Model::unknown_role): the layout the generated
+/// model states, so that the runtime need not discover it.
+enum class UnknownRole {
+  unspecified,  ///< the model does not say (allowed only for a model without constraints)
+  position,     ///< a displacement state: q of a C (a position, an angle, a modal coordinate, a charge)
+  velocity,     ///< a momentum-level state: p of an I, an independent joint rate
+  algebraic,    ///< DAE: an algebraic unknown other than a multiplier
+  multiplier,   ///< DAE: lambda of a lagrange row (Model::multiplier_index)
+  stabiliser,   ///< DAE: the GGL multiplier mu of a lagrange row (Model::stabiliser_index)
+};
+
 /// A named, overridable model parameter (`--set NAME=VALUE`).
 struct ParameterInfo {
   std::string name;
@@ -151,6 +167,10 @@ class Model {
   virtual std::vector<ParameterInfo> parameters() const = 0;
 
   virtual bool is_dae() const { return false; }
+  /// LAYOUT: what unknown i is. A model with constraints must say it for every
+  /// unknown: the runtime moves the positions and then the velocities to
+  /// assemble the initial state, and names the constraint rows from it.
+  virtual UnknownRole unknown_role(std::size_t i) const { (void)i; return UnknownRole::unspecified; }
   /// DAE only: 1.0 for differential components of y, 0.0 for algebraic ones.
   virtual void differential_ids(double* id) const { (void)id; }
 
@@ -286,6 +306,16 @@ class Model {
   /// `x` points at y; only its first state_count() entries (the states) may be
   /// read: for a DAE, lambda and mu are not inputs. Must not throw.
   virtual void constraints(double t, const double* x, double* c) { (void)t; (void)x; (void)c; }
+  /// CONSTRAINT JACOBIAN (required with constraints): G = dg/dx, the
+  /// derivatives of the position rows g by the states, symbolically. Its
+  /// pattern, row by row: row r reads the states columns[row_starts[r] ..
+  /// row_starts[r + 1]), ascending (row_starts has P + 1 entries; a model that
+  /// leaves it empty gives no Jacobian). constraint_jacobian() writes the
+  /// values at (t, x) in the same order. x as for constraints().
+  virtual void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const {
+    (void)row_starts; (void)columns;
+  }
+  virtual void constraint_jacobian(double t, const double* x, double* values) { (void)t; (void)x; (void)values; }
   /// Name of entry i of constraints() in model terms, e.g. "j1.g[2]" for
   /// i < P and "j1.gdot[2]" for i >= P; used in reports.
   virtual std::string constraint_name(std::size_t i) const {

@@ -37,6 +37,16 @@ class ball_chain_model final : public mbgrt::Model {
     return i < 14 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::position, R::velocity,
+        R::velocity, R::velocity, R::position, R::position, R::position, R::position,
+    };
+    return i < 14 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"torque_z", "x"};
   }

@@ -37,6 +37,17 @@ class beam_mean_axes_model final : public mbgrt::Model {
     return i < 17 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity,
+        R::position, R::position, R::position, R::position, R::position, R::position, R::position, R::position,
+        R::position,
+    };
+    return i < 17 ? kRoles[i] : R::unspecified;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {

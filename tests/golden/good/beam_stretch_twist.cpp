@@ -37,6 +37,18 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     return i < 31 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity,
+        R::velocity, R::position, R::position, R::position, R::position, R::position, R::position, R::position,
+        R::position, R::position, R::position, R::multiplier, R::multiplier, R::multiplier, R::multiplier, R::multiplier,
+        R::multiplier, R::stabiliser, R::stabiliser, R::stabiliser, R::stabiliser, R::stabiliser, R::stabiliser,
+    };
+    return i < 31 ? kRoles[i] : R::unspecified;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -957,6 +969,66 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     rows_out[9] = hub_cn_f_4;
     rows_out[10] = hub_cn_f_5;
     rows_out[11] = hub_cn_f_6;
+  }
+
+  // CONSTRAINT JACOBIAN: which states each CN row's g reads (15 entries, by row)
+  void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const override {
+    static const long kStarts[] = {
+        0, 1, 2, 3, 7, 11, 15,
+    };
+    static const long kColumns[] = {
+        9, 10, 11, 12, 13, 14, 15, 12, 13, 14, 15, 12, 13, 14, 15,
+    };
+    row_starts.assign(kStarts, kStarts + 7);
+    columns.assign(kColumns, kColumns + 15);
+  }
+
+  // CONSTRAINT JACOBIAN: dg/dx at (t, x), by symbolic differentiation, in the pattern's order.
+  void constraint_jacobian(double t, const double* y, double* values) override {
+    (void)t;
+    (void)y;
+    // unknowns from the integrator
+    const double arm_q_q_1 = y[12];
+    const double arm_q_q_2 = y[13];
+    const double arm_q_q_3 = y[14];
+    const double arm_q_q_4 = y[15];
+    // dg/dx, by row
+    values[0] = 1.0;
+    values[1] = 1.0;
+    values[2] = 1.0;
+    // (cseN: a subexpression several equations below share)
+    const double cse176 = arm_q_q_1 * arm_q_q_1 + arm_q_q_2 * arm_q_q_2;
+    const double cse177 = arm_q_q_3 * arm_q_q_3;
+    const double cse178 = arm_q_q_4 * arm_q_q_4;
+    const double cse179 = cse176 + cse177 + cse178;
+    const double cse180 = 2.0 * arm_q_q_3 * cse179;
+    const double cse181 = 2.0 * (arm_q_q_2 * arm_q_q_4 - arm_q_q_1 * arm_q_q_3);
+    const double cse182 = arm_q_q_1 + arm_q_q_1;
+    const double cse183 = (cse179*cse179);
+    values[3] = 0.47143398265292674 * ((-cse180 - cse181 * cse182) / cse183);
+    const double cse184 = 2.0 * arm_q_q_4 * cse179;
+    const double cse185 = arm_q_q_2 + arm_q_q_2;
+    values[4] = 0.47143398265292674 * ((cse184 - cse181 * cse185) / cse183);
+    const double cse186 = 2.0 * arm_q_q_1 * cse179;
+    const double cse187 = arm_q_q_3 + arm_q_q_3;
+    values[5] = 0.47143398265292674 * ((-cse186 - cse181 * cse187) / cse183);
+    const double cse188 = 2.0 * arm_q_q_2 * cse179;
+    const double cse189 = arm_q_q_4 + arm_q_q_4;
+    values[6] = 0.47143398265292674 * ((cse188 - cse181 * cse189) / cse183);
+    const double cse190 = 2.0 * (arm_q_q_3 * arm_q_q_4 + arm_q_q_1 * arm_q_q_2);
+    values[7] = 0.47143398265292674 * ((cse188 - cse190 * cse182) / cse183);
+    values[8] = 0.47143398265292674 * ((cse186 - cse190 * cse185) / cse183);
+    values[9] = 0.47143398265292674 * ((cse184 - cse190 * cse187) / cse183);
+    values[10] = 0.47143398265292674 * ((cse180 - cse190 * cse189) / cse183);
+    const double cse191 = 2.0 * (arm_q_q_2 * arm_q_q_3 + arm_q_q_1 * arm_q_q_4);
+    const double cse192 = 2.0 * t;
+    const double cse193 = std::cos(cse192);
+    const double cse194 = cse176 - cse177 - cse178;
+    const double cse195 = std::sin(cse192);
+    values[11] = 0.47143398265292674 * ((cse184 - cse191 * cse182) / cse183 * cse193 - (cse182 * cse179 - cse194 * cse182) / cse183 * cse195);
+    values[12] = 0.47143398265292674 * ((cse180 - cse191 * cse185) / cse183 * cse193 - (cse185 * cse179 - cse194 * cse185) / cse183 * cse195);
+    values[13] = 0.47143398265292674 * ((cse188 - cse191 * cse187) / cse183 * cse193 - (-cse187 * cse179 - cse194 * cse187) / cse183 * cse195);
+    values[14] = 0.47143398265292674 * ((cse186 - cse191 * cse189) / cse183 * cse193 - (-cse189 * cse179 - cse194 * cse189) / cse183 * cse195);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -37,6 +37,15 @@ class cut_joint_model final : public mbgrt::Model {
     return i < 6 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::position, R::velocity, R::position, R::velocity, R::position,
+    };
+    return i < 6 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"crank_angle", "rocker_angle", "gap"};
   }
@@ -694,6 +703,54 @@ class cut_joint_model final : public mbgrt::Model {
     rows_out[7] = 0.0;
     rows_out[8] = 0.0;
     rows_out[9] = 0.0;
+  }
+
+  // CONSTRAINT JACOBIAN: which states each CN row's g reads (6 entries, by row)
+  void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const override {
+    static const long kStarts[] = {
+        0, 3, 6, 6, 6, 6,
+    };
+    static const long kColumns[] = {
+        1, 3, 5, 1, 3, 5,
+    };
+    row_starts.assign(kStarts, kStarts + 6);
+    columns.assign(kColumns, kColumns + 6);
+  }
+
+  // CONSTRAINT JACOBIAN: dg/dx at (t, x), by symbolic differentiation, in the pattern's order.
+  void constraint_jacobian(double t, const double* x, double* values) override {
+    (void)t;
+    (void)x;
+    // states
+    const double j1_theta_q = x[1];
+    const double j2_theta_q = x[3];
+    const double j4_theta_q = x[5];
+    // cut_joint.mbg:14:7  signal crank.pose.R21
+    const double crank_pose_R21 = std::sin(j1_theta_q);
+    // cut_joint.mbg:14:7  signal crank.pose.R22
+    const double crank_pose_R22 = std::cos(j1_theta_q);
+    // cut_joint.mbg:14:7  signal crank.pose.R11
+    const double crank_pose_R11 = crank_pose_R22;
+    // cut_joint.mbg:14:7  signal crank.pose.R12
+    const double crank_pose_R12 = -crank_pose_R21;
+    // dg/dx, by row
+    // (cseN: a subexpression several equations below share)
+    const double cse38 = std::cos(j2_theta_q);
+    const double cse39 = std::sin(j2_theta_q);
+    const double cse40 = 0.5 * (-cse38 * crank_pose_R21 - cse39 * crank_pose_R22);
+    const double cse41 = 0.1 * crank_pose_R21;
+    values[0] = -cse40 - (-cse41 - cse41 + cse40);
+    const double cse42 = 0.5 * (-crank_pose_R11 * cse39 + crank_pose_R12 * cse38);
+    values[1] = -cse42 - cse42;
+    const double cse43 = 0.1 * std::sin(j4_theta_q);
+    values[2] = -cse43 - cse43;
+    const double cse44 = 0.5 * (cse38 * crank_pose_R22 - cse39 * crank_pose_R21);
+    const double cse45 = 0.1 * crank_pose_R22;
+    values[3] = -cse44 - (cse45 + cse45 + cse44);
+    const double cse46 = 0.5 * (-crank_pose_R21 * cse39 + crank_pose_R22 * cse38);
+    values[4] = -cse46 - cse46;
+    const double cse47 = 0.1 * std::cos(j4_theta_q);
+    values[5] = cse47 + cse47;
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -37,6 +37,19 @@ class drawn_bodies_model final : public mbgrt::Model {
     return i < 36 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::velocity, R::velocity,
+        R::velocity, R::position, R::position, R::position, R::velocity, R::velocity, R::velocity, R::position,
+        R::position, R::position, R::position, R::velocity, R::velocity, R::velocity, R::position, R::position,
+        R::position, R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::position,
+        R::velocity, R::position, R::velocity, R::position,
+    };
+    return i < 36 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"x", "ball_z", "ball[1]", "ball[2]", "ball[3]", "tetra[1]", "tetra[2]", "tetra[3]"};
   }

@@ -37,6 +37,19 @@ class loop_names_model final : public mbgrt::Model {
     return i < 38 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::velocity, R::velocity,
+        R::velocity, R::position, R::position, R::position, R::velocity, R::velocity, R::velocity, R::position,
+        R::position, R::position, R::position, R::velocity, R::velocity, R::velocity, R::position, R::position,
+        R::position, R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::velocity,
+        R::velocity, R::velocity, R::position, R::position, R::position, R::position,
+    };
+    return i < 38 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"y1", "cx1", "y2", "cx2"};
   }

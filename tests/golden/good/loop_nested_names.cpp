@@ -37,6 +37,15 @@ class loop_nested_names_model final : public mbgrt::Model {
     return i < 8 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::position, R::velocity, R::position, R::velocity, R::position, R::velocity, R::position, R::velocity,
+    };
+    return i < 8 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"x1_1", "x1_2", "last1", "x2_1", "x2_2", "last2"};
   }

@@ -37,6 +37,18 @@ class modal_body_model final : public mbgrt::Model {
     return i < 27 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity, R::velocity,
+        R::position, R::position, R::position, R::position, R::position, R::position, R::position, R::position,
+        R::position, R::multiplier, R::multiplier, R::multiplier, R::multiplier, R::multiplier, R::stabiliser, R::stabiliser,
+        R::stabiliser, R::stabiliser, R::stabiliser,
+    };
+    return i < 27 ? kRoles[i] : R::unspecified;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -791,6 +803,54 @@ class modal_body_model final : public mbgrt::Model {
     rows_out[7] = hinge_cn_f_3;
     rows_out[8] = hinge_cn_f_4;
     rows_out[9] = hinge_cn_f_5;
+  }
+
+  // CONSTRAINT JACOBIAN: which states each CN row's g reads (11 entries, by row)
+  void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const override {
+    static const long kStarts[] = {
+        0, 1, 2, 3, 7, 11,
+    };
+    static const long kColumns[] = {
+        8, 9, 10, 11, 12, 13, 14, 11, 12, 13, 14,
+    };
+    row_starts.assign(kStarts, kStarts + 6);
+    columns.assign(kColumns, kColumns + 11);
+  }
+
+  // CONSTRAINT JACOBIAN: dg/dx at (t, x), by symbolic differentiation, in the pattern's order.
+  void constraint_jacobian(double t, const double* y, double* values) override {
+    (void)t;
+    (void)y;
+    // unknowns from the integrator
+    const double bar_q_q_1 = y[11];
+    const double bar_q_q_2 = y[12];
+    const double bar_q_q_3 = y[13];
+    const double bar_q_q_4 = y[14];
+    // dg/dx, by row
+    values[0] = 1.0;
+    values[1] = 1.0;
+    values[2] = 1.0;
+    // (cseN: a subexpression several equations below share)
+    const double cse152 = bar_q_q_1 * bar_q_q_1 + bar_q_q_2 * bar_q_q_2 + bar_q_q_3 * bar_q_q_3 + bar_q_q_4 * bar_q_q_4;
+    const double cse153 = 2.0 * bar_q_q_4 * cse152;
+    const double cse154 = 2.0 * (bar_q_q_2 * bar_q_q_3 + bar_q_q_1 * bar_q_q_4);
+    const double cse155 = bar_q_q_1 + bar_q_q_1;
+    const double cse156 = (cse152*cse152);
+    values[3] = 0.4743416490252569 * ((cse153 - cse154 * cse155) / cse156);
+    const double cse157 = 2.0 * bar_q_q_3 * cse152;
+    const double cse158 = bar_q_q_2 + bar_q_q_2;
+    values[4] = 0.4743416490252569 * ((cse157 - cse154 * cse158) / cse156);
+    const double cse159 = 2.0 * bar_q_q_2 * cse152;
+    const double cse160 = bar_q_q_3 + bar_q_q_3;
+    values[5] = 0.4743416490252569 * ((cse159 - cse154 * cse160) / cse156);
+    const double cse161 = 2.0 * bar_q_q_1 * cse152;
+    const double cse162 = bar_q_q_4 + bar_q_q_4;
+    values[6] = 0.4743416490252569 * ((cse161 - cse154 * cse162) / cse156);
+    const double cse163 = 2.0 * (bar_q_q_3 * bar_q_q_4 - bar_q_q_1 * bar_q_q_2);
+    values[7] = -0.4743416490252569 * ((-cse159 - cse163 * cse155) / cse156);
+    values[8] = -0.4743416490252569 * ((-cse161 - cse163 * cse158) / cse156);
+    values[9] = -0.4743416490252569 * ((cse153 - cse163 * cse160) / cse156);
+    values[10] = -0.4743416490252569 * ((cse157 - cse163 * cse162) / cse156);
   }
 
   // TERMINAL: nothing to do at the end of a run.

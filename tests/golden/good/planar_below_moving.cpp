@@ -37,6 +37,16 @@ class planar_below_moving_model final : public mbgrt::Model {
     return i < 13 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::position, R::velocity,
+        R::position, R::velocity, R::position, R::velocity, R::position,
+    };
+    return i < 13 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"x", "y", "z", "ux", "uy", "uz"};
   }

@@ -37,6 +37,12 @@ class reserved_names_model final : public mbgrt::Model {
     return "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    (void)i;
+    return mbgrt::UnknownRole::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"i"};
   }

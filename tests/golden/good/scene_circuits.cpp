@@ -38,6 +38,15 @@ class scene_circuits_model final : public mbgrt::Model {
     return i < 2 ? kNames[i] : "?";
   }
 
+  // LAYOUT: what each unknown is (the runtime is told, not left to find out).
+  mbgrt::UnknownRole unknown_role(std::size_t i) const override {
+    using R = mbgrt::UnknownRole;
+    static const R kRoles[] = {
+        R::position, R::position,
+    };
+    return i < 2 ? kRoles[i] : R::unspecified;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"v_c3"};
   }
