@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "codegen/names.hpp"
+#include "mbgrt/integrators.hpp"
 
 namespace mbgc::codegen {
 namespace {
@@ -158,7 +159,8 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   const SimSettings& ss = g.settings;
   if (ss.t_end) settings.body.push_back(CppStmt::line(fmt::format("s.t_end_s = {};", cpp_double(*ss.t_end))));
   if (ss.interval) settings.body.push_back(CppStmt::line(fmt::format("s.interval_s = {};", cpp_double(*ss.interval))));
-  std::string solver = ss.solver.value_or(s.dae ? "ida" : "cvode");
+  std::string solver =
+      ss.solver.value_or(mbgrt::integrator_info(s.dae ? mbgrt::kDefaultDaeSolver : mbgrt::kDefaultOdeSolver).name);
   settings.body.push_back(CppStmt::line(fmt::format("s.solver = mbgrt::Solver::{};", solver)));
   if (ss.rtol) settings.body.push_back(CppStmt::line(fmt::format("s.rtol = {};", cpp_double(*ss.rtol))));
   if (ss.atol) settings.body.push_back(CppStmt::line(fmt::format("s.atol = {};", cpp_double(*ss.atol))));

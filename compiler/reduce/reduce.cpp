@@ -1,9 +1,10 @@
 #include "reduce/reduce.hpp"
 
-#include "reduce/events.hpp"
-#include "reduce/slice.hpp"
+#include "mbgrt/integrators.hpp"
 #include "reduce/constraint_jacobian.hpp"
+#include "reduce/events.hpp"
 #include "reduce/forward_diff.hpp"
+#include "reduce/slice.hpp"
 #include "reduce/sparsity.hpp"
 #include "reduce/tree_elimination.hpp"
 
@@ -782,7 +783,10 @@ class Reducer {
   /// rather than a simulator that refuses to run.
   void check_solver_for_dae() {
     const SimSettings& ss = out_.graph.settings;
-    if (!ss.solver || *ss.solver == "ida") return;
+    if (!ss.solver) return;
+    if (const mbgrt::IntegratorInfo* info = mbgrt::find_integrator(*ss.solver); !info || info->takes(mbgrt::ModelForm::dae))
+      return;
+    const char* dae_solver = mbgrt::integrator_info(mbgrt::kDefaultDaeSolver).name;
     std::vector<std::string> rows;
     for (const ConstraintRow& row : out_.constraints)
       if (row.multiplier >= 0) rows.push_back(row.name.substr(0, row.name.find('[')));
@@ -793,12 +797,14 @@ class Reducer {
       if (rows.size() > 4) list += fmt::format(" and {} more", rows.size() - 4);
       diags_.error(ss.solver_loc, fmt::format("solver `{}` cannot integrate this model: it is a DAE", *ss.solver),
                    fmt::format("the constraintor{} {} impose{} {} rows through multipliers, efforts that no storage "
-                               "element determines; write solver = ida, or constraints = penalty for an ODE",
-                               one ? "" : "s", list, one ? "s" : "", one ? "its" : "their"));
+                               "element determines; write solver = {}, or constraints = penalty for an ODE",
+                               one ? "" : "s", list, one ? "s" : "", one ? "its" : "their", dae_solver));
       return;
     }
     diags_.error(ss.solver_loc, fmt::format("solver `{}` cannot integrate this model: it is a DAE", *ss.solver),
-                 "a nonlinear algebraic loop is left to IDA as residual equations (see --dump=causality); write solver = ida");
+                 fmt::format("a nonlinear algebraic loop is left to IDA as residual equations (see --dump=causality); "
+                             "write solver = {}",
+                             dae_solver));
   }
 
   /// Gear-Gupta-Leimkuhler stabilisation of the lagrange rows: besides

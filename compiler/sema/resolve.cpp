@@ -1,5 +1,7 @@
 #include "sema/resolve.hpp"
 
+#include "mbgrt/integrators.hpp"
+
 #include <algorithm>
 #include <fmt/format.h>
 #include <functional>
@@ -269,9 +271,8 @@ class Resolver {
   void read_settings(const AstSimulate& sim) {
     for (const AstAttr& a : sim.settings) {
       if (a.key == "solver") {
-        static const std::set<std::string> solvers = {"rk4", "dopri5", "cvode", "ida"};
-        if (a.value->kind != AstExpr::Kind::Name || !solvers.count(a.value->name)) {
-          diags_.error(a.value->loc, "unknown solver", "choose one of rk4, dopri5, cvode, ida");
+        if (a.value->kind != AstExpr::Kind::Name || !mbgrt::find_integrator(a.value->name)) {
+          diags_.error(a.value->loc, "unknown solver", "choose one of " + mbgrt::integrator_names());
           continue;
         }
         m_.settings.solver = a.value->name;

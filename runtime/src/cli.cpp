@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <vector>
 
 #include "integrator.hpp"
 
@@ -36,11 +37,30 @@ std::pair<std::string, double> parse_override(const std::string& arg) {
   return {name, parse_number(arg.substr(eq + 1), fmt::format("--set {}", name))};
 }
 
+/// The names of the integrators with a capability, "a or b".
+template <class Has>
+std::string names_where(Has has) {
+  std::vector<std::string> names;
+  for (const IntegratorInfo& i : kIntegrators)
+    if (has(i)) names.push_back(i.name);
+  std::string s;
+  for (std::size_t k = 0; k < names.size(); ++k) s += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  return s;
+}
+std::string fixed_step_names() { return names_where([](const IntegratorInfo& i) { return !i.adaptive; }); }
+std::string linear_solver_names() { return names_where([](const IntegratorInfo& i) { return i.linear_solver; }); }
+
+/// --solver's help: each integrator and what it is.
+std::string solver_help() {
+  std::string s = "Integrator:";
+  for (const IntegratorInfo& i : kIntegrators) s += fmt::format(" {} ({});", i.name, i.method);
+  s.back() = '.';
+  return s;
+}
+
 Solver solver_from_name(const std::string& name) {
-  for (Solver s : {Solver::rk4, Solver::dopri5, Solver::cvode, Solver::ida})
-    if (name == solver_name(s)) return s;
-  throw UsageError(
-      fmt::format("--solver: unknown solver '{}' (use rk4, dopri5, cvode or ida)", name));
+  if (const IntegratorInfo* i = find_integrator(name)) return i->solver;
+  throw UsageError(fmt::format("--solver: unknown solver '{}' (use {})", name, integrator_names()));
 }
 
 LinearSolver linear_solver_from_name(const std::string& name) {
@@ -92,8 +112,8 @@ void validate(const Options& o, bool step_given) {
   if (step_given) {
     // Silently ignoring --step would make a work-precision study measure
     // something other than what its author asked for.
-    require(s.solver == Solver::rk4,
-            fmt::format("--step applies only to the fixed-step solver rk4, not to {}",
+    require(!integrator_info(s.solver).adaptive,
+            fmt::format("--step applies only to a fixed-step solver ({}), not to {}", fixed_step_names(),
                         solver_name(s.solver)));
     require(s.step_s > 0, "--step must be positive");
   }
@@ -170,7 +190,7 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_option("--interval", s.interval_s, "Communication interval: one CSV row each [s]")
       ->type_name("SECONDS")
       ->capture_default_str();
-  app.add_option("--solver", solver, "Integrator: rk4, dopri5, cvode or ida")
+  app.add_option("--solver", solver, solver_help())
       ->type_name("NAME")
       ->capture_default_str();
   app.add_option("--rtol", s.rtol, "Relative tolerance (adaptive solvers)")
@@ -179,13 +199,15 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_option("--atol", s.atol, "Absolute tolerance (adaptive solvers)")
       ->type_name("X")
       ->capture_default_str();
-  app.add_option("--linear-solver", linear_solver,
-                 fmt::format("IDA's linear solver: dense (LU), sparse (KLU on the model's sparsity pattern, "
-                             "columns differenced in groups) or auto (sparse for a DAE of {} unknowns or more)",
-                             kSparseFromUnknowns))
-      ->type_name("NAME")
-      ->capture_default_str();
-  auto* step = app.add_option("--step", s.step_s, "Fixed step for rk4 [s] (default: interval/10)")
+  auto* linear = app.add_option("--linear-solver", linear_solver,
+                                fmt::format("The linear solver of {}: dense (LU), sparse (KLU on the model's sparsity "
+                                            "pattern, columns differenced in groups) or auto (sparse for a DAE of {} "
+                                            "unknowns or more)",
+                                            linear_solver_names(), kSparseFromUnknowns))
+                     ->type_name("NAME")
+                     ->capture_default_str();
+  auto* step = app.add_option("--step", s.step_s,
+                              fmt::format("Fixed step for {} [s] (default: interval/10)", fixed_step_names()))
                    ->type_name("SECONDS");
   app.add_option("--set", sets, "Override a parameter (repeatable)")
       ->type_name("NAME=VALUE")
@@ -261,13 +283,17 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
       }
     }
     validate(o, step->count() > 0);
+    // (like --step: a linear solver asked for and silently not used would
+    // make a comparison measure something else than its author meant)
+    if (linear->count() > 0 && s.linear_solver != LinearSolver::automatic)
+      require(integrator_info(s.solver).linear_solver,
+              fmt::format("--linear-solver applies to --solver {} only", linear_solver_names()));
     if (s.linear_solver == LinearSolver::sparse) {
       std::vector<long> starts, rows;
       require(model.is_dae() && model.residual_sparsity(starts, rows),
               fmt::format("--linear-solver sparse: model '{}' gives no sparsity pattern (mbgc gives one for DAE "
                           "models only)",
                           model.name()));
-      require(s.solver == Solver::ida, "--linear-solver applies to --solver ida only");
     }
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) {  // --help

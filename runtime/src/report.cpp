@@ -15,10 +15,16 @@ bool flag_is(const std::string& flag, std::string_view suffix) { return flag.end
 /// What a failure most likely means for a mechanical model, and what to try.
 std::string hint_for(const SolverFailure& f, std::string_view solver) {
   const std::string& flag = f.flag_name;
-  const bool explicit_method = solver == "rk4" || solver == "dopri5";
+  const IntegratorInfo* info = find_integrator(solver);
+  const bool explicit_method = info && !info->implicit;
+  // the implicit integrators, those of ODEs first: "cvode (or ida)"
+  std::string implicit;
+  for (ModelForm form : {ModelForm::ode, ModelForm::dae})
+    for (const IntegratorInfo& i : kIntegrators)
+      if (i.implicit && i.form == form) implicit += implicit.empty() ? i.name : fmt::format(" (or {})", i.name);
   if (flag_is(flag, "TOO_MUCH_WORK"))
     return explicit_method
-               ? "the model is probably stiff here; try --solver cvode (or ida)"
+               ? fmt::format("the model is probably stiff here; try --solver {}", implicit)
                : "the solution changes extremely fast or approaches a singularity near this time; "
                  "a shorter --interval also allows more steps between outputs";
   if (flag_is(flag, "TOO_MUCH_ACC")) return "loosen --rtol/--atol";

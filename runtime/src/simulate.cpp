@@ -81,15 +81,11 @@ bool apply_overrides(Model& model, const Options& o) {
 
 /// Rejects solver/model combinations that cannot work, before any output is written.
 bool check_model_fits(const Model& model, const Options& o) {
-  if (!model.is_dae()) return true;
-  if (o.settings.solver != Solver::ida) {
-    print_error(
-        fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has "
-                    "algebraic unknowns); use --solver ida",
-                    solver_name(o.settings.solver), model.name()));
-    return false;
-  }
-  return true;
+  if (!model.is_dae() || integrator_info(o.settings.solver).takes(ModelForm::dae)) return true;
+  print_error(fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has algebraic unknowns); use "
+                          "--solver {}",
+                          solver_name(o.settings.solver), model.name(), solver_name(kDefaultDaeSolver)));
+  return false;
 }
 
 int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out, OutputFile* event_out,
@@ -197,7 +193,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception;
     if (!r.ok && r.started && (r.solver_failed || blew_up))
       stop_note = describe_stiffness(estimate_stiffness(model, last_row_t, last_row_y.data()), integrator->name(),
-                                     s.solver == Solver::rk4 ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0,
+                                     !integrator_info(s.solver).adaptive ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0,
                                      penalty_joints);
     else if (r.ok)
       stability = stability_limited_note(model, *integrator, s.t_start_s, penalty_joints);

@@ -63,9 +63,8 @@ StiffnessEstimate estimate_stiffness(Model& model, double t, const double* x) {
 }
 
 double explicit_stability_bound(std::string_view solver) {
-  if (solver == "rk4") return 2.78;
-  if (solver == "dopri5") return 3.3;
-  return 0.0;
+  const IntegratorInfo* info = find_integrator(solver);
+  return info ? info->stability_bound : 0.0;
 }
 
 std::string describe_stiffness(const StiffnessEstimate& e, std::string_view solver, double step_s,

@@ -18,7 +18,7 @@ namespace mbgrt::detail {
 namespace {
 
 constexpr double kLoosestRtol = 1e-3, kTightestRtol = 1e-10;
-constexpr int kRk4Halvings = 8;          // steps interval / 1 ... interval / 128
+constexpr int kStepHalvings = 8;         // a fixed-step method's steps: interval / 1 ... interval / 128
 constexpr double kMinTrialTime_s = 0.2;  // repeat a short run until this much wall time has passed
 constexpr int kMaxRepeats = 5;
 
@@ -104,17 +104,19 @@ std::string count(long x) { return x >= 0 ? fmt::format("{}", x) : std::string()
 std::vector<Trial> sweep_for(const Model& model, const Settings& base) {
   const double ratio = atol_per_rtol(base);
   std::vector<Trial> trials;
-  auto adaptive = [&](Solver solver) {
+  // Every integrator made for the model's form (an ODE is not swept with a
+  // DAE integrator, which would only add a Newton iteration): fixed-step
+  // ones at halved steps, adaptive ones over the tolerances.
+  const ModelForm form = model.is_dae() ? ModelForm::dae : ModelForm::ode;
+  for (const IntegratorInfo& i : kIntegrators) {
+    if (i.form != form) continue;
+    if (!i.adaptive) {
+      for (int k = 0; k < kStepHalvings; ++k) trials.push_back({i.solver, 0, 0, base.interval_s / std::pow(2.0, k)});
+      continue;
+    }
     for (double rtol = kLoosestRtol; rtol >= kTightestRtol * 0.99; rtol /= 10)
-      trials.push_back({solver, rtol, rtol * ratio, 0});
-  };
-  if (model.is_dae()) {
-    adaptive(Solver::ida);
-    return trials;
+      trials.push_back({i.solver, rtol, rtol * ratio, 0});
   }
-  for (int k = 0; k < kRk4Halvings; ++k) trials.push_back({Solver::rk4, 0, 0, base.interval_s / std::pow(2.0, k)});
-  adaptive(Solver::dopri5);
-  adaptive(Solver::cvode);
   return trials;
 }
 
@@ -130,9 +132,12 @@ int work_precision(Model& model, const Options& o, OutputFile& out) {
   // below which the measured errors mean nothing.
   struct Candidate { Solver solver; double rtol; };
   std::vector<Candidate> candidates;
-  if (!model.is_dae()) candidates.push_back({Solver::dopri5, 1e-13});
-  const Solver implicit = model.is_dae() ? Solver::ida : Solver::cvode;
-  for (double rtol : {1e-12, 1e-11, 1e-10}) candidates.push_back({implicit, rtol});
+  const ModelForm form = model.is_dae() ? ModelForm::dae : ModelForm::ode;
+  for (const IntegratorInfo& i : kIntegrators)
+    if (i.form == form && i.adaptive && !i.implicit) candidates.push_back({i.solver, 1e-13});
+  for (const IntegratorInfo& i : kIntegrators)
+    if (i.form == form && i.adaptive && i.implicit)
+      for (double rtol : {1e-12, 1e-11, 1e-10}) candidates.push_back({i.solver, rtol});
   TrialRun ref;
   Settings ref_settings = base;
   double floor = std::numeric_limits<double>::infinity();
@@ -170,7 +175,7 @@ int work_precision(Model& model, const Options& o, OutputFile& out) {
   for (const Trial& trial : sweep_for(model, base)) {
     Settings s = base;
     s.solver = trial.solver;
-    if (trial.solver == Solver::rk4) s.step_s = trial.step_s;
+    if (!integrator_info(trial.solver).adaptive) s.step_s = trial.step_s;
     else s.rtol = trial.rtol, s.atol = trial.atol;
     const TrialRun run = run_timed(model, s);
     const double error = max_rel_error(run, ref, outputs, ratio);

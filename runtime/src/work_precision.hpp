@@ -24,7 +24,7 @@ namespace mbgrt::detail {
 /// One setting of the sweep: an adaptive solver's rtol (atol follows it in
 /// the model's own atol/rtol ratio) or rk4's step.
 struct Trial {
-  Solver solver = Solver::cvode;
+  Solver solver = kDefaultOdeSolver;
   double rtol = 0, atol = 0, step_s = 0;
 };
 

@@ -83,6 +83,31 @@ TEST(Cli, UnknownSolverIsNamedInTheMessage) {
   EXPECT_TRUE(Contains(r.err, "euler"));
 }
 
+TEST(Cli, EveryIntegratorInTheRegistryIsOfferedWithWhatItCanDo) {
+  // mbgrt/integrators.hpp is the one place that says what an integrator
+  // can do; the command line must agree with it row by row.
+  Decay help_model;
+  const RunResult help = run(help_model, {"--help"}, false);
+  for (const IntegratorInfo& i : kIntegrators) {
+    EXPECT_TRUE(Contains(help.out, std::string(i.name) + " (" + i.method + ")")) << i.name;
+    Decay ode;
+    RunResult plain = run(ode, {"--solver", i.name, "--t-end", "0.1"});
+    EXPECT_EQ(plain.status, 0) << i.name << ": " << plain.err;  // every integrator takes an ODE
+    Decay stepped;
+    RunResult step = run(stepped, {"--solver", i.name, "--step", "0.001", "--t-end", "0.1"});
+    EXPECT_EQ(step.status, i.adaptive ? 2 : 0) << i.name << ": " << step.err;
+    Decay dense;
+    RunResult linear = run(dense, {"--solver", i.name, "--linear-solver", "dense", "--t-end", "0.1"});
+    EXPECT_EQ(linear.status, i.linear_solver ? 0 : 2) << i.name << ": " << linear.err;
+    SmallDae dae;
+    RunResult d = run(dae, {"--solver", i.name, "--t-end", "0.1"});
+    EXPECT_EQ(d.status, i.takes(ModelForm::dae) ? 0 : 2) << i.name << ": " << d.err;
+  }
+  Decay m;
+  RunResult unknown = run(m, {"--solver", "euler"});
+  EXPECT_TRUE(Contains(unknown.err, "(use " + integrator_names() + ")")) << unknown.err;
+}
+
 TEST(Cli, SetKnownParameterChangesTheSolution) {
   Decay m;
   RunResult r = run(m, {"--set", "k=1.5", "--set", "x0=3", "--rtol", "1e-10", "--atol", "1e-12"});

@@ -38,10 +38,10 @@
 #include <string>
 #include <vector>
 
+#include "mbgrt/integrators.hpp"
+
 namespace mbgrt {
 
-/// Integrators the runtime offers (names as used by --solver).
-enum class Solver { rk4, dopri5, cvode, ida };
 
 /// What a model's rank-revealing solves found during a run (the multipliers
 /// of cut joints whose rows became dependent): the generated code records
@@ -90,7 +90,7 @@ struct Settings {
   double t_start_s = 0.0;
   double t_end_s = 1.0;
   double interval_s = 0.01;   ///< communication interval: one CSV row per interval
-  Solver solver = Solver::cvode;
+  Solver solver = kDefaultOdeSolver;
   double rtol = 1e-6;
   double atol = 1e-8;
   double step_s = 0.0;        ///< fixed step for rk4 (0: use interval/10)

@@ -2,19 +2,7 @@
 
 namespace mbgrt::detail {
 
-const char* solver_name(Solver s) {
-  switch (s) {
-    case Solver::rk4:
-      return "rk4";
-    case Solver::dopri5:
-      return "dopri5";
-    case Solver::cvode:
-      return "cvode";
-    case Solver::ida:
-      return "ida";
-  }
-  return "?";
-}
+const char* solver_name(Solver s) { return integrator_info(s).name; }
 
 std::unique_ptr<Integrator> make_integrator(GuardedModel& model, const Settings& s) {
   // A purely algebraic model (no states) has nothing to integrate, and the

@@ -1,0 +1,82 @@
+// mbgrt/integrators.hpp — what each integrator can do, in one table.
+//
+// Every part that needs to know an integrator's capabilities reads them here:
+// the compiler's check of `simulate { solver = ... }` (sema/resolve.cpp,
+// reduce/reduce.cpp), the simulator's command line (--solver, --step,
+// --linear-solver, --help), the run report's hints, the stiffness note and
+// the work-precision sweep. Adding an integrator is a row here and its class
+// in runtime/src/solvers/. Header-only and free of SUNDIALS, so that the
+// compiler can read it too.
+#pragma once
+
+#include <array>
+#include <string>
+#include <string_view>
+
+namespace mbgrt {
+
+/// Integrators the runtime offers (names as used by --solver).
+enum class Solver { rk4, dopri5, cvode, ida };
+
+/// The form of model an integrator works on natively: x' = f(t, x), or
+/// F(t, y, y') = 0. One that takes a DAE also takes an ODE (as F = y' - f),
+/// at the cost of a Newton iteration an ODE method would not need.
+enum class ModelForm { ode, dae };
+
+struct IntegratorInfo {
+  Solver solver;
+  const char* name;       ///< --solver NAME, simulate { solver = NAME }
+  const char* method;     ///< what it is, one line (--help)
+  bool implicit;          ///< solves a nonlinear system each step: for stiff models
+  bool adaptive;          ///< error-controlled steps (--rtol, --atol); else a fixed --step
+  ModelForm form;         ///< what it integrates natively (a DAE integrator also takes ODEs)
+  bool locates_events;    ///< finds the zero crossings of the model's event functions
+  bool linear_solver;     ///< takes --linear-solver (dense LU or KLU on the model's pattern)
+  /// An explicit method is stable while h |lambda| stays below this on the
+  /// negative real axis (lambda: the fastest decaying mode); 0 for methods
+  /// without such a bound (BDF, stiffly stable).
+  double stability_bound;
+
+  bool takes(ModelForm f) const { return f == ModelForm::ode || form == ModelForm::dae; }
+};
+
+inline constexpr std::array<IntegratorInfo, 4> kIntegrators = {{
+    {Solver::rk4, "rk4", "classical Runge-Kutta of order 4, fixed step", false, false, ModelForm::ode, true, false,
+     2.78},
+    {Solver::dopri5, "dopri5", "Dormand-Prince 5(4), explicit, adaptive (SUNDIALS ARKODE)", false, true, ModelForm::ode,
+     true, false, 3.3},
+    {Solver::cvode, "cvode", "BDF of orders 1 to 5, implicit, adaptive (SUNDIALS CVODE)", true, true, ModelForm::ode,
+     true, false, 0.0},
+    {Solver::ida, "ida", "BDF for DAEs, orders 1 to 5, implicit, adaptive (SUNDIALS IDA)", true, true, ModelForm::dae,
+     true, true, 0.0},
+}};
+
+/// The default integrator for a model of each form (a model's `simulate`
+/// block and the command line override it).
+inline constexpr Solver kDefaultOdeSolver = Solver::cvode;
+inline constexpr Solver kDefaultDaeSolver = Solver::ida;
+
+constexpr const IntegratorInfo& integrator_info(Solver s) {
+  for (const IntegratorInfo& i : kIntegrators)
+    if (i.solver == s) return i;
+  return kIntegrators[0];  // (unreachable: every Solver has a row)
+}
+
+/// The integrator called `name`, or null.
+constexpr const IntegratorInfo* find_integrator(std::string_view name) {
+  for (const IntegratorInfo& i : kIntegrators)
+    if (name == i.name) return &i;
+  return nullptr;
+}
+
+/// "rk4, dopri5, cvode or ida" (`last` joins the last two).
+inline std::string integrator_names(std::string_view last = "or") {
+  std::string s;
+  for (std::size_t k = 0; k < kIntegrators.size(); ++k) {
+    if (k > 0) s += k + 1 == kIntegrators.size() ? " " + std::string(last) + " " : ", ";
+    s += kIntegrators[k].name;
+  }
+  return s;
+}
+
+}  // namespace mbgrt
