@@ -37,18 +37,12 @@ std::pair<std::string, double> parse_override(const std::string& arg) {
   return {name, parse_number(arg.substr(eq + 1), fmt::format("--set {}", name))};
 }
 
-/// The names of the integrators with a capability, "a or b".
-template <class Has>
-std::string names_where(Has has) {
-  std::vector<std::string> names;
-  for (const IntegratorInfo& i : kIntegrators)
-    if (has(i)) names.push_back(i.name);
-  std::string s;
-  for (std::size_t k = 0; k < names.size(); ++k) s += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
-  return s;
+std::string fixed_step_names() {
+  return integrator_names_where([](const IntegratorInfo& i) { return !i.adaptive; });
 }
-std::string fixed_step_names() { return names_where([](const IntegratorInfo& i) { return !i.adaptive; }); }
-std::string linear_solver_names() { return names_where([](const IntegratorInfo& i) { return i.linear_solver; }); }
+std::string linear_solver_names() {
+  return integrator_names_where([](const IntegratorInfo& i) { return i.linear_solver; });
+}
 
 /// --solver's help: each integrator and what it is.
 std::string solver_help() {

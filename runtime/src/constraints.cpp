@@ -355,9 +355,8 @@ void constrained_residual(Model& model, const ConstraintShape& s, double t, cons
 RedundancyReport find_redundant_constraints(Model& model, const ConstraintShape& s, double t,
                                             const double* y_in) {
   RedundancyReport rep;
-  const Index np = ix(s.np), nv = ix(s.nv);
+  const Index np = ix(s.np);
   if (s.lambda_at.empty() || np == 0) return rep;
-  (void)nv;
   const Vec y = Eigen::Map<const Vec>(y_in, ix(s.n));
   std::vector<Index> all(s.ns);
   for (std::size_t j = 0; j < s.ns; ++j) all[j] = ix(j);

@@ -69,14 +69,25 @@ constexpr const IntegratorInfo* find_integrator(std::string_view name) {
   return nullptr;
 }
 
-/// "rk4, dopri5, cvode or ida" (`last` joins the last two).
-inline std::string integrator_names(std::string_view last = "or") {
+/// The names of the integrators `has` holds for, "a, b or c" (`last` joins
+/// the last two).
+template <class Has>
+std::string integrator_names_where(Has has, std::string_view last = "or") {
   std::string s;
-  for (std::size_t k = 0; k < kIntegrators.size(); ++k) {
-    if (k > 0) s += k + 1 == kIntegrators.size() ? " " + std::string(last) + " " : ", ";
-    s += kIntegrators[k].name;
+  std::size_t count = 0, total = 0;
+  for (const IntegratorInfo& i : kIntegrators) total += has(i) ? 1 : 0;
+  for (const IntegratorInfo& i : kIntegrators) {
+    if (!has(i)) continue;
+    if (count > 0) s += count + 1 == total ? " " + std::string(last) + " " : ", ";
+    s += i.name;
+    ++count;
   }
   return s;
+}
+
+/// "rk4, dopri5, cvode or ida".
+inline std::string integrator_names(std::string_view last = "or") {
+  return integrator_names_where([](const IntegratorInfo&) { return true; }, last);
 }
 
 }  // namespace mbgrt
