@@ -49,6 +49,10 @@ class Emitter {
     for (std::size_t k = 0; k < s_.events.size(); ++k) hoisted_[s_.events[k].step] = event_mode_name(k);  // printed as their modes
     discrete_name_ = contact_member_names(s_);
     c.public_methods.push_back(initial());
+    if (any_nominal())
+      c.public_methods.push_back({"NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).",
+                                  "double nominal(std::size_t i) const override",
+                                  {CppStmt::line(fmt::format("return i < {} ? nominal_[i] : 1.0;", unknown_count()))}});
     add_long_method(c, s_.dae ? residual() : derivative());
     if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity());
     if (!s_.jacobian.empty()) {
@@ -210,6 +214,7 @@ class Emitter {
     for (const Parameter& p : g_.params) shared.count(p.value);
     for (const Expr& e : hoisted_order_) shared.count(e);
     for (const StateVar& st : s_.states) shared.count(st.initial);
+    for (const Expr& e : s_.nominal) shared.count(e);
     for (const ContactRow& c : s_.contacts) shared.count(c.restitution);
     shared.finish_counting();
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
@@ -236,6 +241,15 @@ class Emitter {
       const Variable& v = g_.vars[static_cast<std::size_t>(st.var)];
       std::string value = shared.print(st.initial, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {} ({})", y, i, value, v.name, where(v.loc))));
+    }
+    if (any_nominal()) {
+      f.body.push_back(CppStmt::comment("NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)"));
+      f.body.push_back(CppStmt::line("for (double& v : nominal_) v = 1.0;"));
+      for (std::size_t i = 0; i < s_.nominal.size(); ++i) {
+        if (is_one(s_.nominal[i])) continue;
+        const Variable& v = g_.vars[static_cast<std::size_t>(s_.states[i].var)];
+        f.body.push_back(CppStmt::line(fmt::format("nominal_[{}] = {};  // {}", i, shared.print(s_.nominal[i], f.body), v.name)));
+      }
     }
     if (s_.dae) {
       for (std::size_t j = 0; j < s_.algebraic.size(); ++j)
@@ -799,7 +813,14 @@ class Emitter {
     for (const Output& o : g_.outputs) scan(o.value);
   }
 
+  /// Whether some state's nominal size is not 1 (reduce/nominal.hpp).
+  bool any_nominal() const {
+    return std::any_of(s_.nominal.begin(), s_.nominal.end(), [](const Expr& e) { return !is_one(e); });
+  }
+
   void private_part(CppClass& c) {
+    if (any_nominal())
+      c.private_members.push_back(CppStmt::line(fmt::format("double nominal_[{}] = {{}};  // set in initial()", unknown_count())));
     if (has_rank_loss_) {
       c.public_methods.push_back({"Cut joints: the rows their multipliers' solves found dependent during the run.",
                                   "const mbgrt::RankLossLog* rank_loss() const override", {CppStmt::line("return &rank_loss_;")}});

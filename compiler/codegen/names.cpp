@@ -38,7 +38,8 @@ const std::set<std::string> kReserved = {
     "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason",
     "residual_sparsity", "column_starts", "rows", "kStarts", "kRows", "rank_loss", "rank_loss_",
     "multiplier_index", "stabiliser_index", "kIndex", "row", "unknown_role", "kRoles", "R",
-    "constraint_jacobian", "constraint_jacobian_pattern", "row_starts", "columns", "kColumns", "values"};
+    "constraint_jacobian", "constraint_jacobian_pattern", "row_starts", "columns", "kColumns", "values",
+    "nominal", "nominal_", "v", "unknown_group", "kGroups"};
 
 }  // namespace
 

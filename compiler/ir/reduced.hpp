@@ -83,6 +83,7 @@ struct ReducedSystem {
   CausalityReport causality;
   std::vector<StateVar> states;
   std::vector<Expr> state_derivative;     // per state: what the integrator gets
+  std::vector<Expr> nominal;              // per state: its size, in parameters (reduce/nominal.hpp)
   std::vector<Assignment> assignments;    // everything derivative/residual/outputs need, sorted
   std::vector<LinearBlock> linear_blocks; // loops solved numerically (see Assignment::block)
   std::vector<int> for_derivative;        // indices into assignments, in order

@@ -4,6 +4,7 @@
 #include "reduce/constraint_jacobian.hpp"
 #include "reduce/events.hpp"
 #include "reduce/forward_diff.hpp"
+#include "reduce/nominal.hpp"
 #include "reduce/slice.hpp"
 #include "reduce/sparsity.hpp"
 #include "reduce/tree_elimination.hpp"
@@ -907,7 +908,10 @@ ReducedSystem reduce(EquationSystem system, Diagnostics& diags) {
   ReducedSystem out;
   Reducer r(system, out, diags);
   r.run();
-  if (!diags.has_errors()) residual_sparsity(out);
+  if (!diags.has_errors()) {
+    residual_sparsity(out);
+    nominal_values(out);
+  }
   return out;
 }
 

@@ -11,6 +11,7 @@
 
 #include "animation.hpp"
 #include "constraints.hpp"
+#include "error_weights.hpp"
 #include "grid.hpp"
 #include "guard.hpp"
 #include "integrator.hpp"
@@ -26,22 +27,29 @@ namespace mbgrt::detail {
 
 namespace {
 
-/// States that moved but never rose far above atol: one absolute tolerance
-/// for every unknown resolves them only to atol / |value| (a 1e-9 kg body's
-/// momenta at atol 1e-10: 10%). Empty if there are none.
+/// States that moved but never rose far above their absolute tolerance
+/// (atol x nominal), nor did any other component of their vector
+/// (Model::unknown_group): the tolerance resolves them only to that over
+/// |value|. Empty if there are none.
 std::string describe_small_states(const Model& model, const std::vector<double>& peak, double atol) {
   constexpr double kFactor = 100;
-  std::size_t count = 0, worst = 0;
+  const std::vector<double> a = ErrorWeights(model, 0.0, atol).absolute();
+  std::vector<double> group_peak(peak.size(), 0.0);
   for (std::size_t i = 0; i < peak.size(); ++i) {
-    if (!(peak[i] > atol && peak[i] <= kFactor * atol)) continue;
-    if (count == 0 || peak[i] < peak[worst]) worst = i;
+    const std::size_t g = std::min(model.unknown_group(i), i);
+    group_peak[g] = std::max(group_peak[g], peak[i]);
+  }
+  std::size_t count = 0, worst = 0;
+  for (std::size_t i = 0; i < peak.size() && i < a.size(); ++i) {
+    if (!(peak[i] > a[i] && group_peak[std::min(model.unknown_group(i), i)] <= kFactor * a[i])) continue;
+    if (count == 0 || peak[i] / a[i] < peak[worst] / a[worst]) worst = i;
     ++count;
   }
   if (count == 0) return {};
-  return fmt::format("{} state{} peaked within {}x atol (smallest: '{}', {:.2g}); their relative error may reach "
-                     "atol / |value| ({:.0f}%): lower --atol if they matter",
-                     count, count == 1 ? "" : "s", kFactor, model.variable_name(worst), peak[worst],
-                     100 * atol / peak[worst]);
+  return fmt::format("{} state{} peaked within {}x {} absolute tolerance (closest: '{}', {:.2g} against {:.2g}); "
+                     "their relative error may reach {:.0f}%: lower --atol if they matter",
+                     count, count == 1 ? "" : "s", kFactor, count == 1 ? "its" : "their", model.variable_name(worst),
+                     peak[worst], a[worst], 100 * a[worst] / peak[worst]);
 }
 
 /// --event-log: one row per switch, in the order they happened.

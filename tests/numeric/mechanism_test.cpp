@@ -308,7 +308,7 @@ TEST(Andrews, AnglesMatchTheTestSetReference) {
   // tip by 2e-12 m in the first step), so they are resolved only roughly.
   // It is smaller at atol 1e-12 (with --interval 1e-3: 9.6e-10 s); at
   // atol <= 1e-11 with the default 0.1 ms interval IDA's Newton iteration
-  // fails at t = 0 and the runtime restarts it (see TightAtolRestarts). An earlier build of the same model (another
+  // fails at t = 0 and the runtime restarts it (see RunsAtAtol1e14). An earlier build of the same model (another
   // round-off in initial()) led by 6.3e-10 s. So the tolerance is a time:
   // |error_i| <= 1e-8 s * |q_i'(0.03)| (beta: 1.1e-5 rad, gamma: 1.1e-7 rad).
   std::array<double, 7> err{};
@@ -332,14 +332,15 @@ TEST(Andrews, AnglesMatchTheTestSetReference) {
   EXPECT_LT(c.max_abs("max_abs_gdot"), 1e-6);
 }
 
-TEST(Andrews, TightAtolRestarts) {
-  // At atol 1e-11 rounding noise in the constraint rows (mu h ~ 1.6e-14)
-  // weighs ~16 in IDA's Newton test with the multipliers' weights scaled by
-  // h / interval, so Newton fails at t = 0 whatever the step (it used to
-  // stop there with IDA_CONV_FAIL at h = 2.6e-13 s). The runtime restarts
-  // with the weights scaled by h / 1 s and reaches the end, as accurate as
-  // the model's tolerances.
-  SimRun r = run(ANDREWS_SIM, "--atol 1e-11", "andrews_atol11");
+TEST(Andrews, RunsAtAtol1e14) {
+  // atol bounds each body's velocity error (per-variable tolerances: the
+  // compiler's nominal sizes, a body's momentum against its inertia, as small
+  // as 4.4e-7 kg m^2 here). At atol 1e-14 rounding noise in the constraint
+  // rows (mu h ~ 1.6e-14) weighs ~16 in IDA's Newton test with the
+  // multipliers' weights scaled by h / interval, so Newton fails at t = 0
+  // whatever the step; the runtime restarts once with the weights scaled by
+  // h / 1 s and reaches the end, as accurate as the model's tolerances.
+  SimRun r = run(ANDREWS_SIM, "--atol 1e-14", "andrews_atol14");
   ASSERT_EQ(r.status, 0) << r.log;
   ASSERT_EQ(r.csv.rows.size(), 301u);
   EXPECT_NE(r.log.find("after a Newton failure at t = 0 s, restarted"), std::string::npos) << r.log;

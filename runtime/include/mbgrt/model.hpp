@@ -167,6 +167,20 @@ class Model {
   virtual std::vector<ParameterInfo> parameters() const = 0;
 
   virtual bool is_dae() const { return false; }
+  /// NOMINAL: the size of unknown i its absolute error is measured against:
+  /// the adaptive integrators' absolute tolerance for it is atol x nominal(i).
+  /// mbgc gives a momentum its inertia (so that atol bounds every body's
+  /// velocity error alike, a 1e-9 kg body's as a 1e3 kg one's) and a modal
+  /// coordinate its validity limit (reduce/nominal.hpp); 1 otherwise. Read
+  /// after initial(), which may compute it from the parameters.
+  virtual double nominal(std::size_t i) const { (void)i; return 1.0; }
+  /// GROUP: the first unknown of unknown i's group (i itself if it is alone):
+  /// the components of one vector, e.g. a body's momentum. The integrators
+  /// measure a component's error relative to its own size but never to less
+  /// than a tenth of its whole vector's (the group's 2-norm), so that a
+  /// component that is zero in these axes but for rounding is not held to
+  /// atol alone.
+  virtual std::size_t unknown_group(std::size_t i) const { return i; }
   /// LAYOUT: what unknown i is. A model with constraints must say it for every
   /// unknown: the runtime moves the positions and then the velocities to
   /// assemble the initial state, and names the constraint rows from it.

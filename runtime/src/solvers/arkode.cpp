@@ -13,7 +13,7 @@ namespace mbgrt::detail {
 namespace {
 
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
-  auto* m = static_cast<GuardedModel*>(user_data);
+  auto* m = static_cast<CallbackData*>(user_data)->model;
   return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
@@ -36,9 +36,10 @@ class Dopri5 final : public Integrator {
     check_setup(mem_, "ERKStepCreate");
     check_setup(ERKStepSetErrHandlerFn(mem_, MessageSink::handler, &sink_),
                 "ERKStepSetErrHandlerFn", sink_);
-    check_setup(ERKStepSetUserData(mem_, &m_), "ERKStepSetUserData", sink_);
+    data_ = CallbackData{&m_, ErrorWeights(m_.model(), s_.rtol, s_.atol)};
+    check_setup(ERKStepSetUserData(mem_, &data_), "ERKStepSetUserData", sink_);
     check_setup(ERKStepSetTableNum(mem_, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum", sink_);
-    check_setup(ERKStepSStolerances(mem_, s_.rtol, s_.atol), "ERKStepSStolerances", sink_);
+    check_setup(ERKStepWFtolerances(mem_, error_weights), "ERKStepWFtolerances", sink_);
     check_setup(ERKStepSetStopTime(mem_, s_.t_end_s), "ERKStepSetStopTime", sink_);
     check_setup(ERKStepSetMaxNumSteps(mem_, kMaxStepsPerOutput), "ERKStepSetMaxNumSteps", sink_);
     // Like ACSL's MAXTERVAL: never step over more than one communication
@@ -100,6 +101,7 @@ class Dopri5 final : public Integrator {
   }
 
   GuardedModel& m_;
+  CallbackData data_;  ///< the callbacks' user data: the model and the error weights
   Settings s_;
   SunContext ctx_;
   SerialVector y_;

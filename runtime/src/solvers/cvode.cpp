@@ -17,14 +17,14 @@ namespace mbgrt::detail {
 namespace {
 
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
-  auto* m = static_cast<GuardedModel*>(user_data);
+  auto* m = static_cast<CallbackData*>(user_data)->model;
   return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
 /// The model's row-major Jacobian copied into CVODE's column-major dense matrix.
 int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* user_data, N_Vector tmp1, N_Vector,
              N_Vector) {
-  auto* m = static_cast<GuardedModel*>(user_data);
+  auto* m = static_cast<CallbackData*>(user_data)->model;
   const std::size_t n = m->size();
   thread_local std::vector<double> row_major;
   row_major.resize(n * n);
@@ -61,8 +61,9 @@ class Cvode final : public Integrator {
     check_setup(CVodeSetErrHandlerFn(mem_, MessageSink::handler, &sink_), "CVodeSetErrHandlerFn",
                 sink_);
     check_setup(CVodeInit(mem_, rhs, t0, y_.get()), "CVodeInit", sink_);
-    check_setup(CVodeSetUserData(mem_, &m_), "CVodeSetUserData", sink_);
-    check_setup(CVodeSStolerances(mem_, s_.rtol, s_.atol), "CVodeSStolerances", sink_);
+    data_ = CallbackData{&m_, ErrorWeights(m_.model(), s_.rtol, s_.atol)};
+    check_setup(CVodeSetUserData(mem_, &data_), "CVodeSetUserData", sink_);
+    check_setup(CVodeWFtolerances(mem_, error_weights), "CVodeWFtolerances", sink_);
     check_setup(CVodeSetStopTime(mem_, s_.t_end_s), "CVodeSetStopTime", sink_);
     check_setup(CVodeSetMaxNumSteps(mem_, kMaxStepsPerOutput), "CVodeSetMaxNumSteps", sink_);
     // Like ACSL's MAXTERVAL: never step over more than one communication
@@ -129,6 +130,7 @@ class Cvode final : public Integrator {
 
  private:
   GuardedModel& m_;
+  CallbackData data_;  ///< the callbacks' user data: the model and the error weights
   Settings s_;
   SunContext ctx_;
   SerialVector y_;

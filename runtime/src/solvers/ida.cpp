@@ -78,7 +78,8 @@ class Ida final : public Integrator {
                 sink_);
     check_setup(IDAInit(mem_, residual, t0, y_.get(), yp_.get()), "IDAInit", sink_);
     check_setup(IDASetUserData(mem_, this), "IDASetUserData", sink_);
-    check_setup(IDASStolerances(mem_, s_.rtol, s_.atol), "IDASStolerances", sink_);
+    weights_of_ = ErrorWeights(m_.model(), s_.rtol, s_.atol);
+    check_setup(IDAWFtolerances(mem_, error_weights), "IDAWFtolerances", sink_);
     check_setup(IDASetStopTime(mem_, s_.t_end_s), "IDASetStopTime", sink_);
     check_setup(IDASetMaxNumSteps(mem_, kMaxStepsPerOutput), "IDASetMaxNumSteps", sink_);
     // Like ACSL's MAXTERVAL: never step over more than one communication
@@ -282,26 +283,24 @@ class Ida final : public Integrator {
   ///    converged tighter, which the energy balance of the crank-rocker and
   ///    the drift of Andrews' squeezer at loose tolerances measurably need.)
   bool setup_index_two(double t0) {
+    index_two_ = true;
     h0_ = initial_step(t0);
     if (h0_ > 0.0) check_setup(IDASetInitStep(mem_, h0_), "IDASetInitStep", sink_);
-    check_setup(IDAWFtolerances(mem_, error_weights), "IDAWFtolerances", sink_);
     return true;
   }
 
   static int error_weights(N_Vector y, N_Vector w, void* user_data) {
     auto* self = static_cast<Ida*>(user_data);
+    double* wv = N_VGetArrayPointer(w);
+    // (a false makes IDA report IDA_BAD_EWT, as with its own weights)
+    if (!self->weights_of_(N_VGetArrayPointer(y), wv)) return -1;
+    if (!self->index_two_) return 0;
     double h = 0.0;  // the step about to be attempted (0 before the first one)
     IDAGetCurrentStep(self->mem_, &h);
     if (!(h > 0.0)) h = self->h0_ > 0.0 ? self->h0_ : self->s_.interval_s;
-    const double* yv = N_VGetArrayPointer(y);
-    double* wv = N_VGetArrayPointer(w);
     const std::vector<double>& ids = self->m_.differential_ids();
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      const double tol = self->s_.rtol * std::abs(yv[i]) + self->s_.atol;
-      if (!(tol > 0.0)) return -1;  // IDA then reports IDA_BAD_EWT, as with its own weights
-      wv[i] = 1.0 / tol;
+    for (std::size_t i = 0; i < ids.size(); ++i)
       if (ids[i] == 0.0) wv[i] *= std::min(1.0, h / self->h_ref_);
-    }
     return 0;
   }
 
@@ -317,9 +316,11 @@ class Ida final : public Integrator {
     for (std::size_t i = 0; i < ns; ++i) y1[i] += delta * yp_.data()[i];
     if (!detail::consistent_initial_values(m_.model(), shape, t0 + delta, y1.data(), yp1.data()).ok)
       return 0.0;
+    std::vector<double> weights(n);
+    if (!weights_of_(y_.data(), weights.data())) return 0.0;
     double sum = 0.0;
     for (std::size_t i = 0; i < ns; ++i) {
-      const double w = 1.0 / (s_.rtol * std::abs(y_.data()[i]) + s_.atol);
+      const double w = weights[i];
       const double ypp = (yp1[i] - yp_.data()[i]) / delta;
       sum += ypp * w * ypp * w;
     }
@@ -398,6 +399,8 @@ class Ida final : public Integrator {
   SUNLinearSolver ls_ = nullptr;
   double t_ = 0.0;
   double h0_ = 0.0;  ///< first step chosen for an index-2 DAE (0: IDA's own)
+  ErrorWeights weights_of_;  ///< per unknown: 1 / (rtol |its group| + atol x its nominal size)
+  bool index_two_ = false;   ///< an index-2 DAE: the algebraic unknowns' weights scaled by the step
   double h_ref_ = s_.interval_s;  ///< multipliers' weights scaled by min(1, h / h_ref_)
   std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
   /// IDA's counters up to the restart (zero until then).

@@ -125,8 +125,13 @@ void check_setup(const void* ptr, const char* what) {
 }
 
 int event_roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
-  auto* m = static_cast<GuardedModel*>(user_data);
+  auto* m = static_cast<CallbackData*>(user_data)->model;
   return m->events().functions(t, N_VGetArrayPointer(y), nullptr, g) ? 0 : -1;
+}
+
+int error_weights(N_Vector y, N_Vector w, void* user_data) {
+  const auto* data = static_cast<const CallbackData*>(user_data);
+  return data->weights(N_VGetArrayPointer(y), N_VGetArrayPointer(w)) ? 0 : -1;
 }
 
 }  // namespace mbgrt::detail

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <string>
 
+#include "error_weights.hpp"
 #include "integrator.hpp"
 
 namespace mbgrt::detail {
@@ -17,6 +18,15 @@ namespace mbgrt::detail {
 /// of 500 is routinely exceeded by stiff mechanical models at coarse output
 /// intervals; 10000 still turns a genuinely stuck run into a prompt report.
 inline constexpr long kMaxStepsPerOutput = 10000;
+
+/// What CVODE's and ARKODE's callbacks receive as user data.
+struct CallbackData {
+  GuardedModel* model = nullptr;
+  ErrorWeights weights;
+};
+
+/// The EwtFn of CVODE and ARKODE (user data: CallbackData).
+int error_weights(N_Vector y, N_Vector w, void* user_data);
 
 class SunContext {
  public:
@@ -66,7 +76,7 @@ SolverFailure make_failure(double t, char* flag_name, const MessageSink& sink);
 int largest_weighted_error(N_Vector local_errors, N_Vector weights);
 
 /// The model's event functions for CVODE's and ARKODE's root finders
-/// (user_data: the GuardedModel); -1 if one is not finite.
+/// (user_data: CallbackData); -1 if one is not finite.
 int event_roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data);
 
 /// Has a restart at t (an event) reached the communication point t_out, up

@@ -47,6 +47,14 @@ class ball_chain_model final : public mbgrt::Model {
     return i < 14 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 3, 3, 3, 3, 7, 7, 7, 10, 10, 10, 10,
+    };
+    return i < 14 ? kGroups[i] : i;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"torque_z", "x"};
   }

@@ -48,6 +48,14 @@ class beam_centre_frame_model final : public mbgrt::Model {
     return i < 17 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 0, 0, 0, 0, 0, 8, 8, 8, 11, 11, 11, 11, 15, 15,
+    };
+    return i < 17 ? kGroups[i] : i;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -157,6 +165,23 @@ class beam_centre_frame_model final : public mbgrt::Model {
     x[14] = rod_q0_4;  // rod.q.q[4] (beam_centre_frame.mbg:5:6)
     x[15] = 0.0;  // rod.eta.q[1] (beam_centre_frame.mbg:5:6)
     x[16] = 0.0;  // rod.eta.q[2] (beam_centre_frame.mbg:5:6)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = 52.8806874173523;  // rod.M.p[1]
+    nominal_[1] = 52.8806874173523;  // rod.M.p[2]
+    nominal_[2] = 52.8806874173523;  // rod.M.p[3]
+    nominal_[3] = 52.8806874173523;  // rod.M.p[4]
+    nominal_[4] = 52.8806874173523;  // rod.M.p[5]
+    nominal_[5] = 52.8806874173523;  // rod.M.p[6]
+    nominal_[6] = 52.8806874173523;  // rod.M.p[7]
+    nominal_[7] = 52.8806874173523;  // rod.M.p[8]
+    nominal_[15] = 0.06455395199981956;  // rod.eta.q[1]
+    nominal_[16] = 0.02262499587601617;  // rod.eta.q[2]
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 17 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -537,6 +562,7 @@ class beam_centre_frame_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[17] = {};  // set in initial()
   // parameters (set in initial())
   double rod_r0_1 = 0.0;  // beam_centre_frame.mbg:5:6
   double rod_r0_2 = 0.0;  // beam_centre_frame.mbg:5:6

@@ -46,6 +46,14 @@ class beam_load_model final : public mbgrt::Model {
     return i < 4 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 2, 2,
+    };
+    return i < 4 ? kGroups[i] : i;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -104,6 +112,15 @@ class beam_load_model final : public mbgrt::Model {
     x[1] = 0.0;  // blade.eta_rate.rate[2] (beam_load.mbg:5:6)
     x[2] = 0.0;  // blade.eta.q[1] (beam_load.mbg:5:6)
     x[3] = 0.0;  // blade.eta.q[2] (beam_load.mbg:5:6)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[2] = 0.21794319262837425;  // blade.eta.q[1]
+    nominal_[3] = 0.21794319262837425;  // blade.eta.q[2]
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 4 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -345,6 +362,7 @@ class beam_load_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[4] = {};  // set in initial()
   // parameters (set in initial())
   double F = 0.0;  // beam_load.mbg:4:7
   std::array<double, 1> overrides_{};

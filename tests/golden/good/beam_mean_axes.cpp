@@ -48,6 +48,14 @@ class beam_mean_axes_model final : public mbgrt::Model {
     return i < 17 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 0, 0, 0, 0, 0, 8, 8, 8, 11, 11, 11, 11, 15, 15,
+    };
+    return i < 17 ? kGroups[i] : i;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -158,6 +166,23 @@ class beam_mean_axes_model final : public mbgrt::Model {
     x[14] = bar_q0_4;  // bar.q.q[4] (beam_mean_axes.mbg:5:6)
     x[15] = 0.0;  // bar.eta.q[1] (beam_mean_axes.mbg:5:6)
     x[16] = 0.0;  // bar.eta.q[2] (beam_mean_axes.mbg:5:6)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = 0.6165375582669969;  // bar.M.p[1]
+    nominal_[1] = 0.6165375582669969;  // bar.M.p[2]
+    nominal_[2] = 0.6165375582669969;  // bar.M.p[3]
+    nominal_[3] = 0.6165375582669969;  // bar.M.p[4]
+    nominal_[4] = 0.6165375582669969;  // bar.M.p[5]
+    nominal_[5] = 0.6165375582669969;  // bar.M.p[6]
+    nominal_[6] = 0.6165375582669969;  // bar.M.p[7]
+    nominal_[7] = 0.6165375582669969;  // bar.M.p[8]
+    nominal_[15] = 0.032276975999909786;  // bar.eta.q[1]
+    nominal_[16] = 0.01908564731851001;  // bar.eta.q[2]
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 17 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -579,6 +604,7 @@ class beam_mean_axes_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[17] = {};  // set in initial()
   // parameters (set in initial())
   double bar_r0_1 = 0.0;  // beam_mean_axes.mbg:5:6
   double bar_r0_2 = 0.0;  // beam_mean_axes.mbg:5:6

@@ -49,6 +49,15 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     return i < 31 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 0, 0, 0, 0, 0, 0, 9, 9, 9, 12, 12, 12, 12, 16, 16, 16, 19,
+        20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30,
+    };
+    return i < 31 ? kGroups[i] : i;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -201,6 +210,20 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     y[16] = 0.0;  // arm.eta.q[1] (beam_stretch_twist.mbg:5:6)
     y[17] = 0.0;  // arm.eta.q[2] (beam_stretch_twist.mbg:5:6)
     y[18] = 0.0;  // arm.eta.q[3] (beam_stretch_twist.mbg:5:6)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = 0.54;  // arm.M.p[1]
+    nominal_[1] = 0.54;  // arm.M.p[2]
+    nominal_[2] = 0.54;  // arm.M.p[3]
+    nominal_[3] = 0.54;  // arm.M.p[4]
+    nominal_[4] = 0.54;  // arm.M.p[5]
+    nominal_[5] = 0.54;  // arm.M.p[6]
+    nominal_[6] = 0.54;  // arm.M.p[7]
+    nominal_[7] = 0.54;  // arm.M.p[8]
+    nominal_[8] = 0.54;  // arm.M.p[9]
+    nominal_[16] = 0.10897159631418712;  // arm.eta.q[1]
+    nominal_[17] = 0.004501581580785531;  // arm.eta.q[2]
+    nominal_[18] = 0.21213203435596423;  // arm.eta.q[3]
     y[19] = 0.0;  // hub.cn.e[1]: first guess, made consistent by IDA
     y[20] = 0.0;  // hub.cn.e[2]: first guess, made consistent by IDA
     y[21] = 0.0;  // hub.cn.e[3]: first guess, made consistent by IDA
@@ -214,6 +237,11 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     y[29] = 0.0;  // mu(hub.cn[5]): first guess, made consistent by IDA
     y[30] = 0.0;  // mu(hub.cn[6]): first guess, made consistent by IDA
     for (std::size_t i = 0; i < 31; ++i) yp[i] = 0.0;  // first guess
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 31 ? nominal_[i] : 1.0;
   }
 
   // RESIDUAL (DAE): r = F(t, y, yp) must vanish; states first, then algebraic unknowns.
@@ -1042,6 +1070,7 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[31] = {};  // set in initial()
   // parameters (set in initial())
   double arm_q0_1 = 0.0;  // beam_stretch_twist.mbg:15:7
   double arm_q0_2 = 0.0;  // beam_stretch_twist.mbg:15:7

@@ -105,6 +105,15 @@ class dc_motor_model final : public mbgrt::Model {
     // INITIAL STATE
     x[0] = 0.0;  // armature_l.p (dc_motor.mbg:15:4)
     x[1] = 0.0;  // rotor.p (dc_motor.mbg:17:4)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = std::fabs(L_a);  // armature_l.p
+    nominal_[1] = std::fabs(J);  // rotor.p
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 2 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -210,6 +219,7 @@ class dc_motor_model final : public mbgrt::Model {
 
   // event modes: each step(x) of the model, 1 while x >= 0 (switched by the runtime at x's zero crossings)
   double mode_[1] = {};
+  double nominal_[2] = {};  // set in initial()
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = -R_a*(1/L_a)
   double derived2_ = 0.0;  // = -K_m*(1/J)

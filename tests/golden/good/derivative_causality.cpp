@@ -91,6 +91,14 @@ class derivative_causality_model final : public mbgrt::Model {
     derived2_ = 1.0 + m2 * derived1_;
     // INITIAL STATE
     x[0] = 0.0;  // mass1.p (derivative_causality.mbg:7:3)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = std::fabs(m1);  // mass1.p
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 1 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -149,6 +157,7 @@ class derivative_causality_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[1] = {};  // set in initial()
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/m1
   double derived2_ = 0.0;  // = 1 + m2*(1/m1)

@@ -50,6 +50,15 @@ class drawn_bodies_model final : public mbgrt::Model {
     return i < 36 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 3, 3, 3, 6, 6, 6, 9, 9, 9, 12, 12, 12, 15, 15, 15, 15, 19,
+        19, 19, 22, 22, 22, 25, 25, 25, 28, 28, 28, 28, 32, 33, 34, 35,
+    };
+    return i < 36 ? kGroups[i] : i;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"x", "ball_z", "ball[1]", "ball[2]", "ball[3]", "tetra[1]", "tetra[2]", "tetra[3]"};
   }
@@ -183,6 +192,28 @@ class drawn_bodies_model final : public mbgrt::Model {
     x[33] = 0.0;  // shoulder.theta.q (drawn_bodies.mbg:40:7)
     x[34] = 0.0;  // axle.theta_rate.rate (drawn_bodies.mbg:41:7)
     x[35] = 0.0;  // axle.theta.q (drawn_bodies.mbg:41:7)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = 0.1;  // ball.m.p[1]
+    nominal_[1] = 0.1;  // ball.m.p[2]
+    nominal_[2] = 0.1;  // ball.m.p[3]
+    nominal_[6] = 0.2;  // tetra.m.p[1]
+    nominal_[7] = 0.2;  // tetra.m.p[2]
+    nominal_[8] = 0.2;  // tetra.m.p[3]
+    nominal_[12] = 0.001;  // tetra.J.p[1]
+    nominal_[13] = 0.001;  // tetra.J.p[2]
+    nominal_[14] = 0.001;  // tetra.J.p[3]
+    nominal_[19] = 0.3;  // plain.m.p[1]
+    nominal_[20] = 0.3;  // plain.m.p[2]
+    nominal_[21] = 0.3;  // plain.m.p[3]
+    nominal_[25] = 0.002;  // plain.J.p[1]
+    nominal_[26] = 0.002;  // plain.J.p[2]
+    nominal_[27] = 0.002;  // plain.J.p[3]
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 36 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -632,6 +663,7 @@ class drawn_bodies_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[36] = {};  // set in initial()
   // parameters (set in initial())
   double ball_r0_1 = 0.0;  // drawn_bodies.mbg:25:6
   double ball_r0_2 = 0.0;  // drawn_bodies.mbg:25:6

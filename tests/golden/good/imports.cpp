@@ -97,6 +97,14 @@ class imports_model final : public mbgrt::Model {
     // INITIAL STATE
     x[0] = m;  // mass.p (imports.mbg:7:3)
     x[1] = 0.0;  // sd.spring.q (lib/spring_damper.mbg:3:5)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = std::fabs(m);  // mass.p
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 2 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -162,6 +170,7 @@ class imports_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[2] = {};  // set in initial()
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/sd.k
   double derived2_ = 0.0;  // = -sd.c*(1/m)

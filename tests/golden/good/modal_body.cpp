@@ -49,6 +49,15 @@ class modal_body_model final : public mbgrt::Model {
     return i < 27 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 0, 0, 0, 0, 0, 8, 8, 8, 11, 11, 11, 11, 15, 15, 17, 18, 19,
+        20, 21, 22, 23, 24, 25, 26,
+    };
+    return i < 27 ? kGroups[i] : i;
+  }
+
   // LIMITS: where a state's model stops being valid (the run stops there, with the reason).
   double state_limit(std::size_t i) const override {
     switch (i) {
@@ -192,6 +201,18 @@ class modal_body_model final : public mbgrt::Model {
     y[14] = bar_q0_4;  // bar.q.q[4] (modal_body.mbg:7:6)
     y[15] = 0.0;  // bar.eta.q[1] (modal_body.mbg:7:6)
     y[16] = 0.0;  // bar.eta.q[2] (modal_body.mbg:7:6)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = 2.0;  // bar.M.p[1]
+    nominal_[1] = 2.0;  // bar.M.p[2]
+    nominal_[2] = 2.0;  // bar.M.p[3]
+    nominal_[3] = 2.0;  // bar.M.p[4]
+    nominal_[4] = 2.0;  // bar.M.p[5]
+    nominal_[5] = 2.0;  // bar.M.p[6]
+    nominal_[6] = 2.0;  // bar.M.p[7]
+    nominal_[7] = 2.0;  // bar.M.p[8]
+    nominal_[15] = 0.2142857142857143;  // bar.eta.q[1]
+    nominal_[16] = 0.2142857142857143;  // bar.eta.q[2]
     y[17] = 0.0;  // hinge.cn.e[1]: first guess, made consistent by IDA
     y[18] = 0.0;  // hinge.cn.e[2]: first guess, made consistent by IDA
     y[19] = 0.0;  // hinge.cn.e[3]: first guess, made consistent by IDA
@@ -203,6 +224,11 @@ class modal_body_model final : public mbgrt::Model {
     y[25] = 0.0;  // mu(hinge.cn[4]): first guess, made consistent by IDA
     y[26] = 0.0;  // mu(hinge.cn[5]): first guess, made consistent by IDA
     for (std::size_t i = 0; i < 27; ++i) yp[i] = 0.0;  // first guess
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 27 ? nominal_[i] : 1.0;
   }
 
   // RESIDUAL (DAE): r = F(t, y, yp) must vanish; states first, then algebraic unknowns.
@@ -864,6 +890,7 @@ class modal_body_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[27] = {};  // set in initial()
   // parameters (set in initial())
   double bar_q0_1 = 0.0;  // modal_body.mbg:11:7
   double bar_q0_2 = 0.0;  // modal_body.mbg:11:7

@@ -46,6 +46,14 @@ class multibond_model final : public mbgrt::Model {
     return i < 4 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 2, 2,
+    };
+    return i < 4 ? kGroups[i] : i;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"vel[1]", "vel[2]", "e1"};
   }
@@ -97,6 +105,17 @@ class multibond_model final : public mbgrt::Model {
     x[1] = 0.0;  // mass.p[2] (multibond.mbg:7:3)
     x[2] = 0.0;  // spring.q[1] (multibond.mbg:8:3)
     x[3] = 0.0;  // spring.q[2] (multibond.mbg:8:3)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    const double cse2 = std::fabs(m);
+    const double cse3 = std::fmax(cse2, cse2);
+    nominal_[0] = cse3;  // mass.p[1]
+    nominal_[1] = cse3;  // mass.p[2]
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 4 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -180,6 +199,7 @@ class multibond_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[4] = {};  // set in initial()
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/k
   double derived2_ = 0.0;  // = -0.5*(1/m)

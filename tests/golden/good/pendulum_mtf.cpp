@@ -98,6 +98,14 @@ class pendulum_mtf_model final : public mbgrt::Model {
     // INITIAL STATE
     x[0] = 0.0;  // hub.p (pendulum_mtf.mbg:21:3)
     x[1] = theta0;  // angle.q (pendulum_mtf.mbg:22:3)
+    // NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)
+    for (double& v : nominal_) v = 1.0;
+    nominal_[0] = std::fabs(J_hub);  // hub.p
+  }
+
+  // NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).
+  double nominal(std::size_t i) const override {
+    return i < 2 ? nominal_[i] : 1.0;
   }
 
   // DERIVATIVE: the state derivatives, in causal order.
@@ -172,6 +180,7 @@ class pendulum_mtf_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
+  double nominal_[2] = {};  // set in initial()
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 0.5*(J_hub + m*L^2)
   double derived2_ = 0.0;  // = -1/J_hub

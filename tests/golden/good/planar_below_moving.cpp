@@ -47,6 +47,14 @@ class planar_below_moving_model final : public mbgrt::Model {
     return i < 13 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 0, 0, 3, 3, 3, 3, 7, 8, 9, 10, 11, 12,
+    };
+    return i < 13 ? kGroups[i] : i;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"x", "y", "z", "ux", "uy", "uz"};
   }

@@ -48,6 +48,14 @@ class tree_grandparent_model final : public mbgrt::Model {
     return i < 17 ? kRoles[i] : R::unspecified;
   }
 
+  // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
+  std::size_t unknown_group(std::size_t i) const override {
+    static const unsigned kGroups[] = {
+        0, 1, 2, 3, 4, 5, 6, 6, 6, 9, 9, 9, 9, 13, 14, 15, 16,
+    };
+    return i < 17 ? kGroups[i] : i;
+  }
+
   std::vector<std::string> output_names() const override {
     return {"arm_angle", "height"};
   }

@@ -1,0 +1,59 @@
+// The integrators' error weights (runtime/src/error_weights.hpp): each
+// unknown's absolute tolerance scales with its nominal size, and a vector's
+// component is measured relative to at least a tenth of the vector's size.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "error_weights.hpp"
+#include "models.hpp"
+
+namespace mbgrt::test {
+namespace {
+
+/// Five unknowns: a 3-vector (0..2, a light body's momentum, nominal 1e-9)
+/// and two loners (3: nominal 1, 4: a nominal that is not a size, as 1).
+class Grouped : public Decay {
+ public:
+  std::size_t size() const override { return 5; }
+  double nominal(std::size_t i) const override { return i < 3 ? 1e-9 : i == 3 ? 1.0 : -2.0; }
+  std::size_t unknown_group(std::size_t i) const override { return i < 3 ? 0 : i; }
+};
+
+TEST(ErrorWeights, AVectorsComponentsShareItsSizeAndEachTakesItsNominal) {
+  Grouped m;
+  const double rtol = 1e-6, atol = 1e-8;
+  detail::ErrorWeights weights(m, rtol, atol);
+  const std::vector<double> y = {0.0, 3e-9, 4e-9, -2.0, 0.5};
+  std::vector<double> w(5);
+  ASSERT_TRUE(weights(y.data(), w.data()));
+  // |(0, 3e-9, 4e-9)| = 5e-9: each component is measured against its own size,
+  // but never against less than a tenth of its vector's
+  EXPECT_DOUBLE_EQ(w[0], 1.0 / (rtol * 5e-10 + atol * 1e-9));
+  EXPECT_DOUBLE_EQ(w[1], 1.0 / (rtol * 3e-9 + atol * 1e-9));
+  EXPECT_DOUBLE_EQ(w[2], 1.0 / (rtol * 4e-9 + atol * 1e-9));
+  EXPECT_DOUBLE_EQ(w[3], 1.0 / (rtol * 2.0 + atol));
+  EXPECT_DOUBLE_EQ(w[4], 1.0 / (rtol * 0.5 + atol));
+  EXPECT_DOUBLE_EQ(weights.absolute()[0], atol * 1e-9);
+}
+
+TEST(ErrorWeights, WithoutGroupsOrNominalsTheyAreSundialsOwn) {
+  Decay m;  // one unknown
+  detail::ErrorWeights weights(m, 1e-6, 1e-8);
+  const double y = -0.25;
+  double w = 0.0;
+  ASSERT_TRUE(weights(&y, &w));
+  EXPECT_EQ(w, 1.0 / (1e-6 * 0.25 + 1e-8));
+}
+
+TEST(ErrorWeights, ANonPositiveToleranceIsRefused) {
+  Decay m;
+  detail::ErrorWeights weights(m, 0.0, 0.0);
+  const double y = 1.0;
+  double w = 0.0;
+  EXPECT_FALSE(weights(&y, &w));
+}
+
+}  // namespace
+}  // namespace mbgrt::test
