@@ -1,5 +1,9 @@
 #include "codegen/cpp.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+
 namespace mbgc::codegen {
 
 static void put(std::string& out, int indent, const std::string& text) {
@@ -46,6 +50,15 @@ std::string print(const CppClass& c, int indent) {
   put_body(out, indent + 2, c.private_members);
   put(out, indent, "};");
   return out;
+}
+
+void static_table(std::vector<CppStmt>& body, const char* type, const char* name, const std::vector<long>& v) {
+  body.push_back(CppStmt::line(fmt::format("static const {} {}[] = {{", type, name)));
+  for (std::size_t i = 0; i < v.size(); i += 20) {
+    std::vector<long> line(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(std::min(v.size(), i + 20)));
+    body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
+  }
+  body.push_back(CppStmt::line("};"));
 }
 
 }  // namespace mbgc::codegen

@@ -33,4 +33,8 @@ struct CppClass {
 std::string print(const CppClass& c, int indent = 0);
 std::string print(const CppFunction& f, int indent);
 
+/// `static const TYPE NAME[] = {...};`, 20 entries per line: a generated
+/// method's constant table (sparsity patterns, index and group tables).
+void static_table(std::vector<CppStmt>& body, const char* type, const char* name, const std::vector<long>& v);
+
 }  // namespace mbgc::codegen

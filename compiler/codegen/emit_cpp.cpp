@@ -600,8 +600,8 @@ class Emitter {
                               rows.size(), s_.residual_pattern.size() * s_.residual_pattern.size()),
                   "bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override",
                   {}};
-    static_table(f.body, "kStarts", starts);
-    static_table(f.body, "kRows", rows);
+    static_table(f.body, "long", "kStarts", starts);
+    static_table(f.body, "long", "kRows", rows);
     f.body.push_back(CppStmt::line(fmt::format("column_starts.assign(kStarts, kStarts + {});", starts.size())));
     f.body.push_back(CppStmt::line(fmt::format("rows.assign(kRows, kRows + {});", rows.size())));
     f.body.push_back(CppStmt::line("return true;"));
@@ -661,8 +661,8 @@ class Emitter {
                                     columns.size()),
                         "void constraint_jacobian_pattern(std::vector<long>& row_starts, std::vector<long>& columns) const override",
                         {}};
-    static_table(pattern.body, "kStarts", starts);
-    static_table(pattern.body, "kColumns", columns);
+    static_table(pattern.body, "long", "kStarts", starts);
+    static_table(pattern.body, "long", "kColumns", columns);
     pattern.body.push_back(CppStmt::line(fmt::format("row_starts.assign(kStarts, kStarts + {});", starts.size())));
     pattern.body.push_back(CppStmt::line(fmt::format("columns.assign(kColumns, kColumns + {});", columns.size())));
     c.public_methods.push_back(pattern);
@@ -679,15 +679,6 @@ class Emitter {
   }
 
   /// `static const long NAME[] = {...};`, twenty numbers a line.
-  static void static_table(std::vector<CppStmt>& body, const char* name, const std::vector<long>& v) {
-    body.push_back(CppStmt::line(fmt::format("static const long {}[] = {{", name)));
-    for (std::size_t i = 0; i < v.size(); i += 20) {
-      std::vector<long> line(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(std::min(v.size(), i + 20)));
-      body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
-    }
-    body.push_back(CppStmt::line("};"));
-  }
-
   /// Where each CN row's multipliers sit in y (lagrange rows; -1 for penalty
   /// rows): lambda (its residual row is gdot = 0) and the GGL mu (g = 0). The
   /// runtime needs them to hold the multipliers of redundant rows at zero.

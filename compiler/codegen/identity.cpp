@@ -104,24 +104,18 @@ void unknown_roles(CppClass& c, const ReducedSystem& s) {
 /// position) are one vector for the integrators' relative tolerance.
 void unknown_groups(CppClass& c, const ReducedSystem& s) {
   std::map<int, std::size_t> first;  // storage node -> its first state
-  std::vector<std::string> groups;
+  std::vector<long> groups;
   bool any = false;
   for (std::size_t i = 0; i < s.states.size(); ++i) {
     const std::size_t g = first.try_emplace(s.states[i].node, i).first->second;
     any = any || g != i;
-    groups.push_back(std::to_string(g));
+    groups.push_back(static_cast<long>(g));
   }
   if (!any) return;
-  for (std::size_t j = 0; j < s.algebraic.size(); ++j) groups.push_back(std::to_string(s.states.size() + j));
+  for (std::size_t j = 0; j < s.algebraic.size(); ++j) groups.push_back(static_cast<long>(s.states.size() + j));
   CppFunction f{"GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.",
                 "std::size_t unknown_group(std::size_t i) const override", {}};
-  f.body.push_back(CppStmt::line("static const unsigned kGroups[] = {"));
-  for (std::size_t i = 0; i < groups.size(); i += 20) {
-    std::vector<std::string> line(groups.begin() + static_cast<long>(i),
-                                  groups.begin() + static_cast<long>(std::min(groups.size(), i + 20)));
-    f.body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
-  }
-  f.body.push_back(CppStmt::line("};"));
+  static_table(f.body, "unsigned", "kGroups", groups);
   f.body.push_back(CppStmt::line(fmt::format("return i < {} ? kGroups[i] : i;", groups.size())));
   c.public_methods.push_back(f);
 }

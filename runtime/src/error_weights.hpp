@@ -32,6 +32,8 @@ class ErrorWeights {
   bool operator()(const double* y, double* w) const;
   /// atol x nominal_i, per unknown.
   const std::vector<double>& absolute() const { return atol_; }
+  /// The first member of unknown i's group (Model::unknown_group, checked).
+  std::size_t group(std::size_t i) const { return group_[i]; }
 
  private:
   double rtol_ = 0.0;

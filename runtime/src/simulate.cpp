@@ -33,15 +33,14 @@ namespace {
 /// |value|. Empty if there are none.
 std::string describe_small_states(const Model& model, const std::vector<double>& peak, double atol) {
   constexpr double kFactor = 100;
-  const std::vector<double> a = ErrorWeights(model, 0.0, atol).absolute();
-  std::vector<double> group_peak(peak.size(), 0.0);
-  for (std::size_t i = 0; i < peak.size(); ++i) {
-    const std::size_t g = std::min(model.unknown_group(i), i);
-    group_peak[g] = std::max(group_peak[g], peak[i]);
-  }
+  const ErrorWeights weights(model, 0.0, atol);
+  const std::vector<double>& a = weights.absolute();
+  const std::size_t n = std::min(peak.size(), a.size());
+  std::vector<double> group_peak(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) group_peak[weights.group(i)] = std::max(group_peak[weights.group(i)], peak[i]);
   std::size_t count = 0, worst = 0;
-  for (std::size_t i = 0; i < peak.size() && i < a.size(); ++i) {
-    if (!(peak[i] > a[i] && group_peak[std::min(model.unknown_group(i), i)] <= kFactor * a[i])) continue;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(peak[i] > a[i] && group_peak[weights.group(i)] <= kFactor * a[i])) continue;
     if (count == 0 || peak[i] / a[i] < peak[worst] / a[worst]) worst = i;
     ++count;
   }

@@ -399,7 +399,7 @@ class Ida final : public Integrator {
   SUNLinearSolver ls_ = nullptr;
   double t_ = 0.0;
   double h0_ = 0.0;  ///< first step chosen for an index-2 DAE (0: IDA's own)
-  ErrorWeights weights_of_;  ///< per unknown: 1 / (rtol |its group| + atol x its nominal size)
+  ErrorWeights weights_of_;  ///< per unknown, by its nominal size and its vector (error_weights.hpp)
   bool index_two_ = false;   ///< an index-2 DAE: the algebraic unknowns' weights scaled by the step
   double h_ref_ = s_.interval_s;  ///< multipliers' weights scaled by min(1, h / h_ref_)
   std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
