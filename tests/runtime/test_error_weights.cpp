@@ -3,10 +3,13 @@
 // component is measured relative to at least a tenth of the vector's size.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "error_weights.hpp"
+#include "harness.hpp"
 #include "models.hpp"
 
 namespace mbgrt::test {
@@ -53,6 +56,39 @@ TEST(ErrorWeights, ANonPositiveToleranceIsRefused) {
   const double y = 1.0;
   double w = 0.0;
   EXPECT_FALSE(weights(&y, &w));
+}
+
+/// Three decaying unknowns: a 2-vector (0, 1) of nominal 1e-9, and a loner.
+class SmallVector : public Decay {
+ public:
+  explicit SmallVector(std::vector<double> y0) : y0_(std::move(y0)) {}
+  std::size_t size() const override { return 3; }
+  std::string variable_name(std::size_t i) const override { return i == 0 ? "v[0]" : i == 1 ? "v[1]" : "w"; }
+  void initial(double, double* y, double*) override { std::copy(y0_.begin(), y0_.end(), y); }
+  void derivative(double, const double* y, double* dy) override {
+    for (std::size_t i = 0; i < 3; ++i) dy[i] = -p("k") * y[i];
+  }
+  double nominal(std::size_t i) const override { return i < 2 ? 1e-9 : 1.0; }
+  std::size_t unknown_group(std::size_t i) const override { return i < 2 ? 0 : i; }
+
+ private:
+  std::vector<double> y0_;
+};
+
+TEST(ErrorWeights, TheSummaryNamesStatesWhoseVectorStayedWithinItsAbsoluteTolerance) {
+  // atol 1e-8 x nominal 1e-9 = 1e-17: a vector peaking at 5e-16 is resolved
+  // only to 2% of it (both components named, the smaller closest) ...
+  SmallVector small({5e-16, 2e-16, 1.0});
+  RunResult r = run(small, {"--solver", "cvode"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("2 states peaked within 100x their absolute tolerance (closest: 'v[1]', 2e-16 against 1e-17)"),
+            std::string::npos)
+      << r.err;
+  // ... but a component whose vector is large is measured against the vector
+  SmallVector mixed({5e-16, 1e-12, 1.0});
+  r = run(mixed, {"--solver", "cvode"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("peaked within"), std::string::npos) << r.err;
 }
 
 }  // namespace
