@@ -1,6 +1,6 @@
 # plot_work_precision.gp — error against wall time, one line per integrator,
 # from a simulator's --work-precision CSV (columns: solver,rtol,atol,step_s,
-# wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status).
+# wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,energy_residual,status).
 #   gnuplot -e "csv='wp.csv'; png='wp.png'; name='dc_motor'; solvers='rk4 dopri5 cvode'" tools/plot_work_precision.gp
 set datafile separator ','
 set terminal pngcairo size 800, 560 font 'DejaVu Sans,10'

@@ -10,6 +10,7 @@
 
 #include "codegen/cpp.hpp"
 #include "codegen/drawings.hpp"
+#include "codegen/energy.hpp"
 #include "codegen/events.hpp"
 #include "codegen/identity.hpp"
 #include "codegen/names.hpp"
@@ -62,12 +63,20 @@ class Emitter {
     c.public_methods.push_back(outputs());
     if (!g_.drawings.empty()) add_drawing_methods(c, s_, body_poses());
     if (!s_.events.empty()) c.public_methods.push_back(event_functions());
-    add_event_methods(c, s_, [this](const SourceLoc& loc) { return where(loc); });
+    add_event_methods(c, s_, where_fn());
     if (!s_.contacts.empty()) {
       const bool friction = std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const ContactRow& r) { return bool(r.friction); });
       add_contact_methods(c, s_, contact_speeds(), friction ? std::optional<CppFunction>(contact_tangents()) : std::nullopt);
     }
     if (!s_.constraints.empty()) constraint_functions(c);
+    std::optional<EnergyMethods> energy;
+    if (s_.energy.available)
+      energy = EnergyMethods{
+          values_at("STORED ENERGY: H at (t, y), every linear storage's (the energy witness).", "stored_energy", "out",
+                    {stored_energy_value(s_)}, s_.for_energy, "the stored energy"),
+          values_at("POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).",
+                    "power", "out", power_values(s_), s_.for_power, "the powers")};
+    add_energy_methods(c, s_, where_fn(), std::move(energy));
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
     for (CppFunction& f : outlined_) c.private_methods.push_back(std::move(f));
@@ -102,6 +111,10 @@ class Emitter {
     while (out.size() > 1 && out[out.size() - 1] == '\n' && out[out.size() - 2] == '\n') out.pop_back();
     if (stats) collect_stats(c, out, *stats);
     return out;
+  }
+
+  Where where_fn() const {
+    return [this](const SourceLoc& loc) { return where(loc); };
   }
 
   /// A method that may be long (the dynamics, the Jacobian): past

@@ -39,7 +39,8 @@ const std::set<std::string> kReserved = {
     "residual_sparsity", "column_starts", "rows", "kStarts", "kRows", "rank_loss", "rank_loss_",
     "multiplier_index", "stabiliser_index", "kIndex", "row", "unknown_role", "kRoles", "R",
     "constraint_jacobian", "constraint_jacobian_pattern", "row_starts", "columns", "kColumns", "values",
-    "nominal", "nominal_", "v", "unknown_group", "kGroups"};
+    "nominal", "nominal_", "v", "unknown_group", "kGroups", "has_energy_balance", "energy_note", "stored_energy",
+    "power"};
 
 }  // namespace
 

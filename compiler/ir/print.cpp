@@ -276,12 +276,12 @@ std::string print_reduced(const ReducedSystem& s) {
   out += "assignments (in order):\n";
   for (std::size_t i = 0; i < s.assignments.size(); ++i) {
     const Assignment& a = s.assignments[i];
-    bool d = std::find(s.for_derivative.begin(), s.for_derivative.end(), static_cast<int>(i)) != s.for_derivative.end();
-    bool o = std::find(s.for_outputs.begin(), s.for_outputs.end(), static_cast<int>(i)) != s.for_outputs.end();
-    bool p = std::find(s.for_drawings.begin(), s.for_drawings.end(), static_cast<int>(i)) != s.for_drawings.end();
+    auto in = [&](const std::vector<int>& slice) { return std::find(slice.begin(), slice.end(), static_cast<int>(i)) != slice.end(); };
     std::string value = a.block >= 0 ? fmt::format("solve(block {})", a.block + 1) : to_string(a.value, n);
-    out += fmt::format("  {} := {}    ; {}{}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, value, a.origin,
-                       d ? " [derivative]" : "", o ? " [outputs]" : "", p ? " [poses]" : "");
+    out += fmt::format("  {} := {}    ; {}{}{}{}{}\n", g.vars[static_cast<std::size_t>(a.var)].name, value, a.origin,
+                       in(s.for_derivative) ? " [derivative]" : "", in(s.for_outputs) ? " [outputs]" : "",
+                       in(s.for_drawings) ? " [poses]" : "",
+                       in(s.for_energy) || in(s.for_power) ? " [energy]" : "");
   }
   // A torn loop's entries are DAGs whose printed trees can be huge (a long
   // chain's mass matrix): past this size an entry prints as its node count.

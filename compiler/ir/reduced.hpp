@@ -75,6 +75,27 @@ struct EventRelation {
   bool friction = false;    // ... or its friction's: step is its `stick` variable (reduce/events.cpp)
 };
 
+/// One storage's energy, or one element's power (reduce/energy.hpp).
+struct EnergyTerm {
+  Expr value;
+  SourceLoc loc;        // the element's declaration
+  std::string origin;   // "R damper: power in, e.f"
+};
+
+/// The energy balance the runtime checks as a witness (reduce/energy.hpp):
+/// H = sum of `stored` (at the output points, after the assignments in
+/// ReducedSystem::for_energy) against the integrals of the `supplied` and
+/// `absorbed` powers (after ReducedSystem::for_power), which the runtime's
+/// integrators carry beside the state.
+struct EnergyBalance {
+  bool available = false;
+  std::string why_not;                   // when not available
+  std::vector<EnergyTerm> stored;        // per linear storage, a function of the state
+  std::vector<EnergyTerm> supplied;      // per source: the power it delivers
+  std::vector<EnergyTerm> absorbed;      // per R, CN, nonlinear storage: the power into it
+  std::vector<std::string> unwitnessed;  // storages counted by their power, and why
+};
+
 /// The variables an assignment reads (its value, or its whole block).
 void assignment_inputs(const struct ReducedSystem& s, const Assignment& a, std::unordered_set<int>& out);
 
@@ -117,6 +138,9 @@ struct ReducedSystem {
   };
   std::vector<JacobianEntry> constraint_jacobian;
   std::vector<int> for_constraint_jacobian;  // indices into assignments, in order
+  EnergyBalance energy;                   // the energy witness (reduce/energy)
+  std::vector<int> for_energy;            // indices into assignments, in order: what the stored energy needs
+  std::vector<int> for_power;             // ... what the two powers need
   std::vector<EventRelation> events;      // the model's discontinuities (reduce/events)
   std::vector<int> for_events;            // indices into assignments, in order: what the events' args need
   std::vector<ContactRow> contacts;       // contacts (CN with a restitution), each with its event

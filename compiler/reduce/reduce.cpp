@@ -4,6 +4,7 @@
 #include "reduce/constraint_jacobian.hpp"
 #include "reduce/events.hpp"
 #include "reduce/forward_diff.hpp"
+#include "reduce/energy.hpp"
 #include "reduce/nominal.hpp"
 #include "reduce/slice.hpp"
 #include "reduce/sparsity.hpp"
@@ -42,6 +43,7 @@ class Reducer {
     for (const Signal& s : out_.graph.signals)
       if (s.rate) rate_of_[s.var] = s.rate;
     if (!check_each_unknown_once()) return;
+    energy_balance(out_);  // in the graph's variables: alias elimination resolves it
     eliminate_aliases();
     if (!expand_derivatives()) return;
     sort_and_solve();
@@ -50,6 +52,7 @@ class Reducer {
     steps_for_time_kinks(out_);
     differentiate_constraints();
     out_.events = find_events(out_);
+    check_energy_inputs(out_);
     slice(out_);
   }
 
@@ -179,6 +182,8 @@ class Reducer {
     eqs_ = std::move(kept);
     for (const StateVar& s : out_.states) out_.state_derivative.push_back(resolve_all(var(s.der)));
     for (Output& o : out_.graph.outputs) o.value = resolve_all(o.value);
+    for (std::vector<EnergyTerm>* list : {&out_.energy.stored, &out_.energy.supplied, &out_.energy.absorbed})
+      for (EnergyTerm& t : *list) t.value = resolve_all(t.value);
     for (DrawnBody& d : out_.graph.drawings) d.for_each_expr([&](Expr& e) { e = resolve_all(e); });
     for (auto& [id, rate] : rate_of_) rate = resolve_all(rate);
     for (ConstraintRow& row : out_.constraints) {

@@ -56,6 +56,12 @@ void slice(ReducedSystem& s) {
   };
   std::vector<Expr> deriv_roots = s.state_derivative;
   for (const Residual& r : s.residuals) deriv_roots.push_back(r.value);
+  std::vector<Expr> energy_roots, power_roots;
+  if (s.energy.available) {
+    for (const EnergyTerm& t : s.energy.stored) energy_roots.push_back(t.value);
+    for (const EnergyTerm& t : s.energy.supplied) power_roots.push_back(t.value);
+    for (const EnergyTerm& t : s.energy.absorbed) power_roots.push_back(t.value);
+  }
   std::vector<Expr> output_roots;
   for (const Output& o : s.graph.outputs) output_roots.push_back(o.value);
   std::vector<Expr> drawing_roots;
@@ -86,9 +92,12 @@ void slice(ReducedSystem& s) {
   s.for_events = needed_by(event_roots);
   s.for_contacts = needed_by(contact_roots);
   s.for_tangents = needed_by(tangent_roots);
+  s.for_energy = needed_by(energy_roots);
+  s.for_power = needed_by(power_roots);
   const std::vector<std::vector<int>*> slices = {&s.for_derivative,  &s.for_outputs,  &s.for_jacobian,
                                                  &s.for_constraints, &s.for_constraint_jacobian,
-                                                 &s.for_events,      &s.for_contacts, &s.for_tangents, &s.for_drawings};
+                                                 &s.for_events,      &s.for_contacts, &s.for_tangents, &s.for_drawings,
+                                                 &s.for_energy,      &s.for_power};
   std::set<int> used;
   for (const std::vector<int>* sl : slices) used.insert(sl->begin(), sl->end());
   // Drop what nobody needs; renumber the slices.

@@ -234,10 +234,14 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_flag("--fd-jacobian", o.fd_jacobian,
                "Implicit solvers: use finite-difference Jacobians even where the model generates one "
                "(to measure what the generated Jacobian saves)");
+  app.add_flag("--no-energy-witness", o.no_energy_witness,
+               "Do not integrate the model's energy balance beside the state (the summary's `energy` line, an "
+               "error estimate that needs no reference run: it costs one evaluation of the model's power per "
+               "step, per stage for rk4 and dopri5); --realtime leaves it out too");
   app.add_flag("--work-precision", o.work_precision,
                "Run every integrator that fits the model over a range of tolerances (rk4: "
                "steps) and write CSV of cost against error (solver,rtol,atol,step_s,wall_s,"
-               "steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status); the error "
+               "steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,energy_residual,status); the error "
                "is against a reference run at rtol 1e-12");
 
   app.add_option("--sweep", sweeps,

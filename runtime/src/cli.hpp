@@ -39,6 +39,7 @@ struct Options {
   std::optional<double> linearize_at;
   bool work_precision = false;  ///< --work-precision: sweep solvers and tolerances, CSV of cost and error
   bool fd_jacobian = false;     ///< --fd-jacobian: finite differences even where the model has a Jacobian
+  bool no_energy_witness = false;  ///< --no-energy-witness: do not integrate the model's powers (energy_witness.hpp)
   std::optional<double> realtime;  ///< --realtime [FACTOR]: pace the rows to FACTOR x the wall clock
   std::vector<SweepAxis> sweep;    ///< --sweep, in command-line order (the first varies slowest)
   std::string sweep_file;          ///< --sweep-file: one case per row

@@ -63,9 +63,15 @@ class Events {
   /// Event k in model terms (Model::event_name).
   std::string model_name(std::size_t k) const { return model_.event_name(k); }
 
+  /// The stored energy the jumps took (Model::stored_energy before less
+  /// after, summed): the energy witness counts it as absorbed.
+  double jumped_energy() const { return jumped_energy_; }
+
  private:
   Model& model_;
   void record(double t, std::size_t k, bool on, bool jump, std::string note);
+  bool switch_and_jump(double t, std::size_t k, bool on, double* y);
+  double jumped_energy_ = 0.0;
 
   std::size_t n_;
   std::vector<double> g_;

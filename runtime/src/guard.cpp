@@ -19,6 +19,7 @@ const char* value_word(double v) {
 GuardedModel::GuardedModel(Model& model)
     : model_(model),
       n_(model.size()),
+      witness_broken_at_(std::nan("")),
       dae_(model.is_dae()),
       ids_(n_, 1.0),
       shape_(mbgrt::detail::constraint_shape(model)),
@@ -56,6 +57,20 @@ int GuardedModel::derivative(double t, const double* y, double* ydot, InputCheck
     if (std::size_t j = first_non_finite(y); j < n_) return record(t, BlameSite::state, j, y[j]);
     return record(t, BlameSite::derivative, i, ydot[i]);
   }
+  return 0;
+}
+
+int GuardedModel::power(double t, const double* y, const double* yp, double* rate) {
+  try {
+    model_.power(t, y, yp, rate);
+  } catch (...) {  // (the same exception will stop the run at its next derivative)
+    rate[0] = rate[1] = std::nan("");
+  }
+  for (int k = 0; k < 2; ++k)
+    if (!std::isfinite(rate[k])) {
+      if (std::isnan(witness_broken_at_)) witness_broken_at_ = t;
+      rate[k] = 0.0;
+    }
   return 0;
 }
 

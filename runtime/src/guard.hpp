@@ -50,6 +50,20 @@ class GuardedModel {
   /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
   int derivative(double t, const double* y, double* ydot, InputCheck check = InputCheck::before);
   int residual(double t, const double* y, const double* yp, double* r);
+  /// The energy witness (Model::has_energy_balance), for the runs that
+  /// report it: the integrators made after this call carry the integrals of
+  /// the model's two powers beside the state (CVODES' and IDAS' quadratures,
+  /// outside the error test; the explicit methods' own stages) and give them
+  /// at each output point (Integrator::energy). False if the model has none.
+  bool enable_energy_witness() { return witness_ = model_.has_energy_balance(); }
+  bool has_energy_witness() const { return witness_; }
+  /// rate[0..2) = the model's power at (t, y; yp for a DAE, else null):
+  /// supplied, then absorbed (W). A power that is not finite counts as 0:
+  /// the witness fails, never the run (witness_broken_at says when). Returns 0.
+  int power(double t, const double* y, const double* yp, double* rate);
+  /// The first time the power was not finite; NaN if it always was.
+  double witness_broken_at() const { return witness_broken_at_; }
+
   /// The model's own Jacobian (row-major n x n); -1 after recording a blame.
   int jacobian(double t, const double* y, double* J);
   bool has_jacobian() const { return model_.has_jacobian() && !dae_ && !finite_differences_; }
@@ -77,6 +91,8 @@ class GuardedModel {
 
   Model& model_;
   std::size_t n_;
+  bool witness_ = false;
+  double witness_broken_at_;
   bool dae_;
   std::vector<double> ids_;
   std::vector<double> limits_;  ///< Model::state_limit per unknown (HUGE_VAL: none)

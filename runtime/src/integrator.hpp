@@ -54,6 +54,11 @@ class Integrator {
   /// y' at t() for DAE models, null otherwise.
   virtual const double* yp() const { return nullptr; }
 
+  /// The energy witness's two integrals at t() (GuardedModel::has_energy_witness):
+  /// [0] the energy the sources supplied, [1] the energy the rest absorbed,
+  /// since the start (J); null when the method does not carry them.
+  virtual const double* energy() const { return nullptr; }
+
   virtual SolverStats stats() const = 0;
   virtual const SolverFailure& failure() const = 0;
 };

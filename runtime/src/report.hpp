@@ -20,6 +20,9 @@ struct RunRecord {
   std::string stability;  ///< non-empty if an explicit solver's steps were bounded by stability
   std::string small_states;  ///< non-empty if states moved but stayed within a few atol
   std::string realtime;  ///< --realtime: pacing, overruns, compute per frame
+  std::string energy;          ///< the energy witness's line (EnergyWitness::summary), if the model has one
+  std::string energy_warning;  ///< ... and its warning (EnergyWitness::warning)
+  std::string energy_note;     ///< what the balance leaves out, or why there is none (Model::energy_note)
   // Constrained models only (null otherwise):
   const AssemblyReport* assembly = nullptr;
   const RedundancyReport* redundancy = nullptr;

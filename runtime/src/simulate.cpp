@@ -11,6 +11,7 @@
 
 #include "animation.hpp"
 #include "constraints.hpp"
+#include "energy_witness.hpp"
 #include "error_weights.hpp"
 #include "grid.hpp"
 #include "guard.hpp"
@@ -103,6 +104,8 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
 
   GuardedModel guard(model);
   if (o.fd_jacobian) guard.use_finite_differences();
+  // (a linearisation reports no run; a paced run wants every microsecond of its frames)
+  if (!linearize && !o.realtime && !o.no_energy_witness) guard.enable_energy_witness();
   const std::size_t n = model.size();
   std::vector<double> y0(n), yp0(model.is_dae() ? n : 0);
   model.initial(s.t_start_s, y0.data(), model.is_dae() ? yp0.data() : nullptr);
@@ -112,6 +115,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     return kExitRunFailed;
   }
   auto integrator = make_integrator(guard, s);
+  EnergyWitness witness(guard);
 
   CsvWriter csv(out);
   const std::vector<std::string> names = model.output_names();
@@ -148,6 +152,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     if (hooks.ranges) hooks.ranges->add(outputs);
     if (animation) animation->record(integrator->t(), integrator->y(), integrator->yp());
     observe_constraints();
+    witness.observe(integrator->t(), integrator->y(), integrator->yp(), integrator->energy());
     if (progress.enabled() && s.t_end_s > s.t_start_s)
       progress.update((integrator->t() - s.t_start_s) / (s.t_end_s - s.t_start_s),
                       fmt::format("t = {} s of {} s", format_time(integrator->t()), format_time(s.t_end_s)));
@@ -224,6 +229,11 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.stability = stability;
     if (pacer) record.realtime = pacer->summary();
     record.small_states = describe_small_states(model, state_peak, s.atol);
+    if (witness.active()) {
+      record.energy = witness.summary();
+      record.energy_warning = witness.warning(s.rtol);
+    }
+    record.energy_note = model.energy_note();
     record.output = linearize ? fmt::format("{} modes to {}", modes.size(), out.display_name())
                               : fmt::format("{} rows to {}", csv.rows(), out.display_name());
     if (animation)

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 
+#include "energy_witness.hpp"
 #include "guard.hpp"
 #include "integrator.hpp"
 #include "march.hpp"
@@ -29,11 +30,13 @@ struct TrialRun {
   double wall_s = 0;            ///< the fastest of its repeats
   SolverStats stats;
   std::vector<double> outputs;  ///< row-major: output times x outputs
+  double energy_residual = -1;  ///< the energy witness's largest |residual| (J); -1: the model has none
 };
 
 TrialRun run_once(Model& model, const Settings& s) {
   TrialRun run;
   GuardedModel guard(model);
+  guard.enable_energy_witness();
   const std::size_t n = model.size(), m = model.output_names().size();
   std::vector<double> y0(n), yp0(model.is_dae() ? n : 0), row(m);
   model.initial(s.t_start_s, y0.data(), model.is_dae() ? yp0.data() : nullptr);
@@ -42,11 +45,14 @@ TrialRun run_once(Model& model, const Settings& s) {
     return run;
   }
   auto integrator = make_integrator(guard, s);
+  EnergyWitness witness(guard);
   const auto started = std::chrono::steady_clock::now();
   const Outcome r = march(guard, *integrator, s, y0, yp0, [&] {
     model.outputs(integrator->t(), integrator->y(), integrator->yp(), row.data());
     run.outputs.insert(run.outputs.end(), row.begin(), row.end());
+    witness.observe(integrator->t(), integrator->y(), integrator->yp(), integrator->energy());
   });
+  if (witness.active()) run.energy_residual = witness.worst();
   run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   run.stats = integrator->stats();
   run.ok = r.ok;
@@ -98,6 +104,11 @@ double atol_per_rtol(const Settings& s) { return s.rtol > 0 ? s.atol / s.rtol : 
 
 std::string field(double x) { return x > 0 ? fmt::format("{:.3g}", x) : std::string(); }
 std::string count(long x) { return x >= 0 ? fmt::format("{}", x) : std::string(); }
+/// The energy witness's residual of a run that reached its end; empty without one.
+std::string energy_field(const TrialRun& run) {
+  if (!run.ok || run.energy_residual < 0) return {};
+  return fmt::format("{:.3g}", run.energy_residual);
+}
 
 }  // namespace
 
@@ -158,11 +169,11 @@ int work_precision(Model& model, const Options& o, OutputFile& out) {
     return kExitRunFailed;
   }
 
-  out.write("solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status\n");
+  out.write("solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,energy_residual,status\n");
   // the reference's row: its error is the floor (its difference from a run at 10 x its rtol)
-  out.write(fmt::format("reference,{},{},,{:.6g},{},{},,,{},\"{} (error: against rtol {:g})\"\n", field(ref_settings.rtol),
+  out.write(fmt::format("reference,{},{},,{:.6g},{},{},,,{},{},\"{} (error: against rtol {:g})\"\n", field(ref_settings.rtol),
                         field(ref_settings.atol), ref.wall_s, ref.stats.steps, ref.stats.rhs_evals,
-                        std::isfinite(floor) ? fmt::format("{:.6g}", floor) : std::string("inf"),
+                        std::isfinite(floor) ? fmt::format("{:.6g}", floor) : std::string("inf"), energy_field(ref),
                         solver_name(ref_settings.solver), 10 * ref_settings.rtol));
   if (!o.quiet)
     fmt::print(stderr,
@@ -181,10 +192,11 @@ int work_precision(Model& model, const Options& o, OutputFile& out) {
     const double error = max_rel_error(run, ref, outputs, ratio);
     std::string status = run.ok ? "ok" : run.failure;
     std::replace(status.begin(), status.end(), '"', '\'');  // it is written as one quoted CSV field
-    out.write(fmt::format("{},{},{},{},{:.6g},{},{},{},{},{},\"{}\"\n", solver_name(trial.solver), field(trial.rtol),
+    out.write(fmt::format("{},{},{},{},{:.6g},{},{},{},{},{},{},\"{}\"\n", solver_name(trial.solver), field(trial.rtol),
                           field(trial.atol), field(trial.step_s), run.wall_s, run.stats.steps, run.stats.rhs_evals,
                           count(run.stats.fd_jac_evals), count(run.stats.jac_evals),
-                          std::isfinite(error) ? fmt::format("{:.6g}", error) : std::string("inf"), status));
+                          std::isfinite(error) ? fmt::format("{:.6g}", error) : std::string("inf"), energy_field(run),
+                          status));
     if (!o.quiet)
       fmt::print(stderr, "{:>7} {:>9} {:>9} {:>10.4g} {:>8} {:>9.2e}  {}\n", solver_name(trial.solver), field(trial.rtol),
                  field(trial.step_s), run.wall_s, run.stats.steps, error, status);

@@ -4,11 +4,14 @@
 // run's error against a reference run at a much tighter tolerance, and
 // writes one CSV row per run:
 //
-//   solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status
+//   solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,energy_residual,status
 //
 // max_rel_error is the largest |y - y_ref| over every output and output time,
 // each output scaled by its largest |y_ref|, but by no less than the model's
 // atol / rtol (an output that stays near zero is measured at that scale).
+// energy_residual is the energy witness's largest |residual| over the run, in
+// J (energy_witness.hpp: an error estimate that needs no reference); empty
+// for a model without an energy balance or a run that failed.
 // A run that fails has error `inf` and the reason in `status`; no row holds NaN.
 #pragma once
 

@@ -17,7 +17,7 @@ struct Row {
   double rtol = 0, step_s = 0, wall_s = 0, steps = 0, rhs_evals = 0, error = 0;
 };
 
-/// The sweep's CSV: ten comma-separated fields, then the quoted status.
+/// The sweep's CSV: eleven comma-separated fields, then the quoted status.
 std::vector<Row> parse_sweep(const std::string& text, std::string* header) {
   std::istringstream in(text);
   std::string line;
@@ -27,7 +27,7 @@ std::vector<Row> parse_sweep(const std::string& text, std::string* header) {
   while (std::getline(in, line)) {
     std::vector<std::string> f;
     std::size_t start = 0;
-    for (int k = 0; k < 10; ++k) {
+    for (int k = 0; k < 11; ++k) {
       const std::size_t comma = line.find(',', start);
       f.push_back(line.substr(start, comma - start));
       start = comma + 1;
@@ -55,7 +55,7 @@ TEST(WorkPrecision, EverySolverOfAnOdeIsSweptAndItsErrorFallsAsItsOrderSays) {
   ASSERT_EQ(r.status, 0) << r.err;
   std::string header;
   const std::vector<Row> rows = parse_sweep(r.csv, &header);
-  EXPECT_EQ(header, "solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,status");
+  EXPECT_EQ(header, "solver,rtol,atol,step_s,wall_s,steps,rhs_evals,fd_jac_rhs_evals,jac_evals,max_rel_error,energy_residual,status");
   const auto rk4 = of(rows, "rk4"), dopri5 = of(rows, "dopri5"), cvode = of(rows, "cvode");
   ASSERT_EQ(rk4.size(), 8u);
   ASSERT_EQ(dopri5.size(), 8u);

@@ -451,6 +451,8 @@ TEST_P(ReduceInvariants, AssignmentsReadOnlyWhatIsKnownBefore) {
   // The slices index the assignments in order and cover all of them.
   std::set<int> covered(r.for_derivative.begin(), r.for_derivative.end());
   covered.insert(r.for_outputs.begin(), r.for_outputs.end());
+  covered.insert(r.for_energy.begin(), r.for_energy.end());  // (the energy witness's)
+  covered.insert(r.for_power.begin(), r.for_power.end());
   EXPECT_EQ(covered.size(), r.assignments.size());
   EXPECT_TRUE(std::is_sorted(r.for_derivative.begin(), r.for_derivative.end()));
   EXPECT_TRUE(std::is_sorted(r.for_outputs.begin(), r.for_outputs.end()));

@@ -306,6 +306,26 @@ class Model {
   /// TERMINAL: called once after the run (successful or not).
   virtual void terminal(double t, const double* y) { (void)t; (void)y; }
 
+  // ---- the energy balance (optional): a witness of the integration error ------
+  /// A bond graph knows where its energy goes: H(y(t)) - H(y(0)) equals the
+  /// integral of the power the sources supply minus the power the
+  /// dissipators, constraints and contacts absorb. The runtime integrates
+  /// both powers beside the state and reports what the run misses of the
+  /// balance (compiler/reduce/energy.hpp).
+  virtual bool has_energy_balance() const { return false; }
+  /// STORED ENERGY: out[0] = H at (t, y), every linear storage's; yp as for outputs().
+  virtual void stored_energy(double t, const double* y, const double* yp, double* out) {
+    (void)t; (void)y; (void)yp; out[0] = 0.0;
+  }
+  /// POWER at (t, y; yp as for outputs()): out[0] the power the sources
+  /// deliver, out[1] the power the rest absorbs (W).
+  virtual void power(double t, const double* y, const double* yp, double* out) {
+    (void)t; (void)y; (void)yp; out[0] = out[1] = 0.0;
+  }
+  /// What the balance leaves out (storages counted by their power), or why
+  /// the model has none; empty if neither.
+  virtual std::string energy_note() const { return {}; }
+
   // ---- joint constraints (optional; see the top of this file) ---------------
   /// DAE only: number of differential states; y = [states; algebraic unknowns],
   /// so differential_ids() must be 1.0 for the first state_count() entries and

@@ -1,9 +1,14 @@
 // dopri5: ARKODE's explicit stepper with the Dormand–Prince 5(4) table —
 // the adaptive non-stiff workhorse, comparable with MATLAB's ode45.
+//
+// ERKStep has no quadratures: the energy witness's two integrals ride after
+// the model's unknowns, their rates the model's power at each stage, and the
+// error weights keep them out of the step control (error_weights_with_witness).
 #include <arkode/arkode_erkstep.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "solvers/sundials_util.hpp"
@@ -12,14 +17,36 @@ namespace mbgrt::detail {
 
 namespace {
 
+/// The energy witness's two integrals after the model's n unknowns (GuardedModel::has_energy_witness).
+std::size_t witnesses(const GuardedModel& m) { return m.has_energy_witness() ? 2 : 0; }
+
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* m = static_cast<CallbackData*>(user_data)->model;
-  return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+  const double* yv = N_VGetArrayPointer(y);
+  double* ydotv = N_VGetArrayPointer(ydot);
+  if (int flag = m->derivative(t, yv, ydotv); flag != 0) return flag;
+  return witnesses(*m) ? m->power(t, yv, nullptr, ydotv + m->size()) : 0;
+}
+
+/// The model's weights (error_weights.hpp), and none for the witness's
+/// integrals: ARKODE's norm is the RMS over all n + 2 entries, so the
+/// model's are scaled by sqrt((n + 2) / n) to keep each step's error test
+/// what it is without the witness.
+int error_weights_with_witness(N_Vector y, N_Vector w, void* user_data) {
+  const auto* data = static_cast<const CallbackData*>(user_data);
+  double* wv = N_VGetArrayPointer(w);
+  if (!data->weights(N_VGetArrayPointer(y), wv)) return -1;
+  const std::size_t n = data->model->size(), q = witnesses(*data->model);
+  const double scale = std::sqrt(static_cast<double>(n + q) / static_cast<double>(n));
+  for (std::size_t i = 0; i < n; ++i) wv[i] *= scale;
+  std::fill(wv + n, wv + n + q, 0.0);
+  return 0;
 }
 
 class Dopri5 final : public Integrator {
  public:
-  Dopri5(GuardedModel& model, const Settings& s) : m_(model), s_(s), y_(model.size(), ctx_) {}
+  Dopri5(GuardedModel& model, const Settings& s)
+      : m_(model), s_(s), n_(model.size()), y_(n_ + witnesses(model), ctx_) {}
   ~Dopri5() override { ERKStepFree(&mem_); }
 
   const char* name() const override { return "dopri5"; }
@@ -29,7 +56,8 @@ class Dopri5 final : public Integrator {
   }
 
   bool init(double t0, const double* y0, const double*) override {
-    std::copy(y0, y0 + m_.size(), y_.data());
+    std::copy(y0, y0 + n_, y_.data());
+    std::fill(y_.data() + n_, y_.data() + n_ + witnesses(m_), 0.0);
     t_ = t0;
     remember();
     mem_ = ERKStepCreate(rhs, t0, y_.get(), ctx_);
@@ -39,7 +67,8 @@ class Dopri5 final : public Integrator {
     data_ = CallbackData{&m_, ErrorWeights(m_.model(), s_.rtol, s_.atol)};
     check_setup(ERKStepSetUserData(mem_, &data_), "ERKStepSetUserData", sink_);
     check_setup(ERKStepSetTableNum(mem_, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum", sink_);
-    check_setup(ERKStepWFtolerances(mem_, error_weights), "ERKStepWFtolerances", sink_);
+    check_setup(ERKStepWFtolerances(mem_, witnesses(m_) ? error_weights_with_witness : error_weights),
+                "ERKStepWFtolerances", sink_);
     check_setup(ERKStepSetStopTime(mem_, s_.t_end_s), "ERKStepSetStopTime", sink_);
     check_setup(ERKStepSetMaxNumSteps(mem_, kMaxStepsPerOutput), "ERKStepSetMaxNumSteps", sink_);
     // Like ACSL's MAXTERVAL: never step over more than one communication
@@ -80,6 +109,7 @@ class Dopri5 final : public Integrator {
 
   double t() const override { return t_; }
   const double* y() const override { return y_.data(); }
+  const double* energy() const override { return witnesses(m_) ? y_.data() + n_ : nullptr; }
 
   SolverStats stats() const override {
     SolverStats st;
@@ -97,12 +127,13 @@ class Dopri5 final : public Integrator {
  private:
   void remember() {
     t_good_ = t_;
-    y_good_.assign(y_.data(), y_.data() + m_.size());
+    y_good_.assign(y_.data(), y_.data() + n_ + witnesses(m_));
   }
 
   GuardedModel& m_;
   CallbackData data_;  ///< the callbacks' user data: the model and the error weights
   Settings s_;
+  std::size_t n_;  ///< the model's unknowns, the first of y_
   SunContext ctx_;
   SerialVector y_;
   MessageSink sink_;

@@ -1,8 +1,10 @@
 // cvode: variable-order BDF with Newton iterations and a dense direct linear
 // solver — the default for stiff mechanical models. The Jacobian comes from
 // the generated model when it has one (exact, and no extra RHS calls),
-// otherwise from CVODE's finite differences.
-#include <cvode/cvode.h>
+// otherwise from CVODE's finite differences. CVODES (CVODE with
+// quadratures) carries the energy witness's integrals beside the state,
+// outside Newton's iteration and the error test.
+#include <cvodes/cvodes.h>
 #include <fmt/format.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -19,6 +21,12 @@ namespace {
 int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* m = static_cast<CallbackData*>(user_data)->model;
   return m->derivative(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+/// The energy witness's rates (CVODES' quadrature right-hand side).
+int power(sunrealtype t, N_Vector y, N_Vector rate, void* user_data) {
+  auto* m = static_cast<CallbackData*>(user_data)->model;
+  return m->power(t, N_VGetArrayPointer(y), nullptr, N_VGetArrayPointer(rate));
 }
 
 /// The model's row-major Jacobian copied into CVODE's column-major dense matrix.
@@ -38,7 +46,7 @@ int jacobian(sunrealtype t, N_Vector y, N_Vector, SUNMatrix J, void* user_data, 
 
 class Cvode final : public Integrator {
  public:
-  Cvode(GuardedModel& model, const Settings& s) : m_(model), s_(s), y_(model.size(), ctx_) {}
+  Cvode(GuardedModel& model, const Settings& s) : m_(model), s_(s), y_(model.size(), ctx_), energy_(2, ctx_) {}
   ~Cvode() override {
     CVodeFree(&mem_);
     if (ls_) SUNLinSolFree(ls_);
@@ -80,20 +88,23 @@ class Cvode final : public Integrator {
       check_setup(CVodeRootInit(mem_, static_cast<int>(k), event_roots), "CVodeRootInit", sink_);
       root_info_.assign(k, 0);
     }
+    std::fill(energy_.data(), energy_.data() + 2, 0.0);
+    if (m_.has_energy_witness()) check_setup(CVodeQuadInit(mem_, power, energy_.get()), "CVodeQuadInit", sink_);
     return true;
   }
 
   bool advance_to(double t_out) override {
-    int flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
+    int flag = solve(t_out);
     while (flag == CV_ROOT_RETURN) {  // an event: switch its mode, restart there
       CVodeGetRootInfo(mem_, root_info_.data());
       if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       SolverStats counted = stats();
       check_setup(CVodeReInit(mem_, t_, y_.get()), "CVodeReInit", sink_);
+      if (m_.has_energy_witness()) check_setup(CVodeQuadReInit(mem_, energy_.get()), "CVodeQuadReInit", sink_);
       check_setup(CVodeSetStopTime(mem_, s_.t_end_s), "CVodeSetStopTime", sink_);  // (ReInit clears it)
       before_restart_ = counted;
       if (reached(t_, t_out)) return true;  // the event is at the communication point
-      flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
+      flag = solve(t_out);
     }
     if (flag < 0) {
       double t_now = t_;
@@ -109,6 +120,7 @@ class Cvode final : public Integrator {
 
   double t() const override { return t_; }
   const double* y() const override { return y_.data(); }
+  const double* energy() const override { return m_.has_energy_witness() ? energy_.data() : nullptr; }
 
   SolverStats stats() const override {
     SolverStats st;
@@ -129,11 +141,22 @@ class Cvode final : public Integrator {
   const SolverFailure& failure() const override { return failure_; }
 
  private:
+  /// CVode to t_out (or a root before it), and the witness's integrals there.
+  int solve(double t_out) {
+    const int flag = CVode(mem_, t_out, y_.get(), &t_, CV_NORMAL);
+    if (flag >= 0 && m_.has_energy_witness()) {
+      double t_quad = t_;
+      CVodeGetQuad(mem_, &t_quad, energy_.get());
+    }
+    return flag;
+  }
+
   GuardedModel& m_;
   CallbackData data_;  ///< the callbacks' user data: the model and the error weights
   Settings s_;
   SunContext ctx_;
   SerialVector y_;
+  SerialVector energy_;  ///< the energy witness's integrals (GuardedModel::has_energy_witness)
   MessageSink sink_;
   void* mem_ = nullptr;
   SUNMatrix A_ = nullptr;

@@ -5,9 +5,11 @@
 // depend on neither y' nor an algebraic unknown, which makes IDACalcIC's
 // Newton matrix singular, so the runtime computes their y' and algebraic
 // unknowns itself (constraints.cpp) and IDA starts from those. ODE models run
-// as r = y' - f(t, y), so IDA can be compared on any model.
+// as r = y' - f(t, y), so IDA can be compared on any model. IDAS (IDA with
+// quadratures) carries the energy witness's integrals beside the unknowns,
+// outside Newton's iteration and the error test.
 #include <fmt/format.h>
-#include <ida/ida.h>
+#include <idas/idas.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -31,7 +33,7 @@ namespace {
 class Ida final : public Integrator {
  public:
   Ida(GuardedModel& model, const Settings& s)
-      : m_(model), s_(s), y_(model.size(), ctx_), yp_(model.size(), ctx_), f_(model.size()) {}
+      : m_(model), s_(s), y_(model.size(), ctx_), yp_(model.size(), ctx_), energy_(2, ctx_), f_(model.size()) {}
   ~Ida() override {
     IDAFree(&mem_);
     if (ls_) SUNLinSolFree(ls_);
@@ -110,21 +112,22 @@ class Ida final : public Integrator {
       check_setup(IDARootInit(mem_, static_cast<int>(k), roots), "IDARootInit", sink_);
       root_info_.assign(k, 0);
     }
+    std::fill(energy_.data(), energy_.data() + 2, 0.0);
+    if (m_.has_energy_witness()) check_setup(IDAQuadInit(mem_, power, energy_.get()), "IDAQuadInit", sink_);
     if (m_.is_dae()) return consistent_initial_values(t0);
     return true;
   }
 
   bool advance_to(double t_out) override {
-    int flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+    int flag = solve(t_out);
     while (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
       IDAGetRootInfo(mem_, root_info_.data());
       if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       if (!restart_after_event()) return false;
       if (reached(t_, t_out)) return true;  // the event is at the communication point
-      flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+      flag = solve(t_out);
     }
-    if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two())
-      flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+    if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two()) flag = solve(t_out);
     if (flag < 0) return fail(flag);
     return true;
   }
@@ -132,6 +135,7 @@ class Ida final : public Integrator {
   double t() const override { return t_; }
   const double* y() const override { return y_.data(); }
   const double* yp() const override { return m_.is_dae() ? yp_.data() : nullptr; }
+  const double* energy() const override { return m_.has_energy_witness() ? energy_.data() : nullptr; }
 
   SolverStats stats() const override {
     SolverStats st;
@@ -154,6 +158,29 @@ class Ida final : public Integrator {
   const SolverFailure& failure() const override { return failure_; }
 
  private:
+  /// IDASolve to t_out (or a root before it), and the witness's integrals
+  /// there (after a failure, at the last step IDA completed, where
+  /// relax_index_two restarts).
+  int solve(double t_out) {
+    const int flag = IDASolve(mem_, t_out, &t_, y_.get(), yp_.get(), IDA_NORMAL);
+    if (m_.has_energy_witness()) {
+      double t_quad = t_;
+      IDAGetQuad(mem_, &t_quad, energy_.get());
+    }
+    return flag;
+  }
+  /// IDAReInit at (t_, y_, yp_), the witness's integrals carried on.
+  bool reinit() {
+    if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return false;
+    return !m_.has_energy_witness() || IDAQuadReInit(mem_, energy_.get()) == IDA_SUCCESS;
+  }
+  /// The energy witness's rates (IDAS' quadrature right-hand side).
+  static int power(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rate, void* user_data) {
+    auto* self = static_cast<Ida*>(user_data);
+    const double* ypv = self->m_.is_dae() ? N_VGetArrayPointer(yp) : nullptr;
+    return self->m_.power(t, N_VGetArrayPointer(y), ypv, N_VGetArrayPointer(rate));
+  }
+
   static int roots(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype* g, void* user_data) {
     auto* self = static_cast<Ida*>(user_data);
     const double* ypv = self->m_.is_dae() ? N_VGetArrayPointer(yp) : nullptr;
@@ -177,7 +204,7 @@ class Ida final : public Integrator {
       std::copy(y.begin(), y.end(), y_.data());
       std::copy(yp.begin(), yp.end(), yp_.data());
     }
-    if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return fail_at_event("IDAReInit failed");
+    if (!reinit()) return fail_at_event("IDAReInit failed");
     before_restart_ = counted;
     IDASetStopTime(mem_, s_.t_end_s);  // (ReInit clears it)
     if (index_two) {  // a first step as at the start (setup_index_two)
@@ -351,7 +378,7 @@ class Ida final : public Integrator {
     std::copy(yp.begin(), yp.end(), yp_.data());
     SolverStats counted = stats();
     if (sparse_) counted.fd_jac_evals -= sparse_->evaluations();  // counted on by stats() itself
-    if (IDAReInit(mem_, t_, y_.get(), yp_.get()) != IDA_SUCCESS) return false;
+    if (!reinit()) return false;
     before_restart_ = counted;
     relaxed_at_ = t_;
     h_ref_ = 1.0;
@@ -389,6 +416,7 @@ class Ida final : public Integrator {
   Settings s_;
   SunContext ctx_;
   SerialVector y_, yp_;
+  SerialVector energy_;  ///< the energy witness's integrals (GuardedModel::has_energy_witness)
   std::unique_ptr<SerialVector> id_;
   std::vector<double> f_;  // scratch for f(t, y) when an ODE runs under IDA
   MessageSink sink_;

@@ -1,6 +1,7 @@
 // Classic fixed-step fourth-order Runge–Kutta, written out by hand: it is the
 // method for real-time loops, where a predictable cost per step matters more
-// than error control, and it needs nothing from SUNDIALS.
+// than error control, and it needs nothing from SUNDIALS. The energy
+// witness's integrals take the same four stages, the model's power at each.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -34,6 +35,7 @@ class Rk4 final : public Integrator {
   bool init(double t0, const double* y0, const double*) override {
     t_ = t0;
     std::copy(y0, y0 + n_, y_.begin());
+    energy_[0] = energy_[1] = 0.0;
     if (events_.count() > 0) {
       g_.resize(events_.count());
       g_new_.resize(events_.count());
@@ -62,6 +64,7 @@ class Rk4 final : public Integrator {
 
   double t() const override { return t_; }
   const double* y() const override { return y_.data(); }
+  const double* energy() const override { return m_.has_energy_witness() ? energy_ : nullptr; }
 
   SolverStats stats() const override {
     SolverStats s;
@@ -131,17 +134,19 @@ class Rk4 final : public Integrator {
     return b;
   }
 
-  /// tmp_ = the RK4 step of h from (t_, y_).
+  /// tmp_ = the RK4 step of h from (t_, y_) (and energy_trial_ the witness's).
   bool trial(double h) {
-    if (!eval(t_, y_.data(), k1_.data())) return false;
+    if (!eval(t_, y_.data(), k1_.data(), 0)) return false;
     axpy(y_, h / 2, k1_);
-    if (!eval(t_ + h / 2, tmp_.data(), k2_.data())) return false;
+    if (!eval(t_ + h / 2, tmp_.data(), k2_.data(), 1)) return false;
     axpy(y_, h / 2, k2_);
-    if (!eval(t_ + h / 2, tmp_.data(), k3_.data())) return false;
+    if (!eval(t_ + h / 2, tmp_.data(), k3_.data(), 2)) return false;
     axpy(y_, h, k3_);
-    if (!eval(t_ + h, tmp_.data(), k4_.data())) return false;
+    if (!eval(t_ + h, tmp_.data(), k4_.data(), 3)) return false;
     for (std::size_t i = 0; i < n_; ++i)
       tmp_[i] = y_[i] + h / 6 * (k1_[i] + 2 * k2_[i] + 2 * k3_[i] + k4_[i]);
+    for (int k = 0; k < 2; ++k)
+      energy_trial_[k] = energy_[k] + h / 6 * (power_[0][k] + 2 * power_[1][k] + 2 * power_[2][k] + power_[3][k]);
     return true;
   }
 
@@ -150,6 +155,7 @@ class Rk4 final : public Integrator {
     // Keep the last finite state in y_ so terminal() and the report see it.
     if (!m_.check_state(t_next, tmp_.data())) return fail();
     y_.swap(tmp_);
+    std::copy(energy_trial_, energy_trial_ + 2, energy_);
     t_ = t_next;
     ++steps_;
     last_h_ = h;
@@ -162,12 +168,14 @@ class Rk4 final : public Integrator {
     for (std::size_t i = 0; i < n_; ++i) tmp_[i] = base[i] + a * k[i];
   }
 
-  bool eval(double t, const double* y, double* ydot) {
+  /// ydot at a stage (0 to 3), and the model's power there for the witness.
+  bool eval(double t, const double* y, double* ydot, int stage) {
     ++evals_;
     // y is y_ (checked after the last step) plus finite multiples of
     // derivatives checked here: finite unless it overflowed, which the
     // derivative then shows and the guard blames on the state.
     if (m_.derivative(t, y, ydot, GuardedModel::InputCheck::on_failure) != 0) return fail();
+    if (m_.has_energy_witness()) m_.power(t, y, nullptr, power_[stage]);
     return true;
   }
 
@@ -187,6 +195,9 @@ class Rk4 final : public Integrator {
   std::size_t n_;
   double t_ = 0.0;
   std::vector<double> y_, k1_, k2_, k3_, k4_, tmp_;
+  double power_[4][2] = {};      ///< the witness's rates at the four stages
+  double energy_[2] = {};        ///< the witness's integrals at t_ (Integrator::energy)
+  double energy_trial_[2] = {};  ///< ... at the trial state tmp_
   long steps_ = 0;
   long evals_ = 0;
   double last_h_ = 0.0;

@@ -119,6 +119,50 @@ class algebraic_loop_model final : public mbgrt::Model {
     out[0] = cap_e;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of C cap (algebraic_loop.mbg:8:3)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double cap_q = x[0];
+    // algebraic_loop.mbg:8:3  C cap: q = C e
+    const double cap_e = cap_q / 0.5;
+    // the stored energy
+    out[0] = 0.5 * (cap_q * cap_e);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se src (algebraic_loop.mbg:4:4); out[1]: the power into R r1 (algebraic_loop.mbg:5:3), R r2 (algebraic_loop.mbg:6:3), R r3 (algebraic_loop.mbg:7:3)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double cap_q = x[0];
+    // algebraic_loop.mbg:8:3  C cap: q = C e
+    const double cap_e = cap_q / 0.5;
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r3.e
+    const double r3_e = -(cap_e - 10.0 + 3.333333333333333) / 1.2222222222222223;
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for b3.f
+    const double b3_f = (5.0 + 0.3333333333333333 * r3_e) / 1.5;
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for b3.e
+    const double b3_e = -(-10.0 + b3_f);
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r3.f
+    const double r3_f = r3_e / 3.0;
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r2.f
+    const double r2_f = b3_e / 2.0;
+    // the powers
+    out[0] = 10.0 * b3_f;
+    out[1] = b3_f * b3_f + b3_e * r2_f + r3_e * r3_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -632,6 +632,263 @@ class ball_chain_model final : public mbgrt::Model {
     out[23] = lower_pose_R33;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I upper.m (ball_chain.mbg:13:6), I upper.J (ball_chain.mbg:13:6), I lower.m (ball_chain.mbg:20:6), I lower.J (ball_chain.mbg:20:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double shoulder_spin_rate_rate_1 = x[0];
+    const double shoulder_spin_rate_rate_2 = x[1];
+    const double shoulder_spin_rate_rate_3 = x[2];
+    const double elbow_spin_rate_rate_1 = x[7];
+    const double elbow_spin_rate_rate_2 = x[8];
+    const double elbow_spin_rate_rate_3 = x[9];
+    const double elbow_rot_q_1 = x[10];
+    const double elbow_rot_q_2 = x[11];
+    const double elbow_rot_q_3 = x[12];
+    const double elbow_rot_q_4 = x[13];
+    // ball_chain.mbg:26:7  MTF shoulder.m2: f2 = T f1
+    const double shoulder_m2_f2_2 = 0.25 * shoulder_spin_rate_rate_3;
+    const double shoulder_m2_f2_3 = -0.25 * shoulder_spin_rate_rate_2;
+    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
+    const double elbow_m3_f2_2 = shoulder_m2_f2_2;
+    // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
+    const double elbow_m4_f1_2 = shoulder_m2_f2_2 + elbow_m3_f2_2;
+    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
+    const double elbow_m3_f2_3 = shoulder_m2_f2_3;
+    // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
+    const double elbow_m4_f1_3 = shoulder_m2_f2_3 + elbow_m3_f2_3;
+    // ball_chain.mbg:27:7  signal elbow.Rpc21
+    // (cseN: a subexpression several equations below share)
+    const double cse87 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse88 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse89 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse90 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse91 = cse89 + cse90;
+    const double cse92 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse93 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse94 = cse91 + cse92 + cse93;
+    const double elbow_Rpc21 = 2.0 * (cse87 + cse88) / cse94;
+    // ball_chain.mbg:27:7  signal elbow.Rpc31
+    const double cse95 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse96 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse95 - cse96) / cse94;
+    // ball_chain.mbg:27:7  signal elbow.Rpc22
+    const double elbow_Rpc22 = (cse89 + cse92 - cse90 - cse93) / cse94;
+    // ball_chain.mbg:27:7  signal elbow.Rpc32
+    const double cse97 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse98 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse97 + cse98) / cse94;
+    // ball_chain.mbg:27:7  signal elbow.Rpc23
+    const double elbow_Rpc23 = 2.0 * (cse97 - cse98) / cse94;
+    // ball_chain.mbg:27:7  signal elbow.Rpc33
+    const double elbow_Rpc33 = (cse89 + cse93 - cse90 - cse92) / cse94;
+    // ball_chain.mbg:27:7  signal elbow.Rpc11
+    const double elbow_Rpc11 = (cse91 - cse92 - cse93) / cse94;
+    // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
+    const double elbow_m1_f2_1 = elbow_Rpc11 * shoulder_spin_rate_rate_1 + elbow_Rpc21 * shoulder_spin_rate_rate_2 + elbow_Rpc31 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
+    const double elbow_reaction_t_f_1 = elbow_m1_f2_1 + elbow_spin_rate_rate_1;
+    // ball_chain.mbg:27:7  signal elbow.Rpc13
+    const double elbow_Rpc13 = 2.0 * (cse95 + cse96) / cse94;
+    // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
+    const double elbow_m1_f2_3 = elbow_Rpc13 * shoulder_spin_rate_rate_1 + elbow_Rpc23 * shoulder_spin_rate_rate_2 + elbow_Rpc33 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
+    const double elbow_reaction_t_f_3 = elbow_m1_f2_3 + elbow_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  signal elbow.Rpc12
+    const double elbow_Rpc12 = 2.0 * (cse87 - cse88) / cse94;
+    // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
+    const double elbow_m1_f2_2 = elbow_Rpc12 * shoulder_spin_rate_rate_1 + elbow_Rpc22 * shoulder_spin_rate_rate_2 + elbow_Rpc32 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
+    const double elbow_reaction_t_f_2 = elbow_m1_f2_2 + elbow_spin_rate_rate_2;
+    // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
+    const double elbow_m4_f2_1 = elbow_Rpc21 * elbow_m4_f1_2 + elbow_Rpc31 * elbow_m4_f1_3;
+    // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
+    const double elbow_reaction_f_f_1 = elbow_m4_f2_1;
+    // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
+    const double elbow_m4_f2_2 = elbow_Rpc22 * elbow_m4_f1_2 + elbow_Rpc32 * elbow_m4_f1_3;
+    // ball_chain.mbg:27:7  MTF elbow.m5: f2 = T f1
+    const double elbow_m5_f2_2 = 0.2 * elbow_reaction_t_f_3;
+    // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
+    const double elbow_reaction_f_f_2 = elbow_m4_f2_2 + elbow_m5_f2_2;
+    // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
+    const double elbow_m4_f2_3 = elbow_Rpc23 * elbow_m4_f1_2 + elbow_Rpc33 * elbow_m4_f1_3;
+    // ball_chain.mbg:27:7  MTF elbow.m5: f2 = T f1
+    const double elbow_m5_f2_3 = -0.2 * elbow_reaction_t_f_2;
+    // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
+    const double elbow_reaction_f_f_3 = elbow_m4_f2_3 + elbow_m5_f2_3;
+    // the stored energy
+    out[0] = 0.5 * (shoulder_m2_f2_2 * shoulder_m2_f2_2 + shoulder_m2_f2_3 * shoulder_m2_f2_3) + 0.5 * (0.0001 * (shoulder_spin_rate_rate_1 * shoulder_spin_rate_rate_1) + 0.02 * (shoulder_spin_rate_rate_2 * shoulder_spin_rate_rate_2) + 0.02 * (shoulder_spin_rate_rate_3 * shoulder_spin_rate_rate_3)) + 0.5 * (0.5 * (elbow_reaction_f_f_1 * elbow_reaction_f_f_1) + 0.5 * (elbow_reaction_f_f_2 * elbow_reaction_f_f_2) + 0.5 * (elbow_reaction_f_f_3 * elbow_reaction_f_f_3)) + 0.5 * (0.0001 * (elbow_reaction_t_f_1 * elbow_reaction_t_f_1) + 0.01 * (elbow_reaction_t_f_2 * elbow_reaction_t_f_2) + 0.01 * (elbow_reaction_t_f_3 * elbow_reaction_t_f_3));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se upper.weight (ball_chain.mbg:13:6), Se lower.weight (ball_chain.mbg:20:6); out[1]: the power into R upper.ejs_v (ball_chain.mbg:13:6), R upper.ejs (ball_chain.mbg:13:6), R lower.ejs_v (ball_chain.mbg:20:6), R lower.ejs (ball_chain.mbg:20:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double shoulder_spin_rate_rate_1 = x[0];
+    const double shoulder_spin_rate_rate_2 = x[1];
+    const double shoulder_spin_rate_rate_3 = x[2];
+    const double shoulder_rot_q_1 = x[3];
+    const double shoulder_rot_q_2 = x[4];
+    const double shoulder_rot_q_3 = x[5];
+    const double shoulder_rot_q_4 = x[6];
+    const double elbow_spin_rate_rate_1 = x[7];
+    const double elbow_spin_rate_rate_2 = x[8];
+    const double elbow_spin_rate_rate_3 = x[9];
+    const double elbow_rot_q_1 = x[10];
+    const double elbow_rot_q_2 = x[11];
+    const double elbow_rot_q_3 = x[12];
+    const double elbow_rot_q_4 = x[13];
+    // ball_chain.mbg:26:7  signal shoulder.Rpc31
+    // (cseN: a subexpression several equations below share)
+    const double cse99 = shoulder_rot_q_1 * shoulder_rot_q_1;
+    const double cse100 = shoulder_rot_q_2 * shoulder_rot_q_2;
+    const double cse101 = shoulder_rot_q_3 * shoulder_rot_q_3;
+    const double cse102 = shoulder_rot_q_4 * shoulder_rot_q_4;
+    const double cse103 = cse99 + cse100 + cse101 + cse102;
+    const double shoulder_Rpc31 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 - shoulder_rot_q_1 * shoulder_rot_q_3) / cse103;
+    // ball_chain.mbg:26:7  MTF shoulder.m2: f2 = T f1
+    const double shoulder_m2_f2_2 = 0.25 * shoulder_spin_rate_rate_3;
+    const double shoulder_m2_f2_3 = -0.25 * shoulder_spin_rate_rate_2;
+    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
+    const double elbow_m3_f2_2 = shoulder_m2_f2_2;
+    // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
+    const double elbow_m4_f1_2 = shoulder_m2_f2_2 + elbow_m3_f2_2;
+    // ball_chain.mbg:27:7  MTF elbow.m3: f2 = T f1
+    const double elbow_m3_f2_3 = shoulder_m2_f2_3;
+    // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
+    const double elbow_m4_f1_3 = shoulder_m2_f2_3 + elbow_m3_f2_3;
+    // ball_chain.mbg:27:7  signal elbow.Rpc21
+    const double cse104 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse105 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse106 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse107 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse108 = cse106 + cse107;
+    const double cse109 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse110 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse111 = cse108 + cse109 + cse110;
+    const double elbow_Rpc21 = 2.0 * (cse104 + cse105) / cse111;
+    // ball_chain.mbg:27:7  signal elbow.Rpc31
+    const double cse112 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse113 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse112 - cse113) / cse111;
+    // ball_chain.mbg:13:6  I upper.J: p = I f (derivative causality)
+    const double upper_J_p_1 = 0.0001 * shoulder_spin_rate_rate_1;
+    const double upper_J_p_2 = 0.02 * shoulder_spin_rate_rate_2;
+    // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
+    const double upper_ejs_e_3 = shoulder_spin_rate_rate_1 * upper_J_p_2 - shoulder_spin_rate_rate_2 * upper_J_p_1;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc32
+    const double shoulder_Rpc32 = 2.0 * (shoulder_rot_q_3 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_2) / cse103;
+    // ball_chain.mbg:13:6  Se upper.weight: e = value
+    const double upper_weight_e_2 = -9.81 * shoulder_Rpc32;
+    // ball_chain.mbg:13:6  R upper.ejs_v: e = law(f)
+    const double upper_ejs_v_e_2 = -shoulder_spin_rate_rate_1 * shoulder_m2_f2_3;
+    // ball_chain.mbg:27:7  signal elbow.Rpc22
+    const double elbow_Rpc22 = (cse106 + cse109 - cse107 - cse110) / cse111;
+    // ball_chain.mbg:27:7  signal elbow.Rpc32
+    const double cse114 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse115 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse114 + cse115) / cse111;
+    // ball_chain.mbg:13:6  I upper.J: p = I f (derivative causality)
+    const double upper_J_p_3 = 0.02 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
+    const double upper_ejs_e_2 = shoulder_spin_rate_rate_3 * upper_J_p_1 - shoulder_spin_rate_rate_1 * upper_J_p_3;
+    // ball_chain.mbg:26:7  signal shoulder.Rpc33
+    const double shoulder_Rpc33 = (cse99 + cse102 - cse100 - cse101) / cse103;
+    // ball_chain.mbg:13:6  Se upper.weight: e = value
+    const double upper_weight_e_3 = -9.81 * shoulder_Rpc33;
+    // ball_chain.mbg:13:6  R upper.ejs_v: e = law(f)
+    const double upper_ejs_v_e_3 = shoulder_spin_rate_rate_1 * shoulder_m2_f2_2;
+    // ball_chain.mbg:27:7  signal elbow.Rpc23
+    const double elbow_Rpc23 = 2.0 * (cse114 - cse115) / cse111;
+    // ball_chain.mbg:27:7  signal elbow.Rpc33
+    const double elbow_Rpc33 = (cse106 + cse110 - cse107 - cse109) / cse111;
+    // ball_chain.mbg:27:7  signal elbow.Rpc11
+    const double elbow_Rpc11 = (cse108 - cse109 - cse110) / cse111;
+    // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
+    const double elbow_m1_f2_1 = elbow_Rpc11 * shoulder_spin_rate_rate_1 + elbow_Rpc21 * shoulder_spin_rate_rate_2 + elbow_Rpc31 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
+    const double elbow_reaction_t_f_1 = elbow_m1_f2_1 + elbow_spin_rate_rate_1;
+    // ball_chain.mbg:20:6  I lower.J: p = I f (derivative causality)
+    const double lower_J_p_1 = 0.0001 * elbow_reaction_t_f_1;
+    // ball_chain.mbg:27:7  signal elbow.Rpc13
+    const double elbow_Rpc13 = 2.0 * (cse112 + cse113) / cse111;
+    // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
+    const double elbow_m1_f2_3 = elbow_Rpc13 * shoulder_spin_rate_rate_1 + elbow_Rpc23 * shoulder_spin_rate_rate_2 + elbow_Rpc33 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
+    const double elbow_reaction_t_f_3 = elbow_m1_f2_3 + elbow_spin_rate_rate_3;
+    // ball_chain.mbg:20:6  I lower.J: p = I f (derivative causality)
+    const double lower_J_p_3 = 0.01 * elbow_reaction_t_f_3;
+    // ball_chain.mbg:20:6  R lower.ejs: e = law(f)
+    const double lower_ejs_e_2 = elbow_reaction_t_f_3 * lower_J_p_1 - elbow_reaction_t_f_1 * lower_J_p_3;
+    // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
+    const double upper_ejs_e_1 = shoulder_spin_rate_rate_2 * upper_J_p_3 - shoulder_spin_rate_rate_3 * upper_J_p_2;
+    // ball_chain.mbg:27:7  signal elbow.Rpc12
+    const double elbow_Rpc12 = 2.0 * (cse104 - cse105) / cse111;
+    // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
+    const double elbow_m1_f2_2 = elbow_Rpc12 * shoulder_spin_rate_rate_1 + elbow_Rpc22 * shoulder_spin_rate_rate_2 + elbow_Rpc32 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
+    const double elbow_reaction_t_f_2 = elbow_m1_f2_2 + elbow_spin_rate_rate_2;
+    // ball_chain.mbg:20:6  I lower.J: p = I f (derivative causality)
+    const double lower_J_p_2 = 0.01 * elbow_reaction_t_f_2;
+    // ball_chain.mbg:20:6  R lower.ejs: e = law(f)
+    const double lower_ejs_e_1 = elbow_reaction_t_f_2 * lower_J_p_3 - elbow_reaction_t_f_3 * lower_J_p_2;
+    const double lower_ejs_e_3 = elbow_reaction_t_f_1 * lower_J_p_2 - elbow_reaction_t_f_2 * lower_J_p_1;
+    // ball_chain.mbg:27:7  signal lower.pose.R33
+    const double lower_pose_R33 = shoulder_Rpc31 * elbow_Rpc13 + shoulder_Rpc32 * elbow_Rpc23 + shoulder_Rpc33 * elbow_Rpc33;
+    // ball_chain.mbg:20:6  Se lower.weight: e = value
+    const double lower_weight_e_3 = -4.905 * lower_pose_R33;
+    // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
+    const double elbow_m4_f2_1 = elbow_Rpc21 * elbow_m4_f1_2 + elbow_Rpc31 * elbow_m4_f1_3;
+    // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
+    const double elbow_reaction_f_f_1 = elbow_m4_f2_1;
+    // ball_chain.mbg:20:6  I lower.m: p = I f (derivative causality)
+    const double lower_m_p_1 = 0.5 * elbow_reaction_f_f_1;
+    // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
+    const double elbow_m4_f2_2 = elbow_Rpc22 * elbow_m4_f1_2 + elbow_Rpc32 * elbow_m4_f1_3;
+    // ball_chain.mbg:27:7  MTF elbow.m5: f2 = T f1
+    const double elbow_m5_f2_2 = 0.2 * elbow_reaction_t_f_3;
+    // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
+    const double elbow_reaction_f_f_2 = elbow_m4_f2_2 + elbow_m5_f2_2;
+    // ball_chain.mbg:20:6  I lower.m: p = I f (derivative causality)
+    const double lower_m_p_2 = 0.5 * elbow_reaction_f_f_2;
+    // ball_chain.mbg:20:6  R lower.ejs_v: e = law(f)
+    const double lower_ejs_v_e_3 = elbow_reaction_t_f_1 * lower_m_p_2 - elbow_reaction_t_f_2 * lower_m_p_1;
+    // ball_chain.mbg:27:7  signal lower.pose.R32
+    const double lower_pose_R32 = shoulder_Rpc31 * elbow_Rpc12 + shoulder_Rpc32 * elbow_Rpc22 + shoulder_Rpc33 * elbow_Rpc32;
+    // ball_chain.mbg:20:6  Se lower.weight: e = value
+    const double lower_weight_e_2 = -4.905 * lower_pose_R32;
+    // ball_chain.mbg:27:7  MTF elbow.m4: f2 = T f1
+    const double elbow_m4_f2_3 = elbow_Rpc23 * elbow_m4_f1_2 + elbow_Rpc33 * elbow_m4_f1_3;
+    // ball_chain.mbg:27:7  MTF elbow.m5: f2 = T f1
+    const double elbow_m5_f2_3 = -0.2 * elbow_reaction_t_f_2;
+    // ball_chain.mbg:27:7  0 elbow.vsum: flows in = flows out
+    const double elbow_reaction_f_f_3 = elbow_m4_f2_3 + elbow_m5_f2_3;
+    // ball_chain.mbg:20:6  I lower.m: p = I f (derivative causality)
+    const double lower_m_p_3 = 0.5 * elbow_reaction_f_f_3;
+    // ball_chain.mbg:20:6  R lower.ejs_v: e = law(f)
+    const double lower_ejs_v_e_2 = elbow_reaction_t_f_3 * lower_m_p_1 - elbow_reaction_t_f_1 * lower_m_p_3;
+    // ball_chain.mbg:27:7  signal lower.pose.R31
+    const double lower_pose_R31 = shoulder_Rpc31 * elbow_Rpc11 + shoulder_Rpc32 * elbow_Rpc21 + shoulder_Rpc33 * elbow_Rpc31;
+    // ball_chain.mbg:20:6  Se lower.weight: e = value
+    const double lower_weight_e_1 = -4.905 * lower_pose_R31;
+    // ball_chain.mbg:20:6  R lower.ejs_v: e = law(f)
+    const double lower_ejs_v_e_1 = elbow_reaction_t_f_2 * lower_m_p_3 - elbow_reaction_t_f_3 * lower_m_p_2;
+    // the powers
+    out[0] = upper_weight_e_2 * shoulder_m2_f2_2 + upper_weight_e_3 * shoulder_m2_f2_3 + (lower_weight_e_1 * elbow_reaction_f_f_1 + lower_weight_e_2 * elbow_reaction_f_f_2 + lower_weight_e_3 * elbow_reaction_f_f_3);
+    out[1] = upper_ejs_v_e_2 * shoulder_m2_f2_2 + upper_ejs_v_e_3 * shoulder_m2_f2_3 + (upper_ejs_e_1 * shoulder_spin_rate_rate_1 + upper_ejs_e_2 * shoulder_spin_rate_rate_2 + upper_ejs_e_3 * shoulder_spin_rate_rate_3) + (lower_ejs_v_e_1 * elbow_reaction_f_f_1 + lower_ejs_v_e_2 * elbow_reaction_f_f_2 + lower_ejs_v_e_3 * elbow_reaction_f_f_3) + (lower_ejs_e_1 * elbow_reaction_t_f_1 + lower_ejs_e_2 * elbow_reaction_t_f_2 + lower_ejs_e_3 * elbow_reaction_t_f_3);
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

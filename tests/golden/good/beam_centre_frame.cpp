@@ -551,6 +551,11 @@ class beam_centre_frame_model final : public mbgrt::Model {
     out[13] = rod_eta_q_2;
   }
 
+  // What the energy balance leaves out, or why there is none.
+  std::string energy_note() const override {
+    return "every storage is counted by the power into it, so the balance would hold by construction; I rod.M: a modulated law, counted by the power into it; C rod.eta: a nonlinear law, counted by the power into it";
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -1059,6 +1059,11 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     values[14] = 0.47143398265292674 * ((cse186 - cse191 * cse189) / cse183 * cse193 - (-cse189 * cse179 - cse194 * cse189) / cse183 * cse195);
   }
 
+  // What the energy balance leaves out, or why there is none.
+  std::string energy_note() const override {
+    return "every storage is counted by the power into it, so the balance would hold by construction; I arm.M: a modulated law, counted by the power into it; C arm.eta: a nonlinear law, counted by the power into it";
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -754,6 +754,11 @@ class beam_tisserand_model final : public mbgrt::Model {
     out[13] = bar_eta_q_2;
   }
 
+  // What the energy balance leaves out, or why there is none.
+  std::string energy_note() const override {
+    return "every storage is counted by the power into it, so the balance would hold by construction; I bar.M: a modulated law, counted by the power into it; C bar.eta: a nonlinear law, counted by the power into it";
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

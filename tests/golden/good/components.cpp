@@ -151,6 +151,56 @@ class components_model final : public mbgrt::Model {
     out[1] = u2_c_e;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of C u1.c (components.mbg:6:5), C u2.c (components.mbg:6:5)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double u1_c_q = x[0];
+    const double u2_c_q = x[1];
+    // components.mbg:6:5  C u1.c: q = C e
+    const double u1_c_e = u1_c_q / u1_Cc;
+    // components.mbg:6:5  C u2.c: q = C e
+    const double u2_c_e = u2_c_q / u2_Cc;
+    // the stored energy
+    out[0] = 0.5 * (u1_c_q * u1_c_e) + 0.5 * (u2_c_q * u2_c_e);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se src (components.mbg:9:4); out[1]: the power into R u1.r (components.mbg:5:5), R u2.r (components.mbg:5:5)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double u1_c_q = x[0];
+    const double u2_c_q = x[1];
+    // components.mbg:6:5  C u1.c: q = C e
+    const double u1_c_e = u1_c_q / u1_Cc;
+    // components.mbg:7:5  1 u1.j: efforts in = efforts out
+    const double u1_r_e = 1.0 - u1_c_e;
+    // components.mbg:5:5  R u1.r: f = e / R
+    const double u1_r_f = u1_r_e / u1_R;
+    // components.mbg:6:5  C u2.c: q = C e
+    const double u2_c_e = u2_c_q / u2_Cc;
+    // components.mbg:7:5  1 u2.j: efforts in = efforts out
+    const double u2_r_e = 1.0 - u2_c_e;
+    // components.mbg:5:5  R u2.r: f = e / R
+    const double u2_r_f = u2_r_e / u2_R;
+    // components.mbg:10:3  0 bus: flows in = flows out
+    const double src_f = u1_r_f + u2_r_f;
+    // the powers
+    out[0] = src_f;
+    out[1] = u1_r_e * u1_r_f + u2_r_e * u2_r_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

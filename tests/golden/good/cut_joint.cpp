@@ -753,6 +753,248 @@ class cut_joint_model final : public mbgrt::Model {
     values[5] = cse47 + cse47;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I crank.m (cut_joint.mbg:11:6), I crank.J (cut_joint.mbg:11:6), I coupler.m (cut_joint.mbg:12:6), I coupler.J (cut_joint.mbg:12:6) and 2 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double j1_theta_rate_rate = x[0];
+    const double j2_theta_rate_rate = x[2];
+    const double j2_theta_q = x[3];
+    const double j4_theta_rate_rate = x[4];
+    // cut_joint.mbg:14:7  MTF j1.m2: f2 = T f1
+    const double j1_m2_f2_2 = 0.1 * j1_theta_rate_rate;
+    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_2 = j1_m2_f2_2;
+    // cut_joint.mbg:15:7  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_2 = j1_m2_f2_2 + j2_m3_f2_2;
+    // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
+    const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
+    // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
+    const double j2_m4_f2_1 = std::sin(j2_theta_q) * j2_m4_f1_2;
+    // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_1 = j2_m4_f2_1;
+    // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
+    const double j2_m4_f2_2 = std::cos(j2_theta_q) * j2_m4_f1_2;
+    // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
+    const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_2 = j2_m4_f2_2 + j2_m5_f2_2;
+    // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
+    const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
+    // the stored energy
+    out[0] = 0.5 * (j1_m2_f2_2 * j1_m2_f2_2) + 0.5 * (crank_inertia_3_3 * (j1_theta_rate_rate * j1_theta_rate_rate)) + 0.5 * (j2_reaction_f_f_1 * j2_reaction_f_f_1 + j2_reaction_f_f_2 * j2_reaction_f_f_2) + 0.5 * (coupler_inertia_3_3 * (j2_reaction_t_f_3 * j2_reaction_t_f_3)) + 0.5 * (j4_m2_f2_2 * j4_m2_f2_2) + 0.5 * (rocker_inertia_3_3 * (j4_theta_rate_rate * j4_theta_rate_rate));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se crank.weight (cut_joint.mbg:11:6), Se coupler.weight (cut_joint.mbg:12:6), Se rocker.weight (cut_joint.mbg:13:6); out[1]: the power into R crank.ejs_v (cut_joint.mbg:11:6), R crank.ejs (cut_joint.mbg:11:6), R coupler.ejs_v (cut_joint.mbg:12:6), R coupler.ejs (cut_joint.mbg:12:6) and 3 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double j1_theta_rate_rate = x[0];
+    const double j1_theta_q = x[1];
+    const double j2_theta_rate_rate = x[2];
+    const double j2_theta_q = x[3];
+    const double j4_theta_rate_rate = x[4];
+    const double j4_theta_q = x[5];
+    // cut_joint.mbg:14:7  signal crank.pose.R21
+    const double crank_pose_R21 = std::sin(j1_theta_q);
+    // cut_joint.mbg:14:7  MTF j1.m2: f2 = T f1
+    const double j1_m2_f2_2 = 0.1 * j1_theta_rate_rate;
+    // cut_joint.mbg:15:7  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_2 = j1_m2_f2_2;
+    // cut_joint.mbg:15:7  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_2 = j1_m2_f2_2 + j2_m3_f2_2;
+    // cut_joint.mbg:14:7  signal crank.pose.R22
+    const double crank_pose_R22 = std::cos(j1_theta_q);
+    // cut_joint.mbg:15:7  signal coupler.pose.R22
+    // (cseN: a subexpression several equations below share)
+    const double cse48 = std::sin(j2_theta_q);
+    const double cse49 = std::cos(j2_theta_q);
+    const double coupler_pose_R22 = -crank_pose_R21 * cse48 + crank_pose_R22 * cse49;
+    // cut_joint.mbg:12:6  Se coupler.weight: e = value
+    const double coupler_weight_e_2 = -9.81 * coupler_pose_R22;
+    // cut_joint.mbg:15:7  0 j2.wsum: flows in = flows out
+    const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
+    // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
+    const double j2_m4_f2_1 = cse48 * j2_m4_f1_2;
+    // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_1 = j2_m4_f2_1;
+    // cut_joint.mbg:12:6  R coupler.ejs_v: e = law(f)
+    const double coupler_ejs_v_e_2 = j2_reaction_t_f_3 * j2_reaction_f_f_1;
+    // cut_joint.mbg:15:7  MTF j2.m4: f2 = T f1
+    const double j2_m4_f2_2 = cse49 * j2_m4_f1_2;
+    // cut_joint.mbg:15:7  MTF j2.m5: f2 = T f1
+    const double j2_m5_f2_2 = 0.5 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_2 = j2_m4_f2_2 + j2_m5_f2_2;
+    // cut_joint.mbg:14:7  signal crank.pose.R11
+    const double crank_pose_R11 = crank_pose_R22;
+    // cut_joint.mbg:14:7  signal crank.pose.R12
+    const double crank_pose_R12 = -crank_pose_R21;
+    // cut_joint.mbg:15:7  signal coupler.pose.R11
+    const double coupler_pose_R11 = crank_pose_R11 * cse49 + crank_pose_R12 * cse48;
+    // cut_joint.mbg:15:7  signal coupler.pose.R12
+    const double coupler_pose_R12 = -crank_pose_R11 * cse48 + crank_pose_R12 * cse49;
+    // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
+    const double j3_cat_f2_1 = -coupler_pose_R11 * j2_reaction_f_f_1 - coupler_pose_R12 * j2_reaction_f_f_2;
+    // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
+    const double cse50 = 0.5 * coupler_pose_R12;
+    const double j3_car_f2_1 = -cse50 * j2_reaction_t_f_3;
+    // cut_joint.mbg:17:7  MTF j4.m2: f2 = T f1
+    const double j4_m2_f2_2 = 0.1 * j4_theta_rate_rate;
+    // cut_joint.mbg:17:7  signal rocker.pose.R12
+    const double cse51 = std::sin(j4_theta_q);
+    const double rocker_pose_R12 = -cse51;
+    // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
+    const double j3_cbt_f2_1 = rocker_pose_R12 * j4_m2_f2_2;
+    // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
+    const double cse52 = 0.1 * rocker_pose_R12;
+    const double j3_cbr_f2_1 = cse52 * j4_theta_rate_rate;
+    // cut_joint.mbg:16:7  0 j3.c: flows in = flows out
+    const double j3_cn_f_1 = j3_cat_f2_1 + j3_car_f2_1 + j3_cbt_f2_1 + j3_cbr_f2_1;
+    // cut_joint.mbg:14:7  signal crank.pose.r1
+    const double crank_pose_r1 = 0.1 * crank_pose_R11;
+    // cut_joint.mbg:15:7  signal coupler.pose.r1
+    const double cse53 = 0.5 * coupler_pose_R11;
+    const double coupler_pose_r1 = crank_pose_r1 + crank_pose_r1 + cse53;
+    // cut_joint.mbg:17:7  signal rocker.pose.R11
+    const double rocker_pose_R11 = std::cos(j4_theta_q);
+    // cut_joint.mbg:17:7  signal rocker.pose.r1
+    const double cse54 = 0.1 * rocker_pose_R11;
+    const double rocker_pose_r1 = 1.0 + cse54;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R11] in closed form
+    const double der_coupler_pose_R11 = coupler_pose_R12 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R12] in closed form
+    const double der_coupler_pose_R12 = -coupler_pose_R11 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  signal coupler.pose.R21
+    const double coupler_pose_R21 = crank_pose_R21 * cse49 + crank_pose_R22 * cse48;
+    // cut_joint.mbg:16:7  MTF j3.cat: f2 = T f1
+    const double j3_cat_f2_2 = -coupler_pose_R21 * j2_reaction_f_f_1 - coupler_pose_R22 * j2_reaction_f_f_2;
+    // cut_joint.mbg:16:7  MTF j3.car: f2 = T f1
+    const double cse55 = 0.5 * coupler_pose_R22;
+    const double j3_car_f2_2 = -cse55 * j2_reaction_t_f_3;
+    // cut_joint.mbg:17:7  signal rocker.pose.R22
+    const double rocker_pose_R22 = rocker_pose_R11;
+    // cut_joint.mbg:16:7  MTF j3.cbt: f2 = T f1
+    const double j3_cbt_f2_2 = rocker_pose_R22 * j4_m2_f2_2;
+    // cut_joint.mbg:16:7  MTF j3.cbr: f2 = T f1
+    const double cse56 = 0.1 * rocker_pose_R22;
+    const double j3_cbr_f2_2 = cse56 * j4_theta_rate_rate;
+    // cut_joint.mbg:16:7  0 j3.c: flows in = flows out
+    const double j3_cn_f_2 = j3_cat_f2_2 + j3_car_f2_2 + j3_cbt_f2_2 + j3_cbr_f2_2;
+    // cut_joint.mbg:14:7  signal crank.pose.r2
+    const double crank_pose_r2 = 0.1 * crank_pose_R21;
+    // cut_joint.mbg:15:7  signal coupler.pose.r2
+    const double cse57 = 0.5 * coupler_pose_R21;
+    const double coupler_pose_r2 = crank_pose_r2 + crank_pose_r2 + cse57;
+    // cut_joint.mbg:17:7  signal rocker.pose.R21
+    const double rocker_pose_R21 = cse51;
+    // cut_joint.mbg:17:7  signal rocker.pose.r2
+    const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R21] in closed form
+    const double der_coupler_pose_R21 = coupler_pose_R22 * j2_reaction_t_f_3;
+    // cut_joint.mbg:15:7  d/dt of [signal coupler.pose.R22] in closed form
+    const double der_coupler_pose_R22 = -coupler_pose_R21 * j2_reaction_t_f_3;
+    // cut_joint.mbg:17:7  d/dt of [signal rocker.pose.R22] in closed form
+    const double der_rocker_pose_R22 = -rocker_pose_R21 * j4_theta_rate_rate;
+    // cut_joint.mbg:13:6  Se rocker.weight: e = value
+    const double rocker_weight_e_2 = -9.81 * rocker_pose_R22;
+    // cut_joint.mbg:17:7  d/dt of [signal rocker.pose.R12] in closed form
+    const double der_rocker_pose_R12 = -rocker_pose_R11 * j4_theta_rate_rate;
+    // cut_joint.mbg:11:6  Se crank.weight: e = value
+    const double crank_weight_e_2 = -9.81 * crank_pose_R22;
+    // cut_joint.mbg:12:6  Se coupler.weight: e = value
+    const double coupler_weight_e_1 = -9.81 * coupler_pose_R21;
+    // cut_joint.mbg:12:6  R coupler.ejs_v: e = law(f)
+    const double coupler_ejs_v_e_1 = -j2_reaction_t_f_3 * j2_reaction_f_f_2;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: 1 / pivot of the joint's accelerations
+    const double coupler_pivot1 = derived1_;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: joint acceleration as an affine function of the parent's motion
+    const double coupler_accel2 = -coupler_pivot1 * (-cse50 - cse50);
+    const double coupler_accel3 = -coupler_pivot1 * (-cse55 - cse55);
+    const double cse58 = 0.1 * cse49 + 0.5;
+    const double coupler_accel4 = -coupler_pivot1 * (coupler_inertia_3_3 + 0.5 * cse58);
+    const double cse59 = 0.5 * cse49;
+    const double coupler_accel5 = -coupler_pivot1 * cse59;
+    const double cse60 = j2_m4_f2_1 * j2_theta_rate_rate;
+    const double cse61 = -(coupler_weight_e_2 - coupler_ejs_v_e_2) - cse60;
+    const double coupler_accel6 = -coupler_pivot1 * (0.5 * cse61);
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
+    const double coupler_out7 = -cse48 * coupler_pose_R11 - cse49 * coupler_pose_R12 + cse59 * coupler_accel2;
+    const double coupler_out8 = -cse48 * coupler_pose_R21 - cse49 * coupler_pose_R22 + cse59 * coupler_accel3;
+    const double cse62 = 0.1 * cse48;
+    const double coupler_out9 = cse48 * cse62 + cse49 * cse58 + cse59 * coupler_accel4;
+    const double coupler_out10 = cse59 * coupler_accel5 + 1.0;
+    const double cse63 = j2_m4_f2_2 * j2_theta_rate_rate;
+    const double coupler_out11 = cse48 * (-(coupler_weight_e_1 - coupler_ejs_v_e_1) + cse63) + cse49 * cse61 + cse59 * coupler_accel6;
+    const double coupler_out12 = 0.1 * coupler_out7;
+    const double coupler_out13 = 0.1 * coupler_out8;
+    const double coupler_out14 = 0.1 * coupler_out9;
+    const double coupler_out15 = 0.1 * coupler_out10;
+    const double coupler_out16 = 0.1 * coupler_out11;
+    // cut_joint.mbg:14:7  articulated-body elimination, body crank: 1 / pivot of the joint's accelerations
+    const double crank_pivot1 = 1.0 / (crank_inertia_3_3 + 0.1 * (0.1 + coupler_out9 + coupler_out15) + coupler_out14 + 0.1 * coupler_out15);
+    // cut_joint.mbg:14:7  articulated-body elimination, body crank: joint acceleration as an affine function of the parent's motion
+    const double crank_accel2 = -crank_pivot1 * (coupler_out12 + coupler_out12);
+    const double crank_accel3 = -crank_pivot1 * (coupler_out13 + coupler_out13);
+    const double crank_accel4 = -crank_pivot1 * (coupler_out16 + 0.1 * (-crank_weight_e_2 + coupler_out11));
+    // cut_joint.mbg:17:7  articulated-body elimination, body rocker: 1 / pivot of the joint's accelerations
+    const double rocker_pivot1 = derived2_;
+    // cut_joint.mbg:17:7  articulated-body elimination, body rocker: joint acceleration as an affine function of the parent's motion
+    const double rocker_accel2 = -rocker_pivot1 * (cse52 + cse52);
+    const double rocker_accel3 = -rocker_pivot1 * (cse56 + cse56);
+    const double rocker_accel4 = rocker_pivot1 * (0.1 * rocker_weight_e_2);
+    // cut_joint.mbg:14:7  articulated-body elimination, body crank: the cut joints' columns: an unknown their rows read, affine in their multipliers
+    const double crank_column5 = 0.1 * crank_accel2;
+    const double crank_column6 = 0.1 * crank_accel3;
+    const double crank_column7 = 0.1 * crank_accel4;
+    // cut_joint.mbg:15:7  articulated-body elimination, body coupler: the cut joints' columns: an unknown their rows read, affine in their multipliers
+    const double coupler_column17 = cse62 * crank_accel2 + cse48 * crank_column5;
+    const double coupler_column18 = cse62 * crank_accel3 + cse48 * crank_column6;
+    const double coupler_column19 = cse63 + cse62 * crank_accel4 + cse48 * crank_column7;
+    const double coupler_column20 = coupler_accel2 + coupler_accel4 * crank_accel2 + coupler_accel5 * crank_column5;
+    const double coupler_column21 = coupler_accel3 + coupler_accel4 * crank_accel3 + coupler_accel5 * crank_column6;
+    const double coupler_column22 = coupler_accel6 + coupler_accel4 * crank_accel4 + coupler_accel5 * crank_column7;
+    const double coupler_column23 = cse58 * crank_accel2 + 0.5 * coupler_column20 + cse49 * crank_column5;
+    const double coupler_column24 = cse58 * crank_accel3 + 0.5 * coupler_column21 + cse49 * crank_column6;
+    const double coupler_column25 = -cse60 + cse58 * crank_accel4 + 0.5 * coupler_column22 + cse49 * crank_column7;
+    const double coupler_column26 = crank_accel2 + coupler_column20;
+    const double coupler_column27 = crank_accel3 + coupler_column21;
+    const double coupler_column28 = crank_accel4 + coupler_column22;
+    // cut_joint.mbg:17:7  articulated-body elimination, body rocker: the cut joints' columns: an unknown their rows read, affine in their multipliers
+    const double rocker_column5 = 0.1 * rocker_accel2;
+    const double rocker_column6 = 0.1 * rocker_accel3;
+    const double rocker_column7 = 0.1 * rocker_accel4;
+    // cut_joint.mbg:16:7  cut joints: 2 multipliers from their rows at acceleration level, an 2x2 system solved at run time
+    // A x = b for x = (j3.cn.e[1], j3.cn.e[2])
+    const double cse64 = 2.0 * j3_stabilisation;
+    const double cse65 = j3_stabilisation * j3_stabilisation;
+    double blk1_a[4] = {
+        -coupler_pose_R11 * coupler_column17 - coupler_pose_R12 * coupler_column23 - cse50 * coupler_column26 + rocker_pose_R12 * rocker_column5 + cse52 * rocker_accel2, -coupler_pose_R11 * coupler_column18 - coupler_pose_R12 * coupler_column24 - cse50 * coupler_column27 + rocker_pose_R12 * rocker_column6 + cse52 * rocker_accel3,
+        -coupler_pose_R21 * coupler_column17 - coupler_pose_R22 * coupler_column23 - cse55 * coupler_column26 + rocker_pose_R22 * rocker_column5 + cse56 * rocker_accel2, -coupler_pose_R21 * coupler_column18 - coupler_pose_R22 * coupler_column24 - cse55 * coupler_column27 + rocker_pose_R22 * rocker_column6 + cse56 * rocker_accel3,
+    };
+    double blk1_x[2] = {-(cse64 * j3_cn_f_1 + cse65 * (rocker_pose_r1 + cse54 - (coupler_pose_r1 + cse53)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column19 - coupler_pose_R12 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse50 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse52 * rocker_accel4))), -(cse64 * j3_cn_f_2 + cse65 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse57)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column19 - coupler_pose_R22 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse55 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse56 * rocker_accel4)))};
+    static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
+    int blk1_dependent[2];
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
+    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
+    const double j3_cn_e_1 = blk1_x[0];
+    const double j3_cn_e_2 = blk1_x[1];
+    // the powers
+    out[0] = crank_weight_e_2 * j1_m2_f2_2 + (coupler_weight_e_1 * j2_reaction_f_f_1 + coupler_weight_e_2 * j2_reaction_f_f_2) + rocker_weight_e_2 * j4_m2_f2_2;
+    out[1] = coupler_ejs_v_e_1 * j2_reaction_f_f_1 + coupler_ejs_v_e_2 * j2_reaction_f_f_2 + (j3_cn_e_1 * j3_cn_f_1 + j3_cn_e_2 * j3_cn_f_2);
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

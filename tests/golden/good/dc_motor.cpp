@@ -206,6 +206,52 @@ class dc_motor_model final : public mbgrt::Model {
     return true;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I armature_l (dc_motor.mbg:15:4), I rotor (dc_motor.mbg:17:4)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double armature_l_p = x[0];
+    const double rotor_p = x[1];
+    // dc_motor.mbg:15:4  I armature_l: p = I f
+    const double armature_l_f = armature_l_p / L_a;
+    // dc_motor.mbg:17:4  I rotor: p = I f
+    const double rotor_f = rotor_p / J;
+    // the stored energy
+    out[0] = 0.5 * (armature_l_p * armature_l_f) + 0.5 * (rotor_p * rotor_f);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se supply (dc_motor.mbg:13:4); out[1]: the power into R armature_r (dc_motor.mbg:14:4), R friction (dc_motor.mbg:18:4)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double armature_l_p = x[0];
+    const double rotor_p = x[1];
+    // dc_motor.mbg:13:4  Se supply: e = value
+    const double supply_e = V_supply * mode_[0];
+    // dc_motor.mbg:15:4  I armature_l: p = I f
+    const double armature_l_f = armature_l_p / L_a;
+    // dc_motor.mbg:14:4  R armature_r: e = R f
+    const double armature_r_e = R_a * armature_l_f;
+    // dc_motor.mbg:17:4  I rotor: p = I f
+    const double rotor_f = rotor_p / J;
+    // dc_motor.mbg:18:4  R friction: e = R f
+    const double friction_e = D * rotor_f;
+    // the powers
+    out[0] = supply_e * armature_l_f;
+    out[1] = armature_r_e * armature_l_f + friction_e * rotor_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -146,6 +146,42 @@ class derivative_causality_model final : public mbgrt::Model {
     out[1] = mass1_e;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I mass1 (derivative_causality.mbg:7:3), I mass2 (derivative_causality.mbg:8:3)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass1_p = x[0];
+    // derivative_causality.mbg:7:3  I mass1: p = I f
+    const double mass1_f = mass1_p / m1;
+    // the stored energy
+    out[0] = 0.5 * (mass1_p * mass1_f) + 0.5 * (m2 * (mass1_f * mass1_f));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se force (derivative_causality.mbg:6:4); out[1]: the power into none
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass1_p = x[0];
+    // derivative_causality.mbg:6:4  Se force: e = value
+    const double force_e = F;
+    // derivative_causality.mbg:7:3  I mass1: p = I f
+    const double mass1_f = mass1_p / m1;
+    // the powers
+    out[0] = force_e * mass1_f;
+    out[1] = 0.0;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

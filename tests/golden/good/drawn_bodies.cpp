@@ -652,6 +652,164 @@ class drawn_bodies_model final : public mbgrt::Model {
     out[59] = (cse26 + cse30 - cse27 - cse29) / cse31;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I link.m (drawn_bodies.mbg:11:6), I link.J (drawn_bodies.mbg:11:6), I wheel.m (drawn_bodies.mbg:19:6), I wheel.J (drawn_bodies.mbg:19:6) and 5 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double ball_m_p_1 = x[0];
+    const double ball_m_p_2 = x[1];
+    const double ball_m_p_3 = x[2];
+    const double tetra_m_p_1 = x[6];
+    const double tetra_m_p_2 = x[7];
+    const double tetra_m_p_3 = x[8];
+    const double tetra_J_p_1 = x[12];
+    const double tetra_J_p_2 = x[13];
+    const double tetra_J_p_3 = x[14];
+    const double plain_m_p_1 = x[19];
+    const double plain_m_p_2 = x[20];
+    const double plain_m_p_3 = x[21];
+    const double plain_J_p_1 = x[25];
+    const double plain_J_p_2 = x[26];
+    const double plain_J_p_3 = x[27];
+    const double shoulder_theta_rate_rate = x[32];
+    const double axle_theta_rate_rate = x[34];
+    const double axle_theta_q = x[35];
+    // drawn_bodies.mbg:40:7  MTF shoulder.m2: f2 = T f1
+    const double shoulder_m2_f2_3 = -0.25 * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  MTF axle.m3: f2 = T f1
+    const double axle_m3_f2_3 = shoulder_m2_f2_3;
+    // drawn_bodies.mbg:41:7  0 axle.vpa: flows in = flows out
+    const double axle_m4_f1_3 = shoulder_m2_f2_3 + axle_m3_f2_3;
+    // drawn_bodies.mbg:41:7  0 axle.vsum: flows in = flows out
+    const double axle_reaction_f_f_3 = axle_m4_f1_3;
+    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
+    const double axle_m1_f2_2 = std::cos(axle_theta_q) * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
+    const double axle_reaction_t_f_2 = axle_m1_f2_2;
+    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
+    const double axle_m1_f2_1 = std::sin(axle_theta_q) * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
+    const double axle_reaction_t_f_1 = axle_m1_f2_1;
+    const double axle_reaction_t_f_3 = axle_theta_rate_rate;
+    // drawn_bodies.mbg:25:6  I ball.m: p = I f
+    const double ball_m_f_1 = ball_m_p_1 / 0.1;
+    const double ball_m_f_2 = ball_m_p_2 / 0.1;
+    const double ball_m_f_3 = ball_m_p_3 / 0.1;
+    // drawn_bodies.mbg:26:6  I tetra.m: p = I f
+    const double tetra_m_f_1 = tetra_m_p_1 / 0.2;
+    const double tetra_m_f_2 = tetra_m_p_2 / 0.2;
+    const double tetra_m_f_3 = tetra_m_p_3 / 0.2;
+    // drawn_bodies.mbg:26:6  I tetra.J: p = I f
+    const double tetra_J_f_2 = tetra_J_p_2 / 0.001;
+    const double tetra_J_f_3 = tetra_J_p_3 / 0.001;
+    const double tetra_J_f_1 = tetra_J_p_1 / 0.001;
+    // drawn_bodies.mbg:33:6  I plain.m: p = I f
+    const double plain_m_f_1 = plain_m_p_1 / 0.3;
+    const double plain_m_f_2 = plain_m_p_2 / 0.3;
+    const double plain_m_f_3 = plain_m_p_3 / 0.3;
+    // drawn_bodies.mbg:33:6  I plain.J: p = I f
+    const double plain_J_f_2 = plain_J_p_2 / 0.002;
+    const double plain_J_f_3 = plain_J_p_3 / 0.002;
+    const double plain_J_f_1 = plain_J_p_1 / 0.001;
+    // the stored energy
+    out[0] = 0.5 * (shoulder_m2_f2_3 * shoulder_m2_f2_3) + 0.01 * (shoulder_theta_rate_rate * shoulder_theta_rate_rate) + 0.25 * (axle_reaction_f_f_3 * axle_reaction_f_f_3) + 0.5 * (0.002 * (axle_reaction_t_f_1 * axle_reaction_t_f_1) + 0.002 * (axle_reaction_t_f_2 * axle_reaction_t_f_2) + 0.004 * (axle_reaction_t_f_3 * axle_reaction_t_f_3)) + 0.5 * (ball_m_p_1 * ball_m_f_1 + ball_m_p_2 * ball_m_f_2 + ball_m_p_3 * ball_m_f_3) + 0.5 * (tetra_m_p_1 * tetra_m_f_1 + tetra_m_p_2 * tetra_m_f_2 + tetra_m_p_3 * tetra_m_f_3) + 0.5 * (tetra_J_p_1 * tetra_J_f_1 + tetra_J_p_2 * tetra_J_f_2 + tetra_J_p_3 * tetra_J_f_3) + 0.5 * (plain_m_p_1 * plain_m_f_1 + plain_m_p_2 * plain_m_f_2 + plain_m_p_3 * plain_m_f_3) + 0.5 * (plain_J_p_1 * plain_J_f_1 + plain_J_p_2 * plain_J_f_2 + plain_J_p_3 * plain_J_f_3);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se link.weight (drawn_bodies.mbg:11:6), Se wheel.weight (drawn_bodies.mbg:19:6), Se ball.weight (drawn_bodies.mbg:25:6), Se tetra.weight (drawn_bodies.mbg:26:6) and 1 more; out[1]: the power into R link.ejs_v (drawn_bodies.mbg:11:6), R link.ejs (drawn_bodies.mbg:11:6), R wheel.ejs_v (drawn_bodies.mbg:19:6), R wheel.ejs (drawn_bodies.mbg:19:6) and 2 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double ball_m_p_3 = x[2];
+    const double tetra_m_p_3 = x[8];
+    const double tetra_J_p_1 = x[12];
+    const double tetra_J_p_2 = x[13];
+    const double tetra_J_p_3 = x[14];
+    const double plain_m_p_3 = x[21];
+    const double plain_J_p_1 = x[25];
+    const double plain_J_p_2 = x[26];
+    const double plain_J_p_3 = x[27];
+    const double shoulder_theta_rate_rate = x[32];
+    const double shoulder_theta_q = x[33];
+    const double axle_theta_rate_rate = x[34];
+    const double axle_theta_q = x[35];
+    // drawn_bodies.mbg:40:7  MTF shoulder.m2: f2 = T f1
+    const double shoulder_m2_f2_3 = -0.25 * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  MTF axle.m3: f2 = T f1
+    const double axle_m3_f2_3 = shoulder_m2_f2_3;
+    // drawn_bodies.mbg:41:7  0 axle.vpa: flows in = flows out
+    const double axle_m4_f1_3 = shoulder_m2_f2_3 + axle_m3_f2_3;
+    // drawn_bodies.mbg:41:7  0 axle.vsum: flows in = flows out
+    const double axle_reaction_f_f_3 = axle_m4_f1_3;
+    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
+    const double axle_m1_f2_2 = std::cos(axle_theta_q) * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
+    const double axle_reaction_t_f_2 = axle_m1_f2_2;
+    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
+    const double axle_m1_f2_1 = std::sin(axle_theta_q) * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
+    const double axle_reaction_t_f_1 = axle_m1_f2_1;
+    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
+    const double wheel_J_p_2 = 0.002 * axle_reaction_t_f_2;
+    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
+    const double axle_reaction_t_f_3 = axle_theta_rate_rate;
+    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
+    const double wheel_J_p_3 = 0.004 * axle_reaction_t_f_3;
+    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
+    const double wheel_ejs_e_1 = axle_reaction_t_f_2 * wheel_J_p_3 - axle_reaction_t_f_3 * wheel_J_p_2;
+    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
+    const double wheel_J_p_1 = 0.002 * axle_reaction_t_f_1;
+    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
+    const double wheel_ejs_e_2 = axle_reaction_t_f_3 * wheel_J_p_1 - axle_reaction_t_f_1 * wheel_J_p_3;
+    // drawn_bodies.mbg:40:7  signal link.pose.R33
+    const double link_pose_R33 = std::cos(shoulder_theta_q);
+    // drawn_bodies.mbg:19:6  Se wheel.weight: e = value
+    const double wheel_weight_e_3 = -4.905 * link_pose_R33;
+    // drawn_bodies.mbg:11:6  Se link.weight: e = value
+    const double link_weight_e_3 = -9.81 * link_pose_R33;
+    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
+    const double wheel_ejs_e_3 = axle_reaction_t_f_1 * wheel_J_p_2 - axle_reaction_t_f_2 * wheel_J_p_1;
+    // drawn_bodies.mbg:25:6  I ball.m: p = I f
+    const double ball_m_f_3 = ball_m_p_3 / 0.1;
+    // drawn_bodies.mbg:26:6  I tetra.m: p = I f
+    const double tetra_m_f_3 = tetra_m_p_3 / 0.2;
+    // drawn_bodies.mbg:26:6  I tetra.J: p = I f
+    const double tetra_J_f_2 = tetra_J_p_2 / 0.001;
+    const double tetra_J_f_3 = tetra_J_p_3 / 0.001;
+    // drawn_bodies.mbg:26:6  R tetra.ejs: e = law(f)
+    const double tetra_ejs_e_1 = tetra_J_f_2 * tetra_J_p_3 - tetra_J_f_3 * tetra_J_p_2;
+    // drawn_bodies.mbg:26:6  I tetra.J: p = I f
+    const double tetra_J_f_1 = tetra_J_p_1 / 0.001;
+    // drawn_bodies.mbg:26:6  R tetra.ejs: e = law(f)
+    const double tetra_ejs_e_2 = tetra_J_f_3 * tetra_J_p_1 - tetra_J_f_1 * tetra_J_p_3;
+    const double tetra_ejs_e_3 = tetra_J_f_1 * tetra_J_p_2 - tetra_J_f_2 * tetra_J_p_1;
+    // drawn_bodies.mbg:33:6  I plain.m: p = I f
+    const double plain_m_f_3 = plain_m_p_3 / 0.3;
+    // drawn_bodies.mbg:33:6  I plain.J: p = I f
+    const double plain_J_f_2 = plain_J_p_2 / 0.002;
+    const double plain_J_f_3 = plain_J_p_3 / 0.002;
+    // drawn_bodies.mbg:33:6  R plain.ejs: e = law(f)
+    const double plain_ejs_e_1 = plain_J_f_2 * plain_J_p_3 - plain_J_f_3 * plain_J_p_2;
+    // drawn_bodies.mbg:33:6  I plain.J: p = I f
+    const double plain_J_f_1 = plain_J_p_1 / 0.001;
+    // drawn_bodies.mbg:33:6  R plain.ejs: e = law(f)
+    const double plain_ejs_e_2 = plain_J_f_3 * plain_J_p_1 - plain_J_f_1 * plain_J_p_3;
+    const double plain_ejs_e_3 = plain_J_f_1 * plain_J_p_2 - plain_J_f_2 * plain_J_p_1;
+    // the powers
+    out[0] = link_weight_e_3 * shoulder_m2_f2_3 + wheel_weight_e_3 * axle_reaction_f_f_3 - 0.9810000000000001 * ball_m_f_3 - 1.9620000000000002 * tetra_m_f_3 - 2.943 * plain_m_f_3;
+    out[1] = wheel_ejs_e_1 * axle_reaction_t_f_1 + wheel_ejs_e_2 * axle_reaction_t_f_2 + wheel_ejs_e_3 * axle_reaction_t_f_3 + (tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3) + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -159,6 +159,45 @@ class imports_model final : public mbgrt::Model {
     out[1] = mass_f;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I mass (imports.mbg:7:3), C sd.spring (lib/spring_damper.mbg:3:5)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass_p = x[0];
+    const double sd_spring_q = x[1];
+    // imports.mbg:7:3  I mass: p = I f
+    const double mass_f = mass_p / m;
+    // lib/spring_damper.mbg:3:5  C sd.spring: q = C e
+    const double sd_spring_e = sd_spring_q / derived1_;
+    // the stored energy
+    out[0] = 0.5 * (mass_p * mass_f) + 0.5 * (sd_spring_q * sd_spring_e);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of none; out[1]: the power into R sd.damper (lib/spring_damper.mbg:4:5)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass_p = x[0];
+    // imports.mbg:7:3  I mass: p = I f
+    const double mass_f = mass_p / m;
+    // lib/spring_damper.mbg:4:5  R sd.damper: e = R f
+    const double sd_damper_e = sd_c * mass_f;
+    // the powers
+    out[0] = 0.0;
+    out[1] = sd_damper_e * mass_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

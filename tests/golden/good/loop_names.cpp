@@ -900,6 +900,121 @@ class loop_names_model final : public mbgrt::Model {
     out[47] = (cse120 + cse124 - cse121 - cse123) / cse125;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I bob1.m (loop_names.mbg:23:8), I plate1.m (loop_names.mbg:27:8), I plate1.J (loop_names.mbg:27:8), I bob2.m (loop_names.mbg:23:8) and 2 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bob1_m_p_1 = x[0];
+    const double bob1_m_p_2 = x[1];
+    const double bob1_m_p_3 = x[2];
+    const double plate1_m_p_1 = x[6];
+    const double plate1_m_p_2 = x[7];
+    const double plate1_m_p_3 = x[8];
+    const double plate1_J_p_1 = x[12];
+    const double plate1_J_p_2 = x[13];
+    const double plate1_J_p_3 = x[14];
+    const double bob2_m_p_1 = x[19];
+    const double bob2_m_p_2 = x[20];
+    const double bob2_m_p_3 = x[21];
+    const double plate2_m_p_1 = x[25];
+    const double plate2_m_p_2 = x[26];
+    const double plate2_m_p_3 = x[27];
+    const double plate2_J_p_1 = x[31];
+    const double plate2_J_p_2 = x[32];
+    const double plate2_J_p_3 = x[33];
+    // loop_names.mbg:27:8  I plate1.J: p = I f
+    const double plate1_J_f_2 = plate1_J_p_2 / plate1_inertia_2_2;
+    const double plate1_J_f_3 = plate1_J_p_3 / plate1_inertia_3_3;
+    const double plate1_J_f_1 = plate1_J_p_1 / plate1_inertia_1_1;
+    // loop_names.mbg:27:8  I plate2.J: p = I f
+    const double plate2_J_f_2 = plate2_J_p_2 / plate2_inertia_2_2;
+    const double plate2_J_f_3 = plate2_J_p_3 / plate2_inertia_3_3;
+    const double plate2_J_f_1 = plate2_J_p_1 / plate2_inertia_1_1;
+    // the stored energy
+    out[0] = 0.5 * (bob1_m_p_1 * bob1_m_p_1 + bob1_m_p_2 * bob1_m_p_2 + bob1_m_p_3 * bob1_m_p_3) + 0.5 * (plate1_m_p_1 * plate1_m_p_1 + plate1_m_p_2 * plate1_m_p_2 + plate1_m_p_3 * plate1_m_p_3) + 0.5 * (plate1_J_p_1 * plate1_J_f_1 + plate1_J_p_2 * plate1_J_f_2 + plate1_J_p_3 * plate1_J_f_3) + 0.5 * (bob2_m_p_1 * bob2_m_p_1 + bob2_m_p_2 * bob2_m_p_2 + bob2_m_p_3 * bob2_m_p_3) + 0.5 * (plate2_m_p_1 * plate2_m_p_1 + plate2_m_p_2 * plate2_m_p_2 + plate2_m_p_3 * plate2_m_p_3) + 0.5 * (plate2_J_p_1 * plate2_J_f_1 + plate2_J_p_2 * plate2_J_f_2 + plate2_J_p_3 * plate2_J_f_3);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se bob1.weight (loop_names.mbg:23:8), Se plate1.weight (loop_names.mbg:27:8), Se bob2.weight (loop_names.mbg:23:8), Se plate2.weight (loop_names.mbg:27:8) and 2 more; out[1]: the power into R plate1.ejs (loop_names.mbg:27:8), R plate2.ejs (loop_names.mbg:27:8)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bob1_m_p_1 = x[0];
+    const double bob1_m_p_2 = x[1];
+    const double bob1_m_p_3 = x[2];
+    const double bob1_r_q_1 = x[3];
+    const double bob1_r_q_2 = x[4];
+    const double bob1_r_q_3 = x[5];
+    const double plate1_m_p_2 = x[7];
+    const double plate1_J_p_1 = x[12];
+    const double plate1_J_p_2 = x[13];
+    const double plate1_J_p_3 = x[14];
+    const double bob2_m_p_1 = x[19];
+    const double bob2_m_p_2 = x[20];
+    const double bob2_m_p_3 = x[21];
+    const double bob2_r_q_1 = x[22];
+    const double bob2_r_q_2 = x[23];
+    const double bob2_r_q_3 = x[24];
+    const double plate2_m_p_2 = x[26];
+    const double plate2_J_p_1 = x[31];
+    const double plate2_J_p_2 = x[32];
+    const double plate2_J_p_3 = x[33];
+    // loop_names.mbg:24:9  Se spring1.on_bob1_f: e = value
+    // (cseN: a subexpression several equations below share)
+    const double cse132 = bob1_r_q_1 - 1.0;
+    const double cse133 = std::sqrt(cse132 * cse132 + bob1_r_q_2 * bob1_r_q_2 + bob1_r_q_3 * bob1_r_q_3);
+    const double cse134 = cse132 / cse133;
+    const double cse135 = bob1_r_q_2 / cse133;
+    const double cse136 = bob1_r_q_3 / cse133;
+    const double cse137 = spring1_stiffness * (cse133 - spring1_length0) + spring1_damping * (cse134 * bob1_m_p_1 + cse135 * bob1_m_p_2 + cse136 * bob1_m_p_3);
+    const double spring1_on_bob1_f_e_1 = -cse137 * cse134;
+    const double spring1_on_bob1_f_e_2 = -cse137 * cse135;
+    const double spring1_on_bob1_f_e_3 = -cse137 * cse136;
+    // loop_names.mbg:27:8  I plate1.J: p = I f
+    const double plate1_J_f_2 = plate1_J_p_2 / plate1_inertia_2_2;
+    const double plate1_J_f_3 = plate1_J_p_3 / plate1_inertia_3_3;
+    // loop_names.mbg:27:8  R plate1.ejs: e = law(f)
+    const double plate1_ejs_e_1 = plate1_J_f_2 * plate1_J_p_3 - plate1_J_f_3 * plate1_J_p_2;
+    // loop_names.mbg:27:8  I plate1.J: p = I f
+    const double plate1_J_f_1 = plate1_J_p_1 / plate1_inertia_1_1;
+    // loop_names.mbg:27:8  R plate1.ejs: e = law(f)
+    const double plate1_ejs_e_2 = plate1_J_f_3 * plate1_J_p_1 - plate1_J_f_1 * plate1_J_p_3;
+    const double plate1_ejs_e_3 = plate1_J_f_1 * plate1_J_p_2 - plate1_J_f_2 * plate1_J_p_1;
+    // loop_names.mbg:24:9  Se spring2.on_bob2_f: e = value
+    const double cse138 = bob2_r_q_1 - 2.0;
+    const double cse139 = std::sqrt(cse138 * cse138 + bob2_r_q_2 * bob2_r_q_2 + bob2_r_q_3 * bob2_r_q_3);
+    const double cse140 = cse138 / cse139;
+    const double cse141 = bob2_r_q_2 / cse139;
+    const double cse142 = bob2_r_q_3 / cse139;
+    const double cse143 = spring2_stiffness * (cse139 - spring2_length0) + spring2_damping * (cse140 * bob2_m_p_1 + cse141 * bob2_m_p_2 + cse142 * bob2_m_p_3);
+    const double spring2_on_bob2_f_e_1 = -cse143 * cse140;
+    const double spring2_on_bob2_f_e_2 = -cse143 * cse141;
+    const double spring2_on_bob2_f_e_3 = -cse143 * cse142;
+    // loop_names.mbg:27:8  I plate2.J: p = I f
+    const double plate2_J_f_2 = plate2_J_p_2 / plate2_inertia_2_2;
+    const double plate2_J_f_3 = plate2_J_p_3 / plate2_inertia_3_3;
+    // loop_names.mbg:27:8  R plate2.ejs: e = law(f)
+    const double plate2_ejs_e_1 = plate2_J_f_2 * plate2_J_p_3 - plate2_J_f_3 * plate2_J_p_2;
+    // loop_names.mbg:27:8  I plate2.J: p = I f
+    const double plate2_J_f_1 = plate2_J_p_1 / plate2_inertia_1_1;
+    // loop_names.mbg:27:8  R plate2.ejs: e = law(f)
+    const double plate2_ejs_e_2 = plate2_J_f_3 * plate2_J_p_1 - plate2_J_f_1 * plate2_J_p_3;
+    const double plate2_ejs_e_3 = plate2_J_f_1 * plate2_J_p_2 - plate2_J_f_2 * plate2_J_p_1;
+    // the powers
+    out[0] = -9.81 * bob1_m_p_2 - 9.81 * plate1_m_p_2 - 9.81 * bob2_m_p_2 - 9.81 * plate2_m_p_2 + (spring1_on_bob1_f_e_1 * bob1_m_p_1 + spring1_on_bob1_f_e_2 * bob1_m_p_2 + spring1_on_bob1_f_e_3 * bob1_m_p_3) + (spring2_on_bob2_f_e_1 * bob2_m_p_1 + spring2_on_bob2_f_e_2 * bob2_m_p_2 + spring2_on_bob2_f_e_3 * bob2_m_p_3);
+    out[1] = plate1_ejs_e_1 * plate1_J_f_1 + plate1_ejs_e_2 * plate1_J_f_2 + plate1_ejs_e_3 * plate1_J_f_3 + (plate2_ejs_e_1 * plate2_J_f_1 + plate2_ejs_e_2 * plate2_J_f_2 + plate2_ejs_e_3 * plate2_J_f_3);
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

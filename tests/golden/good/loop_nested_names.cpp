@@ -240,6 +240,70 @@ class loop_nested_names_model final : public mbgrt::Model {
     return true;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of C spring1_1 (loop_nested_names.mbg:13:8), I mass1_1 (loop_nested_names.mbg:14:8), C spring1_2 (loop_nested_names.mbg:13:8), I mass1_2 (loop_nested_names.mbg:14:8) and 4 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double spring1_1_q = x[0];
+    const double mass1_1_p = x[1];
+    const double spring1_2_q = x[2];
+    const double mass1_2_p = x[3];
+    const double spring2_1_q = x[4];
+    const double mass2_1_p = x[5];
+    const double spring2_2_q = x[6];
+    const double mass2_2_p = x[7];
+    // loop_nested_names.mbg:13:8  C spring1_1: q = C e
+    const double spring1_1_e = spring1_1_q / derived1_;
+    // loop_nested_names.mbg:13:8  C spring1_2: q = C e
+    const double spring1_2_e = spring1_2_q / derived2_;
+    // loop_nested_names.mbg:13:8  C spring2_1: q = C e
+    const double spring2_1_e = spring2_1_q / derived3_;
+    // loop_nested_names.mbg:13:8  C spring2_2: q = C e
+    const double spring2_2_e = spring2_2_q / derived4_;
+    // the stored energy
+    out[0] = 0.5 * (spring1_1_q * spring1_1_e) + 0.5 * (mass1_1_p * mass1_1_p) + 0.5 * (spring1_2_q * spring1_2_e) + 0.5 * (mass1_2_p * mass1_2_p) + 0.5 * (spring2_1_q * spring2_1_e) + 0.5 * (mass2_1_p * mass2_1_p) + 0.5 * (spring2_2_q * spring2_2_e) + 0.5 * (mass2_2_p * mass2_2_p);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se force1_1 (loop_nested_names.mbg:12:8), Se force1_2 (loop_nested_names.mbg:12:8), Se force2_1 (loop_nested_names.mbg:12:8), Se force2_2 (loop_nested_names.mbg:12:8); out[1]: the power into R damper1_1 (loop_nested_names.mbg:15:8), R damper1_2 (loop_nested_names.mbg:15:8), R damper2_1 (loop_nested_names.mbg:15:8), R damper2_2 (loop_nested_names.mbg:15:8)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass1_1_p = x[1];
+    const double mass1_2_p = x[3];
+    const double mass2_1_p = x[5];
+    const double mass2_2_p = x[7];
+    // loop_nested_names.mbg:12:8  Se force1_1: e = value
+    const double force1_1_e = mode_[0];
+    // loop_nested_names.mbg:15:8  R damper1_1: e = R f
+    const double damper1_1_e = 0.1 * mass1_1_p;
+    // loop_nested_names.mbg:12:8  Se force1_2: e = value
+    const double force1_2_e = mode_[0];
+    // loop_nested_names.mbg:15:8  R damper1_2: e = R f
+    const double damper1_2_e = 0.2 * mass1_2_p;
+    // loop_nested_names.mbg:12:8  Se force2_1: e = value
+    const double force2_1_e = 2.0 * mode_[0];
+    // loop_nested_names.mbg:15:8  R damper2_1: e = R f
+    const double damper2_1_e = 0.1 * mass2_1_p;
+    // loop_nested_names.mbg:12:8  Se force2_2: e = value
+    const double force2_2_e = force2_1_e;
+    // loop_nested_names.mbg:15:8  R damper2_2: e = R f
+    const double damper2_2_e = 0.2 * mass2_2_p;
+    // the powers
+    out[0] = force1_1_e * mass1_1_p + force1_2_e * mass1_2_p + force2_1_e * mass2_1_p + force2_2_e * mass2_2_p;
+    out[1] = damper1_1_e * mass1_1_p + damper1_2_e * mass1_2_p + damper2_1_e * mass2_1_p + damper2_2_e * mass2_2_p;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

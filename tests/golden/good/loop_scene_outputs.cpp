@@ -120,6 +120,44 @@ class loop_scene_outputs_model final : public mbgrt::Model {
     out[0] = c3_e;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of C c3 (loop_scene_outputs.mbg:11:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double c3_q = x[0];
+    // loop_scene_outputs.mbg:11:6  C c3: q = C e
+    const double c3_e = c3_q / 0.001;
+    // the stored energy
+    out[0] = 0.5 * (c3_q * c3_e);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se source3 (loop_scene_outputs.mbg:9:6); out[1]: the power into R r3 (loop_scene_outputs.mbg:10:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double c3_q = x[0];
+    // loop_scene_outputs.mbg:11:6  C c3: q = C e
+    const double c3_e = c3_q / 0.001;
+    // loop_scene_outputs.mbg:12:6  1 loop3: efforts in = efforts out
+    const double r3_e = 3.0 - c3_e;
+    // loop_scene_outputs.mbg:10:6  R r3: f = e / R
+    const double r3_f = r3_e / 300.0;
+    // the powers
+    out[0] = 3.0 * r3_f;
+    out[1] = r3_e * r3_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

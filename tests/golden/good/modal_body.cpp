@@ -879,6 +879,11 @@ class modal_body_model final : public mbgrt::Model {
     values[10] = -0.4743416490252569 * ((cse157 - cse163 * cse162) / cse156);
   }
 
+  // What the energy balance leaves out, or why there is none.
+  std::string energy_note() const override {
+    return "every storage is counted by the power into it, so the balance would hold by construction; I bar.M: a modulated law, counted by the power into it; C bar.eta: a nonlinear law, counted by the power into it";
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

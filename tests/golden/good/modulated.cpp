@@ -154,6 +154,11 @@ class modulated_model final : public mbgrt::Model {
     out[1] = c_q;
   }
 
+  // What the energy balance leaves out, or why there is none.
+  std::string energy_note() const override {
+    return "every storage is counted by the power into it, so the balance would hold by construction; I m: a nonlinear law, counted by the power into it; C c: a nonlinear law, counted by the power into it";
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -188,6 +188,54 @@ class multibond_model final : public mbgrt::Model {
     out[2] = spring_e_1;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I mass (multibond.mbg:7:3), C spring (multibond.mbg:8:3)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass_p_1 = x[0];
+    const double mass_p_2 = x[1];
+    const double spring_q_1 = x[2];
+    const double spring_q_2 = x[3];
+    // multibond.mbg:7:3  I mass: p = I f
+    const double mass_f_1 = mass_p_1 / m;
+    const double mass_f_2 = mass_p_2 / m;
+    // multibond.mbg:8:3  C spring: q = C e
+    const double spring_e_1 = spring_q_1 / derived1_;
+    const double spring_e_2 = spring_q_2 / derived1_;
+    // the stored energy
+    out[0] = 0.5 * (mass_p_1 * mass_f_1 + mass_p_2 * mass_f_2) + 0.5 * (spring_q_1 * spring_e_1 + spring_q_2 * spring_e_2);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se gravity (multibond.mbg:6:4); out[1]: the power into R damper (multibond.mbg:9:3)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double mass_p_1 = x[0];
+    const double mass_p_2 = x[1];
+    // multibond.mbg:6:4  Se gravity: e = value
+    const double gravity_e_2 = -9.81 * m;
+    // multibond.mbg:7:3  I mass: p = I f
+    const double mass_f_1 = mass_p_1 / m;
+    const double mass_f_2 = mass_p_2 / m;
+    // multibond.mbg:9:3  R damper: e = R f
+    const double damper_e_1 = 0.5 * mass_f_1 + 0.1 * mass_f_2;
+    const double damper_e_2 = 0.1 * mass_f_1 + 0.5 * mass_f_2;
+    // the powers
+    out[0] = gravity_e_2 * mass_f_2;
+    out[1] = damper_e_1 * mass_f_1 + damper_e_2 * mass_f_2;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

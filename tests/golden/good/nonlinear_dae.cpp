@@ -139,6 +139,47 @@ class nonlinear_dae_model final : public mbgrt::Model {
     out[1] = diode_f;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* y, const double* yp, double* out) override {
+    // H: the energy of C cap (nonlinear_dae.mbg:7:3)
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double cap_q = y[0];
+    // nonlinear_dae.mbg:7:3  C cap: q = C e
+    const double cap_e = cap_q / 0.01;
+    // the stored energy
+    out[0] = 0.5 * (cap_q * cap_e);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* y, const double* yp, double* out) override {
+    // out[0]: the power of Se src (nonlinear_dae.mbg:4:4); out[1]: the power into R diode (nonlinear_dae.mbg:5:3), R leak (nonlinear_dae.mbg:6:3)
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double cap_q = y[0];
+    const double diode_f = y[1];
+    // nonlinear_dae.mbg:4:4  Se src: e = value
+    const double src_e = std::sin(6.283185307179586 * t);
+    // nonlinear_dae.mbg:7:3  C cap: q = C e
+    const double cap_e = cap_q / 0.01;
+    // nonlinear_dae.mbg:8:3  1 s: efforts in = efforts out
+    const double diode_e = src_e - cap_e;
+    // nonlinear_dae.mbg:6:3  R leak: f = e / R
+    const double leak_f = cap_e / 10.0;
+    // the powers
+    out[0] = src_e * diode_f;
+    out[1] = diode_e * diode_f + cap_e * leak_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

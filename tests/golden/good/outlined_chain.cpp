@@ -693,6 +693,283 @@ class outlined_chain_model final : public mbgrt::Model {
     out[59] = 1.0;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I rod1.m (outlined_chain.mbg:17:8), I rod1.J (outlined_chain.mbg:17:8), I rod2.m (outlined_chain.mbg:17:8), I rod2.J (outlined_chain.mbg:17:8) and 6 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double j1_theta_rate_rate = x[0];
+    const double j2_theta_rate_rate = x[2];
+    const double j2_theta_q = x[3];
+    const double j3_theta_rate_rate = x[4];
+    const double j3_theta_q = x[5];
+    const double j4_theta_rate_rate = x[6];
+    const double j4_theta_q = x[7];
+    const double j5_theta_rate_rate = x[8];
+    const double j5_theta_q = x[9];
+    // outlined_chain.mbg:25:7  MTF j1.m2: f2 = T f1
+    const double j1_m2_f2_1 = j1_pb_2 * j1_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_1 = -j2_pa_2 * j1_theta_rate_rate;
+    // outlined_chain.mbg:27:9  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
+    const double j2_m4_f2_1 = std::cos(j2_theta_q) * j2_m4_f1_1;
+    // outlined_chain.mbg:27:9  0 j2.wsum: flows in = flows out
+    const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j2.m5: f2 = T f1
+    const double j2_m5_f2_1 = j2_pb_2 * j2_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_1 = j2_m4_f2_1 + j2_m5_f2_1;
+    // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
+    const double j3_m3_f2_1 = -j3_pa_2 * j2_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
+    const double j3_m4_f1_1 = j2_reaction_f_f_1 + j3_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
+    const double j2_m4_f2_2 = -std::sin(j2_theta_q) * j2_m4_f1_1;
+    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_2 = j2_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
+    const double j3_m4_f1_2 = j2_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse74 = std::cos(j3_theta_q);
+    const double cse75 = std::sin(j3_theta_q);
+    const double j3_m4_f2_1 = cse74 * j3_m4_f1_1 + cse75 * j3_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j3.wsum: flows in = flows out
+    const double j3_reaction_t_f_3 = j2_reaction_t_f_3 + j3_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j3.m5: f2 = T f1
+    const double j3_m5_f2_1 = j3_pb_2 * j3_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
+    const double j3_reaction_f_f_1 = j3_m4_f2_1 + j3_m5_f2_1;
+    // outlined_chain.mbg:27:9  MTF j4.m3: f2 = T f1
+    const double j4_m3_f2_1 = -j4_pa_2 * j3_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
+    const double j4_m4_f1_1 = j3_reaction_f_f_1 + j4_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
+    const double j3_m4_f2_2 = -cse75 * j3_m4_f1_1 + cse74 * j3_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
+    const double j3_reaction_f_f_2 = j3_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
+    const double j4_m4_f1_2 = j3_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
+    const double cse76 = std::cos(j4_theta_q);
+    const double cse77 = std::sin(j4_theta_q);
+    const double j4_m4_f2_1 = cse76 * j4_m4_f1_1 + cse77 * j4_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j4.wsum: flows in = flows out
+    const double j4_reaction_t_f_3 = j3_reaction_t_f_3 + j4_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j4.m5: f2 = T f1
+    const double j4_m5_f2_1 = j4_pb_2 * j4_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
+    const double j4_reaction_f_f_1 = j4_m4_f2_1 + j4_m5_f2_1;
+    // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
+    const double j5_m3_f2_1 = -j5_pa_2 * j4_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
+    const double j5_m4_f1_1 = j4_reaction_f_f_1 + j5_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
+    const double j4_m4_f2_2 = -cse77 * j4_m4_f1_1 + cse76 * j4_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
+    const double j4_reaction_f_f_2 = j4_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
+    const double j5_m4_f1_2 = j4_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
+    const double cse78 = std::sin(j5_theta_q);
+    const double cse79 = std::cos(j5_theta_q);
+    const double j5_m4_f2_2 = -cse78 * j5_m4_f1_1 + cse79 * j5_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
+    const double j5_reaction_f_f_2 = j5_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j5.wsum: flows in = flows out
+    const double j5_reaction_t_f_3 = j4_reaction_t_f_3 + j5_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
+    const double j5_m4_f2_1 = cse79 * j5_m4_f1_1 + cse78 * j5_m4_f1_2;
+    // outlined_chain.mbg:27:9  MTF j5.m5: f2 = T f1
+    const double j5_m5_f2_1 = j5_pb_2 * j5_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
+    const double j5_reaction_f_f_1 = j5_m4_f2_1 + j5_m5_f2_1;
+    // the stored energy
+    out[0] = 0.5 * (rod1_mass * (j1_m2_f2_1 * j1_m2_f2_1)) + 0.5 * (rod1_inertia_3_3 * (j1_theta_rate_rate * j1_theta_rate_rate)) + 0.5 * (rod2_mass * (j2_reaction_f_f_1 * j2_reaction_f_f_1) + rod2_mass * (j2_reaction_f_f_2 * j2_reaction_f_f_2)) + 0.5 * (rod2_inertia_3_3 * (j2_reaction_t_f_3 * j2_reaction_t_f_3)) + 0.5 * (rod3_mass * (j3_reaction_f_f_1 * j3_reaction_f_f_1) + rod3_mass * (j3_reaction_f_f_2 * j3_reaction_f_f_2)) + 0.5 * (rod3_inertia_3_3 * (j3_reaction_t_f_3 * j3_reaction_t_f_3)) + 0.5 * (rod4_mass * (j4_reaction_f_f_1 * j4_reaction_f_f_1) + rod4_mass * (j4_reaction_f_f_2 * j4_reaction_f_f_2)) + 0.5 * (rod4_inertia_3_3 * (j4_reaction_t_f_3 * j4_reaction_t_f_3)) + 0.5 * (rod5_mass * (j5_reaction_f_f_1 * j5_reaction_f_f_1) + rod5_mass * (j5_reaction_f_f_2 * j5_reaction_f_f_2)) + 0.5 * (rod5_inertia_3_3 * (j5_reaction_t_f_3 * j5_reaction_t_f_3));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se rod1.weight (outlined_chain.mbg:17:8), Se rod2.weight (outlined_chain.mbg:17:8), Se rod3.weight (outlined_chain.mbg:17:8), Se rod4.weight (outlined_chain.mbg:17:8) and 1 more; out[1]: the power into R rod1.ejs_v (outlined_chain.mbg:17:8), R rod1.ejs (outlined_chain.mbg:17:8), R rod2.ejs_v (outlined_chain.mbg:17:8), R rod2.ejs (outlined_chain.mbg:17:8) and 6 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double j1_theta_rate_rate = x[0];
+    const double j1_theta_q = x[1];
+    const double j2_theta_rate_rate = x[2];
+    const double j2_theta_q = x[3];
+    const double j3_theta_rate_rate = x[4];
+    const double j3_theta_q = x[5];
+    const double j4_theta_rate_rate = x[6];
+    const double j4_theta_q = x[7];
+    const double j5_theta_rate_rate = x[8];
+    const double j5_theta_q = x[9];
+    // outlined_chain.mbg:25:7  MTF j1.m2: f2 = T f1
+    const double j1_m2_f2_1 = j1_pb_2 * j1_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j2.m3: f2 = T f1
+    const double j2_m3_f2_1 = -j2_pa_2 * j1_theta_rate_rate;
+    // outlined_chain.mbg:27:9  0 j2.vpa: flows in = flows out
+    const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse80 = std::cos(j2_theta_q);
+    const double j2_m4_f2_1 = cse80 * j2_m4_f1_1;
+    // outlined_chain.mbg:27:9  0 j2.wsum: flows in = flows out
+    const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j2.m5: f2 = T f1
+    const double j2_m5_f2_1 = j2_pb_2 * j2_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_1 = j2_m4_f2_1 + j2_m5_f2_1;
+    // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
+    const double j3_m3_f2_1 = -j3_pa_2 * j2_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
+    const double j3_m4_f1_1 = j2_reaction_f_f_1 + j3_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
+    const double cse81 = std::sin(j2_theta_q);
+    const double j2_m4_f2_2 = -cse81 * j2_m4_f1_1;
+    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
+    const double j2_reaction_f_f_2 = j2_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
+    const double j3_m4_f1_2 = j2_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
+    const double cse82 = std::cos(j3_theta_q);
+    const double cse83 = std::sin(j3_theta_q);
+    const double j3_m4_f2_1 = cse82 * j3_m4_f1_1 + cse83 * j3_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j3.wsum: flows in = flows out
+    const double j3_reaction_t_f_3 = j2_reaction_t_f_3 + j3_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j3.m5: f2 = T f1
+    const double j3_m5_f2_1 = j3_pb_2 * j3_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
+    const double j3_reaction_f_f_1 = j3_m4_f2_1 + j3_m5_f2_1;
+    // outlined_chain.mbg:27:9  MTF j4.m3: f2 = T f1
+    const double j4_m3_f2_1 = -j4_pa_2 * j3_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
+    const double j4_m4_f1_1 = j3_reaction_f_f_1 + j4_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
+    const double j3_m4_f2_2 = -cse83 * j3_m4_f1_1 + cse82 * j3_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
+    const double j3_reaction_f_f_2 = j3_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
+    const double j4_m4_f1_2 = j3_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
+    const double cse84 = std::cos(j4_theta_q);
+    const double cse85 = std::sin(j4_theta_q);
+    const double j4_m4_f2_1 = cse84 * j4_m4_f1_1 + cse85 * j4_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j4.wsum: flows in = flows out
+    const double j4_reaction_t_f_3 = j3_reaction_t_f_3 + j4_theta_rate_rate;
+    // outlined_chain.mbg:27:9  MTF j4.m5: f2 = T f1
+    const double j4_m5_f2_1 = j4_pb_2 * j4_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
+    const double j4_reaction_f_f_1 = j4_m4_f2_1 + j4_m5_f2_1;
+    // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
+    const double j5_m3_f2_1 = -j5_pa_2 * j4_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
+    const double j5_m4_f1_1 = j4_reaction_f_f_1 + j5_m3_f2_1;
+    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
+    const double j4_m4_f2_2 = -cse85 * j4_m4_f1_1 + cse84 * j4_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
+    const double j4_reaction_f_f_2 = j4_m4_f2_2;
+    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
+    const double j5_m4_f1_2 = j4_reaction_f_f_2;
+    // outlined_chain.mbg:25:7  signal rod1.pose.R21
+    const double rod1_pose_R21 = std::sin(j1_theta_q);
+    // outlined_chain.mbg:25:7  signal rod1.pose.R22
+    const double rod1_pose_R22 = std::cos(j1_theta_q);
+    // outlined_chain.mbg:27:9  signal rod2.pose.R21
+    const double rod2_pose_R21 = rod1_pose_R21 * cse80 + rod1_pose_R22 * cse81;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R22
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse81 + rod1_pose_R22 * cse80;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R21
+    const double rod3_pose_R21 = rod2_pose_R21 * cse82 + rod2_pose_R22 * cse83;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R22
+    const double rod3_pose_R22 = -rod2_pose_R21 * cse83 + rod2_pose_R22 * cse82;
+    // outlined_chain.mbg:27:9  signal rod4.pose.R21
+    const double rod4_pose_R21 = rod3_pose_R21 * cse84 + rod3_pose_R22 * cse85;
+    // outlined_chain.mbg:27:9  signal rod4.pose.R22
+    const double rod4_pose_R22 = -rod3_pose_R21 * cse85 + rod3_pose_R22 * cse84;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R21
+    const double cse86 = std::cos(j5_theta_q);
+    const double cse87 = std::sin(j5_theta_q);
+    const double rod5_pose_R21 = rod4_pose_R21 * cse86 + rod4_pose_R22 * cse87;
+    // outlined_chain.mbg:17:8  Se rod5.weight: e = value
+    const double rod5_weight_e_1 = -rod5_mass * (9.81 * rod5_pose_R21);
+    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
+    const double j5_m4_f2_2 = -cse87 * j5_m4_f1_1 + cse86 * j5_m4_f1_2;
+    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
+    const double j5_reaction_f_f_2 = j5_m4_f2_2;
+    // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
+    const double rod5_m_p_2 = rod5_mass * j5_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  0 j5.wsum: flows in = flows out
+    const double j5_reaction_t_f_3 = j4_reaction_t_f_3 + j5_theta_rate_rate;
+    // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
+    const double rod5_ejs_v_e_1 = -j5_reaction_t_f_3 * rod5_m_p_2;
+    // outlined_chain.mbg:17:8  Se rod4.weight: e = value
+    const double rod4_weight_e_1 = -rod4_mass * (9.81 * rod4_pose_R21);
+    // outlined_chain.mbg:17:8  I rod4.m: p = I f (derivative causality)
+    const double rod4_m_p_2 = rod4_mass * j4_reaction_f_f_2;
+    // outlined_chain.mbg:17:8  R rod4.ejs_v: e = law(f)
+    const double rod4_ejs_v_e_1 = -j4_reaction_t_f_3 * rod4_m_p_2;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R22
+    const double rod5_pose_R22 = -rod4_pose_R21 * cse87 + rod4_pose_R22 * cse86;
+    // outlined_chain.mbg:17:8  Se rod5.weight: e = value
+    const double rod5_weight_e_2 = -rod5_mass * (9.81 * rod5_pose_R22);
+    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
+    const double j5_m4_f2_1 = cse86 * j5_m4_f1_1 + cse87 * j5_m4_f1_2;
+    // outlined_chain.mbg:27:9  MTF j5.m5: f2 = T f1
+    const double j5_m5_f2_1 = j5_pb_2 * j5_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
+    const double j5_reaction_f_f_1 = j5_m4_f2_1 + j5_m5_f2_1;
+    // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
+    const double rod5_m_p_1 = rod5_mass * j5_reaction_f_f_1;
+    // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
+    const double rod5_ejs_v_e_2 = j5_reaction_t_f_3 * rod5_m_p_1;
+    // outlined_chain.mbg:17:8  Se rod3.weight: e = value
+    const double rod3_weight_e_1 = -rod3_mass * (9.81 * rod3_pose_R21);
+    // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
+    const double rod3_m_p_2 = rod3_mass * j3_reaction_f_f_2;
+    // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
+    const double rod3_ejs_v_e_1 = -j3_reaction_t_f_3 * rod3_m_p_2;
+    // outlined_chain.mbg:17:8  Se rod4.weight: e = value
+    const double rod4_weight_e_2 = -rod4_mass * (9.81 * rod4_pose_R22);
+    // outlined_chain.mbg:17:8  I rod4.m: p = I f (derivative causality)
+    const double rod4_m_p_1 = rod4_mass * j4_reaction_f_f_1;
+    // outlined_chain.mbg:17:8  R rod4.ejs_v: e = law(f)
+    const double rod4_ejs_v_e_2 = j4_reaction_t_f_3 * rod4_m_p_1;
+    // outlined_chain.mbg:17:8  Se rod2.weight: e = value
+    const double rod2_weight_e_1 = -rod2_mass * (9.81 * rod2_pose_R21);
+    // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
+    const double rod2_m_p_2 = rod2_mass * j2_reaction_f_f_2;
+    // outlined_chain.mbg:17:8  R rod2.ejs_v: e = law(f)
+    const double rod2_ejs_v_e_1 = -j2_reaction_t_f_3 * rod2_m_p_2;
+    // outlined_chain.mbg:17:8  Se rod3.weight: e = value
+    const double rod3_weight_e_2 = -rod3_mass * (9.81 * rod3_pose_R22);
+    // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
+    const double rod3_m_p_1 = rod3_mass * j3_reaction_f_f_1;
+    // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
+    const double rod3_ejs_v_e_2 = j3_reaction_t_f_3 * rod3_m_p_1;
+    // outlined_chain.mbg:17:8  Se rod2.weight: e = value
+    const double rod2_weight_e_2 = -rod2_mass * (9.81 * rod2_pose_R22);
+    // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
+    const double rod2_m_p_1 = rod2_mass * j2_reaction_f_f_1;
+    // outlined_chain.mbg:17:8  R rod2.ejs_v: e = law(f)
+    const double rod2_ejs_v_e_2 = j2_reaction_t_f_3 * rod2_m_p_1;
+    // outlined_chain.mbg:17:8  Se rod1.weight: e = value
+    const double rod1_weight_e_1 = -rod1_mass * (9.81 * rod1_pose_R21);
+    // the powers
+    out[0] = rod1_weight_e_1 * j1_m2_f2_1 + (rod2_weight_e_1 * j2_reaction_f_f_1 + rod2_weight_e_2 * j2_reaction_f_f_2) + (rod3_weight_e_1 * j3_reaction_f_f_1 + rod3_weight_e_2 * j3_reaction_f_f_2) + (rod4_weight_e_1 * j4_reaction_f_f_1 + rod4_weight_e_2 * j4_reaction_f_f_2) + (rod5_weight_e_1 * j5_reaction_f_f_1 + rod5_weight_e_2 * j5_reaction_f_f_2);
+    out[1] = rod2_ejs_v_e_1 * j2_reaction_f_f_1 + rod2_ejs_v_e_2 * j2_reaction_f_f_2 + (rod3_ejs_v_e_1 * j3_reaction_f_f_1 + rod3_ejs_v_e_2 * j3_reaction_f_f_2) + (rod4_ejs_v_e_1 * j4_reaction_f_f_1 + rod4_ejs_v_e_2 * j4_reaction_f_f_2) + (rod5_ejs_v_e_1 * j5_reaction_f_f_1 + rod5_ejs_v_e_2 * j5_reaction_f_f_2);
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -169,6 +169,49 @@ class pendulum_mtf_model final : public mbgrt::Model {
     out[4] = energy;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I hub (pendulum_mtf.mbg:21:3), I bob (pendulum_mtf.mbg:24:3)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double hub_p = x[0];
+    const double angle_q = x[1];
+    // pendulum_mtf.mbg:21:3  I hub: p = I f
+    const double hub_f = hub_p / J_hub;
+    // pendulum_mtf.mbg:23:5  MTF arm: f2 = T f1
+    const double arm_f2_1 = L * std::cos(angle_q) * hub_f;
+    const double arm_f2_2 = L * std::sin(angle_q) * hub_f;
+    // the stored energy
+    out[0] = 0.5 * (hub_p * hub_f) + 0.5 * (m * (arm_f2_1 * arm_f2_1) + m * (arm_f2_2 * arm_f2_2));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se gravity (pendulum_mtf.mbg:25:4); out[1]: the power into none
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double hub_p = x[0];
+    const double angle_q = x[1];
+    // pendulum_mtf.mbg:21:3  I hub: p = I f
+    const double hub_f = hub_p / J_hub;
+    // pendulum_mtf.mbg:23:5  MTF arm: f2 = T f1
+    const double arm_f2_2 = L * std::sin(angle_q) * hub_f;
+    // pendulum_mtf.mbg:25:4  Se gravity: e = value
+    const double gravity_e_2 = -m * g;
+    // the powers
+    out[0] = gravity_e_2 * arm_f2_2;
+    out[1] = 0.0;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -108,6 +108,11 @@ class reserved_names_model final : public mbgrt::Model {
     out[0] = src_e;
   }
 
+  // What the energy balance leaves out, or why there is none.
+  std::string energy_note() const override {
+    return "every storage is counted by the power into it, so the balance would hold by construction";
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

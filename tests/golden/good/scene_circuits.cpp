@@ -144,6 +144,56 @@ class scene_circuits_model final : public mbgrt::Model {
     out[0] = c3_e;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of C c1 (scene_circuits.mbg:11:4), C c3 (scene_circuits.mbg:22:4)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double c1_q = x[0];
+    const double c3_q = x[1];
+    // scene_circuits.mbg:11:4  C c1: q = C e
+    const double c1_e = c1_q / 0.001;
+    // scene_circuits.mbg:22:4  C c3: q = C e
+    const double c3_e = c3_q / 0.0001;
+    // the stored energy
+    out[0] = 0.5 * (c1_q * c1_e) + 0.5 * (c3_q * c3_e);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se source (scene_circuits.mbg:9:4), Se follower (scene_circuits.mbg:20:4); out[1]: the power into R r1 (scene_circuits.mbg:10:4), R r3 (scene_circuits.mbg:21:4)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double c1_q = x[0];
+    const double c3_q = x[1];
+    // scene_circuits.mbg:9:4  Se source: e = value
+    const double source_e = V;
+    // scene_circuits.mbg:11:4  C c1: q = C e
+    const double c1_e = c1_q / 0.001;
+    // scene_circuits.mbg:12:4  1 loop1: efforts in = efforts out
+    const double r1_e = source_e - c1_e;
+    // scene_circuits.mbg:10:4  R r1: f = e / R
+    const double r1_f = r1_e / 1000.0;
+    // scene_circuits.mbg:22:4  C c3: q = C e
+    const double c3_e = c3_q / 0.0001;
+    // scene_circuits.mbg:23:4  1 loop3: efforts in = efforts out
+    const double r3_e = c1_e - c3_e;
+    // scene_circuits.mbg:21:4  R r3: f = e / R
+    const double r3_f = r3_e / 100.0;
+    // the powers
+    out[0] = source_e * r1_f + c1_e * r3_f;
+    out[1] = r1_e * r1_f + r3_e * r3_f;
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;

@@ -806,6 +806,357 @@ class tree_grandparent_model final : public mbgrt::Model {
     out[35] = arm_pose_R33;
   }
 
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I base.m (tree_grandparent.mbg:12:6), I base.J (tree_grandparent.mbg:12:6), I slider.m (tree_grandparent.mbg:13:6), I slider.J (tree_grandparent.mbg:13:6) and 2 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double float_x_rate_rate = x[0];
+    const double float_y_rate_rate = x[2];
+    const double float_z_rate_rate = x[4];
+    const double float_spin_rate_rate_1 = x[6];
+    const double float_spin_rate_rate_2 = x[7];
+    const double float_spin_rate_rate_3 = x[8];
+    const double float_rot_q_1 = x[9];
+    const double float_rot_q_2 = x[10];
+    const double float_rot_q_3 = x[11];
+    const double float_rot_q_4 = x[12];
+    const double slide_s_rate_rate = x[13];
+    const double slide_s_q = x[14];
+    const double hinge_theta_rate_rate = x[15];
+    const double hinge_theta_q = x[16];
+    // tree_grandparent.mbg:16:7  signal float.Rpc12
+    // (cseN: a subexpression several equations below share)
+    const double cse82 = float_rot_q_2 * float_rot_q_3;
+    const double cse83 = float_rot_q_1 * float_rot_q_4;
+    const double cse84 = float_rot_q_1 * float_rot_q_1;
+    const double cse85 = float_rot_q_2 * float_rot_q_2;
+    const double cse86 = cse84 + cse85;
+    const double cse87 = float_rot_q_3 * float_rot_q_3;
+    const double cse88 = float_rot_q_4 * float_rot_q_4;
+    const double cse89 = cse86 + cse87 + cse88;
+    const double float_Rpc12 = 2.0 * (cse82 - cse83) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc11
+    const double float_Rpc11 = (cse86 - cse87 - cse88) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc13
+    const double cse90 = float_rot_q_2 * float_rot_q_4;
+    const double cse91 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse90 + cse91) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc23
+    const double cse92 = float_rot_q_3 * float_rot_q_4;
+    const double cse93 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse92 - cse93) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc21
+    const double float_Rpc21 = 2.0 * (cse82 + cse83) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc22
+    const double float_Rpc22 = (cse84 + cse87 - cse85 - cse88) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc31
+    const double float_Rpc31 = 2.0 * (cse90 - cse91) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc32
+    const double float_Rpc32 = 2.0 * (cse92 + cse93) / cse89;
+    // tree_grandparent.mbg:16:7  signal float.Rpc33
+    const double float_Rpc33 = (cse84 + cse88 - cse85 - cse87) / cse89;
+    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
+    const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
+    const double float_m3_f2_1 = float_Rpc21 * float_y_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
+    const double float_m4_f2_1 = float_Rpc31 * float_z_rate_rate;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_1 = float_m2_f2_1 + float_m3_f2_1 + float_m4_f2_1;
+    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
+    const double float_m2_f2_2 = float_Rpc12 * float_x_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
+    const double float_m3_f2_2 = float_Rpc22 * float_y_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
+    const double float_m4_f2_2 = float_Rpc32 * float_z_rate_rate;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_2 = float_m2_f2_2 + float_m3_f2_2 + float_m4_f2_2;
+    // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
+    const double slide_m2_f2_1 = slide_s_q * float_spin_rate_rate_2;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_1 = float_reaction_f_f_1 + slide_m2_f2_1;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_1 = slide_m3_f1_1;
+    // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
+    const double slide_m2_f2_2 = -slide_s_q * float_spin_rate_rate_1;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_2 = float_reaction_f_f_2 + slide_m2_f2_2;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_2 = slide_m3_f1_2;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_1 = slide_reaction_f_f_1;
+    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
+    const double float_m2_f2_3 = float_Rpc13 * float_x_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
+    const double float_m3_f2_3 = float_Rpc23 * float_y_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
+    const double float_m4_f2_3 = float_Rpc33 * float_z_rate_rate;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_3 = float_m2_f2_3 + float_m3_f2_3 + float_m4_f2_3;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_3 = float_reaction_f_f_3;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_3 = slide_reaction_f_f_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double cse94 = std::cos(hinge_theta_q);
+    const double cse95 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse94 * float_spin_rate_rate_1 - cse95 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double hinge_m1_f2_3 = cse95 * float_spin_rate_rate_1 + cse94 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
+    const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_1 = cse94 * hinge_m4_f1_1 - cse95 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_2 = slide_reaction_f_f_2;
+    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
+    const double hinge_m5_f2_2 = 0.2 * hinge_reaction_t_f_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_3 = cse95 * hinge_m4_f1_1 + cse94 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
+    const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
+    // the stored energy
+    const double cse96 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
+    const double cse97 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
+    const double cse98 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
+    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse96 + 2.0 * cse97 + 3.0 * cse98) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse96 + 0.1 * cse97 + 0.1 * cse98) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Se base.weight (tree_grandparent.mbg:12:6), Se slider.weight (tree_grandparent.mbg:13:6), Se arm.weight (tree_grandparent.mbg:14:6), Se slide.applied (tree_grandparent.mbg:17:7); out[1]: the power into R base.ejs_v (tree_grandparent.mbg:12:6), R base.ejs (tree_grandparent.mbg:12:6), R slider.ejs_v (tree_grandparent.mbg:13:6), R slider.ejs (tree_grandparent.mbg:13:6) and 2 more
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double float_x_rate_rate = x[0];
+    const double float_y_rate_rate = x[2];
+    const double float_z_rate_rate = x[4];
+    const double float_spin_rate_rate_1 = x[6];
+    const double float_spin_rate_rate_2 = x[7];
+    const double float_spin_rate_rate_3 = x[8];
+    const double float_rot_q_1 = x[9];
+    const double float_rot_q_2 = x[10];
+    const double float_rot_q_3 = x[11];
+    const double float_rot_q_4 = x[12];
+    const double slide_s_rate_rate = x[13];
+    const double slide_s_q = x[14];
+    const double hinge_theta_rate_rate = x[15];
+    const double hinge_theta_q = x[16];
+    // tree_grandparent.mbg:16:7  signal float.Rpc12
+    // (cseN: a subexpression several equations below share)
+    const double cse99 = float_rot_q_2 * float_rot_q_3;
+    const double cse100 = float_rot_q_1 * float_rot_q_4;
+    const double cse101 = float_rot_q_1 * float_rot_q_1;
+    const double cse102 = float_rot_q_2 * float_rot_q_2;
+    const double cse103 = cse101 + cse102;
+    const double cse104 = float_rot_q_3 * float_rot_q_3;
+    const double cse105 = float_rot_q_4 * float_rot_q_4;
+    const double cse106 = cse103 + cse104 + cse105;
+    const double float_Rpc12 = 2.0 * (cse99 - cse100) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc11
+    const double float_Rpc11 = (cse103 - cse104 - cse105) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc13
+    const double cse107 = float_rot_q_2 * float_rot_q_4;
+    const double cse108 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse107 + cse108) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc23
+    const double cse109 = float_rot_q_3 * float_rot_q_4;
+    const double cse110 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse109 - cse110) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc21
+    const double float_Rpc21 = 2.0 * (cse99 + cse100) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc22
+    const double float_Rpc22 = (cse101 + cse104 - cse102 - cse105) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc31
+    const double float_Rpc31 = 2.0 * (cse107 - cse108) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc32
+    const double float_Rpc32 = 2.0 * (cse109 + cse110) / cse106;
+    // tree_grandparent.mbg:16:7  signal float.Rpc33
+    const double float_Rpc33 = (cse101 + cse105 - cse102 - cse104) / cse106;
+    // tree_grandparent.mbg:12:6  Se base.weight: e = value
+    const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
+    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
+    const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
+    const double float_m3_f2_1 = float_Rpc21 * float_y_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
+    const double float_m4_f2_1 = float_Rpc31 * float_z_rate_rate;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_1 = float_m2_f2_1 + float_m3_f2_1 + float_m4_f2_1;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_1 = 10.0 * float_reaction_f_f_1;
+    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
+    const double float_m2_f2_2 = float_Rpc12 * float_x_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
+    const double float_m3_f2_2 = float_Rpc22 * float_y_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
+    const double float_m4_f2_2 = float_Rpc32 * float_z_rate_rate;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_2 = float_m2_f2_2 + float_m3_f2_2 + float_m4_f2_2;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_2 = 10.0 * float_reaction_f_f_2;
+    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
+    const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
+    // tree_grandparent.mbg:17:7  Se slide.applied: e = value
+    const double slide_applied_e = -1000.0 * slide_s_q - 10.0 * slide_s_rate_rate;
+    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
+    const double slider_weight_e_3 = -19.62 * float_Rpc33;
+    // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
+    const double slide_m2_f2_1 = slide_s_q * float_spin_rate_rate_2;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_1 = float_reaction_f_f_1 + slide_m2_f2_1;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_1 = slide_m3_f1_1;
+    // tree_grandparent.mbg:13:6  I slider.m: p = I f (derivative causality)
+    const double slider_m_p_1 = 2.0 * slide_reaction_f_f_1;
+    // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
+    const double slide_m2_f2_2 = -slide_s_q * float_spin_rate_rate_1;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_2 = float_reaction_f_f_2 + slide_m2_f2_2;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_2 = slide_m3_f1_2;
+    // tree_grandparent.mbg:13:6  I slider.m: p = I f (derivative causality)
+    const double slider_m_p_2 = 2.0 * slide_reaction_f_f_2;
+    // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
+    const double slider_ejs_v_e_3 = float_spin_rate_rate_1 * slider_m_p_2 - float_spin_rate_rate_2 * slider_m_p_1;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_1 = slide_reaction_f_f_1;
+    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
+    const double float_m2_f2_3 = float_Rpc13 * float_x_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
+    const double float_m3_f2_3 = float_Rpc23 * float_y_rate_rate;
+    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
+    const double float_m4_f2_3 = float_Rpc33 * float_z_rate_rate;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_3 = float_m2_f2_3 + float_m3_f2_3 + float_m4_f2_3;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_3 = float_reaction_f_f_3;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_3 = slide_reaction_f_f_3;
+    // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
+    const double base_J_p_3 = 3.0 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
+    const double base_ejs_e_2 = float_spin_rate_rate_3 * float_spin_rate_rate_1 - float_spin_rate_rate_1 * base_J_p_3;
+    // tree_grandparent.mbg:13:6  I slider.J: p = I f (derivative causality)
+    const double slider_J_p_1 = 0.1 * float_spin_rate_rate_1;
+    const double slider_J_p_3 = 0.1 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
+    const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double cse111 = std::cos(hinge_theta_q);
+    const double cse112 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse111 * float_spin_rate_rate_1 - cse112 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double hinge_m1_f2_3 = cse112 * float_spin_rate_rate_1 + cse111 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_3 = 0.05 * hinge_reaction_t_f_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R33
+    const double arm_pose_R33 = float_Rpc31 * cse112 + float_Rpc33 * cse111;
+    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
+    const double arm_weight_e_3 = -9.81 * arm_pose_R33;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_1 = cse111 * hinge_m4_f1_1 - cse112 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_2 = slide_reaction_f_f_2;
+    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
+    const double hinge_m5_f2_2 = 0.2 * hinge_reaction_t_f_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
+    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
+    const double arm_ejs_v_e_3 = hinge_reaction_t_f_1 * hinge_reaction_f_f_2 - hinge_reaction_t_f_2 * hinge_reaction_f_f_1;
+    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
+    const double slider_weight_e_1 = -19.62 * float_Rpc31;
+    // tree_grandparent.mbg:13:6  I slider.m: p = I f (derivative causality)
+    const double slider_m_p_3 = 2.0 * slide_reaction_f_f_3;
+    // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
+    const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R31
+    const double arm_pose_R31 = float_Rpc31 * cse111 - float_Rpc33 * cse112;
+    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
+    const double arm_weight_e_1 = -9.81 * arm_pose_R31;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_3 = cse112 * hinge_m4_f1_1 + cse111 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
+    const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
+    const double arm_ejs_v_e_1 = hinge_reaction_t_f_2 * hinge_reaction_f_f_3 - hinge_reaction_t_f_3 * hinge_reaction_f_f_2;
+    // tree_grandparent.mbg:12:6  Se base.weight: e = value
+    const double base_weight_e_2 = -98.10000000000001 * float_Rpc32;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_3 = 10.0 * float_reaction_f_f_3;
+    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
+    const double base_ejs_v_e_2 = float_spin_rate_rate_3 * base_m_p_1 - float_spin_rate_rate_1 * base_m_p_3;
+    // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
+    const double base_J_p_2 = 2.0 * float_spin_rate_rate_2;
+    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
+    const double base_ejs_e_1 = float_spin_rate_rate_2 * base_J_p_3 - float_spin_rate_rate_3 * base_J_p_2;
+    // tree_grandparent.mbg:13:6  I slider.J: p = I f (derivative causality)
+    const double slider_J_p_2 = 0.1 * float_spin_rate_rate_2;
+    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
+    const double slider_ejs_e_1 = float_spin_rate_rate_2 * slider_J_p_3 - float_spin_rate_rate_3 * slider_J_p_2;
+    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
+    const double base_ejs_e_3 = float_spin_rate_rate_1 * base_J_p_2 - float_spin_rate_rate_2 * float_spin_rate_rate_1;
+    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
+    const double slider_ejs_e_3 = float_spin_rate_rate_1 * slider_J_p_2 - float_spin_rate_rate_2 * slider_J_p_1;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_2 = 0.05 * hinge_reaction_t_f_2;
+    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_3 = hinge_reaction_t_f_1 * arm_J_p_2 - hinge_reaction_t_f_2 * arm_J_p_1;
+    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
+    const double arm_weight_e_2 = -9.81 * float_Rpc32;
+    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
+    const double arm_ejs_v_e_2 = hinge_reaction_t_f_3 * hinge_reaction_f_f_1 - hinge_reaction_t_f_1 * hinge_reaction_f_f_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_1 = hinge_reaction_t_f_2 * arm_J_p_3 - hinge_reaction_t_f_3 * arm_J_p_2;
+    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
+    const double slider_weight_e_2 = -19.62 * float_Rpc32;
+    // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
+    const double slider_ejs_v_e_2 = float_spin_rate_rate_3 * slider_m_p_1 - float_spin_rate_rate_1 * slider_m_p_3;
+    // tree_grandparent.mbg:12:6  Se base.weight: e = value
+    const double base_weight_e_1 = -98.10000000000001 * float_Rpc31;
+    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
+    const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
+    // the powers
+    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + slide_applied_e * slide_s_rate_rate;
+    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3);
+  }
+
   // TERMINAL: nothing to do at the end of a run.
   void terminal(double t, const double* y) override {
     (void)t;
