@@ -576,6 +576,11 @@ class Lowerer {
         diags_.error(e.args[k]->loc, "an index must be a constant integer", "indices are 1-based: v[1], M[2, 3]");
         return std::nullopt;
       }
+      if (std::abs(c) > kMaxDimension) {  // no shape is this large, and an int could not hold it
+        diags_.error(e.args[k]->loc, fmt::format("index {} is out of range for {}", c, base->shape()),
+                     fmt::format("no value has more than {} rows or columns", kMaxDimension));
+        return std::nullopt;
+      }
       idx.push_back(static_cast<int>(c));
     }
     int r = 0, c = 0;

@@ -8,6 +8,7 @@
 // text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
 #include "parse/parse.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
@@ -328,7 +329,8 @@ class Parser {
     next();
     const Token& n = expect(Tok::Number, "(the multibond dimension)");
     loc = n.loc;
-    if (n.number < 1 || n.number != static_cast<int>(n.number) || n.number > 10000) {
+    // Range first: converting a double beyond int's range is undefined (fuzz_parse found `[5…5]`).
+    if (!(n.number >= 1 && n.number <= 10000) || n.number != std::floor(n.number)) {
       diags_.error(n.loc, fmt::format("multibond dimension must be a positive integer, not `{}`", n.text),
                    "write e.g. [3] for a 3-dimensional multibond");
       throw ParseError{};
