@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -55,30 +56,86 @@ Expr half_dot(const BondGraph& g, int n) {
   return mul(constant(0.5), sum);
 }
 
-/// 1/2 y . V y for a storage without a state of its own (derivative
-/// causality: a body's momentum that follows from its joint's rate), y its
-/// bond's co-variables and V its linear law's modulus (p = I f, q = C e): a
-/// scalar for every component, a diagonal or a matrix.
-Expr half_quadratic(const BondGraph& g, int n) {
+/// Entry (j, k) of a d-component linear law's modulus: a scalar for every
+/// component, a diagonal or a matrix (nullptr where it is zero by shape).
+Expr modulus_at(const Value& v, int d, int j, int k) {
+  if (v.is_scalar()) return j == k ? v.items[0] : nullptr;
+  if (v.rows == d && v.cols == d) return v.at(j, k);
+  return j == k && v.length() == d ? v.items[static_cast<std::size_t>(j)] : nullptr;
+}
+
+/// 1/2 y . V y over a storage's bond co-variables y (the flow of an I, the
+/// effort of a C), V(j, k) given by `entry` (nullptr: zero).
+Expr half_quadratic_form(const BondGraph& g, int n, const std::function<Expr(int, int)>& entry) {
   const GraphNode& nd = g.nodes[static_cast<std::size_t>(n)];
   const Bond& bond = g.bonds[static_cast<std::size_t>(nd.bonds.front())];
   const std::vector<int>& co = nd.kind == NodeKind::I ? bond.flow_vars : bond.effort_vars;
-  const Value& v = nd.value;
   const int d = static_cast<int>(co.size());
-  auto modulus = [&](int j, int k) -> Expr {
-    if (v.is_scalar()) return j == k ? v.items[0] : nullptr;
-    if (v.rows == d && v.cols == d) return v.at(j, k);
-    return j == k && v.length() == d ? v.items[static_cast<std::size_t>(j)] : nullptr;
-  };
   Expr sum;
   for (int j = 0; j < d; ++j)
     for (int k = 0; k < d; ++k) {
-      const Expr m = modulus(j, k);
+      const Expr m = entry(j, k);
       if (!m || is_zero(m)) continue;
       const Expr t = mul(m, mul(var(co[static_cast<std::size_t>(j)]), var(co[static_cast<std::size_t>(k)])));
       sum = sum ? add(sum, t) : t;
     }
   return sum ? mul(constant(0.5), sum) : constant(0);
+}
+
+/// 1/2 y . V y for a storage without a state of its own (derivative
+/// causality: a body's momentum that follows from its joint's rate), V its
+/// linear law's modulus (p = I f, q = C e).
+Expr half_quadratic(const BondGraph& g, int n) {
+  const GraphNode& nd = g.nodes[static_cast<std::size_t>(n)];
+  const int d = g.bonds[static_cast<std::size_t>(nd.bonds.front())].dim;
+  return half_quadratic_form(g, n, [&](int j, int k) { return modulus_at(nd.value, d, j, k); });
+}
+
+/// The rate of every C's displacement: dq/dt is its bond's flow (with the
+/// C's sign), the storage law every C keeps.
+std::unordered_map<int, Expr> displacement_rates(const BondGraph& g) {
+  std::unordered_map<int, Expr> rate;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    const GraphNode& nd = g.nodes[i];
+    if (nd.kind != NodeKind::C || nd.bonds.size() != 1) continue;
+    const int b = nd.bonds.front();
+    const Bond& bond = g.bonds[static_cast<std::size_t>(b)];
+    const double sign = flow_sign(g, static_cast<int>(i), b);
+    for (std::size_t k = 0; k < nd.state_vars.size() && k < bond.flow_vars.size(); ++k)
+      rate.emplace(nd.state_vars[k], mul(constant(sign), var(bond.flow_vars[k])));
+  }
+  return rate;
+}
+
+/// A modulated inertia, p = M(q) f (a flexible body's mass matrix over its
+/// modal coordinates): it still holds 1/2 f.M f (= 1/2 p.f), and besides
+/// the power e.f into it that energy changes by 1/2 f.(dM/dt) f through the
+/// modulation, a power the balance takes out as absorbed. dM/dt = sum over
+/// the variables M reads of dM/dv dv/dt, + dM/dt for the time: found when M
+/// reads only C displacements (their rates are flows) and the time, else
+/// nullptr (and the inertia is counted by the power into it). The power into
+/// such an inertia is its whole dynamics (e = dp/dt, the accelerations);
+/// this needs only velocities.
+Expr modulation_power(const BondGraph& g, int n, const std::unordered_map<int, Expr>& rate) {
+  const GraphNode& nd = g.nodes[static_cast<std::size_t>(n)];
+  const Bond& bond = g.bonds[static_cast<std::size_t>(nd.bonds.front())];
+  const int d = static_cast<int>(bond.flow_vars.size());
+  std::vector<Expr> dm(static_cast<std::size_t>(d * d));
+  for (int j = 0; j < d; ++j)
+    for (int k = 0; k < d; ++k) {
+      const Expr m = modulus_at(nd.value, d, j, k);
+      if (!m) continue;
+      std::unordered_set<int> read;
+      collect_vars(m, read);
+      Expr sum = diff_time(m);
+      for (int v : read) {
+        auto it = rate.find(v);
+        if (it == rate.end()) return nullptr;
+        sum = add(sum, mul(diff_var(m, v), it->second));
+      }
+      dm[static_cast<std::size_t>(j * d + k)] = sum;
+    }
+  return half_quadratic_form(g, n, [&](int j, int k) { return dm[static_cast<std::size_t>(j * d + k)]; });
 }
 
 /// A linear law whose modulus reads a variable or the time (a modulated
@@ -97,6 +154,84 @@ EnergyTerm term(const GraphNode& nd, Expr value, std::string what) {
   return EnergyTerm{std::move(value), nd.loc, fmt::format("{} {}: {}", node_kind_name(nd.kind), nd.name, what)};
 }
 
+/// Every variable of the motion an Se's effort may follow (the bonds' flows,
+/// the inertias' momenta and the free joint rates), or, for an Sf's flow, the bonds' efforts, each
+/// mapped to 0. (Positions stay: a body's pose is the C states it integrates.)
+std::unordered_map<int, Expr> motion_at_rest(const BondGraph& g, NodeKind source) {
+  const bool se = source == NodeKind::Se;
+  std::unordered_map<int, Expr> zero;
+  for (const Bond& b : g.bonds)
+    for (int v : se ? b.flow_vars : b.effort_vars) zero.emplace(v, constant(0));
+  if (se)  // ... and the independent joint rates of a tree in joint coordinates
+    for (const GraphNode& nd : g.nodes)
+      if (nd.kind == NodeKind::I || nd.law == LawForm::FreeRate)
+        for (int v : nd.state_vars) zero.emplace(v, constant(0));
+  return zero;
+}
+
+/// Is e defined where it was evaluated at rest: no division by a zero, no
+/// zero to a power below one (a Coulomb friction's v / |v| is not, at rest).
+bool defined_at_rest(const Expr& e) {
+  std::unordered_set<const Node*> seen;
+  std::function<bool(const Expr&)> ok = [&](const Expr& x) {
+    if (!seen.insert(x.get()).second) return true;
+    if (x->op == Op::Div && is_zero(x->args[1])) return false;
+    if (x->op == Op::Pow && is_zero(x->args[0])) {
+      double p = 0;
+      if (!is_const(x->args[1], &p) || p < 1) return false;
+    }
+    return std::all_of(x->args.begin(), x->args.end(), ok);
+  };
+  return ok(e);
+}
+
+/// A source's power, split where its value follows the motion. A joint's
+/// `torque = T - c * J.rate` or a force element's `damping` is written as an
+/// Se but dissipates: with every flow at rest its effort is e0 (here T), and
+/// e0 . f is supplied; the power of the part that follows the motion,
+/// m = (e - e0) . f, is absorbed while it takes power (m < 0, here
+/// -c * rate^2) and supplied while it gives (a coupling that feeds the
+/// motion, like a turning vehicle's forward momentum): supplied e0.f +
+/// max(m, 0), absorbed max(-m, 0), still summing to the source's e . f.
+/// An Sf is split the same way over the efforts.
+void source_terms(const BondGraph& g, int n, Substitution& at_rest, EnergyBalance& e) {
+  const GraphNode& nd = g.nodes[static_cast<std::size_t>(n)];
+  if (nd.bonds.size() != 1 || nd.value.items.empty()) {
+    e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f"));
+    return;
+  }
+  const int b = nd.bonds.front();
+  const Bond& bond = g.bonds[static_cast<std::size_t>(b)];
+  const Expr sign = constant(flow_sign(g, n, b));
+  const bool se = nd.kind == NodeKind::Se;
+  Expr rest, moving;
+  bool follows = false;
+  for (int k = 0; k < bond.dim; ++k) {
+    const Expr v = nd.value.is_scalar() ? nd.value.items[0] : nd.value.items[static_cast<std::size_t>(k)];
+    const Expr v0 = at_rest(v);
+    if (!defined_at_rest(v0)) {
+      e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f (undefined at rest)"));
+      return;
+    }
+    follows = follows || v0 != v;
+    const Expr ek = var(bond.effort_vars[static_cast<std::size_t>(k)]);
+    const Expr fk = mul(sign, var(bond.flow_vars[static_cast<std::size_t>(k)]));  // out of the source
+    const Expr r = se ? mul(v0, fk) : mul(ek, v0);
+    const Expr m = se ? mul(sub(ek, v0), fk) : mul(ek, sub(fk, v0));
+    rest = rest ? add(rest, r) : r;
+    moving = moving ? add(moving, m) : m;
+  }
+  if (!follows) {
+    e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f"));
+    return;
+  }
+  const char* split = se ? "e0.f + max((e - e0).f, 0)" : "e.f0 + max(e.(f - f0), 0)";
+  e.supplied.push_back(term(nd, add(rest, call(Fn::Max, {moving, constant(0)})), fmt::format("power out, {}", split)));
+  e.absorbed.push_back(term(nd, call(Fn::Max, {neg(moving), constant(0)}),
+                            se ? "power in, max(-(e - e0).f, 0) (its value follows the motion)"
+                               : "power in, max(-e.(f - f0), 0) (its value follows the motion)"));
+}
+
 }  // namespace
 
 void energy_balance(ReducedSystem& s) {
@@ -105,6 +240,8 @@ void energy_balance(ReducedSystem& s) {
   e = EnergyBalance{};
   std::unordered_set<int> has_state;
   for (const StateVar& st : s.states) has_state.insert(st.node);
+  const std::unordered_map<int, Expr> rates = displacement_rates(g);
+  Substitution se_at_rest(motion_at_rest(g, NodeKind::Se)), sf_at_rest(motion_at_rest(g, NodeKind::Sf));
   for (std::size_t i = 0; i < g.nodes.size(); ++i) {
     const int n = static_cast<int>(i);
     const GraphNode& nd = g.nodes[i];
@@ -113,10 +250,20 @@ void energy_balance(ReducedSystem& s) {
       case NodeKind::Se:
       case NodeKind::Sf:
         // (a free joint rate's Sf keeps its effort at zero: no power)
-        if (nd.law != LawForm::FreeRate) e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f"));
+        if (nd.law != LawForm::FreeRate) source_terms(g, n, nd.kind == NodeKind::Se ? se_at_rest : sf_at_rest, e);
         break;
       case NodeKind::I:
       case NodeKind::C:
+        if (nd.kind == NodeKind::I && nd.law == LawForm::Linear && nd.bonds.size() == 1 && modulated(nd)) {
+          if (Expr p = modulation_power(g, n, rates)) {
+            if (has_state.count(n))
+              e.stored.push_back(term(nd, half_dot(g, n), "1/2 p.f (a modulated law)"));
+            else  // derivative causality
+              e.stored.push_back(term(nd, half_quadratic(g, n), "1/2 f.M f (a modulated law)"));
+            e.absorbed.push_back(term(nd, p, "power out through the modulation, 1/2 f.(dM/dt) f"));
+            break;
+          }
+        }
         if (nd.law == LawForm::Linear && nd.bonds.size() == 1 && !modulated(nd)) {
           const bool i = nd.kind == NodeKind::I;
           if (has_state.count(n))

@@ -17,11 +17,21 @@
 // A storage with a linear law (I: p = I f, C: q = C e) holds 1/2 p.f or
 // 1/2 q.e, in terms of its bond's variables. A storage with a nonlinear law
 // (e = phi(q), f = phi(p)), or with a linear one whose modulus reads a
-// variable or the time (a modulated storage: a flexible body's mass matrix,
-// which follows its modal coordinates), is counted by the power into it
-// instead, and named in `unwitnessed`: its own integration error then does
-// not show. With no storage left to witness the balance would hold by
+// variable or the time in a way not handled below, is counted by the power
+// into it instead, and named in `unwitnessed`: its own integration error then
+// does not show. With no storage left to witness the balance would hold by
 // construction, and the model has none.
+//
+// A modulated inertia p = M(q) f whose M reads only displacements (a
+// flexible body's mass matrix over its modal coordinates) and the time still
+// holds 1/2 f.M f; 1/2 f.(dM/dt) f leaves through the modulation and is
+// counted as absorbed (dq/dt is a flow: no accelerations are needed).
+//
+// A source whose value follows the motion (a joint's `torque = T - c *
+// J.rate`, a force element's `damping`) is split: what it imposes with every
+// flow at rest is supplied, and the rest of its power is absorbed while it
+// takes power (supplied while it gives), so a damper written as a source
+// makes the model dissipative.
 #pragma once
 
 #include "ir/reduced.hpp"

@@ -553,7 +553,181 @@ class beam_centre_frame_model final : public mbgrt::Model {
 
   // What the energy balance leaves out, or why there is none.
   std::string energy_note() const override {
-    return "every storage is counted by the power into it, so the balance would hold by construction; I rod.M: a modulated law, counted by the power into it; C rod.eta: a nonlinear law, counted by the power into it";
+    return "C rod.eta: a nonlinear law, counted by the power into it";
+  }
+
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I rod.M (beam_centre_frame.mbg:5:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double rod_M_p_1 = x[0];
+    const double rod_M_p_2 = x[1];
+    const double rod_M_p_3 = x[2];
+    const double rod_M_p_4 = x[3];
+    const double rod_M_p_5 = x[4];
+    const double rod_M_p_6 = x[5];
+    const double rod_M_p_7 = x[6];
+    const double rod_M_p_8 = x[7];
+    const double rod_eta_q_1 = x[15];
+    const double rod_eta_q_2 = x[16];
+    // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
+    // (cseN: a subexpression several equations below share)
+    const double cse79 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse80 = -cse79;
+    const double cse81 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse82 = 42.200327390662835 * rod_eta_q_1;
+    const double cse83 = 42.200327390662835 * rod_eta_q_2;
+    const double cse84 = 0.5 * (cse81 * rod_eta_q_1 - cse82 * rod_eta_q_2 - cse83 * rod_eta_q_1);
+    const double cse85 = -cse84;
+    const double cse86 = 12.221211925254192 * rod_eta_q_1 * rod_eta_q_1 - 7.666334958622971e-15 * rod_eta_q_1 * rod_eta_q_2 - 7.666334958622971e-15 * rod_eta_q_2 * rod_eta_q_1 + 52.8806874173523 * rod_eta_q_2 * rod_eta_q_2;
+    const double cse87 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse88 = 15.042353071526472 * rod_eta_q_1 * rod_eta_q_1 - 8.898424505544521e-15 * rod_eta_q_1 * rod_eta_q_2 - 8.898424505544521e-15 * rod_eta_q_2 * rod_eta_q_1 + 79.50226053985593 * rod_eta_q_2 * rod_eta_q_2;
+    double blk1_a[9] = {
+        -4.932300466135975, cse80, cse85,
+        cse80, -(0.00024661502330679876 + cse86), cse87,
+        cse85, cse87, -(1.6442234628903116 - cse88),
+    };
+    double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
+    mbgrt::solve_linear(3, blk1_a, blk1_x);
+    const double rod_M_f_3 = blk1_x[0];
+    const double rod_M_f_4 = blk1_x[1];
+    const double rod_M_f_5 = blk1_x[2];
+    // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
+    const double cse89 = cse81 - cse83;
+    const double cse90 = -cse82;
+    double blk2_a[25] = {
+        -4.932300466135975, 0.0, cse79, cse89, cse90,
+        0.0, -4.932300466135975, cse84, -5.995923730955276, 2.1903814167494206e-15,
+        cse79, cse84, -(1.6442234628903116 + (cse86 - cse88)), -9.582918698278714e-16, 8.87873585802905,
+        cse89, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse90, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+    };
+    double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
+    mbgrt::solve_linear(5, blk2_a, blk2_x);
+    const double rod_M_f_1 = blk2_x[0];
+    const double rod_M_f_2 = blk2_x[1];
+    const double rod_M_f_6 = blk2_x[2];
+    const double rod_M_f_7 = blk2_x[3];
+    const double rod_M_f_8 = blk2_x[4];
+    // the stored energy
+    out[0] = 0.5 * (rod_M_p_1 * rod_M_f_1 + rod_M_p_2 * rod_M_f_2 + rod_M_p_3 * rod_M_f_3 + rod_M_p_4 * rod_M_f_4 + rod_M_p_5 * rod_M_f_5 + rod_M_p_6 * rod_M_f_6 + rod_M_p_7 * rod_M_f_7 + rod_M_p_8 * rod_M_f_8);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of none; out[1]: the power into I rod.M (beam_centre_frame.mbg:5:6), R rod.ejs (beam_centre_frame.mbg:5:6), C rod.eta (beam_centre_frame.mbg:5:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double rod_M_p_1 = x[0];
+    const double rod_M_p_2 = x[1];
+    const double rod_M_p_3 = x[2];
+    const double rod_M_p_4 = x[3];
+    const double rod_M_p_5 = x[4];
+    const double rod_M_p_6 = x[5];
+    const double rod_M_p_7 = x[6];
+    const double rod_M_p_8 = x[7];
+    const double rod_eta_q_1 = x[15];
+    const double rod_eta_q_2 = x[16];
+    // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
+    // (cseN: a subexpression several equations below share)
+    const double cse91 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse92 = -cse91;
+    const double cse93 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse94 = 42.200327390662835 * rod_eta_q_1;
+    const double cse95 = 42.200327390662835 * rod_eta_q_2;
+    const double cse96 = 0.5 * (cse93 * rod_eta_q_1 - cse94 * rod_eta_q_2 - cse95 * rod_eta_q_1);
+    const double cse97 = -cse96;
+    const double cse98 = 12.221211925254192 * rod_eta_q_1;
+    const double cse99 = 7.666334958622971e-15 * rod_eta_q_1;
+    const double cse100 = 7.666334958622971e-15 * rod_eta_q_2;
+    const double cse101 = 52.8806874173523 * rod_eta_q_2;
+    const double cse102 = cse98 * rod_eta_q_1 - cse99 * rod_eta_q_2 - cse100 * rod_eta_q_1 + cse101 * rod_eta_q_2;
+    const double cse103 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse104 = 15.042353071526472 * rod_eta_q_1;
+    const double cse105 = 8.898424505544521e-15 * rod_eta_q_1;
+    const double cse106 = 8.898424505544521e-15 * rod_eta_q_2;
+    const double cse107 = 79.50226053985593 * rod_eta_q_2;
+    const double cse108 = cse104 * rod_eta_q_1 - cse105 * rod_eta_q_2 - cse106 * rod_eta_q_1 + cse107 * rod_eta_q_2;
+    double blk1_a[9] = {
+        -4.932300466135975, cse92, cse97,
+        cse92, -(0.00024661502330679876 + cse102), cse103,
+        cse97, cse103, -(1.6442234628903116 - cse108),
+    };
+    double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
+    mbgrt::solve_linear(3, blk1_a, blk1_x);
+    const double rod_M_f_3 = blk1_x[0];
+    const double rod_M_f_4 = blk1_x[1];
+    const double rod_M_f_5 = blk1_x[2];
+    // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
+    const double cse109 = cse93 - cse95;
+    const double cse110 = -cse94;
+    double blk2_a[25] = {
+        -4.932300466135975, 0.0, cse91, cse109, cse110,
+        0.0, -4.932300466135975, cse96, -5.995923730955276, 2.1903814167494206e-15,
+        cse91, cse96, -(1.6442234628903116 + (cse102 - cse108)), -9.582918698278714e-16, 8.87873585802905,
+        cse109, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse110, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+    };
+    double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
+    mbgrt::solve_linear(5, blk2_a, blk2_x);
+    const double rod_M_f_1 = blk2_x[0];
+    const double rod_M_f_2 = blk2_x[1];
+    const double rod_M_f_6 = blk2_x[2];
+    const double rod_M_f_7 = blk2_x[3];
+    const double rod_M_f_8 = blk2_x[4];
+    // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
+    const double rod_ejs_e_1 = rod_M_f_5 * rod_M_p_3 - rod_M_f_6 * rod_M_p_2;
+    const double rod_ejs_e_2 = rod_M_f_6 * rod_M_p_1 - rod_M_f_4 * rod_M_p_3;
+    const double rod_ejs_e_3 = rod_M_f_4 * rod_M_p_2 - rod_M_f_5 * rod_M_p_1;
+    const double rod_ejs_e_4 = rod_M_f_5 * rod_M_p_6 - rod_M_f_6 * rod_M_p_5 + (rod_M_f_2 * rod_M_p_3 - rod_M_f_3 * rod_M_p_2);
+    const double rod_ejs_e_5 = rod_M_f_6 * rod_M_p_4 - rod_M_f_4 * rod_M_p_6 + (rod_M_f_3 * rod_M_p_1 - rod_M_f_1 * rod_M_p_3);
+    const double rod_ejs_e_6 = rod_M_f_4 * rod_M_p_5 - rod_M_f_5 * rod_M_p_4 + (rod_M_f_1 * rod_M_p_2 - rod_M_f_2 * rod_M_p_1);
+    const double cse111 = 4.243863994952002e-15 * rod_M_f_7;
+    const double cse112 = 42.200327390662835 * rod_M_f_8;
+    const double cse113 = 0.5 * (cse93 + cse93 - cse95 - cse95);
+    const double cse114 = cse98 + cse98 - cse100 - cse100;
+    const double cse115 = cse104 + cse104 - cse106 - cse106;
+    const double cse116 = cse114 - cse115;
+    const double cse117 = 42.200327390662835 * rod_M_f_1;
+    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - cse111 + cse112) - rod_M_f_2 * (cse113 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse113 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse114 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse113 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse115 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse113 * rod_M_f_2 + cse116 * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse117);
+    // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
+    const double rod_eta_e_1 = 103199.76688612405 * rod_eta_q_1 - 1.0603392723672647e-10 * rod_eta_q_2;
+    // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
+    const double cse118 = 42.200327390662835 * rod_M_f_7;
+    const double cse119 = 0.5 * (cse110 - cse94);
+    const double cse120 = -cse99 - cse99 + (cse101 + cse101);
+    const double cse121 = -cse105 - cse105 + (cse107 + cse107);
+    const double cse122 = cse120 - cse121;
+    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + cse118) - rod_M_f_2 * (cse119 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse119 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse120 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse119 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse121 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse119 * rod_M_f_2 + cse122 * rod_M_f_6) + rod_M_f_7 * cse117);
+    // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
+    const double rod_eta_e_2 = -1.0603392723672647e-10 * rod_eta_q_1 + 784163.8973272434 * rod_eta_q_2;
+    // the powers
+    out[0] = 0.0;
+    const double cse123 = 5.995923730955276 * rod_M_f_7;
+    const double cse124 = 2.1903814167494206e-15 * rod_M_f_8;
+    const double cse125 = -cse123 + cse124;
+    const double cse126 = -cse111 + cse112;
+    const double cse127 = cse119 * rod_M_f_8;
+    const double cse128 = cse113 * rod_M_f_7;
+    const double cse129 = -cse127 - cse128;
+    const double cse130 = cse123 - cse124;
+    const double cse131 = cse127 + cse128;
+    const double cse132 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
+    out[1] = 0.5 * (cse125 * (rod_M_f_1 * rod_M_f_6) + cse126 * (rod_M_f_1 * rod_M_f_7) + cse118 * (rod_M_f_1 * rod_M_f_8) + cse129 * (rod_M_f_2 * rod_M_f_6) + cse130 * (rod_M_f_3 * rod_M_f_4) + cse131 * (rod_M_f_3 * rod_M_f_5) + cse130 * (rod_M_f_4 * rod_M_f_3) + (cse114 * rod_M_f_7 + cse120 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse132 * (rod_M_f_4 * rod_M_f_5) + cse131 * (rod_M_f_5 * rod_M_f_3) + cse132 * (rod_M_f_5 * rod_M_f_4) + (-cse115 * rod_M_f_7 - cse121 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse125 * (rod_M_f_6 * rod_M_f_1) + cse129 * (rod_M_f_6 * rod_M_f_2) + (cse116 * rod_M_f_7 + cse122 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse126 * (rod_M_f_7 * rod_M_f_1) + cse118 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -353,7 +353,57 @@ class beam_load_model final : public mbgrt::Model {
 
   // What the energy balance leaves out, or why there is none.
   std::string energy_note() const override {
-    return "every storage is counted by the power into it, so the balance would hold by construction; I blade.M: a modulated law, counted by the power into it; C blade.eta: a nonlinear law, counted by the power into it";
+    return "C blade.eta: a nonlinear law, counted by the power into it";
+  }
+
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I blade.M (beam_load.mbg:5:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double blade_eta_rate_rate_1 = x[0];
+    const double blade_eta_rate_rate_2 = x[1];
+    // beam_load.mbg:5:6  0 blade.nusum: flows in = flows out
+    const double b9_f_7 = blade_eta_rate_rate_1;
+    const double b9_f_8 = blade_eta_rate_rate_2;
+    // the stored energy
+    out[0] = 0.5 * (3.8170350741116 * (b9_f_7 * b9_f_7) + 3.8170350741116 * (b9_f_8 * b9_f_8));
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of Sf clamp.still (beam_load.mbg:13:7), Se push.on_blade (beam_load.mbg:14:7); out[1]: the power into I blade.M (beam_load.mbg:5:6), R blade.ejs (beam_load.mbg:5:6), C blade.eta (beam_load.mbg:5:6), R blade.damp (beam_load.mbg:5:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double blade_eta_rate_rate_1 = x[0];
+    const double blade_eta_rate_rate_2 = x[1];
+    const double blade_eta_q_1 = x[2];
+    const double blade_eta_q_2 = x[3];
+    // beam_load.mbg:5:6  0 blade.nusum: flows in = flows out
+    const double b9_f_7 = blade_eta_rate_rate_1;
+    const double b9_f_8 = blade_eta_rate_rate_2;
+    // beam_load.mbg:5:6  C blade.eta: e = law(q)
+    const double blade_eta_e_1 = 19593.220346149414 * blade_eta_q_1;
+    // beam_load.mbg:5:6  R blade.damp: e = R f
+    const double blade_damp_e_1 = 27.34739645305369 * blade_eta_rate_rate_1;
+    // beam_load.mbg:14:7  Se push.on_blade: e = value
+    const double push_on_blade_e_8 = -2.0 * F;
+    // beam_load.mbg:5:6  C blade.eta: e = law(q)
+    const double blade_eta_e_2 = 19593.220346149414 * blade_eta_q_2;
+    // beam_load.mbg:5:6  R blade.damp: e = R f
+    const double blade_damp_e_2 = 27.34739645305369 * blade_eta_rate_rate_2;
+    // the powers
+    out[0] = 0.6882527423362675 * b9_f_7 + push_on_blade_e_8 * b9_f_8;
+    out[1] = blade_eta_e_1 * blade_eta_rate_rate_1 + blade_eta_e_2 * blade_eta_rate_rate_2 + (blade_damp_e_1 * blade_eta_rate_rate_1 + blade_damp_e_2 * blade_eta_rate_rate_2);
   }
 
   // TERMINAL: nothing to do at the end of a run.

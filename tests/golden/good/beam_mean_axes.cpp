@@ -595,7 +595,183 @@ class beam_mean_axes_model final : public mbgrt::Model {
 
   // What the energy balance leaves out, or why there is none.
   std::string energy_note() const override {
-    return "every storage is counted by the power into it, so the balance would hold by construction; I bar.M: a modulated law, counted by the power into it; C bar.eta: a nonlinear law, counted by the power into it";
+    return "C bar.eta: a nonlinear law, counted by the power into it";
+  }
+
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I bar.M (beam_mean_axes.mbg:5:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bar_M_p_1 = x[0];
+    const double bar_M_p_2 = x[1];
+    const double bar_M_p_3 = x[2];
+    const double bar_M_p_4 = x[3];
+    const double bar_M_p_5 = x[4];
+    const double bar_M_p_6 = x[5];
+    const double bar_M_p_7 = x[6];
+    const double bar_M_p_8 = x[7];
+    const double bar_eta_q_1 = x[15];
+    const double bar_eta_q_2 = x[16];
+    // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[3], bar.M.f[5])
+    // (cseN: a subexpression several equations below share)
+    const double cse78 = 15.253392797429207 * bar_eta_q_1;
+    const double cse79 = 13.70347789009205 * bar_eta_q_1;
+    const double cse80 = 13.70347789009205 * bar_eta_q_2;
+    const double cse81 = 33.578051071136144 * bar_eta_q_2;
+    const double cse82 = 0.3082687791334984 - 0.5 * (cse78 * bar_eta_q_1 + cse79 * bar_eta_q_2 + cse80 * bar_eta_q_1 + cse81 * bar_eta_q_2);
+    const double cse83 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
+    double blk1_a[4] = {
+        -0.6165375582669969, cse82,
+        cse82, -(0.20551637278207147 - cse83),
+    };
+    double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
+    mbgrt::solve_linear(2, blk1_a, blk1_x);
+    const double bar_M_f_3 = blk1_x[0];
+    const double bar_M_f_5 = blk1_x[1];
+    // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[2], bar.M.f[6])
+    const double cse84 = -cse82;
+    const double cse85 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
+    double blk2_a[4] = {
+        -0.6165375582669969, cse84,
+        cse84, -(0.20551637278207147 + (cse85 - cse83)),
+    };
+    double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
+    mbgrt::solve_linear(2, blk2_a, blk2_x);
+    const double bar_M_f_2 = blk2_x[0];
+    const double bar_M_f_6 = blk2_x[1];
+    // beam_mean_axes.mbg:5:6  I bar.M: p = I f
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse85);
+    // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
+    const double cse86 = cse78 + cse80;
+    const double cse87 = cse79 + cse81;
+    double blk3_a[9] = {
+        -0.6165375582669969, cse86, cse87,
+        cse86, -0.6165375582669969, 1.1978648372848393e-16,
+        cse87, 1.1978648372848393e-16, -0.6165375582669967,
+    };
+    double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
+    mbgrt::solve_linear(3, blk3_a, blk3_x);
+    const double bar_M_f_1 = blk3_x[0];
+    const double bar_M_f_7 = blk3_x[1];
+    const double bar_M_f_8 = blk3_x[2];
+    // the stored energy
+    out[0] = 0.5 * (bar_M_p_1 * bar_M_f_1 + bar_M_p_2 * bar_M_f_2 + bar_M_p_3 * bar_M_f_3 + bar_M_p_4 * bar_M_f_4 + bar_M_p_5 * bar_M_f_5 + bar_M_p_6 * bar_M_f_6 + bar_M_p_7 * bar_M_f_7 + bar_M_p_8 * bar_M_f_8);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of none; out[1]: the power into I bar.M (beam_mean_axes.mbg:5:6), R bar.ejs (beam_mean_axes.mbg:5:6), C bar.eta (beam_mean_axes.mbg:5:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bar_M_p_1 = x[0];
+    const double bar_M_p_2 = x[1];
+    const double bar_M_p_3 = x[2];
+    const double bar_M_p_4 = x[3];
+    const double bar_M_p_5 = x[4];
+    const double bar_M_p_6 = x[5];
+    const double bar_M_p_7 = x[6];
+    const double bar_M_p_8 = x[7];
+    const double bar_eta_q_1 = x[15];
+    const double bar_eta_q_2 = x[16];
+    // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[3], bar.M.f[5])
+    // (cseN: a subexpression several equations below share)
+    const double cse88 = 15.253392797429207 * bar_eta_q_1;
+    const double cse89 = 13.70347789009205 * bar_eta_q_1;
+    const double cse90 = 13.70347789009205 * bar_eta_q_2;
+    const double cse91 = 33.578051071136144 * bar_eta_q_2;
+    const double cse92 = 0.3082687791334984 - 0.5 * (cse88 * bar_eta_q_1 + cse89 * bar_eta_q_2 + cse90 * bar_eta_q_1 + cse91 * bar_eta_q_2);
+    const double cse93 = 9.506990532655411 * bar_eta_q_1;
+    const double cse94 = 6.851738945046023 * bar_eta_q_1;
+    const double cse95 = 6.851738945046023 * bar_eta_q_2;
+    const double cse96 = 20.73325973414802 * bar_eta_q_2;
+    const double cse97 = cse93 * bar_eta_q_1 + cse94 * bar_eta_q_2 + cse95 * bar_eta_q_1 + cse96 * bar_eta_q_2;
+    double blk1_a[4] = {
+        -0.6165375582669969, cse92,
+        cse92, -(0.20551637278207147 - cse97),
+    };
+    double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
+    mbgrt::solve_linear(2, blk1_a, blk1_x);
+    const double bar_M_f_3 = blk1_x[0];
+    const double bar_M_f_5 = blk1_x[1];
+    // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[2], bar.M.f[6])
+    const double cse98 = -cse92;
+    const double cse99 = 0.6165375582669969 * bar_eta_q_1;
+    const double cse100 = 1.1978648372848393e-16 * bar_eta_q_1;
+    const double cse101 = 1.1978648372848393e-16 * bar_eta_q_2;
+    const double cse102 = 0.6165375582669967 * bar_eta_q_2;
+    const double cse103 = cse99 * bar_eta_q_1 - cse100 * bar_eta_q_2 - cse101 * bar_eta_q_1 + cse102 * bar_eta_q_2;
+    double blk2_a[4] = {
+        -0.6165375582669969, cse98,
+        cse98, -(0.20551637278207147 + (cse103 - cse97)),
+    };
+    double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
+    mbgrt::solve_linear(2, blk2_a, blk2_x);
+    const double bar_M_f_2 = blk2_x[0];
+    const double bar_M_f_6 = blk2_x[1];
+    // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_1 = bar_M_f_5 * bar_M_p_3 - bar_M_f_6 * bar_M_p_2;
+    // beam_mean_axes.mbg:5:6  I bar.M: p = I f
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse103);
+    // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_2 = bar_M_f_6 * bar_M_p_1 - bar_M_f_4 * bar_M_p_3;
+    const double bar_ejs_e_3 = bar_M_f_4 * bar_M_p_2 - bar_M_f_5 * bar_M_p_1;
+    const double bar_ejs_e_4 = bar_M_f_5 * bar_M_p_6 - bar_M_f_6 * bar_M_p_5 + (bar_M_f_2 * bar_M_p_3 - bar_M_f_3 * bar_M_p_2);
+    // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
+    const double cse104 = cse88 + cse90;
+    const double cse105 = cse89 + cse91;
+    double blk3_a[9] = {
+        -0.6165375582669969, cse104, cse105,
+        cse104, -0.6165375582669969, 1.1978648372848393e-16,
+        cse105, 1.1978648372848393e-16, -0.6165375582669967,
+    };
+    double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
+    mbgrt::solve_linear(3, blk3_a, blk3_x);
+    const double bar_M_f_1 = blk3_x[0];
+    const double bar_M_f_7 = blk3_x[1];
+    const double bar_M_f_8 = blk3_x[2];
+    const double bar_ejs_e_5 = bar_M_f_6 * bar_M_p_4 - bar_M_f_4 * bar_M_p_6 + (bar_M_f_3 * bar_M_p_1 - bar_M_f_1 * bar_M_p_3);
+    const double bar_ejs_e_6 = bar_M_f_4 * bar_M_p_5 - bar_M_f_5 * bar_M_p_4 + (bar_M_f_1 * bar_M_p_2 - bar_M_f_2 * bar_M_p_1);
+    const double cse106 = -15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8;
+    const double cse107 = 0.5 * (cse88 + cse88 + cse90 + cse90);
+    const double cse108 = cse99 + cse99 - cse101 - cse101;
+    const double cse109 = cse93 + cse93 + cse95 + cse95;
+    const double cse110 = cse108 - cse109;
+    const double cse111 = 13.70347789009205 * bar_M_f_1;
+    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * cse106 - bar_M_f_2 * (cse107 * bar_M_f_6) + bar_M_f_3 * (cse107 * bar_M_f_5) + bar_M_f_4 * (cse108 * bar_M_f_4) + bar_M_f_5 * (cse107 * bar_M_f_3 - cse109 * bar_M_f_5) + bar_M_f_6 * (-cse107 * bar_M_f_2 + cse110 * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse111);
+    // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
+    const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
+    // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
+    const double cse112 = -13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8;
+    const double cse113 = 0.5 * (cse89 + cse89 + (cse91 + cse91));
+    const double cse114 = -cse100 - cse100 + (cse102 + cse102);
+    const double cse115 = cse94 + cse94 + (cse96 + cse96);
+    const double cse116 = cse114 - cse115;
+    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * cse112 - bar_M_f_2 * (cse113 * bar_M_f_6) + bar_M_f_3 * (cse113 * bar_M_f_5) + bar_M_f_4 * (cse114 * bar_M_f_4) + bar_M_f_5 * (cse113 * bar_M_f_3 - cse115 * bar_M_f_5) + bar_M_f_6 * (-cse113 * bar_M_f_2 + cse116 * bar_M_f_6) - bar_M_f_7 * cse111 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
+    // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
+    const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
+    // the powers
+    out[0] = 0.0;
+    const double cse117 = cse107 * bar_M_f_7;
+    const double cse118 = cse113 * bar_M_f_8;
+    const double cse119 = -cse117 - cse118;
+    const double cse120 = cse117 + cse118;
+    out[1] = 0.5 * (cse106 * (bar_M_f_1 * bar_M_f_7) + cse112 * (bar_M_f_1 * bar_M_f_8) + cse119 * (bar_M_f_2 * bar_M_f_6) + cse120 * (bar_M_f_3 * bar_M_f_5) + (cse108 * bar_M_f_7 + cse114 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse120 * (bar_M_f_5 * bar_M_f_3) + (-cse109 * bar_M_f_7 - cse115 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse119 * (bar_M_f_6 * bar_M_f_2) + (cse110 * bar_M_f_7 + cse116 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse106 * (bar_M_f_7 * bar_M_f_1) + cse112 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -1061,7 +1061,247 @@ class beam_stretch_twist_model final : public mbgrt::Model {
 
   // What the energy balance leaves out, or why there is none.
   std::string energy_note() const override {
-    return "every storage is counted by the power into it, so the balance would hold by construction; I arm.M: a modulated law, counted by the power into it; C arm.eta: a nonlinear law, counted by the power into it";
+    return "C arm.eta: a nonlinear law, counted by the power into it";
+  }
+
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* y, const double* yp, double* out) override {
+    // H: the energy of I arm.M (beam_stretch_twist.mbg:5:6)
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double arm_M_p_1 = y[0];
+    const double arm_M_p_2 = y[1];
+    const double arm_M_p_3 = y[2];
+    const double arm_M_p_4 = y[3];
+    const double arm_M_p_5 = y[4];
+    const double arm_M_p_6 = y[5];
+    const double arm_M_p_7 = y[6];
+    const double arm_M_p_8 = y[7];
+    const double arm_M_p_9 = y[8];
+    const double arm_eta_q_1 = y[16];
+    const double arm_eta_q_2 = y[17];
+    const double arm_eta_q_3 = y[18];
+    // beam_stretch_twist.mbg:5:6  algebraic loop (9 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (arm.M.f[1], arm.M.f[2], arm.M.f[3], arm.M.f[4], arm.M.f[5], arm.M.f[6], arm.M.f[7], arm.M.f[8], arm.M.f[9])
+    // (cseN: a subexpression several equations below share)
+    const double cse196 = 0.42281554826139794 * arm_eta_q_1;
+    const double cse197 = 0.27 + 0.4861708107248375 * arm_eta_q_2;
+    const double cse198 = -cse197;
+    const double cse199 = -cse196;
+    const double cse200 = 0.54 * arm_eta_q_1 * arm_eta_q_1;
+    const double cse201 = 0.5176663805297445 * arm_eta_q_2;
+    const double cse202 = -(-0.30716590160335183 * arm_eta_q_1 - cse201 * arm_eta_q_1);
+    const double cse203 = 0.6190119017108169 * arm_eta_q_2 + 0.54 * arm_eta_q_2 * arm_eta_q_2;
+    const double cse204 = 1.2154270268120938e-05 * arm_eta_q_3;
+    const double cse205 = -(0.30716590160335183 + cse201);
+    const double cse206 = 0.5176663805297445 * arm_eta_q_1;
+    double blk1_a[81] = {
+        -0.54, 0.0, 0.0, 0.0, 0.0, cse196, 0.0, -0.4861708107248375, 0.0,
+        0.0, -0.54, 0.0, 0.0, 0.0, cse198, -0.42281554826139794, 0.0, 0.0,
+        0.0, 0.0, -0.54, cse199, cse197, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, cse199, -(2.2500000000000005e-05 + cse200), cse202, 0.0, 0.0, 0.0, -2.02571171135349e-05,
+        0.0, 0.0, cse197, cse202, -(0.1800045 + cse203), cse204, 0.0, 0.0, 0.0,
+        cse196, cse198, 0.0, 0.0, cse204, -(0.180018 + cse200 + cse203), cse205, cse206, 0.0,
+        0.0, -0.42281554826139794, 0.0, 0.0, 0.0, cse205, -0.54, 0.0, 0.0,
+        -0.4861708107248375, 0.0, 0.0, 0.0, 0.0, cse206, 0.0, -0.54, 0.0,
+        0.0, 0.0, 0.0, -2.02571171135349e-05, 0.0, 0.0, 0.0, 0.0, -2.2500000000000005e-05,
+    };
+    double blk1_x[9] = {-arm_M_p_1, -arm_M_p_2, -arm_M_p_3, -arm_M_p_4, -arm_M_p_5, -arm_M_p_6, -arm_M_p_7, -arm_M_p_8, -arm_M_p_9};
+    mbgrt::solve_linear(9, blk1_a, blk1_x);
+    const double arm_M_f_1 = blk1_x[0];
+    const double arm_M_f_2 = blk1_x[1];
+    const double arm_M_f_3 = blk1_x[2];
+    const double arm_M_f_4 = blk1_x[3];
+    const double arm_M_f_5 = blk1_x[4];
+    const double arm_M_f_6 = blk1_x[5];
+    const double arm_M_f_7 = blk1_x[6];
+    const double arm_M_f_8 = blk1_x[7];
+    const double arm_M_f_9 = blk1_x[8];
+    // the stored energy
+    out[0] = 0.5 * (arm_M_p_1 * arm_M_f_1 + arm_M_p_2 * arm_M_f_2 + arm_M_p_3 * arm_M_f_3 + arm_M_p_4 * arm_M_f_4 + arm_M_p_5 * arm_M_f_5 + arm_M_p_6 * arm_M_f_6 + arm_M_p_7 * arm_M_f_7 + arm_M_p_8 * arm_M_f_8 + arm_M_p_9 * arm_M_f_9);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* y, const double* yp, double* out) override {
+    // out[0]: the power of Sf hub.motion (beam_stretch_twist.mbg:15:7); out[1]: the power into I arm.M (beam_stretch_twist.mbg:5:6), R arm.ejs (beam_stretch_twist.mbg:5:6), C arm.eta (beam_stretch_twist.mbg:5:6), CN hub.cn (beam_stretch_twist.mbg:15:7)
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double arm_M_p_1 = y[0];
+    const double arm_M_p_2 = y[1];
+    const double arm_M_p_3 = y[2];
+    const double arm_M_p_4 = y[3];
+    const double arm_M_p_5 = y[4];
+    const double arm_M_p_6 = y[5];
+    const double arm_M_p_7 = y[6];
+    const double arm_M_p_8 = y[7];
+    const double arm_M_p_9 = y[8];
+    const double arm_q_q_1 = y[12];
+    const double arm_q_q_2 = y[13];
+    const double arm_q_q_3 = y[14];
+    const double arm_q_q_4 = y[15];
+    const double arm_eta_q_1 = y[16];
+    const double arm_eta_q_2 = y[17];
+    const double arm_eta_q_3 = y[18];
+    const double hub_cn_e_1 = y[19];
+    const double hub_cn_e_2 = y[20];
+    const double hub_cn_e_3 = y[21];
+    const double hub_cn_e_4 = y[22];
+    const double hub_cn_e_5 = y[23];
+    const double hub_cn_e_6 = y[24];
+    // beam_stretch_twist.mbg:5:6  algebraic loop (9 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (arm.M.f[1], arm.M.f[2], arm.M.f[3], arm.M.f[4], arm.M.f[5], arm.M.f[6], arm.M.f[7], arm.M.f[8], arm.M.f[9])
+    // (cseN: a subexpression several equations below share)
+    const double cse207 = 0.42281554826139794 * arm_eta_q_1;
+    const double cse208 = 0.27 + 0.4861708107248375 * arm_eta_q_2;
+    const double cse209 = -cse208;
+    const double cse210 = -cse207;
+    const double cse211 = 0.54 * arm_eta_q_1;
+    const double cse212 = cse211 * arm_eta_q_1;
+    const double cse213 = 0.5176663805297445 * arm_eta_q_2;
+    const double cse214 = -(-0.30716590160335183 * arm_eta_q_1 - cse213 * arm_eta_q_1);
+    const double cse215 = 0.54 * arm_eta_q_2;
+    const double cse216 = 0.6190119017108169 * arm_eta_q_2 + cse215 * arm_eta_q_2;
+    const double cse217 = 1.2154270268120938e-05 * arm_eta_q_3;
+    const double cse218 = -(0.30716590160335183 + cse213);
+    const double cse219 = 0.5176663805297445 * arm_eta_q_1;
+    double blk1_a[81] = {
+        -0.54, 0.0, 0.0, 0.0, 0.0, cse207, 0.0, -0.4861708107248375, 0.0,
+        0.0, -0.54, 0.0, 0.0, 0.0, cse209, -0.42281554826139794, 0.0, 0.0,
+        0.0, 0.0, -0.54, cse210, cse208, 0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, cse210, -(2.2500000000000005e-05 + cse212), cse214, 0.0, 0.0, 0.0, -2.02571171135349e-05,
+        0.0, 0.0, cse208, cse214, -(0.1800045 + cse216), cse217, 0.0, 0.0, 0.0,
+        cse207, cse209, 0.0, 0.0, cse217, -(0.180018 + cse212 + cse216), cse218, cse219, 0.0,
+        0.0, -0.42281554826139794, 0.0, 0.0, 0.0, cse218, -0.54, 0.0, 0.0,
+        -0.4861708107248375, 0.0, 0.0, 0.0, 0.0, cse219, 0.0, -0.54, 0.0,
+        0.0, 0.0, 0.0, -2.02571171135349e-05, 0.0, 0.0, 0.0, 0.0, -2.2500000000000005e-05,
+    };
+    double blk1_x[9] = {-arm_M_p_1, -arm_M_p_2, -arm_M_p_3, -arm_M_p_4, -arm_M_p_5, -arm_M_p_6, -arm_M_p_7, -arm_M_p_8, -arm_M_p_9};
+    mbgrt::solve_linear(9, blk1_a, blk1_x);
+    const double arm_M_f_1 = blk1_x[0];
+    const double arm_M_f_2 = blk1_x[1];
+    const double arm_M_f_3 = blk1_x[2];
+    const double arm_M_f_4 = blk1_x[3];
+    const double arm_M_f_5 = blk1_x[4];
+    const double arm_M_f_6 = blk1_x[5];
+    const double arm_M_f_7 = blk1_x[6];
+    const double arm_M_f_8 = blk1_x[7];
+    const double arm_M_f_9 = blk1_x[8];
+    // beam_stretch_twist.mbg:5:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_1 = arm_M_f_5 * arm_M_p_3 - arm_M_f_6 * arm_M_p_2;
+    // beam_stretch_twist.mbg:5:6  MTF arm.sv: f2 = T f1
+    const double cse220 = arm_q_q_1 * arm_q_q_1;
+    const double cse221 = arm_q_q_2 * arm_q_q_2;
+    const double cse222 = cse220 + cse221;
+    const double cse223 = arm_q_q_3 * arm_q_q_3;
+    const double cse224 = arm_q_q_4 * arm_q_q_4;
+    const double cse225 = cse222 - cse223 - cse224;
+    const double cse226 = cse222 + cse223 + cse224;
+    const double cse227 = cse225 / cse226;
+    const double cse228 = arm_q_q_2 * arm_q_q_3;
+    const double cse229 = arm_q_q_1 * arm_q_q_4;
+    const double cse230 = arm_q_q_2 * arm_q_q_4;
+    const double cse231 = arm_q_q_1 * arm_q_q_3;
+    const double arm_sv_f2_1 = cse227 * arm_M_f_1 + 2.0 * (cse228 - cse229) / cse226 * arm_M_f_2 + 2.0 * (cse230 + cse231) / cse226 * arm_M_f_3;
+    // beam_stretch_twist.mbg:15:7  0 hub.c: flows in = flows out
+    const double hub_cn_f_1 = arm_sv_f2_1;
+    // beam_stretch_twist.mbg:5:6  MTF arm.sv: f2 = T f1
+    const double cse232 = 2.0 * (cse228 + cse229);
+    const double cse233 = cse232 / cse226;
+    const double cse234 = arm_q_q_3 * arm_q_q_4;
+    const double cse235 = arm_q_q_1 * arm_q_q_2;
+    const double arm_sv_f2_2 = cse233 * arm_M_f_1 + (cse220 + cse223 - cse221 - cse224) / cse226 * arm_M_f_2 + 2.0 * (cse234 - cse235) / cse226 * arm_M_f_3;
+    // beam_stretch_twist.mbg:15:7  0 hub.c: flows in = flows out
+    const double hub_cn_f_2 = arm_sv_f2_2;
+    // beam_stretch_twist.mbg:5:6  MTF arm.sv: f2 = T f1
+    const double cse236 = 2.0 * (cse230 - cse231);
+    const double cse237 = 2.0 * (cse234 + cse235);
+    const double arm_sv_f2_3 = cse236 / cse226 * arm_M_f_1 + cse237 / cse226 * arm_M_f_2 + (cse220 + cse224 - cse221 - cse223) / cse226 * arm_M_f_3;
+    // beam_stretch_twist.mbg:15:7  0 hub.c: flows in = flows out
+    const double hub_cn_f_3 = arm_sv_f2_3;
+    // beam_stretch_twist.mbg:5:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_2 = arm_M_f_6 * arm_M_p_1 - arm_M_f_4 * arm_M_p_3;
+    const double arm_ejs_e_3 = arm_M_f_4 * arm_M_p_2 - arm_M_f_5 * arm_M_p_1;
+    const double arm_ejs_e_4 = arm_M_f_5 * arm_M_p_6 - arm_M_f_6 * arm_M_p_5 + (arm_M_f_2 * arm_M_p_3 - arm_M_f_3 * arm_M_p_2);
+    // beam_stretch_twist.mbg:15:7  MTF hub.cbr: f2 = T f1
+    const double cse238 = 2.0 * arm_q_q_3 * cse226;
+    const double cse239 = arm_q_q_1 + arm_q_q_1;
+    const double cse240 = (cse226*cse226);
+    const double cse241 = 0.47143398265292674 * ((-cse238 - cse236 * cse239) / cse240);
+    const double cse242 = 0.5 * arm_q_q_2;
+    const double cse243 = 2.0 * arm_q_q_4 * cse226;
+    const double cse244 = arm_q_q_2 + arm_q_q_2;
+    const double cse245 = 0.47143398265292674 * ((cse243 - cse236 * cse244) / cse240);
+    const double cse246 = 0.5 * arm_q_q_1;
+    const double cse247 = 2.0 * arm_q_q_1 * cse226;
+    const double cse248 = arm_q_q_3 + arm_q_q_3;
+    const double cse249 = 0.47143398265292674 * ((-cse247 - cse236 * cse248) / cse240);
+    const double cse250 = 0.5 * arm_q_q_4;
+    const double cse251 = 2.0 * arm_q_q_2 * cse226;
+    const double cse252 = arm_q_q_4 + arm_q_q_4;
+    const double cse253 = 0.47143398265292674 * ((cse251 - cse236 * cse252) / cse240);
+    const double cse254 = 0.5 * arm_q_q_3;
+    const double hub_cbr_f2_4 = (-cse241 * cse242 + cse245 * cse246 + cse249 * cse250 - cse253 * cse254) * arm_M_f_4 + (-cse241 * cse254 - cse245 * cse250 + cse249 * cse246 + cse253 * cse242) * arm_M_f_5 + (-cse241 * cse250 + cse245 * cse254 - cse249 * cse242 + cse253 * cse246) * arm_M_f_6;
+    // beam_stretch_twist.mbg:15:7  0 hub.c: flows in = flows out
+    const double hub_cn_f_4 = hub_cbr_f2_4;
+    // beam_stretch_twist.mbg:15:7  MTF hub.cbr: f2 = T f1
+    const double cse255 = 0.47143398265292674 * ((cse251 - cse237 * cse239) / cse240);
+    const double cse256 = 0.47143398265292674 * ((cse247 - cse237 * cse244) / cse240);
+    const double cse257 = 0.47143398265292674 * ((cse243 - cse237 * cse248) / cse240);
+    const double cse258 = 0.47143398265292674 * ((cse238 - cse237 * cse252) / cse240);
+    const double hub_cbr_f2_5 = (-cse255 * cse242 + cse256 * cse246 + cse257 * cse250 - cse258 * cse254) * arm_M_f_4 + (-cse255 * cse254 - cse256 * cse250 + cse257 * cse246 + cse258 * cse242) * arm_M_f_5 + (-cse255 * cse250 + cse256 * cse254 - cse257 * cse242 + cse258 * cse246) * arm_M_f_6;
+    // beam_stretch_twist.mbg:15:7  0 hub.c: flows in = flows out
+    const double hub_cn_f_5 = hub_cbr_f2_5;
+    // beam_stretch_twist.mbg:15:7  MTF hub.cbr: f2 = T f1
+    const double cse259 = 2.0 * t;
+    const double cse260 = std::cos(cse259);
+    const double cse261 = std::sin(cse259);
+    const double cse262 = 0.47143398265292674 * ((cse243 - cse232 * cse239) / cse240 * cse260 - (cse239 * cse226 - cse225 * cse239) / cse240 * cse261);
+    const double cse263 = 0.47143398265292674 * ((cse238 - cse232 * cse244) / cse240 * cse260 - (cse244 * cse226 - cse225 * cse244) / cse240 * cse261);
+    const double cse264 = 0.47143398265292674 * ((cse251 - cse232 * cse248) / cse240 * cse260 - (-cse248 * cse226 - cse225 * cse248) / cse240 * cse261);
+    const double cse265 = 0.47143398265292674 * ((cse247 - cse232 * cse252) / cse240 * cse260 - (-cse252 * cse226 - cse225 * cse252) / cse240 * cse261);
+    const double hub_cbr_f2_6 = (-cse262 * cse242 + cse263 * cse246 + cse264 * cse250 - cse265 * cse254) * arm_M_f_4 + (-cse262 * cse254 - cse263 * cse250 + cse264 * cse246 + cse265 * cse242) * arm_M_f_5 + (-cse262 * cse250 + cse263 * cse254 - cse264 * cse242 + cse265 * cse246) * arm_M_f_6;
+    // beam_stretch_twist.mbg:15:7  Sf hub.motion: f = value
+    const double hub_motion_f_6 = 0.47143398265292674 * (-cse233 * (2.0 * cse261) - cse227 * (2.0 * cse260));
+    // beam_stretch_twist.mbg:15:7  0 hub.c: flows in = flows out
+    const double hub_cn_f_6 = hub_cbr_f2_6 + hub_motion_f_6;
+    // beam_stretch_twist.mbg:5:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_5 = arm_M_f_6 * arm_M_p_4 - arm_M_f_4 * arm_M_p_6 + (arm_M_f_3 * arm_M_p_1 - arm_M_f_1 * arm_M_p_3);
+    const double arm_ejs_e_6 = arm_M_f_4 * arm_M_p_5 - arm_M_f_5 * arm_M_p_4 + (arm_M_f_1 * arm_M_p_2 - arm_M_f_2 * arm_M_p_1);
+    const double cse266 = cse211 + cse211;
+    const double cse267 = -0.30716590160335183 - cse213;
+    const double cse268 = 0.5176663805297445 * arm_M_f_8;
+    const double cse269 = 0.5176663805297445 * arm_M_f_6;
+    const double arm_ejs_e_7 = -0.5 * (-arm_M_f_1 * (0.42281554826139794 * arm_M_f_6) + arm_M_f_3 * (0.42281554826139794 * arm_M_f_4) + arm_M_f_4 * (0.42281554826139794 * arm_M_f_3 + cse266 * arm_M_f_4 + cse267 * arm_M_f_5) + arm_M_f_5 * (cse267 * arm_M_f_4) + arm_M_f_6 * (-0.42281554826139794 * arm_M_f_1 + cse266 * arm_M_f_6 - cse268) - arm_M_f_8 * cse269);
+    // beam_stretch_twist.mbg:5:6  C arm.eta: e = law(q)
+    const double arm_eta_e_1 = 5769.102905218891 * arm_eta_q_1;
+    // beam_stretch_twist.mbg:5:6  R arm.ejs: e = law(f)
+    const double cse270 = 0.6190119017108169 + (cse215 + cse215);
+    const double cse271 = 0.5176663805297445 * arm_M_f_7;
+    const double arm_ejs_e_8 = -0.5 * (arm_M_f_2 * (0.4861708107248375 * arm_M_f_6) - arm_M_f_3 * (0.4861708107248375 * arm_M_f_5) - arm_M_f_4 * (cse219 * arm_M_f_5) + arm_M_f_5 * (-0.4861708107248375 * arm_M_f_3 - cse219 * arm_M_f_4 + cse270 * arm_M_f_5) + arm_M_f_6 * (0.4861708107248375 * arm_M_f_2 + cse270 * arm_M_f_6 + cse271) + arm_M_f_7 * cse269);
+    // beam_stretch_twist.mbg:5:6  C arm.eta: e = law(q)
+    const double arm_eta_e_2 = 34543615.40381276 * arm_eta_q_2;
+    // beam_stretch_twist.mbg:5:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_9 = -0.5 * (-arm_M_f_5 * (1.2154270268120938e-05 * arm_M_f_6) - arm_M_f_6 * (1.2154270268120938e-05 * arm_M_f_5));
+    // beam_stretch_twist.mbg:5:6  C arm.eta: e = law(q)
+    const double arm_eta_e_3 = 293.6644244935592 * arm_eta_q_3;
+    // the powers
+    out[0] = hub_cn_e_6 * hub_motion_f_6;
+    const double cse272 = 0.42281554826139794 * arm_M_f_7;
+    const double cse273 = 0.4861708107248375 * arm_M_f_8;
+    const double cse274 = cse266 * arm_M_f_7;
+    const double cse275 = -cse219 * arm_M_f_8 + cse267 * arm_M_f_7;
+    const double cse276 = cse270 * arm_M_f_8;
+    const double cse277 = 1.2154270268120938e-05 * arm_M_f_9;
+    out[1] = 0.5 * (-cse272 * (arm_M_f_1 * arm_M_f_6) + cse273 * (arm_M_f_2 * arm_M_f_6) + cse272 * (arm_M_f_3 * arm_M_f_4) - cse273 * (arm_M_f_3 * arm_M_f_5) + cse272 * (arm_M_f_4 * arm_M_f_3) + cse274 * (arm_M_f_4 * arm_M_f_4) + cse275 * (arm_M_f_4 * arm_M_f_5) - cse273 * (arm_M_f_5 * arm_M_f_3) + cse275 * (arm_M_f_5 * arm_M_f_4) + cse276 * (arm_M_f_5 * arm_M_f_5) - cse277 * (arm_M_f_5 * arm_M_f_6) - cse272 * (arm_M_f_6 * arm_M_f_1) + cse273 * (arm_M_f_6 * arm_M_f_2) - cse277 * (arm_M_f_6 * arm_M_f_5) + (cse274 + cse276) * (arm_M_f_6 * arm_M_f_6) + cse268 * (arm_M_f_6 * arm_M_f_7) - cse271 * (arm_M_f_6 * arm_M_f_8) + cse268 * (arm_M_f_7 * arm_M_f_6) - cse271 * (arm_M_f_8 * arm_M_f_6)) + (arm_ejs_e_1 * arm_M_f_1 + arm_ejs_e_2 * arm_M_f_2 + arm_ejs_e_3 * arm_M_f_3 + arm_ejs_e_4 * arm_M_f_4 + arm_ejs_e_5 * arm_M_f_5 + arm_ejs_e_6 * arm_M_f_6 + arm_ejs_e_7 * arm_M_f_7 + arm_ejs_e_8 * arm_M_f_8 + arm_ejs_e_9 * arm_M_f_9) + (arm_eta_e_1 * arm_M_f_7 + arm_eta_e_2 * arm_M_f_8 + arm_eta_e_3 * arm_M_f_9) + (hub_cn_e_1 * hub_cn_f_1 + hub_cn_e_2 * hub_cn_f_2 + hub_cn_e_3 * hub_cn_f_3 + hub_cn_e_4 * hub_cn_f_4 + hub_cn_e_5 * hub_cn_f_5 + hub_cn_e_6 * hub_cn_f_6);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -756,7 +756,117 @@ class beam_tisserand_model final : public mbgrt::Model {
 
   // What the energy balance leaves out, or why there is none.
   std::string energy_note() const override {
-    return "every storage is counted by the power into it, so the balance would hold by construction; I bar.M: a modulated law, counted by the power into it; C bar.eta: a nonlinear law, counted by the power into it";
+    return "C bar.eta: a nonlinear law, counted by the power into it";
+  }
+
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* x, const double* yp, double* out) override {
+    // H: the energy of I bar.M (beam_tisserand.mbg:6:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bar_M_p_1 = x[0];
+    const double bar_M_p_2 = x[1];
+    const double bar_M_p_3 = x[2];
+    const double bar_M_p_4 = x[3];
+    const double bar_M_p_5 = x[4];
+    const double bar_M_p_6 = x[5];
+    const double bar_M_p_7 = x[6];
+    const double bar_M_p_8 = x[7];
+    const double bar_eta_q_1 = x[15];
+    const double bar_eta_q_2 = x[16];
+    // beam_tisserand.mbg:6:6  I bar.M: p = I f
+    // (cseN: a subexpression several equations below share)
+    const double cse146 = 1.8802941339408092 * bar_eta_q_1 * bar_eta_q_1 - 5.475953541873551e-16 * bar_eta_q_1 * bar_eta_q_2 - 5.475953541873551e-16 * bar_eta_q_2 * bar_eta_q_1 + 3.9442341985799487 * bar_eta_q_2 * bar_eta_q_2;
+    const double bar_M_f_5 = bar_M_p_5 / (0.05138198321532224 - cse146);
+    const double cse147 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
+    const double bar_M_f_6 = bar_M_p_6 / (0.05138198321532224 + (cse147 - cse146));
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse147);
+    const double bar_M_f_2 = bar_M_p_2 / 0.6165375582669969;
+    const double bar_M_f_3 = bar_M_p_3 / 0.6165375582669969;
+    const double bar_M_f_1 = bar_M_p_1 / 0.6165375582669969;
+    // beam_tisserand.mbg:6:6  algebraic loop (2 unknowns), solved for bar.M.f[8]
+    const double bar_M_f_8 = -(-bar_M_p_8 - 1.9428902930940237e-16 * bar_M_p_7) / 0.6165375582669967;
+    // beam_tisserand.mbg:6:6  algebraic loop (2 unknowns), solved for bar.M.f[7]
+    const double bar_M_f_7 = -(-bar_M_p_7 - 1.1978648372848393e-16 * bar_M_f_8) / 0.6165375582669969;
+    // the stored energy
+    out[0] = 0.5 * (bar_M_p_1 * bar_M_f_1 + bar_M_p_2 * bar_M_f_2 + bar_M_p_3 * bar_M_f_3 + bar_M_p_4 * bar_M_f_4 + bar_M_p_5 * bar_M_f_5 + bar_M_p_6 * bar_M_f_6 + bar_M_p_7 * bar_M_f_7 + bar_M_p_8 * bar_M_f_8);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* x, const double* yp, double* out) override {
+    // out[0]: the power of none; out[1]: the power into I bar.M (beam_tisserand.mbg:6:6), R bar.ejs (beam_tisserand.mbg:6:6), C bar.eta (beam_tisserand.mbg:6:6)
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bar_M_p_1 = x[0];
+    const double bar_M_p_2 = x[1];
+    const double bar_M_p_3 = x[2];
+    const double bar_M_p_4 = x[3];
+    const double bar_M_p_5 = x[4];
+    const double bar_M_p_6 = x[5];
+    const double bar_M_p_7 = x[6];
+    const double bar_M_p_8 = x[7];
+    const double bar_eta_q_1 = x[15];
+    const double bar_eta_q_2 = x[16];
+    // beam_tisserand.mbg:6:6  I bar.M: p = I f
+    // (cseN: a subexpression several equations below share)
+    const double cse148 = 1.8802941339408092 * bar_eta_q_1;
+    const double cse149 = 5.475953541873551e-16 * bar_eta_q_1;
+    const double cse150 = 5.475953541873551e-16 * bar_eta_q_2;
+    const double cse151 = 3.9442341985799487 * bar_eta_q_2;
+    const double cse152 = cse148 * bar_eta_q_1 - cse149 * bar_eta_q_2 - cse150 * bar_eta_q_1 + cse151 * bar_eta_q_2;
+    const double bar_M_f_5 = bar_M_p_5 / (0.05138198321532224 - cse152);
+    const double cse153 = 0.6165375582669969 * bar_eta_q_1;
+    const double cse154 = 1.1978648372848393e-16 * bar_eta_q_1;
+    const double cse155 = 1.1978648372848393e-16 * bar_eta_q_2;
+    const double cse156 = 0.6165375582669967 * bar_eta_q_2;
+    const double cse157 = cse153 * bar_eta_q_1 - cse154 * bar_eta_q_2 - cse155 * bar_eta_q_1 + cse156 * bar_eta_q_2;
+    const double bar_M_f_6 = bar_M_p_6 / (0.05138198321532224 + (cse157 - cse152));
+    // beam_tisserand.mbg:6:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_1 = bar_M_f_5 * bar_M_p_3 - bar_M_f_6 * bar_M_p_2;
+    // beam_tisserand.mbg:6:6  I bar.M: p = I f
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse157);
+    // beam_tisserand.mbg:6:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_2 = bar_M_f_6 * bar_M_p_1 - bar_M_f_4 * bar_M_p_3;
+    const double bar_ejs_e_3 = bar_M_f_4 * bar_M_p_2 - bar_M_f_5 * bar_M_p_1;
+    // beam_tisserand.mbg:6:6  I bar.M: p = I f
+    const double bar_M_f_2 = bar_M_p_2 / 0.6165375582669969;
+    const double bar_M_f_3 = bar_M_p_3 / 0.6165375582669969;
+    // beam_tisserand.mbg:6:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_4 = bar_M_f_5 * bar_M_p_6 - bar_M_f_6 * bar_M_p_5 + (bar_M_f_2 * bar_M_p_3 - bar_M_f_3 * bar_M_p_2);
+    // beam_tisserand.mbg:6:6  I bar.M: p = I f
+    const double bar_M_f_1 = bar_M_p_1 / 0.6165375582669969;
+    // beam_tisserand.mbg:6:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_5 = bar_M_f_6 * bar_M_p_4 - bar_M_f_4 * bar_M_p_6 + (bar_M_f_3 * bar_M_p_1 - bar_M_f_1 * bar_M_p_3);
+    const double bar_ejs_e_6 = bar_M_f_4 * bar_M_p_5 - bar_M_f_5 * bar_M_p_4 + (bar_M_f_1 * bar_M_p_2 - bar_M_f_2 * bar_M_p_1);
+    const double cse158 = cse153 + cse153 - cse155 - cse155;
+    const double cse159 = cse148 + cse148 - cse150 - cse150;
+    const double cse160 = cse158 - cse159;
+    const double bar_ejs_e_7 = -0.5 * (bar_M_f_4 * (cse158 * bar_M_f_4) - bar_M_f_5 * (cse159 * bar_M_f_5) + bar_M_f_6 * (cse160 * bar_M_f_6));
+    // beam_tisserand.mbg:6:6  C bar.eta: e = law(q)
+    const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
+    // beam_tisserand.mbg:6:6  R bar.ejs: e = law(f)
+    const double cse161 = -cse154 - cse154 + (cse156 + cse156);
+    const double cse162 = -cse149 - cse149 + (cse151 + cse151);
+    const double cse163 = cse161 - cse162;
+    const double bar_ejs_e_8 = -0.5 * (bar_M_f_4 * (cse161 * bar_M_f_4) - bar_M_f_5 * (cse162 * bar_M_f_5) + bar_M_f_6 * (cse163 * bar_M_f_6));
+    // beam_tisserand.mbg:6:6  C bar.eta: e = law(q)
+    const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
+    // beam_tisserand.mbg:6:6  algebraic loop (2 unknowns), solved for bar.M.f[8]
+    const double bar_M_f_8 = -(-bar_M_p_8 - 1.9428902930940237e-16 * bar_M_p_7) / 0.6165375582669967;
+    // beam_tisserand.mbg:6:6  algebraic loop (2 unknowns), solved for bar.M.f[7]
+    const double bar_M_f_7 = -(-bar_M_p_7 - 1.1978648372848393e-16 * bar_M_f_8) / 0.6165375582669969;
+    // the powers
+    out[0] = 0.0;
+    out[1] = 0.5 * ((cse158 * bar_M_f_7 + cse161 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + (-cse159 * bar_M_f_7 - cse162 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + (cse160 * bar_M_f_7 + cse163 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

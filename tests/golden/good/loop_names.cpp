@@ -944,7 +944,7 @@ class loop_names_model final : public mbgrt::Model {
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
   void power(double t, const double* x, const double* yp, double* out) override {
-    // out[0]: the power of Se bob1.weight (loop_names.mbg:23:8), Se plate1.weight (loop_names.mbg:27:8), Se bob2.weight (loop_names.mbg:23:8), Se plate2.weight (loop_names.mbg:27:8) and 2 more; out[1]: the power into R plate1.ejs (loop_names.mbg:27:8), R plate2.ejs (loop_names.mbg:27:8)
+    // out[0]: the power of Se bob1.weight (loop_names.mbg:23:8), Se plate1.weight (loop_names.mbg:27:8), Se bob2.weight (loop_names.mbg:23:8), Se plate2.weight (loop_names.mbg:27:8) and 2 more; out[1]: the power into R plate1.ejs (loop_names.mbg:27:8), R plate2.ejs (loop_names.mbg:27:8), Se spring1.on_bob1_f (loop_names.mbg:24:9), Se spring2.on_bob2_f (loop_names.mbg:24:9)
     (void)t;
     (void)x;
     (void)yp;
@@ -973,13 +973,14 @@ class loop_names_model final : public mbgrt::Model {
     // (cseN: a subexpression several equations below share)
     const double cse132 = bob1_r_q_1 - 1.0;
     const double cse133 = std::sqrt(cse132 * cse132 + bob1_r_q_2 * bob1_r_q_2 + bob1_r_q_3 * bob1_r_q_3);
-    const double cse134 = cse132 / cse133;
-    const double cse135 = bob1_r_q_2 / cse133;
-    const double cse136 = bob1_r_q_3 / cse133;
-    const double cse137 = spring1_stiffness * (cse133 - spring1_length0) + spring1_damping * (cse134 * bob1_m_p_1 + cse135 * bob1_m_p_2 + cse136 * bob1_m_p_3);
-    const double spring1_on_bob1_f_e_1 = -cse137 * cse134;
-    const double spring1_on_bob1_f_e_2 = -cse137 * cse135;
-    const double spring1_on_bob1_f_e_3 = -cse137 * cse136;
+    const double cse134 = spring1_stiffness * (cse133 - spring1_length0);
+    const double cse135 = cse132 / cse133;
+    const double cse136 = bob1_r_q_2 / cse133;
+    const double cse137 = bob1_r_q_3 / cse133;
+    const double cse138 = cse134 + spring1_damping * (cse135 * bob1_m_p_1 + cse136 * bob1_m_p_2 + cse137 * bob1_m_p_3);
+    const double spring1_on_bob1_f_e_1 = -cse138 * cse135;
+    const double spring1_on_bob1_f_e_2 = -cse138 * cse136;
+    const double spring1_on_bob1_f_e_3 = -cse138 * cse137;
     // loop_names.mbg:27:8  I plate1.J: p = I f
     const double plate1_J_f_2 = plate1_J_p_2 / plate1_inertia_2_2;
     const double plate1_J_f_3 = plate1_J_p_3 / plate1_inertia_3_3;
@@ -991,15 +992,16 @@ class loop_names_model final : public mbgrt::Model {
     const double plate1_ejs_e_2 = plate1_J_f_3 * plate1_J_p_1 - plate1_J_f_1 * plate1_J_p_3;
     const double plate1_ejs_e_3 = plate1_J_f_1 * plate1_J_p_2 - plate1_J_f_2 * plate1_J_p_1;
     // loop_names.mbg:24:9  Se spring2.on_bob2_f: e = value
-    const double cse138 = bob2_r_q_1 - 2.0;
-    const double cse139 = std::sqrt(cse138 * cse138 + bob2_r_q_2 * bob2_r_q_2 + bob2_r_q_3 * bob2_r_q_3);
-    const double cse140 = cse138 / cse139;
-    const double cse141 = bob2_r_q_2 / cse139;
-    const double cse142 = bob2_r_q_3 / cse139;
-    const double cse143 = spring2_stiffness * (cse139 - spring2_length0) + spring2_damping * (cse140 * bob2_m_p_1 + cse141 * bob2_m_p_2 + cse142 * bob2_m_p_3);
-    const double spring2_on_bob2_f_e_1 = -cse143 * cse140;
-    const double spring2_on_bob2_f_e_2 = -cse143 * cse141;
-    const double spring2_on_bob2_f_e_3 = -cse143 * cse142;
+    const double cse139 = bob2_r_q_1 - 2.0;
+    const double cse140 = std::sqrt(cse139 * cse139 + bob2_r_q_2 * bob2_r_q_2 + bob2_r_q_3 * bob2_r_q_3);
+    const double cse141 = spring2_stiffness * (cse140 - spring2_length0);
+    const double cse142 = cse139 / cse140;
+    const double cse143 = bob2_r_q_2 / cse140;
+    const double cse144 = bob2_r_q_3 / cse140;
+    const double cse145 = cse141 + spring2_damping * (cse142 * bob2_m_p_1 + cse143 * bob2_m_p_2 + cse144 * bob2_m_p_3);
+    const double spring2_on_bob2_f_e_1 = -cse145 * cse142;
+    const double spring2_on_bob2_f_e_2 = -cse145 * cse143;
+    const double spring2_on_bob2_f_e_3 = -cse145 * cse144;
     // loop_names.mbg:27:8  I plate2.J: p = I f
     const double plate2_J_f_2 = plate2_J_p_2 / plate2_inertia_2_2;
     const double plate2_J_f_3 = plate2_J_p_3 / plate2_inertia_3_3;
@@ -1011,8 +1013,16 @@ class loop_names_model final : public mbgrt::Model {
     const double plate2_ejs_e_2 = plate2_J_f_3 * plate2_J_p_1 - plate2_J_f_1 * plate2_J_p_3;
     const double plate2_ejs_e_3 = plate2_J_f_1 * plate2_J_p_2 - plate2_J_f_2 * plate2_J_p_1;
     // the powers
-    out[0] = -9.81 * bob1_m_p_2 - 9.81 * plate1_m_p_2 - 9.81 * bob2_m_p_2 - 9.81 * plate2_m_p_2 + (spring1_on_bob1_f_e_1 * bob1_m_p_1 + spring1_on_bob1_f_e_2 * bob1_m_p_2 + spring1_on_bob1_f_e_3 * bob1_m_p_3) + (spring2_on_bob2_f_e_1 * bob2_m_p_1 + spring2_on_bob2_f_e_2 * bob2_m_p_2 + spring2_on_bob2_f_e_3 * bob2_m_p_3);
-    out[1] = plate1_ejs_e_1 * plate1_J_f_1 + plate1_ejs_e_2 * plate1_J_f_2 + plate1_ejs_e_3 * plate1_J_f_3 + (plate2_ejs_e_1 * plate2_J_f_1 + plate2_ejs_e_2 * plate2_J_f_2 + plate2_ejs_e_3 * plate2_J_f_3);
+    const double cse146 = cse134 * cse135;
+    const double cse147 = cse134 * cse136;
+    const double cse148 = cse134 * cse137;
+    const double cse149 = (spring1_on_bob1_f_e_1 + cse146) * bob1_m_p_1 + (spring1_on_bob1_f_e_2 + cse147) * bob1_m_p_2 + (spring1_on_bob1_f_e_3 + cse148) * bob1_m_p_3;
+    const double cse150 = cse141 * cse142;
+    const double cse151 = cse141 * cse143;
+    const double cse152 = cse141 * cse144;
+    const double cse153 = (spring2_on_bob2_f_e_1 + cse150) * bob2_m_p_1 + (spring2_on_bob2_f_e_2 + cse151) * bob2_m_p_2 + (spring2_on_bob2_f_e_3 + cse152) * bob2_m_p_3;
+    out[0] = -9.81 * bob1_m_p_2 - 9.81 * plate1_m_p_2 - 9.81 * bob2_m_p_2 - 9.81 * plate2_m_p_2 + (-cse146 * bob1_m_p_1 - cse147 * bob1_m_p_2 - cse148 * bob1_m_p_3 + std::fmax(cse149, 0.0)) + (-cse150 * bob2_m_p_1 - cse151 * bob2_m_p_2 - cse152 * bob2_m_p_3 + std::fmax(cse153, 0.0));
+    out[1] = plate1_ejs_e_1 * plate1_J_f_1 + plate1_ejs_e_2 * plate1_J_f_2 + plate1_ejs_e_3 * plate1_J_f_3 + (plate2_ejs_e_1 * plate2_J_f_1 + plate2_ejs_e_2 * plate2_J_f_2 + plate2_ejs_e_3 * plate2_J_f_3) + std::fmax(-cse149, 0.0) + std::fmax(-cse153, 0.0);
   }
 
   // TERMINAL: nothing to do at the end of a run.

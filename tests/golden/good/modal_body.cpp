@@ -881,7 +881,240 @@ class modal_body_model final : public mbgrt::Model {
 
   // What the energy balance leaves out, or why there is none.
   std::string energy_note() const override {
-    return "every storage is counted by the power into it, so the balance would hold by construction; I bar.M: a modulated law, counted by the power into it; C bar.eta: a nonlinear law, counted by the power into it";
+    return "C bar.eta: a nonlinear law, counted by the power into it";
+  }
+
+  // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
+  bool has_energy_balance() const override {
+    return true;
+  }
+
+  // STORED ENERGY: H at (t, y), every linear storage's (the energy witness).
+  void stored_energy(double t, const double* y, const double* yp, double* out) override {
+    // H: the energy of I bar.M (modal_body.mbg:7:6)
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double bar_M_p_1 = y[0];
+    const double bar_M_p_2 = y[1];
+    const double bar_M_p_3 = y[2];
+    const double bar_M_p_4 = y[3];
+    const double bar_M_p_5 = y[4];
+    const double bar_M_p_6 = y[5];
+    const double bar_M_p_7 = y[6];
+    const double bar_M_p_8 = y[7];
+    const double bar_eta_q_1 = y[15];
+    const double bar_eta_q_2 = y[16];
+    // modal_body.mbg:7:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[1], bar.M.f[2], bar.M.f[3], bar.M.f[4], bar.M.f[5], bar.M.f[6], bar.M.f[7], bar.M.f[8])
+    // (cseN: a subexpression several equations below share)
+    const double cse164 = 0.78 * bar_eta_q_2;
+    const double cse165 = -cse164;
+    const double cse166 = 0.78 * bar_eta_q_1;
+    const double cse167 = -cse166;
+    const double cse168 = 0.5 * bar_eta_q_1 * bar_eta_q_1;
+    const double cse169 = 0.5 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse170 = 0.57 * bar_eta_q_1;
+    const double cse171 = 0.57 * bar_eta_q_2;
+    double blk1_a[64] = {
+        -2.0, 0.0, 0.0, 0.0, cse165, cse166, 0.0, 0.0,
+        0.0, -2.0, 0.0, cse164, 0.0, -1.0, -0.78, 0.0,
+        0.0, 0.0, -2.0, cse167, 1.0, 0.0, 0.0, -0.78,
+        0.0, cse164, cse167, -(0.01 + (cse168 + cse169)), cse170, cse171, 0.0, 0.0,
+        cse165, 0.0, 1.0, cse170, -(0.67 + cse169), 0.0, 0.0, 0.57,
+        cse166, -1.0, 0.0, cse171, 0.0, -(0.67 + cse168), -0.57, 0.0,
+        0.0, -0.78, 0.0, 0.0, 0.0, -0.57, -0.5, 0.0,
+        0.0, 0.0, -0.78, 0.0, 0.57, 0.0, 0.0, -0.5,
+    };
+    double blk1_x[8] = {-bar_M_p_1, -bar_M_p_2, -bar_M_p_3, -bar_M_p_4, -bar_M_p_5, -bar_M_p_6, -bar_M_p_7, -bar_M_p_8};
+    mbgrt::solve_linear(8, blk1_a, blk1_x);
+    const double bar_M_f_1 = blk1_x[0];
+    const double bar_M_f_2 = blk1_x[1];
+    const double bar_M_f_3 = blk1_x[2];
+    const double bar_M_f_4 = blk1_x[3];
+    const double bar_M_f_5 = blk1_x[4];
+    const double bar_M_f_6 = blk1_x[5];
+    const double bar_M_f_7 = blk1_x[6];
+    const double bar_M_f_8 = blk1_x[7];
+    // the stored energy
+    out[0] = 0.5 * (bar_M_p_1 * bar_M_f_1 + bar_M_p_2 * bar_M_f_2 + bar_M_p_3 * bar_M_f_3 + bar_M_p_4 * bar_M_f_4 + bar_M_p_5 * bar_M_f_5 + bar_M_p_6 * bar_M_f_6 + bar_M_p_7 * bar_M_f_7 + bar_M_p_8 * bar_M_f_8);
+  }
+
+  // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
+  void power(double t, const double* y, const double* yp, double* out) override {
+    // out[0]: the power of Se bar.weight (modal_body.mbg:7:6); out[1]: the power into I bar.M (modal_body.mbg:7:6), R bar.ejs (modal_body.mbg:7:6), C bar.eta (modal_body.mbg:7:6), R bar.damp (modal_body.mbg:7:6) and 1 more
+    (void)t;
+    (void)y;
+    (void)yp;
+    // unknowns from the integrator
+    const double bar_M_p_1 = y[0];
+    const double bar_M_p_2 = y[1];
+    const double bar_M_p_3 = y[2];
+    const double bar_M_p_4 = y[3];
+    const double bar_M_p_5 = y[4];
+    const double bar_M_p_6 = y[5];
+    const double bar_M_p_7 = y[6];
+    const double bar_M_p_8 = y[7];
+    const double bar_q_q_1 = y[11];
+    const double bar_q_q_2 = y[12];
+    const double bar_q_q_3 = y[13];
+    const double bar_q_q_4 = y[14];
+    const double bar_eta_q_1 = y[15];
+    const double bar_eta_q_2 = y[16];
+    const double hinge_cn_e_1 = y[17];
+    const double hinge_cn_e_2 = y[18];
+    const double hinge_cn_e_3 = y[19];
+    const double hinge_cn_e_4 = y[20];
+    const double hinge_cn_e_5 = y[21];
+    // modal_body.mbg:7:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[1], bar.M.f[2], bar.M.f[3], bar.M.f[4], bar.M.f[5], bar.M.f[6], bar.M.f[7], bar.M.f[8])
+    // (cseN: a subexpression several equations below share)
+    const double cse172 = 0.78 * bar_eta_q_2;
+    const double cse173 = -cse172;
+    const double cse174 = 0.78 * bar_eta_q_1;
+    const double cse175 = -cse174;
+    const double cse176 = 0.5 * bar_eta_q_1;
+    const double cse177 = cse176 * bar_eta_q_1;
+    const double cse178 = 0.5 * bar_eta_q_2;
+    const double cse179 = cse178 * bar_eta_q_2;
+    const double cse180 = 0.57 * bar_eta_q_1;
+    const double cse181 = 0.57 * bar_eta_q_2;
+    double blk1_a[64] = {
+        -2.0, 0.0, 0.0, 0.0, cse173, cse174, 0.0, 0.0,
+        0.0, -2.0, 0.0, cse172, 0.0, -1.0, -0.78, 0.0,
+        0.0, 0.0, -2.0, cse175, 1.0, 0.0, 0.0, -0.78,
+        0.0, cse172, cse175, -(0.01 + (cse177 + cse179)), cse180, cse181, 0.0, 0.0,
+        cse173, 0.0, 1.0, cse180, -(0.67 + cse179), 0.0, 0.0, 0.57,
+        cse174, -1.0, 0.0, cse181, 0.0, -(0.67 + cse177), -0.57, 0.0,
+        0.0, -0.78, 0.0, 0.0, 0.0, -0.57, -0.5, 0.0,
+        0.0, 0.0, -0.78, 0.0, 0.57, 0.0, 0.0, -0.5,
+    };
+    double blk1_x[8] = {-bar_M_p_1, -bar_M_p_2, -bar_M_p_3, -bar_M_p_4, -bar_M_p_5, -bar_M_p_6, -bar_M_p_7, -bar_M_p_8};
+    mbgrt::solve_linear(8, blk1_a, blk1_x);
+    const double bar_M_f_1 = blk1_x[0];
+    const double bar_M_f_2 = blk1_x[1];
+    const double bar_M_f_3 = blk1_x[2];
+    const double bar_M_f_4 = blk1_x[3];
+    const double bar_M_f_5 = blk1_x[4];
+    const double bar_M_f_6 = blk1_x[5];
+    const double bar_M_f_7 = blk1_x[6];
+    const double bar_M_f_8 = blk1_x[7];
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_1 = bar_M_f_5 * bar_M_p_3 - bar_M_f_6 * bar_M_p_2;
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double cse182 = bar_q_q_2 * bar_q_q_4;
+    const double cse183 = bar_q_q_1 * bar_q_q_3;
+    const double cse184 = bar_q_q_1 * bar_q_q_1;
+    const double cse185 = bar_q_q_2 * bar_q_q_2;
+    const double cse186 = cse184 + cse185;
+    const double cse187 = bar_q_q_3 * bar_q_q_3;
+    const double cse188 = bar_q_q_4 * bar_q_q_4;
+    const double cse189 = cse186 + cse187 + cse188;
+    const double cse190 = 2.0 * (cse182 - cse183) / cse189;
+    const double bar_weight_e_1 = -19.62 * cse190;
+    // modal_body.mbg:7:6  MTF bar.sv: f2 = T f1
+    const double cse191 = bar_q_q_2 * bar_q_q_3;
+    const double cse192 = bar_q_q_1 * bar_q_q_4;
+    const double bar_sv_f2_1 = (cse186 - cse187 - cse188) / cse189 * bar_M_f_1 + 2.0 * (cse191 - cse192) / cse189 * bar_M_f_2 + 2.0 * (cse182 + cse183) / cse189 * bar_M_f_3;
+    // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
+    const double hinge_cn_f_1 = bar_sv_f2_1;
+    // modal_body.mbg:7:6  MTF bar.sv: f2 = T f1
+    const double cse193 = 2.0 * (cse191 + cse192);
+    const double cse194 = bar_q_q_3 * bar_q_q_4;
+    const double cse195 = bar_q_q_1 * bar_q_q_2;
+    const double cse196 = 2.0 * (cse194 - cse195);
+    const double bar_sv_f2_2 = cse193 / cse189 * bar_M_f_1 + (cse184 + cse187 - cse185 - cse188) / cse189 * bar_M_f_2 + cse196 / cse189 * bar_M_f_3;
+    // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
+    const double hinge_cn_f_2 = bar_sv_f2_2;
+    // modal_body.mbg:7:6  MTF bar.sv: f2 = T f1
+    const double cse197 = 2.0 * (cse194 + cse195) / cse189;
+    const double cse198 = (cse184 + cse188 - cse185 - cse187) / cse189;
+    const double bar_sv_f2_3 = cse190 * bar_M_f_1 + cse197 * bar_M_f_2 + cse198 * bar_M_f_3;
+    // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
+    const double hinge_cn_f_3 = bar_sv_f2_3;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_2 = bar_M_f_6 * bar_M_p_1 - bar_M_f_4 * bar_M_p_3;
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double bar_weight_e_2 = -19.62 * cse197;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_3 = bar_M_f_4 * bar_M_p_2 - bar_M_f_5 * bar_M_p_1;
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double bar_weight_e_3 = -19.62 * cse198;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_4 = bar_M_f_5 * bar_M_p_6 - bar_M_f_6 * bar_M_p_5 + (bar_M_f_2 * bar_M_p_3 - bar_M_f_3 * bar_M_p_2);
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double cse199 = 9.81 * cse198;
+    const double cse200 = 9.81 * cse197;
+    const double bar_weight_e_4 = -cse174 * cse199 + cse172 * cse200;
+    // modal_body.mbg:11:7  MTF hinge.cbr: f2 = T f1
+    const double cse201 = 2.0 * bar_q_q_4 * cse189;
+    const double cse202 = bar_q_q_1 + bar_q_q_1;
+    const double cse203 = (cse189*cse189);
+    const double cse204 = 0.4743416490252569 * ((cse201 - cse193 * cse202) / cse203);
+    const double cse205 = 0.5 * bar_q_q_2;
+    const double cse206 = 2.0 * bar_q_q_3 * cse189;
+    const double cse207 = bar_q_q_2 + bar_q_q_2;
+    const double cse208 = 0.4743416490252569 * ((cse206 - cse193 * cse207) / cse203);
+    const double cse209 = 0.5 * bar_q_q_1;
+    const double cse210 = 2.0 * bar_q_q_2 * cse189;
+    const double cse211 = bar_q_q_3 + bar_q_q_3;
+    const double cse212 = 0.4743416490252569 * ((cse210 - cse193 * cse211) / cse203);
+    const double cse213 = 0.5 * bar_q_q_4;
+    const double cse214 = 2.0 * bar_q_q_1 * cse189;
+    const double cse215 = bar_q_q_4 + bar_q_q_4;
+    const double cse216 = 0.4743416490252569 * ((cse214 - cse193 * cse215) / cse203);
+    const double cse217 = 0.5 * bar_q_q_3;
+    const double hinge_cbr_f2_4 = (-cse204 * cse205 + cse208 * cse209 + cse212 * cse213 - cse216 * cse217) * bar_M_f_4 + (-cse204 * cse217 - cse208 * cse213 + cse212 * cse209 + cse216 * cse205) * bar_M_f_5 + (-cse204 * cse213 + cse208 * cse217 - cse212 * cse205 + cse216 * cse209) * bar_M_f_6;
+    // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
+    const double hinge_cn_f_4 = hinge_cbr_f2_4;
+    // modal_body.mbg:11:7  MTF hinge.cbr: f2 = T f1
+    const double cse218 = 0.4743416490252569 * ((-cse210 - cse196 * cse202) / cse203);
+    const double cse219 = 0.4743416490252569 * ((-cse214 - cse196 * cse207) / cse203);
+    const double cse220 = 0.4743416490252569 * ((cse201 - cse196 * cse211) / cse203);
+    const double cse221 = 0.4743416490252569 * ((cse206 - cse196 * cse215) / cse203);
+    const double hinge_cbr_f2_5 = (cse218 * cse205 - cse219 * cse209 - cse220 * cse213 + cse221 * cse217) * bar_M_f_4 + (cse218 * cse217 + cse219 * cse213 - cse220 * cse209 - cse221 * cse205) * bar_M_f_5 + (cse218 * cse213 - cse219 * cse217 + cse220 * cse205 - cse221 * cse209) * bar_M_f_6;
+    // modal_body.mbg:11:7  0 hinge.c: flows in = flows out
+    const double hinge_cn_f_5 = hinge_cbr_f2_5;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_5 = bar_M_f_6 * bar_M_p_4 - bar_M_f_4 * bar_M_p_6 + (bar_M_f_3 * bar_M_p_1 - bar_M_f_1 * bar_M_p_3);
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double cse222 = 9.81 * cse190;
+    const double bar_weight_e_5 = -cse172 * cse222 + cse199;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double bar_ejs_e_6 = bar_M_f_4 * bar_M_p_5 - bar_M_f_5 * bar_M_p_4 + (bar_M_f_1 * bar_M_p_2 - bar_M_f_2 * bar_M_p_1);
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double bar_weight_e_6 = -cse200 + cse174 * cse222;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double cse223 = 0.78 * bar_M_f_4;
+    const double cse224 = cse176 + cse176;
+    const double cse225 = 0.57 * bar_M_f_4;
+    const double cse226 = 0.78 * bar_M_f_1;
+    const double bar_ejs_e_7 = -0.5 * (-bar_M_f_1 * (0.78 * bar_M_f_6) + bar_M_f_3 * cse223 + bar_M_f_4 * (0.78 * bar_M_f_3 + cse224 * bar_M_f_4 - 0.57 * bar_M_f_5) - bar_M_f_5 * cse225 + bar_M_f_6 * (-cse226 + cse224 * bar_M_f_6));
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double bar_weight_e_7 = -7.651800000000001 * cse197;
+    // modal_body.mbg:7:6  C bar.eta: e = law(q)
+    const double bar_eta_e_1 = 1000.0 * bar_eta_q_1;
+    // modal_body.mbg:7:6  R bar.damp: e = R f
+    const double bar_damp_e_1 = 0.447213595499958 * bar_M_f_7;
+    // modal_body.mbg:7:6  R bar.ejs: e = law(f)
+    const double cse227 = cse178 + cse178;
+    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * (0.78 * bar_M_f_5) - bar_M_f_2 * cse223 + bar_M_f_4 * (-0.78 * bar_M_f_2 + cse227 * bar_M_f_4 - 0.57 * bar_M_f_6) + bar_M_f_5 * (cse226 + cse227 * bar_M_f_5) - bar_M_f_6 * cse225);
+    // modal_body.mbg:7:6  Se bar.weight: e = value
+    const double bar_weight_e_8 = -7.651800000000001 * cse198;
+    // modal_body.mbg:7:6  C bar.eta: e = law(q)
+    const double bar_eta_e_2 = 2000.0 * bar_eta_q_2;
+    // modal_body.mbg:7:6  R bar.damp: e = R f
+    const double bar_damp_e_2 = 0.6324555320336759 * bar_M_f_8;
+    // the powers
+    out[0] = bar_weight_e_1 * bar_M_f_1 + bar_weight_e_2 * bar_M_f_2 + bar_weight_e_3 * bar_M_f_3 + bar_weight_e_4 * bar_M_f_4 + bar_weight_e_5 * bar_M_f_5 + bar_weight_e_6 * bar_M_f_6 + bar_weight_e_7 * bar_M_f_7 + bar_weight_e_8 * bar_M_f_8;
+    const double cse228 = 0.78 * bar_M_f_8;
+    const double cse229 = 0.78 * bar_M_f_7;
+    const double cse230 = cse224 * bar_M_f_7;
+    const double cse231 = cse227 * bar_M_f_8;
+    const double cse232 = 0.57 * bar_M_f_7;
+    const double cse233 = 0.57 * bar_M_f_8;
+    out[1] = 0.5 * (cse228 * (bar_M_f_1 * bar_M_f_5) - cse229 * (bar_M_f_1 * bar_M_f_6) - cse228 * (bar_M_f_2 * bar_M_f_4) + cse229 * (bar_M_f_3 * bar_M_f_4) - cse228 * (bar_M_f_4 * bar_M_f_2) + cse229 * (bar_M_f_4 * bar_M_f_3) + (cse230 + cse231) * (bar_M_f_4 * bar_M_f_4) - cse232 * (bar_M_f_4 * bar_M_f_5) - cse233 * (bar_M_f_4 * bar_M_f_6) + cse228 * (bar_M_f_5 * bar_M_f_1) - cse232 * (bar_M_f_5 * bar_M_f_4) + cse231 * (bar_M_f_5 * bar_M_f_5) - cse229 * (bar_M_f_6 * bar_M_f_1) - cse233 * (bar_M_f_6 * bar_M_f_4) + cse230 * (bar_M_f_6 * bar_M_f_6)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8) + (bar_damp_e_1 * bar_M_f_7 + bar_damp_e_2 * bar_M_f_8) + (hinge_cn_e_1 * hinge_cn_f_1 + hinge_cn_e_2 * hinge_cn_f_2 + hinge_cn_e_3 * hinge_cn_f_3 + hinge_cn_e_4 * hinge_cn_f_4 + hinge_cn_e_5 * hinge_cn_f_5);
   }
 
   // TERMINAL: nothing to do at the end of a run.

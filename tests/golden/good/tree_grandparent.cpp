@@ -943,7 +943,7 @@ class tree_grandparent_model final : public mbgrt::Model {
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
   void power(double t, const double* x, const double* yp, double* out) override {
-    // out[0]: the power of Se base.weight (tree_grandparent.mbg:12:6), Se slider.weight (tree_grandparent.mbg:13:6), Se arm.weight (tree_grandparent.mbg:14:6), Se slide.applied (tree_grandparent.mbg:17:7); out[1]: the power into R base.ejs_v (tree_grandparent.mbg:12:6), R base.ejs (tree_grandparent.mbg:12:6), R slider.ejs_v (tree_grandparent.mbg:13:6), R slider.ejs (tree_grandparent.mbg:13:6) and 2 more
+    // out[0]: the power of Se base.weight (tree_grandparent.mbg:12:6), Se slider.weight (tree_grandparent.mbg:13:6), Se arm.weight (tree_grandparent.mbg:14:6), Se slide.applied (tree_grandparent.mbg:17:7); out[1]: the power into R base.ejs_v (tree_grandparent.mbg:12:6), R base.ejs (tree_grandparent.mbg:12:6), R slider.ejs_v (tree_grandparent.mbg:13:6), R slider.ejs (tree_grandparent.mbg:13:6) and 3 more
     (void)t;
     (void)x;
     (void)yp;
@@ -1018,7 +1018,8 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
     // tree_grandparent.mbg:17:7  Se slide.applied: e = value
-    const double slide_applied_e = -1000.0 * slide_s_q - 10.0 * slide_s_rate_rate;
+    const double cse111 = 1000.0 * slide_s_q;
+    const double slide_applied_e = -cse111 - 10.0 * slide_s_rate_rate;
     // tree_grandparent.mbg:13:6  Se slider.weight: e = value
     const double slider_weight_e_3 = -19.62 * float_Rpc33;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
@@ -1065,15 +1066,15 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
     const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse111 = std::cos(hinge_theta_q);
-    const double cse112 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse111 * float_spin_rate_rate_1 - cse112 * float_spin_rate_rate_3;
+    const double cse112 = std::cos(hinge_theta_q);
+    const double cse113 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse112 * float_spin_rate_rate_1 - cse113 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
     const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse112 * float_spin_rate_rate_1 + cse111 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse113 * float_spin_rate_rate_1 + cse112 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
@@ -1081,13 +1082,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
     const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
     // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double arm_pose_R33 = float_Rpc31 * cse112 + float_Rpc33 * cse111;
+    const double arm_pose_R33 = float_Rpc31 * cse113 + float_Rpc33 * cse112;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_3 = -9.81 * arm_pose_R33;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse111 * hinge_m4_f1_1 - cse112 * hinge_m4_f1_3;
+    const double hinge_m4_f2_1 = cse112 * hinge_m4_f1_1 - cse113 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
@@ -1105,11 +1106,11 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse111 - float_Rpc33 * cse112;
+    const double arm_pose_R31 = float_Rpc31 * cse112 - float_Rpc33 * cse113;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_1 = -9.81 * arm_pose_R31;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse112 * hinge_m4_f1_1 + cse111 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse113 * hinge_m4_f1_1 + cse112 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
@@ -1153,8 +1154,9 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
     // the powers
-    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + slide_applied_e * slide_s_rate_rate;
-    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3);
+    const double cse114 = (slide_applied_e + cse111) * slide_s_rate_rate;
+    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse111 * slide_s_rate_rate + std::fmax(cse114, 0.0));
+    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse114, 0.0);
   }
 
   // TERMINAL: nothing to do at the end of a run.
