@@ -15,8 +15,9 @@
 # (modal-data files), or the compiler changes (add_custom_command with DEPENDS and a depfile).
 # MBGC_COMPILER_TARGET names the mbgc executable target: `mbgc` inside this
 # project, `mbgc::mbgc` after find_package(mbgc). MBGC_GENERATED_COMPILE_OPTIONS,
-# if set, are added to the compile of each generated simulator source only
-# (this project's sanitizer build sets -fno-sanitize=undefined there).
+# if set, are added to the compile of each generated simulator source only, and
+# to the programs that include a model made by mbgc_add_model (this project's
+# sanitizer build sets -fno-sanitize=undefined there).
 include_guard(GLOBAL)
 
 if(NOT DEFINED MBGC_COMPILER_TARGET)
@@ -84,4 +85,8 @@ function(mbgc_add_model target)
   add_dependencies(${target} ${target}_generate)
   target_include_directories(${target} INTERFACE ${dir})
   target_link_libraries(${target} INTERFACE ${MBGC_RUNTIME_TARGET})
+  # a program that includes the model compiles its code in its own source
+  if(MBGC_GENERATED_COMPILE_OPTIONS)
+    target_compile_options(${target} INTERFACE ${MBGC_GENERATED_COMPILE_OPTIONS})
+  endif()
 endfunction()
