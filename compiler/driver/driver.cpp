@@ -156,7 +156,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   if (opt.dump == Dump::Equations) return finish(ir::print_equations(equations));
 
-  ir::ReducedSystem reduced = reduce::reduce(std::move(equations), diags);
+  ir::ReducedSystem reduced = reduce::reduce(std::move(equations), diags, opt.energy_witness);
   timed("reduce");
   if (failed()) return 1;
   if (opt.dump == Dump::Causality) {

@@ -39,6 +39,7 @@ struct Options {
   std::optional<multibody::ContactStrategy> contacts;  ///< --contacts: of every contact without its own `strategy`
   bool stats = false;         ///< --stats: print each generated method's operations and size instead of C++
   bool stats_csv = false;     ///< --stats-format=csv
+  bool energy_witness = true;  ///< false: --no-energy-witness (no stored_energy() or power(): reduce/energy.hpp)
   ir::Limits limits;          ///< how large a model may grow (the fuzz targets lower them)
 };
 

@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
                "and x^3 of a variable are x*x and x*x*x; a shared temporary counts once, where it is defined; "
                "mbgrt::solve_linear(n) counts (4n^3 + 9n^2 - 7n)/6; a body-shape function NAME_shapeK counts in NAME "
                "once per call, its lines and bytes once), then the totals and the whole file's lines and bytes");
+  bool no_energy_witness = false;
+  app.add_flag("--no-energy-witness", no_energy_witness,
+               "leave out the energy balance (stored_energy() and power(), about 0.7 times the dynamics' "
+               "size again): the simulator then reports no energy residual");
   app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
       ->check(CLI::IsMember({"text", "csv"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
@@ -112,6 +116,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   opt.stats_csv = stats_format == "csv";
+  opt.energy_witness = !no_energy_witness;
   if (opt.stats && (opt.dump != Dump::None || opt.explain_scene)) {
     std::cerr << "mbgc: error: --stats prints the generated code's costs: it does not go with --dump or --explain-scene\n";
     return 2;

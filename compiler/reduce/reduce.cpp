@@ -23,7 +23,8 @@ using namespace mbgc::ir;
 
 class Reducer {
  public:
-  Reducer(EquationSystem& sys, ReducedSystem& out, Diagnostics& diags) : sys_(sys), out_(out), diags_(diags) {}
+  Reducer(EquationSystem& sys, ReducedSystem& out, Diagnostics& diags, bool energy_witness)
+      : sys_(sys), out_(out), diags_(diags), energy_witness_(energy_witness) {}
 
   void run() {
     out_.graph = std::move(sys_.graph);
@@ -43,7 +44,10 @@ class Reducer {
     for (const Signal& s : out_.graph.signals)
       if (s.rate) rate_of_[s.var] = s.rate;
     if (!check_each_unknown_once()) return;
-    energy_balance(out_);  // in the graph's variables: alias elimination resolves it
+    if (energy_witness_)
+      energy_balance(out_);  // in the graph's variables: alias elimination resolves it
+    else
+      out_.energy.why_not = "compiled without it (mbgc --no-energy-witness)";
     eliminate_aliases();
     if (!expand_derivatives()) return;
     sort_and_solve();
@@ -883,6 +887,7 @@ class Reducer {
   EquationSystem& sys_;
   ReducedSystem& out_;
   Diagnostics& diags_;
+  bool energy_witness_;
   std::vector<Equation> eqs_;
   std::unordered_set<int> known_;  // what no equation computes: the states and the discrete variables
   // Unilateral contacts' multipliers: a loop with them is solved rank-revealing,
@@ -909,9 +914,9 @@ class Reducer {
 
 namespace mbgc::reduce {
 
-ReducedSystem reduce(EquationSystem system, Diagnostics& diags) {
+ReducedSystem reduce(EquationSystem system, Diagnostics& diags, bool energy_witness) {
   ReducedSystem out;
-  Reducer r(system, out, diags);
+  Reducer r(system, out, diags, energy_witness);
   r.run();
   if (!diags.has_errors()) {
     residual_sparsity(out);

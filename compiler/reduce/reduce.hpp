@@ -21,6 +21,8 @@
 
 namespace mbgc::reduce {
 
-ir::ReducedSystem reduce(ir::EquationSystem system, ir::Diagnostics& diags);
+/// energy_witness: build the energy balance (reduce/energy.hpp); false
+/// (mbgc --no-energy-witness) leaves it out, and the model says so.
+ir::ReducedSystem reduce(ir::EquationSystem system, ir::Diagnostics& diags, bool energy_witness = true);
 
 }  // namespace mbgc::reduce

@@ -42,7 +42,7 @@ bool Events::start(double t, const double* y, const double* yp) {
 }
 
 bool Events::fire(double t, std::size_t k, bool on, double* y) {
-  if (!model_.has_energy_balance()) return switch_and_jump(t, k, on, y);
+  if (!count_jumped_energy_) return switch_and_jump(t, k, on, y);
   // the energy a jump takes (an impact's, by Newton's law) is the witness's,
   // not an integration error
   double before = 0.0, after = 0.0;

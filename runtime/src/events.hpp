@@ -64,14 +64,17 @@ class Events {
   std::string model_name(std::size_t k) const { return model_.event_name(k); }
 
   /// The stored energy the jumps took (Model::stored_energy before less
-  /// after, summed): the energy witness counts it as absorbed.
+  /// after, summed): the energy witness counts it as absorbed. Counted once
+  /// the witness asks for it (GuardedModel::enable_energy_witness).
   double jumped_energy() const { return jumped_energy_; }
+  void count_jumped_energy() { count_jumped_energy_ = true; }
 
  private:
   Model& model_;
   void record(double t, std::size_t k, bool on, bool jump, std::string note);
   bool switch_and_jump(double t, std::size_t k, bool on, double* y);
   double jumped_energy_ = 0.0;
+  bool count_jumped_energy_ = false;
 
   std::size_t n_;
   std::vector<double> g_;

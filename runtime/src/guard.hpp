@@ -55,7 +55,11 @@ class GuardedModel {
   /// the model's two powers beside the state (CVODES' and IDAS' quadratures,
   /// outside the error test; the explicit methods' own stages) and give them
   /// at each output point (Integrator::energy). False if the model has none.
-  bool enable_energy_witness() { return witness_ = model_.has_energy_balance(); }
+  bool enable_energy_witness() {
+    witness_ = model_.has_energy_balance();
+    if (witness_) events_.count_jumped_energy();
+    return witness_;
+  }
   bool has_energy_witness() const { return witness_; }
   /// rate[0..2) = the model's power at (t, y; yp for a DAE, else null):
   /// supplied, then absorbed (W). A power that is not finite counts as 0:
