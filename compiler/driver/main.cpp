@@ -67,8 +67,8 @@ int main(int argc, char** argv) {
                "once per call, its lines and bytes once), then the totals and the whole file's lines and bytes");
   bool no_energy_witness = false;
   app.add_flag("--no-energy-witness", no_energy_witness,
-               "leave out the energy balance (stored_energy() and power(), about 0.7 times the dynamics' "
-               "size again): the simulator then reports no energy residual");
+               "leave out the energy balance (stored_energy() and power(), whose code can reach the "
+               "dynamics' own size): the simulator then reports no energy residual");
   app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
       ->check(CLI::IsMember({"text", "csv"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
