@@ -196,10 +196,8 @@ bool defined_at_rest(const Expr& e) {
 /// An Sf is split the same way over the efforts.
 void source_terms(const BondGraph& g, int n, Substitution& at_rest, EnergyBalance& e) {
   const GraphNode& nd = g.nodes[static_cast<std::size_t>(n)];
-  if (nd.bonds.size() != 1 || nd.value.items.empty()) {
-    e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f"));
-    return;
-  }
+  auto whole = [&](const char* what) { e.supplied.push_back(term(nd, element_power(g, n), what)); };
+  if (nd.bonds.size() != 1 || nd.value.items.empty()) return whole("power out, e.f");
   const int b = nd.bonds.front();
   const Bond& bond = g.bonds[static_cast<std::size_t>(b)];
   const Expr sign = constant(flow_sign(g, n, b));
@@ -209,10 +207,7 @@ void source_terms(const BondGraph& g, int n, Substitution& at_rest, EnergyBalanc
   for (int k = 0; k < bond.dim; ++k) {
     const Expr v = nd.value.is_scalar() ? nd.value.items[0] : nd.value.items[static_cast<std::size_t>(k)];
     const Expr v0 = at_rest(v);
-    if (!defined_at_rest(v0)) {
-      e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f (undefined at rest)"));
-      return;
-    }
+    if (!defined_at_rest(v0)) return whole("power out, e.f (undefined at rest)");
     follows = follows || v0 != v;
     const Expr ek = var(bond.effort_vars[static_cast<std::size_t>(k)]);
     const Expr fk = mul(sign, var(bond.flow_vars[static_cast<std::size_t>(k)]));  // out of the source
@@ -221,10 +216,7 @@ void source_terms(const BondGraph& g, int n, Substitution& at_rest, EnergyBalanc
     rest = rest ? add(rest, r) : r;
     moving = moving ? add(moving, m) : m;
   }
-  if (!follows) {
-    e.supplied.push_back(term(nd, element_power(g, n), "power out, e.f"));
-    return;
-  }
+  if (!follows) return whole("power out, e.f");
   const char* split = se ? "e0.f + max((e - e0).f, 0)" : "e.f0 + max(e.(f - f0), 0)";
   e.supplied.push_back(term(nd, add(rest, call(Fn::Max, {moving, constant(0)})), fmt::format("power out, {}", split)));
   e.absorbed.push_back(term(nd, call(Fn::Max, {neg(moving), constant(0)}),
