@@ -328,7 +328,8 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     body_order_.push_back(b.name);
     return;
   }
-  static const std::vector<std::string> keys = {"flexible", "damping", "slope_limit", "r0", "quat0", "v0", "w0"};
+  static const std::vector<std::string> keys = {"flexible",       "damping", "slope_limit", "stiffness_scale",
+                                                "r0",             "quat0",   "v0",          "w0"};
   double slope_limit_rad = Deformation::kDefaultSlopeLimit;
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {
@@ -350,6 +351,15 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     diags_.error(p.loc, fmt::format("point `{}`: the points of modal body `{}` are the nodes of its file", p.name, b.name),
                  "add the node to the file (records point, shape and slope) and attach joints to it by name");
   if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(slope_limit_rad, b, *s->second);
+  if (auto s = given.find("stiffness_scale"); s != given.end()) {
+    // a parameter may stand here (the simulator's --set changes it); its value as written must already hold
+    auto k = constant_of(*s->second->value);
+    if (k && !(*k > 0 && std::isfinite(*k)))
+      diags_.error(s->second->value->loc,
+                   fmt::format("the stiffness scale of modal body `{}` is {}: it must be positive", b.name, *k),
+                   "stiffness_scale multiplies the file's modal stiffness (as a Young's modulus times k would): "
+                   "1 keeps it, 10 makes the body 10 times stiffer");
+  }
   const AstExpr& file = *v.args[0];
   auto data = flex::read_modal_file(file.name, file.loc, search_dirs_, sources_, diags_);
   if (!data) {

@@ -55,7 +55,10 @@ void ModalBody::params(const FieldParams& fp) const {
     if (!all_zero(t.coupling_eta[i])) fp.param(n + ".coupling_eta." + kAxes[i], matrix_param(B, t.coupling_eta[i]));
   }
   fp.param(n + ".modal_mass", matrix_param(B, t.modal_mass));
-  fp.param(n + ".stiffness", matrix_param(B, d.stiffness));
+  // stiffness_scale = k: the same body with its Young's modulus times k (the modes and their mass stay)
+  E stiffness = matrix_param(B, d.stiffness);
+  if (E k = attr(fp.decl, "stiffness_scale")) stiffness = B.op('*', k, stiffness);
+  fp.param(n + ".stiffness", stiffness);
   fp.param(n + ".damping", modal_damping(B, attr(fp.decl, "damping"), d.count, n + ".stiffness", n + ".modal_mass"));
   for (const auto& [pt, node] : d.points) {
     fp.param(n + "." + pt + ".shape", matrix_param(B, node.shape));

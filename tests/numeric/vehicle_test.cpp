@@ -241,8 +241,8 @@ TEST(TwoTrackFrame, TheFlexibleFramesDifferencesShrinkAsItStiffens) {
   // (README). Its differences from the 1000-times-stiffer frame come from its
   // compliance, so a frame 10 times stiffer must show about a tenth of them.
   SimRun flex = run(TWO_TRACK_FRAME_SIM, "", "two_track_frame");
-  SimRun x10 = run(TWO_TRACK_FRAME_X10_SIM, "", "two_track_frame_x10");
-  SimRun stiff = run(TWO_TRACK_FRAME_STIFF_SIM, "", "two_track_frame_stiff");
+  SimRun x10 = run(TWO_TRACK_FRAME_SIM, "--set frame_stiffness=10", "two_track_frame_x10");
+  SimRun stiff = run(TWO_TRACK_FRAME_SIM, "--set frame_stiffness=1000", "two_track_frame_stiff");
   for (const SimRun* r : {&flex, &x10, &stiff}) ASSERT_EQ(r->status, 0) << r->log;
   auto last = [](const SimRun& r, const char* col) { return r.csv.rows.back()[r.csv.col(col)]; };
   auto front_transfer = [&](const SimRun& r) { return (last(r, "Fz_fr") - last(r, "Fz_fl")) / 2; };
