@@ -1,6 +1,8 @@
 // CSV output (DESIGN §9): header `t,<outputs>`, one row per communication point.
 #pragma once
 
+#include <sys/types.h>
+
 #include <cstdio>
 #include <span>
 #include <string>
@@ -11,22 +13,44 @@ namespace mbgrt::detail {
 /// The destination of --out: a file we own, or stdout.
 class OutputFile {
  public:
+  /// How much of a write survives the simulator's death.
+  enum class Rows {
+    AsWritten,  ///< written and flushed at once: a crash keeps what was written, a SIGKILL may tear a row
+    Whole,      ///< through a writer process that writes whole lines only (see below)
+  };
   /// Empty path or "-" means stdout. Throws std::runtime_error if it cannot be opened.
-  explicit OutputFile(const std::string& path);
+  ///
+  /// Rows::Whole forks a writer process that owns the destination: this
+  /// process sends it the text over a socket, and it writes out only up to
+  /// the last newline it has received. A simulator killed by SIGKILL (kill -9,
+  /// the out-of-memory killer) in the middle of a row leaves a file of whole
+  /// rows: the writer drops the unfinished row when the socket closes. The
+  /// writer ignores SIGINT, SIGTERM and SIGHUP (the simulator ends after a
+  /// whole row on those) and is waited for in close(). Only for a process
+  /// with one thread (a single run: not a sweep, not under MPI).
+  OutputFile(const std::string& path, Rows rows = Rows::AsWritten);
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
-  std::FILE* get() const { return f_; }
   const std::string& display_name() const { return name_; }
-  /// Writes and flushes at once, so the text survives a later crash.
-  /// Throws std::runtime_error on a write error (e.g. disk full).
+  /// Writes and flushes at once (Rows::Whole: hands the text to the writer),
+  /// so the text survives a later crash. Throws std::runtime_error on a write
+  /// error (e.g. disk full).
   void write(std::string_view text);
+  /// Ends the output: with a writer process, waits until it has written
+  /// everything. Throws std::runtime_error if it could not. Idempotent; the
+  /// destructor calls it and swallows the error.
+  void close();
 
  private:
+  void wait_for_writer();
+
   std::FILE* f_;
   bool owned_;
   std::string name_;
+  int writer_socket_ = -1;  ///< Rows::Whole: our end of the socket to the writer
+  pid_t writer_ = -1;       ///< Rows::Whole: the writer process, until waited for
 };
 
 class CsvWriter {

@@ -55,11 +55,16 @@ int run(Model& model, int argc, char** argv) {
     return kExitUsage;
   }
 
+  // A single run's files are written by a writer process that keeps their
+  // rows whole even if the simulator is killed (csv.hpp); a sweep's threads
+  // and MPI's ranks rule out forking, and their own records say what finished.
+  const bool single = !o.work_precision && !o.sweeping();
+  const auto rows = single ? OutputFile::Rows::Whole : OutputFile::Rows::AsWritten;
   std::optional<OutputFile> out, constraint_out, event_out;
   try {
-    out.emplace(o.out_path);
-    if (!o.constraint_report_path.empty()) constraint_out.emplace(o.constraint_report_path);
-    if (!o.event_log_path.empty()) event_out.emplace(o.event_log_path);
+    out.emplace(o.out_path, rows);
+    if (!o.constraint_report_path.empty()) constraint_out.emplace(o.constraint_report_path, rows);
+    if (!o.event_log_path.empty()) event_out.emplace(o.event_log_path, rows);
   } catch (const std::runtime_error& e) {
     print_error(e.what());
     return kExitUsage;
@@ -70,8 +75,11 @@ int run(Model& model, int argc, char** argv) {
   hooks.progress = is_terminal(stderr) && !o.quiet;
   const StopSignals stop_signals({SIGINT, SIGTERM, SIGHUP});  // a run asked to stop ends after a whole row
   hooks.stop = &StopSignals::flag();
-  return simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr, event_out ? &*event_out : nullptr,
-                  hooks);
+  const int status = simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr,
+                              event_out ? &*event_out : nullptr, hooks);
+  for (auto* file : {&event_out, &constraint_out, &out})
+    if (*file) (*file)->close();  // throws if a writer could not write it all
+  return status;
 }
 
 }  // namespace

@@ -2,10 +2,20 @@
 // point from t_start to t_end, numbers that read back exactly.
 #include <gtest/gtest.h>
 
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <fstream>
 #include <sstream>
+#include <stdexcept>
 
+#include "cli.hpp"
+#include "csv.hpp"
 #include "harness.hpp"
 #include "models.hpp"
 
@@ -107,6 +117,82 @@ TEST(Csv, ARunAskedToStopEndsAfterAWholeRowAndSaysSo) {
     sigaction(signal, nullptr, &now);
     EXPECT_EQ(now.sa_handler, SIG_DFL) << name;
   }
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Runs `body` in a child process, which then dies by SIGKILL, and waits for
+/// that child and for every process it left behind (its CSV writer): this
+/// process is their subreaper while it waits.
+void run_and_kill(const std::function<void()>& body) {
+  ASSERT_EQ(::prctl(PR_SET_CHILD_SUBREAPER, 1), 0);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    body();
+    std::raise(SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << status;
+  while (::waitpid(-1, &status, 0) > 0) EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  ::prctl(PR_SET_CHILD_SUBREAPER, 0);
+}
+
+TEST(Csv, ARowTheSimulatorWasKilledInTheMiddleOfIsNotWritten) {
+  // A SIGKILL can stop write() between two pages of the file: the row then
+  // ends half-way. Written through its writer process, the file keeps only
+  // whole rows. As written directly, the same death leaves the torn row
+  // (the second case: what the writer is for).
+  const std::string path = temp_path("killed.csv");
+  for (auto rows : {detail::OutputFile::Rows::Whole, detail::OutputFile::Rows::AsWritten}) {
+    run_and_kill([&] {
+      detail::OutputFile out(path, rows);
+      out.write("t,x\n0,1\n");
+      out.write("0.1,0.9");  // a row cut short: the text the kernel took before the kill
+    });
+    const bool whole = rows == detail::OutputFile::Rows::Whole;
+    EXPECT_EQ(file_text(path), whole ? "t,x\n0,1\n" : "t,x\n0,1\n0.1,0.9") << (whole ? "whole rows" : "as written");
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(Csv, AKilledSimulatorsFileHoldsTheRowsItFinished) {
+  // The whole run through run_main: rows keep coming until the kill, and the
+  // writer writes every one the simulator finished before it.
+  const std::string path = temp_path("killed_run.csv");
+  run_and_kill([&] {
+    SignalledDecay m(SIGKILL);
+    run(m, {"--solver", "rk4", "--quiet", "-o", path}, false);
+  });
+  const std::string text = file_text(path);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n') << text;
+  const Csv csv = parse_csv(text);
+  ASSERT_EQ(csv.rows.size(), 6u) << text;  // t = 0 to 0.5: the kill came inside the step to 0.6
+  Decay exact;
+  for (const auto& row : csv.rows) EXPECT_NEAR(row[1], exact.exact(row[0]), 1e-6);
+  std::filesystem::remove(path);
+}
+
+TEST(Csv, AWriteTheWriterCouldNotDoIsAnError) {
+  // /dev/full: every write fails with ENOSPC. The writer process reports it,
+  // and the run fails with the reason, as a direct write would.
+  detail::OutputFile out("/dev/full", detail::OutputFile::Rows::Whole);
+  out.write("t,x\n");
+  try {
+    out.close();
+    ADD_FAILURE() << "closing must report the failed write";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(Contains(e.what(), "writing to /dev/full failed: No space left on device")) << e.what();
+  }
+  Decay m;
+  RunResult r = run(m, {"-o", "/dev/full", "--quiet"}, false);
+  EXPECT_EQ(r.status, detail::kExitRunFailed) << r.err;
+  EXPECT_TRUE(Contains(r.err, "writing to /dev/full failed: No space left on device")) << r.err;
 }
 
 }  // namespace
