@@ -739,6 +739,12 @@ class Parser {
       e->loc = op.loc;
       e->op = op.text[0];
       e->args = {unary()};
+      // the caret of `-1e12` or `-x` covers the sign and its operand (an
+      // operator's own location is its symbol, so a longer operand keeps the sign's)
+      const AstExpr& a = *e->args[0];
+      const bool leaf = a.kind == AstExpr::Kind::Number || a.kind == AstExpr::Kind::Name || a.kind == AstExpr::Kind::Unary;
+      if (leaf && a.loc.file == op.loc.file && a.loc.line == op.loc.line && a.loc.col > op.loc.col)
+        e->loc.length = a.loc.col + a.loc.length - op.loc.col;
       --depth_;
       return e;
     }
