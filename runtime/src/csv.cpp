@@ -76,16 +76,19 @@ OutputFile::OutputFile(const std::string& path, Rows rows)
     return;  // a terminal shows rows as they come; nothing there outlives the run
   }
   if (rows != Rows::Whole) return;
+  auto cannot_start = [&](int e) {
+    if (owned_) std::fclose(f_);  // the destructor does not run for a constructor that throws
+    return std::runtime_error(fmt::format("cannot start the writer of {}: {}", name_, std::strerror(e)));
+  };
   int ends[2];
-  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
-    throw std::runtime_error(fmt::format("cannot start the writer of {}: {}", name_, std::strerror(errno)));
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) throw cannot_start(errno);
   std::fflush(nullptr);  // nothing buffered is written twice
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int e = errno;
     ::close(ends[0]);
     ::close(ends[1]);
-    throw std::runtime_error(fmt::format("cannot start the writer of {}: {}", name_, std::strerror(e)));
+    throw cannot_start(e);
   }
   if (pid == 0) {
     ::close(ends[0]);
