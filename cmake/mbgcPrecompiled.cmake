@@ -1,6 +1,5 @@
-# mbgc_precompile_common_headers(TARGET [HEADER...]): the standard library
-# headers and fmt that most of TARGET's files include, and any headers given,
-# parsed once into a precompiled header. Used on the compiler's and the
+# mbgc_precompile_common_headers(TARGET): the standard library headers and fmt
+# that most of TARGET's files include, parsed once into a precompiled header. Used on the compiler's and the
 # runtime's libraries, where parsing std and fmt took about 1.5 s of each
 # file's 1 to 11 s (g++ 12, -O2): mbgc_core compiled in 180 s of CPU instead
 # of 232, mbgrt in 91 s of build time instead of 116. Not on the FE library
@@ -16,5 +15,5 @@ function(mbgc_precompile_common_headers target)
   target_precompile_headers(${target} PRIVATE
     <algorithm> <array> <cmath> <cstddef> <functional> <limits> <map> <memory> <optional>
     <set> <string> <string_view> <tuple> <unordered_map> <utility> <vector>
-    <fmt/format.h> ${ARGN})
+    <fmt/format.h>)
 endfunction()

@@ -1,5 +1,7 @@
 #include "csv.hpp"
 
+#include "progress.hpp"
+
 #include <fmt/format.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -72,7 +74,7 @@ OutputFile::OutputFile(const std::string& path, Rows rows)
     if (!f_)
       throw std::runtime_error(fmt::format("cannot open output file '{}': {}", path, std::strerror(errno)));
     owned_ = true;
-  } else if (::isatty(STDOUT_FILENO)) {
+  } else if (is_terminal(stdout)) {
     return;  // a terminal shows rows as they come; nothing there outlives the run
   }
   if (rows != Rows::Whole) return;
@@ -130,11 +132,7 @@ void OutputFile::write(std::string_view text) {
 }
 
 void OutputFile::close() {
-  if (writer_ >= 0) {
-    ::close(writer_socket_);
-    writer_socket_ = -1;
-    wait_for_writer();
-  }
+  if (writer_ >= 0) wait_for_writer();  // closes our end first: the writer then finishes
   if (!f_) return;
   if (owned_)
     std::fclose(f_);
@@ -143,17 +141,17 @@ void OutputFile::close() {
   f_ = nullptr;
 }
 
-/// Waits for the writer (whose socket is closed, or who closed it) and throws
-/// unless it wrote everything. A writer killed by SIGPIPE (stdout piped into
+/// Closes our end of the socket, waits for the writer and throws unless it
+/// wrote everything. A writer killed by SIGPIPE (stdout piped into
 /// `head`, say) ends this process the same way, as writing itself would have.
 void OutputFile::wait_for_writer() {
+  ::close(writer_socket_);
+  writer_socket_ = -1;
   int status = 0;
   const pid_t pid = writer_;
   writer_ = -1;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (writer_socket_ >= 0) ::close(writer_socket_);
-  writer_socket_ = -1;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
   if (WIFSIGNALED(status) && WTERMSIG(status) == SIGPIPE) {
     std::signal(SIGPIPE, SIG_DFL);
