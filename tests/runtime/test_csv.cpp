@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -119,11 +118,6 @@ TEST(Csv, ARunAskedToStopEndsAfterAWholeRowAndSaysSo) {
   }
 }
 
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 /// Runs `body` in a child process, which then dies by SIGKILL, and waits for
 /// that child and for every process it left behind (its CSV writer): this
 /// process is their subreaper while it waits.
@@ -155,7 +149,7 @@ TEST(Csv, ARowTheSimulatorWasKilledInTheMiddleOfIsNotWritten) {
       out.write("0.1,0.9");  // a row cut short: the text the kernel took before the kill
     });
     const bool whole = rows == detail::OutputFile::Rows::Whole;
-    EXPECT_EQ(file_text(path), whole ? "t,x\n0,1\n" : "t,x\n0,1\n0.1,0.9") << (whole ? "whole rows" : "as written");
+    EXPECT_EQ(read_file(path), whole ? "t,x\n0,1\n" : "t,x\n0,1\n0.1,0.9") << (whole ? "whole rows" : "as written");
   }
   std::filesystem::remove(path);
 }
@@ -168,7 +162,7 @@ TEST(Csv, AKilledSimulatorsFileHoldsTheRowsItFinished) {
     SignalledDecay m(SIGKILL);
     run(m, {"--solver", "rk4", "--quiet", "-o", path}, false);
   });
-  const std::string text = file_text(path);
+  const std::string text = read_file(path);
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text.back(), '\n') << text;
   const Csv csv = parse_csv(text);
