@@ -6,9 +6,8 @@
 #               for tools/demo.sh; a relative path is taken from the repository
 #               root)
 #   BUILD_TYPE  CMAKE_BUILD_TYPE (default: the build directory's own; for a new
-#               one Release at -O2 (CMake's -O3 brings GCC 12's false
-#               -Wrestrict and -Wstringop-overflow, errors under -Werror), and
-#               for tools/demo.sh's Release at -O1, which builds mbgc in two
+#               one CMake's plain Release (-O3) for tools/test.sh, and for
+#               tools/demo.sh's Release at -O1, which builds mbgc in two
 #               thirds of the time -O2 takes. Debug information costs half
 #               again: BUILD_TYPE=RelWithDebInfo for gdb)
 #   JOBS        parallel build jobs and ctest jobs (default: 2)
@@ -83,11 +82,13 @@ mbgc_configure_quick_start() {
   mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DMBGC_MPI=OFF -- "$@"
 }
 
-# Configure and build everything. Extra arguments go to the cmake configure step.
-# The gtest drivers are compiled at -O0 (MBGC_TESTS_O0; those that compute
-# with Eigen themselves keep -O2): what they test, the compiler, the runtime
-# and the generated simulators, is built at -O2.
+# Configure and build everything, warnings as errors (MBGC_WERROR). Extra
+# arguments go to the cmake configure step. CMake's own Release flags (-O3),
+# as a user, an IDE or a distribution builds; the gtest drivers are compiled
+# at -O0 (MBGC_TESTS_O0; those that compute with Eigen themselves keep
+# Release's): what they test, the compiler, the runtime and the generated
+# simulators, keeps Release's.
 mbgc_configure_and_build() {
-  mbgc_configure -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG" -DMBGC_TESTS_O0=ON -- "$@"
+  mbgc_configure -DCMAKE_BUILD_TYPE=Release -DMBGC_TESTS_O0=ON -- -DMBGC_WERROR=ON "$@"
   mbgc_build
 }
