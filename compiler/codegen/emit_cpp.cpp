@@ -11,6 +11,7 @@
 #include "codegen/cpp.hpp"
 #include "codegen/drawings.hpp"
 #include "codegen/energy.hpp"
+#include "codegen/entry_point.hpp"
 #include "codegen/events.hpp"
 #include "codegen/identity.hpp"
 #include "codegen/names.hpp"
@@ -101,7 +102,7 @@ class Emitter {
       body = "namespace " + ns + " {\n\n" + print(c) + "\n}  // namespace " + ns + "\n";
     } else {
       body = "namespace {\n\n" + print(c) + "\n}  // namespace\n";
-      entry = fmt::format("int main(int argc, char** argv) {{\n  {} model;\n  return mbgrt::run_main(model, argc, argv);\n}}\n", class_name_);
+      entry = simulator_main({class_name_, !g_.drawings.empty(), s_.dae && !s_.residual_pattern.empty()});
     }
     std::string out = kSimulatorTemplate;
     replace(out, "{{banner}}", banner);

@@ -1,11 +1,14 @@
 #include "animation.hpp"
 
+#include "mbgrt/features.hpp"
+
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numbers>
 #include <stdexcept>
 
@@ -304,3 +307,13 @@ void AnimationRecorder::write(const std::string& path) const {
 }
 
 }  // namespace mbgrt::detail
+
+namespace mbgrt {
+
+void use_gltf_animation() {
+  detail::animation_factory() = [](Model& model) -> std::unique_ptr<detail::AnimationSink> {
+    return std::make_unique<detail::AnimationRecorder>(model);
+  };
+}
+
+}  // namespace mbgrt

@@ -6,26 +6,31 @@
 // body's surface carries one morph target per mode, its `weights` channel
 // the modal coordinates. The model's world is z up; glTF's is y up: a root
 // node turns the scene by -90 degrees about x, the data stay as computed.
+//
+// The library mbgrt_gltf (an optional part, mbgrt/features.hpp): the core
+// knows only AnimationSink, and mbgrt::use_gltf_animation() installs this
+// writer.
 #pragma once
 
 #include <array>
 #include <string>
 #include <vector>
 
+#include "animation_sink.hpp"
 #include "mbgrt/model.hpp"
 
 namespace mbgrt::detail {
 
-class AnimationRecorder {
+class AnimationRecorder final : public AnimationSink {
  public:
   explicit AnimationRecorder(Model& model);
   /// Bodies to draw: none for a bond graph (the run then says so and writes nothing).
-  std::size_t bodies() const { return visuals_.size(); }
+  std::size_t bodies() const override { return visuals_.size(); }
   /// The poses at one output row.
-  void record(double t, const double* y, const double* yp);
-  std::size_t frames() const { return times_.size(); }
+  void record(double t, const double* y, const double* yp) override;
+  std::size_t frames() const override { return times_.size(); }
   /// Writes the file; throws std::runtime_error if it cannot.
-  void write(const std::string& path) const;
+  void write(const std::string& path) const override;
 
  private:
   Model& model_;

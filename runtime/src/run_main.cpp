@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "animation_sink.hpp"
 #include "cli.hpp"
 #include "csv.hpp"
 #include "interrupt.hpp"
@@ -49,9 +50,12 @@ int run(Model& model, int argc, char** argv) {
   if (o.list_parameters) return list_parameters(model);
   if (!apply_overrides(model, o) || !check_model_fits(model, o)) return kExitUsage;
   if (!o.animate_path.empty() && model.body_count() == 0) {
-    print_error(fmt::format("--animate: model '{}' describes no bodies to draw (a bond graph has none; mbgc does not "
-                            "yet describe a multibody model's bodies: docs/notes/animation.md)",
-                            model.name()));
+    print_error(fmt::format("--animate: model '{}' describes no bodies to draw (a bond graph has none)", model.name()));
+    return kExitUsage;
+  }
+  if (!o.animate_path.empty() && !animation_factory()) {
+    print_error("--animate: this program was built without the glTF writer; it calls "
+                "mbgrt::use_gltf_animation() to have it (mbgrt/features.hpp)");
     return kExitUsage;
   }
 

@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "animation.hpp"
+#include "animation_sink.hpp"
 #include "constraints.hpp"
 #include "energy_witness.hpp"
 #include "error_weights.hpp"
@@ -140,8 +141,8 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   std::vector<double> state_peak(model.state_count(), 0.0);  // largest |state| over the rows
   double last_row_t = s.t_start_s;
   ProgressLine progress(hooks.progress && !linearize);
-  std::optional<AnimationRecorder> animation;
-  if (!o.animate_path.empty()) animation.emplace(model);
+  std::unique_ptr<AnimationSink> animation;  // --animate: the writer run_main checked is installed
+  if (!o.animate_path.empty() && animation_factory()) animation = animation_factory()(model);
   auto write_row = [&] {
     std::copy(integrator->y(), integrator->y() + n, last_row_y.begin());
     for (std::size_t i = 0; i < state_peak.size(); ++i)

@@ -1,15 +1,19 @@
 // sweep_cluster.hpp — the processes a sweep is spread over. Alone (the
 // usual case) a cluster is this process, rank 0 of 1. Built with MPI
-// (-DMBGC_MPI=ON, sweep_cluster_mpi.cpp) and started by an MPI launcher
-// (mpirun -n 8 ./sim --sweep ...: the launcher's environment says so), it is
-// MPI_COMM_WORLD: MPI is initialised here and finalised when the cluster
-// goes, so a simulator that is not sweeping never touches MPI.
+// (MBGC_MPI: the module libmbgrt_mpi.so, sweep_cluster_mpi.cpp) and started
+// by an MPI launcher (mpirun -n 8 ./sim --sweep ...: the launcher's
+// environment says so), it is MPI_COMM_WORLD: the module is loaded and MPI
+// initialised here, and MPI is finalised when the cluster goes, so a
+// simulator that is not sweeping under MPI never loads MPI.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace mbgrt::detail {
+
+class ClusterBackend;  // cluster_backend.hpp
 
 class Cluster {
  public:
@@ -30,7 +34,7 @@ class Cluster {
 
  private:
   int rank_ = 0, size_ = 1;
-  [[maybe_unused]] bool initialised_ = false;  ///< MPI_Init was called here (only the MPI build reads it)
+  std::unique_ptr<ClusterBackend> backend_;  ///< MPI's, under an MPI launcher
 };
 
 /// Splits `text` into lines and orders them by their leading case number

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "animation.hpp"
+#include "mbgrt/features.hpp"
 #include "harness.hpp"
 #include "models.hpp"
 
@@ -72,6 +73,7 @@ std::vector<float> floats(const tinygltf::Model& m, int accessor) {
 TEST(Animation, KeyframesAreThePosesAtTheRows) {
   const std::string glb = temp_path("run") + ".glb";
   Carousel model;
+  use_gltf_animation();
   RunResult r = run(model, {"--animate", glb, "--solver", "rk4"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(Contains(r.err, "2 bodies in 5 frames to " + glb));
@@ -140,6 +142,7 @@ TEST(Animation, QuaternionOfEveryBranchOfShepperd) {
 }
 
 TEST(Animation, ModelWithoutBodiesIsAnError) {
+  use_gltf_animation();
   Decay m;
   RunResult r = run(m, {"--animate", temp_path("none") + ".glb"});
   EXPECT_EQ(r.status, 2);
@@ -147,6 +150,7 @@ TEST(Animation, ModelWithoutBodiesIsAnError) {
 }
 
 TEST(Animation, NotWithASweepOrALinearisation) {
+  use_gltf_animation();
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"--animate", "a.glb", "--sweep", "k=1:2:2"}, {"--animate", "a.glb", "--linearize-at", "1"}}) {
     Decay m;
@@ -154,6 +158,18 @@ TEST(Animation, NotWithASweepOrALinearisation) {
     EXPECT_EQ(r.status, 2) << args[2];
     EXPECT_TRUE(Contains(r.err, "--animate")) << args[2];
   }
+}
+
+// The glTF writer is an optional part (mbgrt/features.hpp): a program that
+// never called use_gltf_animation() says so, and writes no file.
+TEST(Animation, AProgramWithoutTheWriterSaysSo) {
+  detail::animation_factory() = nullptr;
+  const std::string glb = temp_path("without") + ".glb";
+  Carousel model;
+  RunResult r = run(model, {"--animate", glb, "--solver", "rk4"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(Contains(r.err, "built without the glTF writer")) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(glb));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 // One state, the clock s = t. The box `crate` slides along a straight line
 // through all three axes and turns about z; the sphere `ball` runs round a
 // vertical circle (the x-z plane at y = 0.3). Outputs: both positions.
+#include <mbgrt/features.hpp>
 #include <mbgrt/model.hpp>
 
 #include <algorithm>
@@ -79,5 +80,6 @@ class TwoBodies : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   TwoBodies model;
+  mbgrt::use_gltf_animation();
   return mbgrt::run_main(model, argc, argv);
 }

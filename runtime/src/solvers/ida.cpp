@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 #include <idas/idas.h>
 #include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
@@ -24,6 +23,7 @@
 
 #include "constraints.hpp"
 #include "solvers/sparse_jacobian.hpp"
+#include "solvers/sparse_lu.hpp"
 #include "solvers/sundials_util.hpp"
 
 namespace mbgrt::detail {
@@ -92,12 +92,8 @@ class Ida final : public Integrator {
     if (choose_sparse()) {
       A_ = SUNSparseMatrix(sn, sn, static_cast<sunindextype>(sparse_->nonzeros()), CSC_MAT, ctx_);
       check_setup(A_, "SUNSparseMatrix");
-      ls_ = SUNLinSol_KLU(y_.get(), A_, ctx_);
+      ls_ = sparse_lu_factory()(y_.get(), A_, ctx_);  // KLU (solvers/klu.cpp)
       check_setup(ls_, "SUNLinSol_KLU");
-      // Partial pivoting as dense LU does (KLU's default keeps a diagonal
-      // pivot down to 1e-3 of its column's largest entry, which loses digits
-      // when masses differ by orders of magnitude: a 1e-9 kg rod on a 1e3 kg one)
-      SUNLinSol_KLUGetCommon(ls_)->tol = 1.0;
       check_setup(IDASetLinearSolver(mem_, ls_, A_), "IDASetLinearSolver", sink_);
       check_setup(IDASetJacFn(mem_, sparse_jacobian), "IDASetJacFn", sink_);
     } else {
@@ -239,6 +235,12 @@ class Ida final : public Integrator {
     if (s_.linear_solver == LinearSolver::automatic && m_.size() < kSparseFromUnknowns) return false;
     std::vector<long> starts, rows;
     if (!m_.model().residual_sparsity(starts, rows)) return false;
+    if (!sparse_lu_factory()) {  // a program that did not call mbgrt::use_sparse_lu()
+      if (s_.linear_solver == LinearSolver::automatic) return false;
+      throw std::invalid_argument(
+          "--linear-solver sparse: this program was built without the sparse solver (KLU); "
+          "it calls mbgrt::use_sparse_lu() to have it (mbgrt/features.hpp)");
+    }
     sparse_.emplace(std::move(starts), std::move(rows));
     if (sparse_->size() != m_.size()) throw std::invalid_argument("residual_sparsity: not one column per unknown");
     weights_ = std::make_unique<SerialVector>(m_.size(), ctx_);
