@@ -156,12 +156,15 @@ function compileSnippet(o, root, rel, b) {
     return 'the <!-- mbg: --> comment has lines of model text but does not say `fragment`';
 
   let text = b.text;
+  let before = 0; // lines of the fragment's model before the snippet
   if (fragment) {
     const ctx = b.directive.body;
     const at = ctx.findIndex((l) => l.trim() === '...');
+    before = at < 0 ? ctx.length : at;
     text = at < 0 ? ctx.join('\n') + '\n' + b.text
                   : ctx.slice(0, at).join('\n') + '\n' + b.text + ctx.slice(at + 1).join('\n') + '\n';
   }
+  const snippetLines = b.text.split('\n').length - 1;
 
   const dir = path.join(o.work, rel.replace(/[\\/]/g, '_') + `_${b.line}`);
   fs.rmSync(dir, { recursive: true, force: true });
@@ -179,7 +182,12 @@ function compileSnippet(o, root, rel, b) {
   const args = [model, '-o', path.join(dir, 'snippet.cpp'), ...opts];
   const r = spawnSync(o.mbgc, args, { encoding: 'utf8', timeout: 120000 });
   if (r.error) return `could not run ${o.mbgc}: ${r.error.message}`;
-  const said = (r.stdout + r.stderr).trim();
+  // mbgc's positions in the snippet's lines as positions in the page
+  const said = (r.stdout + r.stderr).trim().split(model).join('snippet.mbg').replace(
+      /snippet\.mbg:(\d+):(\d+)/g, (m, l, c) => {
+        const k = Number(l) - before;
+        return k >= 1 && k <= snippetLines ? `${rel}:${b.line + k}:${c}` : `${m} (the fragment's hidden lines)`;
+      });
   const cmd = `mbgc ${args.map((a) => path.relative(process.cwd(), a) || a).join(' ')}`;
   const show = (s) => s.split('\n').slice(0, 12).map((l) => '    ' + l).join('\n');
   if (expectError === null) {
