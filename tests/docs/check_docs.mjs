@@ -4,6 +4,10 @@
 //   node check_docs.mjs snippets --mbgc MBGC --root REPO --work DIR FILE.md...
 //       compiles every ```mbg block of each file with mbgc; a block marked
 //       <!-- mbg: error "TEXT" --> must fail with TEXT in mbgc's message
+//   node check_docs.mjs commands --root REPO --work DIR --build-demo BUILD FILE.md...
+//       runs every ```sh block marked <!-- sh: run --> with bash, in a fresh
+//       folder where the repository's top-level entries and build-demo/
+//       (BUILD) are links: the README's quick start, by hand
 //   node check_docs.mjs paths --root REPO FILE.md...
 //       every repository path a file names (examples/x/y.mbg, tools/foo.sh,
 //       docs/bar.md, relative links [..](file)) must exist
@@ -23,9 +27,9 @@ function parseArgs(argv) {
   const o = { files: [] };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
-    if (a === '--mbgc' || a === '--root' || a === '--work') {
+    if (a === '--mbgc' || a === '--root' || a === '--work' || a === '--build-demo') {
       if (i + 1 >= argv.length) usage(`${a} needs a value`);
-      o[a.slice(2)] = argv[++i];
+      o[a.slice(2).replace('-', '_')] = argv[++i];
     } else if (a.startsWith('--')) {
       usage(`unknown option ${a}`);
     } else {
@@ -78,6 +82,8 @@ function directiveBefore(lines, at) {
   let s = k;
   while (s >= 0 && !lines[s].includes('<!--')) s--;
   if (s < 0) return null;
+  const sh = /<!--\s*sh:\s*run\s*-->/.test(lines[s]);
+  if (sh) return { words: ['run'], body: [], line: s + 1, sh: true };
   const m = /<!--\s*mbg:(.*)$/.exec(lines[s]);
   if (!m) return null;
   const comment = lines.slice(s, k + 1);
@@ -107,7 +113,7 @@ function checkSnippets(o) {
         problems.push(`${where}: a code block without a language: write \`\`\`mbg for a model, \`\`\`sh for commands, \`\`\`text for anything else`);
         continue;
       }
-      if (b.directive && b.lang !== 'mbg') {
+      if (b.directive && b.lang !== 'mbg' && !(b.lang === 'sh' && b.directive.sh)) {
         problems.push(`${where}: an <!-- mbg: --> comment before a \`\`\`${b.lang} block (only \`\`\`mbg blocks are compiled)`);
         continue;
       }
@@ -200,6 +206,48 @@ function compileSnippet(o, root, rel, b) {
   if (!said.includes(expectError))
     return `marked mbg: error "${expectError}", but mbgc says something else (${cmd}):\n${show(said)}`;
   return null;
+}
+
+// ---------------------------------------------------------------------------
+// commands
+
+function runCommands(o) {
+  if (!o.root || !o.work || !o.build_demo) usage('commands needs --root, --work and --build-demo');
+  const root = path.resolve(o.root);
+  let ran = 0;
+  const problems = [];
+  for (const file of o.files) {
+    const rel = path.relative(root, path.resolve(file));
+    const lines = fs.readFileSync(file, 'utf8').split('\n');
+    for (const b of fencedBlocks(lines)) {
+      if (!(b.directive && b.directive.sh)) continue;
+      if (b.lang !== 'sh') {
+        problems.push(`${rel}:${b.line}: <!-- sh: run --> before a \`\`\`${b.lang} block`);
+        continue;
+      }
+      ran++;
+      const dir = path.join(o.work, rel.replace(/[\\/]/g, '_') + `_${b.line}`);
+      fs.rmSync(dir, { recursive: true, force: true });
+      fs.mkdirSync(dir, { recursive: true });
+      for (const e of fs.readdirSync(root)) {
+        if (e === '.git' || /^build/.test(e)) continue;
+        fs.symlinkSync(path.join(root, e), path.join(dir, e));
+      }
+      fs.symlinkSync(path.resolve(o.build_demo), path.join(dir, 'build-demo'));
+      console.log(`${rel}:${b.line}: running in ${dir}:\n${b.text.replace(/^/gm, '  $ ').trimEnd()}`);
+      const r = spawnSync('bash', ['-euo', 'pipefail', '-c', b.text], { cwd: dir, encoding: 'utf8', timeout: 600000 });
+      const said = ((r.stdout || '') + (r.stderr || '')).trim().split('\n').slice(-20).map((l) => '    ' + l).join('\n');
+      if (r.error) problems.push(`${rel}:${b.line}: could not run bash: ${r.error.message}`);
+      else if (r.status !== 0) problems.push(`${rel}:${b.line}: these commands fail (exit status ${r.status}):\n${said}`);
+    }
+  }
+  for (const p of problems) console.log(p);
+  if (problems.length) {
+    console.log(`FAILED: ${problems.length} block(s) of commands fail, of ${ran}`);
+    return 1;
+  }
+  console.log(`ok: ${ran} block(s) of commands run`);
+  return 0;
 }
 
 // ---------------------------------------------------------------------------
@@ -337,4 +385,5 @@ const o = parseArgs(rest);
 if (!o.files.length) usage('no markdown files given');
 if (mode === 'snippets') process.exit(checkSnippets(o));
 else if (mode === 'paths') process.exit(checkPaths(o));
-else usage('the first argument is `snippets` or `paths`');
+else if (mode === 'commands') process.exit(runCommands(o));
+else usage('the first argument is `snippets`, `commands` or `paths`');
