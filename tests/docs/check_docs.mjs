@@ -258,7 +258,13 @@ function repoEntries(root) {
   const entries = new Set();
   const skip = new Set(['.git', 'node_modules']);
   const walk = (dir, rel) => {
-    for (const d of fs.readdirSync(dir, { withFileTypes: true })) {
+    let list = [];
+    try {
+      list = fs.readdirSync(dir, { withFileTypes: true });
+    } catch {
+      return; // a folder removed while we walk (another build's temporary files)
+    }
+    for (const d of list) {
       if (skip.has(d.name) || (rel === '' && /^build/.test(d.name))) continue;
       const r = rel ? `${rel}/${d.name}` : d.name;
       if (d.isDirectory()) {
