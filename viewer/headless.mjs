@@ -39,10 +39,13 @@ function serve(files) {
 }
 
 /**
- * Opens the viewer on a .glb. `shot(parameters)` loads the page with those
- * URL parameters (t, eye, target, fov, size, flat: viewer/src/params.js),
- * waits until the frame is drawn and returns the canvas as {png, width,
- * height, rgba} (rgba: 4 bytes a pixel, rows from the top). close() at the end.
+ * Opens the viewer on a .glb. `shot(parameters, then)` loads the page with
+ * those URL parameters (t, eye, target, fov, size, flat, follow:
+ * viewer/src/params.js), waits until the frame is drawn, then does what a
+ * user would with the controls, in order: `then.follow` chooses that entry
+ * of the Follow control, `then.time` moves the time slider there. It returns
+ * the canvas as {png, width, height, rgba} (rgba: 4 bytes a pixel, rows from
+ * the top) and the page's window.mbgcState() as `state`. close() at the end.
  */
 export async function openViewer({ viewer, glb, chromium = findChromium() }) {
   const server = await serve({ '/mbgc-view.html': viewer, '/run.glb': glb });
@@ -57,7 +60,7 @@ export async function openViewer({ viewer, glb, chromium = findChromium() }) {
     ],
   });
   return {
-    async shot(parameters) {
+    async shot(parameters, then = {}) {
       const page = await browser.newPage();
       const problems = [], notes = [];  // uncaught exceptions; the console's errors, told only if the page fails
       page.on('pageerror', (error) => problems.push(error.message));
@@ -73,10 +76,23 @@ export async function openViewer({ viewer, glb, chromium = findChromium() }) {
       }
       const failure = await page.evaluate(() => window.mbgcError);
       if (failure || problems.length) throw new Error(`the viewer failed: ${[failure, ...problems, ...notes].filter(Boolean).join('; ')}`);
+      const control = (id, value, event) => page.evaluate((id, value, event) => {
+        const element = document.getElementById(id);
+        element.value = value;
+        element.dispatchEvent(new Event(event));
+        if (element.value !== value && id !== 'slider') throw new Error(`#${id} has no entry ${value}`);
+      }, id, value, event);
+      if (then.follow !== undefined) await control('follow', String(then.follow), 'change');
+      if (then.time !== undefined) await control('slider', String(then.time), 'input');
+      // two animation frames: the one the change requested has been drawn
+      await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+      const late = await page.evaluate(() => window.mbgcError);
+      if (late || problems.length) throw new Error(`the viewer failed: ${[late, ...problems, ...notes].filter(Boolean).join('; ')}`);
+      const state = await page.evaluate(() => window.mbgcState());
       const png = Buffer.from(await (await page.$('canvas')).screenshot({ type: 'png' }));
       await page.close();
       const image = PNG.sync.read(png);
-      return { png, width: image.width, height: image.height, rgba: image.data };
+      return { png, width: image.width, height: image.height, rgba: image.data, state };
     },
     async close() {
       await browser.close();

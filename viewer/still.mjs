@@ -2,17 +2,18 @@
 // mbgc-view.html draws it in headless Chromium. For examples' READMEs.
 //
 //   node build/viewer/still.mjs run.glb out.png [--t 0.5] [--eye x,y,z --target x,y,z]
-//        [--fov 40] [--size 800x600] [--flat] [--deform K]
+//        [--fov 40] [--size 800x600] [--flat] [--deform K] [--follow BODY]
 //
 // eye and target are in the model's world (z up, metres); without them the
-// camera frames everything the bodies sweep over the run. Without --t: the
-// first row. Runs from the build tree (it needs node_modules beside it).
+// camera frames everything the bodies sweep over the run (or the bodies at
+// --t, where their motion dwarfs them; --follow BODY: centred on that body).
+// Without --t: the first row. Runs from the build tree (it needs node_modules beside it).
 import { writeFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
 import { openViewer } from './headless.mjs';
 
-const usage = 'usage: node still.mjs RUN.glb OUT.png [--t SECONDS] [--eye x,y,z --target x,y,z] [--fov DEGREES] [--size WxH] [--flat] [--deform K]';
+const usage = 'usage: node still.mjs RUN.glb OUT.png [--t SECONDS] [--eye x,y,z --target x,y,z] [--fov DEGREES] [--size WxH] [--flat] [--deform K] [--follow BODY]';
 let options;
 try {
   options = parseArgs({
@@ -25,6 +26,7 @@ try {
       size: { type: 'string', default: '800x600' },
       flat: { type: 'boolean', default: false },
       deform: { type: 'string' },
+      follow: { type: 'string' },
     },
   });
 } catch (error) {
@@ -43,6 +45,7 @@ if (values.eye) parameters.eye = values.eye;
 if (values.target) parameters.target = values.target;
 if (values.flat) parameters.flat = '1';
 if (values.deform) parameters.deform = values.deform;
+if (values.follow) parameters.follow = values.follow;
 
 const viewer = await openViewer({ viewer: fileURLToPath(new URL('./mbgc-view.html', import.meta.url)), glb });
 try {

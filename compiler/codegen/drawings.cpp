@@ -30,17 +30,29 @@ const char* shape_name(Drawing::Shape s) {
     case Drawing::Shape::Cylinder: return "cylinder";
     case Drawing::Shape::Sphere: return "sphere";
     case Drawing::Shape::Mesh: return "mesh";
+    case Drawing::Shape::Plane: return "plane";
+    case Drawing::Shape::Prism: return "prism";
+    case Drawing::Shape::Road: return "road";
   }
   return "box";
 }
 
-/// The statements that fill `v` with drawing d.
-std::vector<CppStmt> fill(const Drawing& d) {
+/// The statements that fill `v` with drawing d (one of `drawn`).
+std::vector<CppStmt> fill(const Drawing& d, const std::vector<ir::DrawnBody>& drawn) {
   std::vector<CppStmt> out;
   out.push_back(CppStmt::line(fmt::format("v.name = \"{}\";", d.body)));
   out.push_back(CppStmt::line(fmt::format("v.shape = mbgrt::BodyVisual::Shape::{};", shape_name(d.shape))));
   for (const auto& [member, x] : {std::pair{"size", &d.size}, std::pair{"centre", &d.centre}, std::pair{"colour", &d.colour}})
     for (std::size_t k = 0; k < 3; ++k) out.push_back(CppStmt::line(fmt::format("v.{}[{}] = {};", member, k, (*x)[k])));
+  if (d.surface) out.push_back(CppStmt::line("v.surface = true;"));
+  std::vector<std::size_t> covers;  // the touching bodies a scene kept, by their index
+  for (const std::string& body : d.covers)
+    for (std::size_t i = 0; i < drawn.size(); ++i)
+      if (!drawn[i].drawing->surface && drawn[i].drawing->body == body &&
+          std::find(covers.begin(), covers.end(), i) == covers.end())
+        covers.push_back(i);
+  if (!covers.empty()) out.push_back(CppStmt::line(fmt::format("v.covers = {{{}}};  // the bodies touching it", fmt::join(covers, ", "))));
+  if (!d.profile.empty()) braced(out, "v.profile.assign(", d.profile, 8);
   if (d.shape != Drawing::Shape::Mesh) return out;
   braced(out, "v.vertices.assign(", d.vertices, 12);
   braced(out, "v.triangles.assign(", d.triangles, 24);
@@ -63,7 +75,7 @@ void add_drawing_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction po
                      {CppStmt::line("mbgrt::BodyVisual v;")}};
   for (std::size_t i = 0; i < drawn.size(); ++i) {
     visual.body.push_back(CppStmt::line(fmt::format("if (i == {}) {{  // {}", i, drawn[i].drawing->body)));
-    for (CppStmt& st : fill(*drawn[i].drawing)) {
+    for (CppStmt& st : fill(*drawn[i].drawing, drawn)) {
       st.text = "  " + st.text;
       visual.body.push_back(std::move(st));
     }

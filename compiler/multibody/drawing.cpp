@@ -1,11 +1,15 @@
 // multibody/drawing.cpp — how bodies are drawn (--animate): the `shape`
 // setting, the default shape of a body without one, and the pose each
-// drawing follows, written as an AstOutput with its Drawing (ir/drawing.hpp).
+// drawing follows, written as an AstOutput with its Drawing (ir/drawing.hpp);
+// and the surfaces bodies touch (contacts' surfaces, tyres' roads), drawn
+// after the bodies the same way.
 #include "multibody/drawing.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -91,6 +95,31 @@ std::array<double, 3> palette(std::size_t i) {
 }
 
 const std::vector<std::string> kShapeKinds = {"box", "cylinder", "sphere", "mesh"};
+
+/// Colours of drawn contact surfaces (linear RGB): muted tints, each unlike
+/// the bodies' palette and the others; a road is dark grey.
+std::array<double, 3> surface_colour(std::size_t i) {
+  static constexpr std::array<std::array<double, 3>, 4> kColours = {{{0.50, 0.47, 0.40},
+                                                                     {0.38, 0.45, 0.52},
+                                                                     {0.44, 0.52, 0.38},
+                                                                     {0.52, 0.40, 0.46}}};
+  return kColours[i % kColours.size()];
+}
+constexpr std::array<double, 3> kRoadColour = {0.10, 0.10, 0.11};
+
+/// A rotation (rows) whose third column is the unit vector n: the frame of a
+/// plane with normal n (its x-y plane) or of a cylinder along n. Its x axis
+/// is the world's (the body's) x projected onto the plane, or y where n is
+/// along x: n = z gives the identity.
+std::array<std::array<double, 3>, 3> frame_along(const std::array<double, 3>& n) {
+  std::array<double, 3> x = std::abs(n[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+  const double along = x[0] * n[0] + x[1] * n[1] + x[2] * n[2];
+  for (std::size_t k = 0; k < 3; ++k) x[k] -= along * n[k];
+  const double length = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  for (double& c : x) c /= length;
+  const std::array<double, 3> y = {n[1] * x[2] - n[2] * x[1], n[2] * x[0] - n[0] * x[2], n[0] * x[1] - n[1] * x[0]};
+  return {{{x[0], y[0], n[0]}, {x[1], y[1], n[1]}, {x[2], y[2], n[2]}}};
+}
 
 }  // namespace
 
@@ -229,6 +258,147 @@ void Expander::draw_bodies() {
     E R = body.particle ? B.call("eye", {B.num(3)}) : rotation(B, n);
     AstOutput out{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)}), d, body.flex ? B.name(n + ".eta.q") : nullptr};
     generated_.push_back(std::move(out));
+  }
+  draw_surfaces();
+}
+
+/// A number the text gives, as constant_of, also through the functions and
+/// `pi` a surface's settings may use (the snap-fit's ramp: tan(alpha * pi / 180)).
+std::optional<double> Expander::drawn_number(const AstExpr& e, int depth) const {
+  if (depth > 50) return std::nullopt;
+  switch (e.kind) {
+    case AstExpr::Kind::Number: return e.number;
+    case AstExpr::Kind::Name: {
+      if (e.name == "pi") return std::numbers::pi;
+      auto p = params_.find(e.name);
+      if (p == params_.end() || !p->second) return std::nullopt;
+      return drawn_number(*p->second, depth + 1);
+    }
+    case AstExpr::Kind::Unary: {
+      auto a = drawn_number(*e.args[0], depth + 1);
+      return a && e.op == '-' ? std::optional<double>(-*a) : a;
+    }
+    case AstExpr::Kind::Binary: {
+      auto a = drawn_number(*e.args[0], depth + 1), b = drawn_number(*e.args[1], depth + 1);
+      if (!a || !b) return std::nullopt;
+      switch (e.op) {
+        case '+': return *a + *b;
+        case '-': return *a - *b;
+        case '*': return *a * *b;
+        case '/': return *a / *b;
+        case '^': return std::pow(*a, *b);
+      }
+      return std::nullopt;
+    }
+    case AstExpr::Kind::Call: {
+      static const std::map<std::string, double (*)(double)> kFunctions = {
+          {"sin", [](double x) { return std::sin(x); }},   {"cos", [](double x) { return std::cos(x); }},
+          {"tan", [](double x) { return std::tan(x); }},   {"sqrt", [](double x) { return std::sqrt(x); }},
+          {"atan", [](double x) { return std::atan(x); }}, {"abs", [](double x) { return std::abs(x); }},
+          {"exp", [](double x) { return std::exp(x); }},   {"log", [](double x) { return std::log(x); }}};
+      auto f = kFunctions.find(e.name);
+      if (f == kFunctions.end() || e.args.size() != 1) return std::nullopt;
+      auto a = drawn_number(*e.args[0], depth + 1);
+      return a ? std::optional<double>(f->second(*a)) : std::nullopt;
+    }
+    default: return std::nullopt;
+  }
+}
+
+/// The surfaces bodies touch, each posed by its surface point and the
+/// frame of the body carrying it: a contact's plane (its x-y plane, the
+/// normal along z), sphere, cylinder (along z) or polygon (in its x-z
+/// plane), and the road of the tyres (world z = h(x); tyres on the same
+/// profile share it). A surface whose dimensions are not numbers known when
+/// compiling is not drawn (like a body's shape, a drawing is compile-time data).
+void Expander::draw_surfaces() {
+  std::size_t index = 0;
+  auto add = [&](std::shared_ptr<Drawing> d, const Side& on, const std::array<std::array<double, 3>, 3>* turn, const SourceLoc& loc) {
+    Build B(loc);
+    const Body& body = bodies_.at(on.body);
+    E R = rotation(B, on.body);
+    if (turn) {
+      std::vector<E> rows;
+      for (const auto& row : *turn) rows.push_back(B.list({B.num(row[0]), B.num(row[1]), B.num(row[2])}));
+      R = body.ground || body.particle ? B.list(rows) : B.op('*', R, B.list(rows));
+    }
+    d->surface = true;
+    generated_.push_back(AstOutput{d->body + ".drawing", B.loc(), B.call("hcat", {R, world_point(B, on).first}), d, nullptr});
+  };
+  for (const Contact& c : contacts_) {
+    if (bodies_.at(c.b.body).points_unknown) continue;
+    auto d = std::make_shared<Drawing>();
+    d->body = c.decl->name;
+    d->colour = surface_colour(index++);
+    if (!bodies_.at(c.a.body).ground) d->covers.push_back(c.a.body);
+    auto number = [&](const char* key) -> std::optional<double> {
+      auto it = c.attrs.find(key);
+      return it == c.attrs.end() ? std::nullopt : drawn_number(*it->second->value);
+    };
+    auto direction = [&](const char* key) -> std::optional<std::array<double, 3>> {
+      auto it = c.attrs.find(key);
+      const AstExpr& v = *it->second->value;
+      if (v.kind != AstExpr::Kind::List || v.args.size() != 3) return std::nullopt;
+      std::array<double, 3> n{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        auto x = drawn_number(*v.args[k]);
+        if (!x) return std::nullopt;
+        n[k] = *x;
+      }
+      const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
+      for (double& x : n) x /= length;
+      return n;
+    };
+    std::array<std::array<double, 3>, 3> turn{};
+    bool turned = false;
+    if (c.surface == Surface::Plane) {
+      auto n = direction("normal");
+      if (!n) continue;
+      d->shape = Drawing::Shape::Plane;
+      turn = frame_along(*n), turned = true;
+    } else if (c.surface == Surface::Polygon) {
+      d->shape = Drawing::Shape::Prism;
+      for (const E& p : c.attrs.at("vertices")->value->args)
+        for (const E& x : p->args)
+          if (auto v = drawn_number(*x)) d->profile.push_back(*v);
+      if (d->profile.size() != 2 * c.attrs.at("vertices")->value->args.size()) continue;
+    } else {
+      auto r = number("surface_radius");
+      if (!r || !(*r > 0)) continue;
+      d->size = {*r, 0, 0};  // a cylinder's length: from the run
+      d->shape = c.surface == Surface::Sphere ? Drawing::Shape::Sphere : Drawing::Shape::Cylinder;
+      if (c.surface == Surface::Cylinder) {
+        auto axis = direction("axis");
+        if (!axis) continue;
+        turn = frame_along(*axis), turned = true;
+      }
+    }
+    add(d, c.b, turned ? &turn : nullptr, c.decl->loc);
+  }
+  std::vector<std::vector<double>> roads;  // each distinct profile once ({}: flat)
+  std::vector<std::shared_ptr<Drawing>> road_drawings;  // (a road's wheels join its drawing until the end)
+  for (const Tyre& t : tyres_) {
+    std::vector<double> profile;
+    if (auto it = t.attrs.find("profile"); it != t.attrs.end()) {
+      for (const E& p : it->second->value->args)
+        for (const E& x : p->args)
+          if (auto v = drawn_number(*x)) profile.push_back(*v);
+      if (profile.size() != 2 * it->second->value->args.size()) continue;
+    }
+    if (auto same = std::find(roads.begin(), roads.end(), profile); same != roads.end()) {
+      road_drawings[static_cast<std::size_t>(same - roads.begin())]->covers.push_back(t.wheel.body);
+      continue;
+    }
+    roads.push_back(profile);
+    auto d = std::make_shared<Drawing>();
+    road_drawings.push_back(d);
+    d->covers.push_back(t.wheel.body);
+    d->body = roads.size() == 1 ? "road" : fmt::format("road_{}", roads.size());
+    d->shape = Drawing::Shape::Road;
+    d->colour = kRoadColour;
+    d->profile = std::move(profile);
+    add(d, Side{"ground", ""}, nullptr, t.decl->loc);
   }
 }
 

@@ -217,6 +217,8 @@ class Expander {
   Drawing default_drawing(const Body& body, double scale) const;
   double model_scale() const;
   void draw_bodies();
+  std::optional<double> drawn_number(const AstExpr& e, int depth = 0) const;
+  void draw_surfaces();
 
   // ---- 6. quantities users may name (quantities.cpp)
   void define_quantities();

@@ -123,6 +123,88 @@ Mesh surface(const BodyVisual& v) {
   return m;
 }
 
+/// The largest distance of a mesh's vertex from the point its body's pose gives.
+double reach(const Mesh& m) {
+  double r = 0;
+  for (std::size_t i = 0; i + 2 < m.positions.size(); i += 3)
+    r = std::max(r, std::sqrt(double(m.positions[i]) * m.positions[i] + double(m.positions[i + 1]) * m.positions[i + 1] +
+                              double(m.positions[i + 2]) * m.positions[i + 2]));
+  return r;
+}
+
+/// An axis-aligned box; lo > hi while empty.
+struct Box {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  bool empty() const { return lo[0] > hi[0]; }
+  void add(const double* p, double r = 0) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k] - r), hi[k] = std::max(hi[k], p[k] + r);
+  }
+  double largest() const { return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
+};
+
+/// A plane: the rectangle [x0, x1] x [y0, y1] of its x-y plane, normal +z.
+Mesh plane_patch(const Box& local) {
+  Mesh m;
+  for (int k = 0; k < 4; ++k)
+    m.vertex(k == 1 || k == 2 ? local.hi[0] : local.lo[0], k >= 2 ? local.hi[1] : local.lo[1], 0, 0, 0, 1);
+  m.indices = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+/// A convex polygon of the x-z plane (corners counter-clockwise, x right, z
+/// up) extruded over [y0, y1]: its side faces and its two ends.
+Mesh prism(const std::vector<double>& corners, double y0, double y1) {
+  Mesh m;
+  const std::size_t n = corners.size() / 2;
+  for (std::size_t i = 0; i < n; ++i) {  // a side face per edge, outward normal (dz, 0, -dx)
+    const double ax = corners[2 * i], az = corners[2 * i + 1];
+    const double bx = corners[2 * ((i + 1) % n)], bz = corners[2 * ((i + 1) % n) + 1];
+    double nx = bz - az, nz = -(bx - ax);
+    const double len = std::hypot(nx, nz);
+    if (!(len > 0)) continue;
+    nx /= len, nz /= len;
+    const unsigned first = m.count();
+    m.vertex(ax, y0, az, nx, 0, nz), m.vertex(bx, y0, bz, nx, 0, nz), m.vertex(bx, y1, bz, nx, 0, nz), m.vertex(ax, y1, az, nx, 0, nz);
+    m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+  }
+  for (double y : {y0, y1}) {  // the ends: fans
+    const unsigned first = m.count();
+    const double ny = y == y0 ? -1 : 1;
+    for (std::size_t i = 0; i < n; ++i) m.vertex(corners[2 * i], y, corners[2 * i + 1], 0, ny, 0);
+    for (unsigned i = 1; i + 1 < n; ++i) m.indices.insert(m.indices.end(), {first, first + i, first + i + 1});
+  }
+  return m;
+}
+
+/// A road z = h(x) over [x0, x1] x [y0, y1]: h through the profile's points,
+/// constant beyond its ends; one flat strip per segment.
+Mesh road(const std::vector<double>& profile, const Box& local) {
+  const double x0 = local.lo[0], x1 = local.hi[0];
+  auto height = [&](double x) {
+    if (profile.empty()) return 0.0;
+    if (x <= profile[0]) return profile[1];
+    for (std::size_t k = 2; k + 1 < profile.size(); k += 2)
+      if (x <= profile[k]) return profile[k - 1] + (profile[k + 1] - profile[k - 1]) * (x - profile[k - 2]) / (profile[k] - profile[k - 2]);
+    return profile[profile.size() - 1];
+  };
+  std::vector<double> xs = {x0};
+  for (std::size_t k = 0; k + 1 < profile.size(); k += 2)
+    if (profile[k] > x0 && profile[k] < x1) xs.push_back(profile[k]);
+  xs.push_back(x1);
+  Mesh m;
+  for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
+    const double ha = height(xs[k]), hb = height(xs[k + 1]);
+    const double dx = xs[k + 1] - xs[k], dh = hb - ha, len = std::hypot(dx, dh);
+    if (!(len > 0)) continue;
+    const double nx = -dh / len, nz = dx / len;
+    const unsigned first = m.count();
+    m.vertex(xs[k], local.lo[1], ha, nx, 0, nz), m.vertex(xs[k + 1], local.lo[1], hb, nx, 0, nz);
+    m.vertex(xs[k + 1], local.hi[1], hb, nx, 0, nz), m.vertex(xs[k], local.hi[1], ha, nx, 0, nz);
+    m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+  }
+  return m;
+}
+
 /// Builds the glTF model: buffers, views and accessors appended as data come.
 class Writer {
  public:
@@ -224,6 +306,71 @@ void AnimationRecorder::write(const std::string& path) const {
   m.nodes.push_back(root);
   scene.nodes.push_back(0);
 
+  auto body_mesh = [](const BodyVisual& v) {
+    return v.shape == BodyVisual::Shape::box        ? box(v)
+           : v.shape == BodyVisual::Shape::cylinder ? cylinder(v)
+           : v.shape == BodyVisual::Shape::sphere   ? sphere(v)
+                                                    : surface(v);
+  };
+  // Where the bodies go over the run (world): an unbounded surface covers
+  // the box its touching bodies sweep, and half its largest extent more on
+  // every side, in its own frame at every row.
+  std::vector<double> reaches(visuals_.size(), 0.0);
+  for (std::size_t b = 0; b < visuals_.size(); ++b)
+    if (!visuals_[b].surface) reaches[b] = reach(body_mesh(visuals_[b]));
+  auto swept_by = [&](const std::vector<std::size_t>& covers) {
+    Box swept;
+    for (std::size_t b = 0; b < visuals_.size(); ++b) {
+      if (visuals_[b].surface || (!covers.empty() && std::find(covers.begin(), covers.end(), b) == covers.end())) continue;
+      for (std::size_t f = 0; f < times_.size(); ++f) swept.add(&poses_[f * pose_size_ + 12 * b], reaches[b]);
+    }
+    if (swept.empty()) {
+      const double origin[3] = {0, 0, 0};
+      swept.add(origin, 0.5);
+    }
+    return swept;
+  };
+  /// That box in the frame of entry b's pose (over all rows), with the margin around it.
+  auto local_box = [&](std::size_t b) {
+    const Box swept = swept_by(visuals_[b].covers);
+    const double margin = std::max(0.5 * swept.largest(), 1e-3);
+    Box local;
+    for (std::size_t f = 0; f < std::max<std::size_t>(times_.size(), 1); ++f) {
+      const double* pose = times_.empty() ? nullptr : &poses_[f * pose_size_ + 12 * b];
+      for (int corner = 0; corner < 8; ++corner) {
+        const double c[3] = {corner & 1 ? swept.hi[0] : swept.lo[0], corner & 2 ? swept.hi[1] : swept.lo[1],
+                             corner & 4 ? swept.hi[2] : swept.lo[2]};
+        double d[3] = {c[0], c[1], c[2]};
+        if (pose) {  // R^T (c - p)
+          const double* R = pose + 3;
+          const double e[3] = {c[0] - pose[0], c[1] - pose[1], c[2] - pose[2]};
+          for (int k = 0; k < 3; ++k) d[k] = R[k] * e[0] + R[3 + k] * e[1] + R[6 + k] * e[2];
+        }
+        local.add(d, margin);
+      }
+    }
+    return local;
+  };
+  auto surface_mesh = [&](std::size_t b) {
+    BodyVisual v = visuals_[b];
+    switch (v.shape) {
+      case BodyVisual::Shape::plane: return plane_patch(local_box(b));
+      case BodyVisual::Shape::road: return road(v.profile, local_box(b));
+      case BodyVisual::Shape::prism: {
+        const Box local = local_box(b);
+        return prism(v.profile, local.lo[1], local.hi[1]);
+      }
+      case BodyVisual::Shape::cylinder:
+        if (v.size[1] <= 0) {
+          const Box local = local_box(b);
+          v.size[1] = local.hi[2] - local.lo[2];
+          v.centre[0] = v.centre[1] = 0, v.centre[2] = 0.5 * (local.lo[2] + local.hi[2]);
+        }
+        return cylinder(v);
+      default: return body_mesh(v);
+    }
+  };
+
   std::vector<float> times(times_.begin(), times_.end());
   const int input = times.empty() ? -1 : w.accessor(times, TINYGLTF_TYPE_SCALAR, 1, true);
   tinygltf::Animation animation;
@@ -232,10 +379,7 @@ void AnimationRecorder::write(const std::string& path) const {
   std::size_t modal = 12 * visuals_.size();  // and its modal coordinates
   for (std::size_t b = 0; b < visuals_.size(); ++b) {
     const BodyVisual& v = visuals_[b];
-    const Mesh mesh = v.shape == BodyVisual::Shape::box        ? box(v)
-                      : v.shape == BodyVisual::Shape::cylinder ? cylinder(v)
-                      : v.shape == BodyVisual::Shape::sphere   ? sphere(v)
-                                                               : surface(v);
+    const Mesh mesh = v.surface ? surface_mesh(b) : body_mesh(v);
     tinygltf::Material material;
     material.name = v.name;
     material.pbrMetallicRoughness.baseColorFactor = {v.colour[0], v.colour[1], v.colour[2], 1.0};
@@ -264,11 +408,28 @@ void AnimationRecorder::write(const std::string& path) const {
     tinygltf::Node node;
     node.name = v.name;
     node.mesh = static_cast<int>(m.meshes.size() - 1);
+    // A surface is fixed (the ground's) or moves with a body; it is marked
+    // so that viewers can tell it from the bodies (three.js: userData.surface).
+    bool fixed = false;
+    if (v.surface) {
+      static const char* const kNames[] = {"box", "cylinder", "sphere", "mesh", "plane", "prism", "road"};
+      tinygltf::Value::Object extras;
+      extras["surface"] = tinygltf::Value(std::string(kNames[static_cast<int>(v.shape)]));
+      node.extras = tinygltf::Value(extras);
+      fixed = true;
+      for (std::size_t f = 1; f < times_.size() && fixed; ++f)
+        fixed = std::equal(&poses_[f * pose_size_ + offset], &poses_[f * pose_size_ + offset + 12], &poses_[offset]);
+      if (fixed && !times_.empty()) {
+        node.translation = {poses_[offset], poses_[offset + 1], poses_[offset + 2]};
+        const std::array<double, 4> q = quaternion_of(&poses_[offset + 3]);
+        node.rotation.assign(q.begin(), q.end());
+      }
+    }
     m.nodes.push_back(node);
     const int index = static_cast<int>(m.nodes.size() - 1);
     m.nodes[0].children.push_back(index);
 
-    if (input >= 0) {  // keyframes: translation, rotation, and the modal weights
+    if (input >= 0 && !fixed) {  // keyframes: translation, rotation, and the modal weights
       std::vector<float> translation, rotation, weights;
       for (std::size_t f = 0; f < times_.size(); ++f) {
         const double* pose = &poses_[f * pose_size_ + offset];

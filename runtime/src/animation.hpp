@@ -6,12 +6,16 @@
 // body's surface carries one morph target per mode, its `weights` channel
 // the modal coordinates. The model's world is z up; glTF's is y up: a root
 // node turns the scene by -90 degrees about x, the data stay as computed.
+// The surfaces the bodies touch (BodyVisual::surface) are nodes too, marked
+// extras.surface = their shape; a fixed one has no channels, and the
+// unbounded ones are sized to cover their touching bodies' run.
 //
 // The library mbgrt_gltf (an optional part, mbgrt/features.hpp): the core
 // knows only AnimationSink, and mbgrt::use_gltf_animation() installs this
 // writer.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -25,7 +29,10 @@ class AnimationRecorder final : public AnimationSink {
  public:
   explicit AnimationRecorder(Model& model);
   /// Bodies to draw: none for a bond graph (the run then says so and writes nothing).
-  std::size_t bodies() const override { return visuals_.size(); }
+  /// The surfaces they touch (BodyVisual::surface) are drawn too, not counted.
+  std::size_t bodies() const override {
+    return static_cast<std::size_t>(std::count_if(visuals_.begin(), visuals_.end(), [](const BodyVisual& v) { return !v.surface; }));
+  }
   /// The poses at one output row.
   void record(double t, const double* y, const double* yp) override;
   std::size_t frames() const override { return times_.size(); }

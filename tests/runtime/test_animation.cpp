@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "animation.hpp"
 #include "mbgrt/features.hpp"
@@ -121,6 +122,107 @@ TEST(Animation, KeyframesAreThePosesAtTheRows) {
       }
     }
   }
+  std::filesystem::remove(glb);
+}
+
+/// Body `cart` (a 0.2 m cube) slides along x from 0 to 10 m over the run; body
+/// `post` stands at x = 100, touching nothing. Surfaces: `floor`, a plane on
+/// the ground under the cart; `pad`, a plane on the cart (its pose); `road`,
+/// a profile with a 0.5 m step between x = 2 and 3.
+class Sled : public TestModel {
+ public:
+  Sled() {
+    settings.t_end_s = 1.0;
+    settings.interval_s = 0.25;
+  }
+  const char* name() const override { return "sled"; }
+  std::size_t size() const override { return 1; }
+  std::string variable_name(std::size_t) const override { return "clock"; }
+  std::vector<std::string> output_names() const override { return {"s"}; }
+  void initial(double, double* y, double*) override { y[0] = 0; }
+  void derivative(double, const double*, double* dy) override { dy[0] = 1; }
+  void outputs(double, const double* y, const double*, double* out) override { out[0] = y[0]; }
+  std::size_t body_count() const override { return 5; }
+  BodyVisual body_visual(std::size_t i) const override {
+    BodyVisual v;
+    v.size[0] = v.size[1] = v.size[2] = 0.2;
+    v.name = std::vector<std::string>{"cart", "post", "floor", "pad", "road"}[i];
+    if (i < 2) return v;
+    v.surface = true;
+    v.covers = {0};
+    v.shape = i == 4 ? BodyVisual::Shape::road : BodyVisual::Shape::plane;
+    if (i == 4) v.profile = {2, 0, 3, 0.5};
+    return v;
+  }
+  void body_poses(double, const double* y, const double*, double* out) override {
+    const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const double origins[5][3] = {{10 * y[0], 0, 0}, {100, 0, 0}, {0, 0, 0}, {10 * y[0], 0, 0}, {0, 0, 0}};
+    for (int b = 0; b < 5; ++b) {
+      std::copy(origins[b], origins[b] + 3, out + 12 * b);
+      std::copy(identity, identity + 9, out + 12 * b + 3);
+    }
+  }
+};
+
+TEST(Animation, SurfacesAreMarkedAndCoverTheirBodiesRun) {
+  const std::string glb = temp_path("surfaces") + ".glb";
+  Sled model;
+  RunResult r = run(model, {"--animate", glb, "--solver", "rk4"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(Contains(r.err, "2 bodies in 5 frames to " + glb)) << r.err;  // the surfaces are not counted
+
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string error, warning;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &error, &warning, glb)) << error;
+  ASSERT_EQ(m.nodes.size(), 6u);
+  auto surface_of = [&](int node) {
+    const tinygltf::Value& extras = m.nodes[static_cast<std::size_t>(node)].extras;
+    return extras.Has("surface") ? extras.Get("surface").Get<std::string>() : std::string("(none)");
+  };
+  EXPECT_EQ(surface_of(1), "(none)");
+  EXPECT_EQ(surface_of(2), "(none)");
+  EXPECT_EQ(surface_of(3), "plane");
+  EXPECT_EQ(surface_of(4), "plane");
+  EXPECT_EQ(surface_of(5), "road");
+  // fixed surfaces have no channels, the pad moves with the cart
+  std::set<int> animated;
+  for (const tinygltf::AnimationChannel& c : m.animations.at(0).channels) animated.insert(c.target_node);
+  EXPECT_EQ(animated, (std::set<int>{1, 2, 4}));
+  // The floor covers the cart's run (the cube's corners reach sqrt(3) 0.1 m
+  // from its centre) and half its largest extent more on each side; the post,
+  // touching nothing, is not covered.
+  const double reach = std::sqrt(3.0) * 0.1, margin = 0.5 * (10 + 2 * reach);
+  const tinygltf::Accessor& floor = m.accessors.at(static_cast<std::size_t>(
+      m.meshes.at(static_cast<std::size_t>(m.nodes[3].mesh)).primitives.at(0).attributes.at("POSITION")));
+  EXPECT_NEAR(floor.minValues.at(0), -reach - margin, 1e-5);
+  EXPECT_NEAR(floor.maxValues.at(0), 10 + reach + margin, 1e-5);
+  EXPECT_NEAR(floor.minValues.at(1), -reach - margin, 1e-5);
+  EXPECT_NEAR(floor.maxValues.at(1), reach + margin, 1e-5);
+  EXPECT_NEAR(floor.maxValues.at(2), 0.0, 1e-7);
+  // The pad, in the cart's frame over the run: the run seen from the cart.
+  const tinygltf::Accessor& pad = m.accessors.at(static_cast<std::size_t>(
+      m.meshes.at(static_cast<std::size_t>(m.nodes[4].mesh)).primitives.at(0).attributes.at("POSITION")));
+  EXPECT_NEAR(pad.minValues.at(0), -10 - reach - margin, 1e-5);
+  EXPECT_NEAR(pad.maxValues.at(0), 10 + reach + margin, 1e-5);
+  // The road: the profile's points inside, its step to 0.5 m, flat beyond.
+  const tinygltf::Primitive& road = m.meshes.at(static_cast<std::size_t>(m.nodes[5].mesh)).primitives.at(0);
+  const std::vector<float> p = floats(m, road.attributes.at("POSITION"));
+  bool at_2 = false, at_3 = false;
+  for (std::size_t k = 0; k < p.size(); k += 3) {
+    at_2 = at_2 || (std::abs(p[k] - 2) < 1e-6 && std::abs(p[k + 2]) < 1e-7);
+    at_3 = at_3 || (std::abs(p[k] - 3) < 1e-6 && std::abs(p[k + 2] - 0.5) < 1e-7);
+    if (p[k] > 3 + 1e-6) {
+      EXPECT_NEAR(p[k + 2], 0.5, 1e-7);
+    }
+    if (p[k] < 2 - 1e-6) {
+      EXPECT_NEAR(p[k + 2], 0.0, 1e-7);
+    }
+  }
+  EXPECT_TRUE(at_2 && at_3);
+  const tinygltf::Accessor& extent = m.accessors.at(static_cast<std::size_t>(road.attributes.at("POSITION")));
+  EXPECT_NEAR(extent.minValues.at(0), -reach - margin, 1e-5);
+  EXPECT_NEAR(extent.maxValues.at(0), 10 + reach + margin, 1e-5);
   std::filesystem::remove(glb);
 }
 

@@ -28,8 +28,14 @@ function vectorOf(text, name) {
  * The parameters of a query string:
  *   file=URL           the .glb to open
  *   t=SECONDS          show that time of the run, paused (default: play from the start)
- *   eye=x,y,z          camera position, model world (z up), metres
- *   target=x,y,z       the point it looks at (eye and target go together; default: frame the scene)
+ *   eye=x,y,z          camera position, model world (z up), metres, at the time first shown
+ *   target=x,y,z       the point it looks at (eye and target go together; default: frame the scene:
+ *                      everything the bodies sweep over the run, or, where that dwarfs them, the bodies
+ *                      at the time shown)
+ *   follow=BODY        the camera moves with that body (its node's origin), keeping its offset to it
+ *                      while the run plays and while it is orbited; follow=all: the middle of all the
+ *                      bodies; follow=none: a fixed camera (default: all where the scene dwarfs the
+ *                      bodies, else none)
  *   fov=DEGREES        vertical field of view (default 40)
  *   size=WxH           the picture's size in CSS pixels (default: fill the window)
  *   flat=1             unlit colours, no grid or axes: for pixel tests
@@ -38,7 +44,9 @@ function vectorOf(text, name) {
  */
 export function parseParameters(search) {
   const query = new URLSearchParams(search);
-  const p = { file: query.get('file'), t: null, camera: null, fov: 40, size: null, flat: query.get('flat') === '1', speed: 1, deform: 1 };
+  const p = { file: query.get('file'), t: null, camera: null, fov: 40, size: null, flat: query.get('flat') === '1', speed: 1, deform: 1,
+    follow: query.get('follow') };
+  if (p.follow === '') throw new Error('follow=: expected the name of a body, all or none');
   if (query.has('t')) p.t = numberOf(query.get('t'), 't');
   if (query.has('fov')) {
     p.fov = numberOf(query.get('fov'), 'fov');

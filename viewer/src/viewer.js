@@ -8,17 +8,25 @@
 // linear interpolation at `time`, never a time the mixer wrapped round or
 // stopped at (AnimationAction loops and clamps on its own otherwise).
 //
+// The camera may follow a body (follow=BODY, or the Follow control): every
+// time the run is posed, camera and orbit target move by as much as the body
+// did, so the view keeps its offset to it whether the run plays, the slider
+// moves or the user orbits. Surfaces (nodes the runtime marks
+// extras.surface: contact surfaces, roads) are drawn but neither framed nor
+// followed.
+//
 // For tests and stills (viewer/headless.mjs): URL parameters (params.js) fix
 // the time and the camera, and once the frame at that time is on screen the
-// page sets window.mbgcReady = true (or window.mbgcError to a message).
+// page sets window.mbgcReady = true (or window.mbgcError to a message);
+// window.mbgcState() tells the camera, the bodies and the surfaces.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { parseParameters } from './params.js';
-import { sweptBox, frameBox, helpers } from './framing.js';
+import { boxOf, sweptBox, largest, dwarfs, centredOn, frameBox, helpers } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
-const view = $('view'), message = $('message'), playButton = $('play'), slider = $('slider');
+const view = $('view'), message = $('message'), playButton = $('play'), slider = $('slider'), followSelect = $('follow');
 
 function fail(text) {
   message.textContent = text;
@@ -67,6 +75,8 @@ window.addEventListener('resize', resize);
 // ---- the loaded run ----
 let model = null, extras = null, mixer = null, action = null, scale = null;
 let tStart = 0, tEnd = 0, time = 0, playing = false, lastFrame = null;
+let bodies = [], surfaces = [];          // the file's body nodes; its surface nodes
+let followed = null, lastFollowed = null;  // null, 'all' or a body node; where it was when last posed
 let frameRequested = false, ready = false;  // a frame is due; the next one drawn is a new run's first
 
 /** Poses the model at run time t (clamped to the keyframes' span). */
@@ -80,9 +90,103 @@ function showAt(t) {
         if (o.isMesh && o.morphTargetInfluences) o.morphTargetInfluences.forEach((w, k, all) => { all[k] = w * params.deform; });
       });
   }
+  track();
   slider.value = time;
   $('time').textContent = `t = ${time.toFixed(3)} s` + (params.deform !== 1 ? `, deformation ×${params.deform}` : '');
   requestRender();
+}
+
+/** Where the followed body (or the middle of all bodies) is now, glTF axes. */
+function followedPoint() {
+  if (followed === 'all') return boxOf(bodies).getCenter(new THREE.Vector3());
+  followed.updateWorldMatrix(true, false);
+  return followed.getWorldPosition(new THREE.Vector3());
+}
+
+/** Moves camera and orbit target by as much as the followed body moved since it was last posed. */
+function track() {
+  if (!followed) return;
+  const p = followedPoint();
+  if (lastFollowed) {
+    const d = p.clone().sub(lastFollowed);
+    camera.position.add(d);
+    controls.target.add(d);
+    controls.update();
+  }
+  lastFollowed = p;
+}
+
+/** The body a follow= value names (null: none), or throws. */
+function followTarget(name) {
+  if (name === 'none') return null;
+  if (name === 'all') return 'all';
+  const body = bodies.find((o) => o.name === name || o.name === THREE.PropertyBinding.sanitizeNodeName(name));
+  if (!body) throw new Error(`follow=${name}: no body of that name (the bodies: ${bodies.map((o) => o.name).join(', ')}; or all, none)`);
+  return body;
+}
+
+/**
+ * Follows `name` from now on. With `reframe` (the control was used) the
+ * camera turns to it: the bodies as they are now, centred on the followed
+ * point, seen from the direction the camera looks from now.
+ */
+function setFollow(name, reframe) {
+  followed = followTarget(name);
+  lastFollowed = null;
+  followSelect.value = name;
+  if (followed && reframe) {
+    const p = followedPoint();
+    frameBox(camera, controls, centredOn(boxOf(bodies), p), camera.position.clone().sub(controls.target));
+    controls.update();
+  }
+  track();
+  requestRender();
+}
+
+/** The camera, bodies and surfaces now, in the model's world (z up): for tests. */
+window.mbgcState = () => {
+  const modelFromGltf = (v) => [v.x, -v.z, v.y];
+  const where = (o) => modelFromGltf(o.getWorldPosition(new THREE.Vector3()));
+  return {
+    time,
+    follow: followSelect.value,
+    eye: modelFromGltf(camera.position),
+    target: modelFromGltf(controls.target),
+    bodies: Object.fromEntries(bodies.map((o) => [o.name, where(o)])),
+    surfaces: Object.fromEntries(surfaces.map((o) => [o.name, o.userData.surface])),
+  };
+};
+
+/**
+ * A light checkerboard on the ground's surfaces (planes, roads), squares of
+ * `cell` metres in their own x-y axes: what shows motion when the camera
+ * follows a body over a plain surface, and the scale.
+ */
+function checker(surfaceNodes, cell) {
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = 64;
+  const g = canvas.getContext('2d');
+  g.fillStyle = '#ffffff';
+  g.fillRect(0, 0, 64, 64);
+  g.fillStyle = '#dcdcdc';
+  g.fillRect(0, 0, 32, 32);
+  g.fillRect(32, 32, 32, 32);
+  const texture = new THREE.CanvasTexture(canvas);
+  texture.wrapS = texture.wrapT = THREE.RepeatWrapping;
+  texture.colorSpace = THREE.SRGBColorSpace;
+  texture.anisotropy = renderer.capabilities.getMaxAnisotropy();
+  for (const o of surfaceNodes) {
+    if (!o.isMesh || !['plane', 'road'].includes(o.userData.surface)) continue;
+    const position = o.geometry.attributes.position, uv = new Float32Array(2 * position.count);
+    for (let i = 0; i < position.count; ++i) {
+      uv[2 * i] = position.getX(i) / (2 * cell);  // a repeat of the texture: two squares
+      uv[2 * i + 1] = position.getY(i) / (2 * cell);
+    }
+    o.geometry.setAttribute('uv', new THREE.BufferAttribute(uv, 2));
+    o.material = o.material.clone();
+    o.material.map = texture;
+    o.material.needsUpdate = true;
+  }
 }
 
 /** Bodies in their own colours without light or shade (flat=1), morph targets kept. */
@@ -106,19 +210,46 @@ function show(gltf, name, fromUrl) {
   slider.max = tEnd;
   slider.disabled = playButton.disabled = !clip;
 
-  const box = sweptBox(model, tStart, tEnd, showAt);
-  scale = { centre: box.getCenter(new THREE.Vector3()), radius: Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-3) };
-  extras = params.flat ? new THREE.Group() : helpers(box);
+  // The bodies: the root node's children (the file's root turns z up), less the surfaces.
+  const top = model.children.length === 1 ? model.children[0] : model;
+  surfaces = top.children.filter((o) => o.userData.surface);
+  bodies = top.children.filter((o) => !o.userData.surface);
+  followed = lastFollowed = null;
+  const box = sweptBox(bodies, tStart, tEnd, showAt);
+  const paused = fromUrl && params.t !== null;
+  showAt(paused ? params.t : tStart);
+  const now = boxOf(bodies);
+  const everything = box.clone().union(new THREE.Box3().setFromObject(model));  // and the surfaces
+  scale = { centre: everything.getCenter(new THREE.Vector3()), radius: Math.max(everything.getSize(new THREE.Vector3()).length() / 2, 1e-3) };
+  extras = params.flat ? new THREE.Group() : helpers(box, everything.min.y);
   scene.add(extras);
+  if (!params.flat) checker(surfaces, 10 ** Math.floor(Math.log10(Math.max(largest(now), 1e-6))));
+
+  // Follow: as asked, else the bodies where the run dwarfs them (a vehicle), else nothing.
+  const dwarfed = dwarfs(box, now);
+  followSelect.replaceChildren(new Option('none', 'none'), new Option('all bodies', 'all'),
+    ...bodies.map((o) => new Option(o.name, o.name)));
+  followSelect.disabled = bodies.length === 0;
+  let follow = dwarfed ? 'all' : 'none';
+  if (fromUrl && params.follow !== null) follow = params.follow;
+  try {
+    followed = followTarget(follow);
+  } catch (e) {
+    fail(e.message);
+    return;
+  }
+  followSelect.value = followed && followed !== 'all' ? followed.name : follow;
   if (fromUrl && params.camera) {
     camera.position.set(...params.camera.eye);
     controls.target.set(...params.camera.target);
+  } else if (followed) {
+    frameBox(camera, controls, centredOn(now, followedPoint()));
   } else {
-    frameBox(camera, controls, box);
+    frameBox(camera, controls, dwarfed ? now : box);
   }
   controls.update();
+  lastFollowed = followed ? followedPoint() : null;
 
-  const paused = fromUrl && params.t !== null;
   showAt(paused ? params.t : tStart);
   setPlaying(!paused && !!clip);
   message.hidden = true;
@@ -188,14 +319,15 @@ window.addEventListener('drop', (e) => {
   if (e.dataTransfer.files[0]) openFile(e.dataTransfer.files[0]);
 });
 
-// ---- play, pause, the time slider ----
+// ---- play, pause, the time slider, following ----
 playButton.addEventListener('click', () => setPlaying(!playing));
+followSelect.addEventListener('change', () => setFollow(followSelect.value, true));
 slider.addEventListener('input', () => {
   setPlaying(false);
   showAt(Number(slider.value));
 });
 window.addEventListener('keydown', (e) => {
-  if (e.code === 'Space' && model && e.target.tagName !== 'INPUT') {
+  if (e.code === 'Space' && model && e.target.tagName !== 'INPUT' && e.target.tagName !== 'SELECT') {
     e.preventDefault();
     setPlaying(!playing);
   }

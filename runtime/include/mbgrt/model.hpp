@@ -102,12 +102,18 @@ struct Settings {
 /// A flexible body also gives a surface that deforms with its modes: the
 /// undeformed vertex positions and, per mode, each vertex's displacement per
 /// unit modal coordinate (glTF morph targets).
+///
+/// A surface the bodies touch is drawn the same way (`surface` set: a
+/// contact's plane, sphere, cylinder or polygon, a tyre's road), posed by its
+/// point and frame; the viewer neither frames nor follows it. Unbounded ones
+/// are sized when the file is written, to cover where the bodies went: a
+/// plane (its x-y plane), a cylinder of length 0, a prism's extrusion, a road.
 struct BodyVisual {
-  enum class Shape { box, cylinder, sphere, mesh };
+  enum class Shape { box, cylinder, sphere, mesh, plane, prism, road };
   std::string name;
   Shape shape = Shape::box;
-  /// box: edge lengths along body x, y, z; cylinder: radius, length (along body z);
-  /// sphere: radius (m)
+  /// box: edge lengths along body x, y, z; cylinder: radius, length (along body z;
+  /// 0: unbounded, sized from the run); sphere: radius (m); plane, prism, road: unused
   double size[3] = {0.1, 0.1, 0.1};
   double centre[3] = {0, 0, 0};  ///< where the shape's centre is, body axes (m)
   double colour[3] = {0.6, 0.6, 0.65};  ///< linear RGB in [0, 1]
@@ -117,6 +123,14 @@ struct BodyVisual {
   std::vector<unsigned> triangles;
   /// Per mode (Model::body_poses' modal coordinates, in order): 3 numbers per vertex.
   std::vector<std::vector<double>> mode_shapes;
+  bool surface = false;  ///< a contact surface or a road, not a body
+  /// A surface: the bodies (indices of body_visual) touching it, whose run
+  /// its unbounded extent covers (empty: all the bodies').
+  std::vector<std::size_t> covers;
+  /// prism: the corners (x, z) of a convex polygon in the x-z plane,
+  /// counter-clockwise, extruded along y; road: (x, height) points along world
+  /// x, x increasing, the height constant beyond the ends (none: flat, z = 0).
+  std::vector<double> profile;
 };
 
 /// A contact of the model (Model::contact): a gap g >= 0 between two bodies
@@ -267,7 +281,7 @@ class Model {
   }
 
   // ---- bodies, for animation (optional) --------------------------------------
-  /// Bodies to draw (--animate); 0: none (a bond graph).
+  /// Bodies to draw (--animate), then the surfaces they touch; 0: none (a bond graph).
   virtual std::size_t body_count() const { return 0; }
   virtual BodyVisual body_visual(std::size_t i) const { (void)i; return {}; }
   /// Per body, in order: its frame's origin (3, world, m) and its rotation
