@@ -14,7 +14,7 @@ struct EntryPoint {
   bool sparse_pattern = false; ///< the model gives residual_sparsity: IDA's KLU
 };
 
-/// The text of main() (with the #include it needs).
+/// The text of main() (the template includes mbgrt/features.hpp).
 std::string simulator_main(const EntryPoint& e);
 
 }  // namespace mbgc::codegen

@@ -167,6 +167,7 @@ class Sled : public TestModel {
 TEST(Animation, SurfacesAreMarkedAndCoverTheirBodiesRun) {
   const std::string glb = temp_path("surfaces") + ".glb";
   Sled model;
+  use_gltf_animation();
   RunResult r = run(model, {"--animate", glb, "--solver", "rk4"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(Contains(r.err, "2 bodies in 5 frames to " + glb)) << r.err;  // the surfaces are not counted

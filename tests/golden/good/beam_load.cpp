@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/features.hpp>
 #include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
@@ -428,5 +429,6 @@ class beam_load_model final : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   beam_load_model model;
+  mbgrt::use_gltf_animation();  // --animate FILE.glb: the bodies drawn in glTF
   return mbgrt::run_main(model, argc, argv);
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/features.hpp>
 #include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
@@ -1065,5 +1066,6 @@ class cut_joint_model final : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   cut_joint_model model;
+  mbgrt::use_gltf_animation();  // --animate FILE.glb: the bodies drawn in glTF
   return mbgrt::run_main(model, argc, argv);
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/features.hpp>
 #include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
@@ -2221,5 +2222,6 @@ class drawn_surfaces_model final : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   drawn_surfaces_model model;
+  mbgrt::use_gltf_animation();  // --animate FILE.glb: the bodies drawn in glTF
   return mbgrt::run_main(model, argc, argv);
 }

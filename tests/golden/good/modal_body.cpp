@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/features.hpp>
 #include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
@@ -1151,5 +1152,7 @@ class modal_body_model final : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   modal_body_model model;
+  mbgrt::use_gltf_animation();  // --animate FILE.glb: the bodies drawn in glTF
+  mbgrt::use_sparse_lu();  // IDA's KLU on the sparsity pattern above
   return mbgrt::run_main(model, argc, argv);
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/features.hpp>
 #include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
@@ -193,5 +194,6 @@ class nonlinear_dae_model final : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   nonlinear_dae_model model;
+  mbgrt::use_sparse_lu();  // IDA's KLU on the sparsity pattern above
   return mbgrt::run_main(model, argc, argv);
 }

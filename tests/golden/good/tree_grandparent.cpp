@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <mbgrt/features.hpp>
 #include <mbgrt/linear_solve.hpp>
 #include <mbgrt/model.hpp>
 
@@ -1172,5 +1173,6 @@ class tree_grandparent_model final : public mbgrt::Model {
 
 int main(int argc, char** argv) {
   tree_grandparent_model model;
+  mbgrt::use_gltf_animation();  // --animate FILE.glb: the bodies drawn in glTF
   return mbgrt::run_main(model, argc, argv);
 }
