@@ -17,3 +17,19 @@ function(mbgc_precompile_common_headers target)
     <set> <string> <string_view> <tuple> <unordered_map> <utility> <vector>
     <fmt/format.h>)
 endfunction()
+
+# mbgc_build_in_batches(TARGET): TARGET's files compiled as unity batches of
+# 8 (CMake's UNITY_BUILD: one translation unit includes 8 of the sources),
+# so the headers they share are parsed and their templates instantiated once
+# a batch. On the compiler's library (71 files) and the runtime's (31 files):
+# on 2 cores mbgc built in 50 s instead of 72 at the quick start's -O1.
+# Off with -DMBGC_UNITY_BUILD=OFF (one file recompiled at a time when you edit
+# it; .ci/run's sanitizer tree builds that way, so that every file still
+# compiles on its own).
+option(MBGC_UNITY_BUILD "Compile the compiler's and the runtime's libraries in unity batches of 8 files" ON)
+
+function(mbgc_build_in_batches target)
+  if(MBGC_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  endif()
+endfunction()

@@ -20,7 +20,8 @@ namespace {
 /// The energy witness's two integrals after the model's n unknowns (GuardedModel::has_energy_witness).
 std::size_t witnesses(const GuardedModel& m) { return m.has_energy_witness() ? 2 : 0; }
 
-int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
+/// ERKStep's right-hand side: the derivative, then the energy witness's rates.
+int erk_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* m = static_cast<CallbackData*>(user_data)->model;
   const double* yv = N_VGetArrayPointer(y);
   double* ydotv = N_VGetArrayPointer(ydot);
@@ -60,7 +61,7 @@ class Dopri5 final : public Integrator {
     std::fill(y_.data() + n_, y_.data() + n_ + witnesses(m_), 0.0);
     t_ = t0;
     remember();
-    mem_ = ERKStepCreate(rhs, t0, y_.get(), ctx_);
+    mem_ = ERKStepCreate(erk_rhs, t0, y_.get(), ctx_);
     check_setup(mem_, "ERKStepCreate");
     check_setup(ERKStepSetErrHandlerFn(mem_, MessageSink::handler, &sink_),
                 "ERKStepSetErrHandlerFn", sink_);
