@@ -2,8 +2,9 @@
 # examples/stills.sh — the still of each multibody example's animation
 # (examples/<name>/animation.png, shown in its README): its simulator from
 # the build tree runs with --animate, and the viewer (build/viewer) draws the
-# frame at the time given below in headless Chromium, camera framed on
-# everything the bodies sweep over the run.
+# frame at the time given below in headless Chromium, with the viewer's
+# default camera (everything the bodies sweep over the run, or the bodies at
+# that time where the run dwarfs them: docs/animation.md).
 #
 #   examples/stills.sh [BUILD_DIR]    # default build; needs the examples and mbgc_viewer built
 set -euo pipefail

@@ -1,4 +1,4 @@
-// fuzz_cli — the simulator's command line (DESIGN §9) on a generated model
+// fuzz_cli — the simulator's command line (docs/cli.md) on a generated model
 // (examples/dc_motor/dc_motor.mbg: six parameters to --set and --sweep). The
 // input is the argument list, one argument per line. Parsing must end in
 // options to run with or in exit status 0 (--help) or 2 (a usage error,

@@ -16,7 +16,7 @@ BUILD_DIR=${BUILD_DIR:-build-demo}
 
 mbgc_install_packages
 # Only mbgc, its runtime and the one example, at -O1: the quick start takes
-# about 2 minutes on 2 cores instead of tools/test.sh's 9 (README).
+# 72 s on 2 cores from a clean clone (README, "The two commands").
 mbgc_configure_quick_start "$@"
 mbgc_build mbgc mbgrt
 

@@ -4,7 +4,7 @@
 // spherical_chain.mbg; tree_peers checks that every engine starts from the
 // same pose and that mbgc and the hand-written model agree).
 //
-// Conventions (those of mbgc's multibody layer, README "Multibody models"):
+// Conventions (those of mbgc's multibody layer, docs/multibody.md):
 // every body's frame origin is its joint point on the child side (the rods'
 // `top` / `base` point, [0, 0, 0]); `at` is the joint point on the parent, in
 // the parent's body axes (world axes for the ground). A ball joint's

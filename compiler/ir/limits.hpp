@@ -1,7 +1,7 @@
 // ir/limits.hpp — how large a model mbgc takes. Past each limit the pass
 // that would grow too large reports it at the statement responsible, with a
 // hint, instead of running for hours or until the machine runs out of memory
-// (README, "Limits"). The defaults fit every model in examples/ and the
+// (docs/limits.md). The defaults fit every model in examples/ and the
 // 2000-rod chain of bench/compiler_speed.sh with room to spare; the fuzz
 // targets (fuzz/) lower them so that each input compiles in milliseconds.
 #pragma once

@@ -8,7 +8,7 @@
 // sparse, though: a body's equations read only its own unknowns, its
 // parent's (the accelerations its joint carries outward) and its children's
 // (the reaction efforts they push inward). Eliminating it in the tree's order
-// creates no fill (thesis §10 of DESIGN.md):
+// creates no fill (docs/notes/linear_time.md):
 //
 //   inward, leaves first: every unknown of body n is affine in its joint
 //     accelerations T_n and its parent's unknowns X_n that it reads; its

@@ -1,4 +1,4 @@
-// The simulator command line (DESIGN §9). Parsing only: nothing here touches
+// The simulator command line (docs/cli.md). Parsing only: nothing here touches
 // the model except to read its defaults and names.
 #pragma once
 

@@ -1,4 +1,4 @@
-// CSV output (DESIGN §9): header `t,<outputs>`, one row per communication point.
+// CSV output (docs/cli.md): header `t,<outputs>`, one row per communication point.
 #pragma once
 
 #include <sys/types.h>

@@ -1,6 +1,6 @@
 // run_main: command line -> parameters -> the run (simulate.cpp), a
 // work-precision study or a sweep -> CSV, summary, stop message. The order
-// of events here is the behaviour DESIGN §9 promises.
+// of events here is the behaviour docs/cli.md promises.
 #include <fmt/format.h>
 
 #include <cmath>

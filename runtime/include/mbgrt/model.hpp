@@ -383,7 +383,7 @@ class Model {
   virtual bool constraints_enforced() const { return false; }
 };
 
-/// The simulator's entry point: parse the command line (see DESIGN §9), run,
+/// The simulator's entry point: parse the command line (docs/cli.md), run,
 /// write CSV and the summary. Returns the process exit status.
 int run_main(Model& model, int argc, char** argv);
 
