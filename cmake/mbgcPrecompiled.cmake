@@ -31,5 +31,12 @@ option(MBGC_UNITY_BUILD "Compile the compiler's and the runtime's libraries in u
 function(mbgc_build_in_batches target)
   if(MBGC_UNITY_BUILD)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+    # In a batch a source file is included, so GCC takes a class it defines
+    # for one of a header's and warns when it holds a type of the file's
+    # anonymous namespace (-Wsubobject-linkage): true of a header, not of a
+    # source compiled in a batch.
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(${target} PRIVATE -Wno-subobject-linkage)
+    endif()
   endif()
 endfunction()

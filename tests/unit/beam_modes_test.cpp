@@ -88,7 +88,9 @@ TEST(BeamModes, PinnedPinnedIntegralsMatchClosedForms) {
     EXPECT_NEAR(I.spin[a][a], k * k * L * L * L / 3 - L / 4, 1e-12 * k * k * L * L * L);  // k^2 int (L^2 - x^2) cos^2 kx
     EXPECT_NEAR(I.load[a][a], k * k * L * L / 2, 1e-12 * k * k * L * L);                   // 2 k^2 int (L - x) cos^2 kx
     for (int j = 0; j < 5; ++j)
-      if (j != i) EXPECT_NEAR(I.axial[a][static_cast<std::size_t>(j)], 0, 1e-12 * k * k * L);
+      if (j != i) {
+        EXPECT_NEAR(I.axial[a][static_cast<std::size_t>(j)], 0, 1e-12 * k * k * L);
+      }
   }
 }
 
@@ -204,7 +206,9 @@ TEST(BeamModes, InTisserandsFrameTheForeshorteningMovesNoMassAndSpinIsTakenAbout
       // a point's shortening between two sections is that of the plain modes (a_T - a_0 is constant)
       const double plain_between = mbgc::flex::axial_up_to(plain, L)[i][j] - mbgc::flex::axial_up_to(plain, L / 4)[i][j];
       EXPECT_NEAR(at_end[i][j] - at_quarter[i][j], plain_between, 1e-12 * scale) << i << j;
-      if (i == j) EXPECT_GT(std::abs(P.spin[i][j] - I.spin[i][j]), 1e-3 * std::abs(I.spin[i][j]));
+      if (i == j) {
+        EXPECT_GT(std::abs(P.spin[i][j] - I.spin[i][j]), 1e-3 * std::abs(I.spin[i][j]));
+      }
     }
 }
 

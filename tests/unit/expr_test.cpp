@@ -676,7 +676,9 @@ TEST(ExprHash, TableKeepsFindingNodesAsOthersComeAndGo) {
     for (std::size_t i = 0; i < made.size(); i += 2 + round) made[i].reset();
     for (int i = 0; i < 20000; ++i) {
       const Expr again = add(var(i % 97), k(i + round + 1));
-      if (made[static_cast<std::size_t>(i)]) EXPECT_EQ(again.get(), made[static_cast<std::size_t>(i)].get());
+      if (made[static_cast<std::size_t>(i)]) {
+        EXPECT_EQ(again.get(), made[static_cast<std::size_t>(i)].get());
+      }
       EXPECT_EQ(again->args[0]->id, i % 97);
     }
   }

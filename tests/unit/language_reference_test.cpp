@@ -66,7 +66,9 @@ void expect_documented(const Names& names, const char* what, bool may_be_empty =
     ++count;
     EXPECT_TRUE(doc.count(name)) << what << " `" << name << "` is not in docs/language.md (write it in backticks)";
   }
-  if (!may_be_empty) EXPECT_GT(count, 0u) << "no " << what << " to check: the list is empty";
+  if (!may_be_empty) {
+    EXPECT_GT(count, 0u) << "no " << what << " to check: the list is empty";
+  }
 }
 
 /// The quantity names the multibody layer defines: `quantity_[n + ".NAME"]`

@@ -47,6 +47,7 @@ std::string tree(const AstExpr& e) {
       return s;
     }
     case Kind::Name: return e.name;
+    case Kind::String: return "\"" + e.name + "\"";
     case Kind::Unary: return std::string("(") + e.op + tree(*e.args[0]) + ")";
     case Kind::Binary: return "(" + tree(*e.args[0]) + " " + e.op + " " + tree(*e.args[1]) + ")";
     case Kind::Call:

@@ -26,12 +26,6 @@ double output_value(const ir::ReducedSystem& r, const Env& env, const std::strin
   return NAN;
 }
 
-double param(const ir::ReducedSystem& r, const std::string& name) {
-  int id = param_id(r.graph, name);
-  EXPECT_GE(id, 0) << name;
-  return param_values(r.graph).at(id);
-}
-
 std::vector<std::string> assigned(const ir::ReducedSystem& r) {
   std::vector<std::string> out;
   for (const ir::Assignment& a : r.assignments) out.push_back(r.graph.vars[static_cast<std::size_t>(a.var)].name);

@@ -116,7 +116,9 @@ std::string error_of(const std::string& expr, const Scope& s) {
   std::string text = l.c->messages();
   EXPECT_FALSE(l.value.has_value()) << "`" << expr << "` lowered without error";
   EXPECT_EQ(l.c->diags.error_count(), 1) << text;
-  if (!l.c->diags.all().empty()) EXPECT_FALSE(l.c->diags.all()[0].hint.empty()) << "no hint:\n" << text;
+  if (!l.c->diags.all().empty()) {
+    EXPECT_FALSE(l.c->diags.all()[0].hint.empty()) << "no hint:\n" << text;
+  }
   return text;
 }
 
