@@ -42,14 +42,14 @@ else
   # (mbgrt-uninstalled.pc of this build tree; mbgrt.pc once installed)
   PKG_CONFIG_PATH="$(cd "$BUILD_DIR" && pwd)/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
   export PKG_CONFIG_PATH
-  step "Building the simulator: c++ -O2 $DEMO/dc_motor.cpp \$(pkg-config --cflags --libs mbgrt)"
+  step "Building the simulator: c++ -std=c++17 -O2 $DEMO/dc_motor.cpp \$(pkg-config --cflags --libs mbgrt)"
   flags=()
   if grep -q '^MBGC_SANITIZE:BOOL=ON' "$BUILD_DIR/CMakeCache.txt"; then
     flags=("-fsanitize=address,undefined")
   fi
   SIM=$DEMO/dc_motor
   # shellcheck disable=SC2046  # pkg-config's output is a list of words
-  c++ -O2 "${flags[@]}" "$DEMO/dc_motor.cpp" $(pkg-config --cflags --libs mbgrt) -o "$SIM"
+  c++ -std=c++17 -O2 "${flags[@]}" "$DEMO/dc_motor.cpp" $(pkg-config --cflags --libs mbgrt) -o "$SIM"
 fi
 
 # 3. Simulate: the model's own simulate { } settings, CSV out, summary on stderr.

@@ -853,19 +853,23 @@ class Substituter {
       return it == by_var_.end() ? e : it->second;
     }
     auto it = memo_.find(e.get());
-    if (it != memo_.end()) return it->second;
+    if (it != memo_.end()) return it->second.second;
     std::vector<Expr> args;
     args.reserve(e->args.size());
     for (const Expr& a : e->args) args.push_back(run(a));
     Expr r = rebuild(e, std::move(args));
-    memo_.emplace(e.get(), r);
+    memo_.emplace(e.get(), std::pair{e, r});
     return r;
   }
 
  private:
   const std::unordered_map<int, Expr>& by_var_;
   std::uint64_t mask_ = 0;
-  std::unordered_map<const Node*, Expr> memo_;
+  // node -> (the node, its result): the memo holds the node alive, so that
+  // its address is not given to another expression while the memo lasts (a
+  // Substitution lives across calls; a freed node's address reused by the
+  // next expression found the first one's result).
+  std::unordered_map<const Node*, std::pair<Expr, Expr>> memo_;
 };
 }  // namespace
 

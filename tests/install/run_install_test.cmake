@@ -251,7 +251,7 @@ if(NOT flags MATCHES "-I${prefix}/")
 endif()
 separate_arguments(flags UNIX_COMMAND "${flags}")
 run("c++ rc_by_hand.cpp $(pkg-config --cflags --libs mbgrt)"
-  COMMAND ${CXX_COMPILER} -O1 ${WORK_DIR}/rc_by_hand.cpp ${flags} -o ${WORK_DIR}/rc_by_hand)
+  COMMAND ${CXX_COMPILER} -std=c++17 -O1 ${WORK_DIR}/rc_by_hand.cpp ${flags} -o ${WORK_DIR}/rc_by_hand)
 run("rc_by_hand --t-end 1 --out rc_by_hand.csv"
   COMMAND ${WORK_DIR}/rc_by_hand --t-end 1 --out ${WORK_DIR}/rc_by_hand.csv)
 check_csv(${WORK_DIR}/rc_by_hand.csv)
