@@ -220,7 +220,8 @@ TEST(FlexibleDoublePendulumFE, ReducedBricksAndBuiltInBeamsAgreeInThePlane) {
   EXPECT_LT(r.csv.max_deviation("fe_energy"), 1e-6) << "J of 0.31 J; measured 2.5e-7";
   EXPECT_LT(r.csv.max_deviation("eb_energy"), 1e-6) << "J; measured 2.5e-7";
   // held in the plane, neither strip bends sideways (the reduced one is nudged
-  // by its modes' 1.2e-6 mixing of the two bending planes: README)
+  // by its modes' 1.2e-6 mixing of the two bending planes:
+  // examples/flexible_double_pendulum_fe/README.md)
   EXPECT_LT(r.csv.max_abs("fe_lateral"), 1e-6) << "m; measured 2.3e-7";
   EXPECT_LT(r.csv.max_abs("eb_lateral"), 1e-7) << "m; measured 1.9e-9";
 }

@@ -238,8 +238,9 @@ TEST(TwoTrackBump, TheEnergyBalanceHoldsOverTheBump) {
 TEST(TwoTrackFrame, TheFlexibleFramesDifferencesShrinkAsItStiffens) {
   // The ladder frame reduced by mbgc-reduce, steady circle at 4.2 m/s^2: the
   // steel frame twists, rolls more and moves load transfer to the front
-  // (README). Its differences from the 1000-times-stiffer frame come from its
-  // compliance, so a frame 10 times stiffer must show about a tenth of them.
+  // (examples/two_track/README.md). Its differences from the
+  // 1000-times-stiffer frame come from its compliance, so a frame 10 times
+  // stiffer must show about a tenth of them.
   SimRun flex = run(TWO_TRACK_FRAME_SIM, "", "two_track_frame");
   SimRun x10 = run(TWO_TRACK_FRAME_SIM, "--set frame_stiffness=10", "two_track_frame_x10");
   SimRun stiff = run(TWO_TRACK_FRAME_SIM, "--set frame_stiffness=1000", "two_track_frame_stiff");

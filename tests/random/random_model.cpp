@@ -169,8 +169,8 @@ class BondGraphWriter {
   //
   // Scalar linear graphs join anything: mbgc solves their algebraic loops and
   // derivative causality. Multibonds and nonlinear laws would need a matrix
-  // or a law inverted there, which mbgc does not do (README, "Known limits"),
-  // so those graphs are explicit by construction: each 1-junction has one I
+  // or a law inverted there, which mbgc does not do (docs/limits.md, "Bond
+  // graphs"), so those graphs are explicit by construction: each 1-junction has one I
   // that sets its flow, each 0-junction one C that sets its effort; any other
   // element takes its input from the junction (C and R on a 1-junction get
   // the flow, I and R on a 0-junction the effort) and the junctions are joined

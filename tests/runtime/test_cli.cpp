@@ -1,5 +1,6 @@
-// The command line contract (DESIGN §9): option names, exit status 2 for bad
-// input with a readable message, --set and --list-parameters.
+// The command line contract (docs/cli.md, "The simulators"): option names,
+// exit status 2 for bad input with a readable message, --set and
+// --list-parameters.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -1,5 +1,6 @@
-// CSV layout (DESIGN §9): `t,<outputs>` header, one row per communication
-// point from t_start to t_end, numbers that read back exactly.
+// CSV layout (docs/cli.md, "Output and the run summary"): `t,<outputs>`
+// header, one row per communication point from t_start to t_end, numbers that
+// read back exactly.
 #include <gtest/gtest.h>
 
 #include <sys/prctl.h>

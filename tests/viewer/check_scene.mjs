@@ -1,14 +1,14 @@
-// The viewer's browser test of what frames the picture: following a body and
-// the drawn surfaces. Runs a simulator with --animate (or takes a .glb), opens
+// The viewer's browser test of what frames the picture: following a body,
+// the drawn surfaces and the grid. Runs a simulator with --animate (or takes a .glb), opens
 // it in mbgc-view.html (headless Chromium, unlit colours: flat=1) and checks
-// the page's state (window.mbgcState: camera, bodies, surfaces, model world)
+// the page's state (window.mbgcState: camera, bodies, surfaces, grid, model world)
 // and the pictures' pixels.
 //
 //   node check_scene.mjs --viewer-dir BUILD/viewer --work-dir DIR [--chromium PATH]
 //        [--sim SIMULATOR | --glb FILE.glb] [--size 480x360]
 //        [--follow BODY=R,G,B --times T0,T1 [--min-share S] [--follow-param VALUE]]
 //        [--surface NAME@x,y,z=R,G,B ... --at T --eye x,y,z --target x,y,z [--fov 40] [--shift-surfaces dx,dy,dz]]
-//        [--tolerance 10] [-- SIMULATOR ARGUMENTS]
+//        [--grid D [--at T]] [--tolerance 10] [-- SIMULATOR ARGUMENTS]
 //
 // --follow: the body (its colour as the model's BodyVisual::colour, linear RGB):
 //   1. the default view at T0 (no camera given) shows the body at least S of
@@ -30,6 +30,12 @@
 //   the point x,y,z (model world, on or inside the surface) projects; the
 //   projection is a pinhole camera computed here, independently of three.js.
 //   --shift-surfaces moves every checked point: a mistake the test must catch.
+// --grid D: the default view at time T (--at, default 0; no camera given,
+//   the grid drawn: flat=0) is of the bodies' size D (metres): the grid lies
+//   below every body's origin and at most D below the lowest, and the camera
+//   is at most 10 D from what it looks at. (The mistake: a box that holds a
+//   flexible body's morph targets at full weight, metres for a beam of
+//   centimetres, puts the grid out of sight below it.)
 // Exit status: 0 every check passed, 1 a check failed (lines "MISMATCH"),
 // 2 the test could not run.
 import { spawnSync } from 'node:child_process';
@@ -54,7 +60,7 @@ try {
       'follow-param': { type: 'string' },
       surface: { type: 'string', multiple: true }, at: { type: 'string' }, eye: { type: 'string' }, target: { type: 'string' },
       fov: { type: 'string', default: '40' }, 'shift-surfaces': { type: 'string', default: '0,0,0' },
-      tolerance: { type: 'string', default: '10' },
+      tolerance: { type: 'string', default: '10' }, grid: { type: 'string' },
     },
   });
 } catch (error) {
@@ -62,7 +68,7 @@ try {
 }
 const o = args.values;
 for (const required of ['viewer-dir', 'work-dir']) if (!o[required]) stop(`--${required} is required`);
-if (!o.follow && !o.surface) stop('nothing to check: give --follow or --surface');
+if (!o.follow && !o.surface && !o.grid) stop('nothing to check: give --follow, --surface or --grid');
 
 function numbers(text, count, name) {
   const v = String(text).split(',').map(Number);
@@ -205,6 +211,18 @@ try {
       const a = share(picture, here, colour);
       report(a >= 0.5, `  at ${fmt(point)}, pixel (${here}): ${rgbAt(picture, here)}, ${Math.round(100 * a)} % its rgb(${colour}) (needs >= 50 %)`);
     }
+  }
+
+  if (o.grid) {
+    const size = numbers(o.grid, 1, 'grid')[0], t = numbers(o.at ?? '0', 1, 'at')[0];
+    const picture = await shot('grid', { t: String(t), flat: '0' });
+    const { grid, bodies, eye, target } = picture.state;
+    if (grid === null) stop('the viewer drew no grid');
+    const lowest = Math.min(...Object.values(bodies).map((p) => p[2]));
+    report(grid <= lowest && grid >= lowest - size,
+      `default view at t = ${t} s: the grid at z = ${grid.toFixed(4)} m, the bodies' lowest origin at ${lowest.toFixed(4)} m (needs the grid below it by at most ${size} m)`);
+    const distance = norm(sub(eye, target));
+    report(distance <= 10 * size, `  the camera ${distance.toFixed(4)} m from its target (needs <= ${10 * size} m)`);
   }
 } catch (error) {
   stop(error.message);

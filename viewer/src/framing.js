@@ -5,12 +5,18 @@
 import * as THREE from 'three';
 import { gltfFromModel } from './params.js';
 
-/** The box (glTF axes) the objects cover as they are posed now. */
-export function boxOf(objects) {
+/**
+ * The box (glTF axes) the objects cover as they are posed now: precise, from
+ * the vertices as deformed by the current morph weights (three.js's plain box
+ * of a morphed mesh holds every morph target at full weight: metres for a
+ * flexible beam of centimetres); `precise = false` for what has no morph
+ * targets (surfaces).
+ */
+export function boxOf(objects, precise = true) {
   const box = new THREE.Box3();
   for (const o of objects) {
     o.updateWorldMatrix(true, true);
-    box.union(new THREE.Box3().setFromObject(o, true));  // precise: the vertices as deformed by the morph weights
+    box.union(new THREE.Box3().setFromObject(o, precise));
   }
   return box;
 }

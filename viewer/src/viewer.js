@@ -18,7 +18,7 @@
 // For tests and stills (viewer/headless.mjs): URL parameters (params.js) fix
 // the time and the camera, and once the frame at that time is on screen the
 // page sets window.mbgcReady = true (or window.mbgcError to a message);
-// window.mbgcState() tells the camera, the bodies and the surfaces.
+// window.mbgcState() tells the camera, the bodies, the surfaces and the grid.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
@@ -143,10 +143,11 @@ function setFollow(name, reframe) {
   requestRender();
 }
 
-/** The camera, bodies and surfaces now, in the model's world (z up): for tests. */
+/** The camera, bodies, surfaces and grid now, in the model's world (z up): for tests. */
 window.mbgcState = () => {
   const modelFromGltf = (v) => [v.x, -v.z, v.y];
   const where = (o) => modelFromGltf(o.getWorldPosition(new THREE.Vector3()));
+  const grid = extras?.children.find((o) => o.type === 'GridHelper');
   return {
     time,
     follow: followSelect.value,
@@ -154,6 +155,7 @@ window.mbgcState = () => {
     target: modelFromGltf(controls.target),
     bodies: Object.fromEntries(bodies.map((o) => [o.name, where(o)])),
     surfaces: Object.fromEntries(surfaces.map((o) => [o.name, o.userData.surface])),
+    grid: grid ? where(grid)[2] : null,  // the grid's height (none with flat=1)
   };
 };
 
@@ -219,7 +221,7 @@ function show(gltf, name, fromUrl) {
   const paused = fromUrl && params.t !== null;
   showAt(paused ? params.t : tStart);
   const now = boxOf(bodies);
-  const everything = box.clone().union(new THREE.Box3().setFromObject(model));  // and the surfaces
+  const everything = box.clone().union(boxOf(surfaces, false));  // and the surfaces (not the model's plain box: its morph targets)
   scale = { centre: everything.getCenter(new THREE.Vector3()), radius: Math.max(everything.getSize(new THREE.Vector3()).length() / 2, 1e-3) };
   extras = params.flat ? new THREE.Group() : helpers(box, everything.min.y);
   scene.add(extras);
