@@ -3,7 +3,10 @@
 # SUNDIALS, fmt and the C/C++ runtime, nothing else (no MPI, no tinygltf, no
 # SuiteSparse).
 #
-#   cmake -DSIM=<simulator> -P lean_simulator.cmake
+#   cmake -DSIM=<simulator> [-DSANITIZED=ON] -P lean_simulator.cmake
+#
+# SANITIZED: the build adds the sanitizers' runtimes (MBGC_SANITIZE), which
+# are allowed too.
 cmake_minimum_required(VERSION 3.20)
 find_program(LDD ldd REQUIRED)
 execute_process(COMMAND ${LDD} ${SIM} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -12,6 +15,9 @@ if(NOT status EQUAL 0)
 endif()
 string(REPLACE "\n" ";" lines "${out}")
 set(allowed "^(linux-vdso|linux-gate|libsundials_|libfmt|libstdc\\+\\+|libm\\.|libgcc_s|libc\\.|ld-linux|/lib.*/ld-linux)")
+if(SANITIZED)
+  set(allowed "${allowed}|^(libasan|libubsan)")
+endif()
 set(unexpected)
 set(count 0)
 foreach(line IN LISTS lines)
