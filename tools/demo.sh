@@ -16,7 +16,7 @@ BUILD_DIR=${BUILD_DIR:-build-demo}
 
 mbgc_install_packages
 # Only mbgc, its runtime and the one example, at -O1: the quick start takes
-# 72 s on 2 cores from a clean clone (README, "The two commands").
+# about 70 s on 2 cores from a clean clone (README, "The two commands").
 mbgc_configure_quick_start "$@"
 mbgc_build mbgc mbgrt
 
