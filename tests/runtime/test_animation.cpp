@@ -19,22 +19,28 @@
 namespace mbgrt::test {
 namespace {
 
-/// Body `wheel` runs round the unit circle in the x-y plane and turns about z
-/// by the angle it has run, s = t; body `strip` stays at [0, 0, 1], turned
-/// 90 degrees about x, its two modes at q = (sin t, t). One state: the clock.
-class Carousel : public TestModel {
+/// One state, the clock s = t (also the one output), run for 1 s with a row
+/// every 0.25 s: the models below only pose their bodies by it.
+class Clock : public TestModel {
  public:
-  Carousel() {
+  Clock() {
     settings.t_end_s = 1.0;
     settings.interval_s = 0.25;
   }
-  const char* name() const override { return "carousel"; }
   std::size_t size() const override { return 1; }
   std::string variable_name(std::size_t) const override { return "clock"; }
   std::vector<std::string> output_names() const override { return {"s"}; }
   void initial(double, double* y, double*) override { y[0] = 0; }
   void derivative(double, const double*, double* dy) override { dy[0] = 1; }
   void outputs(double, const double* y, const double*, double* out) override { out[0] = y[0]; }
+};
+
+/// Body `wheel` runs round the unit circle in the x-y plane and turns about z
+/// by the angle it has run, s = t; body `strip` stays at [0, 0, 1], turned
+/// 90 degrees about x, its two modes at q = (sin t, t). One state: the clock.
+class Carousel : public Clock {
+ public:
+  const char* name() const override { return "carousel"; }
   std::size_t body_count() const override { return 2; }
   BodyVisual body_visual(std::size_t i) const override {
     BodyVisual v;
@@ -129,19 +135,9 @@ TEST(Animation, KeyframesAreThePosesAtTheRows) {
 /// `post` stands at x = 100, touching nothing. Surfaces: `floor`, a plane on
 /// the ground under the cart; `pad`, a plane on the cart (its pose); `road`,
 /// a profile with a 0.5 m step between x = 2 and 3.
-class Sled : public TestModel {
+class Sled : public Clock {
  public:
-  Sled() {
-    settings.t_end_s = 1.0;
-    settings.interval_s = 0.25;
-  }
   const char* name() const override { return "sled"; }
-  std::size_t size() const override { return 1; }
-  std::string variable_name(std::size_t) const override { return "clock"; }
-  std::vector<std::string> output_names() const override { return {"s"}; }
-  void initial(double, double* y, double*) override { y[0] = 0; }
-  void derivative(double, const double*, double* dy) override { dy[0] = 1; }
-  void outputs(double, const double* y, const double*, double* out) override { out[0] = y[0]; }
   std::size_t body_count() const override { return 5; }
   BodyVisual body_visual(std::size_t i) const override {
     BodyVisual v;
