@@ -117,17 +117,7 @@ class Builder {
       attach(index, rb.from, /*outgoing=*/true);
       attach(index, rb.to, /*outgoing=*/false);
     }
-    std::map<std::pair<int, int>, int> seen_pair;
-    for (const Bond& b : g_.bonds) {
-      auto key = std::minmax(b.from, b.to);
-      auto [it, fresh] = seen_pair.emplace(key, b.number);
-      if (!fresh) {
-        auto& d = diags_.warning(b.loc, fmt::format("a second bond between `{}` and `{}`", g_.nodes[static_cast<std::size_t>(b.from)].name,
-                                                    g_.nodes[static_cast<std::size_t>(b.to)].name),
-                                 "a junction's bond list already connects them; list each bond once");
-        d.notes.push_back({g_.bonds[static_cast<std::size_t>(it->second - 1)].loc, fmt::format("bond {} is here", it->second)});
-      }
-    }
+    report_bonds_written_twice();
     for (std::size_t i = 0; i < g_.nodes.size(); ++i) {
       const GraphNode& n = g_.nodes[i];
       if (is_junction(n.kind)) {
@@ -144,6 +134,34 @@ class Builder {
         diags_.error(n.loc, fmt::format("{} `{}` is not connected to anything", node_kind_name(n.kind), n.name),
                      "bond it to a junction, e.g. in `1 j : ... -> " + n.name + "`");
       }
+    }
+  }
+
+  // Two bonds between the same two junctions carry the same effort and flow:
+  // the power between them counts twice. A junction-to-junction bond written
+  // in both junctions' lists gives that, so it is an error naming both places.
+  // (An element's port takes one bond; attach() reports a second one.)
+  void report_bonds_written_twice() {
+    std::map<std::pair<int, int>, std::size_t> first;  // {junction, junction} -> bond index
+    for (std::size_t i = 0; i < m_.bonds.size(); ++i) {
+      const ResolvedBond& rb = m_.bonds[i];
+      const GraphNode& from = g_.nodes[static_cast<std::size_t>(rb.from.node)];
+      const GraphNode& to = g_.nodes[static_cast<std::size_t>(rb.to.node)];
+      if (!is_junction(from.kind) || !is_junction(to.kind)) continue;
+      auto [it, fresh] = first.emplace(std::minmax(rb.from.node, rb.to.node), i);
+      if (fresh) continue;
+      const ResolvedBond& earlier = m_.bonds[it->second];
+      bool one_list = earlier.loc.file == rb.loc.file && earlier.loc.line == rb.loc.line;
+      Diagnostic& d =
+          one_list ? diags_.error(rb.loc, fmt::format("a second bond between `{}` and `{}`", from.name, to.name),
+                                  "two bonds between the same junctions carry the same effort and flow, so their power "
+                                  "counts twice; list the bond once")
+                   : diags_.error(rb.loc,
+                                  fmt::format("the bond between `{}` and `{}` is listed at both of its junctions", from.name, to.name),
+                                  fmt::format("a bond between two junctions is written once, in either junction's list: remove "
+                                              "`{}` from the list of `{}`, or `{}` from the list of `{}`",
+                                              to.name, from.name, from.name, to.name));
+      d.notes.push_back({earlier.loc, one_list ? "the first bond is here" : "it is listed here too"});
     }
   }
 
