@@ -152,14 +152,19 @@ thread_local std::FILE* error_stream = nullptr;  // ErrorRedirect's target, if a
 ErrorRedirect::ErrorRedirect(std::FILE* to) : previous_(error_stream) { error_stream = to; }
 ErrorRedirect::~ErrorRedirect() { error_stream = previous_; }
 
-void print_error(const std::string& message) {
+namespace {
+void print_diagnostic(const char* severity, const std::string& message) {
   if (error_stream) {
-    fmt::print(error_stream, "mbgrt: error: {}\n", message);
+    fmt::print(error_stream, "mbgrt: {}: {}\n", severity, message);
     return;
   }
   std::fflush(stdout);
-  fmt::print(stderr, "mbgrt: error: {}\n", message);
+  fmt::print(stderr, "mbgrt: {}: {}\n", severity, message);
 }
+}  // namespace
+
+void print_error(const std::string& message) { print_diagnostic("error", message); }
+void print_warning(const std::string& message) { print_diagnostic("warning", message); }
 
 ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   Options o;
@@ -234,6 +239,9 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_flag("--fd-jacobian", o.fd_jacobian,
                "Implicit solvers: use finite-difference Jacobians even where the model generates one "
                "(to measure what the generated Jacobian saves)");
+  app.add_flag("--strict", o.strict,
+               "Stop before integrating where the model's start is suspect (a unilateral contact starting inside "
+               "its surface): the warning becomes an error with exit status 1");
   app.add_flag("--no-energy-witness", o.no_energy_witness,
                "Do not integrate the model's energy balance beside the state (the summary's `energy` line, an "
                "error estimate that needs no reference run: it costs one evaluation of the model's power per "

@@ -39,6 +39,7 @@ struct Options {
   std::optional<double> linearize_at;
   bool work_precision = false;  ///< --work-precision: sweep solvers and tolerances, CSV of cost and error
   bool fd_jacobian = false;     ///< --fd-jacobian: finite differences even where the model has a Jacobian
+  bool strict = false;  ///< --strict: a suspect start (penetration.hpp) is an error
   bool no_energy_witness = false;  ///< --no-energy-witness: do not integrate the model's powers (energy_witness.hpp)
   std::optional<double> realtime;  ///< --realtime [FACTOR]: pace the rows to FACTOR x the wall clock
   std::vector<SweepAxis> sweep;    ///< --sweep, in command-line order (the first varies slowest)
@@ -60,6 +61,8 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv);
 /// Prints "mbgrt: error: <message>" on stderr, or on the stream an
 /// ErrorRedirect of this thread names.
 void print_error(const std::string& message);
+/// "mbgrt: warning: ..." where print_error writes.
+void print_warning(const std::string& message);
 
 /// While alive, print_error on this thread writes to `to` (a sweep case's report).
 class ErrorRedirect {

@@ -154,6 +154,14 @@ double Contacts::speed(double t, const double* y, std::size_t c) {
   return v_[c];
 }
 
+double Contacts::gap(double t, const double* y, std::size_t c) {
+  const bool was_closed = closed(c);
+  if (was_closed) m_.set_event_mode(info_[c].event, false);
+  const double g = event_function(t, y, c);
+  if (was_closed) m_.set_event_mode(info_[c].event, true);
+  return g;
+}
+
 double Contacts::event_function(double t, const double* y, std::size_t c) {
   m_.event_functions(t, y, nullptr, g_.data());
   return g_[info_[c].event];
@@ -170,9 +178,10 @@ void Contacts::start(double t, const double* y, const double* yp) {
   if (n == 0) return;
   m_.event_functions(t, y, yp, g_.data());
   m_.contact_speeds(t, y, yp, v_.data());
-  const std::vector<double> gap = g_;
+  start_gap_.resize(n);
+  for (std::size_t c = 0; c < n; ++c) start_gap_[c] = g_[info_[c].event];
   for (std::size_t c = 0; c < n; ++c) {
-    const double g = gap[info_[c].event];
+    const double g = start_gap_[c];
     if (info_[c].compliant) {
       if (g < 0.0) {
         m_.set_contact_damping(c, hunt_crossley_chi(info_[c].restitution) / std::max(-v_[c], kMinApproachSpeed));
@@ -209,6 +218,7 @@ ContactSwitch Contacts::fire(double t, std::size_t c, bool rising, double* y) {
   }
   if (!is_closed && !rising) return impact(t, c, y);
   if (is_closed && !rising) {
+    if (gap(t, y, c) < -kDeepestRelease) return {};  // still being pushed out: not let go inside the surface
     normal_response(t, c, y);
     open_separated(t, c, y);
     return {ContactSwitch::Release, 0.0};
@@ -263,6 +273,21 @@ std::string Contacts::describe(const ContactSwitch& s) {
     case ContactSwitch::None: break;
   }
   return {};
+}
+
+const char* Contacts::state(const ContactSwitch& s) {
+  switch (s.kind) {
+    case ContactSwitch::Bounce: return "impact";
+    case ContactSwitch::Rest: return "rest";
+    case ContactSwitch::Stop: return "stop";
+    case ContactSwitch::Close: return "close";
+    case ContactSwitch::Release: return "release";
+    case ContactSwitch::Open: return "open";
+    case ContactSwitch::Stick: return "stick";
+    case ContactSwitch::Slide: return "slide";
+    case ContactSwitch::None: break;
+  }
+  return "";
 }
 
 }  // namespace mbgrt::detail

@@ -10,7 +10,8 @@
 //   of normal speed (positions do not jump). An impact whose rebound would fly
 //   for less than kRestFlight (scaled by max(1, |t|)) ends plastically and
 //   closes the contact: it comes to rest (Zeno's accumulation avoided).
-// * unilateral, closed, normal force falling through 0: released (opens).
+// * unilateral, closed, normal force falling through 0: released (opens),
+//   unless it is still deeper than kDeepestRelease (a start inside).
 // * compliant, gap falling through 0: closes, Hunt-Crossley's damping set from
 //   the approach speed; gap rising through 0: opens.
 // * friction of a closed unilateral contact (its second event): stuck, when
@@ -57,8 +58,19 @@ class Contacts {
   /// Contact c's friction event crossed zero: sticks or slides.
   ContactSwitch fire_friction(double t, std::size_t c, bool rising, double* y);
   bool closed(std::size_t c) const { return closed_[c] != 0; }
+  bool compliant(std::size_t c) const { return info_[c].compliant; }
+  /// Contact c's event (Model::event_name).
+  std::size_t event(std::size_t c) const { return info_[c].event; }
+  /// Contact c's gap where the run started (start(); m).
+  double start_gap(std::size_t c) const { return start_gap_[c]; }
+  /// Contact c's gap at (t, y), closed or not (its mode is opened for the
+  /// evaluation and put back).
+  double gap(double t, const double* y, std::size_t c);
   /// "impact at 4.43 m/s: bounces", "closes at 1.2 m/s", ... (no commas: a CSV cell)
   static std::string describe(const ContactSwitch& s);
+  /// What happened, in one word (the event log's state): "impact", "rest",
+  /// "stop", "close", "release", "open", "stick", "slide".
+  static const char* state(const ContactSwitch& s);
 
   /// A rebound shorter than this (times max(1, |t|)) ends in rest.
   static constexpr double kRestFlight = 1e-4;
@@ -69,6 +81,13 @@ class Contacts {
   /// adds m g kLift to the energy at each bounce (an elastic ball bouncing
   /// a thousand times gained 1e-8 J with 1e-12 m).
   static constexpr double kLift = 1e-15;
+  /// Unilateral, closed: its normal force falling through 0 does not release
+  /// it while its gap is below -kDeepestRelease (m). Only a contact that
+  /// started inside its surface is that deep: its row's stabilisation then
+  /// pulls as well as pushes until the bodies are out (critically damped, so
+  /// they arrive at the surface at rest relative to each other), instead of
+  /// letting go inside it and moving the positions out in one jump.
+  static constexpr double kDeepestRelease = 1e-6;
   /// A contact that closes slower than this along the surface (m/s) sticks.
   static constexpr double kStickSpeed = 1e-8;
   /// Compliant: the approach speed Hunt-Crossley's damping divides by is at least this (m/s).
@@ -105,7 +124,7 @@ class Contacts {
   std::vector<char> closed_;
   std::vector<char> stuck_;
   std::vector<char> friction_event_;  // per event: a contact's friction
-  std::vector<double> v_, g_, d0_, d1_, y1_, col_, tangents_;
+  std::vector<double> v_, g_, d0_, d1_, y1_, col_, tangents_, start_gap_;
 };
 
 }  // namespace mbgrt::detail

@@ -61,7 +61,7 @@ bool Events::switch_and_jump(double t, std::size_t k, bool on, double* y) {
     if (s.kind == ContactSwitch::None) return false;
     record(t, k, friction ? s.kind == ContactSwitch::Stick : contacts_.closed(i),
            s.kind == ContactSwitch::Bounce || s.kind == ContactSwitch::Rest || s.kind == ContactSwitch::Stop,
-           Contacts::describe(s));
+           Contacts::describe(s), Contacts::state(s));
     return true;
   }
   if (!model_.set_event_mode(k, on)) return false;
@@ -69,7 +69,7 @@ bool Events::switch_and_jump(double t, std::size_t k, bool on, double* y) {
   return true;
 }
 
-void Events::record(double t, std::size_t k, bool on, bool jump, std::string note) {
+void Events::record(double t, std::size_t k, bool on, bool jump, std::string note, const char* what) {
   // One instant: equal times, up to the rounding of a located root.
   if (!log_.empty() && std::abs(t - instant_) <= 1e-12 * std::max(1.0, std::abs(t))) {
     ++at_instant_;
@@ -77,7 +77,7 @@ void Events::record(double t, std::size_t k, bool on, bool jump, std::string not
     instant_ = t;
     at_instant_ = 1;
   }
-  log_.push_back({t, k, on, jump, std::move(note)});
+  log_.push_back({t, k, on, jump, std::move(note), what});
   const double dt = t - last_t_[k];
   shrinking_[k] = dt < last_dt_[k] ? shrinking_[k] + 1 : 0;  // (false while either is NaN)
   last_t_[k] = t;
@@ -96,6 +96,8 @@ void Events::note_roots(double t) {
 }
 
 std::string Events::describe(const EventRecord& e) const {
+  if (e.what)  // a contact: its note says what happened (an impact is the jump)
+    return fmt::format("t = {:.9g} s: {}: {}", e.t, model_.event_name(e.index), e.note);
   return fmt::format("t = {:.9g} s: {} {}{}{}", e.t, model_.event_name(e.index), e.on ? "on" : "off", e.jump ? ", jump" : "",
                      e.note.empty() ? "" : ": " + e.note);
 }

@@ -19,6 +19,9 @@ struct EventRecord {
   bool on = false;        ///< its step switched on (x rose through 0) or off
   bool jump = false;      ///< the unknowns jumped there (Model::event_jump, a contact's impact)
   std::string note;       ///< a contact's: what happened ("impact at 4.43 m/s: bounces")
+  const char* what = nullptr;  ///< a contact's: what happened in a word (Contacts::state); else null
+  /// The event log's state: a contact's word, else "on" or "off".
+  const char* state() const { return what ? what : on ? "on" : "off"; }
 };
 
 class Events {
@@ -39,6 +42,7 @@ class Events {
   /// Contacts::fire says (an impact changes y).
   bool fire(double t, std::size_t k, bool on, double* y);
   const Contacts& contacts() const { return contacts_; }
+  Contacts& contacts() { return contacts_; }
   /// More than kMaxAtOneInstant switches (or root reports) at one time: the
   /// modes chatter (a relation that turns itself off when on), and the run
   /// must stop.
@@ -71,7 +75,7 @@ class Events {
 
  private:
   Model& model_;
-  void record(double t, std::size_t k, bool on, bool jump, std::string note);
+  void record(double t, std::size_t k, bool on, bool jump, std::string note, const char* what = nullptr);
   bool switch_and_jump(double t, std::size_t k, bool on, double* y);
   double jumped_energy_ = 0.0;
   bool count_jumped_energy_ = false;

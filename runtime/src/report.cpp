@@ -86,6 +86,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   if (!run.energy.empty()) fmt::print(err, "  energy       {}\n", run.energy);
   if (!run.energy_note.empty()) fmt::print(err, "  energy       {}{}\n", run.energy.empty() ? "no balance: " : "leaves out: ", run.energy_note);
   if (!run.energy_warning.empty()) fmt::print(err, "  warning      {}\n", run.energy_warning);
+  for (const std::string& line : run.start_warnings) fmt::print(err, "  warning      {}\n", line);
 
   std::string evals = fmt::format("{} {}", st.rhs_evals, residual ? "residual" : "RHS");
   if (st.fd_jac_evals >= 0)

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "constraints.hpp"
 #include "guard.hpp"
@@ -23,6 +24,7 @@ struct RunRecord {
   std::string energy;          ///< the energy witness's line (EnergyWitness::summary), if the model has one
   std::string energy_warning;  ///< ... and its warning (EnergyWitness::warning)
   std::string energy_note;     ///< what the balance leaves out, or why there is none (Model::energy_note)
+  std::vector<std::string> start_warnings;  ///< what a suspect start did (StartPenetrations::summary)
   // Constrained models only (null otherwise):
   const AssemblyReport* assembly = nullptr;
   const RedundancyReport* redundancy = nullptr;

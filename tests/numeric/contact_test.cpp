@@ -105,6 +105,62 @@ TEST(BouncingBall, ABallAtRestOnTheFloorStaysThereWithoutAnEvent) {
   for (const auto& row : r.csv.rows) EXPECT_NEAR(row[r.csv.col("F")], kM * kG, 1e-9) << "t = " << row[0];
 }
 
+/// A ball started 0.3 m inside the floor: the contact starts closed and its
+/// row's stabilisation pushes the ball out, holding it until it is out
+/// (critically damped: it arrives at the floor at rest, not flung off). The
+/// run says so before it starts (the depth) and, in its summary, how much
+/// that added by the time the ball was out: checked against the ball's own
+/// energy (E, kinetic plus potential; nothing else acts), which gains exactly
+/// the contact's work, m g 0.3 as it arrives at rest.
+TEST(BouncingBall, AStartInsideTheFloorIsWarnedWithTheEnergyPushingItOutAdds) {
+  const std::string log_path = work_file("ball_inside", "_events.csv");
+  SimRun r = run(BALL_SIM, "--set h0=-0.3 --t-end 1 --interval 0.001 --event-log \"" + log_path + "\"", "ball_inside");
+  ASSERT_EQ(r.status, 0) << r.log;
+  EXPECT_TRUE(contains(r.log, "mbgrt: warning: contact hit (")) << r.log;
+  EXPECT_TRUE(contains(r.log, "starts 0.3 m inside its surface (its gap is -0.3 m")) << r.log;
+  const std::string said = "pushing it out added ";
+  const std::size_t at = r.log.find(said);
+  ASSERT_NE(at, std::string::npos) << r.log;
+  const double added = std::stod(r.log.substr(at + said.size()));
+  const std::size_t by = r.log.find("J by t = ", at);
+  ASSERT_NE(by, std::string::npos) << r.log;
+  const double t_out = std::stod(r.log.substr(by + 9));
+  double e0 = NAN, e_out = NAN;
+  for (const auto& row : r.csv.rows) {
+    if (row[0] == 0.0) e0 = row[r.csv.col("E")];
+    if (std::abs(row[0] - t_out) < 1e-9) e_out = row[r.csv.col("E")];
+  }
+  ASSERT_TRUE(std::isfinite(e0) && std::isfinite(e_out)) << r.log;
+  EXPECT_NEAR(added, e_out - e0, 0.01) << "the summary rounds to 3 digits";
+  EXPECT_NEAR(added, kM * kG * 0.3, 0.01);
+  // never let go inside the floor, never flung off it: no switch at all
+  EXPECT_TRUE(switches(log_path).empty()) << slurp(log_path);
+  EXPECT_GT(r.csv.rows.back()[r.csv.col("gap")], -1e-6);
+  EXPECT_LT(r.csv.max_abs("vz"), 2.3);  // the row's push at 20 rad/s: 2.2 m/s at most
+  // --strict: an error, and nothing integrated
+  SimRun strict = run(BALL_SIM, "--set h0=-0.3 --strict", "ball_inside_strict");
+  EXPECT_EQ(strict.status, 1) << strict.log;
+  EXPECT_TRUE(contains(strict.log, "mbgrt: error: contact hit (")) << strict.log;
+  EXPECT_TRUE(contains(strict.log, "(--strict)")) << strict.log;
+  EXPECT_TRUE(strict.csv.rows.empty());
+  // within the tolerance: nothing said
+  SimRun touching = run(BALL_SIM, "--set h0=-1e-13 --t-end 0.1", "ball_touching");
+  EXPECT_EQ(touching.status, 0) << touching.log;
+  EXPECT_FALSE(contains(touching.log, "inside its surface")) << touching.log;
+}
+
+/// The event log's state says what a contact's switch did.
+TEST(BouncingBall, TheEventLogSaysImpactAndRest) {
+  const std::string log_path = work_file("ball_states", "_events.csv");
+  SimRun r = run(BALL_SIM, "--interval 0.01 --event-log \"" + log_path + "\"", "ball_states");
+  ASSERT_EQ(r.status, 0) << r.log;
+  const std::string events = slurp(log_path);
+  EXPECT_TRUE(contains(events, ",impact,1,\"impact at")) << events;
+  EXPECT_TRUE(contains(events, ",rest,1,\"impact at")) << events;
+  EXPECT_FALSE(contains(events, ",off,")) << events;
+  EXPECT_FALSE(contains(r.log, ") off")) << r.log;
+}
+
 /// The compliant ball: its first contact closes where the unilateral one
 /// would hit (the gap is 0 there); after it, the error against the closed
 /// form shrinks as the stiffness grows, as fast as the contact's duration:
