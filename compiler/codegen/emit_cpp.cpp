@@ -637,6 +637,14 @@ class Emitter {
     c.public_methods.push_back({enforced ? "lagrange: the DAE enforces the constraints; the runtime reports their drift."
                                          : "penalty: the constraints are only pulled back; the runtime reports the violation.",
                                 "bool constraints_enforced() const override", {CppStmt::line(enforced ? "return true;" : "return false;")}});
+    if (std::any_of(s_.constraints.begin(), s_.constraints.end(), [](const ConstraintRow& r) { return r.cut; })) {
+      std::vector<std::string> held;
+      for (const ConstraintRow& r : s_.constraints) held.push_back(r.cut || r.multiplier >= 0 ? "true" : "false");
+      c.public_methods.push_back({"cut joints: their rows are held (Baumgarte), a penalty's only pulled back.",
+                                  "bool constraint_held(std::size_t row) const override",
+                                  {CppStmt::line(fmt::format("static const bool kHeld[] = {{{}}};", fmt::join(held, ", "))),
+                                   CppStmt::line(fmt::format("return row < {} && kHeld[row];", n))}});
+    }
     CppFunction names{"", "std::string constraint_name(std::size_t i) const override", {}};
     std::vector<std::string> list;
     for (const ConstraintRow& r : s_.constraints) list.push_back(cpp_string(r.name + " g"));

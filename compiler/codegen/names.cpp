@@ -35,7 +35,7 @@ const std::set<std::string> kReserved = {
     "name", "source_file", "make_new", "size", "variable_name", "output_names", "parameters", "is_dae",
     "differential_ids", "default_settings", "set_parameter", "initial", "derivative", "residual",
     "outputs", "terminal", "state_count", "position_constraint_count", "velocity_constraint_count",
-    "constraints_enforced", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason",
+    "constraints_enforced", "constraint_held", "kHeld", "constraint_name", "constraints", "kConstraintNames", "jacobian", "has_jacobian", "state_limit", "state_limit_reason",
     "residual_sparsity", "column_starts", "rows", "kStarts", "kRows", "rank_loss", "rank_loss_",
     "multiplier_index", "stabiliser_index", "kIndex", "row", "unknown_role", "kRoles", "R",
     "constraint_jacobian", "constraint_jacobian_pattern", "row_starts", "columns", "kColumns", "values",

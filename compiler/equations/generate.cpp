@@ -74,7 +74,8 @@ class Generator {
     }
     for (int k = 0; k < nd.dim; ++k) {
       std::string row = nd.dim == 1 ? nd.name : fmt::format("{}[{}]", nd.name, k + 1);
-      s_.constraints.push_back({row, nd.loc, nd.constraint_g.items[static_cast<std::size_t>(k)], f_id(b, k), lagrange ? e_id(b, k) : -1, nullptr, -1});
+      s_.constraints.push_back({row, nd.loc, nd.constraint_g.items[static_cast<std::size_t>(k)], f_id(b, k), lagrange ? e_id(b, k) : -1, nullptr, -1,
+                                nd.law == LawForm::Stabilised});
       if (nd.law == LawForm::Stabilised) {
         // A cut joint on a tree in joint coordinates: the flow (g') follows
         // from the tree's rates; the multiplier keeps g'' + 2 w g' + w^2 g = 0,

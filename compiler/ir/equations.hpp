@@ -33,6 +33,7 @@ struct ConstraintRow {
   int multiplier = -1;  // lagrange: the CN's effort variable; -1 for penalty
   Expr gdot;            // set by reduce: the flow after alias elimination
   int stabiliser = -1;  // set by reduce (lagrange, DAE): the GGL multiplier mu of the row
+  bool cut = false;     // a cut joint's row (joint coordinates): held by Baumgarte's g'' + 2 w g' + w^2 g = 0
 };
 
 /// A contact: a CN whose row g >= 0 acts only while closed (LawForm::Unilateral,

@@ -705,4 +705,6 @@ std::string describe(const ConstraintMonitor& m) {
                      parts.empty() ? "no output points" : parts);
 }
 
+double held_row_bound(const Settings& s) { return std::min(kHeldFactor * (s.rtol + s.atol), kHeldCeiling); }
+
 }  // namespace mbgrt::detail

@@ -169,6 +169,19 @@ class ConstraintMonitor {
   long points_ = 0;
 };
 
+/// How far a row that must hold (a lagrange or cut joint's; Model::
+/// constraint_held) may be violated at an output point before the run stops:
+/// kHeldFactor times what the tolerances ask of a unit quantity (rtol x 1 +
+/// atol, rows being metres or radians), and never more than kHeldCeiling (a
+/// centimetre, or 0.01 rad, whatever the tolerances). A loop that closes stays
+/// within a few times the tolerances (Baumgarte pulls it back; IDA holds it).
+/// A penalty's row gives as its spring does, whatever the tolerances: it
+/// stops the run beyond kHeldCeiling alone (a compliance that large belongs
+/// in a spring-damper, not a joint).
+double held_row_bound(const Settings& s);
+inline constexpr double kHeldFactor = 1e3;
+inline constexpr double kHeldCeiling = 1e-2;
+
 /// The run-summary lines (without indentation or newline).
 std::string describe(const AssemblyReport& a);
 std::string describe(const RedundancyReport& r, const Model& model);

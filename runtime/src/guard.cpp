@@ -113,9 +113,35 @@ bool GuardedModel::check_state(double t, const double* y) {
   return true;
 }
 
+bool GuardedModel::check_constraints(double t, const double* y) {
+  if (held_.empty()) return true;
+  model_.constraints(t, y, rows_.data());
+  for (std::size_t r = 0; r < shape_.np; ++r)
+    if (!(std::abs(rows_[r]) <= bound_of(r))) {
+      record(t, BlameSite::constraint, r, rows_[r]);
+      return false;
+    }
+  return true;
+}
+
+void GuardedModel::hold_constraints(double bound, double penalty_bound) {
+  held_bound_ = bound;
+  penalty_bound_ = penalty_bound;
+  held_.assign(shape_.np, 0);
+  for (std::size_t r = 0; r < shape_.np; ++r) held_[r] = model_.constraint_held(r) ? 1 : 0;
+  rows_.assign(shape_.count(), 0.0);
+}
+
 std::string GuardedModel::describe(const Blame& b) const {
   if (b.site == BlameSite::exception)
     return fmt::format("the model threw an exception: {}", b.detail);
+  if (b.site == BlameSite::constraint)
+    return held_[b.index] ? fmt::format("joint row {} is violated by {:.3g}, beyond the {:.3g} the run's tolerances allow a "
+                                        "row that must hold",
+                                        model_.constraint_name(b.index), std::abs(b.value), held_bound_)
+                          : fmt::format("penalty joint row {} is stretched by {:.3g}, beyond the {:.3g} a joint may give "
+                                        "(a compliance that large belongs in a spring-damper)",
+                                        model_.constraint_name(b.index), std::abs(b.value), penalty_bound_);
   if (b.site == BlameSite::limit)
     return fmt::format("state '{}' = {:.6g} is beyond its limit {:.6g}: {}", model_.variable_name(b.index), b.value,
                        limits_.at(b.index), model_.state_limit_reason(b.index));

@@ -4,6 +4,7 @@
 // time and the variable that caused it instead of marching on with NaNs.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -16,12 +17,12 @@
 namespace mbgrt::detail {
 
 /// Where the first non-finite value was seen.
-enum class BlameSite { derivative, residual, state, exception, limit };
+enum class BlameSite { derivative, residual, state, exception, limit, constraint };
 
 struct Blame {
   double t = 0.0;
   BlameSite site = BlameSite::state;
-  std::size_t index = 0;  ///< unknown (or equation) index into y
+  std::size_t index = 0;  ///< unknown (or equation) index into y; BlameSite::constraint: the position row
   double value = 0.0;     ///< the offending value (NaN, +Inf or -Inf)
   std::string detail;     ///< exception text for BlameSite::exception
 };
@@ -77,6 +78,16 @@ class GuardedModel {
   /// Checks y after a step; false (and a recorded blame) if any entry is
   /// non-finite or a state is beyond the limit of its model's validity.
   bool check_state(double t, const double* y);
+  /// At an output point: false (and a recorded blame) if a position row is
+  /// violated beyond its bound (hold_constraints; true until that is called).
+  bool check_constraints(double t, const double* y);
+  /// Bounds for check_constraints: |g| <= bound for every position row the
+  /// model holds (Model::constraint_held), <= penalty_bound for the others
+  /// (a penalty's): beyond them, the joints cannot all hold (a loop that
+  /// cannot close) and the run must stop.
+  void hold_constraints(double bound, double penalty_bound);
+  /// Whether position row r must hold (Model::constraint_held), once hold_constraints ran.
+  bool row_held(std::size_t r) const { return r < held_.size() && held_[r]; }
 
   /// The model's events (none for most models): modes, switches, their log.
   Events& events() { return events_; }
@@ -100,6 +111,10 @@ class GuardedModel {
   bool dae_;
   std::vector<double> ids_;
   std::vector<double> limits_;  ///< Model::state_limit per unknown (HUGE_VAL: none)
+  double bound_of(std::size_t row) const { return held_[row] ? held_bound_ : penalty_bound_; }
+  std::vector<char> held_;    ///< per position row: Model::constraint_held
+  std::vector<double> rows_;  ///< the rows' values (Model::constraints)
+  double held_bound_ = HUGE_VAL, penalty_bound_ = HUGE_VAL;
   ConstraintShape shape_;
   std::optional<Blame> blame_;
   bool finite_differences_ = false;

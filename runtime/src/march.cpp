@@ -37,7 +37,8 @@ Outcome march(GuardedModel& guard, Integrator& integrator, const Settings& s,
   for (std::size_t k = 1; r.ok && k < grid.size(); ++k) {
     if (stop && (r.signal = stop->load()) != 0) break;
     r.solver_failed = !integrator.advance_to(grid[k]);
-    r.ok = !r.solver_failed && guard.check_state(integrator.t(), integrator.y());
+    r.ok = !r.solver_failed && guard.check_state(integrator.t(), integrator.y()) &&
+           guard.check_constraints(integrator.t(), integrator.y());
     if (r.ok) on_point();
   }
   return r;

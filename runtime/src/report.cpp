@@ -138,7 +138,20 @@ void print_stop_message(std::FILE* err, const GuardedModel& model, const Integra
 
   if (solver_failed && blame && f.t != blame->t)
     note(err, fmt::format("the last accepted solution is at t = {} s", format_time(f.t)));
-  if (blame && blame->site != BlameSite::exception && blame->site != BlameSite::limit) {
+  if (blame && blame->site == BlameSite::constraint) {
+    note(err, fmt::format("{}; the rows written before are whole, and --constraint-report FILE.csv shows the violation "
+                          "growing",
+                          model.row_held(blame->index)
+                              ? "the joints cannot all hold here: a loop that cannot close (a link too short for where a "
+                                "driver or the motion takes the others) or a mechanism carried past a dead point"
+                              : "a penalty joint too soft for its loads (a higher `stiffness`), or a loop that cannot close"));
+    if (const RankLossLog* rl = model.model().rank_loss(); rl && rl->count() > 0)
+      note(err, fmt::format("the cut joints' rows first became dependent at t = {} s (at t = {} s, {} implied by the "
+                            "others): the dead point, past which the loop stopped closing",
+                            format_time(rl->first_t()), format_time(rl->lowest_t()), rl->rows()));
+  }
+  if (blame && blame->site != BlameSite::exception && blame->site != BlameSite::limit &&
+      blame->site != BlameSite::constraint) {
     // A constraint row of a lagrange DAE is named as the joint constraint.
     const ConstraintShape& shape = model.constraint_shape();
     const std::string culprit =

@@ -126,6 +126,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     model.terminal(s.t_start_s, y0.data());
     return kExitRunFailed;
   }
+  guard.hold_constraints(held_row_bound(s), kHeldCeiling);
   auto integrator = make_integrator(guard, s);
   EnergyWitness witness(guard);
 
@@ -211,11 +212,13 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
 
   // Why the run stopped (or crept), in model terms: the fastest mode against
   // an explicit method's stability limit; joint rows losing rank.
-  const bool penalty_joints = model.position_constraint_count() > 0 && !model.constraints_enforced();
+  bool penalty_joints = false;  // (a cut joint's rows are held, not springs)
+  for (std::size_t r = 0; r < model.position_constraint_count(); ++r) penalty_joints = penalty_joints || !guard.row_held(r);
   std::string stop_note, stability;
   if (!model.is_dae() && !linearize) {
     const auto& blame = guard.blame();
-    const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception;
+    const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception &&
+                         blame->site != BlameSite::constraint;
     if (!r.ok && r.started && (r.solver_failed || blew_up))
       stop_note = describe_stiffness(estimate_stiffness(model, last_row_t, last_row_y.data()), integrator->name(),
                                      !integrator_info(s.solver).adaptive ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0,

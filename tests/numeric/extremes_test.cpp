@@ -75,21 +75,33 @@ double q_error(const SimRun& r, const std::array<double, 2>& ref) {
 
 }  // namespace
 
-TEST(Extremes, PenaltyJointsFrom1e3To1e9UnderCvodeConvergeToTheRigidJointsAsOneOverK) {
+TEST(Extremes, PenaltyJointsFrom1e4To1e9UnderCvodeConvergeToTheRigidJointsAsOneOverK) {
   // The penalty joint is a spring: the chain differs from the rigid double
   // pendulum by its compliance, ~1/k. Measured q error at t = 1 s (rtol 1e-10):
-  // 3.6e-2 (1e3), 8.1e-5 (1e6), 1.7e-7 (1e9) rad.
+  // 7.6e-3 (1e4), 8.2e-5 (1e6), 1.7e-7 (1e9) rad: 92 and 480 times closer for
+  // 100 and 1000 times stiffer. (At 1e3 the joints stretch 2.2 cm, more than
+  // a joint may give: that run stops, PenaltyJointsStretchedBeyondACentimetreStop.)
   const std::array<double, 2> ref = TwoRods{1, 1}.at(1.0);
   double previous = HUGE_VAL;
-  for (double k : {1e3, 1e6, 1e9}) {
+  for (double k : {1e4, 1e6, 1e9}) {
     SimRun r = run(CHAIN2_PENALTY_SIM, penalty(k) + " --solver cvode --rtol 1e-10 --atol 1e-12", "penalty_cvode");
     ASSERT_EQ(r.status, 0) << "k = " << k << "\n" << r.log;
     expect_all_finite(r, "cvode");
     const double err = q_error(r, ref);
-    EXPECT_LT(err, previous / 100) << "k = " << k;
+    EXPECT_LT(err, previous / 50) << "k = " << k;
     previous = err;
   }
   EXPECT_LT(previous, 1e-6);
+}
+
+TEST(Extremes, PenaltyJointsStretchedBeyondACentimetreStop) {
+  // 1e3 N/m holds a 1 kg rod 2.2 cm off its joint: not a joint any more.
+  SimRun r = run(CHAIN2_PENALTY_SIM, penalty(1e3) + " --solver cvode --rtol 1e-10 --atol 1e-12", "penalty_1e3_cvode");
+  EXPECT_EQ(r.status, 1) << r.log;
+  expect_all_finite(r, "cvode");
+  EXPECT_TRUE(contains(r.log, "penalty joint row j1.cn[2] g is stretched by 0.01")) << r.log;
+  EXPECT_TRUE(contains(r.log, "a penalty joint too soft for its loads")) << r.log;
+  EXPECT_GT(r.csv.rows.back()[0], 0.05);  // the rows up to there are written
 }
 
 TEST(Extremes, PenaltyJointsOf1e12StopCvodeWithTheStiffnessNamed) {
@@ -119,7 +131,7 @@ TEST(Extremes, PenaltyJointsUnderExplicitSolversAreReportedUnstableOrStabilityLi
   EXPECT_LT(q_error(slow, ref), 1e-6);
   EXPECT_TRUE(contains(slow.log, "steps limited by stability, not accuracy")) << slow.log;
   // A soft joint is not stiff: no such line.
-  SimRun soft = run(CHAIN2_PENALTY_SIM, penalty(1e3) + " --solver dopri5 --rtol 1e-10 --atol 1e-12", "penalty_soft");
+  SimRun soft = run(CHAIN2_PENALTY_SIM, penalty(1e4) + " --solver dopri5 --rtol 1e-10 --atol 1e-12", "penalty_soft");
   ASSERT_EQ(soft.status, 0) << soft.log;
   EXPECT_FALSE(contains(soft.log, "steps limited by stability")) << soft.log;
   // At 1e12 dopri5 cannot take a step: it stops and points to an implicit solver.

@@ -381,6 +381,11 @@ class Model {
   /// reported as "constraint drift"; false (penalty): reported as "largest
   /// constraint violation".
   virtual bool constraints_enforced() const { return false; }
+  /// Whether position row `row` is meant to hold (a lagrange row, a cut
+  /// joint's Baumgarte-stabilised row) rather than be pulled back (a
+  /// penalty's): a held row violated beyond what the run's tolerances allow
+  /// stops the run (the loop cannot close).
+  virtual bool constraint_held(std::size_t row) const { return multiplier_index(row) >= 0; }
 };
 
 /// The simulator's entry point: parse the command line (docs/cli.md), run,

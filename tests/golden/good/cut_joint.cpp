@@ -594,6 +594,12 @@ class cut_joint_model final : public mbgrt::Model {
     return false;
   }
 
+  // cut joints: their rows are held (Baumgarte), a penalty's only pulled back.
+  bool constraint_held(std::size_t row) const override {
+    static const bool kHeld[] = {true, true, true, true, true};
+    return row < 5 && kHeld[row];
+  }
+
   std::string constraint_name(std::size_t i) const override {
     static const char* const kConstraintNames[] = {"j3.cn[1] g", "j3.cn[2] g", "j3.cn[3] g", "j3.cn[4] g", "j3.cn[5] g", "j3.cn[1] gdot", "j3.cn[2] gdot", "j3.cn[3] gdot", "j3.cn[4] gdot", "j3.cn[5] gdot"};
     return i < 10 ? kConstraintNames[i] : "?";
