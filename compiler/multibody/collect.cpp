@@ -334,6 +334,15 @@ void Expander::check_joint_constant(const JointKind& kind, const AstJoint& j, co
     return;
   }
   if (auto v = constant_of(*at.value)) kind.check_constant(j, at, *v, diags_);
+  const std::vector<int> fixed = kind.fixed_components(at.key);
+  if (fixed.empty() || at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
+  for (int c : fixed) {
+    auto v = constant_of(*at.value->args[static_cast<std::size_t>(c - 1)]);
+    if (v && *v == 0) continue;
+    diags_.error(at.value->args[static_cast<std::size_t>(c - 1)]->loc,
+                 fmt::format("component {} of `{}` of {} joint `{}` must be 0", c, at.key, kind.name(), j.name),
+                 fmt::format("the joint does not move that way; its initial rates: {}", kind.initial_settings()));
+  }
 }
 
 void Expander::add_joint(const AstJoint& j) {

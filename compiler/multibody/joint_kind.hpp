@@ -109,6 +109,8 @@ struct InitialMotion {
   E angle, angle_rate;  // about A's joint z
   E axial, axial_rate;  // along A's joint z
   E qrel;               // rotation of B's joint frame in A's
+  E w_rel;              // the relative angular velocity in B's joint axes, when not about the axis (null: angle_rate)
+  E v_rel;              // the relative velocity of B's point in A's joint axes, when not along the axis (null: axial_rate)
 };
 
 class JointKind {
@@ -134,6 +136,9 @@ class JointKind {
   /// How to set the child's initial pose through the joint (a diagnostic's hint); empty: no way.
   virtual std::string initial_settings() const { return {}; }
 
+  /// The components (1-based) of a 3-vector setting that must be 0: an
+  /// initial rate about or along a direction the joint does not move in.
+  virtual std::vector<int> fixed_components(std::string_view /*key*/) const { return {}; }
   /// Reports a constant setting that makes the joint degenerate.
   virtual void check_constant(const ir::AstJoint& /*joint*/, const ir::AstAttr& /*setting*/, double /*value*/,
                               ir::Diagnostics& /*diags*/) const {}

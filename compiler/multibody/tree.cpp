@@ -195,7 +195,7 @@ Pose Expander::pose(const Build& B, const std::string& body) {
 void Expander::place(const Joint& j, bool a_is_parent) {
   const std::string jn = j.decl->name;
   Build B(j.decl->loc);
-  const auto [angle, angle_rate, axial, axial_rate, qrel] = j.kind->initial(B, j);
+  const auto [angle, angle_rate, axial, axial_rate, qrel, w_rel, v_rel] = j.kind->initial(B, j);
   E axis_a = B.name(jn + ".axis_a");
   E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
   E pb = B.name(jn + ".pb");
@@ -213,8 +213,9 @@ void Expander::place(const Joint& j, bool a_is_parent) {
   Pose C = pose(B, child);
   auto cross = [&](E x, E y) { return B.call("cross", {std::move(x), std::move(y)}); };
   auto T = [&](E m) { return B.call("transpose", {std::move(m)}); };
-  E rel_w = B.op('*', axis_a, angle_rate);   // in A's frame
-  E rel_v = B.op('*', axis_a, axial_rate);   // in A's frame
+  // in A's frame (B's joint frame is fa qrel in it, A's joint frame fa)
+  E rel_w = w_rel ? B.op('*', B.call("rotq", {qmul(fa, qrel)}), w_rel) : B.op('*', axis_a, angle_rate);
+  E rel_v = v_rel ? B.op('*', B.call("rotq", {fa}), v_rel) : B.op('*', axis_a, axial_rate);
   // Ground points are absolute: their "local" coordinates already are world positions.
   auto world_point = [&](const Pose& X, E local, bool ground) { return ground ? local : B.op('+', X.r, B.op('*', X.R, local)); };
   bool parent_ground = bodies_.at(parent).ground;

@@ -543,3 +543,35 @@ TEST(JointLagrange, RunsAtRtol1e12Atol1e14) {
 }
 
 }  // namespace
+
+// ---- joints started moving: w0 / v0 of spherical, universal and planar ----
+
+TEST(JointInitialRates, StartWithTheirRatesInBothStrategiesAndFollowTheClosedForms) {
+  for (const char* sim : {INITIAL_RATES_SIM, INITIAL_RATES_LAGRANGE_SIM}) {
+    SimRun r = run(sim, "", sim == std::string(INITIAL_RATES_SIM) ? "initial_rates" : "initial_rates_lagrange");
+    ASSERT_EQ(r.status, 0) << r.log;
+    // the start: the top's spin, the arm's rates about the cross's arms, the puck's slide and turn
+    EXPECT_NEAR(r.csv.at(0.0, "w3"), 50.0, 1e-9) << sim;
+    EXPECT_NEAR(r.csv.at(0.0, "w1"), 0.0, 1e-9) << sim;
+    EXPECT_NEAR(r.csv.at(0.0, "a1"), 1.5, 1e-9) << sim;
+    EXPECT_NEAR(r.csv.at(0.0, "a2"), -2.0, 1e-9) << sim;
+    EXPECT_NEAR(r.csv.at(0.0, "vx"), 0.5, 1e-9) << sim;
+    EXPECT_NEAR(r.csv.at(0.0, "vy"), -0.25, 1e-9) << sim;
+    EXPECT_NEAR(r.csv.at(0.0, "pw"), 3.0, 1e-9) << sim;
+    for (const auto& row : r.csv.rows) {
+      const double t = row[0];
+      // Euler's third equation: no torque about the symmetry axis, so its spin stays
+      EXPECT_NEAR(row[r.csv.col("w3")], 50.0, 1e-8) << sim << ", t = " << t;
+      EXPECT_NEAR(row[r.csv.col("px")], 4.0 + 0.5 * t, 1e-8) << sim << ", t = " << t;
+      EXPECT_NEAR(row[r.csv.col("py")], -0.25 * t, 1e-8) << sim << ", t = " << t;
+      EXPECT_NEAR(row[r.csv.col("pw")], 3.0, 1e-8) << sim << ", t = " << t;
+    }
+    EXPECT_GT(std::abs(r.csv.at(1.0, "w1")), 0.1) << "the top precesses";
+  }
+  // the two placements agree along the whole run (measured: 5e-9 rad/s)
+  SimRun a = run(INITIAL_RATES_SIM, "", "initial_rates"), b = run(INITIAL_RATES_LAGRANGE_SIM, "", "initial_rates_lagrange");
+  for (const char* col : {"w1", "w2", "a1", "a2", "a3"})
+    for (std::size_t k = 0; k < a.csv.rows.size(); ++k)
+      EXPECT_NEAR(a.csv.rows[k][a.csv.col(col)], b.csv.rows[k][b.csv.col(col)], 1e-7) << col << ", t = " << a.csv.rows[k][0];
+}
+

@@ -7,17 +7,33 @@ namespace {
 class Planar final : public JointKind {
  public:
   std::string_view name() const override { return "planar"; }
+  std::vector<std::string> settings() const override { return {"v0", "w0"}; }
+  std::string initial_settings() const override {
+    return "v0 ([x rate, y rate, 0], A's joint axes) and w0 ([0, 0, turn rate]); it starts with the frames together";
+  }
+  std::vector<int> fixed_components(std::string_view key) const override {
+    if (key == "v0") return {3};
+    if (key == "w0") return {1, 2};
+    return {};
+  }
+  InitialMotion initial(const Build& B, const Joint& j) const override {
+    InitialMotion m = JointKind::initial(B, j);
+    m.w_rel = setting_or(j, "w0", B.vec(0, 0, 0));
+    m.v_rel = setting_or(j, "v0", B.vec(0, 0, 0));
+    return m;
+  }
   /// B's point stays in A's x-y plane and the axes stay aligned: 3 rows.
   void rows(const JointFrames& f, std::vector<E>& r) const override {
     r.push_back(f.B.dot(f.A.Z, f.d));
     f.aligned(r);
   }
   void mobilize(Mobilizer& m) const override {
-    Mobilizer::Rate& x = m.rate(m.joint.decl->name + ".xdot", "x", m.zero, m.zero, false);
+    const E v0 = m.setting_or("v0", m.B.vec(0, 0, 0)), w0 = m.setting_or("w0", m.B.vec(0, 0, 0));
+    Mobilizer::Rate& x = m.rate(m.joint.decl->name + ".xdot", "x", m.zero, m.B.at(v0, 1), false);
     x.V = m.ex;
-    Mobilizer::Rate& y = m.rate(m.joint.decl->name + ".ydot", "y", m.zero, m.zero, false);
+    Mobilizer::Rate& y = m.rate(m.joint.decl->name + ".ydot", "y", m.zero, m.B.at(v0, 2), false);
     y.V = m.ey;
-    Mobilizer::Rate& turn = m.rate(m.joint.decl->name + ".turn", "theta", m.zero, m.zero, false);
+    Mobilizer::Rate& turn = m.rate(m.joint.decl->name + ".turn", "theta", m.zero, m.B.at(w0, 3), false);
     turn.W = m.ez;
     m.disp = m.B.list({x.value, y.value, m.zero});
     m.qrel = m.B.call("quat_axis_angle", {m.ez, turn.value});

@@ -7,15 +7,18 @@ namespace {
 class Spherical final : public JointKind {
  public:
   std::string_view name() const override { return "spherical"; }
-  std::vector<std::string> settings() const override { return {"rot0"}; }
+  std::vector<std::string> settings() const override { return {"rot0", "w0"}; }
   bool needs_orientation() const override { return false; }
-  std::string initial_settings() const override { return "rot0 (relative rotation)"; }
+  std::string initial_settings() const override {
+    return "rot0 (relative rotation) and w0 (relative angular velocity, B's joint axes)";
+  }
   void rows(const JointFrames& f, std::vector<E>& r) const override { f.point(r); }
   void mobilize(Mobilizer& m) const override { m.ball(); }
-  /// The relative rotation rot0 (default: none).
+  /// The relative rotation rot0 and angular velocity w0 (default: none).
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
     m.qrel = setting_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    m.w_rel = setting_or(j, "w0", B.vec(0, 0, 0));
     return m;
   }
 };
