@@ -132,6 +132,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   ir::BondGraph graph = graph::build_graph(resolved, sources, diags);
   timed("graph");
   if (failed()) return 1;
+  if (opt.constraints) graph.settings.form_option = "--constraints " + std::string(multibody::strategy_name(*opt.constraints));
   // What the graph was built from is not read again: freed now, the later
   // passes reuse its memory (a smaller heap, warmer caches: N = 1000 rods).
   resolved = ir::ResolvedModel{};

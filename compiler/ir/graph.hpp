@@ -143,6 +143,10 @@ struct SimSettings {
   std::optional<double> t_end, interval, rtol, atol, step;
   std::optional<std::string> solver;
   SourceLoc solver_loc;  // of the solver's name, when given
+  // The command-line option that chose the model's form (`--constraints
+  // lagrange`), if one did: a solver the block names that cannot integrate
+  // that form gives way to one that can (the block is a default).
+  std::optional<std::string> form_option;
 };
 
 struct BondGraph {

@@ -37,6 +37,16 @@ namespace mbgc::multibody {
 /// `Auto` (the default) becomes Coordinates for a tree joint coordinates can
 /// move, else Lagrange; ExpandOptions::strategy_report says which and why.
 enum class Strategy { Auto, Lagrange, Penalty, Coordinates };
+/// As the language spells it: "auto", "lagrange", "penalty", "coordinates".
+inline const char* strategy_name(Strategy s) {
+  switch (s) {
+    case Strategy::Auto: return "auto";
+    case Strategy::Lagrange: return "lagrange";
+    case Strategy::Penalty: return "penalty";
+    case Strategy::Coordinates: return "coordinates";
+  }
+  return "";
+}
 
 /// How contacts act (a contact's `strategy = ...`, or mbgc --contacts).
 enum class ContactStrategy {

@@ -792,11 +792,20 @@ class Reducer {
   /// another solver is an error here, with the reason in bond-graph terms,
   /// rather than a simulator that refuses to run.
   void check_solver_for_dae() {
-    const SimSettings& ss = out_.graph.settings;
+    SimSettings& ss = out_.graph.settings;
     if (!ss.solver) return;
     if (const mbgrt::IntegratorInfo* info = mbgrt::find_integrator(*ss.solver); !info || info->takes(mbgrt::ModelForm::dae))
       return;
     const char* dae_solver = mbgrt::integrator_info(mbgrt::kDefaultDaeSolver).name;
+    if (ss.form_option) {  // the command line chose the form: the block's solver was a default
+      diags_.warning(ss.solver_loc,
+                     fmt::format("solver `{}` cannot integrate the DAE that {} makes of this model: it is integrated by {}",
+                                 *ss.solver, *ss.form_option, dae_solver),
+                     fmt::format("the simulate block's solver is a default; the simulator's --solver chooses another "
+                                 "at run time"));
+      ss.solver = dae_solver;
+      return;
+    }
     std::vector<std::string> rows;
     for (const ConstraintRow& row : out_.constraints)
       if (row.multiplier >= 0) rows.push_back(row.name.substr(0, row.name.find('[')));
