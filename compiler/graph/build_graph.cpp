@@ -495,6 +495,7 @@ class Builder {
         }
       }
       bool has_law = false;
+      bool misspelt = false;  // a setting it has none of: likely the law meant, so not reported missing too
       for (const AstAttr& a : el.attrs) {
         if (is_law_key(n.kind, a.key)) {
           if (el.value || has_law) {
@@ -536,6 +537,7 @@ class Builder {
         } else {
           std::vector<std::string> keys = allowed_keys(n.kind);
           std::string near = closest_name(a.key, keys);
+          misspelt = true;
           diags_.error(a.loc, fmt::format("{} `{}` has no setting `{}`", el.kind, n.name, a.key),
                        keys.empty() ? fmt::format("{} takes only a value: {} {} = ...", el.kind, el.kind, n.name)
                        : near.empty() ? fmt::format("{} accepts {}", el.kind, fmt::join(keys, ", "))
@@ -548,9 +550,11 @@ class Builder {
         continue;
       }
       if (!el.value && !has_law) {
-        diags_.error(n.loc, n.kind == NodeKind::CN ? fmt::format("CN `{}` has no constraint g", n.name)
-                                                   : fmt::format("{} `{}` has no value or law", el.kind, n.name),
-                     law_hint(n.kind, n.name));
+        if (!misspelt)
+          diags_.error(n.loc,
+                       n.kind == NodeKind::CN ? fmt::format("CN `{}` has no constraint g", n.name)
+                                              : fmt::format("{} `{}` has no value or law", el.kind, n.name),
+                       law_hint(n.kind, n.name));
         continue;
       }
       if (is_storage(n.kind)) lower_initial(n, el, plain);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <set>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -373,11 +374,13 @@ void Expander::add_joint(const AstJoint& j) {
   joint.strategy = strategy_;
   std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping", "stabilisation"};
   for (std::string& key : kind->settings()) keys.push_back(std::move(key));
+  std::set<std::string> meant;  // settings a misspelt one was taken for: not reported missing too
   for (const AstAttr& at : j.attrs) {
     if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
       std::string near = closest_name(at.key, keys);
       diags_.error(at.loc, fmt::format("a {} joint has no setting `{}`", j.type, at.key),
                    near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
+      meant.insert(near);
       continue;
     }
     if (auto first = joint.attrs.find(at.key); first != joint.attrs.end()) {
@@ -403,7 +406,7 @@ void Expander::add_joint(const AstJoint& j) {
                                  "motion to let the {} drive the joint",
                                  drive, drive));
   for (const std::string& required : kind->required())
-    if (!joint.attrs.count(required))
+    if (!joint.attrs.count(required) && !meant.count(required))
       diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required),
                    fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required));
   for (const Side* s : {&joint.a, &joint.b}) {

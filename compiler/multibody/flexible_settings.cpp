@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <set>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -175,9 +176,11 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
   std::map<std::string, const AstAttr*> given;
   std::vector<std::string> names;
   for (const auto& [k, what] : keys) names.push_back(k);
+  std::set<std::string> meant;  // settings a misspelt one was taken for: not reported missing too
   for (const AstAttr& a : b.attrs) {
     if (!keys.count(a.key)) {
       std::string near = closest_name(a.key, names);
+      meant.insert(near);
       const char* computed = (a.key == "mass" || a.key == "inertia" || a.key == "com")
                                  ? "a beam's mass, inertia and centre of mass follow from its length, density and section; remove it"
                                  : nullptr;
@@ -192,7 +195,8 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
   auto need = [&](const char* key) -> const AstAttr* {
     auto it = given.find(key);
     if (it != given.end()) return it->second;
-    diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, key), fmt::format("give {}", keys.at(key)));
+    if (!meant.count(key))
+      diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, key), fmt::format("give {}", keys.at(key)));
     return nullptr;
   };
   if (const AstAttr* len = need("length")) {
