@@ -31,13 +31,19 @@ std::string EnergyWitness::summary() const {
 }
 
 std::string EnergyWitness::warning(double rtol) const {
-  // what rtol asks of the energy in play; a dissipative run only (a
-  // conservative model's drift is the method's known character, and what
-  // the summary's energy line shows)
-  const double asked = rtol * scale_;
+  // what rtol asks of the energy in play, never less than what the balance
+  // can hold: its integrals follow the states' steps without an error test of
+  // their own, so below kTightestRtol its drift stops shrinking with rtol; a
+  // dissipative run only (a conservative model's drift is the method's known
+  // character, and what the summary's energy line shows)
+  const double asked = std::max(rtol, kTightestRtol) * scale_;
   if (!(absorbed() > kDissipative * scale_) || !(worst_ > kWarnFactor * asked)) return {};
   const std::string drift = fmt::format("the energy balance drifts by {:.2g} J (t = {} s), {:.0f} times rtol x the {:.3g} J in play",
-                                        worst_, format_time(worst_t_), worst_ / asked, scale_);
+                                        worst_, format_time(worst_t_), worst_ / (rtol * scale_), scale_);
+  if (rtol <= kTightestRtol)
+    return fmt::format("{}, more than a tolerance this tight explains: look for a discontinuity where the power jumps (a "
+                       "step, a friction law) or compare with a run at a fixed --step",
+                       drift);
   // the residual grows about as rtol does: the rtol that brings it to `asked`
   const double needed = std::pow(10.0, std::floor(std::log10(rtol * asked / worst_)));
   if (needed < kFinestRtol)

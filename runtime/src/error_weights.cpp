@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mbgrt::detail {
 
@@ -10,6 +11,8 @@ ErrorWeights::ErrorWeights(const Model& model, double rtol, double atol) : rtol_
   atol_.resize(n);
   group_.resize(n);
   norm_.resize(n);
+  peak_.assign(n, 0.0);
+  floored_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const double nominal = model.nominal(i);
     atol_[i] = atol * (std::isfinite(nominal) && nominal > 0.0 ? nominal : 1.0);
@@ -23,15 +26,29 @@ bool ErrorWeights::operator()(const double* y, double* w) const {
   for (std::size_t i = 0; i < n; ++i) norm_[i] = 0.0;
   for (std::size_t i = 0; i < n; ++i) norm_[group_[i]] += y[i] * y[i];
   for (std::size_t i = 0; i < n; ++i)
-    if (group_[i] == i) norm_[i] = std::sqrt(norm_[i]);
+    if (group_[i] == i) {
+      norm_[i] = std::sqrt(norm_[i]);
+      if (norm_[i] > peak_[i]) peak_[i] = norm_[i];  // (a NaN is left out)
+    }
+  constexpr double u = std::numeric_limits<double>::epsilon() / 2;
   for (std::size_t i = 0; i < n; ++i) {
     // a component is measured against its own size, but never against less
     // than a tenth of its vector's
-    const double tol = rtol_ * std::max(std::abs(y[i]), 0.1 * norm_[group_[i]]) + atol_[i];
+    const double relative = rtol_ * std::max(std::abs(y[i]), 0.1 * norm_[group_[i]]);
+    const double floor = floor_on_ ? kRoundingFloor * u * peak_[group_[i]] : 0.0;
+    if (floor > atol_[i] && floor > relative) floored_[i] = 1;
+    const double tol = relative + std::max(atol_[i], floor);
     if (!(tol > 0.0)) return false;
     w[i] = 1.0 / tol;
   }
   return true;
+}
+
+std::vector<std::size_t> ErrorWeights::floored() const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < floored_.size(); ++i)
+    if (floored_[i]) out.push_back(i);
+  return out;
 }
 
 }  // namespace mbgrt::detail

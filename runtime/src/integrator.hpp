@@ -61,6 +61,8 @@ class Integrator {
 
   virtual SolverStats stats() const = 0;
   virtual const SolverFailure& failure() const = 0;
+  /// The unknowns whose tolerance the rounding floor set (ErrorWeights::floored); none for fixed steps.
+  virtual std::vector<std::size_t> floored_unknowns() const { return {}; }
 };
 
 /// The events a root finder reported at (t, y) (root_info[k]: +1 rising,

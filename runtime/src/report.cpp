@@ -83,6 +83,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   fmt::print(err, "  steps        {} (last step {:.3g} s)\n", st.steps, st.last_step);
   if (!run.stability.empty()) fmt::print(err, "  stability    {}\n", run.stability);
   if (!run.small_states.empty()) fmt::print(err, "  tolerance    {}\n", run.small_states);
+  if (!run.floored.empty()) fmt::print(err, "  tolerance    {}\n", run.floored);
   if (!run.energy.empty()) fmt::print(err, "  energy       {}\n", run.energy);
   if (!run.energy_note.empty()) fmt::print(err, "  energy       {}{}\n", run.energy.empty() ? "no balance: " : "leaves out: ", run.energy_note);
   if (!run.energy_warning.empty()) fmt::print(err, "  warning      {}\n", run.energy_warning);

@@ -20,6 +20,7 @@ struct RunRecord {
   std::string output;  ///< e.g. "101 rows to out.csv"
   std::string stability;  ///< non-empty if an explicit solver's steps were bounded by stability
   std::string small_states;  ///< non-empty if states moved but stayed within a few atol
+  std::string floored;       ///< non-empty if the rounding floor set some unknowns' tolerance (ErrorWeights)
   std::string realtime;  ///< --realtime: pacing, overruns, compute per frame
   std::string energy;          ///< the energy witness's line (EnergyWitness::summary), if the model has one
   std::string energy_warning;  ///< ... and its warning (EnergyWitness::warning)

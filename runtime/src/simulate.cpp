@@ -1,6 +1,7 @@
 #include "simulate.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -34,6 +35,21 @@ namespace {
 /// (atol x nominal), nor did any other component of their vector
 /// (Model::unknown_group): the tolerance resolves them only to that over
 /// |value|. Empty if there are none.
+/// The unknowns the error weights' rounding floor held (ErrorWeights): a
+/// line for the summary, empty if none.
+std::string describe_floored(const Model& model, const std::vector<std::size_t>& floored) {
+  if (floored.empty()) return {};
+  constexpr std::size_t kListed = 4;
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < std::min(kListed, floored.size()); ++k) names.push_back("'" + model.variable_name(floored[k]) + "'");
+  std::string list = fmt::format("{}", fmt::join(names, ", "));
+  if (floored.size() > kListed) list += fmt::format(" and {} more", floored.size() - kListed);
+  return fmt::format("{} unknown{} held at the rounding floor ({}): atol x nominal asked less of {} than the "
+                     "equations resolve ({:g} u x the vector's largest size)",
+                     floored.size(), floored.size() == 1 ? "" : "s", list, floored.size() == 1 ? "it" : "them",
+                     ErrorWeights::kRoundingFloor);
+}
+
 std::string describe_small_states(const Model& model, const std::vector<double>& peak, double atol) {
   constexpr double kFactor = 100;
   const ErrorWeights weights(model, 0.0, atol);
@@ -245,6 +261,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.stability = stability;
     if (pacer) record.realtime = pacer->summary();
     record.small_states = describe_small_states(model, state_peak, s.atol);
+    record.floored = describe_floored(model, integrator->floored_unknowns());
     if (witness.active()) {
       record.energy = witness.summary();
       record.energy_warning = witness.warning(s.rtol);

@@ -143,6 +143,22 @@ TEST(EnergyWitness, ADamperWrittenAsASourceIsDissipation) {
   }
 }
 
+TEST(EnergyWitness, TheGovernorAtRtol1e10Atol1e14RunsToItsEndAndHoldsTheBalanceAsWell) {
+  // Tighter tolerances never fail where looser ones pass: the flyball
+  // governor at rtol 1e-10 with atol 1e-10 and 1e-14, both strategies; the
+  // balance's residual, the run's error with no reference run, no larger
+  // (measured 3.9e-9 and 1.1e-9 J with multipliers).
+  for (const char* sim : {GOVERNOR_SIM, GOVERNOR_COORDINATES_SIM}) {
+    SCOPED_TRACE(sim);
+    SimRun loose = run(sim, "--rtol 1e-10 --atol 1e-10", "governor_atol10");
+    SimRun tight = run(sim, "--rtol 1e-10 --atol 1e-14", "governor_atol14");
+    ASSERT_EQ(loose.status, 0) << loose.log;
+    ASSERT_EQ(tight.status, 0) << tight.log;
+    ASSERT_EQ(tight.csv.rows.size(), loose.csv.rows.size()) << tight.log;
+    EXPECT_LE(residual(tight.log), 1.5 * residual(loose.log)) << tight.log << loose.log;
+  }
+}
+
 TEST(EnergyWitness, AnImpactsLossIsTheJumpsNotAnError) {
   SimRun r = run(BALL_SIM, "", "energy_ball");
   ASSERT_EQ(r.status, 0) << r.log;
@@ -168,14 +184,16 @@ TEST(EnergyWitness, ADissipativeRunThatDriftsIsWarnedWithAnRtolThatHoldsIt) {
   EXPECT_LT(residual(held.log), 10 * 1e-6 * energy_field(loose.log, ", of ")) << held.log;
 }
 
-TEST(EnergyWitness, AnRtolPastDoublePrecisionIsNotNamed) {
-  // at the model's own rtol 1e-10 the same drift (2.1e-6 J, some 2000 x
-  // rtol x the energy) would take rtol 1e-14 to hold: said so, not offered
+TEST(EnergyWitness, AtTightTolerancesTheBalanceIsAskedNoMoreThanItHolds) {
+  // The balance's integrals have no error test of their own, so below rtol
+  // 1e-8 its drift stops shrinking with rtol: at the model's own rtol 1e-10
+  // the compliant ball drifts 2.1e-6 J, 2e-7 of the 9.8 J in play (some
+  // 2000 x rtol), within what rtol 1e-8 asks (100 x 1e-8 x the energy): not
+  // warned, where it used to be told to tighten to rtol 1e-14.
   SimRun r = run(BALL_COMPLIANT_SIM, "", "energy_compliant_own");
   ASSERT_EQ(r.status, 0) << r.log;
-  EXPECT_NE(r.log.find("the energy balance drifts"), std::string::npos) << r.log;
-  EXPECT_NE(r.log.find("finer than a run in double precision holds"), std::string::npos) << r.log;
-  EXPECT_EQ(r.log.find("rerun with --rtol"), std::string::npos) << r.log;
+  EXPECT_GT(residual(r.log), 100 * 1e-10 * energy_field(r.log, ", of ")) << r.log;
+  EXPECT_EQ(r.log.find("the energy balance drifts"), std::string::npos) << r.log;
 }
 
 TEST(EnergyWitness, AConservativeRunIsNotWarned) {

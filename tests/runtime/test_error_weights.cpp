@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,29 @@ TEST(ErrorWeights, WithoutGroupsOrNominalsTheyAreSundialsOwn) {
   double w = 0.0;
   ASSERT_TRUE(weights(&y, &w));
   EXPECT_EQ(w, 1.0 / (1e-6 * 0.25 + 1e-8));
+}
+
+TEST(ErrorWeights, OnceEngagedTheFloorHoldsAtolAtWhatRoundingResolves) {
+  // A 3-vector whose size was 2e-3 and is now 1e-12, asked atol 1e-14 x a
+  // nominal of 1e-9: 1e-23, far below 1e4 u x 2e-3 = 2.2e-15.
+  Grouped m;
+  const double rtol = 1e-10, atol = 1e-14, u = std::numeric_limits<double>::epsilon() / 2;
+  detail::ErrorWeights weights(m, rtol, atol);
+  std::vector<double> w(5);
+  const std::vector<double> before = {0.0, 2e-3, 0.0, 1.0, 1.0};
+  ASSERT_TRUE(weights(before.data(), w.data()));
+  const std::vector<double> now = {0.0, 1e-12, 0.0, 1.0, 1.0};
+  ASSERT_TRUE(weights(now.data(), w.data()));
+  EXPECT_DOUBLE_EQ(w[1], 1.0 / (rtol * 1e-12 + atol * 1e-9));  // off until engaged
+  EXPECT_TRUE(weights.floored().empty());
+  weights.engage_floor();
+  ASSERT_TRUE(weights(now.data(), w.data()));
+  const double floor = detail::ErrorWeights::kRoundingFloor * u * 2e-3;  // the vector's peak, not its size now
+  EXPECT_DOUBLE_EQ(w[0], 1.0 / (rtol * 1e-13 + floor));
+  EXPECT_DOUBLE_EQ(w[1], 1.0 / (rtol * 1e-12 + floor));
+  // a loner of size 1: its floor too, but rtol x 1 sets its tolerance (not named)
+  EXPECT_DOUBLE_EQ(w[3], 1.0 / (rtol * 1.0 + detail::ErrorWeights::kRoundingFloor * u * 1.0));
+  EXPECT_EQ(weights.floored(), (std::vector<std::size_t>{0, 1, 2}));
 }
 
 TEST(ErrorWeights, ANonPositiveToleranceIsRefused) {

@@ -124,6 +124,7 @@ class Dopri5 final : public Integrator {
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
+  std::vector<std::size_t> floored_unknowns() const override { return data_.weights.floored(); }
 
  private:
   void remember() {

@@ -139,6 +139,7 @@ class Cvode final : public Integrator {
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
+  std::vector<std::size_t> floored_unknowns() const override { return data_.weights.floored(); }
 
  private:
   /// CVode to t_out (or a root before it), and the witness's integrals there.

@@ -48,11 +48,15 @@ class Ida final : public Integrator {
     else if (m_.constraint_shape().any())
       note = fmt::format(
           " (index-2 constraints: algebraic unknowns outside the error test, their Newton "
-          "weights scaled by h / interval; first step {}{})",
+          "weights scaled by h / interval; first step {}{}{})",
           h0_ > 0.0 ? fmt::format("{:.2g} s", h0_) : std::string("IDA's own"),
           relaxed_at_ ? fmt::format("; after a Newton failure at t = {:.9g} s, restarted with "
                                     "those weights scaled by h / 1 s",
                                     *relaxed_at_)
+                      : std::string(),
+          floored_at_ ? fmt::format("; after a failure at t = {:.9g} s, restarted with the absolute tolerances "
+                                    "floored at rounding",
+                                    *floored_at_)
                       : std::string());
     const std::string linear =
         sparse_ ? fmt::format("sparse LU (KLU) on the model's pattern ({} of {} entries), finite-difference "
@@ -124,6 +128,7 @@ class Ida final : public Integrator {
       flag = solve(t_out);
     }
     if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two()) flag = solve(t_out);
+    if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && floor_tolerances()) flag = solve(t_out);
     if (flag < 0) return fail(flag);
     return true;
   }
@@ -152,6 +157,7 @@ class Ida final : public Integrator {
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
+  std::vector<std::size_t> floored_unknowns() const override { return weights_of_.floored(); }
 
  private:
   /// IDASolve to t_out (or a root before it), and the witness's integrals
@@ -369,8 +375,27 @@ class Ida final : public Integrator {
   bool relax_index_two() {
     if (!m_.is_dae() || !m_.constraint_shape().any() || relaxed_at_) return false;
     if (s_.interval_s >= 1.0) return false;  // already the weaker scaling
-    // IDA's y' at its last step is the BDF formula's, not the DAE's: the
-    // order-1 restart needs the consistent one (as at the start).
+    h_ref_ = 1.0;
+    if (!restart_here()) return false;
+    relaxed_at_ = t_;
+    return true;
+  }
+
+  /// After IDA_CONV_FAIL or IDA_TOO_MUCH_WORK (and relax_index_two): the
+  /// absolute tolerances get their rounding floor (ErrorWeights), and IDA
+  /// restarts from the last step it completed. Once per run.
+  bool floor_tolerances() {
+    if (weights_of_.floor_engaged() || !m_.is_dae() || !m_.constraint_shape().any()) return false;
+    weights_of_.engage_floor();
+    if (!restart_here()) return false;
+    floored_at_ = t_;
+    return true;
+  }
+
+  /// An order-1 restart of an index-2 DAE from IDA's last step. IDA's y'
+  /// there is the BDF formula's, not the DAE's: the restart needs the
+  /// consistent one (as at the start).
+  bool restart_here() {
     std::vector<double> y(y_.data(), y_.data() + m_.size()), yp(yp_.data(), yp_.data() + m_.size());
     if (!detail::consistent_initial_values(m_.model(), m_.constraint_shape(), t_, y.data(),
                                            yp.data())
@@ -382,8 +407,6 @@ class Ida final : public Integrator {
     if (sparse_) counted.fd_jac_evals -= sparse_->evaluations();  // counted on by stats() itself
     if (!reinit()) return false;
     before_restart_ = counted;
-    relaxed_at_ = t_;
-    h_ref_ = 1.0;
     h0_ = initial_step(t_);
     if (h0_ > 0.0) IDASetInitStep(mem_, h0_);
     IDASetStopTime(mem_, s_.t_end_s);
@@ -433,6 +456,7 @@ class Ida final : public Integrator {
   bool index_two_ = false;   ///< an index-2 DAE: the algebraic unknowns' weights scaled by the step
   double h_ref_ = s_.interval_s;  ///< multipliers' weights scaled by min(1, h / h_ref_)
   std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
+  std::optional<double> floored_at_;  ///< time of the restart by floor_tolerances()
   /// IDA's counters up to the restart (zero until then).
   SolverStats before_restart_{0, 0, 0, 0, 0, 0, 0, 0.0, 0, {}};
   std::vector<int> root_info_;  // per event: +1 rising, -1 falling, 0 no root (IDAGetRootInfo)
