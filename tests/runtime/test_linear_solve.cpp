@@ -77,6 +77,29 @@ TEST(RankRevealingSolve, ADependentRowGivesASolutionAndTheRankNotNaN) {
   EXPECT_TRUE(std::isnan(x[0]));
 }
 
+TEST(RankRevealingSolve, BeyondSixtyFourUnknownsTheRankIsStillFound) {
+  // 80 multipliers (a row of 40 four-bars): the scratch space moves to the
+  // heap, the algorithm stays (it used to fall back to partial pivoting and
+  // report full rank). Row 79 repeats row 3; b consistent.
+  const int n = 80;
+  std::vector<double> a0(n * n), b0(n);
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) a0[r * n + c] = r == c ? 4.0 : (std::abs(r - c) == 1 ? -1.0 : 0.0);
+    b0[r] = 1.0 + 0.01 * r;
+  }
+  for (int c = 0; c < n; ++c) a0[79 * n + c] = a0[3 * n + c];
+  b0[79] = b0[3];
+  std::vector<double> a = a0, x = b0;
+  std::vector<int> dependent(n, -1);
+  EXPECT_EQ(mbgrt::solve_rank_revealing(n, a.data(), x.data(), 1e-10, dependent.data()), n - 1);
+  EXPECT_TRUE(dependent[0] == 3 || dependent[0] == 79) << dependent[0];
+  for (int r = 0; r < n; ++r) {
+    double s = 0;
+    for (int c = 0; c < n; ++c) s += a0[r * n + c] * x[c];
+    EXPECT_NEAR(s, b0[r], 1e-12) << "row " << r;
+  }
+}
+
 TEST(RankRevealingSolve, TheSizeKnownAtCompileTimeGivesTheSameBits) {
   // Generated code calls solve_rank_revealing<N>: the same algorithm, the
   // loops unrolled. Full rank, a dependent row and a NaN entry alike.

@@ -9,6 +9,7 @@
 #include <limits>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace mbgrt {
 namespace detail {
@@ -78,15 +79,10 @@ namespace detail {
 
 /// solve_rank_revealing's algorithm; Size is int, or std::integral_constant
 /// when the generated code knows n, so that the C++ compiler unrolls it.
+/// col, row (n each) and y (n) are scratch space.
 template <class Size>
-inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dependent) {
-  constexpr int kMax = 64;
-  int col[kMax];  // col[k]: the unknown eliminated at step k
-  int row[kMax];  // row[k]: the equation (as numbered on entry) now in row k
-  if (n > kMax) {
-    mbgrt::solve_linear(n, a, x);
-    return n;
-  }
+inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* dependent, int* col, int* row,
+                             double* y) {
   double scale = 0.0;
   bool finite = true;
   for (int i = 0; i < n * n; ++i) {
@@ -98,7 +94,7 @@ inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dep
     for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
     return 0;
   }
-  for (int k = 0; k < n; ++k) col[k] = k, row[k] = k;
+  for (int k = 0; k < n; ++k) col[k] = k, row[k] = k;  // col[k]: the unknown eliminated at step k; row[k]: the equation now in row k
   int rank = n;
   for (int k = 0; k < n; ++k) {
     int pr = k, pc = k;
@@ -120,7 +116,6 @@ inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dep
     }
     eliminate_below(n, a, x, k);
   }
-  double y[kMax];
   for (int k = n - 1; k >= 0; --k) {
     if (k >= rank) {
       y[k] = 0.0;
@@ -134,6 +129,21 @@ inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dep
   if (dependent)
     for (int k = rank; k < n; ++k) dependent[k - rank] = row[k];
   return rank;
+}
+
+/// With scratch on the stack up to kMax unknowns (the generated code's
+/// systems), on the heap beyond (a row of 40 four-bars has 80 multipliers).
+template <class Size>
+inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dependent) {
+  constexpr int kMax = 64;
+  if (n > kMax) {
+    std::vector<int> col(static_cast<std::size_t>(n)), row(static_cast<std::size_t>(n));
+    std::vector<double> y(static_cast<std::size_t>(n));
+    return rank_revealing_in(n, a, x, rel_tol, dependent, col.data(), row.data(), y.data());
+  }
+  int col[kMax], row[kMax];
+  double y[kMax];
+  return rank_revealing_in(n, a, x, rel_tol, dependent, col, row, y);
 }
 
 }  // namespace detail
