@@ -6,11 +6,11 @@
 
 #include <algorithm>
 #include <array>
-#include <set>
 #include <cmath>
 #include <deque>
 #include <limits>
 #include <ranges>
+#include <set>
 #include <tuple>
 
 #include <fmt/format.h>

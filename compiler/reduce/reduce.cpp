@@ -801,8 +801,7 @@ class Reducer {
       diags_.warning(ss.solver_loc,
                      fmt::format("solver `{}` cannot integrate the DAE that {} makes of this model: it is integrated by {}",
                                  *ss.solver, *ss.form_option, dae_solver),
-                     fmt::format("the simulate block's solver is a default; the simulator's --solver chooses another "
-                                 "at run time"));
+                     "the simulate block's solver is a default; the simulator's --solver chooses another at run time");
       ss.solver = dae_solver;
       return;
     }

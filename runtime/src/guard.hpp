@@ -25,6 +25,10 @@ struct Blame {
   std::size_t index = 0;  ///< unknown (or equation) index into y; BlameSite::constraint: the position row
   double value = 0.0;     ///< the offending value (NaN, +Inf or -Inf)
   std::string detail;     ///< exception text for BlameSite::exception
+  /// A value became NaN or infinite (not an exception, a limit or a joint row).
+  bool non_finite() const {
+    return site == BlameSite::derivative || site == BlameSite::residual || site == BlameSite::state;
+  }
 };
 
 class GuardedModel {

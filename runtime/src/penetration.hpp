@@ -11,6 +11,7 @@
 // balance: not reported.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>

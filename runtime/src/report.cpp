@@ -151,8 +151,7 @@ void print_stop_message(std::FILE* err, const GuardedModel& model, const Integra
                             "others): the dead point, past which the loop stopped closing",
                             format_time(rl->first_t()), format_time(rl->lowest_t()), rl->rows()));
   }
-  if (blame && blame->site != BlameSite::exception && blame->site != BlameSite::limit &&
-      blame->site != BlameSite::constraint) {
+  if (blame && blame->non_finite()) {
     // A constraint row of a lagrange DAE is named as the joint constraint.
     const ConstraintShape& shape = model.constraint_shape();
     const std::string culprit =

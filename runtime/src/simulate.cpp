@@ -31,10 +31,6 @@ namespace mbgrt::detail {
 
 namespace {
 
-/// States that moved but never rose far above their absolute tolerance
-/// (atol x nominal), nor did any other component of their vector
-/// (Model::unknown_group): the tolerance resolves them only to that over
-/// |value|. Empty if there are none.
 /// The unknowns the error weights' rounding floor held (ErrorWeights): a
 /// line for the summary, empty if none.
 std::string describe_floored(const Model& model, const std::vector<std::size_t>& floored) {
@@ -50,6 +46,10 @@ std::string describe_floored(const Model& model, const std::vector<std::size_t>&
                      ErrorWeights::kRoundingFloor);
 }
 
+/// States that moved but never rose far above their absolute tolerance
+/// (atol x nominal), nor did any other component of their vector
+/// (Model::unknown_group): the tolerance resolves them only to that over
+/// |value|. Empty if there are none.
 std::string describe_small_states(const Model& model, const std::vector<double>& peak, double atol) {
   constexpr double kFactor = 100;
   const ErrorWeights weights(model, 0.0, atol);
@@ -233,8 +233,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   std::string stop_note, stability;
   if (!model.is_dae() && !linearize) {
     const auto& blame = guard.blame();
-    const bool blew_up = blame && blame->site != BlameSite::limit && blame->site != BlameSite::exception &&
-                         blame->site != BlameSite::constraint;
+    const bool blew_up = blame && blame->non_finite();
     if (!r.ok && r.started && (r.solver_failed || blew_up))
       stop_note = describe_stiffness(estimate_stiffness(model, last_row_t, last_row_y.data()), integrator->name(),
                                      !integrator_info(s.solver).adaptive ? (s.step_s > 0 ? s.step_s : s.interval_s / 10) : 0.0,

@@ -94,7 +94,9 @@ inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* 
     for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
     return 0;
   }
-  for (int k = 0; k < n; ++k) col[k] = k, row[k] = k;  // col[k]: the unknown eliminated at step k; row[k]: the equation now in row k
+  // col[k]: the unknown eliminated at step k; row[k]: the equation (as
+  // numbered on entry) now in row k
+  for (int k = 0; k < n; ++k) col[k] = k, row[k] = k;
   int rank = n;
   for (int k = 0; k < n; ++k) {
     int pr = k, pc = k;
