@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
   std::string constraints;
   app.add_option("--constraints", constraints,
                  "auto|lagrange|penalty|coordinates: how joint constraints are enforced, replacing the model's "
-                 "`constraints = ...` (a joint's own `constraint = ...` still wins; auto: coordinates for a tree, else lagrange)")
+                 "`constraints = ...` (a joint's own `constraint = ...` still wins; auto: coordinates, loops closed by cut joints, "
+                 "where joint coordinates can move every joint, else lagrange)")
       ->check(CLI::IsMember({"auto", "lagrange", "penalty", "coordinates"}));
   std::string contacts;
   app.add_option("--contacts", contacts,

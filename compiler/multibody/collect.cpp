@@ -114,8 +114,9 @@ void Expander::setting(const AstSetting& st) {
 /// `constraints = ...` (the model's) or `constraint = ...` (a joint's).
 std::optional<Strategy> Expander::strategy_of(const AstExpr& v, const char* key) {
   const std::string choices =
-      "auto (the default: coordinates for a tree, else lagrange), lagrange (multipliers: a DAE for IDA), penalty "
-      "(stiff spring-dampers: an ODE) or coordinates (joint coordinates as states, for trees: an ODE)";
+      "auto (the default: coordinates where joint coordinates can move every joint, else lagrange), lagrange "
+      "(multipliers: a DAE for IDA), penalty (stiff spring-dampers: an ODE) or coordinates (joint coordinates as "
+      "states on a spanning tree, its loops closed by cut joints: an ODE)";
   const std::string how = fmt::format("write {} = {}", key, choices);
   if (v.kind == AstExpr::Kind::Name) {
     if (v.name == "auto") return Strategy::Auto;
