@@ -544,12 +544,14 @@ class Emitter {
       for (int u : lb.unknowns) rows.push_back(cpp_string(g_.vars[static_cast<std::size_t>(u)].name));
       body.push_back(CppStmt::line(fmt::format("static const char* const {}_rows[] = {{{}}};", id, fmt::join(rows, ", "))));
       body.push_back(CppStmt::line(fmt::format("int {}_dependent[{}];", id, n)));
-      body.push_back(CppStmt::line(
-          fmt::format("const int {0}_rank = mbgrt::solve_rank_revealing<{1}>({0}_a, {0}_x, 1e-10, {0}_dependent);", id, n)));
+      body.push_back(CppStmt::line(fmt::format("double {}_closest;", id)));
       body.push_back(CppStmt::line(fmt::format(
-          "if ({0}_rank < {1}) rank_loss_.record(t, \"the {1} x {1} system of the constraint multipliers\", {0}_rank, {1}, "
-          "{0}_dependent, {0}_rows);",
-          id, n)));
+          "const int {0}_rank = mbgrt::solve_rank_revealing<{1}>({0}_a, {0}_x, 1e-10, {0}_dependent, &{0}_closest);", id,
+          n)));
+      body.push_back(CppStmt::line(fmt::format(
+          "rank_loss_.observe(t, \"the {1} x {1} system of the {2} multipliers\", {0}_rank, {1}, {0}_dependent, "
+          "{0}_rows, {0}_closest, {3});",
+          id, n, lb.cut_joints ? "cut joints'" : "constraint", lb.cut_joints ? "true" : "false")));
       has_rank_loss_ = true;
     } else {
       body.push_back(CppStmt::line(fmt::format("mbgrt::solve_linear({}, {}_a, {}_x);", n, id, id)));

@@ -29,9 +29,14 @@ struct LinearBlock {
   std::vector<int> unknowns;  // x
   std::vector<Expr> a;        // n x n, row-major
   std::vector<Expr> b;        // n
-  // Cut joints' multipliers: their rows may become dependent during a run (a
-  // parallelogram's links aligning): mbgrt::solve_rank_revealing instead.
+  // Cut joints' (and closed contacts') multipliers: their rows may become
+  // dependent during a run (a parallelogram's links aligning):
+  // mbgrt::solve_rank_revealing instead.
   bool rank_revealing = false;
+  // Some of the rows are cut joints' (a CN of LawForm::Stabilised): where
+  // they become dependent the mechanism is at a change point, which the run
+  // watches for (RankLossLog::observe).
+  bool cut_joints = false;
 };
 
 /// An algebraic loop found while sorting, in bond-graph terms.

@@ -555,6 +555,18 @@ class Eliminator {
     return lambda_form_.emplace(u, std::move(out)).first->second;
   }
 
+  /// Whether variable u is an effort of a cut joint's CN (LawForm::Stabilised).
+  bool of_cut_joint(int u) const {
+    const Variable& v = graph_.vars[static_cast<std::size_t>(u)];
+    if (v.kind != VarKind::Effort || v.of < 0) return false;
+    const Bond& b = graph_.bonds[static_cast<std::size_t>(v.of)];
+    for (int end : {b.from, b.to}) {
+      const GraphNode& node = graph_.nodes[static_cast<std::size_t>(end)];
+      if (node.kind == NodeKind::CN && node.law == LawForm::Stabilised) return true;
+    }
+    return false;
+  }
+
   /// The cut joints' rows, affine in the multipliers: A lambda + b = 0.
   bool multiplier_system(TreeElimination& out, std::string* why) {
     LinearBlock lb;
@@ -586,6 +598,7 @@ class Eliminator {
                                      lb.unknowns.size(), lb.unknowns.size() == 1 ? "" : "s", lb.unknowns.size(), lb.unknowns.size()),
                          0});
     lb.rank_revealing = true;
+    lb.cut_joints = std::any_of(lb.unknowns.begin(), lb.unknowns.end(), [&](int u) { return of_cut_joint(u); });
     out.multipliers = std::move(lb);
     return true;
   }

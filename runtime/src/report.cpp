@@ -48,6 +48,22 @@ void note(std::FILE* err, std::string_view text) {
 
 std::string format_time(double t) { return fmt::format("{:.9g}", t); }
 
+/// Each stretch of time the rank-revealing solves found rows dependent, the
+/// first kListed of them one a line: where a mechanism passed a change point.
+void print_rank_loss_episodes(std::FILE* err, const RankLossLog& rl) {
+  constexpr std::size_t kListed = 10;
+  const auto& eps = rl.episodes();
+  const std::size_t total = eps.size() + rl.later_episodes();
+  fmt::print(err, "               in {} episode{} (rows dependent within {} s of each other):\n", total,
+             total == 1 ? "" : "s", RankLossLog::kEpisodeGap);
+  for (std::size_t i = 0; i < std::min(eps.size(), kListed); ++i) {
+    const RankLossLog::Episode& e = eps[i];
+    fmt::print(err, "               t = {} to {} s: rank {} of {}, {} implied ({} evaluation{})\n", format_time(e.begin),
+               format_time(e.end), e.lowest_rank, rl.size(), e.rows, e.evaluations, e.evaluations == 1 ? "" : "s");
+  }
+  if (total > kListed) fmt::print(err, "               and {} more\n", total - kListed);
+}
+
 /// The switches of the model's events, the first kListed of them one a line.
 void print_events(std::FILE* err, const Events& events) {
   constexpr std::size_t kListed = 10;
@@ -112,6 +128,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
                rl->count(), rl->count() == 1 ? "" : "s", rl->system(), format_time(rl->first_t()), rl->lowest_rank(),
                rl->size(), format_time(rl->lowest_t()), rl->rows(), one ? "was" : "were",
                one ? "its multiplier" : "their multipliers");
+    print_rank_loss_episodes(err, *rl);
   }
   if (run.events && run.events->count() > 0) print_events(err, *run.events);
   fmt::print(err, "  output       {}\n", run.output);

@@ -81,8 +81,8 @@ namespace detail {
 /// when the generated code knows n, so that the C++ compiler unrolls it.
 /// col, row (n each) and y (n) are scratch space.
 template <class Size>
-inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* dependent, int* col, int* row,
-                             double* y) {
+inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* dependent, double* closest, int* col,
+                             int* row, double* y) {
   double scale = 0.0;
   bool finite = true;
   for (int i = 0; i < n * n; ++i) {
@@ -90,6 +90,7 @@ inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* 
     finite = finite && v <= std::numeric_limits<double>::max();  // false for inf and NaN
     scale = v > scale ? v : scale;
   }
+  if (closest) *closest = finite && scale > 0.0 ? 1.0 : 0.0;
   if (!finite) {
     for (int i = 0; i < n; ++i) x[i] = std::numeric_limits<double>::quiet_NaN();
     return 0;
@@ -104,6 +105,7 @@ inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* 
     for (int r = k; r < n; ++r)
       for (int c = k; c < n; ++c)
         if (std::fabs(a[r * n + c]) > best) best = std::fabs(a[r * n + c]), pr = r, pc = c;
+    if (closest && scale > 0.0 && best / scale < *closest) *closest = best / scale;
     if (!(best > rel_tol * scale)) {
       rank = k;
       break;
@@ -136,16 +138,16 @@ inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* 
 /// With scratch on the stack up to kMax unknowns (the generated code's
 /// systems), on the heap beyond (a row of 40 four-bars has 80 multipliers).
 template <class Size>
-inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dependent) {
+inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dependent, double* closest) {
   constexpr int kMax = 64;
   if (n > kMax) {
     std::vector<int> col(static_cast<std::size_t>(n)), row(static_cast<std::size_t>(n));
     std::vector<double> y(static_cast<std::size_t>(n));
-    return rank_revealing_in(n, a, x, rel_tol, dependent, col.data(), row.data(), y.data());
+    return rank_revealing_in(n, a, x, rel_tol, dependent, closest, col.data(), row.data(), y.data());
   }
   int col[kMax], row[kMax];
   double y[kMax];
-  return rank_revealing_in(n, a, x, rel_tol, dependent, col, row, y);
+  return rank_revealing_in(n, a, x, rel_tol, dependent, closest, col, row, y);
 }
 
 }  // namespace detail
@@ -159,16 +161,21 @@ inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dep
 /// overwritten, `x` holds b on entry and the solution on return; returns the
 /// rank found. With `dependent`, its first n - rank entries receive the rows
 /// (as numbered on entry) left without a pivot: the rows the others imply.
+/// With `closest`, it receives the smallest pivot over the largest entry of
+/// A (1 for a single unknown, about 1e-1 for a well-conditioned system, at
+/// most rel_tol where the rank was lost): how close A came to losing rank.
 /// Non-finite entries give NaN, as solve_linear does.
-inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr) {
-  return detail::rank_revealing(n, a, x, rel_tol, dependent);
+inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr,
+                                double* closest = nullptr) {
+  return detail::rank_revealing(n, a, x, rel_tol, dependent, closest);
 }
 
 /// The same with n known at compile time (what generated code calls): the
 /// loops unroll, a 2 x 2 system costs a few dozen instructions.
 template <int N>
-inline int solve_rank_revealing(double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr) {
-  return detail::rank_revealing(std::integral_constant<int, N>{}, a, x, rel_tol, dependent);
+inline int solve_rank_revealing(double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr,
+                                double* closest = nullptr) {
+  return detail::rank_revealing(std::integral_constant<int, N>{}, a, x, rel_tol, dependent, closest);
 }
 
 }  // namespace mbgrt

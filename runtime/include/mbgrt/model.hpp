@@ -45,20 +45,65 @@ namespace mbgrt {
 
 /// What a model's rank-revealing solves found during a run (the multipliers
 /// of cut joints whose rows became dependent): the generated code records
-/// each solve that lost rank, the runtime prints it in the run summary.
+/// each solve that lost rank, the runtime prints it in the run summary. The
+/// solves are grouped into episodes, one per stretch of time the rows stayed
+/// dependent (a mechanism's passage through a change point): records less
+/// than kEpisodeGap apart belong to one.
 class RankLossLog {
  public:
+  static constexpr double kEpisodeGap = 1e-3;  ///< s
+  static constexpr std::size_t kMaxEpisodes = 100;  ///< kept in detail; later ones only counted
+
+  struct Episode {
+    double begin = 0.0, end = 0.0;  ///< first and last time a solve lost rank in it
+    long evaluations = 0;
+    int lowest_rank = 0;
+    std::string rows;  ///< dependent at the lowest rank, in model terms
+  };
+
+  /// A solve of the n x n system `system` at time t (what the generated
+  /// code calls after each): a rank below n is recorded. For a system of cut
+  /// joints' rows (`cut_joints`), where a dependent row means a change point
+  /// of the mechanism, `closest`, its smallest pivot over its largest entry
+  /// (solve_rank_revealing), is kept if the closest yet, and rank losses are
+  /// counted apart.
+  void observe(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names,
+               double closest, bool cut_joints) {
+    if (cut_joints && closest < closest_) closest_ = closest, closest_t_ = t;
+    if (rank >= n) return;
+    if (cut_joints && cut_joint_count_++ == 0) cut_joint_first_t_ = t;
+    record(t, system, rank, n, dependent, row_names);
+  }
+  /// Of the cut joints' systems: the smallest pivot ratio a solve met (1 if
+  /// none ran) and when; the solves that lost rank and the first time one did.
+  double closest() const { return closest_; }
+  double closest_t() const { return closest_t_; }
+  long cut_joint_count() const { return cut_joint_count_; }
+  double cut_joint_first_t() const { return cut_joint_first_t_; }
+
   /// A solve of the n x n system `system` found `rank` < n at time t, the
   /// rows dependent[0 .. n - rank) named by row_names.
   void record(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names) {
     if (count_++ == 0) first_t_ = t;
+    Episode* e = nullptr;
+    if (!episodes_.empty() && t >= episodes_.back().begin - kEpisodeGap && t <= episodes_.back().end + kEpisodeGap) {
+      e = &episodes_.back();
+    } else if (episodes_.size() < kMaxEpisodes) {
+      episodes_.push_back(Episode{t, t, 0, n, {}});
+      e = &episodes_.back();
+    } else if (t > last_t_ + kEpisodeGap) {
+      ++uncounted_;
+    }
+    last_t_ = t;
+    if (e) {
+      e->begin = t < e->begin ? t : e->begin;
+      e->end = t > e->end ? t : e->end;
+      ++e->evaluations;
+      if (rank < e->lowest_rank) e->lowest_rank = rank, e->rows = names(rank, n, dependent, row_names);
+    }
     if (rank >= lowest_rank_ && count_ > 1) return;
     lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
-    rows_.clear();
-    for (int k = 0; k < n - rank; ++k) {
-      if (k) rows_ += ", ";
-      rows_ += row_names[dependent[k]];
-    }
+    rows_ = names(rank, n, dependent, row_names);
   }
   long count() const { return count_; }      ///< solves that lost rank (derivative evaluations)
   double first_t() const { return first_t_; }  ///< the first time one did
@@ -67,12 +112,27 @@ class RankLossLog {
   double lowest_t() const { return lowest_t_; }  ///< when the lowest rank was first found
   const std::string& system() const { return system_; }
   const std::string& rows() const { return rows_; }  ///< the rows dependent then, in model terms
+  const std::vector<Episode>& episodes() const { return episodes_; }
+  /// Episodes beyond kMaxEpisodes, not kept.
+  std::size_t later_episodes() const { return uncounted_; }
 
  private:
+  static std::string names(int rank, int n, const int* dependent, const char* const* row_names) {
+    std::string out;
+    for (int k = 0; k < n - rank; ++k) {
+      if (k) out += ", ";
+      out += row_names[dependent[k]];
+    }
+    return out;
+  }
   long count_ = 0;
-  double first_t_ = 0.0, lowest_t_ = 0.0;
+  double first_t_ = 0.0, lowest_t_ = 0.0, last_t_ = 0.0;
+  double closest_ = 1.0, closest_t_ = 0.0, cut_joint_first_t_ = 0.0;
+  long cut_joint_count_ = 0;
   int lowest_rank_ = 0, size_ = 0;
   std::string system_, rows_;
+  std::vector<Episode> episodes_;
+  std::size_t uncounted_ = 0;
 };
 
 

@@ -371,8 +371,9 @@ class cut_joint_model final : public mbgrt::Model {
     double blk1_x[2] = {-(cse20 * j3_cn_f_1 + cse21 * (rocker_pose_r1 + cse10 - (coupler_pose_r1 + cse9)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column19 - coupler_pose_R12 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse6 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse8 * rocker_accel4))), -(cse20 * j3_cn_f_2 + cse21 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse13)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column19 - coupler_pose_R22 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse11 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse12 * rocker_accel4)))};
     static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
     int blk1_dependent[2];
-    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
-    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
+    double blk1_closest;
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent, &blk1_closest);
+    rank_loss_.observe(t, "the 2 x 2 system of the cut joints' multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, true);
     const double j3_cn_e_1 = blk1_x[0];
     const double j3_cn_e_2 = blk1_x[1];
     // cut_joint.mbg:17:7  joint acceleration of body rocker from its parent's motion (articulated-body form)
@@ -993,8 +994,9 @@ class cut_joint_model final : public mbgrt::Model {
     double blk1_x[2] = {-(cse64 * j3_cn_f_1 + cse65 * (rocker_pose_r1 + cse54 - (coupler_pose_r1 + cse53)) + (-j2_reaction_f_f_1 * der_coupler_pose_R11 - j2_reaction_f_f_2 * der_coupler_pose_R12 - coupler_pose_R11 * coupler_column19 - coupler_pose_R12 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R12 - cse50 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R12 + rocker_pose_R12 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R12 + cse52 * rocker_accel4))), -(cse64 * j3_cn_f_2 + cse65 * (rocker_pose_r2 + rocker_pose_r2 - (coupler_pose_r2 + cse57)) + (-j2_reaction_f_f_1 * der_coupler_pose_R21 - j2_reaction_f_f_2 * der_coupler_pose_R22 - coupler_pose_R21 * coupler_column19 - coupler_pose_R22 * coupler_column25 + (-j2_m5_f2_2 * der_coupler_pose_R22 - cse55 * coupler_column28) + (j4_m2_f2_2 * der_rocker_pose_R22 + rocker_pose_R22 * rocker_column7) + (j4_m2_f2_2 * der_rocker_pose_R22 + cse56 * rocker_accel4)))};
     static const char* const blk1_rows[] = {"j3.cn.e[1]", "j3.cn.e[2]"};
     int blk1_dependent[2];
-    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
-    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
+    double blk1_closest;
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent, &blk1_closest);
+    rank_loss_.observe(t, "the 2 x 2 system of the cut joints' multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, true);
     const double j3_cn_e_1 = blk1_x[0];
     const double j3_cn_e_2 = blk1_x[1];
     // the powers

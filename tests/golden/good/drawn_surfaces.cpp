@@ -307,8 +307,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * (ball_p_r_q_3 - on_floor_radius) - contact_bias_[0])};
     static const char* const blk1_rows[] = {"ball_p.m.e[3]", "on_floor.cn.e"};
     int blk1_dependent[2];
-    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
-    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
+    double blk1_closest;
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent, &blk1_closest);
+    rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double ball_p_m_e_3 = blk1_x[0];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
@@ -345,8 +346,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse6 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse16 - cse5 * cse17) / cse18 * ball_s_m_p_1 - cse9 * cse17 / cse18 * ball_s_m_p_2 - cse11 * cse17 / cse18 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse5 * cse19 / cse18 * ball_s_m_p_1 + (cse16 - cse9 * cse19) / cse18 * ball_s_m_p_2 - cse11 * cse19 / cse18 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse5 * cse20 / cse18 * ball_s_m_p_1 - cse9 * cse20 / cse18 * ball_s_m_p_2 + (cse16 - cse11 * cse20) / cse18 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
-    const int blk2_rank = mbgrt::solve_rank_revealing<8>(blk2_a, blk2_x, 1e-10, blk2_dependent);
-    if (blk2_rank < 8) rank_loss_.record(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows);
+    double blk2_closest;
+    const int blk2_rank = mbgrt::solve_rank_revealing<8>(blk2_a, blk2_x, 1e-10, blk2_dependent, &blk2_closest);
+    rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double ball_s_m_e_1 = blk2_x[0];
     const double ball_s_m_e_2 = blk2_x[1];
     const double ball_s_m_e_3 = blk2_x[2];
@@ -378,8 +380,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse23 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse30 - cse22 * cse31) / cse32 * ball_c_m_p_1 - cse26 * cse31 / cse32 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse22 * cse33 / cse32 * ball_c_m_p_1 + (cse30 - cse26 * cse33) / cse32 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
-    const int blk3_rank = mbgrt::solve_rank_revealing<6>(blk3_a, blk3_x, 1e-10, blk3_dependent);
-    if (blk3_rank < 6) rank_loss_.record(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows);
+    double blk3_closest;
+    const int blk3_rank = mbgrt::solve_rank_revealing<6>(blk3_a, blk3_x, 1e-10, blk3_dependent, &blk3_closest);
+    rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double ball_c_m_e_1 = blk3_x[0];
     const double ball_c_m_e_3 = blk3_x[1];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
@@ -498,8 +501,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse44 * std::fmin(cse65, cse50) + cse91 * cse43 - on_ridge_radius) - contact_bias_[3]), (cse44 * (cse66 * (cse67 * (cse68 * (((cse112 + cse112) * cse71 - cse70 * cse113) / cse114) + cse73 * ((4.0 * cse59 - cse74 * cse115) / cse116)) + cse77 * (((cse117 + cse117) * cse80 - cse79 * cse118) / cse119)) + cse82 * (((cse120 + cse120 + (cse121 + cse121)) * cse89 - cse88 * cse122) / cse123)) * ball_r_m_p_1 + cse44 * (cse66 * (cse67 * (-cse68 * (cse97 * cse113 / cse114) - cse73 * (cse100 * cse115 / cse116)) - cse77 * (cse102 * cse118 / cse119)) + cse82 * (((-cse124 - cse125 + (-cse126 - cse127)) * cse89 - cse107 * cse122) / cse123)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse44 * (cse66 * (cse67 * (-cse68 * (cse70 * cse128 / cse114) - cse73 * (cse74 * cse129 / cse116)) - cse77 * (cse79 * cse130 / cse119)) + cse82 * (((-cse125 - cse124 + (-cse127 - cse126)) * cse89 - cse88 * cse131) / cse123)) * ball_r_m_p_1 + cse44 * (cse66 * (cse67 * (cse68 * ((4.0 * cse55 - cse97 * cse128) / cse114) + cse73 * (((cse132 + cse132) * cse75 - cse100 * cse129) / cse116)) + cse77 * ((4.0 * cse64 - cse102 * cse130) / cse119)) + cse82 * (((cse133 + cse133 + (cse134 + cse134)) * cse89 - cse107 * cse131) / cse123)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
-    const int blk4_rank = mbgrt::solve_rank_revealing<6>(blk4_a, blk4_x, 1e-10, blk4_dependent);
-    if (blk4_rank < 6) rank_loss_.record(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows);
+    double blk4_closest;
+    const int blk4_rank = mbgrt::solve_rank_revealing<6>(blk4_a, blk4_x, 1e-10, blk4_dependent, &blk4_closest);
+    rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows, blk4_closest, false);
     const double ball_r_m_e_1 = blk4_x[0];
     const double ball_r_m_e_3 = blk4_x[1];
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
@@ -532,8 +536,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * (ball_m_r_q_3 - platform_pose_r3 - on_platform_radius) - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
     static const char* const blk5_rows[] = {"ball_m.m.e[3]", "on_platform.cat.e1[3]", "on_platform.cn.e", "der(on_platform.cat.f2)", "der(on_platform.cn.f)"};
     int blk5_dependent[5];
-    const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent);
-    if (blk5_rank < 5) rank_loss_.record(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows);
+    double blk5_closest;
+    const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent, &blk5_closest);
+    rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double ball_m_m_e_3 = blk5_x[0];
     // drawn_surfaces.mbg:53:7  d/dt of [Sf pull.s_rate: f = value]
     const double der_pull_s_rate_f = 0.0;
@@ -1214,8 +1219,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse154 - contact_bias_[0])};
     static const char* const blk1_rows[] = {"ball_p.m.e[3]", "on_floor.cn.e"};
     int blk1_dependent[2];
-    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
-    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
+    double blk1_closest;
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent, &blk1_closest);
+    rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     const double cse155 = ball_s_r_q_1 - 1.5;
@@ -1253,8 +1259,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse168 - contact_bias_[1]), ((cse169 - cse156 * cse170) / cse171 * ball_s_m_p_1 - cse160 * cse170 / cse171 * ball_s_m_p_2 - cse162 * cse170 / cse171 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse156 * cse172 / cse171 * ball_s_m_p_1 + (cse169 - cse160 * cse172) / cse171 * ball_s_m_p_2 - cse162 * cse172 / cse171 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse156 * cse173 / cse171 * ball_s_m_p_1 - cse160 * cse173 / cse171 * ball_s_m_p_2 + (cse169 - cse162 * cse173) / cse171 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
-    const int blk2_rank = mbgrt::solve_rank_revealing<8>(blk2_a, blk2_x, 1e-10, blk2_dependent);
-    if (blk2_rank < 8) rank_loss_.record(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows);
+    double blk2_closest;
+    const int blk2_rank = mbgrt::solve_rank_revealing<8>(blk2_a, blk2_x, 1e-10, blk2_dependent, &blk2_closest);
+    rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
     const double cse174 = ball_c_r_q_1 - 3.0;
@@ -1286,8 +1293,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse184 - contact_bias_[2]), ((cse185 - cse175 * cse186) / cse187 * ball_c_m_p_1 - cse179 * cse186 / cse187 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse175 * cse188 / cse187 * ball_c_m_p_1 + (cse185 - cse179 * cse188) / cse187 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
-    const int blk3_rank = mbgrt::solve_rank_revealing<6>(blk3_a, blk3_x, 1e-10, blk3_dependent);
-    if (blk3_rank < 6) rank_loss_.record(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows);
+    double blk3_closest;
+    const int blk3_rank = mbgrt::solve_rank_revealing<6>(blk3_a, blk3_x, 1e-10, blk3_dependent, &blk3_closest);
+    rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
     const double cse189 = -ball_r_r_q_3 * derived1_ / derived2_;
@@ -1407,8 +1415,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse268 - contact_bias_[3]), (cse199 * (cse221 * (cse222 * (cse223 * (((cse269 + cse269) * cse226 - cse225 * cse270) / cse271) + cse228 * ((4.0 * cse214 - cse229 * cse272) / cse273)) + cse232 * (((cse274 + cse274) * cse235 - cse234 * cse275) / cse276)) + cse237 * (((cse277 + cse277 + (cse278 + cse278)) * cse244 - cse243 * cse279) / cse280)) * ball_r_m_p_1 + cse199 * (cse221 * (cse222 * (-cse223 * (cse252 * cse270 / cse271) - cse228 * (cse255 * cse272 / cse273)) - cse232 * (cse257 * cse275 / cse276)) + cse237 * (((-cse281 - cse282 + (-cse283 - cse284)) * cse244 - cse262 * cse279) / cse280)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse199 * (cse221 * (cse222 * (-cse223 * (cse225 * cse285 / cse271) - cse228 * (cse229 * cse286 / cse273)) - cse232 * (cse234 * cse287 / cse276)) + cse237 * (((-cse282 - cse281 + (-cse284 - cse283)) * cse244 - cse243 * cse288) / cse280)) * ball_r_m_p_1 + cse199 * (cse221 * (cse222 * (cse223 * ((4.0 * cse210 - cse252 * cse285) / cse271) + cse228 * (((cse289 + cse289) * cse230 - cse255 * cse286) / cse273)) + cse232 * ((4.0 * cse219 - cse257 * cse287) / cse276)) + cse237 * (((cse290 + cse290 + (cse291 + cse291)) * cse244 - cse262 * cse288) / cse280)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
-    const int blk4_rank = mbgrt::solve_rank_revealing<6>(blk4_a, blk4_x, 1e-10, blk4_dependent);
-    if (blk4_rank < 6) rank_loss_.record(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows);
+    double blk4_closest;
+    const int blk4_rank = mbgrt::solve_rank_revealing<6>(blk4_a, blk4_x, 1e-10, blk4_dependent, &blk4_closest);
+    rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows, blk4_closest, false);
     const double on_ridge_cn_e = blk4_x[4];
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
     const double on_platform_cat_f2 = ball_m_m_p_3;
@@ -1442,8 +1451,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse293 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
     static const char* const blk5_rows[] = {"ball_m.m.e[3]", "on_platform.cat.e1[3]", "on_platform.cn.e", "der(on_platform.cat.f2)", "der(on_platform.cn.f)"};
     int blk5_dependent[5];
-    const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent);
-    if (blk5_rank < 5) rank_loss_.record(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows);
+    double blk5_closest;
+    const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent, &blk5_closest);
+    rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double on_platform_cn_e = blk5_x[2];
     // zero-crossing functions, in event order
     g[0] = -mode_[0] * on_floor_cn_e + cse153 * cse154;
@@ -1712,8 +1722,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * (ball_p_r_q_3 - on_floor_radius) - contact_bias_[0])};
     static const char* const blk1_rows[] = {"ball_p.m.e[3]", "on_floor.cn.e"};
     int blk1_dependent[2];
-    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent);
-    if (blk1_rank < 2) rank_loss_.record(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows);
+    double blk1_closest;
+    const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent, &blk1_closest);
+    rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
@@ -1750,8 +1761,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse359 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse369 - cse358 * cse370) / cse371 * ball_s_m_p_1 - cse362 * cse370 / cse371 * ball_s_m_p_2 - cse364 * cse370 / cse371 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse358 * cse372 / cse371 * ball_s_m_p_1 + (cse369 - cse362 * cse372) / cse371 * ball_s_m_p_2 - cse364 * cse372 / cse371 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse358 * cse373 / cse371 * ball_s_m_p_1 - cse362 * cse373 / cse371 * ball_s_m_p_2 + (cse369 - cse364 * cse373) / cse371 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
-    const int blk2_rank = mbgrt::solve_rank_revealing<8>(blk2_a, blk2_x, 1e-10, blk2_dependent);
-    if (blk2_rank < 8) rank_loss_.record(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows);
+    double blk2_closest;
+    const int blk2_rank = mbgrt::solve_rank_revealing<8>(blk2_a, blk2_x, 1e-10, blk2_dependent, &blk2_closest);
+    rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
     const double cse374 = ball_c_r_q_1 - 3.0;
@@ -1781,8 +1793,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse376 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse383 - cse375 * cse384) / cse385 * ball_c_m_p_1 - cse379 * cse384 / cse385 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse375 * cse386 / cse385 * ball_c_m_p_1 + (cse383 - cse379 * cse386) / cse385 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
-    const int blk3_rank = mbgrt::solve_rank_revealing<6>(blk3_a, blk3_x, 1e-10, blk3_dependent);
-    if (blk3_rank < 6) rank_loss_.record(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows);
+    double blk3_closest;
+    const int blk3_rank = mbgrt::solve_rank_revealing<6>(blk3_a, blk3_x, 1e-10, blk3_dependent, &blk3_closest);
+    rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
     const double cse387 = -ball_r_r_q_3 * derived1_ / derived2_;
@@ -1900,8 +1913,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse397 * std::fmin(cse418, cse403) + cse444 * cse396 - on_ridge_radius) - contact_bias_[3]), (cse397 * (cse419 * (cse420 * (cse421 * (((cse465 + cse465) * cse424 - cse423 * cse466) / cse467) + cse426 * ((4.0 * cse412 - cse427 * cse468) / cse469)) + cse430 * (((cse470 + cse470) * cse433 - cse432 * cse471) / cse472)) + cse435 * (((cse473 + cse473 + (cse474 + cse474)) * cse442 - cse441 * cse475) / cse476)) * ball_r_m_p_1 + cse397 * (cse419 * (cse420 * (-cse421 * (cse450 * cse466 / cse467) - cse426 * (cse453 * cse468 / cse469)) - cse430 * (cse455 * cse471 / cse472)) + cse435 * (((-cse477 - cse478 + (-cse479 - cse480)) * cse442 - cse460 * cse475) / cse476)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse397 * (cse419 * (cse420 * (-cse421 * (cse423 * cse481 / cse467) - cse426 * (cse427 * cse482 / cse469)) - cse430 * (cse432 * cse483 / cse472)) + cse435 * (((-cse478 - cse477 + (-cse480 - cse479)) * cse442 - cse441 * cse484) / cse476)) * ball_r_m_p_1 + cse397 * (cse419 * (cse420 * (cse421 * ((4.0 * cse408 - cse450 * cse481) / cse467) + cse426 * (((cse485 + cse485) * cse428 - cse453 * cse482) / cse469)) + cse430 * ((4.0 * cse417 - cse455 * cse483) / cse472)) + cse435 * (((cse486 + cse486 + (cse487 + cse487)) * cse442 - cse460 * cse484) / cse476)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
-    const int blk4_rank = mbgrt::solve_rank_revealing<6>(blk4_a, blk4_x, 1e-10, blk4_dependent);
-    if (blk4_rank < 6) rank_loss_.record(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows);
+    double blk4_closest;
+    const int blk4_rank = mbgrt::solve_rank_revealing<6>(blk4_a, blk4_x, 1e-10, blk4_dependent, &blk4_closest);
+    rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows, blk4_closest, false);
     const double on_ridge_cn_e = blk4_x[4];
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
     const double on_platform_cat_f2 = ball_m_m_p_3;
@@ -1933,8 +1947,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * (ball_m_r_q_3 - platform_pose_r3 - on_platform_radius) - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
     static const char* const blk5_rows[] = {"ball_m.m.e[3]", "on_platform.cat.e1[3]", "on_platform.cn.e", "der(on_platform.cat.f2)", "der(on_platform.cn.f)"};
     int blk5_dependent[5];
-    const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent);
-    if (blk5_rank < 5) rank_loss_.record(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows);
+    double blk5_closest;
+    const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent, &blk5_closest);
+    rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double on_platform_cn_e = blk5_x[2];
     // drawn_surfaces.mbg:35:6  d/dt of [I platform.m: p = I f (derivative causality)]
     const double der_platform_m_p_3 = 5.0 * der_rise_reaction_f_f_3;
