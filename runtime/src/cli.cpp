@@ -240,8 +240,9 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                "Implicit solvers: use finite-difference Jacobians even where the model generates one "
                "(to measure what the generated Jacobian saves)");
   app.add_flag("--strict", o.strict,
-               "Stop before integrating where the model's start is suspect (a unilateral contact starting inside "
-               "its surface): the warning becomes an error with exit status 1");
+               "Make the warnings about a suspect run errors with exit status 1: a start inside a unilateral "
+               "contact's surface (nothing is integrated), an implicit method carried across a change point of the "
+               "cut joints");
   app.add_flag("--no-energy-witness", o.no_energy_witness,
                "Do not integrate the model's energy balance beside the state (the summary's `energy` line, an "
                "error estimate that needs no reference run: it costs one evaluation of the model's power per "

@@ -313,14 +313,15 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     print_summary(hooks.report, record);
   }
   if (event_out) write_event_log(*event_out, guard.events());
-  if (const std::string w = implicit_near_change_points(model, s.solver); !w.empty()) print_warning(w);
+  const std::string suspect = implicit_near_change_points(model, s.solver);
+  if (!suspect.empty()) o.strict ? print_error(suspect + " (--strict)") : print_warning(suspect);
   if (!r.ok) print_stop_message(hooks.report, guard, *integrator, r.solver_failed, stop_note);
   if (r.signal != 0) {  // said even with --quiet: the output is not the whole run
     fmt::print(hooks.report, "mbgrt: stopped by {} at t = {} s of {} s; the {} rows written are whole\n",
                signal_name(r.signal), format_time(last_row_t), format_time(s.t_end_s), csv.rows());
     return 128 + r.signal;
   }
-  return r.ok ? kExitSuccess : kExitRunFailed;
+  return r.ok && (suspect.empty() || !o.strict) ? kExitSuccess : kExitRunFailed;
 }
 
 

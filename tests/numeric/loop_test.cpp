@@ -180,6 +180,12 @@ TEST_P(NFourBar, AnImplicitMultistepRunNearTheAlignedConfigurationsIsWarnedAbout
               contains(r.log, "where the cut joints' rows were dependent"))
       << r.log;
   EXPECT_TRUE(contains(r.log, "an explicit method steps across (--solver dopri5, or rk4)")) << r.log;
+  // a warning: the rows are written, exit status 0; under --strict an error
+  EXPECT_EQ(r.status, 0) << r.log;
+  SimRun strict = run(row.sim, "--solver cvode --t-end 2 --quiet --strict", "n_four_bar_cvode_strict_" + std::to_string(row.n));
+  EXPECT_EQ(strict.status, 1) << strict.log;
+  EXPECT_TRUE(contains(strict.log, "mbgrt: error: cvode integrated ")) << strict.log;
+  EXPECT_TRUE(contains(strict.log, " (--strict)")) << strict.log;
 }
 
 INSTANTIATE_TEST_SUITE_P(Rows, NFourBar,
