@@ -59,7 +59,7 @@ void print_rank_loss_episodes(std::FILE* err, const RankLossLog& rl) {
   for (std::size_t i = 0; i < std::min(eps.size(), kListed); ++i) {
     const RankLossLog::Episode& e = eps[i];
     fmt::print(err, "               t = {} to {} s: rank {} of {}, {} implied ({} evaluation{})\n", format_time(e.begin),
-               format_time(e.end), e.lowest_rank, rl.size(), e.rows, e.evaluations, e.evaluations == 1 ? "" : "s");
+               format_time(e.end), e.lowest_rank, e.size, e.rows, e.evaluations, e.evaluations == 1 ? "" : "s");
   }
   if (total > kListed) fmt::print(err, "               and {} more\n", total - kListed);
 }

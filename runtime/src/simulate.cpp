@@ -70,7 +70,6 @@ std::string describe_small_states(const Model& model, const std::vector<double>&
                      peak[worst], a[worst], 100 * a[worst] / peak[worst]);
 }
 
-/// --event-log: one row per switch, in the order they happened.
 /// How close the multipliers' system of cut joints may come to losing rank
 /// (its smallest pivot over its largest entry) before a run with an implicit
 /// method is warned: measured on a row of ten four-bars, 0.075 when it swings
@@ -104,6 +103,7 @@ std::string implicit_near_change_points(const Model& model, Solver solver) {
       integrator_info(solver).name, where);
 }
 
+/// --event-log: one row per switch, in the order they happened.
 void write_event_log(OutputFile& file, const Events& events) {
   file.write("t,event,name,state,jump,note\n");
   for (const EventRecord& e : events.log())

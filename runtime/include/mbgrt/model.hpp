@@ -44,8 +44,9 @@ namespace mbgrt {
 
 
 /// What a model's rank-revealing solves found during a run (the multipliers
-/// of cut joints whose rows became dependent): the generated code records
-/// each solve that lost rank, the runtime prints it in the run summary. The
+/// of cut joints or closed contacts whose rows became dependent): the
+/// generated code reports each solve (observe), the runtime prints those that
+/// lost rank in the run summary. The
 /// solves are grouped into episodes, one per stretch of time the rows stayed
 /// dependent (a mechanism's passage through a change point): records less
 /// than kEpisodeGap apart belong to one.
@@ -57,7 +58,7 @@ class RankLossLog {
   struct Episode {
     double begin = 0.0, end = 0.0;  ///< first and last time a solve lost rank in it
     long evaluations = 0;
-    int lowest_rank = 0;
+    int lowest_rank = 0, size = 0;  ///< of the system, at its lowest rank
     std::string rows;  ///< dependent at the lowest rank, in model terms
   };
 
@@ -81,30 +82,6 @@ class RankLossLog {
   long cut_joint_count() const { return cut_joint_count_; }
   double cut_joint_first_t() const { return cut_joint_first_t_; }
 
-  /// A solve of the n x n system `system` found `rank` < n at time t, the
-  /// rows dependent[0 .. n - rank) named by row_names.
-  void record(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names) {
-    if (count_++ == 0) first_t_ = t;
-    Episode* e = nullptr;
-    if (!episodes_.empty() && t >= episodes_.back().begin - kEpisodeGap && t <= episodes_.back().end + kEpisodeGap) {
-      e = &episodes_.back();
-    } else if (episodes_.size() < kMaxEpisodes) {
-      episodes_.push_back(Episode{t, t, 0, n, {}});
-      e = &episodes_.back();
-    } else if (t > last_t_ + kEpisodeGap) {
-      ++uncounted_;
-    }
-    last_t_ = t;
-    if (e) {
-      e->begin = t < e->begin ? t : e->begin;
-      e->end = t > e->end ? t : e->end;
-      ++e->evaluations;
-      if (rank < e->lowest_rank) e->lowest_rank = rank, e->rows = names(rank, n, dependent, row_names);
-    }
-    if (rank >= lowest_rank_ && count_ > 1) return;
-    lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
-    rows_ = names(rank, n, dependent, row_names);
-  }
   long count() const { return count_; }      ///< solves that lost rank (derivative evaluations)
   double first_t() const { return first_t_; }  ///< the first time one did
   int lowest_rank() const { return lowest_rank_; }
@@ -117,6 +94,31 @@ class RankLossLog {
   std::size_t later_episodes() const { return uncounted_; }
 
  private:
+  /// A solve of the n x n system `system` found `rank` < n at time t, the
+  /// rows dependent[0 .. n - rank) named by row_names.
+  void record(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names) {
+    if (count_++ == 0) first_t_ = t;
+    Episode* e = nullptr;
+    if (!episodes_.empty() && t >= episodes_.back().begin - kEpisodeGap && t <= episodes_.back().end + kEpisodeGap) {
+      e = &episodes_.back();
+    } else if (episodes_.size() < kMaxEpisodes) {
+      episodes_.push_back(Episode{t, t, 0, n, n, {}});
+      e = &episodes_.back();
+    } else if (t > last_t_ + kEpisodeGap) {
+      ++uncounted_;
+    }
+    last_t_ = t;
+    if (e) {
+      e->begin = t < e->begin ? t : e->begin;
+      e->end = t > e->end ? t : e->end;
+      ++e->evaluations;
+      if (rank - n < e->lowest_rank - e->size)
+        e->lowest_rank = rank, e->size = n, e->rows = names(rank, n, dependent, row_names);
+    }
+    if (rank >= lowest_rank_ && count_ > 1) return;
+    lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
+    rows_ = names(rank, n, dependent, row_names);
+  }
   static std::string names(int rank, int n, const int* dependent, const char* const* row_names) {
     std::string out;
     for (int k = 0; k < n - rank; ++k) {
