@@ -401,27 +401,36 @@ class Emitter {
     Outlined out;
     out.run_at.assign(list.size(), -1);
     out.copy_after.assign(list.size(), -1);
-    if (opt_.outline == EmitOptions::Outline::never || !s_.tree ||
+    if (opt_.outline == EmitOptions::Outline::never ||
         (opt_.outline == EmitOptions::Outline::automatic && inline_count({}, list) <= kOutlineFromNodes))
       return out;
     ReadsOf reads;
     for (const Assignment* a : list) assignment_inputs(s_, *a, reads[a]);
     std::unordered_set<int> results_read;
     collect_vars(result_values(results), results_read);
-    auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels) {
-      Outlining o = find_outlined_runs(order, reads, results_read, labels, s_.tree->names, g_);
+    auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels, const std::vector<std::string>& names) {
+      Outlining o = find_outlined_runs(order, reads, results_read, labels, names, g_);
       return o.shapes.empty() ? Outlining{} : o;  // nothing shared: nothing stored either
     };
     std::vector<const Assignment*> grouped = list;
     std::vector<int> labels;
-    group_by_body(grouped, s_, reads, labels);
-    Outlining by_body = outline(grouped, labels);
-    for (std::size_t k = 0; k < list.size(); ++k)
-      if (!from_tree_elimination(*list[k])) labels[k] = -1;
-      else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
-    Outlining eliminations = outline(list, labels);
-    if (inline_count(by_body, grouped) < inline_count(eliminations, list)) out.o = std::move(by_body), list = grouped;
-    else out.o = std::move(eliminations);
+    if (!s_.tree) {  // no elimination: each owner's equations (a body's, a joint's), grouped
+      std::vector<std::string> owners;
+      group_by_owner(grouped, s_, reads, labels, owners);
+      out.o = outline(grouped, labels, owners);
+      if (out.o.shapes.empty()) return out;
+      out.o.by_owner = true;
+      list = grouped;
+    } else {
+      group_by_body(grouped, s_, reads, labels);
+      Outlining by_body = outline(grouped, labels, s_.tree->names);
+      for (std::size_t k = 0; k < list.size(); ++k)
+        if (!from_tree_elimination(*list[k])) labels[k] = -1;
+        else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
+      Outlining eliminations = outline(list, labels, s_.tree->names);
+      if (inline_count(by_body, grouped) < inline_count(eliminations, list)) out.o = std::move(by_body), list = grouped;
+      else out.o = std::move(eliminations);
+    }
     out.store = store_outlined(out.o, list);
     for (std::size_t r = 0; r < out.o.runs.size(); ++r) {
       const OutlinedRun& run = out.o.runs[r];
@@ -464,11 +473,12 @@ class Emitter {
       if (!kept[r]) continue;
       const OutlinedRun& run = o.runs[r];
       const bool elimination = from_tree_elimination(*list[run.begin]);
-      const char* phase = elimination ? "elim" : run.begin < first_elim ? "kin" : "acc";
-      const char* what = elimination ? "elimination" : run.begin < first_elim ? "kinematics" : "accelerations";
+      const char* phase = o.by_owner ? "eqs" : elimination ? "elim" : run.begin < first_elim ? "kin" : "acc";
+      const char* what = o.by_owner ? "equations" : elimination ? "elimination" : run.begin < first_elim ? "kinematics" : "accelerations";
       store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), fmt::format("{}_{}", run.body, phase));
-      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of body {}'s {}", store[r],
-                                                  std::max<std::size_t>(run.width, 1), method, run.body, what)));
+      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of {}{}'s {}", store[r],
+                                                  std::max<std::size_t>(run.width, 1), method, o.by_owner ? "" : "body ",
+                                                  run.body, what)));
     }
     for (const auto& [v, at] : o.stored)
       if (o.runs[static_cast<std::size_t>(at.first)].shape >= 0)
@@ -496,8 +506,10 @@ class Emitter {
     }
     cost_->ops += shape_cost_.at(fn);  // the work of one call
     const Assignment& first = *list[run.begin];
-    body.push_back(CppStmt::comment(fmt::format("{}  body {}: {}() (the same equations as {} bodies)", where(first.loc), run.body,
-                                                fn, shape.runs.size())));
+    body.push_back(CppStmt::comment(o.by_owner ? fmt::format("{}  {}: {}() (shared by the {} with the same equations)",
+                                                             where(first.loc), run.body, fn, shape.runs.size())
+                                               : fmt::format("{}  body {}: {}() (the same equations as {} bodies)", where(first.loc),
+                                                             run.body, fn, shape.runs.size())));
     std::vector<std::string> args;
     if (run.inputs.empty()) {
       args.push_back("nullptr");
@@ -842,7 +854,7 @@ class Emitter {
       c.private_members.push_back(CppStmt::line("mbgrt::RankLossLog rank_loss_;  // what the rank-revealing solves found"));
     }
     if (!stores_.empty()) {
-      c.private_members.push_back(CppStmt::comment("bodies' eliminations computed by one function per shape: what the rest reads of them"));
+      c.private_members.push_back(CppStmt::comment("equations computed by one function per shape (bodies, joints): what the rest reads of them"));
       for (CppStmt& st : stores_) c.private_members.push_back(std::move(st));
     }
     if (!scratch_.empty()) {

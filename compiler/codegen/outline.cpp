@@ -107,6 +107,52 @@ std::string without_owner(const std::string& name) {
 }
 
 
+/// "s3.m1.f2[1]" -> "s3", "der(rod3.pose.R11)" -> "rod3": the body, joint or
+/// component instance a variable's name is qualified by ("" for none).
+std::string owner_of(const std::string& name) {
+  if (name.rfind("der(", 0) == 0) return owner_of(name.substr(4));
+  const std::size_t dot = name.find('.');
+  return dot == std::string::npos ? std::string{} : name.substr(0, dot);
+}
+
+/// list[0, end) in Kahn's order, the lowest (key of its label, name without
+/// its owner, place) first: the same order for every owner with the same
+/// equations. An unlabelled assignment takes the highest key of what it
+/// reads. `labels` follows.
+void order_by_key(std::vector<const Assignment*>& list, std::size_t end, std::vector<int>& labels, const std::vector<int>& label_key,
+                  const std::vector<const std::unordered_set<int>*>& reads, const BondGraph& graph) {
+  std::unordered_map<int, std::size_t> defined_at;
+  for (std::size_t i = 0; i < end; ++i) defined_at[list[i]->var] = i;
+  std::vector<std::vector<std::size_t>> readers(end);
+  std::vector<int> waiting(end, 0), key(end, -1);
+  for (std::size_t i = 0; i < end; ++i) {
+    if (labels[i] >= 0) key[i] = label_key[static_cast<std::size_t>(labels[i])];
+    for (int v : *reads[i])
+      if (auto d = defined_at.find(v); d != defined_at.end() && d->second != i) {
+        readers[d->second].push_back(i);
+        ++waiting[i];
+        if (labels[i] < 0) key[i] = std::max(key[i], key[d->second]);
+      }
+  }
+  using Item = std::tuple<int, std::string, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> ready;
+  auto push = [&](std::size_t i) { ready.push({key[i], without_owner(graph.vars[static_cast<std::size_t>(list[i]->var)].name), i}); };
+  for (std::size_t i = 0; i < end; ++i)
+    if (!waiting[i]) push(i);
+  std::vector<const Assignment*> order;
+  std::vector<int> order_labels;
+  while (!ready.empty()) {
+    const std::size_t i = std::get<2>(ready.top());
+    ready.pop();
+    order.push_back(list[i]), order_labels.push_back(labels[i]);
+    for (std::size_t r : readers[i])
+      if (--waiting[r] == 0) push(r);
+  }
+  if (order.size() != end) return;  // (a cycle: cannot be, the list was in causal order)
+  std::copy(order.begin(), order.end(), list.begin());
+  std::copy(order_labels.begin(), order_labels.end(), labels.begin());
+}
+
 }  // namespace
 
 Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const ReadsOf& reads,
@@ -220,38 +266,30 @@ void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s,
     ++end;
   }
   if (end == n) return;
-  std::unordered_map<int, std::size_t> defined_at;
-  for (std::size_t i = 0; i < end; ++i) defined_at[list[i]->var] = i;
-  std::vector<std::vector<std::size_t>> readers(end);
-  std::vector<int> waiting(end, 0), key(end, -1);
-  for (std::size_t i = 0; i < end; ++i) {
-    if (labels[i] >= 0) key[i] = pre[static_cast<std::size_t>(labels[i])];
-    for (int v : *reads[i])
-      if (auto d = defined_at.find(v); d != defined_at.end() && d->second != i) {
-        readers[d->second].push_back(i);
-        ++waiting[i];
-        if (labels[i] < 0) key[i] = std::max(key[i], key[d->second]);
-      }
+  std::vector<int> body_key(bodies);
+  for (std::size_t b = 0; b < bodies; ++b) body_key[b] = pre[b];
+  order_by_key(list, end, labels, body_key, reads, s.graph);
+}
+
+void group_by_owner(std::vector<const Assignment*>& list, const ReducedSystem& s, const ReadsOf& reads_of,
+                    std::vector<int>& labels, std::vector<std::string>& owners) {
+  const std::size_t n = list.size();
+  labels.assign(n, -1);
+  owners.clear();
+  std::unordered_map<std::string, int> index;
+  std::vector<const std::unordered_set<int>*> reads(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    reads[i] = &reads_of.at(list[i]);
+    if (list[i]->block >= 0) continue;
+    std::string owner = owner_of(s.graph.vars[static_cast<std::size_t>(list[i]->var)].name);
+    if (owner.empty()) continue;
+    auto [it, fresh] = index.emplace(std::move(owner), static_cast<int>(owners.size()));
+    if (fresh) owners.push_back(it->first);
+    labels[i] = it->second;
   }
-  // Kahn's order, the lowest (body in preorder, name without its owner,
-  // place) first: the same order for every body with the same equations.
-  using Item = std::tuple<int, std::string, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> ready;
-  auto push = [&](std::size_t i) { ready.push({key[i], without_owner(s.graph.vars[static_cast<std::size_t>(list[i]->var)].name), i}); };
-  for (std::size_t i = 0; i < end; ++i)
-    if (!waiting[i]) push(i);
-  std::vector<const Assignment*> order;
-  std::vector<int> order_labels;
-  while (!ready.empty()) {
-    const std::size_t i = std::get<2>(ready.top());
-    ready.pop();
-    order.push_back(list[i]), order_labels.push_back(labels[i]);
-    for (std::size_t r : readers[i])
-      if (--waiting[r] == 0) push(r);
-  }
-  if (order.size() != end) return;  // (a cycle: cannot be, the list was in causal order)
-  std::copy(order.begin(), order.end(), list.begin());
-  std::copy(order_labels.begin(), order_labels.end(), labels.begin());
+  std::vector<int> key(owners.size());
+  for (std::size_t k = 0; k < key.size(); ++k) key[k] = static_cast<int>(k);  // in order of first appearance
+  order_by_key(list, n, labels, key, reads, s.graph);
 }
 
 CppFunction shape_function(const std::string& name, const Outlining& o, int shape, const std::vector<const Assignment*>& list,
@@ -281,9 +319,9 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   }
   params.push_back("double* out");
   for (std::size_t k = 0; k < run.outputs.size(); ++k) outs.push_back(local.at(run.defined[run.outputs[k]]));
-  CppFunction f{fmt::format("Equations of bodies {}, the same up to their names (written with {}'s): in[] what they "
+  CppFunction f{fmt::format("Equations of {}{}, the same up to their names (written with {}'s): in[] what they "
                             "read{}, out[] what the rest of the model reads of them: {}.",
-                            fmt::join(bodies, ", "), run.body, run.sources.empty() ? "" : ", sK[] the outputs of the runs they read",
+                            o.by_owner ? "" : "bodies ", fmt::join(bodies, ", "), run.body, run.sources.empty() ? "" : ", sK[] the outputs of the runs they read",
                             fmt::join(outs, ", ")),
                 fmt::format("static void {}({})", name, fmt::join(params, ", ")),
                 {}};

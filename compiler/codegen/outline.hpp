@@ -60,6 +60,9 @@ struct Outlining {
   /// the same in every run of the section: a child reads its parent's
   /// omega at the same place whatever the parent's joint.
   std::unordered_map<int, std::pair<int, std::size_t>> stored;
+  /// Runs are owners' (group_by_owner: bodies, joints, component instances),
+  /// not a kinematic tree's bodies.
+  bool by_owner = false;
 };
 
 /// The variables each assignment of a section reads (ir::assignment_inputs),
@@ -80,6 +83,15 @@ Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignmen
 /// reads. `labels` follows the new order.
 void group_by_body(std::vector<const ir::Assignment*>& assignments, const ir::ReducedSystem& system, const ReadsOf& reads,
                    std::vector<int>& labels);
+
+/// Without a kinematic tree (the multiplier and penalty forms, a plain bond
+/// graph): which owner each assignment belongs to, the body, joint or
+/// component instance its variable's name is qualified by (an index into
+/// `owners`, -1 for none), and `assignments` reordered so that each owner's
+/// equations are contiguous where what they read allows: owners in order of
+/// first appearance, every assignment after what it reads.
+void group_by_owner(std::vector<const ir::Assignment*>& assignments, const ir::ReducedSystem& system, const ReadsOf& reads,
+                    std::vector<int>& labels, std::vector<std::string>& owners);
 
 /// The function that computes one shape: `static void NAME(const double* in,
 /// const double* s0, ..., double* out)`: in[] the first run's inputs, sK

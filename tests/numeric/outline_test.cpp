@@ -3,8 +3,11 @@
 // must change where the arithmetic is written, never the arithmetic: the
 // derivative (and the outputs) of each model compiled with and without
 // outlining agree bit for bit, at the initial state and at a state moved off
-// it. And the outlined form must actually be used (its file reads
-// `_shape1(`), so that the test cannot pass by comparing a model with itself.
+// it. Without a kinematic tree (the multiplier form, a DAE) the equations of
+// each body and joint are grouped and outlined instead: its residual,
+// constraints, outputs and energy witness agree bit for bit likewise. And the
+// outlined form must actually be used (its file reads `_shape1(`), so that
+// the test cannot pass by comparing a model with itself.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,9 +20,11 @@
 #include "inline_binary_tree.hpp"
 #include "inline_chain.hpp"
 #include "inline_fourbar_row.hpp"
+#include "inline_n_four_bar.hpp"
 #include "outline_binary_tree.hpp"
 #include "outline_chain.hpp"
 #include "outline_fourbar_row.hpp"
+#include "outline_n_four_bar.hpp"
 
 namespace {
 
@@ -49,6 +54,52 @@ void expect_same_numbers(mbgrt::Model& outlined, mbgrt::Model& plain) {
   }
 }
 
+void expect_same_bits(const std::vector<double>& a, const std::vector<double>& b, const char* what, int moved) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(a[i])) << what << "[" << i << "]";
+    EXPECT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0)
+        << what << "[" << i << "]: " << a[i] << " outlined, " << b[i] << " inline (state " << moved << ")";
+  }
+}
+
+/// A DAE (the multiplier form): residual, constraints, outputs and the
+/// energy witness's power.
+void expect_same_residuals(mbgrt::Model& outlined, mbgrt::Model& plain) {
+  ASSERT_EQ(outlined.size(), plain.size());
+  ASSERT_TRUE(plain.is_dae());
+  const std::size_t n = plain.size();
+  std::vector<double> y(n), yp(n), y2(n), yp2(n);
+  outlined.initial(0.0, y.data(), yp.data());
+  plain.initial(0.0, y2.data(), yp2.data());
+  expect_same_bits(y, y2, "y0", 0);
+  for (int moved = 0; moved < 2; ++moved) {
+    if (moved)
+      for (std::size_t i = 0; i < n; ++i) {
+        y[i] += 0.05 * std::sin(1.0 + 0.7 * static_cast<double>(i));
+        yp[i] += 0.1 * std::cos(0.3 + 1.1 * static_cast<double>(i));
+      }
+    std::vector<double> a(n), b(n);
+    outlined.residual(0.1, y.data(), yp.data(), a.data());
+    plain.residual(0.1, y.data(), yp.data(), b.data());
+    expect_same_bits(a, b, "residual", moved);
+    const std::size_t c = plain.position_constraint_count() + plain.velocity_constraint_count();
+    std::vector<double> ca(c), cb(c);
+    outlined.constraints(0.1, y.data(), ca.data());
+    plain.constraints(0.1, y.data(), cb.data());
+    expect_same_bits(ca, cb, "constraints", moved);
+    const std::size_t m = plain.output_names().size();
+    std::vector<double> oa(m), ob(m);
+    outlined.outputs(0.1, y.data(), yp.data(), oa.data());
+    plain.outputs(0.1, y.data(), yp.data(), ob.data());
+    expect_same_bits(oa, ob, "outputs", moved);
+    std::vector<double> pa(2), pb(2);
+    outlined.power(0.1, y.data(), yp.data(), pa.data());
+    plain.power(0.1, y.data(), yp.data(), pb.data());
+    expect_same_bits(pa, pb, "power", moved);
+  }
+}
+
 /// The generated header of model `target` (mbgc_add_model's), as text.
 std::string header(const std::string& target) {
   std::ifstream in(std::string(MODELS_DIR) + "/" + target + "_include/" + target + ".hpp");
@@ -57,10 +108,10 @@ std::string header(const std::string& target) {
   return ss.str();
 }
 
-void expect_outlined(const std::string& name) {
+void expect_outlined(const std::string& name, const char* method = "derivative") {
   const std::string outlined = header("outline_" + name), plain = header("inline_" + name);
   ASSERT_FALSE(outlined.empty());
-  EXPECT_NE(outlined.find("derivative_shape1("), std::string::npos) << name << ": nothing outlined";
+  EXPECT_NE(outlined.find(std::string(method) + "_shape1("), std::string::npos) << name << ": nothing outlined";
   EXPECT_EQ(plain.find("_shape1("), std::string::npos) << name << ": --outline never outlined";
 }
 
@@ -85,4 +136,12 @@ TEST(Outline, RowOfFourFourBarsWithCutJointsGivesTheSameNumbersInline) {
   inline_fourbar_row::fourbar_row_model b;
   expect_outlined("fourbar_row");
   expect_same_numbers(a, b);
+}
+
+TEST(Outline, RowOfFourFourBarsWithMultipliersGivesTheSameNumbersInline) {
+  outlined_n_four_bar::n_four_bar_model a;
+  inline_n_four_bar::n_four_bar_model b;
+  expect_outlined("n_four_bar", "residual");
+  expect_outlined("n_four_bar", "constraints");
+  expect_same_residuals(a, b);
 }

@@ -432,23 +432,53 @@ TEST(EmitStats, CountsEqualTheOperationsWrittenInEachMethod) {
         if (!part) break;
         spans.push_back(*part);
       }
-      std::size_t method_lines = 0;
-      for (const Span& sp : spans) method_lines += sp.last - sp.first + 1;
-      EXPECT_EQ(std::stoul(f[1]), method_lines) << name;
-      // its operations, read from the statements (comments and loop headers left out)
-      mbgc::ir::CppOps written;
       std::vector<std::size_t> sizes;
-      for (const Span& sp : spans)
+      // the functions outlining writes for it (codegen/outline: NAME_shapeK,
+      // static), whose lines count as its own and whose operations count once
+      // per call
+      std::map<std::string, Span> shapes;
+      for (int k = 1;; ++k) {
+        const std::string fn = name + "_shape" + std::to_string(k);
+        auto sp = find_method(fn);
+        if (!sp) break;
+        shapes.emplace(fn, *sp);
+      }
+      static const std::regex shape_call("^[a-z0-9_]+_shape[0-9]+\\(");
+      auto ops_in = [&](const Span& sp, auto&& on_call) {
+        mbgc::ir::CppOps o;
         for (std::size_t i = sp.at + 1; i < sp.last; ++i) {
           std::string l = trim(lines[i]);
           if (l.rfind("//", 0) == 0 || l.rfind("for (", 0) == 0) continue;
           if (auto c = l.find("  // "); c != std::string::npos) l.resize(c);
+          if (std::regex_search(l, shape_call)) {
+            o += on_call(l.substr(0, l.find('(')));
+            continue;
+          }
           if (l.rfind("mbgrt::solve_linear(", 0) == 0) sizes.push_back(std::stoul(l.substr(20)));
           if (l.rfind("static const char* const", 0) == 0 || l.rfind("return", 0) == 0 || l.rfind("case", 0) == 0 ||
               l.find('"') != std::string::npos || l.find(".assign(k") != std::string::npos || name == "body_visual")
             continue;  // name and index tables, metadata, a drawing's data: no arithmetic (a '*' of a pointer type, a string, a table's end, a negative coordinate)
-          written += mbgc_test::cpp_ops_in_text(l);
+          o += mbgc_test::cpp_ops_in_text(l);
         }
+        return o;
+      };
+      std::size_t method_lines = 0;
+      for (const Span& sp : spans) method_lines += sp.last - sp.first + 1;
+      for (const auto& [fn, sp] : shapes) method_lines += sp.last - sp.first + 1;
+      EXPECT_EQ(std::stoul(f[1]), method_lines) << name;
+      // its operations, read from the statements (comments and loop headers left out)
+      mbgc::ir::CppOps written;
+      std::map<std::string, mbgc::ir::CppOps> shape_ops;
+      for (const auto& [fn, sp] : shapes)
+        shape_ops[fn] = ops_in(sp, [&](const std::string& callee) -> mbgc::ir::CppOps {
+          ADD_FAILURE() << fn << " calls " << callee;
+          return {};
+        });
+      for (const Span& sp : spans)
+        written += ops_in(sp, [&](const std::string& callee) {
+          EXPECT_TRUE(shape_ops.count(callee)) << name << " calls " << callee << ", not one of its shapes";
+          return shape_ops.count(callee) ? shape_ops.at(callee) : mbgc::ir::CppOps{};
+        });
       const mbgc::ir::CppOps counted = [&] {
         mbgc::ir::CppOps o;
         o.add = std::stoul(f[4]), o.mul = std::stoul(f[5]), o.div = std::stoul(f[6]);

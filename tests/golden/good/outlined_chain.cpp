@@ -1119,7 +1119,7 @@ class outlined_chain_model final : public mbgrt::Model {
     return overridden_[i] ? overrides_[i] : model_value;
   }
 
-  // bodies' eliminations computed by one function per shape: what the rest reads of them
+  // equations computed by one function per shape (bodies, joints): what the rest reads of them
   double rod2_kin[10] = {};  // derivative(): what the rest reads of body rod2's kinematics
   double rod3_kin[11] = {};  // derivative(): what the rest reads of body rod3's kinematics
   double rod4_kin[11] = {};  // derivative(): what the rest reads of body rod4's kinematics
