@@ -325,6 +325,7 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
                             fmt::join(outs, ", ")),
                 fmt::format("static void {}({})", name, fmt::join(params, ", ")),
                 {}};
+  if (run.inputs.empty()) f.body.push_back(CppStmt::line("(void)in;  // (reads nothing but its sources: called with nullptr)"));
   Namer inside = names;
   inside.var = [&](int id) { return local.count(id) ? local.at(id) : names.var(id); };
   SharedTemps shared(known, inside, cse_counter, ops);

@@ -499,7 +499,7 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
 }
 
 InitialValuesReport consistent_initial_values(Model& model, const ConstraintShape& s, double t,
-                                              double* y_io, double* yp_io) {
+                                              double* y_io, double* yp_io, const RatesOptions& options) {
   InitialValuesReport rep;
   const Index n = ix(s.n), ns = ix(s.ns);
   rep.unknowns = s.n;
@@ -573,6 +573,15 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
     }
   }
 
+  // Index one: mu = 0 in place of the position rows' derivatives (their
+  // row is mu's own index in y, and so in z).
+  if (options.index_one)
+    for (Index d = 0; d < nd; ++d)
+      if (residual_row_role(s, sz(pure[sz(d)])).kind == RowRole::position_constraint) {
+        A.row(d).setZero();
+        A(d, pure[sz(d)]) = 1.0;
+        b[d] = 0.0;
+      }
   auto system = [&](const Vec& zz, Vec& F) {
     if (!residual_at_z(zz, F)) return false;
     for (Index d = 0; d < nd; ++d) F[pure[sz(d)]] = A.row(d).dot(zz) + b[d];
@@ -617,7 +626,8 @@ InitialValuesReport consistent_initial_values(Model& model, const ConstraintShap
   }
   const double tol = kAccept * (1.0 + scale);
   rep.residual = max_abs(F, &worst);
-  if (!(rep.residual <= tol)) {
+  rep.least_squares = !(rep.residual <= tol) && options.least_squares && rep.rank < s.n;
+  if (!(rep.residual <= tol) && !rep.least_squares) {
     rep.error = fmt::format(
         "consistent initial values: the residual of {} is {} after {} Newton iterations: y' and "
         "the algebraic unknowns cannot be determined at the assembled state (t = {} s){}",

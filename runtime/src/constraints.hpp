@@ -126,7 +126,21 @@ struct InitialValuesReport {
   std::size_t rank = 0;                 ///< of the final Newton matrix
   int iterations = 0;
   double residual = 0.0;                ///< max |row| of the system solved, at the solution
+  bool least_squares = false;           ///< the rows were contradictory: their least-squares solution
   std::string error;
+};
+
+struct RatesOptions {
+  /// Rows that contradict each other at a rank-deficient Newton matrix (a
+  /// change point, where the velocities meet the dependent rows' second-order
+  /// condition only approximately) give their minimum-norm least-squares
+  /// solution instead of an error.
+  bool least_squares = false;
+  /// The index-1 form: mu = 0 instead of the position rows' derivatives, so
+  /// that q' is the velocities' as they are (a Runge-Kutta stage off the
+  /// constraints is not projected onto their tangent, which near a change
+  /// point amplifies its violation by the inverse of the rows' independence).
+  bool index_one = false;
 };
 
 /// For a constrained DAE at an assembled y: computes y' of the states and the
@@ -136,7 +150,7 @@ struct InitialValuesReport {
 /// Newton with a finite-difference Jacobian. y' of the algebraic unknowns is
 /// left as given.
 InitialValuesReport consistent_initial_values(Model& model, const ConstraintShape& shape, double t,
-                                              double* y, double* yp);
+                                              double* y, double* yp, const RatesOptions& options = {});
 
 /// Largest |g| and |gdot| seen at the output points, and where.
 class ConstraintMonitor {

@@ -19,9 +19,11 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "constraints.hpp"
+#include "solvers/change_point.hpp"
 #include "solvers/sparse_jacobian.hpp"
 #include "solvers/sparse_lu.hpp"
 #include "solvers/sundials_util.hpp"
@@ -48,7 +50,7 @@ class Ida final : public Integrator {
     else if (m_.constraint_shape().any())
       note = fmt::format(
           " (index-2 constraints: algebraic unknowns outside the error test, their Newton "
-          "weights scaled by h / interval; first step {}{}{})",
+          "weights scaled by h / interval; first step {}{}{}{})",
           h0_ > 0.0 ? fmt::format("{:.2g} s", h0_) : std::string("IDA's own"),
           relaxed_at_ ? fmt::format("; after a Newton failure at t = {:.9g} s, restarted with "
                                     "those weights scaled by h / 1 s",
@@ -57,7 +59,13 @@ class Ida final : public Integrator {
           floored_at_ ? fmt::format("; after a failure at t = {:.9g} s, restarted with the absolute tolerances "
                                     "floored at rounding",
                                     *floored_at_)
-                      : std::string());
+                      : std::string(),
+          crossings_ > 0 ? fmt::format("; stepped across {} change point{} of the joints, where their rows became "
+                                       "dependent (classical Runge-Kutta on the index-1 form, then assembled: "
+                                       "solvers/change_point.hpp), the first from t = {:.6g} to {:.6g} s",
+                                       crossings_, crossings_ == 1 ? "" : "s", first_crossing_.first,
+                                       first_crossing_.second)
+                         : std::string());
     const std::string linear =
         sparse_ ? fmt::format("sparse LU (KLU) on the model's pattern ({} of {} entries), finite-difference "
                               "Jacobian in {} column groups",
@@ -108,9 +116,19 @@ class Ida final : public Integrator {
       check_setup(IDASetLinearSolver(mem_, ls_, A_), "IDASetLinearSolver", sink_);
     }
 
-    if (const std::size_t k = m_.events().count(); k > 0) {
+    // The model's zero crossings, and (a DAE with lagrange rows) the rows'
+    // independence falling to a tenth of the start's: a change point ahead.
+    const detail::ConstraintShape& shape = m_.constraint_shape();
+    watch_change_points_ = m_.is_dae() && shape.enforced &&
+                           std::any_of(shape.lambda_at.begin(), shape.lambda_at.end(), [](long at) { return at >= 0; });
+    if (const std::size_t k = m_.events().count() + (watch_change_points_ ? 1 : 0); k > 0) {
       check_setup(IDARootInit(mem_, static_cast<int>(k), roots), "IDARootInit", sink_);
       root_info_.assign(k, 0);
+      if (watch_change_points_) {
+        std::vector<int> direction(k, 0);
+        direction.back() = -1;  // only as the rows become dependent
+        check_setup(IDASetRootDirection(mem_, direction.data()), "IDASetRootDirection", sink_);
+      }
     }
     std::fill(energy_.data(), energy_.data() + 2, 0.0);
     if (m_.has_energy_witness()) check_setup(IDAQuadInit(mem_, power, energy_.get()), "IDAQuadInit", sink_);
@@ -119,12 +137,25 @@ class Ida final : public Integrator {
   }
 
   bool advance_to(double t_out) override {
+    if (crossing_ && t_out < crossing_->to()) return state_in_crossing(t_out);  // a point inside the last step across
     int flag = solve(t_out);
-    while (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
-      IDAGetRootInfo(mem_, root_info_.data());
-      if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
-      if (!restart_after_event()) return false;
-      if (reached(t_, t_out)) return true;  // the event is at the communication point
+    for (;;) {
+      while (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
+        IDAGetRootInfo(mem_, root_info_.data());
+        const std::size_t k = m_.events().count();
+        const std::vector<int> events(root_info_.begin(), root_info_.begin() + static_cast<long>(k));
+        if (std::any_of(events.begin(), events.end(), [](int r) { return r != 0; })) {
+          if (!fire_events(m_.events(), t_, y_.data(), events, failure_)) return false;
+          if (!restart_after_event()) return false;
+        } else if (watch_change_points_ && root_info_[k] != 0 && step_across()) {  // a change point ahead
+          if (t_out < crossing_->to()) return state_in_crossing(t_out);
+        }
+        if (reached(t_, t_out)) return true;  // the event is at the communication point
+        flag = solve(t_out);
+      }
+      if (flag != IDA_CONV_FAIL && flag != IDA_ERR_FAIL && flag != IDA_TOO_MUCH_WORK) break;
+      if (!step_across()) break;
+      if (t_out < crossing_->to()) return state_in_crossing(t_out);
       flag = solve(t_out);
     }
     if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two()) flag = solve(t_out);
@@ -186,7 +217,14 @@ class Ida final : public Integrator {
   static int roots(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype* g, void* user_data) {
     auto* self = static_cast<Ida*>(user_data);
     const double* ypv = self->m_.is_dae() ? N_VGetArrayPointer(yp) : nullptr;
-    return self->m_.events().functions(t, N_VGetArrayPointer(y), ypv, g) ? 0 : -1;
+    const std::size_t k = self->m_.events().count();
+    if (k > 0 && !self->m_.events().functions(t, N_VGetArrayPointer(y), ypv, g)) return -1;
+    if (self->watch_change_points_)
+      g[k] = self->start_independence_ > 0.0
+                 ? detail::row_independence(self->m_.model(), self->m_.constraint_shape(), t, N_VGetArrayPointer(y)) -
+                       kWatchFrom * self->start_independence_
+                 : 1.0;
+    return 0;
   }
 
   /// After an event: y' jumps with the switched mode. An ODE takes f(t, y);
@@ -319,6 +357,7 @@ class Ida final : public Integrator {
   ///    the drift of Andrews' squeezer at loose tolerances measurably need.)
   bool setup_index_two(double t0) {
     index_two_ = true;
+    start_independence_ = detail::row_independence(m_.model(), m_.constraint_shape(), t0, y_.data());
     h0_ = initial_step(t0);
     if (h0_ > 0.0) check_setup(IDASetInitStep(mem_, h0_), "IDASetInitStep", sink_);
     return true;
@@ -364,6 +403,52 @@ class Ida final : public Integrator {
     if (norm > 0.0 && std::isfinite(norm)) h = std::min(h, 0.5 * std::sqrt(2.0 / norm));
     if (s_.t_end_s > t0) h = std::min(h, s_.t_end_s - t0);
     return h;
+  }
+
+  /// After IDA stopped near a change point of the joints (solvers/
+  /// change_point.hpp): one Runge-Kutta step across it from the last point
+  /// IDA completed, and IDA restarted beyond it. False (nothing changed) if
+  /// the rows there are not close to dependent, or the step fails.
+  bool step_across() {
+    if (!index_two_ || crossings_ >= kMaxCrossings) return false;
+    std::string why;
+    auto step = detail::ChangePointStep::plan(m_.model(), m_.constraint_shape(), start_independence_, t_, y_.data(),
+                                              yp_.data(), s_.t_end_s, why);
+    if (!step) return false;
+    double energy[2] = {energy_.data()[0], energy_.data()[1]};
+    std::vector<double> y(m_.size()), yp(m_.size());
+    if (!step->state_at(step->to(), y.data(), yp.data(), energy, why)) return false;
+    SolverStats counted = stats();
+    if (sparse_) counted.fd_jac_evals -= sparse_->evaluations();  // counted on by stats() itself
+    crossing_ = std::move(step);
+    crossing_energy_[0] = energy_.data()[0], crossing_energy_[1] = energy_.data()[1];
+    t_ = crossing_->to();
+    std::copy(y.begin(), y.end(), y_.data());
+    std::copy(yp.begin(), yp.end(), yp_.data());
+    std::copy(energy, energy + 2, energy_.data());
+    if (!reinit()) return false;
+    before_restart_ = counted;
+    if (crossings_++ == 0) first_crossing_ = {crossing_->from(), crossing_->to()};
+    h0_ = initial_step(t_);
+    if (h0_ > 0.0) IDASetInitStep(mem_, h0_);
+    IDASetStopTime(mem_, s_.t_end_s);
+    return true;
+  }
+
+  /// A communication point inside the last step across: that step, shorter.
+  bool state_in_crossing(double t_out) {
+    std::vector<double> y(m_.size()), yp(m_.size());
+    double energy[2] = {crossing_energy_[0], crossing_energy_[1]};
+    std::string why;
+    if (!crossing_->state_at(t_out, y.data(), yp.data(), energy, why)) {
+      failure_ = SolverFailure{t_out, "IDA_CHANGE_POINT", "stepping across a change point of the joints: " + why, {}, -1};
+      return false;
+    }
+    t_ = t_out;
+    std::copy(y.begin(), y.end(), y_.data());
+    std::copy(yp.begin(), yp.end(), yp_.data());
+    std::copy(energy, energy + 2, energy_.data());
+    return true;
   }
 
   /// After IDA_CONV_FAIL or IDA_TOO_MUCH_WORK on an index-2 DAE: scale the
@@ -457,6 +542,18 @@ class Ida final : public Integrator {
   double h_ref_ = s_.interval_s;  ///< multipliers' weights scaled by min(1, h / h_ref_)
   std::optional<double> relaxed_at_;  ///< time of the restart by relax_index_two()
   std::optional<double> floored_at_;  ///< time of the restart by floor_tolerances()
+  double start_independence_ = 0.0;  ///< of the joints' rows at the start (detail::row_independence)
+  std::optional<detail::ChangePointStep> crossing_;  ///< the last step across a change point
+  double crossing_energy_[2] = {0.0, 0.0};           ///< the witness's integrals where it began
+  int crossings_ = 0;
+  std::pair<double, double> first_crossing_;  ///< where the first step across began and ended
+  static constexpr int kMaxCrossings = 100000;
+  /// IDA steps across a change point once the rows' independence falls to
+  /// this share of the start's (measured on IFToMM's N four-bar: at 1e-8 IDA
+  /// otherwise came within 1e-3 of the crossing, or stepped through it, and
+  /// either changed the energy by about 3e-5 J).
+  static constexpr double kWatchFrom = 0.1;
+  bool watch_change_points_ = false;  ///< a root function on the rows' independence (DAE with lagrange rows)
   /// IDA's counters up to the restart (zero until then).
   SolverStats before_restart_{0, 0, 0, 0, 0, 0, 0, 0.0, 0, {}};
   std::vector<int> root_info_;  // per event: +1 rising, -1 falling, 0 no root (IDAGetRootInfo)
