@@ -87,10 +87,12 @@ constexpr double kNearChangePoint = 1e-4;
 /// model and steps across.
 std::string implicit_near_change_points(const Model& model, Solver solver) {
   const RankLossLog* rl = model.rank_loss();
-  if (!rl || !integrator_info(solver).implicit || (rl->cut_joint_count() == 0 && !(rl->closest() < kNearChangePoint)))
+  // (a row implied by the others throughout is a redundant loop, not a change point)
+  const bool rank_changed = rl && rl->cut_joint_count() > 0 && rl->cut_joint_rank_changed();
+  if (!rl || !integrator_info(solver).implicit || (!rank_changed && !(rl->closest() < kNearChangePoint)))
     return {};
   const std::string where =
-      rl->cut_joint_count() > 0
+      rank_changed
           ? fmt::format("across configurations where the cut joints' rows were dependent (the first at t = {} s; the "
                         "summary lists when)",
                         format_time(rl->cut_joint_first_t()))

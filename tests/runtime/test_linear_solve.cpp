@@ -124,3 +124,21 @@ TEST(RankRevealingSolve, TheSizeKnownAtCompileTimeGivesTheSameBits) {
     }
   }
 }
+
+/// `closest` measures how near A came to losing rank beyond the rank found:
+/// a row implied by the others throughout (a redundant loop) is not "close",
+/// while a kept pivot that is small is.
+TEST(RankRevealingSolve, ClosestIsTheSmallestPivotKept) {
+  // rows 1 and 2 equal: rank 2; the kept pivots are 2 and 1 (of 2)
+  double a[9] = {2, 0, 0, 0, 1, 1, 0, 1, 1};
+  double x[3] = {2, 1, 1};
+  double closest = -1.0;
+  int dependent[3] = {-1, -1, -1};
+  EXPECT_EQ(mbgrt::solve_rank_revealing(3, a, x, 1e-10, dependent, &closest), 2);
+  EXPECT_DOUBLE_EQ(closest, 0.5);
+  // full rank, one pivot 1e-6 of the largest entry
+  double b[4] = {1, 0, 0, 1e-6};
+  double y[2] = {1, 1};
+  EXPECT_EQ(mbgrt::solve_rank_revealing(2, b, y, 1e-10, nullptr, &closest), 2);
+  EXPECT_DOUBLE_EQ(closest, 1e-6);
+}

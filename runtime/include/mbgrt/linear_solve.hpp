@@ -105,11 +105,11 @@ inline int rank_revealing_in(Size n, double* a, double* x, double rel_tol, int* 
     for (int r = k; r < n; ++r)
       for (int c = k; c < n; ++c)
         if (std::fabs(a[r * n + c]) > best) best = std::fabs(a[r * n + c]), pr = r, pc = c;
-    if (closest && scale > 0.0 && best / scale < *closest) *closest = best / scale;
     if (!(best > rel_tol * scale)) {
       rank = k;
       break;
     }
+    if (closest && scale > 0.0 && best / scale < *closest) *closest = best / scale;
     if (pr != k) {
       swap_rows(n, a, x, k, pr);
       std::swap(row[k], row[pr]);
@@ -161,9 +161,9 @@ inline int rank_revealing(Size n, double* a, double* x, double rel_tol, int* dep
 /// overwritten, `x` holds b on entry and the solution on return; returns the
 /// rank found. With `dependent`, its first n - rank entries receive the rows
 /// (as numbered on entry) left without a pivot: the rows the others imply.
-/// With `closest`, it receives the smallest pivot over the largest entry of
-/// A (1 for a single unknown, about 1e-1 for a well-conditioned system, at
-/// most rel_tol where the rank was lost): how close A came to losing rank.
+/// With `closest`, it receives the smallest pivot kept over the largest entry
+/// of A (1 for a single unknown, about 1e-1 for a well-conditioned system):
+/// how close A came to losing rank beyond the rank found.
 /// Non-finite entries give NaN, as solve_linear does.
 inline int solve_rank_revealing(int n, double* a, double* x, double rel_tol = 1e-10, int* dependent = nullptr,
                                 double* closest = nullptr) {

@@ -71,6 +71,7 @@ class RankLossLog {
   void observe(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names,
                double closest, bool cut_joints) {
     if (cut_joints && closest < closest_) closest_ = closest, closest_t_ = t;
+    if (cut_joints) cut_rank_low_ = rank < cut_rank_low_ ? rank : cut_rank_low_, cut_rank_high_ = rank > cut_rank_high_ ? rank : cut_rank_high_;
     if (rank >= n) return;
     if (cut_joints && cut_joint_count_++ == 0) cut_joint_first_t_ = t;
     record(t, system, rank, n, dependent, row_names);
@@ -81,6 +82,10 @@ class RankLossLog {
   double closest_t() const { return closest_t_; }
   long cut_joint_count() const { return cut_joint_count_; }
   double cut_joint_first_t() const { return cut_joint_first_t_; }
+  /// The cut joints' rank changed during the run: rows became dependent and
+  /// independent again (a change point), rather than some row being implied
+  /// by the others throughout (a redundant loop such as Bricard's).
+  bool cut_joint_rank_changed() const { return cut_rank_low_ < cut_rank_high_; }
 
   long count() const { return count_; }      ///< solves that lost rank (derivative evaluations)
   double first_t() const { return first_t_; }  ///< the first time one did
@@ -127,6 +132,7 @@ class RankLossLog {
     }
     return out;
   }
+  int cut_rank_low_ = 1 << 30, cut_rank_high_ = -1;  ///< of the cut joints' solves
   long count_ = 0;
   double first_t_ = 0.0, lowest_t_ = 0.0, last_t_ = 0.0;
   double closest_ = 1.0, closest_t_ = 0.0, cut_joint_first_t_ = 0.0;
