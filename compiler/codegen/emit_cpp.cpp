@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <tuple>
 
 #include "codegen/cpp.hpp"
 #include "codegen/drawings.hpp"
@@ -40,13 +42,15 @@ class Emitter {
     };
     names_.param = [this](int id) { return mangle_.get(fmt::format("p{}", id), ""); };
     class_name_ = mangle_.get("class", g_.model_name + "_model");
+    model_dir_ = std::filesystem::path(opt_.source_display).parent_path();
   }
 
   std::string run(EmitStats* stats) {
     CppClass c;
     c.name = class_name_;
     c.base = "mbgrt::Model";
-    add_identity_methods(c, s_, opt_);
+    std::tie(large_, compact_) = dynamics_size();
+    add_identity_methods(c, s_, opt_, compact_);
     find_parameter_expressions();
     for (std::size_t k = 0; k < s_.events.size(); ++k) hoisted_[s_.events[k].step] = event_mode_name(k);  // printed as their modes
     discrete_name_ = contact_member_names(s_);
@@ -201,12 +205,43 @@ class Emitter {
     if (pos != std::string::npos) s.replace(pos, key.size(), value);
   }
 
+  /// "file:line:col", the file relative to the model's directory where it
+  /// is inside it (the banner names the model's path): every comment says
+  /// "n_four_bar.mbg:20:8", however mbgc was given the model.
   std::string where(const SourceLoc& loc) const {
     if (!loc.valid()) return "(generated)";
-    return fmt::format("{}:{}:{}", sources_.file(loc.file).display_path, loc.line, loc.col);
+    const std::string& path = sources_.file(loc.file).display_path;
+    std::filesystem::path shown = path;
+    if (!model_dir_.empty())
+      if (std::filesystem::path rel = shown.lexically_relative(model_dir_); !rel.empty() && *rel.begin() != "..") shown = rel;
+    return fmt::format("{}:{}:{}", shown.string(), loc.line, loc.col);
   }
 
+  /// Where a parameter's line comes from: `  // FILE:LINE:COL` at its end,
+  /// or (compact_) a comment heading each run of lines from the same place,
+  /// as an equation's does (a body's parameters are its declaration's).
+  class Located {
+   public:
+    Located(const Emitter& e, std::vector<CppStmt>& body) : e_(e), body_(body) {}
+    /// What ends the line: "  // FILE:LINE:COL", or "" after the heading comment (if a new place).
+    std::string head(const SourceLoc& loc) {
+      std::string at = e_.where(loc);
+      if (!e_.compact_) return "  // " + at;
+      if (at != last_) body_.push_back(CppStmt::comment(at));
+      last_ = std::move(at);
+      return {};
+    }
+    void restart() { last_.clear(); }
+
+   private:
+    const Emitter& e_;
+    std::vector<CppStmt>& body_;
+    std::string last_;
+  };
+
   std::string var_name(int id) const { return names_.var(id); }
+  /// Its name in the model ("crank0.q.q[1]").
+  const std::string& var_name_in_model(int id) const { return g_.vars[static_cast<std::size_t>(id)].name; }
 
   std::size_t unknown_count() const { return s_.states.size() + s_.algebraic.size(); }
 
@@ -231,11 +266,12 @@ class Emitter {
     for (const Expr& e : s_.nominal) shared.count(e);
     for (const ContactRow& c : s_.contacts) shared.count(c.restitution);
     shared.finish_counting();
+    Located located(*this, f.body);
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
+      const std::string at = located.head(p.loc);
       std::string value = shared.print(p.value, f.body);
-      f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});  // {}", names_.param(static_cast<int>(i)), i,
-                                                 value, where(p.loc))));
+      f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});{}", names_.param(static_cast<int>(i)), i, value, at)));
     }
     if (!hoisted_order_.empty()) f.body.push_back(CppStmt::comment("DERIVED CONSTANTS: parameter expressions, computed once per run"));
     for (const Expr& e : hoisted_order_) {
@@ -250,11 +286,14 @@ class Emitter {
                                                  where(s_.contacts[c].loc))));
     if (!s_.states.empty()) f.body.push_back(CppStmt::comment("INITIAL STATE"));
     const char* y = s_.dae ? "y" : "x";
+    located.restart();
     for (std::size_t i = 0; i < s_.states.size(); ++i) {
       const StateVar& st = s_.states[i];
       const Variable& v = g_.vars[static_cast<std::size_t>(st.var)];
+      if (compact_) located.head(v.loc);
       std::string value = shared.print(st.initial, f.body);
-      f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {} ({})", y, i, value, v.name, where(v.loc))));
+      const std::string at = compact_ ? "" : fmt::format(" ({})", where(v.loc));
+      f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {}{}", y, i, value, v.name, at)));
     }
     if (any_nominal()) {
       f.body.push_back(CppStmt::comment("NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)"));
@@ -266,7 +305,11 @@ class Emitter {
       }
     }
     if (s_.dae) {
-      for (std::size_t j = 0; j < s_.algebraic.size(); ++j)
+      if (compact_ && !s_.algebraic.empty())  // (their names: variable_name(i))
+        f.body.push_back(CppStmt::line(fmt::format("for (std::size_t i = {}; i < {}; ++i) y[i] = 0.0;  // the algebraic unknowns: "
+                                                   "first guess, made consistent by IDA",
+                                                   s_.states.size(), unknown_count())));
+      for (std::size_t j = 0; j < s_.algebraic.size() && !compact_; ++j)
         f.body.push_back(CppStmt::line(fmt::format("y[{}] = 0.0;  // {}: first guess, made consistent by IDA", s_.states.size() + j,
                                                    g_.vars[static_cast<std::size_t>(s_.algebraic[j])].name)));
       f.body.push_back(CppStmt::line(fmt::format("for (std::size_t i = 0; i < {}; ++i) yp[i] = 0.0;  // first guess", unknown_count())));
@@ -275,16 +318,16 @@ class Emitter {
   }
 
   // ---- sections with equations ------------------------------------------------------------
-  static std::vector<Expr> result_values(const std::vector<std::pair<std::string, Expr>>& results) {
+  static std::vector<Expr> result_values(const std::vector<SectionResult>& results) {
     std::vector<Expr> values;
     values.reserve(results.size());
-    for (const auto& r : results) values.push_back(r.second);
+    for (const SectionResult& r : results) values.push_back(r.value);
     return values;
   }
 
   /// Read the unknowns a section uses, compute its assignments, then its results.
-  void section(std::vector<CppStmt>& body, const std::vector<int>& assignment_indices,
-               const std::vector<std::pair<std::string, Expr>>& results, const std::string& results_comment) {
+  void section(std::vector<CppStmt>& body, const std::vector<int>& assignment_indices, std::vector<SectionResult> results,
+               const std::string& results_comment) {
     // Which variables does this section touch?
     std::unordered_set<int> used;
     std::set<int> blocks_read;  // a block's unknowns share its inputs: read them once
@@ -321,6 +364,7 @@ class Emitter {
     const std::vector<std::string>& store = outlined_form.store;
     const std::vector<int>& run_at = outlined_form.run_at;
     const std::vector<int>& copy_after = outlined_form.copy_after;
+    const std::vector<int>& result_run_at = outlined_form.result_run_at;
     // Common subexpressions: anything non-trivial used twice or more in this section.
     SharedTemps shared(hoisted_, names_, cse_counter_, ops());
     auto visit = [&](const Expr& e) { shared.count(e); };
@@ -341,7 +385,11 @@ class Emitter {
       for (const Expr& e : lb.a) visit(e);
       for (const Expr& e : lb.b) visit(e);
     }
-    for (const auto& [target, e] : results) visit(e);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      if (const int r = result_run_at[i]; r < 0) visit(results[i].value);
+      else if (outlined.runs[static_cast<std::size_t>(r)].begin == i)
+        for (const Expr& e : outlined.runs[static_cast<std::size_t>(r)].inputs) visit(e);
+    }
     shared.finish_counting();
     auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return shared.print(e, out_body); };
     std::set<int> blocks_done;
@@ -351,7 +399,7 @@ class Emitter {
       const Assignment& a = *list[k];
       if (run_at[k] >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(run_at[k])];
-        if (run.begin == k) call_shape(body, outlined, run_at[k], list, shape_names, store, shared);
+        if (run.begin == k) call_shape(body, outlined, run_at[k], list, results, shape_names, store, shared);
         last_origin.clear();
         continue;
       }
@@ -378,48 +426,77 @@ class Emitter {
       }
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
-    for (const auto& [target, e] : results) {
-      std::string rhs = print_expr(e, body);
-      body.push_back(CppStmt::line(fmt::format("{} = {};", target, rhs)));
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      if (const int r = result_run_at[i]; r >= 0) {
+        if (outlined.runs[static_cast<std::size_t>(r)].begin == i) call_shape(body, outlined, r, list, results, shape_names, store, shared);
+        continue;
+      }
+      std::string rhs = print_expr(results[i].value, body);
+      body.push_back(CppStmt::line(fmt::format("{}[{}] = {};", results[i].array, results[i].index, rhs)));
     }
     for (const auto& [v, at] : outlined.stored) stored_name_.erase(v);
   }
 
   /// A section's outlining: its runs and shapes, their member arrays, per
   /// assignment the outlined run it is in and the inline run whose outputs
-  /// are copied to their array after it (-1: none).
+  /// are copied to their array after it (-1: none), per result the outlined
+  /// run it is in.
   struct Outlined {
     Outlining o;
     std::vector<std::string> store;
-    std::vector<int> run_at, copy_after;
+    std::vector<int> run_at, copy_after, result_run_at;
   };
 
-  /// `list` outlined where --outline says so (reordered body by body if that
-  /// form is taken): of every body's equations grouped (kinematics too) and
-  /// the eliminations alone in causal order, the one that leaves less inline.
-  Outlined outline_section(std::vector<const Assignment*>& list, const std::vector<std::pair<std::string, Expr>>& results) {
+  /// `list` outlined where --outline says so (see find_shapes).
+  Outlined outline_section(std::vector<const Assignment*>& list, std::vector<SectionResult>& results) {
     Outlined out;
     out.run_at.assign(list.size(), -1);
     out.copy_after.assign(list.size(), -1);
+    out.result_run_at.assign(results.size(), -1);
     if (opt_.outline == EmitOptions::Outline::never ||
-        (opt_.outline == EmitOptions::Outline::automatic && inline_count({}, list) <= kOutlineFromNodes))
+        (opt_.outline == EmitOptions::Outline::automatic && !large_ && inline_count({}, list) <= kOutlineFromNodes))
       return out;
+    out.o = find_shapes(list, results);
+    if (out.o.shapes.empty()) return out;
+    out.store = store_outlined(out.o, list);
+    for (std::size_t r = 0; r < out.o.runs.size(); ++r) {
+      const OutlinedRun& run = out.o.runs[r];
+      if (run.results) {
+        if (run.shape >= 0)
+          for (std::size_t i = run.begin; i < run.end; ++i) out.result_run_at[i] = static_cast<int>(r);
+      } else if (run.shape >= 0)
+        for (std::size_t k = run.begin; k < run.end; ++k) out.run_at[k] = static_cast<int>(r);
+      else if (!out.store[r].empty())  // an inline run an outlined one reads: copied when done
+        out.copy_after[run.end - 1] = static_cast<int>(r);
+    }
+    return out;
+  }
+
+  /// The runs and shapes of a section, `list` reordered body by body if that
+  /// form is taken: of every body's equations grouped (kinematics too) and the
+  /// eliminations alone in causal order, the one that leaves less inline;
+  /// `results` each owner's together (group_results_by_owner) if some of them
+  /// are outlined.
+  Outlining find_shapes(std::vector<const Assignment*>& list, std::vector<SectionResult>& results) const {
     ReadsOf reads;
     for (const Assignment* a : list) assignment_inputs(s_, *a, reads[a]);
     std::unordered_set<int> results_read;
     collect_vars(result_values(results), results_read);
+    std::vector<SectionResult> grouped_results = results;
+    group_results_by_owner(grouped_results);
     auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels, const std::vector<std::string>& names) {
-      Outlining o = find_outlined_runs(order, reads, results_read, labels, names, g_);
+      Outlining o = find_outlined_runs(order, reads, results_read, labels, names, grouped_results, g_);
       return o.shapes.empty() ? Outlining{} : o;  // nothing shared: nothing stored either
     };
     std::vector<const Assignment*> grouped = list;
     std::vector<int> labels;
+    Outlining o;
     if (!s_.tree) {  // no elimination: each owner's equations (a body's, a joint's), grouped
       std::vector<std::string> owners;
       group_by_owner(grouped, s_, reads, labels, owners);
-      out.o = outline(grouped, labels, owners);
-      if (out.o.shapes.empty()) return out;
-      out.o.by_owner = true;
+      o = outline(grouped, labels, owners);
+      if (o.shapes.empty()) return o;
+      o.by_owner = true;
       list = grouped;
     } else {
       group_by_body(grouped, s_, reads, labels);
@@ -428,29 +505,34 @@ class Emitter {
         if (!from_tree_elimination(*list[k])) labels[k] = -1;
         else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
       Outlining eliminations = outline(list, labels, s_.tree->names);
-      if (inline_count(by_body, grouped) < inline_count(eliminations, list)) out.o = std::move(by_body), list = grouped;
-      else out.o = std::move(eliminations);
+      if (inline_count(by_body, grouped) < inline_count(eliminations, list)) o = std::move(by_body), list = grouped;
+      else o = std::move(eliminations);
     }
-    out.store = store_outlined(out.o, list);
-    for (std::size_t r = 0; r < out.o.runs.size(); ++r) {
-      const OutlinedRun& run = out.o.runs[r];
-      if (run.shape >= 0)
-        for (std::size_t k = run.begin; k < run.end; ++k) out.run_at[k] = static_cast<int>(r);
-      else if (!out.store[r].empty())  // an inline run an outlined one reads: copied when done
-        out.copy_after[run.end - 1] = static_cast<int>(r);
-    }
-    return out;
+    if (std::any_of(o.runs.begin(), o.runs.end(), [](const OutlinedRun& run) { return run.results && run.shape >= 0; }))
+      results = std::move(grouped_results);
+    return o;
   }
 
-  /// The expression nodes of what stays inline.
+  /// The expression nodes of the assignments that stay inline.
   static std::size_t inline_count(const Outlining& o, const std::vector<const Assignment*>& list) {
     std::vector<char> out(list.size(), 0);
     for (const OutlinedRun& run : o.runs)
-      if (run.shape >= 0) std::fill(out.begin() + static_cast<long>(run.begin), out.begin() + static_cast<long>(run.end), 1);
+      if (run.shape >= 0 && !run.results) std::fill(out.begin() + static_cast<long>(run.begin), out.begin() + static_cast<long>(run.end), 1);
     std::size_t n = 0;
     for (std::size_t k = 0; k < list.size(); ++k)
       if (!out[k] && list[k]->value) n += ir::size(list[k]->value);
     return n;
+  }
+
+  /// Whether the dynamics' assignments (the derivative's or the residual's)
+  /// written inline are past kOutlineFromNodes, and whether bodies with the
+  /// same equations repeat among them.
+  std::pair<bool, bool> dynamics_size() const {
+    std::vector<const Assignment*> list;
+    for (int i : s_.for_derivative) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
+    const bool large = inline_count({}, list) > kOutlineFromNodes;
+    std::vector<SectionResult> none;
+    return {large, large && !find_shapes(list, none).shapes.empty()};
   }
 
   /// The member arrays that keep the runs' outputs that an outlined run
@@ -464,21 +546,24 @@ class Emitter {
     std::vector<char> kept(o.runs.size(), 0);
     for (const OutlinedRun& run : o.runs)
       if (run.shape >= 0) {
-        kept[static_cast<std::size_t>(&run - o.runs.data())] = 1;
+        kept[static_cast<std::size_t>(&run - o.runs.data())] = !run.results;  // (a run of results writes the caller's array)
         for (int src : run.sources) kept[static_cast<std::size_t>(src)] = 1;
       }
     std::vector<std::string> store(o.runs.size());
     const std::string method = method_name(cost_signature_);
+    if (std::find(kept.begin(), kept.end(), 1) != kept.end())  // one comment heads the method's arrays
+      stores_.push_back(CppStmt::comment(
+          o.by_owner ? fmt::format("{}(): what the rest of it reads of each one's equations (a body's, a joint's)", method)
+                     : fmt::format("{}(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) "
+                                   "and accelerations (_acc)",
+                                   method)));
     for (std::size_t r = 0; r < o.runs.size(); ++r) {
       if (!kept[r]) continue;
       const OutlinedRun& run = o.runs[r];
       const bool elimination = from_tree_elimination(*list[run.begin]);
       const char* phase = o.by_owner ? "eqs" : elimination ? "elim" : run.begin < first_elim ? "kin" : "acc";
-      const char* what = o.by_owner ? "equations" : elimination ? "elimination" : run.begin < first_elim ? "kinematics" : "accelerations";
       store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), fmt::format("{}_{}", run.body, phase));
-      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};  // {}(): what the rest reads of {}{}'s {}", store[r],
-                                                  std::max<std::size_t>(run.width, 1), method, o.by_owner ? "" : "body ",
-                                                  run.body, what)));
+      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};", store[r], std::max<std::size_t>(run.width, 1))));
     }
     for (const auto& [v, at] : o.stored)
       if (o.runs[static_cast<std::size_t>(at.first)].shape >= 0)
@@ -487,9 +572,11 @@ class Emitter {
   }
 
   /// One outlined run: its other inputs into an array, then the shape's
-  /// function (made the first time) with its sources' arrays and its own.
+  /// function (made the first time) with its sources' arrays and its own
+  /// (a run of results: the caller's array, from its first result's place).
   void call_shape(std::vector<CppStmt>& body, const Outlining& o, int r, const std::vector<const Assignment*>& list,
-                  std::vector<std::string>& shape_names, const std::vector<std::string>& store, SharedTemps& shared) {
+                  const std::vector<SectionResult>& results, std::vector<std::string>& shape_names,
+                  const std::vector<std::string>& store, SharedTemps& shared) {
     const OutlinedRun& run = o.runs[static_cast<std::size_t>(r)];
     const OutlineShape& shape = o.shapes[static_cast<std::size_t>(run.shape)];
     std::string& fn = shape_names[static_cast<std::size_t>(run.shape)];
@@ -499,29 +586,45 @@ class Emitter {
       Cost one;
       Cost* caller = cost_;
       cost_ = &one;
-      outlined_.push_back(shape_function(fn, o, run.shape, list, g_, names_, [this](const SourceLoc& l) { return where(l); },
+      outlined_.push_back(shape_function(fn, o, run.shape, list, results, g_, names_, [this](const SourceLoc& l) { return where(l); },
                                          cse_counter_, ops()));
       cost_ = caller;
       shape_cost_[fn] = one.ops;
     }
     cost_->ops += shape_cost_.at(fn);  // the work of one call
-    const Assignment& first = *list[run.begin];
-    body.push_back(CppStmt::comment(o.by_owner ? fmt::format("{}  {}: {}() (shared by the {} with the same equations)",
-                                                             where(first.loc), run.body, fn, shape.runs.size())
-                                               : fmt::format("{}  body {}: {}() (the same equations as {} bodies)", where(first.loc),
-                                                             run.body, fn, shape.runs.size())));
+    if (run.results) {  // which places it writes: "r[13..25]", "rows_out[5..9, 205..209]"
+      const SectionResult& first = results[run.begin];
+      std::vector<std::string> spans;
+      for (std::size_t k = run.begin, end = k; k < run.end; k = end) {
+        for (end = k + 1; end < run.end && results[end].index == results[end - 1].index + 1; ++end) {
+        }
+        spans.push_back(end - k == 1 ? fmt::format("{}", results[k].index) : fmt::format("{}..{}", results[k].index, results[end - 1].index));
+      }
+      body.push_back(CppStmt::comment(fmt::format("{}{}: {}[{}] by {}() (shared by the {} with the same equations)",
+                                                  first.loc.valid() ? where(first.loc) + "  " : "", run.body, first.array,
+                                                  fmt::join(spans, ", "), fn, shape.runs.size())));
+    } else {
+      const SourceLoc& loc = list[run.begin]->loc;
+      body.push_back(CppStmt::comment(o.by_owner ? fmt::format("{}  {}: {}() (shared by the {} with the same equations)", where(loc),
+                                                               run.body, fn, shape.runs.size())
+                                                 : fmt::format("{}  body {}: {}() (the same equations as {} bodies)", where(loc),
+                                                               run.body, fn, shape.runs.size())));
+    }
     std::vector<std::string> args;
     if (run.inputs.empty()) {
       args.push_back("nullptr");
     } else {
       std::vector<std::string> in;
       for (const Expr& e : run.inputs) in.push_back(shared.print(e, body));
-      const std::string in_name = mangle_.get(fmt::format("run:{}:{}:in", method, run.begin), run.body + "_in");
+      const std::string in_name =
+          mangle_.get(fmt::format("{}:{}:{}:in", run.results ? "results" : "run", method, run.begin), run.body + "_in");
       body.push_back(CppStmt::line(fmt::format("double {}[{}] = {{{}}};", in_name, in.size(), fmt::join(in, ", "))));
       args.push_back(in_name);
     }
     for (int src : run.sources) args.push_back(store[static_cast<std::size_t>(src)]);
-    args.push_back(store[static_cast<std::size_t>(r)]);
+    if (!run.results) args.push_back(store[static_cast<std::size_t>(r)]);
+    else if (const SectionResult& first = results[run.begin]; first.index == 0) args.push_back(first.array);
+    else args.push_back(fmt::format("{} + {}", first.array, first.index));
     body.push_back(CppStmt::line(fmt::format("{}({});", fn, fmt::join(args, ", "))));
   }
 
@@ -582,11 +685,11 @@ class Emitter {
     CppFunction f{"DERIVATIVE: the state derivatives, in causal order.",
                   "void derivative(double t, const double* x, double* xdot) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
     const Counting counting = count_into(f);
-    std::vector<std::pair<std::string, Expr>> results;
+    std::vector<SectionResult> results;
     for (std::size_t i = 0; i < s_.states.size(); ++i)
-      results.push_back({fmt::format("xdot[{}]", i), s_.state_derivative[i]});
+      results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
     if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
-    section(f.body, s_.for_derivative, results, "state derivatives");
+    section(f.body, s_.for_derivative, std::move(results), "state derivatives");
     return f;
   }
 
@@ -597,10 +700,10 @@ class Emitter {
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)x;"),
                    CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) jac_out[k] = 0.0;", n * n))}};
     const Counting counting = count_into(f);
-    std::vector<std::pair<std::string, Expr>> results;
+    std::vector<SectionResult> results;
     for (std::size_t k = 0; k < s_.jacobian.size(); ++k)
-      if (!is_zero(s_.jacobian[k])) results.push_back({fmt::format("jac_out[{}]", k), s_.jacobian[k]});
-    section(f.body, s_.for_jacobian, results, "nonzero entries");
+      if (!is_zero(s_.jacobian[k])) results.push_back({"jac_out", k, s_.jacobian[k], {}, {}, {}});
+    section(f.body, s_.for_jacobian, std::move(results), "nonzero entries");
     return f;
   }
 
@@ -609,10 +712,14 @@ class Emitter {
                   "void residual(double t, const double* y, const double* yp, double* r) override",
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)y;"), CppStmt::line("(void)yp;")}};
     const Counting counting = count_into(f);
-    std::vector<std::pair<std::string, Expr>> results;
-    for (std::size_t i = 0; i < s_.residuals.size(); ++i)
-      results.push_back({fmt::format("r[{}]", i), s_.residuals[i].value});
-    section(f.body, s_.for_derivative, results, "residuals");
+    std::vector<SectionResult> results;
+    for (std::size_t i = 0; i < s_.residuals.size(); ++i) {
+      // row i is unknown i's: y = [states, algebraic]
+      const int unknown = i < s_.states.size() ? s_.states[i].var : s_.algebraic[i - s_.states.size()];
+      const Residual& row = s_.residuals[i];
+      results.push_back({"r", i, row.value, owner_of(var_name_in_model(unknown)), row.loc, row.origin});
+    }
+    section(f.body, s_.for_derivative, std::move(results), "residuals");
     return f;
   }
 
@@ -672,10 +779,16 @@ class Emitter {
                   fmt::format("void constraints(double t, const double* {}, double* rows_out) override", y),
                   {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
     const Counting counting = count_into(f);
-    std::vector<std::pair<std::string, Expr>> results;
-    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", i), s_.constraints[i].g});
-    for (std::size_t i = 0; i < n; ++i) results.push_back({fmt::format("rows_out[{}]", n + i), s_.constraints[i].gdot});
-    section(f.body, s_.for_constraints, results, "g, then gdot");
+    std::vector<SectionResult> results;
+    for (std::size_t i = 0; i < n; ++i) {
+      const ConstraintRow& row = s_.constraints[i];
+      results.push_back({"rows_out", i, row.g, owner_of(row.name), row.loc, fmt::format("CN {}: g", row.name)});
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const ConstraintRow& row = s_.constraints[i];
+      results.push_back({"rows_out", n + i, row.gdot, owner_of(row.name), row.loc, fmt::format("CN {}: gdot", row.name)});
+    }
+    section(f.body, s_.for_constraints, std::move(results), "g, then gdot");
     c.public_methods.push_back(f);
     constraint_jacobian(c);
   }
@@ -685,11 +798,13 @@ class Emitter {
   void constraint_jacobian(CppClass& c) {
     const std::size_t n = s_.constraints.size();
     std::vector<long> starts{0}, columns;
-    std::vector<std::pair<std::string, Expr>> results;
+    std::vector<SectionResult> results;
     for (std::size_t r = 0, k = 0; r < n; ++r) {
+      const ConstraintRow& row = s_.constraints[r];
       for (; k < s_.constraint_jacobian.size() && s_.constraint_jacobian[k].row == static_cast<int>(r); ++k) {
         columns.push_back(s_.constraint_jacobian[k].state);
-        results.push_back({fmt::format("values[{}]", results.size()), s_.constraint_jacobian[k].value});
+        results.push_back({"values", results.size(), s_.constraint_jacobian[k].value, owner_of(row.name), row.loc,
+                           fmt::format("CN {}: dg/dx", row.name)});
       }
       starts.push_back(static_cast<long>(columns.size()));
     }
@@ -709,7 +824,7 @@ class Emitter {
     if (results.empty()) f.body.push_back(CppStmt::line("(void)values;"));
     {
       const Counting counting = count_into(f);
-      section(f.body, s_.for_constraint_jacobian, results, "dg/dx, by row");
+      section(f.body, s_.for_constraint_jacobian, std::move(results), "dg/dx, by row");
     }
     add_long_method(c, std::move(f));
   }
@@ -745,12 +860,13 @@ class Emitter {
 
   CppFunction body_poses() {
     std::vector<Expr> values;
+    std::vector<std::pair<std::string, SourceLoc>> owners;
     for (const DrawnBody& d : g_.drawings)
-      for (const Expr& e : d.pose) values.push_back(e);
+      for (const Expr& e : d.pose) values.push_back(e), owners.push_back({d.drawing->body, d.loc});
     for (const DrawnBody& d : g_.drawings)
       for (const Expr& e : d.modes) values.push_back(e);
     return values_at("POSES (--animate): each drawn body's origin and rotation, then the modal coordinates.", "body_poses",
-                     "out", values, s_.for_drawings, "12 per body (origin, rotation row-major), then every modal coordinate");
+                     "out", values, s_.for_drawings, "12 per body (origin, rotation row-major), then every modal coordinate", owners);
   }
 
   CppFunction event_functions() {
@@ -779,16 +895,19 @@ class Emitter {
   }
 
   /// `void NAME(double t, const double* x, const double* yp, double* OUT)`:
-  /// OUT[i] = values[i] at (t, y), after the assignments `slice` they need.
+  /// OUT[i] = values[i] at (t, y), after the assignments `slice` they need;
+  /// owners[i], if given, the body values[i] is about and where it is declared.
   CppFunction values_at(const char* doc, const char* name, const char* out, const std::vector<Expr>& values,
-                        const std::vector<int>& slice, const char* comment) {
+                        const std::vector<int>& slice, const char* comment,
+                        const std::vector<std::pair<std::string, SourceLoc>>& owners = {}) {
     CppFunction f{doc, fmt::format("void {}(double t, const double* {}, const double* yp, double* {}) override", name, s_.dae ? "y" : "x", out),
                   {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
     const Counting counting = count_into(f);
-    std::vector<std::pair<std::string, Expr>> results;
-    for (std::size_t i = 0; i < values.size(); ++i) results.push_back({fmt::format("{}[{}]", out, i), values[i]});
+    std::vector<SectionResult> results;
+    for (std::size_t i = 0; i < values.size(); ++i)
+      results.push_back(i < owners.size() ? SectionResult{out, i, values[i], owners[i].first, owners[i].second, {}} : SectionResult{out, i, values[i], {}, {}, {}});
     if (results.empty()) f.body.push_back(CppStmt::line(fmt::format("(void){};", out)));
-    section(f.body, slice, results, comment);
+    section(f.body, slice, std::move(results), comment);
     return f;
   }
 
@@ -870,8 +989,11 @@ class Emitter {
       c.private_methods.push_back({"", "double param(std::size_t i, double model_value) const",
                                    {CppStmt::line("return overridden_[i] ? overrides_[i] : model_value;")}});
       c.private_members.push_back(CppStmt::comment("parameters (set in initial())"));
-      for (std::size_t i = 0; i < g_.params.size(); ++i)
-        c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;  // {}", names_.param(static_cast<int>(i)), where(g_.params[i].loc))));
+      Located located(*this, c.private_members);
+      for (std::size_t i = 0; i < g_.params.size(); ++i) {
+        const std::string at = located.head(g_.params[i].loc);
+        c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;{}", names_.param(static_cast<int>(i)), at)));
+      }
       c.private_members.push_back(CppStmt::line(fmt::format("std::array<double, {}> overrides_{{}};", g_.params.size())));
       c.private_members.push_back(CppStmt::line(fmt::format("std::array<bool, {}> overridden_{{}};", g_.params.size())));
     }
@@ -884,6 +1006,7 @@ class Emitter {
   Mangler mangle_;
   Namer names_;
   std::string class_name_;
+  std::filesystem::path model_dir_;  // the directory of the model's file, as given (where() names files from it)
   int cse_counter_ = 0;
   std::map<std::string, Cost> costs_;  // method signature -> its cost
   Cost* cost_ = nullptr;               // the method being built
@@ -896,12 +1019,18 @@ class Emitter {
   std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
   std::vector<Expr> hoisted_order_;                                    // in first-use order
   bool has_rank_loss_ = false;        // a rank-revealing solve was written: the model keeps its log
+  bool large_ = false;                // the dynamics are past kOutlineFromNodes (--outline auto outlines every section)
+  /// ... and repeat bodies: the lists of initial(), of the parameters and of
+  /// the unknowns are written compactly (they have thousands of entries).
+  bool compact_ = false;
   std::vector<std::string> scratch_;  // members of split methods (codegen/split.hpp), in order of definition
   /// Statements per part of a long method: g++ -O2 compiles the 100-rod
   /// chain's derivative (8,300 statements) in 20 s as one function.
   static constexpr std::size_t kMaxMethodLines = 2000;
   /// --outline auto: outline from this many expression nodes written inline
-  /// (the derivative no longer fits the instruction cache). Measured in the
+  /// (the derivative no longer fits the instruction cache); in a model whose
+  /// dynamics are that large, in every method (the others repeat the same
+  /// bodies: outlined, the file is a fraction of its size). Measured in the
   /// peer benchmark: the planar chain of 8 rods (13,000 nodes) takes 0.45 ms
   /// inline and 0.60 ms outlined, of 32 (66,000) 3.44 and 3.60 ms; the
   /// 32-rod spherical chain (690,000) is 2x faster outlined.

@@ -10,8 +10,9 @@
 
 namespace mbgc::codegen {
 
-/// Appends those methods to `c`.
-void add_identity_methods(CppClass& c, const ir::ReducedSystem& s, const EmitOptions& opt);
+/// Appends those methods to `c`; with `compact`, their lists of thousands
+/// (a large model of repeated bodies, codegen/emit_cpp) written compactly.
+void add_identity_methods(CppClass& c, const ir::ReducedSystem& s, const EmitOptions& opt, bool compact);
 
 /// Variables and parameters by their names in the model (for comments).
 ir::Namer names_for_dump(const ir::BondGraph& g);

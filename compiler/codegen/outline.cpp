@@ -6,8 +6,8 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <map>
+#include <optional>
 #include <queue>
-#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -25,23 +25,43 @@ using namespace mbgc::ir;
 // than with them inline, 1.89 against 1.75 us at N = 32.)
 constexpr std::size_t kMinRun = 6;
 
+/// A run of results is outlined from this many operations, and two a
+/// result: fewer (results mostly copies of what they read) are shorter
+/// written inline than as a call with its comment and its inputs' array.
+constexpr std::size_t kMinResultOperations = 24;
+
+/// The distinct operations (nodes with arguments) of `values`.
+std::size_t operations(const std::vector<Expr>& values) {
+  std::unordered_set<const Node*> seen;
+  std::function<void(const Expr&)> walk = [&](const Expr& e) {
+    if (e->args.empty() || !seen.insert(e.get()).second) return;
+    for (const Expr& a : e->args) walk(a);
+  };
+  for (const Expr& e : values) walk(e);
+  return seen.size();
+}
+
 /// The canonical text of a run: its DAG with every leaf renamed in order of
-/// first appearance, and its outputs. Empty if the run cannot be outlined
-/// (it reads t). Fills the run's sources and inputs.
+/// first appearance, and its outputs (a run of results: where each goes).
+/// Empty if the run cannot be outlined (it reads t). Fills the run's sources
+/// and inputs.
 class Canon {
  public:
-  /// `stored`: where every run's outputs are kept (var -> run, slot).
-  Canon(const std::vector<const Assignment*>& list, OutlinedRun& run,
-        const std::unordered_map<int, std::pair<int, std::size_t>>& stored, int self)
-      : list_(list), run_(run), stored_(stored), self_(self) {
+  /// `values`: the run's expressions, in order; `stored`: where every run's
+  /// outputs are kept (var -> run, slot).
+  Canon(std::vector<Expr> values, OutlinedRun& run, const std::unordered_map<int, std::pair<int, std::size_t>>& stored, int self)
+      : values_(std::move(values)), run_(run), stored_(stored), self_(self) {
     for (std::size_t k = 0; k < run.defined.size(); ++k) local_[run.defined[k]] = static_cast<int>(k);
     run.sources.clear();
     run.inputs.clear();
   }
 
   std::string key() {
-    for (std::size_t i = run_.begin; i < run_.end && ok_; ++i) text_ += fmt::format("=>{};", node(list_[i]->value));
-    text_ += fmt::format("out({})", fmt::join(run_.slots, ","));
+    for (std::size_t i = 0; i < values_.size() && ok_; ++i) {
+      const int n = node(values_[i]);
+      text_ += run_.results ? fmt::format("=>{}:{};", run_.offsets[i], n) : fmt::format("=>{};", n);
+    }
+    text_ += run_.results ? std::string("results") : fmt::format("out({})", fmt::join(run_.slots, ","));
     return ok_ ? text_ : std::string{};
   }
 
@@ -86,7 +106,7 @@ class Canon {
     return id;
   }
 
-  const std::vector<const Assignment*>& list_;
+  const std::vector<Expr> values_;
   OutlinedRun& run_;
   const std::unordered_map<int, std::pair<int, std::size_t>>& stored_;
   const int self_;
@@ -107,20 +127,15 @@ std::string without_owner(const std::string& name) {
 }
 
 
-/// "s3.m1.f2[1]" -> "s3", "der(rod3.pose.R11)" -> "rod3": the body, joint or
-/// component instance a variable's name is qualified by ("" for none).
-std::string owner_of(const std::string& name) {
-  if (name.rfind("der(", 0) == 0) return owner_of(name.substr(4));
-  const std::size_t dot = name.find('.');
-  return dot == std::string::npos ? std::string{} : name.substr(0, dot);
-}
-
 /// list[0, end) in Kahn's order, the lowest (key of its label, name without
 /// its owner, place) first: the same order for every owner with the same
 /// equations. An unlabelled assignment takes the highest key of what it
-/// reads. `labels` follows.
+/// reads. With `stay`, the key taken last goes on while it has an
+/// assignment ready, even when a lower one has one again: an owner's
+/// equations that a lower one's wait for (a joint's forces on its bodies)
+/// stay one run, not one equation between each of the other's. `labels` follows.
 void order_by_key(std::vector<const Assignment*>& list, std::size_t end, std::vector<int>& labels, const std::vector<int>& label_key,
-                  const std::vector<const std::unordered_set<int>*>& reads, const BondGraph& graph) {
+                  const std::vector<const std::unordered_set<int>*>& reads, const BondGraph& graph, bool stay) {
   std::unordered_map<int, std::size_t> defined_at;
   for (std::size_t i = 0; i < end; ++i) defined_at[list[i]->var] = i;
   std::vector<std::vector<std::size_t>> readers(end);
@@ -134,16 +149,22 @@ void order_by_key(std::vector<const Assignment*>& list, std::size_t end, std::ve
         if (labels[i] < 0) key[i] = std::max(key[i], key[d->second]);
       }
   }
-  using Item = std::tuple<int, std::string, std::size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> ready;
-  auto push = [&](std::size_t i) { ready.push({key[i], without_owner(graph.vars[static_cast<std::size_t>(list[i]->var)].name), i}); };
+  using Item = std::pair<std::string, std::size_t>;
+  using Queue = std::priority_queue<Item, std::vector<Item>, std::greater<>>;
+  std::map<int, Queue> ready;  // by key
+  auto push = [&](std::size_t i) { ready[key[i]].push({without_owner(graph.vars[static_cast<std::size_t>(list[i]->var)].name), i}); };
   for (std::size_t i = 0; i < end; ++i)
     if (!waiting[i]) push(i);
   std::vector<const Assignment*> order;
   std::vector<int> order_labels;
+  std::optional<int> last;
   while (!ready.empty()) {
-    const std::size_t i = std::get<2>(ready.top());
-    ready.pop();
+    auto q = stay && last ? ready.find(*last) : ready.end();
+    if (q == ready.end()) q = ready.begin();
+    last = q->first;
+    const std::size_t i = q->second.top().second;
+    q->second.pop();
+    if (q->second.empty()) ready.erase(q);
     order.push_back(list[i]), order_labels.push_back(labels[i]);
     for (std::size_t r : readers[i])
       if (--waiting[r] == 0) push(r);
@@ -155,9 +176,25 @@ void order_by_key(std::vector<const Assignment*>& list, std::size_t end, std::ve
 
 }  // namespace
 
+std::string owner_of(const std::string& name) {
+  // a variable made for another one (der(x), the GGL multiplier mu(row)): that one's
+  for (const char* wrapper : {"der(", "mu("})
+    if (name.rfind(wrapper, 0) == 0) return owner_of(name.substr(std::strlen(wrapper)));
+  const std::size_t dot = name.find('.');
+  return dot == std::string::npos ? std::string{} : name.substr(0, dot);
+}
+
+void group_results_by_owner(std::vector<SectionResult>& results) {
+  std::unordered_map<std::string, std::size_t> first;
+  for (const SectionResult& r : results) first.emplace(r.owner, first.size());
+  std::stable_sort(results.begin(), results.end(),
+                   [&](const SectionResult& a, const SectionResult& b) { return first.at(a.owner) < first.at(b.owner); });
+}
+
 Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const ReadsOf& reads,
                              const std::unordered_set<int>& results_read, const std::vector<int>& labels,
-                             const std::vector<std::string>& bodies, const BondGraph& graph) {
+                             const std::vector<std::string>& bodies, const std::vector<SectionResult>& results,
+                             const BondGraph& graph) {
   Outlining o;
   auto label = [&](std::size_t i) { return list[i]->block >= 0 || !list[i]->value ? -1 : labels[i]; };
   for (std::size_t i = 0; i < list.size();) {
@@ -208,11 +245,62 @@ Outlining find_outlined_runs(const std::vector<const Assignment*>& list, const R
       o.stored[run.defined[k]] = {static_cast<int>(r), slot};
     }
   }
-  std::map<std::string, std::vector<int>> by_key;
+  std::vector<std::string> keys;
   for (std::size_t r = 0; r < o.runs.size(); ++r) {
-    std::string key = Canon(list, o.runs[r], o.stored, static_cast<int>(r)).key();
-    if (!key.empty()) by_key[std::move(key)].push_back(static_cast<int>(r));
+    std::vector<Expr> values;
+    for (std::size_t k = o.runs[r].begin; k < o.runs[r].end; ++k) values.push_back(list[k]->value);
+    keys.push_back(Canon(std::move(values), o.runs[r], o.stored, static_cast<int>(r)).key());
   }
+  // The results' runs: each owner's (contiguous, group_results_by_owner),
+  // into one array, none before the first. Where no other owner's results
+  // have the same shape, each span of consecutive places of them on its own:
+  // a joint's position rows, among its velocity rows that the other joints'
+  // interleave differently.
+  auto result_run = [&](std::size_t i, std::size_t j) -> std::optional<std::pair<OutlinedRun, std::string>> {
+    OutlinedRun run;
+    run.begin = i, run.end = j, run.body = results[i].owner, run.results = true;
+    std::vector<Expr> values;
+    for (std::size_t k = i; k < j; ++k) {
+      if (k > i && results[k].index <= results[i].index) return std::nullopt;
+      run.offsets.push_back(results[k].index - results[i].index);
+      values.push_back(results[k].value);
+    }
+    const std::size_t ops = operations(values);
+    if (ops < kMinResultOperations || ops < 2 * (j - i)) return std::nullopt;
+    std::string key = Canon(std::move(values), run, o.stored, -1).key();
+    if (key.empty()) return std::nullopt;
+    return std::pair{std::move(run), std::move(key)};
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> owned;  // each owner's results, [begin, end)
+  for (std::size_t i = 0, j = 0; i < results.size(); i = j) {
+    for (j = i + 1; j < results.size() && results[j].owner == results[i].owner && results[j].array == results[i].array; ++j) {
+    }
+    if (!results[i].owner.empty()) owned.push_back({i, j});
+  }
+  std::vector<std::optional<std::pair<OutlinedRun, std::string>>> whole;
+  std::map<std::string, std::size_t> owners_of_key;
+  for (const auto& [i, j] : owned) {
+    whole.push_back(result_run(i, j));
+    if (whole.back()) ++owners_of_key[whole.back()->second];
+  }
+  auto add = [&](std::pair<OutlinedRun, std::string>&& run) {
+    o.runs.push_back(std::move(run.first));
+    keys.push_back(std::move(run.second));
+  };
+  for (std::size_t c = 0; c < owned.size(); ++c) {
+    if (whole[c] && owners_of_key.at(whole[c]->second) > 1) {
+      add(std::move(*whole[c]));
+      continue;
+    }
+    for (std::size_t a = owned[c].first, b = a; a < owned[c].second; a = b) {
+      for (b = a + 1; b < owned[c].second && results[b].index == results[b - 1].index + 1; ++b) {
+      }
+      if (auto run = result_run(a, b)) add(std::move(*run));
+    }
+  }
+  std::map<std::string, std::vector<int>> by_key;
+  for (std::size_t r = 0; r < o.runs.size(); ++r)
+    if (!keys[r].empty()) by_key[keys[r]].push_back(static_cast<int>(r));
   std::vector<std::vector<int>> groups;
   for (auto& [key, runs] : by_key)
     if (runs.size() > 1) groups.push_back(runs);
@@ -268,7 +356,7 @@ void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s,
   if (end == n) return;
   std::vector<int> body_key(bodies);
   for (std::size_t b = 0; b < bodies; ++b) body_key[b] = pre[b];
-  order_by_key(list, end, labels, body_key, reads, s.graph);
+  order_by_key(list, end, labels, body_key, reads, s.graph, /*stay=*/false);
 }
 
 void group_by_owner(std::vector<const Assignment*>& list, const ReducedSystem& s, const ReadsOf& reads_of,
@@ -289,11 +377,11 @@ void group_by_owner(std::vector<const Assignment*>& list, const ReducedSystem& s
   }
   std::vector<int> key(owners.size());
   for (std::size_t k = 0; k < key.size(); ++k) key[k] = static_cast<int>(k);  // in order of first appearance
-  order_by_key(list, n, labels, key, reads, s.graph);
+  order_by_key(list, n, labels, key, reads, s.graph, /*stay=*/true);
 }
 
 CppFunction shape_function(const std::string& name, const Outlining& o, int shape, const std::vector<const Assignment*>& list,
-                           const BondGraph& g, const Namer& names, const std::function<std::string(const SourceLoc&)>& where,
+                           const std::vector<SectionResult>& results, const BondGraph& g, const Namer& names, const std::function<std::string(const SourceLoc&)>& where,
                            int& cse_counter, CppOps* ops) {
   const OutlineShape& s = o.shapes[static_cast<std::size_t>(shape)];
   const OutlinedRun& run = o.runs[static_cast<std::size_t>(s.runs[0])];
@@ -319,19 +407,33 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   }
   params.push_back("double* out");
   for (std::size_t k = 0; k < run.outputs.size(); ++k) outs.push_back(local.at(run.defined[run.outputs[k]]));
-  CppFunction f{fmt::format("Equations of {}{}, the same up to their names (written with {}'s): in[] what they "
-                            "read{}, out[] what the rest of the model reads of them: {}.",
-                            o.by_owner ? "" : "bodies ", fmt::join(bodies, ", "), run.body, run.sources.empty() ? "" : ", sK[] the outputs of the runs they read",
-                            fmt::join(outs, ", ")),
+  const char* sources = run.sources.empty() ? "" : ", sK[] the outputs of the runs they read";
+  CppFunction f{run.results ? fmt::format("{}[] of {}, the same up to their names (written with {}'s): in[] what they read{}, "
+                                          "out[] the caller's {}[] from the first one's place.",
+                                          results[run.begin].array, fmt::join(bodies, ", "), run.body, sources, results[run.begin].array)
+                            : fmt::format("Equations of {}{}, the same up to their names (written with {}'s): in[] what they "
+                                          "read{}, out[] what the rest of the model reads of them: {}.",
+                                          o.by_owner ? "" : "bodies ", fmt::join(bodies, ", "), run.body, sources, fmt::join(outs, ", ")),
                 fmt::format("static void {}({})", name, fmt::join(params, ", ")),
                 {}};
   if (run.inputs.empty()) f.body.push_back(CppStmt::line("(void)in;  // (reads nothing but its sources: called with nullptr)"));
   Namer inside = names;
   inside.var = [&](int id) { return local.count(id) ? local.at(id) : names.var(id); };
   SharedTemps shared(known, inside, cse_counter, ops);
-  for (std::size_t i = run.begin; i < run.end; ++i) shared.count(list[i]->value);
+  for (std::size_t i = run.begin; i < run.end; ++i) shared.count(run.results ? results[i].value : list[i]->value);
   shared.finish_counting();
   std::string last;
+  if (run.results) {
+    for (std::size_t i = run.begin; i < run.end; ++i) {
+      const SectionResult& r = results[i];
+      std::string origin = !r.loc.valid() ? r.origin : r.origin.empty() ? where(r.loc) : fmt::format("{}  {}", where(r.loc), r.origin);
+      if (!origin.empty() && origin != last) f.body.push_back(CppStmt::comment(origin));
+      last = std::move(origin);
+      std::string rhs = shared.print(r.value, f.body);
+      f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", run.offsets[i - run.begin], rhs)));
+    }
+    return f;
+  }
   for (std::size_t i = run.begin; i < run.end; ++i) {
     const Assignment& a = *list[i];
     std::string origin = fmt::format("{}  {}", where(a.loc), a.origin);

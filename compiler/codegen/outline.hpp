@@ -21,6 +21,11 @@
 // parameter-only subexpressions, which stay on the caller's side where
 // initial() computed them once) and the same constants, bit for bit, and
 // when they have the same outputs.
+//
+// A section's results (the residual's r[k], the constraints' rows_out[k])
+// are runs too: one owner's, a body's rows or a joint's, written by their
+// shape's function straight into the caller's array, at the same places
+// from the first one's for every run of the shape.
 #pragma once
 
 #include <functional>
@@ -36,8 +41,21 @@
 
 namespace mbgc::codegen {
 
+/// A value a section writes into the caller's array (`r[5] = ...`). The
+/// results of one owner (a body's residual rows, a joint's constraint rows
+/// and their derivatives) are outlined like a run of its equations: their
+/// shape's function writes them where the caller's array has them.
+struct SectionResult {
+  std::string array;     // "r", "values", "rows_out", ...
+  std::size_t index = 0;
+  ir::Expr value;
+  std::string owner;     // the body, joint or instance it is about ("": none, written inline)
+  ir::SourceLoc loc;     // where it comes from (its comment in a shape's function), if known
+  std::string origin;
+};
+
 struct OutlinedRun {
-  std::size_t begin = 0, end = 0;   // [begin, end) in the section's assignment list
+  std::size_t begin = 0, end = 0;   // [begin, end) in the section's assignment list (results: in its results)
   std::string body;                 // the body whose elimination it is
   int shape = -1;                   // index into Outlining::shapes; -1: written inline
   std::vector<int> defined;         // the variables it computes, in order
@@ -46,6 +64,10 @@ struct OutlinedRun {
   std::size_t width = 0;            // the member array's size
   std::vector<int> sources;         // runs whose outputs it reads (a parent: its children's), in order of first reading
   std::vector<ir::Expr> inputs;     // what else it reads (variables, parameter-only subexpressions), in order
+  /// A run of results: nothing defined, no outputs; result k goes to
+  /// array[first + offsets[k]], and the function's out[] is array + first.
+  bool results = false;
+  std::vector<std::size_t> offsets;
 };
 
 struct OutlineShape {
@@ -71,10 +93,23 @@ using ReadsOf = std::unordered_map<const ir::Assignment*, std::unordered_set<int
 
 /// The runs of `assignments` (one section, in order) and their shapes;
 /// `results_read` what the section's results read; labels[i] the body
-/// assignment i belongs to (an index into `bodies`, -1 for none).
+/// assignment i belongs to (an index into `bodies`, -1 for none). Then the
+/// runs of `results`: each owner's, where they are contiguous (after the
+/// assignments' runs in Outlining::runs).
 Outlining find_outlined_runs(const std::vector<const ir::Assignment*>& assignments, const ReadsOf& reads,
                              const std::unordered_set<int>& results_read, const std::vector<int>& labels,
-                             const std::vector<std::string>& bodies, const ir::BondGraph& graph);
+                             const std::vector<std::string>& bodies, const std::vector<SectionResult>& results,
+                             const ir::BondGraph& graph);
+
+/// "s3.m1.f2[1]" -> "s3", "der(rod3.pose.R11)" and "mu(j2.cn[1])" -> "rod3"
+/// and "j2": the body, joint or component instance a variable's name is
+/// qualified by ("" for none).
+std::string owner_of(const std::string& name);
+
+/// `results` in order of their owners' first appearance (stable): each
+/// owner's together, so that they can be one run (a joint's g rows and its
+/// gdot rows). Results do not read one another: any order gives the same values.
+void group_results_by_owner(std::vector<SectionResult>& results);
 
 /// Which body each assignment belongs to (`tree`'s, else the deepest body of
 /// what it reads; -1 for none), and `assignments` reordered so that each
@@ -89,17 +124,20 @@ void group_by_body(std::vector<const ir::Assignment*>& assignments, const ir::Re
 /// component instance its variable's name is qualified by (an index into
 /// `owners`, -1 for none), and `assignments` reordered so that each owner's
 /// equations are contiguous where what they read allows: owners in order of
-/// first appearance, every assignment after what it reads.
+/// first appearance, every assignment after what it reads, an owner's next
+/// equation before another's while it has one ready.
 void group_by_owner(std::vector<const ir::Assignment*>& assignments, const ir::ReducedSystem& system, const ReadsOf& reads,
                     std::vector<int>& labels, std::vector<std::string>& owners);
 
 /// The function that computes one shape: `static void NAME(const double* in,
 /// const double* s0, ..., double* out)`: in[] the first run's inputs, sK
 /// the outputs of its K-th source run, out[] its own outputs (where they are
-/// kept between calls: the run's member array). Its operations are counted
-/// into `ops` (once: the caller counts each call).
+/// kept between calls: the run's member array; a run of results: where the
+/// caller's array has them). Its operations are counted into `ops` (once:
+/// the caller counts each call).
 CppFunction shape_function(const std::string& name, const Outlining& o, int shape,
-                           const std::vector<const ir::Assignment*>& assignments, const ir::BondGraph& graph,
+                           const std::vector<const ir::Assignment*>& assignments,
+                           const std::vector<SectionResult>& results, const ir::BondGraph& graph,
                            const ir::Namer& names, const std::function<std::string(const ir::SourceLoc&)>& where,
                            int& cse_counter, ir::CppOps* ops);
 

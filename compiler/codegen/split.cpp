@@ -65,10 +65,23 @@ std::string defined_block_local(const CppStmt& st) {
   return {};
 }
 
+/// Whether the statement is `const double NAME = ARG[k];`, a plain read of
+/// one of `inputs` (the method's `const double*` parameters).
+bool reads_input(const CppStmt& st, const std::vector<std::string>& inputs) {
+  const std::string name = defined_scalar(st);
+  if (name.empty()) return false;
+  const std::string rhs = st.text.substr(std::string("const double ").size() + name.size() + 3);
+  const auto open = rhs.find('[');
+  if (open == std::string::npos || rhs.size() < open + 3 || rhs.compare(rhs.size() - 2, 2, "];") != 0) return false;
+  if (std::find(inputs.begin(), inputs.end(), rhs.substr(0, open)) == inputs.end()) return false;
+  return std::all_of(rhs.begin() + static_cast<long>(open) + 1, rhs.end() - 2, [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+}
+
 struct Signature {
   std::string before;                // "void derivative"
   std::vector<std::string> params;   // "double t", "const double* x", ...
   std::vector<std::string> names;    // "t", "x", ...
+  std::vector<std::string> inputs;   // the names of its `const double*` parameters: "x"
   bool is_const = false;
 };
 
@@ -89,6 +102,7 @@ Signature parse(const std::string& sig) {
       const auto ids = identifiers(p);
       out.params.push_back(p);
       out.names.push_back(ids.empty() ? std::string{} : ids.back());
+      if (p.rfind("const double* ", 0) == 0) out.inputs.push_back(out.names.back());
     }
     start = comma + 1;
   }
@@ -105,11 +119,26 @@ std::string method_name(const std::string& signature) {
 }
 
 std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_lines) {
-  const std::vector<CppStmt>& body = f.body;
-  if (body.size() <= max_lines || max_lines == 0) return std::nullopt;
+  if (f.body.size() <= max_lines || max_lines == 0) return std::nullopt;
   const Signature sig = parse(f.signature);
   if (sig.is_const || std::any_of(sig.names.begin(), sig.names.end(), [](const std::string& n) { return n.empty(); }))
     return std::nullopt;
+
+  // The unknowns a section starts by reading (`const double x = y[3];`,
+  // after their comment) are not passed on as members: each part reads the
+  // ones it uses itself, where it starts (they do not count towards its lines).
+  std::size_t first_read = 0;
+  while (first_read < f.body.size() && !reads_input(f.body[first_read], sig.inputs)) ++first_read;
+  std::size_t end_read = first_read;
+  while (end_read < f.body.size() && reads_input(f.body[end_read], sig.inputs)) ++end_read;
+  // their comment, if it heads them alone
+  const bool headed = first_read > 0 && first_read < end_read && f.body[first_read - 1].kind == CppStmt::Kind::Comment &&
+                      (end_read == f.body.size() || f.body[end_read].kind == CppStmt::Kind::Comment);
+  const std::size_t block_begin = headed ? first_read - 1 : first_read;
+  std::vector<CppStmt> body(f.body.begin(), f.body.begin() + static_cast<long>(block_begin));
+  body.insert(body.end(), f.body.begin() + static_cast<long>(end_read), f.body.end());
+  std::map<std::string, std::size_t> input_read;  // local -> its statement in f.body
+  for (std::size_t i = first_read; i < end_read; ++i) input_read.emplace(defined_scalar(f.body[i]), i);
 
   // Where a part may start: at an equation's comment, outside braces and
   // outside the span from a linear block's array to its last reader.
@@ -174,6 +203,12 @@ std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_li
                                name, p + 1, count),
                    fmt::format("{}{}({})", ret, part, params), {}};
     for (const std::string& a : sig.names) fn.body.push_back(CppStmt::line(fmt::format("(void){};", a)));
+    std::set<std::size_t> inputs;  // the unknowns it reads: their statements in f.body
+    for (std::size_t i = starts[p]; i < starts[p + 1]; ++i)
+      for (const std::string& id : reads[i])
+        if (auto it = input_read.find(id); it != input_read.end()) inputs.insert(it->second);
+    if (headed && !inputs.empty()) fn.body.push_back(f.body[block_begin]);
+    for (std::size_t i : inputs) fn.body.push_back(f.body[i]);
     for (std::size_t i = starts[p]; i < starts[p + 1]; ++i) {
       CppStmt st = body[i];
       if (st.kind == CppStmt::Kind::Line && st.text.rfind("(void)", 0) == 0 &&

@@ -7,8 +7,10 @@
 // into parts of at most `max_lines` lines (private methods the original one
 // calls in order). A local that a later part reads becomes a member of the
 // same name, so the text of every statement stays what it was; only its
-// `const double` goes. The cut falls where an equation's comment starts a new
-// run, never inside a linear block's arrays.
+// `const double` goes. The unknowns the method starts by reading (`const
+// double x = y[3];`) are no members: each part reads those it uses. The cut
+// falls where an equation's comment starts a new run, never inside a linear
+// block's arrays.
 #pragma once
 
 #include <cstddef>

@@ -3,9 +3,12 @@
 // must change where the arithmetic is written, never the arithmetic: the
 // derivative (and the outputs) of each model compiled with and without
 // outlining agree bit for bit, at the initial state and at a state moved off
-// it. Without a kinematic tree (the multiplier form, a DAE) the equations of
-// each body and joint are grouped and outlined instead: its residual,
-// constraints, outputs and energy witness agree bit for bit likewise. And the
+// it (and so do their energy witness's power and their bodies' poses).
+// Without a kinematic tree (the multiplier form, a DAE) the equations of
+// each body and joint are grouped and outlined instead, and so are the rows
+// each one writes (a body's residual rows, a joint's constraint rows and
+// their derivatives): its residual, constraints, constraint Jacobian, outputs,
+// energy witness and body poses agree bit for bit likewise. And the
 // outlined form must actually be used (its file reads `_shape1(`), so that
 // the test cannot pass by comparing a model with itself.
 #include <gtest/gtest.h>
@@ -51,6 +54,14 @@ void expect_same_numbers(mbgrt::Model& outlined, mbgrt::Model& plain) {
     plain.outputs(0.1, y.data(), yp.data(), ob.data());
     for (std::size_t k = 0; k < m; ++k)
       EXPECT_EQ(std::memcmp(&oa[k], &ob[k], sizeof(double)), 0) << plain.output_names()[k];
+    std::vector<double> pa(2), pb(2);
+    outlined.power(0.1, y.data(), yp.data(), pa.data());
+    plain.power(0.1, y.data(), yp.data(), pb.data());
+    for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(std::memcmp(&pa[k], &pb[k], sizeof(double)), 0) << "power " << k;
+    std::vector<double> ba(12 * plain.body_count()), bb(12 * plain.body_count());
+    outlined.body_poses(0.1, y.data(), yp.data(), ba.data());
+    plain.body_poses(0.1, y.data(), yp.data(), bb.data());
+    for (std::size_t k = 0; k < ba.size(); ++k) EXPECT_EQ(std::memcmp(&ba[k], &bb[k], sizeof(double)), 0) << "body_poses " << k;
   }
 }
 
@@ -63,8 +74,8 @@ void expect_same_bits(const std::vector<double>& a, const std::vector<double>& b
   }
 }
 
-/// A DAE (the multiplier form): residual, constraints, outputs and the
-/// energy witness's power.
+/// A DAE (the multiplier form): residual, constraints, their Jacobian,
+/// outputs, the energy witness (stored energy and power) and the bodies' poses.
 void expect_same_residuals(mbgrt::Model& outlined, mbgrt::Model& plain) {
   ASSERT_EQ(outlined.size(), plain.size());
   ASSERT_TRUE(plain.is_dae());
@@ -93,10 +104,25 @@ void expect_same_residuals(mbgrt::Model& outlined, mbgrt::Model& plain) {
     outlined.outputs(0.1, y.data(), yp.data(), oa.data());
     plain.outputs(0.1, y.data(), yp.data(), ob.data());
     expect_same_bits(oa, ob, "outputs", moved);
+    std::vector<long> starts, columns;
+    plain.constraint_jacobian_pattern(starts, columns);
+    std::vector<double> ja(columns.size()), jb(columns.size());
+    outlined.constraint_jacobian(0.1, y.data(), ja.data());
+    plain.constraint_jacobian(0.1, y.data(), jb.data());
+    expect_same_bits(ja, jb, "constraint_jacobian", moved);
     std::vector<double> pa(2), pb(2);
     outlined.power(0.1, y.data(), yp.data(), pa.data());
     plain.power(0.1, y.data(), yp.data(), pb.data());
     expect_same_bits(pa, pb, "power", moved);
+    std::vector<double> ha(1), hb(1);
+    outlined.stored_energy(0.1, y.data(), yp.data(), ha.data());
+    plain.stored_energy(0.1, y.data(), yp.data(), hb.data());
+    expect_same_bits(ha, hb, "stored_energy", moved);
+    ASSERT_GT(plain.body_count(), 0u);
+    std::vector<double> ba(12 * plain.body_count()), bb(12 * plain.body_count());
+    outlined.body_poses(0.1, y.data(), yp.data(), ba.data());
+    plain.body_poses(0.1, y.data(), yp.data(), bb.data());
+    expect_same_bits(ba, bb, "body_poses", moved);
   }
 }
 
@@ -143,5 +169,7 @@ TEST(Outline, RowOfFourFourBarsWithMultipliersGivesTheSameNumbersInline) {
   inline_n_four_bar::n_four_bar_model b;
   expect_outlined("n_four_bar", "residual");
   expect_outlined("n_four_bar", "constraints");
+  expect_outlined("n_four_bar", "constraint_jacobian");
+  expect_outlined("n_four_bar", "body_poses");
   expect_same_residuals(a, b);
 }

@@ -456,8 +456,10 @@ TEST(EmitStats, CountsEqualTheOperationsWrittenInEachMethod) {
           }
           if (l.rfind("mbgrt::solve_linear(", 0) == 0) sizes.push_back(std::stoul(l.substr(20)));
           if (l.rfind("static const char* const", 0) == 0 || l.rfind("return", 0) == 0 || l.rfind("case", 0) == 0 ||
-              l.find('"') != std::string::npos || l.find(".assign(k") != std::string::npos || name == "body_visual")
-            continue;  // name and index tables, metadata, a drawing's data: no arithmetic (a '*' of a pointer type, a string, a table's end, a negative coordinate)
+              l.find('"') != std::string::npos || l.find(".assign(k") != std::string::npos || name == "body_visual" ||
+              name == "parameters" || name == "set_parameter")
+            continue;  // name and index tables, metadata, a drawing's data, the parameters' table (a large model's: its row type,
+                       // NaN): no arithmetic (a '*' of a pointer type, a template's <>, a string, a table's end, a negative coordinate)
           o += mbgc_test::cpp_ops_in_text(l);
         }
         return o;

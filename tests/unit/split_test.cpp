@@ -30,7 +30,7 @@ TEST(SplitMethod, CutsAtCommentsAndMakesWhatLaterPartsReadMembers) {
   const CppFunction f = method({
       CppStmt::line("(void)t;"),
       CppStmt::comment("model.mbg:1:1  first"),
-      CppStmt::line("const double a = x[0];"),
+      CppStmt::line("const double a = x[0];"),      // a read of x: each part that reads it reads x
       CppStmt::line("const double b = 2.0 * a;"),   // read in its own part only
       CppStmt::line("const double c = a + b;"),     // read by part 2
       CppStmt::comment("model.mbg:2:1  second"),
@@ -43,15 +43,42 @@ TEST(SplitMethod, CutsAtCommentsAndMakesWhatLaterPartsReadMembers) {
   EXPECT_EQ(texts(split->method), (std::vector<std::string>{"derivative_part1(t, x, xdot);", "derivative_part2(t, x, xdot);"}));
   EXPECT_EQ(split->method.signature, f.signature);
   EXPECT_EQ(split->parts[0].signature, "void derivative_part1(double t, const double* x, double* xdot)");
-  // every part names its parameters once; the locals part 2 reads are members,
-  // in the order they are defined; `b`, `cos` and the number's `e` are not
+  // every part names its parameters once and reads x itself; the locals
+  // part 2 reads are members, in the order they are defined; `b`, `cos` and
+  // the number's `e` are not
   EXPECT_EQ(texts(split->parts[0]),
-            (std::vector<std::string>{"(void)t;", "(void)x;", "(void)xdot;", "model.mbg:1:1  first", "a = x[0];",
+            (std::vector<std::string>{"(void)t;", "(void)x;", "(void)xdot;", "const double a = x[0];", "model.mbg:1:1  first",
                                       "const double b = 2.0 * a;", "c = a + b;"}));
   EXPECT_EQ(texts(split->parts[1]),
-            (std::vector<std::string>{"(void)t;", "(void)x;", "(void)xdot;", "model.mbg:2:1  second",
+            (std::vector<std::string>{"(void)t;", "(void)x;", "(void)xdot;", "const double a = x[0];", "model.mbg:2:1  second",
                                       "const double d = std::cos(c) * 1e-08;", "xdot[0] = d + a;"}));
-  EXPECT_EQ(split->members, (std::vector<std::string>{"a", "c"}));
+  EXPECT_EQ(split->members, (std::vector<std::string>{"c"}));
+}
+
+TEST(SplitMethod, EachPartReadsTheUnknownsItUsesUnderTheirComment) {
+  const CppFunction f = method({
+      CppStmt::line("(void)t;"),
+      CppStmt::comment("states"),
+      CppStmt::line("const double a = x[0];"),
+      CppStmt::line("const double b = x[1];"),
+      CppStmt::line("const double c = x[2];"),
+      CppStmt::comment("model.mbg:1:1  first"),
+      CppStmt::line("const double d = a * c;"),
+      CppStmt::line("xdot[0] = d;"),
+      CppStmt::comment("model.mbg:2:1  second"),
+      CppStmt::line("xdot[1] = b + d;"),
+      CppStmt::line("xdot[2] = b;"),
+  });
+  // the reads do not count towards a part's lines: 6 statements left, in two parts
+  const auto split = split_method(f, 4);
+  ASSERT_TRUE(split);
+  ASSERT_EQ(split->parts.size(), 2u);
+  EXPECT_EQ(texts(split->parts[0]), (std::vector<std::string>{"(void)t;", "(void)x;", "(void)xdot;", "states", "const double a = x[0];",
+                                                              "const double c = x[2];", "model.mbg:1:1  first", "d = a * c;",
+                                                              "xdot[0] = d;"}));
+  EXPECT_EQ(texts(split->parts[1]), (std::vector<std::string>{"(void)t;", "(void)x;", "(void)xdot;", "states", "const double b = x[1];",
+                                                              "model.mbg:2:1  second", "xdot[1] = b + d;", "xdot[2] = b;"}));
+  EXPECT_EQ(split->members, (std::vector<std::string>{"d"}));
 }
 
 TEST(SplitMethod, NeverCutsBetweenALinearBlocksArraysAndTheirReaders) {

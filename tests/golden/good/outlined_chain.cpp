@@ -1120,15 +1120,16 @@ class outlined_chain_model final : public mbgrt::Model {
   }
 
   // equations computed by one function per shape (bodies, joints): what the rest reads of them
-  double rod2_kin[10] = {};  // derivative(): what the rest reads of body rod2's kinematics
-  double rod3_kin[11] = {};  // derivative(): what the rest reads of body rod3's kinematics
-  double rod4_kin[11] = {};  // derivative(): what the rest reads of body rod4's kinematics
-  double rod5_kin[27] = {};  // derivative(): what the rest reads of body rod5's kinematics
-  double rod4_elim[27] = {};  // derivative(): what the rest reads of body rod4's elimination
-  double rod3_elim[27] = {};  // derivative(): what the rest reads of body rod3's elimination
-  double rod2_acc[32] = {};  // derivative(): what the rest reads of body rod2's accelerations
-  double rod3_acc[32] = {};  // derivative(): what the rest reads of body rod3's accelerations
-  double rod4_acc[32] = {};  // derivative(): what the rest reads of body rod4's accelerations
+  // derivative(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) and accelerations (_acc)
+  double rod2_kin[10] = {};
+  double rod3_kin[11] = {};
+  double rod4_kin[11] = {};
+  double rod5_kin[27] = {};
+  double rod4_elim[27] = {};
+  double rod3_elim[27] = {};
+  double rod2_acc[32] = {};
+  double rod3_acc[32] = {};
+  double rod4_acc[32] = {};
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/(rod5.inertia[3,3] + j5.pb[2]*(rod5.mass*j5.pb[2]))
   // parameters (set in initial())
