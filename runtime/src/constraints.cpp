@@ -127,12 +127,6 @@ Vec min_norm_step(const Mat& J, const Vec& r, Index* rank = nullptr) {
   return cod.solve(b);
 }
 
-/// A lagrange row whose unit gradient keeps less than this after projection
-/// onto the rows before it is redundant: far above the ~1e-10 error of a
-/// central-difference gradient, far below the component an independent row
-/// keeps away from singular configurations.
-constexpr double kRedundantRowThreshold = 1e-6;
-
 /// max_i sum_j |J_ij| |v[cols_j]|: the size of the terms each row balances.
 double term_scale(const Mat& J, const Vec& v, const std::vector<Index>& cols) {
   double scale = 0.0;

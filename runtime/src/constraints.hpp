@@ -98,6 +98,12 @@ struct AssemblyReport {
 /// At most kAssemblyMaxIterations steps per phase.
 AssemblyReport assemble(Model& model, const ConstraintShape& shape, double t, double* y);
 
+/// A lagrange row whose unit gradient keeps less than this after projection
+/// onto the rows before it is redundant: far above the ~1e-10 error of a
+/// central-difference gradient, far below the component an independent row
+/// keeps away from singular configurations.
+inline constexpr double kRedundantRowThreshold = 1e-6;
+
 struct RedundancyReport {
   std::size_t lagrange_rows = 0;       ///< rows with multipliers
   std::vector<std::size_t> redundant;  ///< rows implied by the others

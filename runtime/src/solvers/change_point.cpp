@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Sparse>
+
 #include <algorithm>
 #include <cmath>
 
@@ -29,9 +31,38 @@ constexpr double kRateProbe = 1e-6;
 }  // namespace
 
 double row_independence(Model& model, const ConstraintShape& shape, double t, const double* y) {
-  const RedundancyReport r = find_redundant_constraints(model, shape, t, y);
-  if (r.lagrange_rows == 0) return 1.0;
-  return r.redundant.size() > shape.redundant.size() ? 0.0 : r.smallest_kept;
+  // Gram-Schmidt over the unit gradients in row order leaves of row k the
+  // part sqrt(D_k), where L D L' is the Cholesky factorization of their Gram
+  // matrix in the same order: find_redundant_constraints's measure, sparse
+  // (IDA's root function asks for it at every step).
+  std::vector<bool> skip(shape.np, false);
+  for (std::size_t k : shape.redundant) skip[k] = true;
+  std::vector<double> values(shape.g_columns.size());
+  model.constraint_jacobian(t, y, values.data());
+  using Sparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  std::vector<Eigen::Triplet<double>> entries;
+  int rows = 0;
+  for (std::size_t r = 0; r < shape.np; ++r) {
+    if (skip[r] || shape.lambda_at[r] < 0) continue;
+    const auto first = static_cast<std::size_t>(shape.g_row_starts[r]);
+    const auto last = static_cast<std::size_t>(shape.g_row_starts[r + 1]);
+    double norm = 0.0;
+    for (std::size_t e = first; e < last; ++e) norm += values[e] * values[e];
+    if (!std::isfinite(norm)) return 1.0;  // (the run's own checks report it)
+    if (norm == 0.0) continue;             // depends on no state
+    norm = std::sqrt(norm);
+    for (std::size_t e = first; e < last; ++e)
+      entries.emplace_back(rows, static_cast<int>(shape.g_columns[e]), values[e] / norm);
+    ++rows;
+  }
+  if (rows == 0) return 1.0;
+  Sparse G(rows, static_cast<Eigen::Index>(shape.ns));
+  G.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SparseMatrix<double> gram = G * G.transpose();
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(gram);
+  if (ldlt.info() != Eigen::Success) return 0.0;
+  const double least = ldlt.vectorD().minCoeff();
+  return least < kRedundantRowThreshold * kRedundantRowThreshold ? 0.0 : std::sqrt(least);
 }
 
 std::optional<ChangePointStep> ChangePointStep::plan(Model& model, const ConstraintShape& shape, double start_independence,
