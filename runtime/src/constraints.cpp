@@ -8,149 +8,14 @@
 #include <cmath>
 #include <limits>
 
+#include "newton_detail.hpp"
 #include "report.hpp"
 
 namespace mbgrt::detail {
 
 namespace {
 
-using Vec = Eigen::VectorXd;
-using Mat = Eigen::MatrixXd;
-using Index = Eigen::Index;
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Central differences: a step of cbrt(eps) balances truncation against
-/// rounding (relative error about 1e-11 for smooth functions).
-double fd_step(double v) {
-  static const double cbrt_eps = std::cbrt(std::numeric_limits<double>::epsilon());
-  return cbrt_eps * std::max(1.0, std::abs(v));
-}
-
-/// A column of the Newton matrix whose pivot is below this fraction of the
-/// largest (after row equilibration) is treated as dependent: well above the
-/// ~1e-10 relative error of a central-difference Jacobian.
-constexpr double kRankThreshold = 1e-8;
-
-Index ix(std::size_t i) { return static_cast<Index>(i); }
-std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
-
-/// Jacobian of rows [row0, row0 + rows) of f with respect to v[cols], by
-/// central differences around v: the Newton matrices of the velocity phase
-/// and of the initial values (numbers, not structure: which unknowns and rows
-/// are which is the model's layout).
-struct Linearization {
-  Mat J;
-  bool finite = true;
-};
-
-template <class Fn>
-Linearization linearize(Fn&& f, Vec v, Index out_size, Index row0, Index rows, const std::vector<Index>& cols) {
-  Linearization L;
-  const auto m = ix(cols.size());
-  L.J = Mat::Zero(rows, m);
-  Vec fp(out_size), fm(out_size);
-  for (Index c = 0; c < m; ++c) {
-    const Index j = cols[sz(c)];
-    const double v0 = v[j], h = fd_step(v0);
-    v[j] = v0 + h;
-    const double up = v[j];
-    bool ok = f(v, fp);
-    v[j] = v0 - h;
-    const double down = v[j];
-    ok = f(v, fm) && ok;
-    v[j] = v0;
-    if (!ok) {
-      L.finite = false;
-      return L;
-    }
-    L.J.col(c) = (fp.segment(row0, rows) - fm.segment(row0, rows)) / (up - down);
-  }
-  return L;
-}
-
-/// G = dg/dx at (t, y) over the states `cols` (the model's symbolic
-/// constraint_jacobian), as a dense P x cols.size() matrix.
-struct SymbolicG {
-  Model& model;
-  const ConstraintShape& shape;
-  double t;
-  std::vector<double> values = std::vector<double>(shape.g_columns.size());
-  std::vector<Index> column_of = std::vector<Index>(shape.ns, -1);
-
-  bool operator()(const Vec& y, const std::vector<Index>& cols, Mat& J) {
-    std::fill(column_of.begin(), column_of.end(), Index{-1});
-    for (std::size_t k = 0; k < cols.size(); ++k) column_of[sz(cols[k])] = ix(k);
-    model.constraint_jacobian(t, y.data(), values.data());
-    J = Mat::Zero(ix(shape.np), ix(cols.size()));
-    for (std::size_t r = 0; r < shape.np; ++r)
-      for (long e = shape.g_row_starts[r]; e < shape.g_row_starts[r + 1]; ++e) {
-        const double v = values[static_cast<std::size_t>(e)];
-        if (!std::isfinite(v)) return false;
-        if (const Index c = column_of[static_cast<std::size_t>(shape.g_columns[static_cast<std::size_t>(e)])]; c >= 0)
-          J(ix(r), c) = v;
-      }
-    return true;
-  }
-};
-
-/// Minimum-norm least-squares solution s of J s = -r. Rows are equilibrated
-/// first (which leaves the solution of a consistent system unchanged), so a
-/// row in small units does not look like a dependent one. `rank`, if asked
-/// for, is that of J with its columns equilibrated too, so that it does not
-/// depend on units either (a 0.005 kg m^2 base beside a 200 kg payload made
-/// its columns look dependent). The step itself stays least-norm in the
-/// unknowns as they are: scaling its columns would pick another solution
-/// wherever the system is nearly singular.
-Vec min_norm_step(const Mat& J, const Vec& r, Index* rank = nullptr) {
-  Vec w(J.rows());
-  for (Index i = 0; i < J.rows(); ++i) {
-    const double big = J.cols() > 0 ? J.row(i).cwiseAbs().maxCoeff() : 0.0;
-    w[i] = big > 0.0 ? 1.0 / big : 1.0;
-  }
-  const Mat A = w.asDiagonal() * J;
-  const Vec b = -(w.asDiagonal() * r);
-  Eigen::CompleteOrthogonalDecomposition<Mat> cod;
-  cod.setThreshold(kRankThreshold);
-  cod.compute(A);
-  if (rank) {
-    Vec u(A.cols());
-    for (Index j = 0; j < A.cols(); ++j) {
-      const double big = A.rows() > 0 ? A.col(j).cwiseAbs().maxCoeff() : 0.0;
-      u[j] = big > 0.0 ? 1.0 / big : 1.0;
-    }
-    Eigen::CompleteOrthogonalDecomposition<Mat> scaled;
-    scaled.setThreshold(kRankThreshold);
-    scaled.compute(A * u.asDiagonal());
-    *rank = scaled.rank();
-  }
-  return cod.solve(b);
-}
-
-/// max_i sum_j |J_ij| |v[cols_j]|: the size of the terms each row balances.
-double term_scale(const Mat& J, const Vec& v, const std::vector<Index>& cols) {
-  double scale = 0.0;
-  for (Index i = 0; i < J.rows(); ++i) {
-    double s = 0.0;
-    for (Index c = 0; c < J.cols(); ++c) s += std::abs(J(i, c)) * std::abs(v[cols[sz(c)]]);
-    scale = std::max(scale, s);
-  }
-  return scale;
-}
-
-double max_abs(const Vec& v, Index* where = nullptr) {
-  double best = 0.0;
-  Index at = 0;
-  for (Index i = 0; i < v.size(); ++i) {
-    const double a = std::isfinite(v[i]) ? std::abs(v[i]) : kInf;
-    if (a > best) {
-      best = a;
-      at = i;
-    }
-  }
-  if (where) *where = at;
-  return best;
-}
+using namespace newton;
 
 /// One Gauss-Newton phase: drives entries [row0, row0 + rows) of the
 /// constraint vector to zero by moving y[cols]. Each step is the minimum-norm
@@ -200,8 +65,6 @@ void run_phase(Eval& eval, Jacobian&& jacobian, Vec& y, Vec& c, Phase& ph) {
 std::string quoted_constraint(const Model& model, std::size_t i) {
   return fmt::format("`{}`", model.constraint_name(i));
 }
-
-std::string g2(double v) { return fmt::format("{:.2g}", v); }
 
 }  // namespace
 
@@ -492,153 +355,6 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
   return rep;
 }
 
-InitialValuesReport consistent_initial_values(Model& model, const ConstraintShape& s, double t,
-                                              double* y_io, double* yp_io, const RatesOptions& options) {
-  InitialValuesReport rep;
-  const Index n = ix(s.n), ns = ix(s.ns);
-  rep.unknowns = s.n;
-  Vec Y = Eigen::Map<const Vec>(y_io, n), YP = Eigen::Map<const Vec>(yp_io, n);
-  Vec Yw = Y, YPw = YP;
-
-  // z = [y'_states; y_algebraic]
-  Vec z(n);
-  z.head(ns) = YP.head(ns);
-  z.tail(n - ns) = Y.tail(n - ns);
-  auto residual_at_z = [&](const Vec& zz, Vec& r) {
-    YPw.head(ns) = zz.head(ns);
-    Yw.tail(n - ns) = zz.tail(n - ns);
-    constrained_residual(model, s, t, Yw.data(), YPw.data(), r.data());
-    return r.allFinite();
-  };
-  auto fail_row = [&](Index row, const char* what) {
-    rep.error = fmt::format(
-        "consistent initial values: the residual of {} is {} at the assembled initial values (t = {} s)",
-        residual_row_name(model, s, sz(row)), what, format_time(t));
-  };
-
-  Vec r0(n);
-  if (!residual_at_z(z, r0)) {
-    Index bad = 0;
-    max_abs(r0, &bad);
-    fail_row(bad, "not finite");
-    return rep;
-  }
-  std::vector<Index> zcols(s.n);
-  for (std::size_t j = 0; j < s.n; ++j) zcols[j] = ix(j);
-
-  // The constraint rows (g, gdot) depend on neither y' nor an algebraic
-  // unknown: each is replaced by its time derivative dr/dt + (dr/dy_states)
-  // y'_states = 0. Their coefficients do not depend on z, so they are
-  // computed once here. A redundant row's are not constraint rows any more
-  // (pin_redundant_multipliers made them lambda = 0 and mu = 0).
-  std::vector<bool> redundant(s.np, false);
-  for (std::size_t k : s.redundant) redundant[k] = true;
-  std::vector<Index> pure;
-  for (Index k = 0; k < n; ++k)
-    if (const RowRole role = residual_row_role(s, sz(k)); role.kind != RowRole::equation && !redundant[role.row])
-      pure.push_back(k);
-  rep.differentiated_rows = pure.size();
-  const Index nd = ix(pure.size());
-  Mat A = Mat::Zero(nd, n);  // d r_k / d y_states in the z_states columns
-  Vec b = Vec::Zero(nd);     // d r_k / d t
-  if (nd > 0) {
-    auto residual_at_y = [&](const Vec& yy, Vec& r) {
-      constrained_residual(model, s, t, yy.data(), YP.data(), r.data());
-      return r.allFinite();
-    };
-    std::vector<Index> scols(s.ns);
-    for (std::size_t j = 0; j < s.ns; ++j) scols[j] = ix(j);
-    Linearization Ly = linearize(residual_at_y, Y, n, 0, n, scols);
-    const double h = fd_step(t);
-    const double up = t + h, down = t - h;
-    Vec rp(n), rm(n);
-    constrained_residual(model, s, up, Y.data(), YP.data(), rp.data());
-    constrained_residual(model, s, down, Y.data(), YP.data(), rm.data());
-    if (!Ly.finite || !rp.allFinite() || !rm.allFinite()) {
-      rep.error = fmt::format(
-          "consistent initial values: a constraint row is not finite near the assembled initial "
-          "values (t = {} s)",
-          format_time(t));
-      return rep;
-    }
-    for (Index d = 0; d < nd; ++d) {
-      A.row(d).head(ns) = Ly.J.row(pure[sz(d)]);
-      b[d] = (rp[pure[sz(d)]] - rm[pure[sz(d)]]) / (up - down);
-    }
-  }
-
-  // Index one: mu = 0 in place of the position rows' derivatives (their
-  // row is mu's own index in y, and so in z).
-  if (options.index_one)
-    for (Index d = 0; d < nd; ++d)
-      if (residual_row_role(s, sz(pure[sz(d)])).kind == RowRole::position_constraint) {
-        A.row(d).setZero();
-        A(d, pure[sz(d)]) = 1.0;
-        b[d] = 0.0;
-      }
-  auto system = [&](const Vec& zz, Vec& F) {
-    if (!residual_at_z(zz, F)) return false;
-    for (Index d = 0; d < nd; ++d) F[pure[sz(d)]] = A.row(d).dot(zz) + b[d];
-    return true;
-  };
-
-  Vec F(n);
-  Index worst = 0;
-  if (!system(z, F)) {
-    max_abs(F, &worst);
-    fail_row(worst, "not finite");
-    return rep;
-  }
-  // The system is affine for multibody models: one step, then a check. The
-  // finite-difference Jacobian is good to ~1e-10, so a second step takes the
-  // residual from there to rounding; steps continue while they pay (each at
-  // least halves the residual) down to kTight, and the result is accepted
-  // below kAccept, both relative to 1 + the size of the terms in the rows.
-  constexpr int kMaxIterations = 10;
-  constexpr double kTight = 1e-14, kAccept = 1e-9;
-  double scale = 0.0;
-  for (;;) {
-    Linearization L = linearize(residual_at_z, z, n, 0, n, zcols);
-    if (!L.finite) break;
-    Mat J = L.J;
-    for (Index d = 0; d < nd; ++d) J.row(pure[sz(d)]) = A.row(d);
-    scale = term_scale(J, z, zcols);
-    const double residual = max_abs(F);
-    Index rank = 0;
-    const Vec step = min_norm_step(J, F, &rank);
-    rep.rank = sz(rank);
-    if (residual <= kTight * (1.0 + scale) || rep.iterations >= kMaxIterations) break;
-    Vec z_new = z + step, F_new(n);
-    if (!system(z_new, F_new)) break;
-    const double new_residual = max_abs(F_new);
-    if (new_residual < residual) {
-      z = z_new;
-      F = F_new;
-      ++rep.iterations;
-    }
-    if (!(new_residual <= 0.5 * residual)) break;
-  }
-  const double tol = kAccept * (1.0 + scale);
-  rep.residual = max_abs(F, &worst);
-  rep.least_squares = !(rep.residual <= tol) && options.least_squares && rep.rank < s.n;
-  if (!(rep.residual <= tol) && !rep.least_squares) {
-    rep.error = fmt::format(
-        "consistent initial values: the residual of {} is {} after {} Newton iterations: y' and "
-        "the algebraic unknowns cannot be determined at the assembled state (t = {} s){}",
-        residual_row_name(model, s, sz(worst)), g2(rep.residual), rep.iterations, format_time(t),
-        rep.rank < s.n ? fmt::format("; the Newton matrix has rank {} of {} (redundant or "
-                                     "contradictory constraints?)",
-                                     rep.rank, s.n)
-                       : std::string());
-    return rep;
-  }
-
-  for (Index j = 0; j < ns; ++j) yp_io[j] = z[j];
-  for (Index j = ns; j < n; ++j) y_io[j] = z[j];
-  rep.ok = true;
-  return rep;
-}
-
 ConstraintMonitor::ConstraintMonitor(Model& model, const ConstraintShape& shape)
     : model_(model), shape_(shape), c_(shape.count()) {}
 
@@ -681,18 +397,6 @@ std::string describe(const RedundancyReport& r, const Model& model) {
       "{} of {} lagrange rows implied by the others at the assembled state ({}); their multipliers "
       "are held at 0, so the other rows carry those reactions",
       r.redundant.size(), r.lagrange_rows, fmt::join(names, ", "));
-}
-
-std::string describe(const InitialValuesReport& r, const ConstraintShape& s) {
-  std::string text = fmt::format(
-      "y' of {} states and {} algebraic unknowns computed by the runtime ({} constraint rows "
-      "differentiated once), residual {} after {} Newton iteration{}",
-      s.ns, s.n - s.ns, r.differentiated_rows, g2(r.residual), r.iterations,
-      r.iterations == 1 ? "" : "s");
-  if (r.rank < r.unknowns)
-    text += fmt::format("; rank {} of {}: the multipliers are not unique (redundant constraints?)",
-                        r.rank, r.unknowns);
-  return text;
 }
 
 std::string describe(const ConstraintMonitor& m) {

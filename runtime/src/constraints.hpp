@@ -136,6 +136,10 @@ struct InitialValuesReport {
   std::string error;
 };
 
+/// The size from which consistent_initial_values works on the residual's
+/// sparsity pattern (rates.cpp).
+inline constexpr std::size_t kSparseRatesFromUnknowns = 400;
+
 struct RatesOptions {
   /// Rows that contradict each other at a rank-deficient Newton matrix (a
   /// change point, where the velocities meet the dependent rows' second-order
@@ -147,6 +151,9 @@ struct RatesOptions {
   /// constraints is not projected onto their tangent, which near a change
   /// point amplifies its violation by the inverse of the rows' independence).
   bool index_one = false;
+  /// From this many unknowns the Newton matrix is differenced and solved on
+  /// the residual's sparsity pattern (rates.cpp says why not below).
+  std::size_t sparse_from = kSparseRatesFromUnknowns;
 };
 
 /// For a constrained DAE at an assembled y: computes y' of the states and the

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "constrained_models.hpp"
+#include "constraints.hpp"
 #include "harness.hpp"
 
 namespace mbgrt::test {
@@ -505,6 +506,52 @@ TEST(Lagrange, InitialValuesDoNotCallAFullRankSystemRedundantBecauseOfItsUnits) 
   const Csv csv = parse_csv(run.r.csv);
   EXPECT_NEAR(csv.at(10, "x"), 0.0, 1e-6);
   EXPECT_NEAR(csv.at(10, "y"), -1.0, 1e-6);
+}
+
+
+/// The twin-rod pendulum telling the runtime that every residual row may
+/// read every unknown: a pattern, if a dense one, for the sparse rates.
+class PatternedTwinRod : public TwinRodPendulum {
+ public:
+  bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override {
+    const long n = static_cast<long>(size());
+    column_starts.clear();
+    rows.clear();
+    for (long j = 0; j <= n; ++j) column_starts.push_back(j * n);
+    for (long j = 0; j < n; ++j)
+      for (long i = 0; i < n; ++i) rows.push_back(i);
+    return true;
+  }
+};
+
+TEST(Lagrange, TheSparseRatesAreTheDenseOnes) {
+  // The rates a large model's Newton matrix gives on its sparsity pattern
+  // (sparse QR) are those of the dense minimum-norm solve, with a redundant
+  // row's multipliers held at 0, in both forms: the DAE's (position rows
+  // differentiated) and the index-1 form of a step across a change point.
+  PatternedTwinRod model;
+  std::vector<double> y(model.size()), yp(model.size());
+  model.initial(0.0, y.data(), yp.data());
+  detail::ConstraintShape shape = detail::constraint_shape(model);
+  y[0] = 1.0, y[1] = 0.0, y[2] = 0.0, y[3] = 0.3;  // on the unit circle, moving along it
+  shape.redundant = detail::find_redundant_constraints(model, shape, 0.0, y.data()).redundant;
+  ASSERT_EQ(shape.redundant.size(), 1u);
+  for (bool index_one : {false, true}) {
+    detail::RatesOptions dense, sparse;
+    dense.index_one = sparse.index_one = index_one;
+    sparse.sparse_from = 0;
+    std::vector<double> y1 = y, yp1 = yp, y2 = y, yp2 = yp;
+    const detail::InitialValuesReport a = detail::consistent_initial_values(model, shape, 0.0, y1.data(), yp1.data(), dense);
+    const detail::InitialValuesReport b = detail::consistent_initial_values(model, shape, 0.0, y2.data(), yp2.data(), sparse);
+    ASSERT_TRUE(a.ok) << a.error;
+    ASSERT_TRUE(b.ok) << b.error;
+    EXPECT_EQ(a.rank, b.rank);
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(yp2[i], yp1[i], 1e-12 * (1 + std::abs(yp1[i]))) << i;
+    for (std::size_t i = 4; i < model.size(); ++i) EXPECT_NEAR(y2[i], y1[i], 1e-9 * (1 + std::abs(y1[i]))) << i;
+    // at (1, 0) the rod pulls along x only: u' = -v^2 / L, v' = -g0
+    EXPECT_NEAR(yp1[2], -0.09, 1e-12);
+    EXPECT_NEAR(yp1[3], -kG0, 1e-12);
+  }
 }
 
 }  // namespace

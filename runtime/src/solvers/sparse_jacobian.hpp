@@ -21,6 +21,8 @@ class SparseJacobian {
   std::size_t size() const { return starts_.size() - 1; }
   std::size_t nonzeros() const { return rows_.size(); }
   std::size_t groups() const { return groups_.size(); }
+  /// The columns differenced together, group by group.
+  const std::vector<std::vector<std::size_t>>& column_groups() const { return groups_; }
   const std::vector<long>& column_starts() const { return starts_; }
   const std::vector<long>& rows() const { return rows_; }
   /// Residual evaluations fill() has made (one per group per call).
