@@ -8,9 +8,10 @@
 #include <map>
 #include <set>
 #include <stdexcept>
-#include <tuple>
 
+#include "codegen/constraints.hpp"
 #include "codegen/cpp.hpp"
+#include "codegen/derived_constants.hpp"
 #include "codegen/drawings.hpp"
 #include "codegen/energy.hpp"
 #include "codegen/entry_point.hpp"
@@ -18,6 +19,7 @@
 #include "codegen/identity.hpp"
 #include "codegen/names.hpp"
 #include "codegen/outline.hpp"
+#include "codegen/outline_emit.hpp"
 #include "codegen/shared_temps.hpp"
 #include "codegen/split.hpp"
 #include "codegen/template.hpp"
@@ -30,13 +32,14 @@ using namespace mbgc::ir;
 class Emitter {
  public:
   Emitter(const ReducedSystem& sys, const SourceManager& sources, const EmitOptions& opt)
-      : s_(sys), g_(sys.graph), sources_(sources), opt_(opt) {
+      : s_(sys), g_(sys.graph), sources_(sources), opt_(opt),
+        outline_(sys, opt.outline, mangle_, names_, [this](const SourceLoc& l) { return where(l); }, cse_counter_) {
     // fmt::format, not "p" + std::to_string(i): GCC 12 at -O3 reports a false
     // -Wrestrict on operator+(const char*, std::string&&) (GCC PR 105329).
     for (std::size_t i = 0; i < g_.params.size(); ++i) mangle_.get(fmt::format("p{}", i), g_.params[i].name);
     for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get(fmt::format("v{}", i), g_.vars[i].name);
     names_.var = [this](int id) {
-      if (auto it = stored_name_.find(id); it != stored_name_.end()) return it->second;
+      if (const std::string* at = outline_.stored_name(id)) return *at;
       if (auto it = discrete_name_.find(id); it != discrete_name_.end()) return it->second;
       return mangle_.get(fmt::format("v{}", id), "");
     };
@@ -49,9 +52,9 @@ class Emitter {
     CppClass c;
     c.name = class_name_;
     c.base = "mbgrt::Model";
-    std::tie(large_, compact_) = dynamics_size();
+    compact_ = outline_.measure_dynamics();
     add_identity_methods(c, s_, opt_, compact_);
-    find_parameter_expressions();
+    find_derived_constants(s_, hoisted_, hoisted_order_);
     for (std::size_t k = 0; k < s_.events.size(); ++k) hoisted_[s_.events[k].step] = event_mode_name(k);  // printed as their modes
     discrete_name_ = contact_member_names(s_);
     c.public_methods.push_back(initial());
@@ -84,7 +87,7 @@ class Emitter {
     add_energy_methods(c, s_, where_fn(), std::move(energy));
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
-    for (CppFunction& f : outlined_) c.private_methods.push_back(std::move(f));
+    for (CppFunction& f : outline_.functions()) c.private_methods.push_back(std::move(f));
     private_part(c);
 
     std::string banner = fmt::format(
@@ -318,13 +321,6 @@ class Emitter {
   }
 
   // ---- sections with equations ------------------------------------------------------------
-  static std::vector<Expr> result_values(const std::vector<SectionResult>& results) {
-    std::vector<Expr> values;
-    values.reserve(results.size());
-    for (const SectionResult& r : results) values.push_back(r.value);
-    return values;
-  }
-
   /// Read the unknowns a section uses, compute its assignments, then its results.
   void section(std::vector<CppStmt>& body, const std::vector<int>& assignment_indices, std::vector<SectionResult> results,
                const std::string& results_comment) {
@@ -359,7 +355,7 @@ class Emitter {
     // Bodies whose equations are the same up to names: one function per shape (codegen/outline).
     std::vector<const Assignment*> list;
     for (int i : assignment_indices) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
-    const Outlined outlined_form = outline_section(list, results);
+    Outlined outlined_form = outline_.outline_section(list, results, method_name(cost_signature_));
     const Outlining& outlined = outlined_form.o;
     const std::vector<std::string>& store = outlined_form.store;
     const std::vector<int>& run_at = outlined_form.run_at;
@@ -394,12 +390,11 @@ class Emitter {
     auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return shared.print(e, out_body); };
     std::set<int> blocks_done;
     std::string last_origin;
-    std::vector<std::string> shape_names(outlined.shapes.size());
     for (std::size_t k = 0; k < list.size(); ++k) {
       const Assignment& a = *list[k];
       if (run_at[k] >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(run_at[k])];
-        if (run.begin == k) call_shape(body, outlined, run_at[k], list, results, shape_names, store, shared);
+        if (run.begin == k) outline_.call_shape(body, outlined_form, run_at[k], list, results, shared, *ops());
         last_origin.clear();
         continue;
       }
@@ -428,204 +423,13 @@ class Emitter {
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
     for (std::size_t i = 0; i < results.size(); ++i) {
       if (const int r = result_run_at[i]; r >= 0) {
-        if (outlined.runs[static_cast<std::size_t>(r)].begin == i) call_shape(body, outlined, r, list, results, shape_names, store, shared);
+        if (outlined.runs[static_cast<std::size_t>(r)].begin == i) outline_.call_shape(body, outlined_form, r, list, results, shared, *ops());
         continue;
       }
       std::string rhs = print_expr(results[i].value, body);
       body.push_back(CppStmt::line(fmt::format("{}[{}] = {};", results[i].array, results[i].index, rhs)));
     }
-    for (const auto& [v, at] : outlined.stored) stored_name_.erase(v);
-  }
-
-  /// A section's outlining: its runs and shapes, their member arrays, per
-  /// assignment the outlined run it is in and the inline run whose outputs
-  /// are copied to their array after it (-1: none), per result the outlined
-  /// run it is in.
-  struct Outlined {
-    Outlining o;
-    std::vector<std::string> store;
-    std::vector<int> run_at, copy_after, result_run_at;
-  };
-
-  /// `list` outlined where --outline says so (see find_shapes).
-  Outlined outline_section(std::vector<const Assignment*>& list, std::vector<SectionResult>& results) {
-    Outlined out;
-    out.run_at.assign(list.size(), -1);
-    out.copy_after.assign(list.size(), -1);
-    out.result_run_at.assign(results.size(), -1);
-    if (opt_.outline == EmitOptions::Outline::never ||
-        (opt_.outline == EmitOptions::Outline::automatic && !large_ && inline_count({}, list) <= kOutlineFromNodes))
-      return out;
-    out.o = find_shapes(list, results);
-    if (out.o.shapes.empty()) return out;
-    out.store = store_outlined(out.o, list);
-    for (std::size_t r = 0; r < out.o.runs.size(); ++r) {
-      const OutlinedRun& run = out.o.runs[r];
-      if (run.results) {
-        if (run.shape >= 0)
-          for (std::size_t i = run.begin; i < run.end; ++i) out.result_run_at[i] = static_cast<int>(r);
-      } else if (run.shape >= 0)
-        for (std::size_t k = run.begin; k < run.end; ++k) out.run_at[k] = static_cast<int>(r);
-      else if (!out.store[r].empty())  // an inline run an outlined one reads: copied when done
-        out.copy_after[run.end - 1] = static_cast<int>(r);
-    }
-    return out;
-  }
-
-  /// The runs and shapes of a section, `list` reordered body by body if that
-  /// form is taken: of every body's equations grouped (kinematics too) and the
-  /// eliminations alone in causal order, the one that leaves less inline;
-  /// `results` each owner's together (group_results_by_owner) if some of them
-  /// are outlined.
-  Outlining find_shapes(std::vector<const Assignment*>& list, std::vector<SectionResult>& results) const {
-    ReadsOf reads;
-    for (const Assignment* a : list) assignment_inputs(s_, *a, reads[a]);
-    std::unordered_set<int> results_read;
-    collect_vars(result_values(results), results_read);
-    std::vector<SectionResult> grouped_results = results;
-    group_results_by_owner(grouped_results);
-    auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels, const std::vector<std::string>& names) {
-      Outlining o = find_outlined_runs(order, reads, results_read, labels, names, grouped_results, g_);
-      return o.shapes.empty() ? Outlining{} : o;  // nothing shared: nothing stored either
-    };
-    std::vector<const Assignment*> grouped = list;
-    std::vector<int> labels;
-    Outlining o;
-    if (!s_.tree) {  // no elimination: each owner's equations (a body's, a joint's), grouped
-      std::vector<std::string> owners;
-      group_by_owner(grouped, s_, reads, labels, owners);
-      o = outline(grouped, labels, owners);
-      if (o.shapes.empty()) return o;
-      o.by_owner = true;
-      list = grouped;
-    } else {
-      group_by_body(grouped, s_, reads, labels);
-      Outlining by_body = outline(grouped, labels, s_.tree->names);
-      for (std::size_t k = 0; k < list.size(); ++k)
-        if (!from_tree_elimination(*list[k])) labels[k] = -1;
-        else labels[k] = s_.tree->body_of.count(list[k]->var) ? s_.tree->body_of.at(list[k]->var) : -1;
-      Outlining eliminations = outline(list, labels, s_.tree->names);
-      if (inline_count(by_body, grouped) < inline_count(eliminations, list)) o = std::move(by_body), list = grouped;
-      else o = std::move(eliminations);
-    }
-    if (std::any_of(o.runs.begin(), o.runs.end(), [](const OutlinedRun& run) { return run.results && run.shape >= 0; }))
-      results = std::move(grouped_results);
-    return o;
-  }
-
-  /// The expression nodes of the assignments that stay inline.
-  static std::size_t inline_count(const Outlining& o, const std::vector<const Assignment*>& list) {
-    std::vector<char> out(list.size(), 0);
-    for (const OutlinedRun& run : o.runs)
-      if (run.shape >= 0 && !run.results) std::fill(out.begin() + static_cast<long>(run.begin), out.begin() + static_cast<long>(run.end), 1);
-    std::size_t n = 0;
-    for (std::size_t k = 0; k < list.size(); ++k)
-      if (!out[k] && list[k]->value) n += ir::size(list[k]->value);
-    return n;
-  }
-
-  /// Whether the dynamics' assignments (the derivative's or the residual's)
-  /// written inline are past kOutlineFromNodes, and whether bodies with the
-  /// same equations repeat among them.
-  std::pair<bool, bool> dynamics_size() const {
-    std::vector<const Assignment*> list;
-    for (int i : s_.for_derivative) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
-    const bool large = inline_count({}, list) > kOutlineFromNodes;
-    std::vector<SectionResult> none;
-    return {large, large && !find_shapes(list, none).shapes.empty()};
-  }
-
-  /// The member arrays that keep the runs' outputs that an outlined run
-  /// reads or computes; while the section is printed, each output of an
-  /// outlined run is named by its place there (an inline run's keep their
-  /// names, and are copied there after it).
-  std::vector<std::string> store_outlined(const Outlining& o, const std::vector<const Assignment*>& list) {
-    std::size_t first_elim = list.size();  // the runs before the tree's elimination are kinematics, after it accelerations
-    for (std::size_t k = 0; k < list.size() && first_elim == list.size(); ++k)
-      if (from_tree_elimination(*list[k])) first_elim = k;
-    std::vector<char> kept(o.runs.size(), 0);
-    for (const OutlinedRun& run : o.runs)
-      if (run.shape >= 0) {
-        kept[static_cast<std::size_t>(&run - o.runs.data())] = !run.results;  // (a run of results writes the caller's array)
-        for (int src : run.sources) kept[static_cast<std::size_t>(src)] = 1;
-      }
-    std::vector<std::string> store(o.runs.size());
-    const std::string method = method_name(cost_signature_);
-    if (std::find(kept.begin(), kept.end(), 1) != kept.end())  // one comment heads the method's arrays
-      stores_.push_back(CppStmt::comment(
-          o.by_owner ? fmt::format("{}(): what the rest of it reads of each one's equations (a body's, a joint's)", method)
-                     : fmt::format("{}(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) "
-                                   "and accelerations (_acc)",
-                                   method)));
-    for (std::size_t r = 0; r < o.runs.size(); ++r) {
-      if (!kept[r]) continue;
-      const OutlinedRun& run = o.runs[r];
-      const bool elimination = from_tree_elimination(*list[run.begin]);
-      const char* phase = o.by_owner ? "eqs" : elimination ? "elim" : run.begin < first_elim ? "kin" : "acc";
-      store[r] = mangle_.get(fmt::format("store:{}:{}", method, run.begin), fmt::format("{}_{}", run.body, phase));
-      stores_.push_back(CppStmt::line(fmt::format("double {}[{}] = {{}};", store[r], std::max<std::size_t>(run.width, 1))));
-    }
-    for (const auto& [v, at] : o.stored)
-      if (o.runs[static_cast<std::size_t>(at.first)].shape >= 0)
-        stored_name_[v] = fmt::format("{}[{}]", store[static_cast<std::size_t>(at.first)], at.second);
-    return store;
-  }
-
-  /// One outlined run: its other inputs into an array, then the shape's
-  /// function (made the first time) with its sources' arrays and its own
-  /// (a run of results: the caller's array, from its first result's place).
-  void call_shape(std::vector<CppStmt>& body, const Outlining& o, int r, const std::vector<const Assignment*>& list,
-                  const std::vector<SectionResult>& results, std::vector<std::string>& shape_names,
-                  const std::vector<std::string>& store, SharedTemps& shared) {
-    const OutlinedRun& run = o.runs[static_cast<std::size_t>(r)];
-    const OutlineShape& shape = o.shapes[static_cast<std::size_t>(run.shape)];
-    std::string& fn = shape_names[static_cast<std::size_t>(run.shape)];
-    const std::string method = method_name(cost_signature_);
-    if (fn.empty()) {
-      fn = mangle_.get(fmt::format("shape:{}:{}", method, run.shape), fmt::format("{}_shape{}", method, run.shape + 1));
-      Cost one;
-      Cost* caller = cost_;
-      cost_ = &one;
-      outlined_.push_back(shape_function(fn, o, run.shape, list, results, g_, names_, [this](const SourceLoc& l) { return where(l); },
-                                         cse_counter_, ops()));
-      cost_ = caller;
-      shape_cost_[fn] = one.ops;
-    }
-    cost_->ops += shape_cost_.at(fn);  // the work of one call
-    if (run.results) {  // which places it writes: "r[13..25]", "rows_out[5..9, 205..209]"
-      const SectionResult& first = results[run.begin];
-      std::vector<std::string> spans;
-      for (std::size_t k = run.begin, end = k; k < run.end; k = end) {
-        for (end = k + 1; end < run.end && results[end].index == results[end - 1].index + 1; ++end) {
-        }
-        spans.push_back(end - k == 1 ? fmt::format("{}", results[k].index) : fmt::format("{}..{}", results[k].index, results[end - 1].index));
-      }
-      body.push_back(CppStmt::comment(fmt::format("{}{}: {}[{}] by {}() (shared by the {} with the same equations)",
-                                                  first.loc.valid() ? where(first.loc) + "  " : "", run.body, first.array,
-                                                  fmt::join(spans, ", "), fn, shape.runs.size())));
-    } else {
-      const SourceLoc& loc = list[run.begin]->loc;
-      body.push_back(CppStmt::comment(o.by_owner ? fmt::format("{}  {}: {}() (shared by the {} with the same equations)", where(loc),
-                                                               run.body, fn, shape.runs.size())
-                                                 : fmt::format("{}  body {}: {}() (the same equations as {} bodies)", where(loc),
-                                                               run.body, fn, shape.runs.size())));
-    }
-    std::vector<std::string> args;
-    if (run.inputs.empty()) {
-      args.push_back("nullptr");
-    } else {
-      std::vector<std::string> in;
-      for (const Expr& e : run.inputs) in.push_back(shared.print(e, body));
-      const std::string in_name =
-          mangle_.get(fmt::format("{}:{}:{}:in", run.results ? "results" : "run", method, run.begin), run.body + "_in");
-      body.push_back(CppStmt::line(fmt::format("double {}[{}] = {{{}}};", in_name, in.size(), fmt::join(in, ", "))));
-      args.push_back(in_name);
-    }
-    for (int src : run.sources) args.push_back(store[static_cast<std::size_t>(src)]);
-    if (!run.results) args.push_back(store[static_cast<std::size_t>(r)]);
-    else if (const SectionResult& first = results[run.begin]; first.index == 0) args.push_back(first.array);
-    else args.push_back(fmt::format("{} + {}", first.array, first.index));
-    body.push_back(CppStmt::line(fmt::format("{}({});", fn, fmt::join(args, ", "))));
+    outline_.finish_section(outlined_form);
   }
 
   std::size_t block_position(const Assignment& a) const {
@@ -744,36 +548,11 @@ class Emitter {
   }
 
   /// The CN rows for assembly and drift reports: g (position level) for every
-  /// row, then gdot (velocity level) for every row.
+  /// row, then gdot (velocity level) for every row (their counts, names and
+  /// multipliers: codegen/constraints.hpp).
   void constraint_functions(CppClass& c) {
     std::size_t n = s_.constraints.size();
-    // A model may mix strategies per joint: any lagrange row makes it a DAE
-    // whose drift is what the runtime reports.
-    bool enforced = std::any_of(s_.constraints.begin(), s_.constraints.end(),
-                                [](const ConstraintRow& r) { return r.multiplier >= 0; });
-    if (s_.dae)
-      c.public_methods.push_back({"", "std::size_t state_count() const override", {CppStmt::line(fmt::format("return {};", s_.states.size()))}});
-    c.public_methods.push_back({"", "std::size_t position_constraint_count() const override", {CppStmt::line(fmt::format("return {};", n))}});
-    c.public_methods.push_back({"", "std::size_t velocity_constraint_count() const override", {CppStmt::line(fmt::format("return {};", n))}});
-    c.public_methods.push_back({enforced ? "lagrange: the DAE enforces the constraints; the runtime reports their drift."
-                                         : "penalty: the constraints are only pulled back; the runtime reports the violation.",
-                                "bool constraints_enforced() const override", {CppStmt::line(enforced ? "return true;" : "return false;")}});
-    if (std::any_of(s_.constraints.begin(), s_.constraints.end(), [](const ConstraintRow& r) { return r.cut; })) {
-      std::vector<std::string> held;
-      for (const ConstraintRow& r : s_.constraints) held.push_back(r.cut || r.multiplier >= 0 ? "true" : "false");
-      c.public_methods.push_back({"cut joints: their rows are held (Baumgarte), a penalty's only pulled back.",
-                                  "bool constraint_held(std::size_t row) const override",
-                                  {CppStmt::line(fmt::format("static const bool kHeld[] = {{{}}};", fmt::join(held, ", "))),
-                                   CppStmt::line(fmt::format("return row < {} && kHeld[row];", n))}});
-    }
-    CppFunction names{"", "std::string constraint_name(std::size_t i) const override", {}};
-    std::vector<std::string> list;
-    for (const ConstraintRow& r : s_.constraints) list.push_back(cpp_string(r.name + " g"));
-    for (const ConstraintRow& r : s_.constraints) list.push_back(cpp_string(r.name + " gdot"));
-    names.body.push_back(CppStmt::line(fmt::format("static const char* const kConstraintNames[] = {{{}}};", fmt::join(list, ", "))));
-    names.body.push_back(CppStmt::line(fmt::format("return i < {} ? kConstraintNames[i] : \"?\";", 2 * n)));
-    c.public_methods.push_back(names);
-    if (s_.dae) multiplier_indices(c);
+    add_constraint_methods(c, s_);
     const char* y = s_.dae ? "y" : "x";
     CppFunction f{"CONSTRAINTS: g(x) for every CN row, then gdot(x).",
                   fmt::format("void constraints(double t, const double* {}, double* rows_out) override", y),
@@ -827,28 +606,6 @@ class Emitter {
       section(f.body, s_.for_constraint_jacobian, std::move(results), "dg/dx, by row");
     }
     add_long_method(c, std::move(f));
-  }
-
-  /// `static const long NAME[] = {...};`, twenty numbers a line.
-  /// Where each CN row's multipliers sit in y (lagrange rows; -1 for penalty
-  /// rows): lambda (its residual row is gdot = 0) and the GGL mu (g = 0). The
-  /// runtime needs them to hold the multipliers of redundant rows at zero.
-  void multiplier_indices(CppClass& c) {
-    std::map<int, std::size_t> index_of;
-    for (std::size_t i = 0; i < s_.algebraic.size(); ++i) index_of[s_.algebraic[i]] = s_.states.size() + i;
-    auto table = [&](const char* method, const char* doc, auto member) {
-      std::vector<std::string> list;
-      for (const ConstraintRow& r : s_.constraints) {
-        auto it = index_of.find(r.*member);
-        list.push_back(it == index_of.end() ? "-1" : std::to_string(it->second));
-      }
-      c.public_methods.push_back(
-          {doc, fmt::format("long {}(std::size_t row) const override", method),
-           {CppStmt::line(fmt::format("static const long kIndex[] = {{{}}};", fmt::join(list, ", "))),
-            CppStmt::line(fmt::format("return row < {} ? kIndex[row] : -1;", list.size()))}});
-    };
-    table("multiplier_index", "index in y of CN row `row`'s multiplier lambda (-1: penalty row)", &ConstraintRow::multiplier);
-    table("stabiliser_index", "index in y of CN row `row`'s GGL multiplier mu (-1: penalty row)", &ConstraintRow::stabiliser);
   }
 
   CppFunction outputs() {
@@ -911,54 +668,6 @@ class Emitter {
     return f;
   }
 
-  /// Largest subexpressions that depend on parameters only (1/J, m*g, ...):
-  /// they are computed once in initial() instead of at every derivative call.
-  void find_parameter_expressions() {
-    // Expressions are DAGs (derivatives and torn loops share sub-trees):
-    // every walk here remembers the nodes it has seen.
-    std::unordered_map<const Node*, bool> param_memo, costly_memo;
-    std::function<bool(const Expr&)> param_only = [&](const Expr& e) {
-      if (auto it = param_memo.find(e.get()); it != param_memo.end()) return it->second;
-      bool r = !(e->op == Op::Var || e->op == Op::Time || e->op == Op::Der);
-      for (const Expr& a : e->args)
-        if (r && !param_only(a)) r = false;
-      return param_memo[e.get()] = r;
-    };
-    // Only what costs something at run time (a division, a power, a function
-    // call) is worth a member: -m * g reads better where it is used.
-    std::function<bool(const Expr&)> costly = [&](const Expr& e) {
-      if (auto it = costly_memo.find(e.get()); it != costly_memo.end()) return it->second;
-      bool r = e->op == Op::Div || e->op == Op::Pow || e->op == Op::Call;
-      for (const Expr& a : e->args)
-        if (!r && costly(a)) r = true;
-      return costly_memo[e.get()] = r;
-    };
-    std::unordered_set<const Node*> scanned;
-    std::function<void(const Expr&)> scan = [&](const Expr& e) {
-      if (!scanned.insert(e.get()).second) return;
-      bool trivial = e->args.empty() || (e->op == Op::Neg && e->args[0]->args.empty());
-      if (!trivial && param_only(e) && costly(e)) {
-        if (!hoisted_.count(e)) {
-          hoisted_[e] = fmt::format("derived{}_", hoisted_order_.size() + 1);
-          hoisted_order_.push_back(e);
-        }
-        return;
-      }
-      for (const Expr& a : e->args) scan(a);
-    };
-    for (const Assignment& a : s_.assignments) {
-      if (a.block < 0) scan(a.value);
-    }
-    for (const LinearBlock& lb : s_.linear_blocks) {
-      for (const Expr& e : lb.a) scan(e);
-      for (const Expr& e : lb.b) scan(e);
-    }
-    for (const Expr& e : s_.state_derivative) scan(e);
-    for (const Expr& e : s_.jacobian) scan(e);
-    for (const Residual& r : s_.residuals) scan(r.value);
-    for (const Output& o : g_.outputs) scan(o.value);
-  }
-
   /// Whether some state's nominal size is not 1 (reduce/nominal.hpp).
   bool any_nominal() const {
     return std::any_of(s_.nominal.begin(), s_.nominal.end(), [](const Expr& e) { return !is_one(e); });
@@ -972,9 +681,9 @@ class Emitter {
                                   "const mbgrt::RankLossLog* rank_loss() const override", {CppStmt::line("return &rank_loss_;")}});
       c.private_members.push_back(CppStmt::line("mbgrt::RankLossLog rank_loss_;  // what the rank-revealing solves found"));
     }
-    if (!stores_.empty()) {
+    if (!outline_.stores().empty()) {
       c.private_members.push_back(CppStmt::comment("equations computed by one function per shape (bodies, joints): what the rest reads of them"));
-      for (CppStmt& st : stores_) c.private_members.push_back(std::move(st));
+      for (CppStmt& st : outline_.stores()) c.private_members.push_back(std::move(st));
     }
     if (!scratch_.empty()) {
       c.private_members.push_back(CppStmt::comment("values one part of a long method passes to a later part"));
@@ -1011,30 +720,20 @@ class Emitter {
   std::map<std::string, Cost> costs_;  // method signature -> its cost
   Cost* cost_ = nullptr;               // the method being built
   std::string cost_signature_;         // its signature
-  std::vector<CppFunction> outlined_;  // the shapes' functions (codegen/outline), private
-  std::vector<CppStmt> stores_;        // the member arrays of their runs' outputs
+  OutlineEmitter outline_;             // the shapes' functions and their runs' member arrays (codegen/outline_emit)
   std::unordered_map<int, std::string> discrete_name_;  // a contact's discrete variables -> their members
-  std::unordered_map<int, std::string> stored_name_;  // while a section is printed: an outlined output -> its place
-  std::map<std::string, CppOps> shape_cost_;  // per shape function: the operations of one call
-  std::unordered_map<Expr, std::string, ExprHash, ExprEqual> hoisted_;  // parameter expression -> member
-  std::vector<Expr> hoisted_order_;                                    // in first-use order
+  ExprNames hoisted_;                // parameter expression -> member (codegen/derived_constants.hpp)
+  std::vector<Expr> hoisted_order_;  // in first-use order
   bool has_rank_loss_ = false;        // a rank-revealing solve was written: the model keeps its log
-  bool large_ = false;                // the dynamics are past kOutlineFromNodes (--outline auto outlines every section)
-  /// ... and repeat bodies: the lists of initial(), of the parameters and of
-  /// the unknowns are written compactly (they have thousands of entries).
+  /// The dynamics are large enough to outline every section and repeat
+  /// bodies (OutlineEmitter::measure_dynamics): the lists of initial(), of the
+  /// parameters and of the unknowns are written compactly (they have
+  /// thousands of entries).
   bool compact_ = false;
   std::vector<std::string> scratch_;  // members of split methods (codegen/split.hpp), in order of definition
   /// Statements per part of a long method: g++ -O2 compiles the 100-rod
   /// chain's derivative (8,300 statements) in 20 s as one function.
   static constexpr std::size_t kMaxMethodLines = 2000;
-  /// --outline auto: outline from this many expression nodes written inline
-  /// (the derivative no longer fits the instruction cache); in a model whose
-  /// dynamics are that large, in every method (the others repeat the same
-  /// bodies: outlined, the file is a fraction of its size). Measured in the
-  /// peer benchmark: the planar chain of 8 rods (13,000 nodes) takes 0.45 ms
-  /// inline and 0.60 ms outlined, of 32 (66,000) 3.44 and 3.60 ms; the
-  /// 32-rod spherical chain (690,000) is 2x faster outlined.
-  static constexpr std::size_t kOutlineFromNodes = 100000;
 };
 
 }  // namespace
