@@ -25,6 +25,7 @@ struct Phase {
   Index row0 = 0, rows = 0;
   std::vector<Index> cols;
   double tol = 0.0;
+  bool to_rounding = false;  ///< beyond tol, on while a step still lowers the residual
   // results
   int iterations = 0;
   bool converged = false;
@@ -38,11 +39,9 @@ void run_phase(Eval& eval, Jacobian&& jacobian, Vec& y, Vec& c, Phase& ph) {
   Vec trial_y(y.size()), trial_c(c.size());
   for (;;) {
     ph.residual = max_abs(c.segment(ph.row0, ph.rows), &ph.worst);
-    if (ph.residual <= ph.tol) {
-      ph.converged = true;
-      return;
-    }
-    if (ph.iterations >= kAssemblyMaxIterations || ph.cols.empty()) return;
+    ph.converged = ph.residual <= ph.tol;
+    if (ph.converged && !ph.to_rounding) return;
+    if (ph.iterations >= kAssemblyMaxIterations || ph.cols.empty() || ph.residual == 0.0) return;
     Mat J;
     if (!jacobian(y, J)) return;
     const Vec step = min_norm_step(J, c.segment(ph.row0, ph.rows));
@@ -59,6 +58,11 @@ void run_phase(Eval& eval, Jacobian&& jacobian, Vec& y, Vec& c, Phase& ph) {
     if (!accepted) return;
     y = trial_y;
     c = trial_c;
+    // past the tolerance, only steps that at least halve the residual pay
+    if (ph.converged && !(trial_c.segment(ph.row0, ph.rows).norm() <= 0.5 * norm0)) {
+      ph.residual = max_abs(c.segment(ph.row0, ph.rows), &ph.worst);
+      return;
+    }
   }
 }
 
@@ -256,7 +260,7 @@ std::string rank_loss_note(Model& model, const ConstraintShape& shape, double t0
       t, now.smallest_kept, then.smallest_kept);
 }
 
-AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double* y_io) {
+AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double* y_io, bool to_rounding) {
   AssemblyReport rep;
   const Index n = ix(s.n), np = ix(s.np), nv = ix(s.nv);
   Vec y = Eigen::Map<const Vec>(y_io, n);
@@ -297,6 +301,7 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
   pos.row0 = 0;
   pos.rows = np;
   pos.cols = positions;
+  pos.to_rounding = to_rounding;
   if (np > 0) {
     Mat Jp;
     if (!position_jacobian(y, Jp)) {
@@ -323,6 +328,7 @@ AssemblyReport assemble(Model& model, const ConstraintShape& s, double t, double
   vel.row0 = np;
   vel.rows = nv;
   vel.cols = velocities;
+  vel.to_rounding = to_rounding;
   auto velocity_jacobian = [&](const Vec& yy, Mat& J) {
     Linearization L = linearize(eval, yy, np + nv, np, nv, velocities);
     J = std::move(L.J);

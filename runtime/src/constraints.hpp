@@ -96,7 +96,10 @@ struct AssemblyReport {
 /// size of the terms the rows balance, max_i sum_j |dr_i/dx_j| |x_j| over the
 /// states the phase moves (for g = (x^2 + y^2 - L^2)/2 that is about L^2).
 /// At most kAssemblyMaxIterations steps per phase.
-AssemblyReport assemble(Model& model, const ConstraintShape& shape, double t, double* y);
+/// `to_rounding`: each phase goes on beyond its tolerance while a step still
+/// lowers the residual (a restart of an integrator whose tolerances are
+/// tighter than the convergence test above).
+AssemblyReport assemble(Model& model, const ConstraintShape& shape, double t, double* y, bool to_rounding = false);
 
 /// A lagrange row whose unit gradient keeps less than this after projection
 /// onto the rows before it is redundant: far above the ~1e-10 error of a
