@@ -141,7 +141,7 @@ struct InitialValuesReport {
 
 /// The size from which consistent_initial_values works on the residual's
 /// sparsity pattern (rates.cpp).
-inline constexpr std::size_t kSparseRatesFromUnknowns = 400;
+inline constexpr std::size_t kSparseRatesFromUnknowns = 200;
 
 struct RatesOptions {
   /// Rows that contradict each other at a rank-deficient Newton matrix (a

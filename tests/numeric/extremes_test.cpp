@@ -232,7 +232,7 @@ TEST(Extremes, AParallelogramFourBarRunsThroughItsChangePointsOnItsBranch) {
   // t = 0.28 s and, accelerating to 74 rad/s, through 2 s: IDA steps across
   // each (solvers/change_point.hpp; measured 35 steps across) and the
   // mechanism stays a parallelogram, crank and rocker turning alike
-  // (measured within 2.6e-8 rad/s); on the other branch they would not.
+  // (measured within 2.3e-8 rad/s); on the other branch they would not.
   SimRun r = run(CRANK_ROCKER_SIM, "--set a1=0.2 --set a3=0.2 --set a2=0.559 --set theta1_0=0.5 --t-end 2",
                  "parallelogram");
   expect_all_finite(r, "crank_rocker");

@@ -212,10 +212,10 @@ class NFourBarMultipliers : public ::testing::TestWithParam<Row> {};
 /// IDA cannot converge where the rows become dependent; it steps across each
 /// aligned passage instead (solvers/change_point.hpp) and restarts beyond.
 /// At rtol 1e-10 (IDA's own drift at the model's 1e-8 is 1e-4 m over 10 s,
-/// aligned passages or not) measured: N = 1, 10 s, 13 passages, 1.8e-7 m;
-/// N = 4, 3 s, 4 passages, 9.3e-8 m; N = 10 (583 unknowns: the rates of a
+/// aligned passages or not) measured: N = 1, 10 s, 13 passages, 3.4e-7 m;
+/// N = 4, 3 s, 4 passages, 1.1e-7 m; N = 10 (583 unknowns: the rates of a
 /// step's stages are solved on the residual's sparsity pattern), 3 s, 4
-/// passages, 2.7e-8 m. A step across must not cost energy: the summary's
+/// passages, 7.3e-8 m. A step across must not cost energy: the summary's
 /// balance stays below 1e-5 J of the 20 J (N = 1) to 331 J (N = 10) in play.
 TEST_P(NFourBarMultipliers, StepsAcrossItsAlignedConfigurationsAsTheExactModel) {
   const Row& row = GetParam();
