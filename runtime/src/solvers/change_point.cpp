@@ -36,7 +36,7 @@ constexpr double kRateProbe = 1e-6;
 
 }  // namespace
 
-double row_independence(Model& model, const ConstraintShape& shape, double t, const double* y) {
+double row_independence(Model& model, const ConstraintShape& shape, double t, const double* y, std::size_t* row) {
   // Gram-Schmidt over the unit gradients in row order leaves of row k the
   // part sqrt(D_k), where L D L' is the Cholesky factorization of their Gram
   // matrix in the same order: find_redundant_constraints's measure, sparse
@@ -48,6 +48,7 @@ double row_independence(Model& model, const ConstraintShape& shape, double t, co
   using Sparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   std::vector<Eigen::Triplet<double>> entries;
   int rows = 0;
+  std::vector<std::size_t> row_of;  // the position row of each of G's rows here
   for (std::size_t r = 0; r < shape.np; ++r) {
     if (skip[r] || shape.lambda_at[r] < 0) continue;
     const auto first = static_cast<std::size_t>(shape.g_row_starts[r]);
@@ -59,6 +60,7 @@ double row_independence(Model& model, const ConstraintShape& shape, double t, co
     norm = std::sqrt(norm);
     for (std::size_t e = first; e < last; ++e)
       entries.emplace_back(rows, static_cast<int>(shape.g_columns[e]), values[e] / norm);
+    row_of.push_back(r);
     ++rows;
   }
   if (rows == 0) return 1.0;
@@ -66,16 +68,25 @@ double row_independence(Model& model, const ConstraintShape& shape, double t, co
   G.setFromTriplets(entries.begin(), entries.end());
   const Eigen::SparseMatrix<double> gram = G * G.transpose();
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(gram);
+  const Eigen::VectorXd D = ldlt.vectorD();
+  const double floor = kRedundantRowThreshold * kRedundantRowThreshold;
+  Eigen::Index at = 0;
+  const double least = D.size() > 0 ? D.minCoeff(&at) : 1.0;
+  for (Eigen::Index k = 0; k < D.size(); ++k)  // the first dependent one, if any
+    if (!(D[k] >= floor)) {
+      at = k;
+      break;
+    }
+  if (row) *row = row_of[static_cast<std::size_t>(at)];
   if (ldlt.info() != Eigen::Success) return 0.0;
-  const double least = ldlt.vectorD().minCoeff();
-  return least < kRedundantRowThreshold * kRedundantRowThreshold ? 0.0 : std::sqrt(least);
+  return least < floor ? 0.0 : std::sqrt(least);
 }
 
 std::optional<ChangePointStep> ChangePointStep::plan(Model& model, const ConstraintShape& shape, double start_independence,
                                                      double t0, const double* y0, const double* yp0, double t_limit,
                                                      std::string& why) {
   ChangePointStep step(model, shape);
-  step.rho0_ = row_independence(model, shape, t0, y0);
+  step.rho0_ = row_independence(model, shape, t0, y0, &step.row_);
   if (!(step.rho0_ < kNearChangePoint * start_independence)) {
     why = fmt::format("the joints' rows are not close to dependent there (independence {:.2g}, {:.2g} at the start)",
                       step.rho0_, start_independence);

@@ -32,8 +32,10 @@ namespace mbgrt::detail {
 
 /// The least independence of the lagrange rows at (t, y): the smallest part
 /// of a kept row's (equilibrated) gradient that the rows before it do not
-/// explain (find_redundant_constraints), 0 where a row was found dependent.
-double row_independence(Model& model, const ConstraintShape& shape, double t, const double* y);
+/// explain (find_redundant_constraints), 0 where a row was found dependent;
+/// `row`, if given, the position row where that is (the first found dependent).
+double row_independence(Model& model, const ConstraintShape& shape, double t, const double* y,
+                        std::size_t* row = nullptr);
 
 /// The Runge-Kutta steps across a change point, from (t0, y0, yp0) where IDA
 /// stopped, to about five times as far as the crossing is from there; each
@@ -52,6 +54,8 @@ class ChangePointStep {
   double from() const { return path_.front().t; }
   double to() const { return path_.back().t; }
   double independence() const { return rho0_; }
+  /// The position row least independent where the steps began.
+  std::size_t row() const { return row_; }
 
   /// The state at t in [from(), to()] (assembled, with consistent y' and
   /// multipliers); `energy` (two integrals) gains the energy witness's
@@ -74,6 +78,7 @@ class ChangePointStep {
   Model* model_;
   const ConstraintShape* shape_;
   double rho0_ = 0.0;
+  std::size_t row_ = 0;
   std::vector<Point> path_;  // the steps' ends
 };
 

@@ -9,6 +9,7 @@
 // quadratures) carries the energy witness's integrals beside the unknowns,
 // outside Newton's iteration and the error test.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <idas/idas.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -62,9 +63,8 @@ class Ida final : public Integrator {
                       : std::string(),
           crossings_ > 0 ? fmt::format("; stepped across {} change point{} of the joints, where their rows became "
                                        "dependent (classical Runge-Kutta on the index-1 form, then assembled: "
-                                       "solvers/change_point.hpp), the first from t = {:.6g} to {:.6g} s",
-                                       crossings_, crossings_ == 1 ? "" : "s", first_crossing_.first,
-                                       first_crossing_.second)
+                                       "solvers/change_point.hpp): {}",
+                                       crossings_, crossings_ == 1 ? "" : "s", describe_crossings())
                          : std::string());
     const std::string linear =
         sparse_ ? fmt::format("sparse LU (KLU) on the model's pattern ({} of {} entries), finite-difference "
@@ -428,7 +428,8 @@ class Ida final : public Integrator {
     std::copy(energy, energy + 2, energy_.data());
     if (!reinit()) return false;
     before_restart_ = counted;
-    if (crossings_++ == 0) first_crossing_ = {crossing_->from(), crossing_->to()};
+    if (crossings_++ < kListedCrossings)
+      crossing_list_.push_back({crossing_->from(), crossing_->to(), crossing_->row()});
     h0_ = initial_step(t_);
     if (h0_ > 0.0) IDASetInitStep(mem_, h0_);
     IDASetStopTime(mem_, s_.t_end_s);
@@ -546,7 +547,24 @@ class Ida final : public Integrator {
   std::optional<detail::ChangePointStep> crossing_;  ///< the last step across a change point
   double crossing_energy_[2] = {0.0, 0.0};           ///< the witness's integrals where it began
   int crossings_ = 0;
-  std::pair<double, double> first_crossing_;  ///< where the first step across began and ended
+  /// The first kListedCrossings steps across: where each began and ended,
+  /// and the position row least independent where it began.
+  struct Crossing {
+    double from, to;
+    std::size_t row;
+  };
+  std::vector<Crossing> crossing_list_;
+  static constexpr int kListedCrossings = 4;
+  std::string describe_crossings() const {
+    std::vector<std::string> parts;
+    for (const Crossing& c : crossing_list_) {
+      std::string row = m_.model().constraint_name(c.row);
+      if (row.size() > 2 && row.compare(row.size() - 2, 2, " g") == 0) row.resize(row.size() - 2);
+      parts.push_back(fmt::format("t = {:.6g} to {:.6g} s ('{}' the least independent row)", c.from, c.to, row));
+    }
+    if (crossings_ > kListedCrossings) parts.push_back(fmt::format("and {} more", crossings_ - kListedCrossings));
+    return fmt::format("{}", fmt::join(parts, ", "));
+  }
   static constexpr int kMaxCrossings = 100000;
   /// IDA steps across a change point once the rows' independence falls to
   /// this share of the start's (measured on IFToMM's N four-bar: at 1e-8 IDA
