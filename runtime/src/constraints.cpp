@@ -201,6 +201,12 @@ std::string residual_row_name(const Model& model, const ConstraintShape& s, std:
   return fmt::format("the equation of '{}'", model.variable_name(row));
 }
 
+std::string joint_row_name(const Model& model, std::size_t row) {
+  std::string name = model.constraint_name(row);
+  if (name.size() > 2 && name.compare(name.size() - 2, 2, " g") == 0) name.resize(name.size() - 2);
+  return name;
+}
+
 void pin_redundant_multipliers(const ConstraintShape& s, const double* y, double* r) {
   for (std::size_t k : s.redundant)
     for (long at : {s.lambda_at[k], s.mu_at[k]})
@@ -395,9 +401,7 @@ std::string describe(const RedundancyReport& r, const Model& model) {
       names.push_back(fmt::format("and {} more", r.redundant.size() - 12));
       break;
     }
-    std::string name = model.constraint_name(k);
-    if (name.size() > 2 && name.compare(name.size() - 2, 2, " g") == 0) name.resize(name.size() - 2);
-    names.push_back(name);
+    names.push_back(joint_row_name(model, k));
   }
   return fmt::format(
       "{} of {} lagrange rows implied by the others at the assembled state ({}); their multipliers "

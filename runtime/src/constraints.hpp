@@ -62,6 +62,10 @@ std::string contract_violation(const Model& model, const ConstraintShape& shape,
 /// constraint row (residual_row_role), otherwise "the equation of 'name'".
 std::string residual_row_name(const Model& model, const ConstraintShape& shape, std::size_t row);
 
+/// A position row's name without the " g" the model gives it ("q1.cn[1] g"
+/// is "q1.cn[1]"): the joint's row, in the summary's lists of rows.
+std::string joint_row_name(const Model& model, std::size_t row);
+
 /// After model.residual(): for each redundant row, its lambda and mu rows
 /// become lambda = 0 and mu = 0, so the Newton matrix stays regular.
 void pin_redundant_multipliers(const ConstraintShape& shape, const double* y, double* r);

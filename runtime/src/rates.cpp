@@ -11,11 +11,11 @@
 // another path). From that size on, the dense solve's cube dominates (a
 // step across a change point makes four a step: a row of 4 four-bars, 247
 // unknowns, ran 10 s in 40 s dense, 7.5 s sparse), so the matrix is
-// differenced on the residual's sparsity
-// pattern (Model::residual_sparsity), columns that share no row together
-// (the colouring of solvers/sparse_jacobian), and solved by a sparse LU (a
-// sparse QR where the LU finds it singular): the cost grows with the
-// model's non-zeros (a row of 40 four-bars has 2,263 unknowns).
+// differenced on the residual's sparsity pattern (Model::residual_sparsity),
+// columns that share no row together (the colouring of
+// solvers/sparse_jacobian), and solved by a sparse LU (a sparse QR where the
+// LU finds it singular): the cost grows with the model's non-zeros (a row of
+// 40 four-bars has 2,263 unknowns).
 #include <fmt/format.h>
 
 #include <Eigen/OrderingMethods>

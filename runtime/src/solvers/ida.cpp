@@ -557,11 +557,9 @@ class Ida final : public Integrator {
   static constexpr int kListedCrossings = 4;
   std::string describe_crossings() const {
     std::vector<std::string> parts;
-    for (const Crossing& c : crossing_list_) {
-      std::string row = m_.model().constraint_name(c.row);
-      if (row.size() > 2 && row.compare(row.size() - 2, 2, " g") == 0) row.resize(row.size() - 2);
-      parts.push_back(fmt::format("t = {:.6g} to {:.6g} s ('{}' the least independent row)", c.from, c.to, row));
-    }
+    for (const Crossing& c : crossing_list_)
+      parts.push_back(fmt::format("t = {:.6g} to {:.6g} s ('{}' the least independent row)", c.from, c.to,
+                                  detail::joint_row_name(m_.model(), c.row)));
     if (crossings_ > kListedCrossings) parts.push_back(fmt::format("and {} more", crossings_ - kListedCrossings));
     return fmt::format("{}", fmt::join(parts, ", "));
   }
