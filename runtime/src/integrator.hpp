@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "guard.hpp"
@@ -63,6 +64,10 @@ class Integrator {
   virtual const SolverFailure& failure() const = 0;
   /// The unknowns whose tolerance the rounding floor set (ErrorWeights::floored); none for fixed steps.
   virtual std::vector<std::size_t> floored_unknowns() const { return {}; }
+  /// The spans [from, to] (s) across a change point of the cut joints that
+  /// an implicit method left to an explicit one (cvode to dopri5); none for
+  /// the others.
+  virtual std::vector<std::pair<double, double>> steps_across() const { return {}; }
 };
 
 /// The events a root finder reported at (t, y) (root_info[k]: +1 rising,

@@ -34,8 +34,10 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mbgrt/integrators.hpp"
@@ -71,6 +73,7 @@ class RankLossLog {
   void observe(double t, const char* system, int rank, int n, const int* dependent, const char* const* row_names,
                double closest, bool cut_joints) {
     if (cut_joints && closest < closest_) closest_ = closest, closest_t_ = t;
+    if (cut_joints) keep_latest(system, rank < n ? 0.0 : closest);  // (a lost row: the kept ones may be well apart)
     if (cut_joints) cut_rank_low_ = rank < cut_rank_low_ ? rank : cut_rank_low_, cut_rank_high_ = rank > cut_rank_high_ ? rank : cut_rank_high_;
     if (rank >= n) return;
     if (cut_joints && cut_joint_count_++ == 0) cut_joint_first_t_ = t;
@@ -79,6 +82,16 @@ class RankLossLog {
   /// Of the cut joints' systems: the smallest pivot ratio a solve met (1 if
   /// none ran) and when; the solves that lost rank and the first time one did.
   double closest() const { return closest_; }
+  /// A cut joints' system has been solved.
+  bool cut_joints_solved() const { return !latest_.empty(); }
+  /// The smallest pivot ratio of the cut joints' systems as each was last
+  /// solved (at the model's latest evaluation), 0 where one lost rank; 1 if
+  /// none ran.
+  double latest_closest() const {
+    double least = 1.0;
+    for (const auto& l : latest_) least = l.second < least ? l.second : least;
+    return least;
+  }
   double closest_t() const { return closest_t_; }
   long cut_joint_count() const { return cut_joint_count_; }
   double cut_joint_first_t() const { return cut_joint_first_t_; }
@@ -124,6 +137,14 @@ class RankLossLog {
     lowest_rank_ = rank, size_ = n, lowest_t_ = t, system_ = system;
     rows_ = names(rank, n, dependent, row_names);
   }
+  void keep_latest(const char* system, double closest) {
+    for (auto& l : latest_)
+      if (l.first == system || std::strcmp(l.first, system) == 0) {
+        l.second = closest;
+        return;
+      }
+    latest_.emplace_back(system, closest);
+  }
   static std::string names(int rank, int n, const int* dependent, const char* const* row_names) {
     std::string out;
     for (int k = 0; k < n - rank; ++k) {
@@ -133,6 +154,8 @@ class RankLossLog {
     return out;
   }
   int cut_rank_low_ = 1 << 30, cut_rank_high_ = -1;  ///< of the cut joints' solves
+  /// per cut joints' system (its name, a literal): its last pivot ratio
+  std::vector<std::pair<const char*, double>> latest_;
   long count_ = 0;
   double first_t_ = 0.0, lowest_t_ = 0.0, last_t_ = 0.0;
   double closest_ = 1.0, closest_t_ = 0.0, cut_joint_first_t_ = 0.0;

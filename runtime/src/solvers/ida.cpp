@@ -140,7 +140,7 @@ class Ida final : public Integrator {
     if (crossing_ && t_out < crossing_->to()) return state_in_crossing(t_out);  // a point inside the last step across
     int flag = solve(t_out);
     for (;;) {
-      while (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
+      if (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
         IDAGetRootInfo(mem_, root_info_.data());
         const std::size_t k = m_.events().count();
         const std::vector<int> events(root_info_.begin(), root_info_.begin() + static_cast<long>(k));
@@ -152,14 +152,20 @@ class Ida final : public Integrator {
         }
         if (reached(t_, t_out)) return true;  // the event is at the communication point
         flag = solve(t_out);
+        continue;
       }
-      if (flag != IDA_CONV_FAIL && flag != IDA_ERR_FAIL && flag != IDA_TOO_MUCH_WORK) break;
-      if (!step_across()) break;
-      if (t_out < crossing_->to()) return state_in_crossing(t_out);
+      // A failure: a change point ahead, else weaker weights for the
+      // multipliers, else the tolerances' floor (each of those once); a root
+      // or a failure after either is handled as at the first.
+      const bool stuck = flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK;
+      if (!stuck && flag != IDA_ERR_FAIL) break;
+      if (step_across()) {
+        if (t_out < crossing_->to()) return state_in_crossing(t_out);
+      } else if (!stuck || !(relax_index_two() || floor_tolerances())) {
+        break;
+      }
       flag = solve(t_out);
     }
-    if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && relax_index_two()) flag = solve(t_out);
-    if ((flag == IDA_CONV_FAIL || flag == IDA_TOO_MUCH_WORK) && floor_tolerances()) flag = solve(t_out);
     if (flag < 0) return fail(flag);
     return true;
   }

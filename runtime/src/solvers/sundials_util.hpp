@@ -23,6 +23,10 @@ inline constexpr long kMaxStepsPerOutput = 10000;
 struct CallbackData {
   GuardedModel* model = nullptr;
   ErrorWeights weights;
+  /// cvode: a root where the cut joints' independence falls below this
+  /// (after the events' roots; 0: not watched), and the derivative it takes.
+  double watch_below = 0.0;
+  std::vector<double> scratch;
 };
 
 /// The EwtFn of CVODE and ARKODE (user data: CallbackData).
