@@ -194,6 +194,11 @@ TEST_P(NFourBar, CvodeHandsEachAlignedPassageToAnExplicitMethodAndKeepsToTheBran
   SimRun tight = run(row.sim, "--solver cvode --rtol 1e-11 --atol 1e-13", "n_four_bar_cvode_tight_" + std::to_string(row.n));
   ASSERT_EQ(tight.status, 0) << tight.log;
   EXPECT_LT(worst_tip_error(tight, row.n), 1e-6) << tight.log;
+  // a run that ends while dopri5 carries it (the first passage: 0.49 to 0.61 s)
+  SimRun inside = run(row.sim, "--solver cvode --t-end 0.55", "n_four_bar_cvode_inside_" + std::to_string(row.n));
+  ASSERT_EQ(inside.status, 0) << inside.log;
+  EXPECT_FALSE(contains(inside.log, "mbgrt: warning")) << inside.log;
+  EXPECT_TRUE(contains(inside.log, "; across 1 change point of the cut joints")) << inside.log;
 }
 
 /// IDA on the same ODE has no such hand-over: near the aligned

@@ -100,15 +100,15 @@ class Cvode final : public Integrator {
   const char* name() const override { return "cvode"; }
   std::string description() const override {
     std::string across;
-    if (!crossed_.empty()) {
+    if (const auto carried = steps_across(); !carried.empty()) {
       std::vector<std::string> spans;
-      for (std::size_t k = 0; k < crossed_.size() && k < kListedCrossings; ++k)
-        spans.push_back(fmt::format("t = {:.6g} to {:.6g} s", crossed_[k].first, crossed_[k].second));
-      if (crossed_.size() > kListedCrossings)
-        spans.push_back(fmt::format("and {} more", crossed_.size() - kListedCrossings));
+      for (std::size_t k = 0; k < carried.size() && k < kListedCrossings; ++k)
+        spans.push_back(fmt::format("t = {:.6g} to {:.6g} s", carried[k].first, carried[k].second));
+      if (carried.size() > kListedCrossings)
+        spans.push_back(fmt::format("and {} more", carried.size() - kListedCrossings));
       across = fmt::format("; across {} change point{} of the cut joints, where their rows became dependent, dopri5 "
                            "carried the run at the same tolerances: {}",
-                           crossed_.size(), crossed_.size() == 1 ? "" : "s", fmt::join(spans, ", "));
+                           carried.size(), carried.size() == 1 ? "" : "s", fmt::join(spans, ", "));
     }
     return fmt::format("CVODE BDF, Newton, dense LU, {} Jacobian{}, rtol {:g}, atol {:g}",
                        m_.has_jacobian() ? "generated" : "finite-difference", across, s_.rtol, s_.atol);
@@ -215,7 +215,11 @@ class Cvode final : public Integrator {
   }
   const SolverFailure& failure() const override { return failure_; }
   std::vector<std::size_t> floored_unknowns() const override { return data_.weights.floored(); }
-  std::vector<std::pair<double, double>> steps_across() const override { return crossed_; }
+  std::vector<std::pair<double, double>> steps_across() const override {
+    std::vector<std::pair<double, double>> spans = crossed_;
+    if (across_) spans.emplace_back(across_from_, t_);  // (the run ended inside one)
+    return spans;
+  }
 
  private:
   /// CVODE restarted at (t_, y_) (after an event, or from dopri5), its
