@@ -79,8 +79,9 @@ constexpr double kNearChangePoint = 1e-4;
 
 /// An implicit multistep method that integrated near or across
 /// configurations where the cut joints' rows become dependent, rather than
-/// leave them to an explicit method (cvode does, Integrator::steps_across;
-/// ida on an ODE does not): a warning, else empty. Near such a change point
+/// leave them to an explicit method (Integrator::steps_across: cvode and
+/// ida do, solvers/carry_across.hpp, unless the rows were dependent at the
+/// start and there was no independence to watch): a warning, else empty. Near such a change point
 /// the multipliers' rows lose rank and a second branch of motion meets the
 /// first; BDF's corrector, solving for the end of a step there, can land off
 /// the branch (on the other one) without failing a test (a row of four

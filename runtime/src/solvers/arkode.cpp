@@ -65,7 +65,7 @@ class Dopri5 final : public Integrator {
     check_setup(mem_, "ERKStepCreate");
     check_setup(ERKStepSetErrHandlerFn(mem_, MessageSink::handler, &sink_),
                 "ERKStepSetErrHandlerFn", sink_);
-    data_ = CallbackData{&m_, ErrorWeights(m_.model(), s_.rtol, s_.atol), 0.0, {}};
+    data_ = CallbackData{&m_, ErrorWeights(m_.model(), s_.rtol, s_.atol), nullptr};
     check_setup(ERKStepSetUserData(mem_, &data_), "ERKStepSetUserData", sink_);
     check_setup(ERKStepSetTableNum(mem_, ARKODE_DORMAND_PRINCE_7_4_5), "ERKStepSetTableNum", sink_);
     check_setup(ERKStepWFtolerances(mem_, witnesses(m_) ? error_weights_with_witness : error_weights),

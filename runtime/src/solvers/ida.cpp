@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "constraints.hpp"
+#include "solvers/carry_across.hpp"
 #include "solvers/change_point.hpp"
 #include "solvers/sparse_jacobian.hpp"
 #include "solvers/sparse_lu.hpp"
@@ -47,7 +48,7 @@ class Ida final : public Integrator {
   std::string description() const override {
     std::string note;
     if (!m_.is_dae())
-      note = " (ODE as r = y' - f)";
+      note = fmt::format(" (ODE as r = y' - f{})", carry_ ? carry_->describe(t_) : std::string());
     else if (m_.constraint_shape().any())
       note = fmt::format(
           " (index-2 constraints: algebraic unknowns outside the error test, their Newton "
@@ -116,15 +117,18 @@ class Ida final : public Integrator {
       check_setup(IDASetLinearSolver(mem_, ls_, A_), "IDASetLinearSolver", sink_);
     }
 
-    // The model's zero crossings, and (a DAE with lagrange rows) the rows'
-    // independence falling to a tenth of the start's: a change point ahead.
+    // The model's zero crossings, and a change point ahead: (a DAE with
+    // lagrange rows) the rows' independence falling to a tenth of the
+    // start's, or (an ODE) the cut joints' (solvers/carry_across.hpp).
     const detail::ConstraintShape& shape = m_.constraint_shape();
     watch_change_points_ = m_.is_dae() && shape.enforced &&
                            std::any_of(shape.lambda_at.begin(), shape.lambda_at.end(), [](long at) { return at >= 0; });
-    if (const std::size_t k = m_.events().count() + (watch_change_points_ ? 1 : 0); k > 0) {
+    if (!m_.is_dae()) carry_.emplace(m_, s_, t0, y0);
+    const bool watched = watch_change_points_ || (carry_ && carry_->active());
+    if (const std::size_t k = m_.events().count() + (watched ? 1 : 0); k > 0) {
       check_setup(IDARootInit(mem_, static_cast<int>(k), roots), "IDARootInit", sink_);
       root_info_.assign(k, 0);
-      if (watch_change_points_) {
+      if (watched) {
         std::vector<int> direction(k, 0);
         direction.back() = -1;  // only as the rows become dependent
         check_setup(IDASetRootDirection(mem_, direction.data()), "IDASetRootDirection", sink_);
@@ -138,6 +142,10 @@ class Ida final : public Integrator {
 
   bool advance_to(double t_out) override {
     if (crossing_ && t_out < crossing_->to()) return state_in_crossing(t_out);  // a point inside the last step across
+    if (carry_ && carry_->carrying()) {  // dopri5 carrying the run across a change point
+      if (!carry_on(t_out)) return false;
+      if (carry_->carrying() || reached(t_, t_out)) return true;
+    }
     int flag = solve(t_out);
     for (;;) {
       if (flag == IDA_ROOT_RETURN) {  // an event: switch its mode, restart there from consistent values
@@ -149,6 +157,10 @@ class Ida final : public Integrator {
           if (!restart_after_event()) return false;
         } else if (watch_change_points_ && root_info_[k] != 0 && step_across()) {  // a change point ahead
           if (t_out < crossing_->to()) return state_in_crossing(t_out);
+        } else if (carry_ && carry_->active() && root_info_[k] != 0) {  // one of the cut joints
+          carry_->begin(t_, y_.data(), energy_.data());
+          if (!carry_on(t_out)) return false;
+          if (carry_->carrying()) return true;
         }
         if (reached(t_, t_out)) return true;  // the event is at the communication point
         flag = solve(t_out);
@@ -191,10 +203,14 @@ class Ida final : public Integrator {
     IDAGetLastStep(mem_, &st.last_step);
     // IDAReInit (relax_index_two) zeroes IDA's counters: add what came before.
     add_counts(st, before_restart_);
+    if (carry_) carry_->add_open_counts(st);
     return st;
   }
   const SolverFailure& failure() const override { return failure_; }
   std::vector<std::size_t> floored_unknowns() const override { return weights_of_.floored(); }
+  std::vector<std::pair<double, double>> steps_across() const override {
+    return carry_ ? carry_->spans(t_) : std::vector<std::pair<double, double>>{};
+  }
 
  private:
   /// IDASolve to t_out (or a root before it), and the witness's integrals
@@ -225,6 +241,7 @@ class Ida final : public Integrator {
     const double* ypv = self->m_.is_dae() ? N_VGetArrayPointer(yp) : nullptr;
     const std::size_t k = self->m_.events().count();
     if (k > 0 && !self->m_.events().functions(t, N_VGetArrayPointer(y), ypv, g)) return -1;
+    if (self->carry_ && self->carry_->active()) g[k] = self->carry_->root(t, N_VGetArrayPointer(y));
     if (self->watch_change_points_)
       g[k] = self->start_independence_ > 0.0
                  ? detail::row_independence(self->m_.model(), self->m_.constraint_shape(), t, N_VGetArrayPointer(y)) -
@@ -411,6 +428,25 @@ class Ida final : public Integrator {
     return h;
   }
 
+  /// dopri5 carrying an ODE on to t_out; IDA restarts where it ends, with
+  /// y' = f(t, y).
+  bool carry_on(double t_out) {
+    SolverStats carried{0, 0, 0, 0, 0, 0, 0, 0.0, 0, {}};
+    if (!carry_->carry(t_out, t_, y_.data(), energy_.data(), carried, failure_)) return false;
+    if (carry_->carrying()) return true;
+    SolverStats counted = stats();
+    if (sparse_) counted.fd_jac_evals -= sparse_->evaluations();  // counted on by stats() itself
+    if (m_.derivative(t_, y_.data(), yp_.data()) != 0 || !reinit()) {
+      failure_ = SolverFailure{t_, "IDA_CHANGE_POINT", "no restart after dopri5 carried the run across a change point "
+                               "of the cut joints", {}, -1};
+      return false;
+    }
+    before_restart_ = counted;
+    add_counts(before_restart_, carried);
+    IDASetStopTime(mem_, s_.t_end_s);  // (ReInit clears it)
+    return true;
+  }
+
   /// After IDA stopped near a change point of the joints (solvers/
   /// change_point.hpp): one Runge-Kutta step across it from the last point
   /// IDA completed, and IDA restarted beyond it. False (nothing changed) if
@@ -551,6 +587,7 @@ class Ida final : public Integrator {
   std::optional<double> floored_at_;  ///< time of the restart by floor_tolerances()
   double start_independence_ = 0.0;  ///< of the joints' rows at the start (detail::row_independence)
   std::optional<detail::ChangePointStep> crossing_;  ///< the last step across a change point
+  std::optional<detail::CarryAcross> carry_;  ///< an ODE's watch on its cut joints (set by init)
   double crossing_energy_[2] = {0.0, 0.0};           ///< the witness's integrals where it began
   int crossings_ = 0;
   /// The first kListedCrossings steps across: where each began and ended,

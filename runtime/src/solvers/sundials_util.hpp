@@ -20,13 +20,14 @@ namespace mbgrt::detail {
 inline constexpr long kMaxStepsPerOutput = 10000;
 
 /// What CVODE's and ARKODE's callbacks receive as user data.
+class CarryAcross;
+
 struct CallbackData {
   GuardedModel* model = nullptr;
   ErrorWeights weights;
-  /// cvode: a root where the cut joints' independence falls below this
-  /// (after the events' roots; 0: not watched), and the derivative it takes.
-  double watch_below = 0.0;
-  std::vector<double> scratch;
+  /// cvode: the watch on the cut joints (solvers/carry_across.hpp), a root
+  /// after the events' when active; null: none.
+  CarryAcross* carry = nullptr;
 };
 
 /// The EwtFn of CVODE and ARKODE (user data: CallbackData).
