@@ -77,16 +77,6 @@ std::string describe_small_states(const Model& model, const std::vector<double>&
 /// them (and ends 5e-5 m off at rtol 1e-8, where dopri5 is 1e-8 off).
 constexpr double kNearChangePoint = 1e-4;
 
-/// An implicit multistep method that integrated near or across
-/// configurations where the cut joints' rows become dependent, rather than
-/// leave them to an explicit method (Integrator::steps_across: cvode and
-/// ida do, solvers/carry_across.hpp, unless the rows were dependent at the
-/// start and there was no independence to watch): a warning, else empty. Near such a change point
-/// the multipliers' rows lose rank and a second branch of motion meets the
-/// first; BDF's corrector, solving for the end of a step there, can land off
-/// the branch (on the other one) without failing a test (a row of four
-/// parallelogram four-bars, tests/numeric/loop_test.cpp), while an explicit
-/// method only evaluates the model and steps across.
 /// Did the method step across (Integrator::steps_across) every span where a
 /// solve lost rank, and the closest approach to one?
 bool stepped_across_all(const RankLossLog& rl, const std::vector<std::pair<double, double>>& spans) {
@@ -99,6 +89,16 @@ bool stepped_across_all(const RankLossLog& rl, const std::vector<std::pair<doubl
   return !(rl.closest() < kNearChangePoint) || inside(rl.closest_t());
 }
 
+/// An implicit multistep method that integrated near or across
+/// configurations where the cut joints' rows become dependent, rather than
+/// leave them to an explicit method (Integrator::steps_across: cvode and ida
+/// do, solvers/carry_across.hpp, unless the rows were dependent at the start
+/// and there was no independence to watch): a warning, else empty. Near such
+/// a change point the multipliers' rows lose rank and a second branch of
+/// motion meets the first; BDF's corrector, solving for the end of a step
+/// there, can land off the branch (on the other one) without failing a test
+/// (a row of four parallelogram four-bars, tests/numeric/loop_test.cpp),
+/// while an explicit method only evaluates the model and steps across.
 std::string implicit_near_change_points(const Model& model, Solver solver,
                                         const std::vector<std::pair<double, double>>& spans) {
   const RankLossLog* rl = model.rank_loss();
