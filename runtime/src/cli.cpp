@@ -165,6 +165,7 @@ void print_diagnostic(const char* severity, const std::string& message) {
 
 void print_error(const std::string& message) { print_diagnostic("error", message); }
 void print_warning(const std::string& message) { print_diagnostic("warning", message); }
+void print_note(const std::string& message) { print_diagnostic("note", message); }
 
 ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   Options o;

@@ -63,6 +63,8 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv);
 void print_error(const std::string& message);
 /// "mbgrt: warning: ..." where print_error writes.
 void print_warning(const std::string& message);
+/// "mbgrt: note: ..." where print_error writes.
+void print_note(const std::string& message);
 
 /// While alive, print_error on this thread writes to `to` (a sweep case's report).
 class ErrorRedirect {

@@ -34,10 +34,11 @@ bool ErrorWeights::operator()(const double* y, double* w) const {
   for (std::size_t i = 0; i < n; ++i) {
     // a component is measured against its own size, but never against less
     // than a tenth of its vector's
-    const double relative = rtol_ * std::max(std::abs(y[i]), 0.1 * norm_[group_[i]]);
+    const double relative = scale_ * rtol_ * std::max(std::abs(y[i]), 0.1 * norm_[group_[i]]);
+    const double absolute = scale_ * atol_[i];
     const double floor = floor_on_ ? kRoundingFloor * u * peak_[group_[i]] : 0.0;
-    if (floor > atol_[i] && floor > relative) floored_[i] = 1;
-    const double tol = relative + std::max(atol_[i], floor);
+    if (floor > absolute && floor > relative) floored_[i] = 1;
+    const double tol = relative + std::max(absolute, floor);
     if (!(tol > 0.0)) return false;
     w[i] = 1.0 / tol;
   }

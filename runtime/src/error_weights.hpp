@@ -29,6 +29,10 @@
 // from the start: at a zero crossing it loosens a scalar's tolerance, and a
 // pendulum's energy then drifted by 1.2e-10 instead of 1e-10 at atol 1e-13.
 // The unknowns it held are named in the run summary (floored()).
+//
+// Where even the floor leaves a tolerance below what the solver can meet (a
+// Newton iteration that fails at every step size), the solver may loosen()
+// every tolerance from there on, and says so.
 #pragma once
 
 #include <cstddef>
@@ -54,6 +58,10 @@ class ErrorWeights {
   /// From now on, the floor (see above); the peaks count from the start.
   void engage_floor() { floor_on_ = true; }
   bool floor_engaged() const { return floor_on_; }
+  /// Every tolerance (relative and absolute) times factor from now on.
+  void loosen(double factor) { scale_ *= factor; }
+  /// The factor on the asked tolerances (1 unless loosened).
+  double scale() const { return scale_; }
   /// The floor's factor on u times the group's peak size.
   static constexpr double kRoundingFloor = 1e4;
   /// The first member of unknown i's group (Model::unknown_group, checked).
@@ -67,6 +75,7 @@ class ErrorWeights {
   mutable std::vector<double> peak_;  ///< per group's first member: the largest norm so far
   mutable std::vector<char> floored_;  ///< per unknown: the floor set its tolerance once
   bool floor_on_ = false;
+  double scale_ = 1.0;  ///< on rtol_ and atol_ (loosen)
 };
 
 }  // namespace mbgrt::detail

@@ -68,6 +68,13 @@ class Integrator {
   /// an implicit method left to an explicit one (cvode to dopri5); none for
   /// the others.
   virtual std::vector<std::pair<double, double>> steps_across() const { return {}; }
+  /// Where an adaptive method loosened the asked tolerances, which the
+  /// model's arithmetic could not meet there (ida), for the rest of the run:
+  /// from t_s on rtol and atol, in time order; none for the others.
+  struct Loosening {
+    double t_s, rtol, atol;
+  };
+  virtual std::vector<Loosening> loosenings() const { return {}; }
 };
 
 /// The events a root finder reported at (t, y) (root_info[k]: +1 rising,

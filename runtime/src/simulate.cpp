@@ -77,6 +77,20 @@ std::string describe_small_states(const Model& model, const std::vector<double>&
 /// them (and ends 5e-5 m off at rtol 1e-8, where dopri5 is 1e-8 off).
 constexpr double kNearChangePoint = 1e-4;
 
+/// Where the method loosened the asked tolerances (Integrator::loosenings),
+/// for a note after the run; empty if nowhere.
+std::string describe_loosenings(const std::vector<Integrator::Loosening>& steps, const Settings& s) {
+  if (steps.empty()) return {};
+  return fmt::format("the asked rtol {:g}, atol {:g} are more than this model's arithmetic resolves from "
+                     "t = {} s on (the Newton iteration failed at every step size with the absolute "
+                     "tolerances floored at rounding): the run went on from there at rtol {:g}, atol {:g}{}",
+                     s.rtol, s.atol, format_time(steps.front().t_s), steps.front().rtol, steps.front().atol,
+                     steps.size() == 1
+                         ? std::string()
+                         : fmt::format(", and from t = {} s at rtol {:g}, atol {:g}", format_time(steps.back().t_s),
+                                       steps.back().rtol, steps.back().atol));
+}
+
 /// Did the method step across (Integrator::steps_across) every span where a
 /// solve lost rank, and the closest approach to one?
 bool stepped_across_all(const RankLossLog& rl, const std::vector<std::pair<double, double>>& spans) {
@@ -333,6 +347,8 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   if (event_out) write_event_log(*event_out, guard.events());
   const std::string suspect = implicit_near_change_points(model, s.solver, integrator->steps_across());
   if (!suspect.empty()) o.strict ? print_error(suspect + " (--strict)") : print_warning(suspect);
+  if (const std::string loosened = describe_loosenings(integrator->loosenings(), s); !loosened.empty())
+    print_note(loosened);
   if (!r.ok) print_stop_message(hooks.report, guard, *integrator, r.solver_failed, stop_note);
   if (r.signal != 0) {  // said even with --quiet: the output is not the whole run
     fmt::print(hooks.report, "mbgrt: stopped by {} at t = {} s of {} s; the {} rows written are whole\n",
