@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "error_weights.hpp"
 #include "newton_detail.hpp"
 #include "report.hpp"
 
@@ -423,6 +424,8 @@ std::string describe(const ConstraintMonitor& m) {
                      parts.empty() ? "no output points" : parts);
 }
 
-double held_row_bound(const Settings& s) { return std::min(kHeldFactor * (s.rtol + s.atol), kHeldCeiling); }
+double held_row_bound(const Settings& s) {
+  return std::min(kHeldFactor * (std::max(s.rtol, ErrorWeights::kResolvedRtol) + s.atol), kHeldCeiling);
+}
 
 }  // namespace mbgrt::detail

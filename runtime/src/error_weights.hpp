@@ -62,6 +62,11 @@ class ErrorWeights {
   void loosen(double factor) { scale_ *= factor; }
   /// The factor on the asked tolerances (1 unless loosened).
   double scale() const { return scale_; }
+  /// The tightest rtol every run is expected to meet whatever its rounding:
+  /// IDA loosens a tighter one where it fails (up to this one), and a joint
+  /// row that must hold is never held to less than at this one
+  /// (held_row_bound).
+  static constexpr double kResolvedRtol = 1e-9;
   /// The floor's factor on u times the group's peak size.
   static constexpr double kRoundingFloor = 1e4;
   /// The first member of unknown i's group (Model::unknown_group, checked).

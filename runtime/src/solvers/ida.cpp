@@ -548,7 +548,7 @@ class Ida final : public Integrator {
   static constexpr double kLoosen = 10.0;
   /// Tolerances are never loosened beyond this rtol (4.5e6 unit roundoffs):
   /// a failure at a looser one is the model's, and is reported as it is.
-  static constexpr double kLoosestRtol = 1e-9;
+  static constexpr double kLoosestRtol = ErrorWeights::kResolvedRtol;
 
   /// An order-1 restart of an index-2 DAE from IDA's last step. IDA's y'
   /// there is the BDF formula's, not the DAE's: the restart needs the
