@@ -9,6 +9,8 @@
 #include <tuple>
 #include <utility>
 
+#include "ir/constant.hpp"
+
 namespace mbgc::elaborate {
 namespace {
 
@@ -79,60 +81,43 @@ class Unroller {
     return v;
   }
 
-  /// Value of an expression made of numbers, loop variables and parameters.
+  /// Value of an expression made of numbers, loop variables and parameters
+  /// (ir::constant_value), each failure reported where it is.
   std::optional<double> eval(const AstExpr& e, const std::map<std::string, long>& env) {
-    switch (e.kind) {
-      case AstExpr::Kind::Number: return e.number;
-      case AstExpr::Kind::Name: {
-        if (auto it = env.find(e.name); it != env.end()) return static_cast<double>(it->second);
-        if (component_params_.count(e.name)) {
-          error(e.loc, fmt::format("a loop inside component `{}` cannot use its parameter `{}` here", component_, e.name),
-                "the loop is unrolled once, when the component is compiled, not per instance: use numbers or "
-                "top-level parameters in loop bounds and name indices");
-          return std::nullopt;
-        }
-        if (is_parameter(e.name)) return param_value(e.name, e.loc);
-        std::vector<std::string> names;
-        for (const auto& [n, decl] : params_) names.push_back(n);
-        for (const auto& [n, v] : env) names.push_back(n);
-        std::string near = closest_name(e.name, names);
-        error(e.loc, fmt::format("`{}` is not known at compile time", e.name),
-              near.empty() ? "loop bounds and name indices may use numbers, loop variables and top-level parameters"
-                           : fmt::format("did you mean `{}`? (loop bounds and name indices may use numbers, loop "
-                                         "variables and top-level parameters)",
-                                         near));
-        return std::nullopt;
-      }
-      case AstExpr::Kind::Unary: {
-        auto a = eval(*e.args[0], env);
-        if (!a) return a;
-        return e.op == '-' ? -*a : *a;
-      }
-      case AstExpr::Kind::Binary: {
-        auto a = eval(*e.args[0], env);
-        auto b = eval(*e.args[1], env);
-        if (!a || !b) return std::nullopt;
-        switch (e.op) {
-          case '+': return *a + *b;
-          case '-': return *a - *b;
-          case '*': return *a * *b;
-          case '/':
-            if (*b == 0) {
-              error(e.loc, "division by zero in a value needed at compile time",
-                    "a bound or index divided by zero has no value: check the parameters in the divisor");
-              return std::nullopt;
-            }
-            return *a / *b;
-          case '^': return std::pow(*a, *b);
-        }
-        return std::nullopt;
-      }
-      default:
-        error(e.loc, "this expression cannot be evaluated at compile time",
+    ir::ConstantRules rules;
+    rules.name = [&](const AstExpr& name, int) { return name_value(name, env); };
+    rules.failed = [&](const AstExpr& at, ir::NotConstant why) {
+      if (why == ir::NotConstant::division_by_zero)
+        error(at.loc, "division by zero in a value needed at compile time",
+              "a bound or index divided by zero has no value: check the parameters in the divisor");
+      else
+        error(at.loc, "this expression cannot be evaluated at compile time",
               "loop bounds and name indices may use numbers, loop variables, top-level parameters and + - * / ^ "
               "(no function calls, lists or indexing)");
-        return std::nullopt;
+    };
+    return ir::constant_value(e, rules);
+  }
+
+  /// A loop variable's or a top-level parameter's value; anything else is an error.
+  std::optional<double> name_value(const AstExpr& e, const std::map<std::string, long>& env) {
+    if (auto it = env.find(e.name); it != env.end()) return static_cast<double>(it->second);
+    if (component_params_.count(e.name)) {
+      error(e.loc, fmt::format("a loop inside component `{}` cannot use its parameter `{}` here", component_, e.name),
+            "the loop is unrolled once, when the component is compiled, not per instance: use numbers or "
+            "top-level parameters in loop bounds and name indices");
+      return std::nullopt;
     }
+    if (is_parameter(e.name)) return param_value(e.name, e.loc);
+    std::vector<std::string> names;
+    for (const auto& [n, decl] : params_) names.push_back(n);
+    for (const auto& [n, v] : env) names.push_back(n);
+    std::string near = closest_name(e.name, names);
+    error(e.loc, fmt::format("`{}` is not known at compile time", e.name),
+          near.empty() ? "loop bounds and name indices may use numbers, loop variables and top-level parameters"
+                       : fmt::format("did you mean `{}`? (loop bounds and name indices may use numbers, loop "
+                                     "variables and top-level parameters)",
+                                     near));
+    return std::nullopt;
   }
 
   std::optional<long> eval_integer(const AstExpr& e, const std::map<std::string, long>& env, const char* what) {

@@ -265,44 +265,7 @@ void Expander::draw_bodies() {
 /// A number the text gives, as constant_of, also through the functions and
 /// `pi` a surface's settings may use (the snap-fit's ramp: tan(alpha * pi / 180)).
 std::optional<double> Expander::drawn_number(const AstExpr& e, int depth) const {
-  if (depth > 50) return std::nullopt;
-  switch (e.kind) {
-    case AstExpr::Kind::Number: return e.number;
-    case AstExpr::Kind::Name: {
-      if (e.name == "pi") return std::numbers::pi;
-      auto p = params_.find(e.name);
-      if (p == params_.end() || !p->second) return std::nullopt;
-      return drawn_number(*p->second, depth + 1);
-    }
-    case AstExpr::Kind::Unary: {
-      auto a = drawn_number(*e.args[0], depth + 1);
-      return a && e.op == '-' ? std::optional<double>(-*a) : a;
-    }
-    case AstExpr::Kind::Binary: {
-      auto a = drawn_number(*e.args[0], depth + 1), b = drawn_number(*e.args[1], depth + 1);
-      if (!a || !b) return std::nullopt;
-      switch (e.op) {
-        case '+': return *a + *b;
-        case '-': return *a - *b;
-        case '*': return *a * *b;
-        case '/': return *a / *b;
-        case '^': return std::pow(*a, *b);
-      }
-      return std::nullopt;
-    }
-    case AstExpr::Kind::Call: {
-      static const std::map<std::string, double (*)(double)> kFunctions = {
-          {"sin", [](double x) { return std::sin(x); }},   {"cos", [](double x) { return std::cos(x); }},
-          {"tan", [](double x) { return std::tan(x); }},   {"sqrt", [](double x) { return std::sqrt(x); }},
-          {"atan", [](double x) { return std::atan(x); }}, {"abs", [](double x) { return std::abs(x); }},
-          {"exp", [](double x) { return std::exp(x); }},   {"log", [](double x) { return std::log(x); }}};
-      auto f = kFunctions.find(e.name);
-      if (f == kFunctions.end() || e.args.size() != 1) return std::nullopt;
-      auto a = drawn_number(*e.args[0], depth + 1);
-      return a ? std::optional<double>(f->second(*a)) : std::nullopt;
-    }
-    default: return std::nullopt;
-  }
+  return ir::constant_value(e, constant_rules(true), depth);
 }
 
 /// The surfaces bodies touch, each posed by its surface point and the

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "ir/ast.hpp"
+#include "ir/constant.hpp"
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
 #include "multibody/expand.hpp"
@@ -133,6 +134,11 @@ class Expander {
   // ---- shapes and constants known from the text (shapes.cpp)
   std::optional<Shape> shape_of(const AstExpr& e, int depth = 0) const;
   std::optional<double> constant_of(const AstExpr& e, int depth = 0) const;
+  /// ir::constant_value's rules here: parameters by their definitions, to
+  /// kMaxConstantDepth levels (a definition that refers back to itself has
+  /// no value); with `functions`, also pi and the scalar functions.
+  ir::ConstantRules constant_rules(bool functions) const;
+  static constexpr int kMaxConstantDepth = 50;
   static bool mentions_time(const AstExpr& e);
   void check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant = true);
 

@@ -99,35 +99,22 @@ std::optional<Shape> Expander::shape_of(const AstExpr& e, int depth) const {
   return std::nullopt;
 }
 
-/// The value of `e` if it is a constant: numbers, parameters and + - * / ^.
+/// The value of `e` if it is a constant: numbers, parameters and + - * / ^
+/// (ir::constant_value, with a parameter's definition evaluated in turn).
 std::optional<double> Expander::constant_of(const AstExpr& e, int depth) const {
-  if (depth > 50) return std::nullopt;
-  switch (e.kind) {
-    case AstExpr::Kind::Number: return e.number;
-    case AstExpr::Kind::Name: {
-      auto p = params_.find(e.name);
-      if (p == params_.end() || !p->second) return std::nullopt;
-      return constant_of(*p->second, depth + 1);
-    }
-    case AstExpr::Kind::Unary: {
-      auto a = constant_of(*e.args[0], depth + 1);
-      if (a && e.op == '-') return -*a;
-      return a;
-    }
-    case AstExpr::Kind::Binary: {
-      auto a = constant_of(*e.args[0], depth + 1), b = constant_of(*e.args[1], depth + 1);
-      if (!a || !b) return std::nullopt;
-      switch (e.op) {
-        case '+': return *a + *b;
-        case '-': return *a - *b;
-        case '*': return *a * *b;
-        case '/': return *b == 0 ? std::nullopt : std::optional<double>(*a / *b);
-        case '^': return std::pow(*a, *b);
-      }
-      return std::nullopt;
-    }
-    default: return std::nullopt;
-  }
+  return ir::constant_value(e, constant_rules(false), depth);
+}
+
+ir::ConstantRules Expander::constant_rules(bool functions) const {
+  ir::ConstantRules rules;
+  rules.functions = functions;
+  rules.max_depth = kMaxConstantDepth;
+  rules.name = [this, functions](const AstExpr& name, int depth) -> std::optional<double> {
+    auto p = params_.find(name.name);
+    if (p == params_.end() || !p->second) return std::nullopt;
+    return ir::constant_value(*p->second, constant_rules(functions), depth + 1);
+  };
+  return rules;
 }
 
 bool Expander::mentions_time(const AstExpr& e) {
