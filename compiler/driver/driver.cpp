@@ -121,12 +121,13 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   timed("unroll");
   if (failed()) return 1;
   std::string strategy_report;  // what constraints = auto chose, for the causality report
-  ast = multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, opt.contacts, &strategy_report});
+  ir::ExpandedProgram expanded =
+      multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, opt.contacts, &strategy_report});
   timed("expand");
   if (failed()) return 1;
-  if (opt.dump == Dump::Expanded) return finish(ir::print_ast(ast));
+  if (opt.dump == Dump::Expanded) return finish(ir::print_expanded(expanded));
 
-  ir::ResolvedModel resolved = sema::resolve(ast, opt.input, diags, opt.limits);
+  ir::ResolvedModel resolved = sema::resolve(expanded, opt.input, diags, opt.limits);
   timed("resolve");
   if (failed()) return 1;
   ir::BondGraph graph = graph::build_graph(resolved, sources, diags);
@@ -136,6 +137,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   // What the graph was built from is not read again: freed now, the later
   // passes reuse its memory (a smaller heap, warmer caches: N = 1000 rods).
   resolved = ir::ResolvedModel{};
+  expanded = ir::ExpandedProgram{};
   ast = ir::AstProgram{};
   if (selected) {
     const scene::SceneReport report = scene::prune_graph(graph, *selected, diags);

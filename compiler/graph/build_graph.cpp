@@ -92,7 +92,7 @@ class Builder {
       n.kind = rn.kind;
       n.name = rn.name;
       n.loc = rn.loc;
-      n.tree_node = rn.tree_node, n.tree_parent = rn.tree_parent;
+      n.tree_node = rn.tree.node, n.tree_parent = rn.tree.parent;
       if (is_two_port(rn.kind)) n.bonds = {-1, -1};
       g_.nodes.push_back(std::move(n));
     }
@@ -456,7 +456,7 @@ class Builder {
       GraphNode& n = g_.nodes[i];
       const ResolvedNode& rn = m_.nodes[i];
       if (!rn.element || n.bonds.empty() || (is_two_port(n.kind) && (n.bonds[0] < 0 || n.bonds[1] < 0))) continue;
-      const AstElement& el = *rn.element;
+      const ExpandedElement& el = *rn.element;
       n.state_limits = el.state_limits;
       std::map<std::string, Value> locals;  // the element's own e, f, p/q inside { } laws
       if (!is_two_port(n.kind)) {

@@ -1,5 +1,7 @@
 // ir/ast.hpp — the syntax tree of a .mbg file, as written (no names resolved).
-// Produced by parse, consumed by resolve. Every node keeps its SourceLoc.
+// Produced by parse, consumed by unroll and the multibody expansion, which
+// write ir/expanded.hpp; no later pass sets a field here. Every node keeps its
+// SourceLoc.
 #pragma once
 
 #include <memory>
@@ -50,31 +52,19 @@ struct AstEndpoint {
 
 struct AstModel { std::string name; SourceLoc loc; };
 struct AstImport { std::string path; SourceLoc loc; };
-/// `param name = expr`. The multibody layer also writes the properties it
-/// derives (a body's mass, centre, inertia and points, a joint's frames, the
-/// modal integrals, gravity) as parameters with `fold` set: those are
-/// compile-time constants wherever their value depends on literals only (a
-/// structural zero then folds out of every equation), and run-time
-/// parameters (`--set`) where it reads a `param`.
+/// `param name = expr`.
 struct AstParam {
   std::string name;
   SourceLoc loc;
   AstExprPtr value;
-  bool fold = false;
 };
-/// `signal NAME = value`; `rate`, where the multibody layer knows the
-/// signal's time derivative in closed form (a body's rotation: R skew(omega)),
-/// is used for d/dt instead of the chain rule through `value`.
-struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; AstExprPtr rate = nullptr; };
-/// `output NAME = value`. The multibody layer also writes one per body it
-/// draws (`drawing` set): value is hcat(R, p), the pose of the point the
-/// drawing is measured from, and `modes` a flexible body's modal coordinates.
+/// `signal NAME = value`.
+struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; };
+/// `output NAME = value`.
 struct AstOutput {
   std::string name;
   SourceLoc loc;
   AstExprPtr value;
-  std::shared_ptr<const Drawing> drawing = nullptr;
-  AstExprPtr modes = nullptr;
 };
 
 /// `Se supply = expr`, `R fr { e = c*f^2 }`, `C k = 1/k_s { q0 = 0.1 }`.
@@ -85,20 +75,6 @@ struct AstElement {
   SourceLoc loc;      // of the name
   AstExprPtr value;   // may be null (nonlinear law given in attrs)
   std::vector<AstAttr> attrs;
-  // An I whose matrix depends on the configuration (a flexible body's mass
-  // matrix M(eta)). Only the multibody expansion sets it, and only together
-  // with the efforts dT/deta that keep the field's energy balance; a user's I
-  // must stay constant.
-  bool configuration_dependent = false;
-  // Storage elements: per state component, the magnitude beyond which the
-  // model stops being valid, and why (a beam's modal coordinates: half its
-  // length of deflection). The simulator stops there with the reason.
-  std::vector<std::pair<double, std::string>> state_limits;
-  // A body of a kinematic tree in joint coordinates (set by the multibody
-  // expansion): the body this element belongs to and that body's parent in
-  // the tree ("" for ground). reduce eliminates the tree's algebraic loop
-  // body by body, leaves first (the articulated-body form).
-  std::string tree_node, tree_parent;
 };
 
 /// `1 loop [n] : a, b -> c, d` — a junction and, optionally, the bonds into
@@ -112,7 +88,6 @@ struct AstJunction {
   SourceLoc dim_loc;
   std::vector<AstEndpoint> inputs;
   std::vector<AstEndpoint> outputs;
-  std::string tree_node, tree_parent;  // as AstElement's
 };
 
 /// `bond [name :] from -> to [n]`: power flows from `from` to `to`.

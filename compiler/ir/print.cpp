@@ -56,26 +56,34 @@ static std::vector<std::string> ast_points(const std::vector<AstPoint>& points,
   return parts;
 }
 
-static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int indent) {
+/// The statements as written (AstStmt) or after the expansion
+/// (ExpandedStmt: a derived parameter prints as `const`, a signal its rate).
+template <class Stmt>
+static void ast_stmts(std::string& out, const std::vector<Stmt>& stmts, int indent) {
   std::string pad(static_cast<std::size_t>(indent), ' ');
-  for (const AstStmt& s : stmts) {
+  for (const Stmt& s : stmts) {
     std::visit(
         [&](const auto& st) {
           using T = std::decay_t<decltype(st)>;
           if constexpr (std::is_same_v<T, AstModel>) out += fmt::format("{}model {}\n", pad, st.name);
           else if constexpr (std::is_same_v<T, AstImport>) out += fmt::format("{}import \"{}\"\n", pad, st.path);
-          else if constexpr (std::is_same_v<T, AstParam>) out += fmt::format("{}{} {} = {}\n", pad, st.fold ? "const" : "param", st.name, ast_expr(*st.value));
-          else if constexpr (std::is_same_v<T, AstSignal>) {
+          else if constexpr (std::is_base_of_v<AstParam, T>) {
+            bool fold = false;
+            if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold;
+            out += fmt::format("{}{} {} = {}\n", pad, fold ? "const" : "param", st.name, ast_expr(*st.value));
+          } else if constexpr (std::is_base_of_v<AstSignal, T>) {
             out += fmt::format("{}signal {} = {}", pad, st.name, ast_expr(*st.value));
-            out += st.rate ? fmt::format("  // d/dt = {}\n", ast_expr(*st.rate)) : "\n";
+            AstExprPtr rate;
+            if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate;
+            out += rate ? fmt::format("  // d/dt = {}\n", ast_expr(*rate)) : "\n";
           }
-          else if constexpr (std::is_same_v<T, AstOutput>) out += fmt::format("{}output {} = {}\n", pad, st.name, ast_expr(*st.value));
-          else if constexpr (std::is_same_v<T, AstElement>) {
+          else if constexpr (std::is_base_of_v<AstOutput, T>) out += fmt::format("{}output {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_base_of_v<AstElement, T>) {
             out += fmt::format("{}{} {}", pad, st.kind, st.name);
             if (st.value) out += " = " + ast_expr(*st.value);
             if (!st.attrs.empty()) out += " " + attrs(st.attrs);
             out += "\n";
-          } else if constexpr (std::is_same_v<T, AstJunction>) {
+          } else if constexpr (std::is_base_of_v<AstJunction, T>) {
             std::vector<std::string> in, o;
             for (const auto& e : st.inputs) in.push_back(e.path);
             for (const auto& e : st.outputs) o.push_back(e.path);
@@ -127,6 +135,12 @@ static void ast_stmts(std::string& out, const std::vector<AstStmt>& stmts, int i
 }
 
 std::string print_ast(const AstProgram& program) {
+  std::string out;
+  ast_stmts(out, program.stmts, 0);
+  return out;
+}
+
+std::string print_expanded(const ExpandedProgram& program) {
   std::string out;
   ast_stmts(out, program.stmts, 0);
   return out;

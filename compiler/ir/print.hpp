@@ -5,6 +5,7 @@
 #include <string>
 
 #include "ir/ast.hpp"
+#include "ir/expanded.hpp"
 #include "ir/causal.hpp"
 #include "ir/equations.hpp"
 #include "ir/reduced.hpp"
@@ -12,6 +13,8 @@
 namespace mbgc::ir {
 
 std::string print_ast(const AstProgram& program);
+/// The program after the multibody expansion (mbgc --dump=expanded).
+std::string print_expanded(const ExpandedProgram& program);
 std::string print_graph(const BondGraph& graph);
 /// Graphviz: nodes, bonds as half-arrows (power direction), bond numbers,
 /// dimensions, and — once causality is assigned — the causal stroke end.

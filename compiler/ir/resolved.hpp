@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ir/ast.hpp"
+#include "ir/expanded.hpp"
 #include "ir/graph.hpp"
 #include "ir/value.hpp"
 
@@ -30,10 +31,10 @@ struct ResolvedNode {
   SourceLoc loc;
   SourceLoc kind_loc;
   int scope = 0;
-  std::optional<AstElement> element;     // elements: the declaration
+  std::optional<ExpandedElement> element;  // elements: the declaration
   std::optional<int> dim;                // junctions: declared [n]
   SourceLoc dim_loc;
-  std::string tree_node, tree_parent;    // the kinematic tree's body it belongs to (AstElement::tree_node)
+  TreeTag tree;                          // the kinematic tree's body it belongs to (ExpandedElement::tree)
 };
 
 struct ResolvedEnd {
@@ -58,7 +59,7 @@ struct ResolvedExpr {
   AstExprPtr rate;       // a signal's closed-form time derivative, if the multibody layer gave one
 };
 
-/// A body the multibody layer draws (AstOutput::drawing).
+/// A body the multibody layer draws (ExpandedOutput::drawing).
 struct ResolvedDrawing {
   std::shared_ptr<const Drawing> drawing;
   SourceLoc loc;

@@ -1,6 +1,6 @@
 // multibody/drawing.cpp — how bodies are drawn (--animate): the `shape`
 // setting, the default shape of a body without one, and the pose each
-// drawing follows, written as an AstOutput with its Drawing (ir/drawing.hpp);
+// drawing follows, written as an ExpandedOutput with its Drawing (ir/drawing.hpp);
 // and the surfaces bodies touch (contacts' surfaces, tyres' roads), drawn
 // after the bodies the same way.
 #include "multibody/drawing.hpp"
@@ -256,7 +256,7 @@ void Expander::draw_bodies() {
     d->body = n;
     d->colour = palette(index++);
     E R = body.particle ? B.call("eye", {B.num(3)}) : rotation(B, n);
-    AstOutput out{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)}), d, body.flex ? B.name(n + ".eta.q") : nullptr};
+    ir::ExpandedOutput out{{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)})}, d, body.flex ? B.name(n + ".eta.q") : nullptr};
     generated_.push_back(std::move(out));
   }
   draw_surfaces();
@@ -286,7 +286,7 @@ void Expander::draw_surfaces() {
       R = body.ground || body.particle ? B.list(rows) : B.op('*', R, B.list(rows));
     }
     d->surface = true;
-    generated_.push_back(AstOutput{d->body + ".drawing", B.loc(), B.call("hcat", {R, world_point(B, on).first}), d, nullptr});
+    generated_.push_back(ir::ExpandedOutput{{d->body + ".drawing", B.loc(), B.call("hcat", {R, world_point(B, on).first})}, d, nullptr});
   };
   for (const Contact& c : contacts_) {
     if (bodies_.at(c.b.body).points_unknown) continue;

@@ -9,10 +9,11 @@
 namespace mbgc::multibody {
 namespace detail {
 
-AstProgram Expander::run(const AstProgram& in) {
+ir::ExpandedProgram Expander::run(const AstProgram& in) {
   collect(in);
   if (diags_.has_errors()) return {};
-  if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && contacts_.empty() && tyres_.empty() && !gravity_) return in;  // nothing multibody here
+  if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && contacts_.empty() && tyres_.empty() && !gravity_)
+    return ir::as_expanded(in);  // nothing multibody here
   if (gravity_) property(Build(gravity_loc_), "gravity", gravity_);
   for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), "ground." + p, v);
   find_tree();
@@ -25,48 +26,46 @@ AstProgram Expander::run(const AstProgram& in) {
   define_quantities();
   draw_bodies();
   for (std::size_t k : applied_) {
-    auto& el = std::get<AstElement>(generated_[k]);
+    auto& el = std::get<ir::ExpandedElement>(generated_[k]);
     el.value = rewrite_expr(el.value);
   }
   for (const ForceElement& f : forces_) emit_force(f);
   for (const Contact& c : contacts_) emit_contact(c);
   for (const Tyre& t : tyres_) emit_tyre(t);
-  AstProgram out;
-  for (const AstStmt& s : in.stmts) {
-    if (std::holds_alternative<AstBody>(s) || std::holds_alternative<AstJoint>(s) || std::holds_alternative<AstSetting>(s)) continue;
-    out.stmts.push_back(rewrite_user(s));
-  }
-  for (AstStmt& s : generated_) out.stmts.push_back(std::move(s));
+  ir::ExpandedProgram out;
+  for (const AstStmt& s : in.stmts)
+    if (ir::ExpandedStmt e; ir::as_expanded(s, e)) out.stmts.push_back(rewrite_user(e));
+  for (ir::ExpandedStmt& s : generated_) out.stmts.push_back(std::move(s));
   return out;
 }
 
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
-  generated_.push_back(AstParam{name, B.loc(), std::move(value)});
+  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value)}, /*fold=*/false});
 }
 
 void Expander::property(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
-  generated_.push_back(AstParam{name, B.loc(), std::move(value), /*fold=*/true});
+  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value)}, /*fold=*/true});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs) {
   generated_names_.insert(name);
-  AstElement el;
+  ir::ExpandedElement el;
   el.kind = kind;
   el.kind_loc = B.loc();
   el.name = name;
   el.loc = B.loc();
   el.value = std::move(value);
   el.attrs = std::move(attrs);
-  std::tie(el.tree_node, el.tree_parent) = tree_tag_;
+  el.tree = tree_tag_;
   generated_.push_back(std::move(el));
 }
 
 void Expander::junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out) {
   generated_names_.insert(name);
-  AstJunction j;
+  ir::ExpandedJunction j;
   j.type = type;
   j.kind_loc = B.loc();
   j.name = name;
@@ -75,7 +74,7 @@ void Expander::junction(const Build& B, char type, const std::string& name, int 
   j.dim_loc = B.loc();
   for (auto& s : in) j.inputs.push_back({s, B.loc()});
   for (auto& s : out) j.outputs.push_back({s, B.loc()});
-  std::tie(j.tree_node, j.tree_parent) = tree_tag_;
+  j.tree = tree_tag_;
   generated_.push_back(std::move(j));
 }
 
@@ -91,7 +90,7 @@ void Expander::bond(const Build& B, const std::string& from, const std::string& 
 
 void Expander::signal(const Build& B, const std::string& name, E value, E rate) {
   generated_names_.insert(name);
-  generated_.push_back(AstSignal{name, B.loc(), std::move(value), std::move(rate)});
+  generated_.push_back(ir::ExpandedSignal{{name, B.loc(), std::move(value)}, std::move(rate)});
 }
 
 /// A 1-junction with the given elements bonded into / out of it.
@@ -107,7 +106,8 @@ void Expander::named_bond(const Build& B, const std::string& name, const std::st
 
 }  // namespace detail
 
-ir::AstProgram expand(const ir::AstProgram& program, ir::SourceManager& sources, ir::Diagnostics& diags, const ExpandOptions& options) {
+ir::ExpandedProgram expand(const ir::AstProgram& program, ir::SourceManager& sources, ir::Diagnostics& diags,
+                           const ExpandOptions& options) {
   detail::Expander x(sources, diags, options);
   return x.run(program);
 }

@@ -30,6 +30,7 @@
 
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
+#include "ir/expanded.hpp"
 
 namespace mbgc::multibody {
 
@@ -68,7 +69,7 @@ struct ExpandOptions {
 
 /// Modal-data files a model names (`flexible = modal("arm.mbm")`) are read
 /// here and join `sources`.
-ir::AstProgram expand(const ir::AstProgram& program, ir::SourceManager& sources, ir::Diagnostics& diags,
-                      const ExpandOptions& options = {});
+ir::ExpandedProgram expand(const ir::AstProgram& program, ir::SourceManager& sources, ir::Diagnostics& diags,
+                           const ExpandOptions& options = {});
 
 }  // namespace mbgc::multibody

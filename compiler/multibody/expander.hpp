@@ -19,6 +19,7 @@
 
 #include "ir/ast.hpp"
 #include "ir/constant.hpp"
+#include "ir/expanded.hpp"
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
 #include "multibody/expand.hpp"
@@ -98,13 +99,13 @@ class Expander {
         strategy_(options.constraints.value_or(Strategy::Auto)), strategy_report_(options.strategy_report),
         contact_strategy_(options.contacts.value_or(ContactStrategy::Unilateral)) {}
 
-  AstProgram run(const AstProgram& in);
+  ir::ExpandedProgram run(const AstProgram& in);
 
  private:
   // ---- the pass: run(), and the statements it writes (expand.cpp)
   // A run-time parameter (a setting: a penalty's stiffness, a force's law,
   // an initial value), and a property (geometry, mass, frames, modal
-  // integrals, gravity), folded where it depends on literals (AstParam::fold).
+  // integrals, gravity), folded where it depends on literals (ExpandedParam::fold).
   void param(const Build& B, const std::string& name, E value);
   void property(const Build& B, const std::string& name, E value);
   void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
@@ -230,7 +231,7 @@ class Expander {
   void define_quantities();
   void check_known(const AstExpr& e);
   E rewrite_expr(const E& e);
-  AstStmt rewrite_user(const AstStmt& s);
+  ir::ExpandedStmt rewrite_user(const ir::ExpandedStmt& s);
 
   ir::SourceManager& sources_;                // modal-data files join it (diagnostics, depfile)
   Diagnostics& diags_;
@@ -260,10 +261,10 @@ class Expander {
   Strategy strategy_;                  // the model-level strategy
   std::string* strategy_report_;       // ExpandOptions::strategy_report
   ContactStrategy contact_strategy_;   // of contacts without their own (mbgc --contacts)
-  std::vector<AstStmt> generated_;
+  std::vector<ir::ExpandedStmt> generated_;
   // While a body moved by joint coordinates (and its tree joint) is written:
   // the tree body and its parent every element and junction is tagged with.
-  std::pair<std::string, std::string> tree_tag_;
+  ir::TreeTag tree_tag_;
   /// Tags what is written while it lives with body `n`'s tree node (if `n` moves by coordinates).
   class TreeScope {
    public:
@@ -277,7 +278,7 @@ class Expander {
 
    private:
     Expander& x_;
-    std::pair<std::string, std::string> saved_;
+    ir::TreeTag saved_;
   };
 };
 

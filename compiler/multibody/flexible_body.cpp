@@ -49,7 +49,7 @@ void Expander::emit_flexible(const Body& body) {
     M_init.push_back(kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc));
   }
   element(B, "I", n + ".M", rows_to_matrix(B, beam.mass_matrix(B, n, eta)), M_init);
-  std::get<AstElement>(generated_.back()).configuration_dependent = true;
+  std::get<ir::ExpandedElement>(generated_.back()).configuration_dependent = true;
   E f = B.name("f"), p = B.name(n + ".M.p");
   auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
   E V = part(f, 1), w = part(f, 4), P = part(p, 1), H = part(p, 4);
@@ -108,7 +108,7 @@ void Expander::emit_flexible(const Body& body) {
   beam.stiffness_and_damping(B, n, K, D);
   element(B, "C", n + ".eta", nullptr,
           {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
-  std::get<AstElement>(generated_.back()).state_limits = beam.limits(n);
+  std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(n);
   if (attr(d, "damping")) element(B, "R", n + ".damp", rows_to_matrix(B, D));
 }
 

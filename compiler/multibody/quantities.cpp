@@ -141,14 +141,14 @@ E Expander::rewrite_expr(const E& e) {
   return copy;
 }
 
-AstStmt Expander::rewrite_user(const AstStmt& s) {
-  AstStmt out = s;
+ir::ExpandedStmt Expander::rewrite_user(const ir::ExpandedStmt& s) {
+  ir::ExpandedStmt out = s;
   std::visit(
       [&](auto& st) {
         using T = std::decay_t<decltype(st)>;
-        if constexpr (std::is_same_v<T, AstSignal> || std::is_same_v<T, AstOutput>) {
+        if constexpr (std::is_same_v<T, ir::ExpandedSignal> || std::is_same_v<T, ir::ExpandedOutput>) {
           st.value = rewrite_expr(st.value);
-        } else if constexpr (std::is_same_v<T, AstElement>) {
+        } else if constexpr (std::is_same_v<T, ir::ExpandedElement>) {
           st.value = rewrite_expr(st.value);
           for (AstAttr& a : st.attrs) a.value = rewrite_expr(a.value);
         }

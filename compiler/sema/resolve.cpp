@@ -32,7 +32,7 @@ struct PendingParam {
   SourceLoc loc;
   AstExprPtr expr;
   int scope;  // scope its expression is evaluated in
-  bool fold = false;  // AstParam::fold: a constant where its value is one
+  bool fold = false;  // ExpandedParam::fold: a constant where its value is one
 };
 
 /// A bond end as written, with the scope and port bindings it is read in.
@@ -53,10 +53,10 @@ class Resolver {
  public:
   Resolver(Diagnostics& diags, ResolvedModel& out, const Limits& limits) : diags_(diags), m_(out), limits_(limits) {}
 
-  void run(const AstProgram& prog) {
+  void run(const ExpandedProgram& prog) {
     m_.scopes.push_back({"", ""});
     port_bindings_.emplace_back();
-    for (const AstStmt& s : prog.stmts) {
+    for (const ExpandedStmt& s : prog.stmts) {
       if (auto* c = std::get_if<std::shared_ptr<AstComponent>>(&s)) {
         const AstComponent& comp = **c;
         if (components_.count(comp.name)) {
@@ -88,9 +88,12 @@ class Resolver {
     return true;
   }
 
-  void flatten(const std::vector<AstStmt>& stmts, int scope, int depth) {
+  /// The statements of the top level (ExpandedStmt) or of a component's
+  /// body (AstStmt, as written: none of the expansion's extensions).
+  template <class Stmt>
+  void flatten(const std::vector<Stmt>& stmts, int scope, int depth) {
     const std::string prefix = m_.scopes[static_cast<std::size_t>(scope)].prefix;
-    for (const AstStmt& s : stmts) {
+    for (const Stmt& s : stmts) {
       if (too_big_) return;
       std::visit(
           [&](const auto& st) {
@@ -101,18 +104,25 @@ class Resolver {
               if (m_.model_name.empty()) m_.model_name = st.name;
             } else if constexpr (std::is_same_v<T, AstImport>) {
               // spliced by parse
-            } else if constexpr (std::is_same_v<T, AstParam>) {
+            } else if constexpr (std::is_base_of_v<AstParam, T>) {
+              bool fold = false;
+              if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold;
               if (claim_name(prefix + st.name, st.loc, "parameter"))
-                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, st.fold});
-            } else if constexpr (std::is_same_v<T, AstSignal>) {
+                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, fold});
+            } else if constexpr (std::is_base_of_v<AstSignal, T>) {
+              AstExprPtr rate;
+              if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate;
               if (claim_name(prefix + st.name, st.loc, "signal"))
-                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, st.rate});
-            } else if constexpr (std::is_same_v<T, AstOutput>) {
-              if (st.drawing)
-                m_.drawings.push_back({st.drawing, st.loc, st.value, st.modes, scope});
-              else if (claim_name("output " + prefix + st.name, st.loc, "output"))
+                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, rate});
+            } else if constexpr (std::is_base_of_v<AstOutput, T>) {
+              if constexpr (std::is_same_v<T, ExpandedOutput>)
+                if (st.drawing) {
+                  m_.drawings.push_back({st.drawing, st.loc, st.value, st.modes, scope});
+                  return;
+                }
+              if (claim_name("output " + prefix + st.name, st.loc, "output"))
                 m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope, nullptr});
-            } else if constexpr (std::is_same_v<T, AstElement>) {
+            } else if constexpr (std::is_base_of_v<AstElement, T>) {
               if (!claim_name(prefix + st.name, st.loc, "element")) return;
               ResolvedNode n;
               n.kind = kind_of(st.kind);
@@ -120,10 +130,11 @@ class Resolver {
               n.loc = st.loc;
               n.kind_loc = st.kind_loc;
               n.scope = scope;
-              n.element = st;
-              n.tree_node = st.tree_node, n.tree_parent = st.tree_parent;
+              if constexpr (std::is_same_v<T, ExpandedElement>) n.element = st;
+              else n.element = ExpandedElement{st, false, {}, {}};
+              n.tree = n.element->tree;
               add_node(std::move(n));
-            } else if constexpr (std::is_same_v<T, AstJunction>) {
+            } else if constexpr (std::is_base_of_v<AstJunction, T>) {
               if (!claim_name(prefix + st.name, st.loc, "junction")) return;
               ResolvedNode n;
               n.kind = st.type == '0' ? NodeKind::Zero : NodeKind::One;
@@ -133,7 +144,7 @@ class Resolver {
               n.scope = scope;
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
-              n.tree_node = st.tree_node, n.tree_parent = st.tree_parent;
+              if constexpr (std::is_same_v<T, ExpandedJunction>) n.tree = st.tree;
               add_node(std::move(n));
               AstEndpoint self{st.name, st.loc};
               for (const AstEndpoint& in : st.inputs)
@@ -488,7 +499,7 @@ class Resolver {
 
 }  // namespace
 
-ResolvedModel resolve(const AstProgram& program, const std::string& source_file, Diagnostics& diags,
+ResolvedModel resolve(const ExpandedProgram& program, const std::string& source_file, Diagnostics& diags,
                       const Limits& limits) {
   ResolvedModel m;
   m.source_file = source_file;

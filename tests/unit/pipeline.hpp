@@ -59,7 +59,7 @@ struct Compiled {
 /// Runs the passes from `ast` (already parsed into c) up to `upto`.
 inline void continue_pipeline(Compiled& c, Stage upto, const std::string& path) {
   if (upto == Stage::Parse || c.diags.has_errors()) return;
-  c.resolved = mbgc::sema::resolve(c.ast, path, c.diags);
+  c.resolved = mbgc::sema::resolve(mbgc::ir::as_expanded(c.ast), path, c.diags);
   if (upto == Stage::Resolve || c.diags.has_errors()) return;
   c.graph = mbgc::graph::build_graph(c.resolved, c.sources, c.diags);
   if (upto == Stage::Graph || c.diags.has_errors()) return;

@@ -1,0 +1,87 @@
+// ir/expanded.hpp — the program after the multibody expansion, the input of
+// resolve: plain bond-graph statements (parameters, signals, outputs,
+// elements, junctions, bonds), those the user wrote and those the expansion
+// derived from bodies, joints, forces, contacts and tyres, with what only the
+// expansion knows of them. The AST (ir/ast.hpp) keeps what the parser read;
+// each statement here extends its AST form, and a user's statement passes
+// through with none of the extensions set.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "ir/ast.hpp"
+#include "ir/drawing.hpp"
+
+namespace mbgc::ir {
+
+/// A parameter. The expansion also writes the properties it derives (a
+/// body's mass, centre, inertia and points, a joint's frames, the modal
+/// integrals, gravity) with `fold` set: those are compile-time constants
+/// wherever their value depends on literals only (a structural zero then
+/// folds out of every equation), and run-time parameters (`--set`) where it
+/// reads a `param`.
+struct ExpandedParam : AstParam {
+  bool fold = false;
+};
+
+/// A signal; `rate`, where the expansion knows its time derivative in closed
+/// form (a body's rotation: R skew(omega)), is used for d/dt instead of the
+/// chain rule through `value`.
+struct ExpandedSignal : AstSignal {
+  AstExprPtr rate = nullptr;
+};
+
+/// An output. The expansion writes one per body it draws (`drawing` set):
+/// value is hcat(R, p), the pose of the point the drawing is measured from,
+/// and `modes` a flexible body's modal coordinates.
+struct ExpandedOutput : AstOutput {
+  std::shared_ptr<const Drawing> drawing = nullptr;
+  AstExprPtr modes = nullptr;
+};
+
+/// A body of a kinematic tree in joint coordinates that an element or a
+/// junction belongs to, and that body's parent in the tree ("" for ground):
+/// reduce eliminates the tree's algebraic loop body by body, leaves first
+/// (the articulated-body form). Empty outside such a tree.
+struct TreeTag {
+  std::string node, parent;
+};
+
+struct ExpandedElement : AstElement {
+  /// An I whose matrix depends on the configuration (a flexible body's mass
+  /// matrix M(eta)), written only together with the efforts dT/deta that keep
+  /// the field's energy balance; a user's I stays constant.
+  bool configuration_dependent = false;
+  /// Storage elements: per state component, the magnitude beyond which the
+  /// model stops being valid, and why (a beam's modal coordinates: half its
+  /// length of deflection). The simulator stops there with the reason.
+  std::vector<std::pair<double, std::string>> state_limits;
+  TreeTag tree;
+};
+
+struct ExpandedJunction : AstJunction {
+  TreeTag tree;
+};
+
+using ExpandedStmt = std::variant<AstModel, ExpandedParam, ExpandedSignal, ExpandedOutput, ExpandedElement,
+                                  ExpandedJunction, AstBond, AstSimulate, AstInstance, std::shared_ptr<AstComponent>>;
+
+struct ExpandedProgram {
+  std::vector<ExpandedStmt> stmts;
+};
+
+/// A user's statement as resolve reads it, none of the extensions set;
+/// false for the statements the expansion consumes (bodies, joints,
+/// settings), which have no such form, and for those resolve ignores
+/// (imports, already spliced; scenes, already taken; loops, already unrolled).
+bool as_expanded(const AstStmt& s, ExpandedStmt& out);
+
+/// A program with nothing for the expansion to do, statement by statement
+/// (as_expanded).
+ExpandedProgram as_expanded(const AstProgram& program);
+
+}  // namespace mbgc::ir
