@@ -281,6 +281,23 @@ TEST_P(NFourBarMultipliers, StepsAcrossItsAlignedConfigurationsAsTheExactModel) 
   EXPECT_LT(energy_residual(r), 1e-5) << r.log;
 }
 
+/// A run that ends inside a passage ends with the steps across it: at
+/// t_end = 1.02 s the second passage's steps reach past the run's end, and
+/// were refused for that (IDA then stopped at t = 1.016 s, IDA_CONV_FAIL,
+/// while t_end = 1.04 s ran through); a run ending exactly where the steps
+/// across end must not ask IDA for the point it restarted at (t_end =
+/// 0.52 s: IDA_ILL_INPUT). Measured: 4.2e-9 and 2.9e-9 m.
+TEST(NFourBarMultipliersEnd, ARunEndingInsideAPassageEndsWithTheStepsAcrossIt) {
+  for (const char* t_end : {"1.02", "0.52"}) {
+    SimRun r = run(N_FOUR_BAR_4_LAGRANGE_SIM, std::string("--t-end ") + t_end + " --rtol 1e-10 --atol 1e-12",
+                   std::string("n_four_bar_lagrange_end_") + t_end);
+    ASSERT_EQ(r.status, 0) << r.log;
+    EXPECT_EQ(r.csv.rows.size(), static_cast<std::size_t>(std::lround(std::stod(t_end) / 0.01)) + 1) << r.log;
+    EXPECT_TRUE(contains(r.log, std::string(" to ") + t_end + " s ('")) << r.log;  // the last step across, to the end
+    EXPECT_LT(worst_tip_error(r, 4), 1e-6) << r.log;
+  }
+}
+
 /// Tightening the tolerances must never turn a run that passes into one that
 /// fails. At rtol 1e-12 the rows' rounding noise, amplified as they approach
 /// alignment, defeats IDA's Newton iteration at every step size before the

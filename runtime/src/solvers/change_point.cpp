@@ -124,6 +124,7 @@ std::optional<ChangePointStep> ChangePointStep::plan(Model& model, const Constra
       return std::nullopt;
     }
     if (!step.march(t1, step.path_, why)) return std::nullopt;
+    if (t1 >= t_limit) break;  // the run ends inside the passage: its last steps are these
     const double now = row_independence(model, shape, t1, step.path_.back().y.data());
     if (now > last && now >= target) break;
     last = now;

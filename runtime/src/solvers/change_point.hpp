@@ -38,7 +38,8 @@ double row_independence(Model& model, const ConstraintShape& shape, double t, co
                         std::size_t* row = nullptr);
 
 /// The Runge-Kutta steps across a change point, from (t0, y0, yp0) where IDA
-/// stopped, to about five times as far as the crossing is from there; each
+/// stopped, to about five times as far as the crossing is from there, or to
+/// t_limit if the run ends before (its last steps are then these); each
 /// step's end assembled to rounding (IDA restarts there, with tolerances
 /// that may ask for less than assembly's own test: measured, atol 1e-12 on a
 /// row of 10 four-bars failed its first step after a restart otherwise).

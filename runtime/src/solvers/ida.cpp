@@ -142,7 +142,8 @@ class Ida final : public Integrator {
   }
 
   bool advance_to(double t_out) override {
-    if (crossing_ && t_out < crossing_->to()) return state_in_crossing(t_out);  // a point inside the last step across
+    // a point inside the last step across, or at its end (where IDA restarted)
+    if (crossing_ && (t_out < crossing_->to() || reached(crossing_->to(), t_out))) return state_in_crossing(t_out);
     if (carry_ && carry_->carrying()) {  // dopri5 carrying the run across a change point
       if (!carry_on(t_out)) return false;
       if (carry_->carrying() || reached(t_, t_out)) return true;
@@ -175,6 +176,7 @@ class Ida final : public Integrator {
       if (!stuck && flag != IDA_ERR_FAIL) break;
       if (step_across()) {
         if (t_out < crossing_->to()) return state_in_crossing(t_out);
+        if (reached(t_, t_out)) return true;  // the steps across ended the run
       } else if (!(stuck && (relax_index_two() || floor_tolerances())) && !loosen_tolerances()) {
         break;
       }
