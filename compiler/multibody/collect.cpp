@@ -325,7 +325,7 @@ void Expander::add_force(const AstJoint& f) {
 
 /// Settings whose constant value would make the joint degenerate.
 void Expander::check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at) {
-  if (at.key == "axis" || at.key == "axis_a" || at.key == "axis_b") {
+  if (at.key == joint_setting::axis.name || at.key == joint_setting::axis_a.name || at.key == joint_setting::axis_b.name) {
     if (at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
     for (const E& x : at.value->args) {
       auto v = constant_of(*x);
@@ -373,8 +373,9 @@ void Expander::add_joint(const AstJoint& j) {
   joint.a = *a;
   joint.b = *b;
   joint.strategy = strategy_;
-  std::vector<std::string> keys = {"axis", "axis_a", "axis_b", "constraint", "stiffness", "damping", "stabilisation"};
-  for (std::string& key : kind->settings()) keys.push_back(std::move(key));
+  std::vector<const Setting*> settings = joint_setting::kCommon;
+  for (const Setting* s : kind->settings()) settings.push_back(s);
+  const std::vector<std::string> keys = setting_names(settings);
   std::set<std::string> meant;  // settings a misspelt one was taken for: not reported missing too
   for (const AstAttr& at : j.attrs) {
     if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
@@ -389,27 +390,28 @@ void Expander::add_joint(const AstJoint& j) {
       d.notes.push_back({first->second->loc, "first given here"});
       continue;
     }
-    if (auto want = kJointSettingShapes.find(at.key); want != kJointSettingShapes.end())
-      check_shape(*at.value, fmt::format("`{}` of joint `{}`", at.key, j.name), want->second,
-                  at.key != "torque" && at.key != "force" && at.key != "motion");
+    const Setting& setting = **std::find_if(settings.begin(), settings.end(),
+                                            [&](const Setting* s) { return at.key == s->name; });
+    if (setting.expected)
+      check_shape(*at.value, fmt::format("`{}` of joint `{}`", at.key, j.name), *setting.expected, setting.constant);
     check_joint_constant(*kind, j, at);
     joint.attrs[at.key] = &at;
-    if (at.key == "constraint") {
-      if (auto s = strategy_of(*at.value, "constraint")) joint.strategy = *s;
+    if (&setting == &joint_setting::constraint) {
+      if (auto s = strategy_of(*at.value, setting.name)) joint.strategy = *s;
     }
   }
-  if (joint.attrs.count("motion"))
-    for (const char* drive : {"torque", "force"})
-      if (auto it = joint.attrs.find(drive); it != joint.attrs.end())
-        diags_.error(it->second->loc, fmt::format("joint `{}` has both a prescribed motion and a {}", j.name, drive),
+  if (given(joint, joint_setting::motion))
+    for (const Setting* drive : {&joint_setting::torque, &joint_setting::force})
+      if (const AstAttr* load = given_attr(joint, *drive))
+        diags_.error(load->loc, fmt::format("joint `{}` has both a prescribed motion and a {}", j.name, drive->name),
                      fmt::format("with motion = f(t) a constraint row fixes the joint coordinate, so the {} only "
                                  "changes that row's multiplier and never the motion: remove it, or remove "
                                  "motion to let the {} drive the joint",
-                                 drive, drive));
-  for (const std::string& required : kind->required())
-    if (!joint.attrs.count(required) && !meant.count(required))
-      diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required),
-                   fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required));
+                                 drive->name, drive->name));
+  for (const Setting* required : kind->required())
+    if (!given(joint, *required) && !meant.count(required->name))
+      diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required->name),
+                   fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required->name));
   for (const Side* s : {&joint.a, &joint.b}) {
     const Body& body = bodies_.at(s->body);
     if (body.particle && kind->needs_orientation())

@@ -25,28 +25,11 @@
 #include "multibody/expand.hpp"
 #include "multibody/joint_kind.hpp"
 #include "multibody/model.hpp"
+#include "multibody/settings.hpp"
 
 namespace mbgc::multibody::detail {
 
 using namespace mbgc::ir;  // the multibody layer builds the AST's statements throughout
-
-/// Rows and columns of a value, when they can be told from the text alone.
-struct Shape {
-  int rows = 1, cols = 1;
-  bool operator==(const Shape& o) const { return rows == o.rows && cols == o.cols; }
-  bool scalar() const { return rows == 1 && cols == 1; }
-  std::string text() const {
-    if (scalar()) return "a scalar";
-    if (cols == 1) return fmt::format("a {}-vector", rows);
-    return fmt::format("a {}x{} matrix", rows, cols);
-  }
-};
-
-/// What a body or joint setting must be, and how to write it.
-struct Expected {
-  Shape shape;
-  const char* how;
-};
 
 inline const std::map<std::string, Expected> kBodySettingShapes = {
     {"mass", {{1, 1}, "the mass is a scalar (kg), e.g. mass = 2"}},
@@ -57,27 +40,6 @@ inline const std::map<std::string, Expected> kBodySettingShapes = {
     {"w0", {{3, 1}, "the initial angular velocity is [wx, wy, wz] (body frame)"}},
     {"quat0", {{4, 1}, "the initial orientation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.3)"}},
 };
-inline const std::map<std::string, Expected> kJointSettingShapes = {
-    {"axis", {{3, 1}, "an axis is a direction [x, y, z] in the frames of both bodies"}},
-    {"axis_a", {{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}},
-    {"axis_b", {{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}},
-    {"rot0", {{4, 1}, "the initial relative rotation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.5)"}},
-    {"r0", {{3, 1}, "the initial position of the second point from the first is a 3-vector in the first body's joint axes"}},
-    {"v0", {{3, 1}, "the initial velocity of the second point relative to the first is a 3-vector in the first body's joint axes"}},
-    {"w0", {{3, 1}, "the initial relative angular velocity is a 3-vector in the second body's axes (rad/s)"}},
-    {"q0", {{1, 1}, "the initial joint coordinate is a scalar, e.g. q0 = 0.3"}},
-    {"rate0", {{1, 1}, "the initial joint rate is a scalar, e.g. rate0 = 0"}},
-    {"d0", {{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}},
-    {"ddot0", {{1, 1}, "the initial axial rate is a scalar"}},
-    {"pitch", {{1, 1}, "the pitch is a scalar (m per rad)"}},
-    {"length", {{1, 1}, "the length is a scalar (m)"}},
-    {"stiffness", {{1, 1}, "the penalty stiffness is a scalar"}},
-    {"damping", {{1, 1}, "the penalty damping is a scalar"}},
-    {"torque", {{1, 1}, "the drive torque about the joint axis is a scalar (N m)"}},
-    {"force", {{1, 1}, "the drive force along the joint axis is a scalar (N)"}},
-    {"motion", {{1, 1}, "a prescribed motion is a scalar function of t, e.g. motion = 0.5 * sin(t)"}},
-};
-
 /// Quantities `body.NAME` and `joint.NAME` users may read (defined in define_quantities).
 inline const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
                                                   "omega", "omega_world", "angular_momentum", "kinetic_energy",

@@ -42,7 +42,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       const SourceLoc& at = joint.decl->loc;
       Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr, nullptr};
       if (prescribed) {
-        E motion = joint.attrs.at("motion")->value;
+        E motion = given_attr(joint, joint_setting::motion)->value;
         x_.element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion}));
         x_.junction_(B, junction, {jn + "." + c + "_rate"});
         k.value = motion;
@@ -61,10 +61,10 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       const std::string jn = joint.decl->name;
       const SourceLoc& at = joint.decl->loc;
       const std::string spin = jn + ".spin";
-      x_.element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", setting_or("w0", B.vec(0, 0, 0)), at)});
+      x_.element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", setting_or(joint_setting::w0, B.vec(0, 0, 0)), at)});
       x_.element(B, "C", jn + ".rot", nullptr,
                  {kv("e", B.list({zero, zero, zero, zero}), at),
-                  kv("q0", setting_or("rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), at)});
+                  kv("q0", setting_or(joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), at)});
       x_.element(B, "MTF", jn + ".rotrate", B.call("quat_rate", {B.name(jn + ".rot.q")}));
       x_.junction(B, '1', spin, 3, {jn + ".spin_rate"}, {jn + ".rotrate.p1"});
       x_.bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
@@ -86,9 +86,10 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const E rot = m.rot ? m.rot : B.call("rotq", {qrel});  // B's joint frame in A's
   auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
-  for (const char* key : {"torque", "force"}) {
-    if (!j.attrs.count(key)) continue;
-    element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
+  for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
+    const AstAttr* load = given_attr(j, *drive);
+    if (!load) continue;
+    element(B, "Se", jn + ".applied", load->value);
     applied_.push_back(generated_.size() - 1);
     bond(B, jn + ".applied", jn + ".drive");
   }

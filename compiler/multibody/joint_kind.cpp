@@ -70,14 +70,14 @@ Mobilizer::Mobilizer(const Build& b, const Joint& j, bool child_particle)
       ez(b.vec(0, 0, 1)), disp(b.vec(0, 0, 0)), qrel(b.list({b.num(1), b.num(0), b.num(0), b.num(0)})), angle(zero),
       angle_rate(zero), axial(zero), axial_rate(zero) {}
 
-E Mobilizer::setting_or(const std::string& key, E fallback) const { return detail::setting_or(joint, key, std::move(fallback)); }
+E Mobilizer::setting_or(const Setting& s, E fallback) const { return detail::setting_or(joint, s, std::move(fallback)); }
 
-bool Mobilizer::prescribed() const { return joint.attrs.count("motion") > 0; }
+bool Mobilizer::prescribed() const { return given(joint, joint_setting::motion); }
 
 Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   const Build& B = m.B;
-  Mobilizer::Rate& r = m.rate(m.joint.decl->name + ".drive", "theta", m.setting_or("q0", m.zero),
-                              m.setting_or("rate0", m.zero), m.prescribed());
+  Mobilizer::Rate& r = m.rate(m.joint.decl->name + ".drive", "theta", m.setting_or(joint_setting::q0, m.zero),
+                              m.setting_or(joint_setting::rate0, m.zero), m.prescribed());
   r.W = m.ez;
   r.Wb = m.ez;  // a turn about z leaves z where it is
   m.angle = r.value, m.angle_rate = r.rate;
@@ -86,7 +86,7 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   return r;
 }
 
-Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const char* q0, const char* rate0,
+Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const Setting& q0, const Setting& rate0,
                                   bool prescribed) {
   Mobilizer::Rate& s = m.rate(m.joint.decl->name + "." + junction, "s", m.setting_or(q0, m.zero),
                               m.setting_or(rate0, m.zero), prescribed);
@@ -100,8 +100,8 @@ Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, con
 InitialMotion JointKind::initial(const Build& B, const Joint& j) const {
   E zero = B.num(0);
   InitialMotion m;
-  m.angle = has_angle() ? setting_or(j, "q0", zero) : zero;
-  m.angle_rate = has_angle() ? setting_or(j, "rate0", zero) : zero;
+  m.angle = has_angle() ? setting_or(j, joint_setting::q0, zero) : zero;
+  m.angle_rate = has_angle() ? setting_or(j, joint_setting::rate0, zero) : zero;
   m.axial = zero, m.axial_rate = zero;
   m.qrel = B.call("quat_axis_angle", {B.vec(0, 0, 1), m.angle});
   return m;

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "ir/ast.hpp"
+#include "multibody/settings.hpp"
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
 #include "multibody/model.hpp"
@@ -85,7 +86,7 @@ class Mobilizer {
   virtual void ball() = 0;
 
   /// The joint's setting `key`, or `fallback`.
-  E setting_or(const std::string& key, E fallback) const;
+  E setting_or(const Setting& s, E fallback) const;
   E param(const std::string& suffix) const { return B.name(joint.decl->name + "." + suffix); }
   bool prescribed() const;  // the joint has motion = f(t)
 
@@ -118,9 +119,9 @@ class JointKind {
   virtual ~JointKind() = default;
   virtual std::string_view name() const = 0;
   /// Settings besides the common ones, in the order diagnostics list them.
-  virtual std::vector<std::string> settings() const { return {}; }
+  virtual std::vector<const Setting*> settings() const { return {}; }
   /// Settings without a default.
-  virtual std::vector<std::string> required() const { return {}; }
+  virtual std::vector<const Setting*> required() const { return {}; }
   /// A rotation coordinate about the joint axis (`j.angle`, `j.rate`, torque, motion).
   virtual bool has_angle() const { return false; }
   /// A translation along the joint axis (`j.displacement`).
@@ -166,7 +167,7 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m);
 
 /// A slide along A's joint z axis by the settings `q0`, `rate0` (or the
 /// prescribed motion), on junction `j.<junction>`: prismatic, cylindrical.
-Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const char* q0, const char* rate0,
+Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const Setting& q0, const Setting& rate0,
                                   bool prescribed);
 
 }  // namespace mbgc::multibody::detail

@@ -46,9 +46,8 @@ void Expander::joint_params(const Build& B, const Joint& j) {
     E point = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
     if (body.ground || body.particle) property(B, jn + ".p" + tag, point);
     else property(B, jn + ".p" + tag, B.op('-', point, B.name(s->body + ".com")));
-    const AstAttr* ax = j.attrs.count(std::string("axis_") + tag) ? j.attrs.at(std::string("axis_") + tag)
-                        : j.attrs.count("axis")                     ? j.attrs.at("axis")
-                                                                    : nullptr;
+    const AstAttr* ax = given_attr(j, *tag == 'a' ? joint_setting::axis_a : joint_setting::axis_b);
+    if (!ax) ax = given_attr(j, joint_setting::axis);
     E axis = ax ? ax->value : B.vec(0, 0, 1);
     property(B, jn + ".axis_" + tag, B.op('/', axis, B.call("norm", {axis})));
     property(B, jn + ".f" + tag, B.call("quat_arc", {B.name(jn + ".axis_" + tag)}));
@@ -74,8 +73,8 @@ std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, co
   const JointFrames f{B, j, A, Bf, B.op('-', Bf.p, A.p), B.name(j.decl->name + ".scale")};
   std::vector<E> r;
   j.kind->rows(f, r);
-  if (auto m = j.attrs.find("motion"); m != j.attrs.end()) {
-    E motion = m->second->value;
+  if (const AstAttr* m = given_attr(j, joint_setting::motion)) {
+    E motion = m->value;
     if (j.kind->drives_along_axis()) r.push_back(B.op('-', B.dot(A.Z, f.d), motion));
     else r.push_back(B.op('*', f.scale, f.turned_by(motion)));  // scale * sin(theta - f(t)), without atan2
   }
@@ -176,7 +175,7 @@ void Expander::emit_joint(Joint& j) {
     // A cut joint on a tree in joint coordinates: its rows' multipliers keep
     // g'' + 2 w g' + w^2 g = 0 (Baumgarte, critically damped at w rad/s), an
     // acceleration-level condition solved with the tree's accelerations.
-    param(B, jn + ".stabilisation", setting_or(j, "stabilisation", B.num(20)));
+    param(B, jn + ".stabilisation", setting_or(j, joint_setting::stabilisation, B.num(20)));
     cn.push_back(kv("stabilisation", B.name(jn + ".stabilisation"), d.loc));
   }
   if (j.strategy == Strategy::Penalty) {
@@ -185,13 +184,13 @@ void Expander::emit_joint(Joint& j) {
     for (const Frame* f : {&A, &Bf})
       if (!f->ground) masses.push_back(B.name(f->body + ".mass"));
     E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
-    param(B, jn + ".stiffness", setting_or(j, "stiffness", B.op('*', m, B.num(1e6))));
-    param(B, jn + ".damping", setting_or(j, "damping", B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
+    param(B, jn + ".stiffness", setting_or(j, joint_setting::stiffness, B.op('*', m, B.num(1e6))));
+    param(B, jn + ".damping", setting_or(j, joint_setting::damping, B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
     cn.push_back(kv("stiffness", B.name(jn + ".stiffness"), d.loc));
     cn.push_back(kv("damping", B.name(jn + ".damping"), d.loc));
   }
   element(B, "CN", jn + ".cn", nullptr, cn);
-  if (j.attrs.count("motion")) {
+  if (given(j, joint_setting::motion)) {
     // the prescribed motion's explicit time dependence enters the rate as a flow source
     element(B, "Sf", jn + ".motion", B.call("partial_t", {gvec}));
     bond(B, jn + ".motion", jn + ".c");
@@ -206,9 +205,10 @@ void Expander::emit_joint(Joint& j) {
     E cvec = B.list({*coordinate});
     rates_into(B, jn + ".da", cvec, A, jn + ".dsum", false, translational);
     rates_into(B, jn + ".db", cvec, Bf, jn + ".dsum", false, translational);
-    for (const char* key : {"torque", "force"}) {
-      if (!j.attrs.count(key)) continue;
-      element(B, "Se", jn + ".applied", j.attrs.at(key)->value);
+    for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
+      const AstAttr* load = given_attr(j, *drive);
+      if (!load) continue;
+      element(B, "Se", jn + ".applied", load->value);
       applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
       bond(B, jn + ".applied", jn + ".drive");
     }

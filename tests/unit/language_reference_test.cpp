@@ -6,6 +6,8 @@
 // every tyre signal), so a new one is found there too.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -97,11 +99,16 @@ TEST(LanguageReference, EveryStatementKeywordAndElementKind) {
 TEST(LanguageReference, EveryJointKindAndSetting) {
   namespace mb = mbgc::multibody::detail;
   expect_documented(mb::joint_kind_names(), "joint kind");
-  expect_documented(mb::kJointSettingShapes, "joint setting");
+  expect_documented(mb::setting_names(mb::joint_setting::kAll), "joint setting");
   for (const std::string& kind : mb::joint_kind_names()) {
     const mb::JointKind* k = mb::find_joint_kind(kind);
     ASSERT_NE(k, nullptr) << kind;
-    expect_documented(k->settings(), (kind + " setting").c_str(), /*may_be_empty=*/true);  // fixed, planar: none of their own
+    // fixed: none of its own
+    expect_documented(mb::setting_names(k->settings()), (kind + " setting").c_str(), /*may_be_empty=*/true);
+    for (const mb::Setting* s : k->settings())  // every kind's setting is one of the table's
+      EXPECT_NE(std::find(mb::joint_setting::kAll.begin(), mb::joint_setting::kAll.end(), s),
+                mb::joint_setting::kAll.end())
+          << kind << ": " << s->name;
   }
 }
 

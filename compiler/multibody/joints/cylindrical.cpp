@@ -7,7 +7,7 @@ namespace {
 class Cylindrical final : public JointKind {
  public:
   std::string_view name() const override { return "cylindrical"; }
-  std::vector<std::string> settings() const override { return {"q0", "rate0", "torque", "motion", "d0", "ddot0"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::q0, &joint_setting::rate0, &joint_setting::torque, &joint_setting::motion, &joint_setting::d0, &joint_setting::ddot0}; }
   bool has_angle() const override { return true; }
   bool has_axial() const override { return true; }
   std::string initial_settings() const override { return "q0, rate0 (rotation) and d0, ddot0 (sliding)"; }
@@ -19,11 +19,11 @@ class Cylindrical final : public JointKind {
   /// The angle on `j.drive` (the drive's torque acts on it), the slide on `j.slide`.
   void mobilize(Mobilizer& m) const override {
     turn_about_axis(m);
-    slide_along_axis(m, "slide", "d0", "ddot0", false);
+    slide_along_axis(m, "slide", joint_setting::d0, joint_setting::ddot0, false);
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.axial = setting_or(j, "d0", m.axial), m.axial_rate = setting_or(j, "ddot0", m.axial_rate);
+    m.axial = setting_or(j, joint_setting::d0, m.axial), m.axial_rate = setting_or(j, joint_setting::ddot0, m.axial_rate);
     return m;
   }
 };

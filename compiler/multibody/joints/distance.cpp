@@ -9,20 +9,20 @@ namespace {
 class Distance final : public JointKind {
  public:
   std::string_view name() const override { return "distance"; }
-  std::vector<std::string> settings() const override { return {"length"}; }
-  std::vector<std::string> required() const override { return {"length"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::length}; }
+  std::vector<const Setting*> required() const override { return {&joint_setting::length}; }
   bool has_displacement() const override { return true; }
   bool needs_orientation() const override { return false; }
   bool moves_particles() const override { return true; }
   std::string initial_settings() const override { return "axis (the direction of the rod from the first point)"; }
   void check_constant(const ir::AstJoint& j, const ir::AstAttr& at, double v, ir::Diagnostics& diags) const override {
-    if (at.key == "length" && !(v > 0))
+    if (at.key == joint_setting::length.name && !(v > 0))
       diags.error(at.value->loc, fmt::format("the length of distance joint `{}` is {}", j.name, v),
                   "a distance joint keeps two points `length` apart and must be positive; points that coincide are a "
                   "spherical joint: write joint " + j.name + " spherical(...)");
   }
   void params(const Joint& j, const std::function<void(const std::string&, E)>& param) const override {
-    param(j.decl->name + ".length", j.attrs.at("length")->value);
+    param(j.decl->name + ".length", given_attr(j, joint_setting::length)->value);
   }
   /// (|d|^2 - L^2) / (2 L): one row, in metres.
   void rows(const JointFrames& f, std::vector<E>& r) const override {

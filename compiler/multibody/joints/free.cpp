@@ -11,7 +11,7 @@ namespace {
 class Free final : public JointKind {
  public:
   std::string_view name() const override { return "free"; }
-  std::vector<std::string> settings() const override { return {"r0", "v0", "rot0", "w0"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::r0, &joint_setting::v0, &joint_setting::rot0, &joint_setting::w0}; }
   bool needs_orientation() const override { return false; }
   std::string initial_settings() const override {
     return "r0 and v0 (B's point from A's, and its velocity, in A's joint axes), rot0 (relative rotation), w0 (B's "
@@ -20,7 +20,7 @@ class Free final : public JointKind {
   void rows(const JointFrames& /*f*/, std::vector<E>& /*r*/) const override {}
   void mobilize(Mobilizer& m) const override {
     const std::string jn = m.joint.decl->name;
-    const E r0 = m.setting_or("r0", m.B.vec(0, 0, 0)), v0 = m.setting_or("v0", m.B.vec(0, 0, 0));
+    const E r0 = m.setting_or(joint_setting::r0, m.B.vec(0, 0, 0)), v0 = m.setting_or(joint_setting::v0, m.B.vec(0, 0, 0));
     const char* names[3] = {"x", "y", "z"};
     const E axes[3] = {m.ex, m.ey, m.ez};
     std::vector<E> disp;
@@ -34,7 +34,7 @@ class Free final : public JointKind {
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.qrel = setting_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    m.qrel = setting_or(j, joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
     return m;
   }
 };

@@ -7,19 +7,19 @@ namespace {
 class Planar final : public JointKind {
  public:
   std::string_view name() const override { return "planar"; }
-  std::vector<std::string> settings() const override { return {"v0", "w0"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::v0, &joint_setting::w0}; }
   std::string initial_settings() const override {
     return "v0 ([x rate, y rate, 0], A's joint axes) and w0 ([0, 0, turn rate]); it starts with the frames together";
   }
   std::vector<int> fixed_components(std::string_view key) const override {
-    if (key == "v0") return {3};
-    if (key == "w0") return {1, 2};
+    if (key == joint_setting::v0.name) return {3};
+    if (key == joint_setting::w0.name) return {1, 2};
     return {};
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.w_rel = setting_or(j, "w0", B.vec(0, 0, 0));
-    m.v_rel = setting_or(j, "v0", B.vec(0, 0, 0));
+    m.w_rel = setting_or(j, joint_setting::w0, B.vec(0, 0, 0));
+    m.v_rel = setting_or(j, joint_setting::v0, B.vec(0, 0, 0));
     return m;
   }
   /// B's point stays in A's x-y plane and the axes stay aligned: 3 rows.
@@ -28,7 +28,7 @@ class Planar final : public JointKind {
     f.aligned(r);
   }
   void mobilize(Mobilizer& m) const override {
-    const E v0 = m.setting_or("v0", m.B.vec(0, 0, 0)), w0 = m.setting_or("w0", m.B.vec(0, 0, 0));
+    const E v0 = m.setting_or(joint_setting::v0, m.B.vec(0, 0, 0)), w0 = m.setting_or(joint_setting::w0, m.B.vec(0, 0, 0));
     Mobilizer::Rate& x = m.rate(m.joint.decl->name + ".xdot", "x", m.zero, m.B.at(v0, 1), false);
     x.V = m.ex;
     Mobilizer::Rate& y = m.rate(m.joint.decl->name + ".ydot", "y", m.zero, m.B.at(v0, 2), false);

@@ -7,7 +7,7 @@ namespace {
 class Prismatic final : public JointKind {
  public:
   std::string_view name() const override { return "prismatic"; }
-  std::vector<std::string> settings() const override { return {"q0", "rate0", "force", "motion"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::q0, &joint_setting::rate0, &joint_setting::force, &joint_setting::motion}; }
   bool has_axial() const override { return true; }
   std::string initial_settings() const override { return "q0 (displacement) and rate0"; }
   /// B's point on A's axis, the axes aligned and not turned about it: 5 rows.
@@ -17,11 +17,11 @@ class Prismatic final : public JointKind {
     r.push_back(f.perp(f.A.X, f.Bf.Y));
   }
   void mobilize(Mobilizer& m) const override {
-    slide_along_axis(m, "drive", "q0", "rate0", m.prescribed());
+    slide_along_axis(m, "drive", joint_setting::q0, joint_setting::rate0, m.prescribed());
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.axial = setting_or(j, "q0", m.axial), m.axial_rate = setting_or(j, "rate0", m.axial_rate);
+    m.axial = setting_or(j, joint_setting::q0, m.axial), m.axial_rate = setting_or(j, joint_setting::rate0, m.axial_rate);
     return m;
   }
 };

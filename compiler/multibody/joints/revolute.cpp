@@ -7,7 +7,7 @@ namespace {
 class Revolute final : public JointKind {
  public:
   std::string_view name() const override { return "revolute"; }
-  std::vector<std::string> settings() const override { return {"q0", "rate0", "torque", "motion"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::q0, &joint_setting::rate0, &joint_setting::torque, &joint_setting::motion}; }
   bool has_angle() const override { return true; }
   std::string initial_settings() const override { return "q0 (angle) and rate0"; }
   /// The points coincide and the axes stay aligned: 5 rows.

@@ -9,19 +9,19 @@ namespace {
 class Screw final : public JointKind {
  public:
   std::string_view name() const override { return "screw"; }
-  std::vector<std::string> settings() const override { return {"q0", "rate0", "torque", "motion", "pitch"}; }
-  std::vector<std::string> required() const override { return {"pitch"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::q0, &joint_setting::rate0, &joint_setting::torque, &joint_setting::motion, &joint_setting::pitch}; }
+  std::vector<const Setting*> required() const override { return {&joint_setting::pitch}; }
   bool has_angle() const override { return true; }
   bool has_axial() const override { return true; }
   std::string initial_settings() const override { return "q0 (angle) and rate0"; }
   void check_constant(const ir::AstJoint& j, const ir::AstAttr& at, double v, ir::Diagnostics& diags) const override {
-    if (at.key == "pitch" && v == 0)
+    if (at.key == joint_setting::pitch.name && v == 0)
       diags.error(at.value->loc, fmt::format("the pitch of screw joint `{}` is 0", j.name),
                   "a screw advances `pitch` metres per radian; with no advance it is a revolute joint: write joint " +
                       j.name + " revolute(...)");
   }
   void params(const Joint& j, const std::function<void(const std::string&, E)>& param) const override {
-    param(j.decl->name + ".pitch", j.attrs.at("pitch")->value);
+    param(j.decl->name + ".pitch", given_attr(j, joint_setting::pitch)->value);
   }
   /// On the axis, aligned, and the slide s = pitch * theta, written without
   /// atan2 (no wrap): pitch * sin(theta - s / pitch) = 0. 5 rows.

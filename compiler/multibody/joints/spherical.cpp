@@ -7,7 +7,7 @@ namespace {
 class Spherical final : public JointKind {
  public:
   std::string_view name() const override { return "spherical"; }
-  std::vector<std::string> settings() const override { return {"rot0", "w0"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::rot0, &joint_setting::w0}; }
   bool needs_orientation() const override { return false; }
   std::string initial_settings() const override {
     return "rot0 (relative rotation) and w0 (relative angular velocity, B's joint axes)";
@@ -17,8 +17,8 @@ class Spherical final : public JointKind {
   /// The relative rotation rot0 and angular velocity w0 (default: none).
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.qrel = setting_or(j, "rot0", B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
-    m.w_rel = setting_or(j, "w0", B.vec(0, 0, 0));
+    m.qrel = setting_or(j, joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    m.w_rel = setting_or(j, joint_setting::w0, B.vec(0, 0, 0));
     return m;
   }
 };

@@ -7,18 +7,18 @@ namespace {
 class Universal final : public JointKind {
  public:
   std::string_view name() const override { return "universal"; }
-  std::vector<std::string> settings() const override { return {"w0"}; }
+  std::vector<const Setting*> settings() const override { return {&joint_setting::w0}; }
   std::string initial_settings() const override {
     return "w0 (the rates about the cross's arms, [alpha rate, beta rate, 0] in B's joint axes; it starts with the "
            "frames aligned)";
   }
   std::vector<int> fixed_components(std::string_view key) const override {
-    return key == "w0" ? std::vector<int>{3} : std::vector<int>{};
+    return key == joint_setting::w0.name ? std::vector<int>{3} : std::vector<int>{};
   }
   /// Starting aligned, the arms are the joint frames' x and y: w0's first two.
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.w_rel = setting_or(j, "w0", B.vec(0, 0, 0));
+    m.w_rel = setting_or(j, joint_setting::w0, B.vec(0, 0, 0));
     return m;
   }
   /// The points coincide and the arms stay perpendicular: 4 rows. The
@@ -32,7 +32,7 @@ class Universal final : public JointKind {
   /// About A's x (the cross's first arm), then about the turned y (B's y).
   void mobilize(Mobilizer& m) const override {
     const Build& B = m.B;
-    const E w0 = m.setting_or("w0", B.vec(0, 0, 0));
+    const E w0 = m.setting_or(joint_setting::w0, B.vec(0, 0, 0));
     Mobilizer::Rate& a = m.rate(m.joint.decl->name + ".alphadot", "alpha", m.zero, B.at(w0, 1), false);
     a.W = m.ex;
     Mobilizer::Rate& b = m.rate(m.joint.decl->name + ".betadot", "beta", m.zero, B.at(w0, 2), false);

@@ -1,0 +1,91 @@
+// multibody/settings.hpp — a setting of a multibody statement, declared once:
+// its name, the shape its value must have and how to write it, and whether
+// its value must be known before the run. The joint settings are here: the
+// common ones every joint takes, and those the joint kinds list
+// (JointKind::settings). Parsing (collect.cpp), the joint kinds, the code
+// that reads a joint's settings and the language reference's test all name
+// a setting through these entries, never by its spelling.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+/// Rows and columns of a value, when they can be told from the text alone.
+struct Shape {
+  int rows = 1, cols = 1;
+  bool operator==(const Shape& o) const { return rows == o.rows && cols == o.cols; }
+  bool scalar() const { return rows == 1 && cols == 1; }
+  std::string text() const {
+    if (scalar()) return "a scalar";
+    if (cols == 1) return fmt::format("a {}-vector", rows);
+    return fmt::format("a {}x{} matrix", rows, cols);
+  }
+};
+
+/// What a body or joint setting must be, and how to write it.
+struct Expected {
+  Shape shape;
+  const char* how;
+};
+
+struct Setting {
+  const char* name;
+  /// The shape of its value, checked where the text shows it; none: a word
+  /// (`constraint = lagrange`) or a value its reader checks.
+  std::optional<Expected> expected;
+  /// Its value must be known before the run; false: a function of t or of
+  /// the state (a drive's torque, a prescribed motion).
+  bool constant = true;
+};
+
+namespace joint_setting {
+inline const Setting axis{"axis", Expected{{3, 1}, "an axis is a direction [x, y, z] in the frames of both bodies"}};
+inline const Setting axis_a{"axis_a", Expected{{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}};
+inline const Setting axis_b{"axis_b", Expected{{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}};
+inline const Setting constraint{"constraint", std::nullopt};
+inline const Setting stiffness{"stiffness", Expected{{1, 1}, "the penalty stiffness is a scalar"}};
+inline const Setting damping{"damping", Expected{{1, 1}, "the penalty damping is a scalar"}};
+inline const Setting stabilisation{"stabilisation", std::nullopt};
+inline const Setting rot0{"rot0", Expected{{4, 1}, "the initial relative rotation is a quaternion [w, x, y, z], e.g. "
+                                                   "quat_axis_angle([0, 0, 1], 0.5)"}};
+inline const Setting r0{"r0", Expected{{3, 1}, "the initial position of the second point from the first is a 3-vector "
+                                               "in the first body's joint axes"}};
+inline const Setting v0{"v0", Expected{{3, 1}, "the initial velocity of the second point relative to the first is a "
+                                               "3-vector in the first body's joint axes"}};
+inline const Setting w0{"w0", Expected{{3, 1}, "the initial relative angular velocity is a 3-vector in the second "
+                                               "body's axes (rad/s)"}};
+inline const Setting q0{"q0", Expected{{1, 1}, "the initial joint coordinate is a scalar, e.g. q0 = 0.3"}};
+inline const Setting rate0{"rate0", Expected{{1, 1}, "the initial joint rate is a scalar, e.g. rate0 = 0"}};
+inline const Setting d0{"d0", Expected{{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}};
+inline const Setting ddot0{"ddot0", Expected{{1, 1}, "the initial axial rate is a scalar"}};
+inline const Setting pitch{"pitch", Expected{{1, 1}, "the pitch is a scalar (m per rad)"}};
+inline const Setting length{"length", Expected{{1, 1}, "the length is a scalar (m)"}};
+inline const Setting torque{"torque", Expected{{1, 1}, "the drive torque about the joint axis is a scalar (N m)"}, false};
+inline const Setting force{"force", Expected{{1, 1}, "the drive force along the joint axis is a scalar (N)"}, false};
+inline const Setting motion{"motion", Expected{{1, 1}, "a prescribed motion is a scalar function of t, e.g. motion = "
+                                                       "0.5 * sin(t)"},
+                            false};
+
+/// The settings every joint takes, in the order diagnostics list them
+/// before its kind's own.
+inline const std::vector<const Setting*> kCommon = {&axis, &axis_a, &axis_b, &constraint, &stiffness, &damping,
+                                                    &stabilisation};
+/// Every joint setting: the common ones, then the kinds' own.
+inline const std::vector<const Setting*> kAll = {&axis,  &axis_a, &axis_b, &constraint, &stiffness, &damping,
+                                                 &stabilisation, &rot0, &r0, &v0, &w0, &q0, &rate0, &d0, &ddot0,
+                                                 &pitch, &length, &torque, &force, &motion};
+}  // namespace joint_setting
+
+/// The names of `settings`, in their order.
+inline std::vector<std::string> setting_names(const std::vector<const Setting*>& settings) {
+  std::vector<std::string> out;
+  for (const Setting* s : settings) out.emplace_back(s->name);
+  return out;
+}
+
+}  // namespace mbgc::multibody::detail
