@@ -74,6 +74,9 @@ struct ExpandedProgram {
   std::vector<ExpandedStmt> stmts;
 };
 
+/// A user's element as resolve reads it, none of the extensions set.
+inline ExpandedElement as_expanded(const AstElement& e) { return ExpandedElement{e, false, {}, {}}; }
+
 /// A user's statement as resolve reads it, none of the extensions set;
 /// false for the statements the expansion consumes (bodies, joints,
 /// settings), which have no such form, and for those resolve ignores

@@ -378,7 +378,8 @@ void Expander::add_joint(const AstJoint& j) {
   const std::vector<std::string> keys = setting_names(settings);
   std::set<std::string> meant;  // settings a misspelt one was taken for: not reported missing too
   for (const AstAttr& at : j.attrs) {
-    if (std::find(keys.begin(), keys.end(), at.key) == keys.end()) {
+    auto found = std::find_if(settings.begin(), settings.end(), [&](const Setting* s) { return at.key == s->name; });
+    if (found == settings.end()) {
       std::string near = closest_name(at.key, keys);
       diags_.error(at.loc, fmt::format("a {} joint has no setting `{}`", j.type, at.key),
                    near.empty() ? fmt::format("it takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
@@ -390,8 +391,7 @@ void Expander::add_joint(const AstJoint& j) {
       d.notes.push_back({first->second->loc, "first given here"});
       continue;
     }
-    const Setting& setting = **std::find_if(settings.begin(), settings.end(),
-                                            [&](const Setting* s) { return at.key == s->name; });
+    const Setting& setting = **found;
     if (setting.expected)
       check_shape(*at.value, fmt::format("`{}` of joint `{}`", at.key, j.name), *setting.expected, setting.constant);
     check_joint_constant(*kind, j, at);

@@ -139,6 +139,7 @@ class Expander {
   void rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
                   bool towards_sum, bool translational);
   void emit_joint(Joint& j);
+  void drive_loads(const Build& B, const Joint& j);
   std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
 
   // ---- 3b. joints in joint coordinates (joint_coordinates.cpp)

@@ -86,13 +86,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const E rot = m.rot ? m.rot : B.call("rotq", {qrel});  // B's joint frame in A's
   auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
-  for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
-    const AstAttr* load = given_attr(j, *drive);
-    if (!load) continue;
-    element(B, "Se", jn + ".applied", load->value);
-    applied_.push_back(generated_.size() - 1);
-    bond(B, jn + ".applied", jn + ".drive");
-  }
+  drive_loads(B, j);
   // pose of the child as signals of the coordinates
   auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
   auto times = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };

@@ -141,6 +141,19 @@ void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec,
   }
 }
 
+/// The joint's `torque` or `force` as an effort source on its drive port
+/// (`NAME.drive`, a 1-junction on the joint coordinate's rate).
+void Expander::drive_loads(const Build& B, const Joint& j) {
+  const std::string& jn = j.decl->name;
+  for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
+    const AstAttr* load = given_attr(j, *drive);
+    if (!load) continue;
+    element(B, "Se", jn + ".applied", load->value);
+    applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
+    bond(B, jn + ".applied", jn + ".drive");
+  }
+}
+
 void Expander::emit_joint(Joint& j) {
   const AstJoint& d = *j.decl;
   const std::string jn = d.name;
@@ -205,13 +218,7 @@ void Expander::emit_joint(Joint& j) {
     E cvec = B.list({*coordinate});
     rates_into(B, jn + ".da", cvec, A, jn + ".dsum", false, translational);
     rates_into(B, jn + ".db", cvec, Bf, jn + ".dsum", false, translational);
-    for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
-      const AstAttr* load = given_attr(j, *drive);
-      if (!load) continue;
-      element(B, "Se", jn + ".applied", load->value);
-      applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
-      bond(B, jn + ".applied", jn + ".drive");
-    }
+    drive_loads(B, j);
   }
 }
 

@@ -92,17 +92,17 @@ inline E attr(const ir::AstBody& b, const std::string& key) {
   return nullptr;
 }
 
-/// A joint's setting `s`, or `fallback`.
-inline E setting_or(const Joint& j, const Setting& s, E fallback) {
-  auto it = j.attrs.find(s.name);
-  return it == j.attrs.end() ? fallback : it->second->value;
-}
-/// Whether a joint's setting `s` is given.
-inline bool given(const Joint& j, const Setting& s) { return j.attrs.count(s.name) > 0; }
-/// A joint's setting `s`, given (null: not given).
+/// A joint's setting `s` as given (null: not given).
 inline const ir::AstAttr* given_attr(const Joint& j, const Setting& s) {
   auto it = j.attrs.find(s.name);
   return it == j.attrs.end() ? nullptr : it->second;
+}
+/// Whether a joint's setting `s` is given.
+inline bool given(const Joint& j, const Setting& s) { return given_attr(j, s) != nullptr; }
+/// A joint's setting `s`, or `fallback`.
+inline E setting_or(const Joint& j, const Setting& s, E fallback) {
+  const ir::AstAttr* at = given_attr(j, s);
+  return at ? at->value : fallback;
 }
 
 

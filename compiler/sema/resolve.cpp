@@ -131,7 +131,7 @@ class Resolver {
               n.kind_loc = st.kind_loc;
               n.scope = scope;
               if constexpr (std::is_same_v<T, ExpandedElement>) n.element = st;
-              else n.element = ExpandedElement{st, false, {}, {}};
+              else n.element = as_expanded(st);
               n.tree = n.element->tree;
               add_node(std::move(n));
             } else if constexpr (std::is_base_of_v<AstJunction, T>) {

@@ -82,8 +82,8 @@ constexpr double kNearChangePoint = 1e-4;
 std::string describe_loosenings(const std::vector<Integrator::Loosening>& steps, const Settings& s) {
   if (steps.empty()) return {};
   return fmt::format("the asked rtol {:g}, atol {:g} are more than this model's arithmetic resolves from "
-                     "t = {} s on (the Newton iteration failed at every step size with the absolute "
-                     "tolerances floored at rounding): the run went on from there at rtol {:g}, atol {:g}{}",
+                     "t = {} s on (IDA failed there at every step size, after its other recoveries; the "
+                     "solver line lists them): the run went on from there at rtol {:g}, atol {:g}{}",
                      s.rtol, s.atol, format_time(steps.front().t_s), steps.front().rtol, steps.front().atol,
                      steps.size() == 1
                          ? std::string()

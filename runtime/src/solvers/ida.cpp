@@ -526,7 +526,9 @@ class Ida final : public Integrator {
   }
 
   /// After a failure that nothing above cured, at an rtol tighter than
-  /// kLoosestRtol: every tolerance ten times looser from IDA's last step on.
+  /// ErrorWeights::kResolvedRtol (4.5e6 unit roundoffs; a failure at a
+  /// looser one is the model's, and is reported as it is): every tolerance
+  /// ten times looser from IDA's last step on.
   /// At such tolerances the failure is the arithmetic's, not the model's:
   /// the rows' rounding noise, amplified as they lose independence, passes
   /// the tolerance before the change point's watch fires (N four-bars with
@@ -537,10 +539,10 @@ class Ida final : public Integrator {
   /// back to the asked ones after the passage failed again just beyond it,
   /// and the restarts cost more accuracy than the looser tolerance (N = 4 at
   /// rtol 1e-12 over 1 s: 1.5e-8 m, against 1.4e-9 m). Repeatable up to
-  /// kLoosestRtol; false (nothing changed) beyond it.
+  /// kResolvedRtol; false (nothing changed) beyond it.
   bool loosen_tolerances() {
     const double scale = weights_of_.scale() * kLoosen;
-    if (!m_.is_dae() || s_.rtol * scale > kLoosestRtol * (1.0 + 1e-9)) return false;
+    if (!m_.is_dae() || s_.rtol * scale > ErrorWeights::kResolvedRtol * (1.0 + 1e-9)) return false;
     weights_of_.loosen(kLoosen);
     if (!restart_here()) return false;
     loosenings_.push_back({t_, s_.rtol * scale, s_.atol * scale});
@@ -548,9 +550,6 @@ class Ida final : public Integrator {
   }
 
   static constexpr double kLoosen = 10.0;
-  /// Tolerances are never loosened beyond this rtol (4.5e6 unit roundoffs):
-  /// a failure at a looser one is the model's, and is reported as it is.
-  static constexpr double kLoosestRtol = ErrorWeights::kResolvedRtol;
 
   /// An order-1 restart of an index-2 DAE from IDA's last step. IDA's y'
   /// there is the BDF formula's, not the DAE's: the restart needs the
