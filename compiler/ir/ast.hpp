@@ -12,8 +12,15 @@
 
 #include "ir/diagnostics.hpp"
 #include "ir/drawing.hpp"
+#include "units/unit.hpp"
 
 namespace mbgc::ir {
+
+/// A unit in braces, `{N/m}`, as written (its text) and what it means.
+struct AstUnit {
+  units::Unit unit;
+  SourceLoc loc;  // of the text inside the braces
+};
 
 struct AstExpr;
 using AstExprPtr = std::shared_ptr<const AstExpr>;
@@ -31,7 +38,9 @@ struct AstExpr {
   };
   Kind kind = Kind::Number;
   SourceLoc loc;
-  double number = 0.0;
+  double number = 0.0;             // in SI when the literal has a unit
+  std::optional<AstUnit> unit;     // a literal's: `30 {deg}`
+  double written = 0.0;            // the literal as typed, when it has a unit
   std::string name;
   char op = 0;
   std::vector<AstExprPtr> args;
@@ -52,19 +61,26 @@ struct AstEndpoint {
 
 struct AstModel { std::string name; SourceLoc loc; };
 struct AstImport { std::string path; SourceLoc loc; };
-/// `param name = expr`.
+/// `param name = expr [{unit}]`.
 struct AstParam {
   std::string name;
   SourceLoc loc;
   AstExprPtr value;
+  std::optional<AstUnit> unit;  // after the value: `param k = m*g/x0 {N/m}`
 };
-/// `signal NAME = value`.
-struct AstSignal { std::string name; SourceLoc loc; AstExprPtr value; };
-/// `output NAME = value`.
+/// `signal NAME = value [{unit}]`.
+struct AstSignal {
+  std::string name;
+  SourceLoc loc;
+  AstExprPtr value;
+  std::optional<AstUnit> unit;
+};
+/// `output NAME = value [{unit}]`.
 struct AstOutput {
   std::string name;
   SourceLoc loc;
   AstExprPtr value;
+  std::optional<AstUnit> unit;
 };
 
 /// `Se supply = expr`, `R fr { e = c*f^2 }`, `C k = 1/k_s { q0 = 0.1 }`.

@@ -13,9 +13,16 @@ Namer model_namer(const BondGraph& g) {
 }
 
 // ---- AST ---------------------------------------------------------------------------
+/// ` {N/m}` after a declaration that has one.
+static std::string declared(const std::optional<AstUnit>& unit) {
+  return unit ? fmt::format(" {{{}}}", unit->unit.text) : std::string();
+}
+
 static std::string ast_expr(const AstExpr& e) {
   switch (e.kind) {
-    case AstExpr::Kind::Number: return fmt::format("{}", e.number);
+    case AstExpr::Kind::Number:
+      if (e.unit) return fmt::format("{} {{{}}}", e.written, e.unit->unit.text);
+      return fmt::format("{}", e.number);
     case AstExpr::Kind::Name: return e.name;
     case AstExpr::Kind::String: return fmt::format("\"{}\"", e.name);
     case AstExpr::Kind::Unary: return fmt::format("({}{})", e.op, ast_expr(*e.args[0]));
@@ -70,14 +77,16 @@ static void ast_stmts(std::string& out, const std::vector<Stmt>& stmts, int inde
           else if constexpr (std::is_base_of_v<AstParam, T>) {
             bool fold = false;
             if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold;
-            out += fmt::format("{}{} {} = {}\n", pad, fold ? "const" : "param", st.name, ast_expr(*st.value));
+            out += fmt::format("{}{} {} = {}{}\n", pad, fold ? "const" : "param", st.name, ast_expr(*st.value),
+                               declared(st.unit));
           } else if constexpr (std::is_base_of_v<AstSignal, T>) {
-            out += fmt::format("{}signal {} = {}", pad, st.name, ast_expr(*st.value));
+            out += fmt::format("{}signal {} = {}{}", pad, st.name, ast_expr(*st.value), declared(st.unit));
             AstExprPtr rate;
             if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate;
             out += rate ? fmt::format("  // d/dt = {}\n", ast_expr(*rate)) : "\n";
           }
-          else if constexpr (std::is_base_of_v<AstOutput, T>) out += fmt::format("{}output {} = {}\n", pad, st.name, ast_expr(*st.value));
+          else if constexpr (std::is_base_of_v<AstOutput, T>)
+            out += fmt::format("{}output {} = {}{}\n", pad, st.name, ast_expr(*st.value), declared(st.unit));
           else if constexpr (std::is_base_of_v<AstElement, T>) {
             out += fmt::format("{}{} {}", pad, st.kind, st.name);
             if (st.value) out += " = " + ast_expr(*st.value);

@@ -256,7 +256,7 @@ void Expander::draw_bodies() {
     d->body = n;
     d->colour = palette(index++);
     E R = body.particle ? B.call("eye", {B.num(3)}) : rotation(B, n);
-    ir::ExpandedOutput out{{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)})}, d, body.flex ? B.name(n + ".eta.q") : nullptr};
+    ir::ExpandedOutput out{{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)}), std::nullopt}, d, body.flex ? B.name(n + ".eta.q") : nullptr};
     generated_.push_back(std::move(out));
   }
   draw_surfaces();
@@ -286,7 +286,7 @@ void Expander::draw_surfaces() {
       R = body.ground || body.particle ? B.list(rows) : B.op('*', R, B.list(rows));
     }
     d->surface = true;
-    generated_.push_back(ir::ExpandedOutput{{d->body + ".drawing", B.loc(), B.call("hcat", {R, world_point(B, on).first})}, d, nullptr});
+    generated_.push_back(ir::ExpandedOutput{{d->body + ".drawing", B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt}, d, nullptr});
   };
   for (const Contact& c : contacts_) {
     if (bodies_.at(c.b.body).points_unknown) continue;

@@ -42,12 +42,12 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value)}, /*fold=*/false});
+  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/false});
 }
 
 void Expander::property(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value)}, /*fold=*/true});
+  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/true});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs) {
@@ -90,7 +90,7 @@ void Expander::bond(const Build& B, const std::string& from, const std::string& 
 
 void Expander::signal(const Build& B, const std::string& name, E value, E rate) {
   generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedSignal{{name, B.loc(), std::move(value)}, std::move(rate)});
+  generated_.push_back(ir::ExpandedSignal{{name, B.loc(), std::move(value), std::nullopt}, std::move(rate)});
 }
 
 /// A 1-junction with the given elements bonded into / out of it.

@@ -2,10 +2,8 @@
 // terminator (`;` is optional): every statement starts with a keyword, an
 // element kind or a junction type, so the next statement is always
 // recognisable. On an error we report it and skip to the next statement start.
-//
-// Inside a `for` loop a name may interpolate `{expr}` (`link{i-1}.tip`): an
-// identifier immediately followed by `{` (no whitespace) starts one. The name's
-// text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
+// Expressions, names and units are read by parse/expression.hpp, tokens
+// looked at through parse/cursor.hpp.
 #include "parse/parse.hpp"
 
 #include <cmath>
@@ -15,6 +13,7 @@
 #include <set>
 
 #include "ir/find_file.hpp"
+#include "parse/expression.hpp"
 #include "parse/lexer.hpp"
 
 namespace mbgc::parse {
@@ -23,32 +22,12 @@ namespace {
 using ir::AstExpr;
 using ir::AstExprPtr;
 
-const std::set<std::string> kElementKinds = {"Se", "Sf", "I", "C", "R", "TF", "GY", "MTF", "MGY", "CN"};
-const std::set<std::string> kKeywords = {"model", "import", "param", "signal", "output", "bond",
-                                         "simulate", "component", "instance", "body", "ground",
-                                         "joint", "force", "contact", "tyre", "gravity", "constraints", "for", "scene"};
-/// The multibody keywords are also ordinary names in bond-graph models
-/// (`I body = m`, `Se gravity = ...`), so they start a statement only in their
-/// statement's shape: followed, on the same line, by this token.
-const std::map<std::string, Tok> kShapedKeywords = {
-    {"body", Tok::Ident},    {"joint", Tok::Ident},   {"for", Tok::Ident},     {"force", Tok::Ident},
-    {"contact", Tok::Ident}, {"tyre", Tok::Ident},
-    {"ground", Tok::LBrace}, {"gravity", Tok::Assign}, {"constraints", Tok::Assign}, {"scene", Tok::Ident}};
-/// Statements a `for` loop cannot repeat.
 const std::set<std::string> kNotInLoop = {"model", "import", "component", "simulate", "scene"};
 constexpr int kMaxLoopNesting = 64;
 
-/// A name as written, with its interpolations (`link{i-1}`), and its span.
-struct Name {
-  std::string text;
-  ir::SourceLoc loc;
-};
-
-struct ParseError {};
-
-class Parser {
+class Parser : private ExpressionParser {
  public:
-  Parser(std::vector<Token> toks, ir::Diagnostics& diags) : toks_(std::move(toks)), diags_(diags) {}
+  using ExpressionParser::ExpressionParser;
 
   ir::AstProgram program() {
     ir::AstProgram p;
@@ -60,65 +39,6 @@ class Parser {
   }
 
  private:
-  // ---- token helpers --------------------------------------------------------
-  const Token& peek(std::size_t k = 0) const {
-    std::size_t j = std::min(pos_ + k, toks_.size() - 1);
-    return toks_[j];
-  }
-  bool at(Tok k) const { return peek().kind == k; }
-  bool at_ident(const char* text) const { return at(Tok::Ident) && peek().text == text; }
-  const Token& next() {
-    const Token& t = toks_[pos_];
-    if (pos_ + 1 < toks_.size()) ++pos_;
-    return t;
-  }
-  bool accept(Tok k) {
-    if (!at(k)) return false;
-    next();
-    return true;
-  }
-  [[noreturn]] void fail(const std::string& message, const std::string& hint) {
-    diags_.error(peek().loc, message, hint);
-    throw ParseError{};
-  }
-  const Token& expect(Tok k, const char* what_for, const std::string& hint = {}) {
-    if (!at(k))
-      fail(fmt::format("expected {} {}, found {}", tok_name(k), what_for, describe(peek())), hint);
-    return next();
-  }
-  static std::string describe(const Token& t) {
-    if (t.kind == Tok::Ident) return fmt::format("`{}`", t.text);
-    if (t.kind == Tok::Number) return fmt::format("number `{}`", t.text);
-    return tok_name(t.kind);
-  }
-  bool at_statement_start() const {
-    if (at(Tok::End) || at(Tok::RBrace)) return true;
-    // A statement starts a line (or follows `;`): a 0 or 1 inside an
-    // expression, or a parameter named like an element kind, does not.
-    bool line_start = pos_ == 0 || toks_[pos_ - 1].loc.line != peek().loc.line ||
-                      toks_[pos_ - 1].kind == Tok::Semi || toks_[pos_ - 1].kind == Tok::LBrace ||
-                      toks_[pos_ - 1].kind == Tok::RBrace;
-    if (at(Tok::Number))
-      return line_start && (peek().text == "0" || peek().text == "1") && peek(1).kind == Tok::Ident;
-    return line_start && statement_word();
-  }
-  /// Whether the identifier at peek(k) is a keyword or element kind that can
-  /// start a statement here (wherever the line starts).
-  bool statement_word(std::size_t k = 0) const {
-    const Token& t = peek(k);
-    if (t.kind != Tok::Ident) return false;
-    if (kElementKinds.count(t.text)) return true;
-    auto shaped = kShapedKeywords.find(t.text);
-    if (shaped == kShapedKeywords.end()) return kKeywords.count(t.text) > 0;
-    return peek(k + 1).kind == shaped->second && peek(k + 1).loc.line == t.loc.line;
-  }
-  /// A statement clearly begins at the start of this line: a keyword or element
-  /// kind followed by a name (`R load`, `param k`), or a multibody keyword in
-  /// its shape. Used to tell an unfinished expression or block from the next statement.
-  bool new_statement_here() const {
-    if (!at(Tok::Ident) || pos_ == 0 || toks_[pos_ - 1].loc.line == peek().loc.line) return false;
-    return statement_word() && (peek(1).kind == Tok::Ident || kShapedKeywords.count(peek().text));
-  }
   /// Skip to the next statement. `start` is where the failed statement began:
   /// if the error was found at the start of a later statement, that statement
   /// is kept (its own errors get reported too). `open_blocks` of the failed
@@ -150,6 +70,7 @@ class Parser {
       accept(Tok::Semi);
     } catch (const ParseError&) {
       depth_ = 0;  // statements are never inside expressions
+      units_here_ = true;
       int open_blocks = block_depth_ - blocks;
       block_depth_ = blocks;
       recover(start, open_blocks);
@@ -164,7 +85,7 @@ class Parser {
            "a statement starts with a keyword (param, bond, output, body, joint, for, ...), an element kind "
            "(Se Sf I C R TF GY MTF MGY CN) or a junction (0 or 1)");
     }
-    if (kElementKinds.count(t.text)) return element();
+    if (element_kinds().count(t.text)) return element();
     if (for_depth_ > 0 && t.text == "scene")
       fail("`scene` cannot appear inside a for loop",
            "a scene is chosen before the loops are unrolled (it may fix their bounds, as --set does): declare it at "
@@ -195,6 +116,7 @@ class Parser {
       p.loc = n.loc;
       expect(Tok::Assign, "after the parameter's name", fmt::format("write param {} = value", p.name));
       p.value = expr();
+      p.unit = declared_unit();
       return p;
     }
     if (t.text == "signal" || t.text == "output") {
@@ -203,8 +125,9 @@ class Parser {
       Name n = name(is_signal ? "(the signal's name)" : "(the output's name)");
       expect(Tok::Assign, "after the name", fmt::format("write {} {} = expression", is_signal ? "signal" : "output", n.text));
       AstExprPtr v = expr();
-      if (is_signal) return ir::AstSignal{n.text, n.loc, v};
-      return ir::AstOutput{n.text, n.loc, v};
+      std::optional<ir::AstUnit> u = declared_unit();
+      if (is_signal) return ir::AstSignal{n.text, n.loc, v, u};
+      return ir::AstOutput{n.text, n.loc, v, u};
     }
     if (t.text == "bond") return bond();
     if (t.text == "simulate") return simulate();
@@ -233,96 +156,12 @@ class Parser {
         "a statement starts with model, import, param, signal, output, bond, simulate, scene, component, instance, "
         "body, ground, joint, force, contact, tyre, gravity, constraints, for, an element kind (Se Sf I C R TF GY MTF MGY CN) "
         "or a junction (0 or 1)";
-    std::vector<std::string> words(kKeywords.begin(), kKeywords.end());
+    std::vector<std::string> words(statement_keywords().begin(), statement_keywords().end());
     std::string near = ir::closest_name(t.text, words);
     fail(fmt::format("unknown statement `{}`", t.text),
          near.empty() ? starts : fmt::format("did you mean `{}`?", near));
   }
 
-  /// `b` starts right where `a` ends: no whitespace between them.
-  static bool adjacent(const Token& a, const Token& b) {
-    return a.loc.line == b.loc.line && a.loc.col + a.loc.length == b.loc.col;
-  }
-  /// Extends `loc` to the end of `last` (a span stays on one line).
-  static void extend(ir::SourceLoc& loc, const ir::SourceLoc& last) {
-    if (last.line == loc.line) loc.length = last.col + last.length - loc.col;
-  }
-
-  /// A name. Inside a for loop it may interpolate: `link{i-1}`, `n{i}_{j}`.
-  Name name(const char* what_for, const std::string& hint = {}) {
-    const Token& first = expect(Tok::Ident, what_for, hint);
-    Name n{first.text, first.loc};
-    const Token* last = &first;
-    if (for_depth_ == 0) {
-      // `link{i}` outside a loop: a block cannot start with `i }` or `i - 1`.
-      if (at(Tok::LBrace) && adjacent(*last, peek()) && (peek(1).kind == Tok::Ident || peek(1).kind == Tok::Number) &&
-          peek(2).kind != Tok::Assign && peek(2).kind != Tok::Ident)
-        fail(fmt::format("a name can interpolate `{}{{...}}` only inside a for loop", first.text),
-             "write the name in full here; or put a space before `{` to open a block");
-      return n;
-    }
-    while (at(Tok::LBrace) && adjacent(*last, peek())) {
-      const Token& open = next();
-      std::size_t from = pos_;
-      try {
-        if (at(Tok::RBrace)) {
-          ir::SourceLoc empty = open.loc;
-          extend(empty, peek().loc);
-          diags_.error(empty, fmt::format("empty interpolation in `{}{{}}`", n.text),
-                       "write the index inside the braces, e.g. link{i}");
-          throw ParseError{};
-        }
-        expr();  // checked here, evaluated by elaborate
-        if (!at(Tok::RBrace)) {
-          std::string so_far = n.text + "{";
-          for (std::size_t k = from; k < pos_; ++k) so_far += toks_[k].text;
-          fail(fmt::format("expected `}}` to close the interpolation in `{}`, found {}", so_far, describe(peek())),
-               "an interpolated name is written name{expression}, e.g. link{i-1}; to open a block "
-               "instead, put a space before `{`");
-        }
-      } catch (const ParseError&) {
-        skip_interpolation(open);
-        throw;
-      }
-      n.text += "{";
-      for (std::size_t k = from; k < pos_; ++k) n.text += toks_[k].text;
-      n.text += "}";
-      last = &next();
-      if (at(Tok::Ident) && adjacent(*last, peek())) {  // `n{i}_tip`
-        last = &next();
-        n.text += last->text;
-      }
-    }
-    extend(n.loc, last->loc);
-    return n;
-  }
-
-  /// After an error inside the interpolation opened by `open`: skip past its
-  /// `}` if that closes on the same line, so that recovery does not take it for
-  /// the end of the enclosing loop (`R fr{ e = f }` meant as a block).
-  void skip_interpolation(const Token& open) {
-    int depth = 1;
-    for (std::size_t k = pos_; toks_[k].kind != Tok::End && toks_[k].loc.line == open.loc.line; ++k) {
-      if (toks_[k].kind == Tok::LBrace) ++depth;
-      if (toks_[k].kind == Tok::RBrace && --depth == 0) {
-        pos_ = k + 1;
-        return;
-      }
-    }
-  }
-
-  /// A dotted path (`crank.a`, `m1.loop.f`); each part may interpolate inside a loop.
-  ir::AstEndpoint endpoint(const char* what_for) {
-    Name first = name(what_for);
-    ir::AstEndpoint e{first.text, first.loc};
-    while (at(Tok::Dot)) {
-      next();
-      Name part = name("after `.`");
-      e.path += "." + part.text;
-      extend(e.loc, part.loc);
-    }
-    return e;
-  }
 
   std::optional<int> dimension(ir::SourceLoc& loc) {
     if (!at(Tok::LBracket)) return std::nullopt;
@@ -446,8 +285,9 @@ class Parser {
       } else if (at_ident("param")) {
         next();
         const Token& p = expect(Tok::Ident, "(the parameter's name)");
-        ir::AstParam par{p.text, p.loc, nullptr};
+        ir::AstParam par{p.text, p.loc, nullptr, std::nullopt};
         if (accept(Tok::Assign)) par.value = expr();
+        par.unit = declared_unit();
         c->params.push_back(std::move(par));
       } else {
         fail(fmt::format("expected `port` or `param` in the component's interface, found {}", describe(peek())),
@@ -671,9 +511,11 @@ class Parser {
     f.var = expect(Tok::Ident, "(the loop variable) after `for`", form).text;
     if (!at_ident("in")) fail(fmt::format("expected `in` after the loop variable, found {}", describe(peek())), form);
     next();
+    units_here_ = false;  // `1..3 {` opens the body
     f.from = expr();
     expect(Tok::DotDot, "between the loop's bounds", form);
     f.to = expr();
+    units_here_ = true;
     expect(Tok::LBrace, "to open the loop's body", form);
   }
 
@@ -696,162 +538,10 @@ class Parser {
     return f;
   }
 
-  // ---- expressions -------------------------------------------------------------
-  static AstExprPtr make(AstExpr::Kind k, ir::SourceLoc loc) {
-    auto e = std::make_shared<AstExpr>();
-    e->kind = k;
-    e->loc = loc;
-    return e;
-  }
-  static AstExprPtr binary(char op, ir::SourceLoc loc, AstExprPtr a, AstExprPtr b) {
-    auto e = std::make_shared<AstExpr>();
-    e->kind = AstExpr::Kind::Binary;
-    e->loc = loc;
-    e->op = op;
-    e->args = {std::move(a), std::move(b)};
-    return e;
-  }
-
-  AstExprPtr expr() {
-    if (++depth_ > 200) fail("expression nested too deeply", "split it into parameters or signals");
-    AstExprPtr lhs = product();
-    while (at(Tok::Plus) || at(Tok::Minus)) {
-      const Token& op = next();
-      lhs = binary(op.text[0], op.loc, lhs, product());
-    }
-    --depth_;
-    return lhs;
-  }
-  AstExprPtr product() {
-    AstExprPtr lhs = unary();
-    while (at(Tok::Star) || at(Tok::Slash)) {
-      const Token& op = next();
-      lhs = binary(op.text[0], op.loc, lhs, unary());
-    }
-    return lhs;
-  }
-  AstExprPtr unary() {
-    if (at(Tok::Minus) || at(Tok::Plus)) {
-      if (++depth_ > 200) fail("expression nested too deeply", "split it into parameters or signals");
-      const Token& op = next();
-      auto e = std::make_shared<AstExpr>();
-      e->kind = AstExpr::Kind::Unary;
-      e->loc = op.loc;
-      e->op = op.text[0];
-      e->args = {unary()};
-      // the caret of `-1e12` or `-x` covers the sign and its operand (an
-      // operator's own location is its symbol, so a longer operand keeps the sign's)
-      const AstExpr& a = *e->args[0];
-      const bool leaf = a.kind == AstExpr::Kind::Number || a.kind == AstExpr::Kind::Name || a.kind == AstExpr::Kind::Unary;
-      if (leaf && a.loc.file == op.loc.file && a.loc.line == op.loc.line && a.loc.col > op.loc.col)
-        e->loc.length = a.loc.col + a.loc.length - op.loc.col;
-      --depth_;
-      return e;
-    }
-    return power();
-  }
-  AstExprPtr power() {
-    AstExprPtr base = postfix();
-    if (at(Tok::Caret)) {
-      const Token& op = next();
-      if (++depth_ > 200) fail("expression nested too deeply", "split it into parameters or signals");
-      AstExprPtr exponent = unary();  // right-associative: a^b^c = a^(b^c); a^-1 allowed
-      --depth_;
-      return binary('^', op.loc, base, exponent);
-    }
-    return base;
-  }
-  AstExprPtr postfix() {
-    AstExprPtr e = primary();
-    while (at(Tok::LBracket)) {
-      ir::SourceLoc loc = next().loc;
-      auto idx = make(AstExpr::Kind::Index, loc);
-      auto m = std::const_pointer_cast<AstExpr>(idx);
-      m->args.push_back(e);
-      m->args.push_back(expr());
-      if (accept(Tok::Comma)) m->args.push_back(expr());
-      expect(Tok::RBracket, "to close the index");
-      e = idx;
-    }
-    return e;
-  }
-  AstExprPtr primary() {
-    const Token& t = peek();
-    if (t.kind == Tok::String) {  // a file name; the passes that read one take it, others reject it
-      next();
-      auto e = std::make_shared<AstExpr>();
-      e->kind = AstExpr::Kind::String;
-      e->loc = t.loc;
-      e->name = t.text;
-      return e;
-    }
-    if (t.kind == Tok::Number) {
-      next();
-      auto e = std::make_shared<AstExpr>();
-      e->kind = AstExpr::Kind::Number;
-      e->loc = t.loc;
-      e->number = t.number;
-      return e;
-    }
-    if (t.kind == Tok::Ident) {
-      // `R load` here means the previous line's expression is unfinished.
-      if (new_statement_here())
-        fail(fmt::format("expected an expression, found the start of a statement (`{} {}`)", t.text, peek(1).text),
-             "the expression before it is incomplete");
-      ir::AstEndpoint path = endpoint("");
-      if (at(Tok::LParen)) {
-        next();
-        auto e = std::make_shared<AstExpr>();
-        e->kind = AstExpr::Kind::Call;
-        e->loc = path.loc;
-        e->name = path.path;
-        while (!at(Tok::RParen)) {
-          e->args.push_back(expr());
-          if (!accept(Tok::Comma)) break;
-        }
-        expect(Tok::RParen, fmt::format("to close the call of `{}`", path.path).c_str());
-        return e;
-      }
-      auto e = std::make_shared<AstExpr>();
-      e->kind = AstExpr::Kind::Name;
-      e->loc = path.loc;
-      e->name = path.path;
-      return e;
-    }
-    if (t.kind == Tok::LParen) {
-      next();
-      AstExprPtr e = expr();
-      expect(Tok::RParen, "to close `(`");
-      return e;
-    }
-    if (t.kind == Tok::LBracket) {
-      next();
-      auto e = std::make_shared<AstExpr>();
-      e->kind = AstExpr::Kind::List;
-      e->loc = t.loc;
-      while (!at(Tok::RBracket)) {
-        e->args.push_back(expr());
-        if (!accept(Tok::Comma)) break;
-      }
-      expect(Tok::RBracket, "to close the list", "write vectors as [a, b, c] and matrices as [[a, b], [c, d]]");
-      return e;
-    }
-    fail(fmt::format("expected an expression, found {}", describe(t)),
-         "an expression is a number, a name, a call like sin(x), or (...)");
-  }
-
-  std::vector<Token> toks_;
-  std::size_t pos_ = 0;
-  int depth_ = 0;        // expression nesting
-  int for_depth_ = 0;    // for-loop nesting: names interpolate inside a loop
   int block_depth_ = 0;  // open { } of settings and body blocks (for recovery)
-  ir::Diagnostics& diags_;
 };
 
 }  // namespace
-
-const std::set<std::string>& statement_keywords() { return kKeywords; }
-const std::set<std::string>& element_kinds() { return kElementKinds; }
 
 ir::AstProgram parse_source(const ir::SourceManager& sources, int file_id, ir::Diagnostics& diags) {
   int errors_before = diags.error_count();

@@ -1050,3 +1050,51 @@ TEST(ParseErrors, ALoopInsideABlockRepeatsPointsOnly) {
   // recovery resumes at the statement: the joint is kept
   EXPECT_EQ(all_of<ir::AstJoint>(c->ast).size(), 1u);
 }
+
+// ---- units in braces ----------------------------------------------------------------
+
+TEST(ParseUnits, ALiteralsUnitBringsItsValueToSIAndKeepsWhatWasTyped) {
+  auto e = param_expr("30 {deg}");
+  ASSERT_TRUE(e && e->unit);
+  EXPECT_DOUBLE_EQ(e->number, 30 * 3.14159265358979323846 / 180);
+  EXPECT_EQ(e->written, 30);
+  EXPECT_EQ(e->unit->unit.text, "deg");
+  EXPECT_EQ(e->unit->loc.col, 15);  // `param p = 30 {deg}`: the text inside the braces
+  EXPECT_EQ(e->unit->loc.length, 3);
+  EXPECT_DOUBLE_EQ(param_expr("3000 {rpm}")->number, 3000 * 2 * 3.14159265358979323846 / 60);
+  EXPECT_DOUBLE_EQ(param_expr("36 {km/h}")->number, 10);
+  EXPECT_DOUBLE_EQ(param_expr("2 {bar} * 3")->args[0]->number, 2e5);
+  EXPECT_DOUBLE_EQ(param_expr("-5 {mm}")->args[0]->number, 5e-3);
+  EXPECT_EQ(param_expr("3e4 {N/m}")->number, 3e4);
+}
+
+TEST(ParseUnits, ADeclarationsUnitFollowsItsValue) {
+  auto c = parse("param k = m*g/x0 {N/m}\nsignal v = 2*x {m/s}\noutput w = j.rate {rad/s}\n"
+                 "param m = 2 {kg}\nparam g = 9.81\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto params = all_of<ir::AstParam>(c->ast);
+  ASSERT_EQ(params.size(), 3u);
+  ASSERT_TRUE(params[0]->unit);
+  EXPECT_EQ(params[0]->unit->unit.text, "N/m");
+  EXPECT_EQ(tree(*params[0]->value), "((m * g) / x0)");
+  EXPECT_FALSE(params[1]->unit);  // the literal's: `2 {kg}`
+  EXPECT_TRUE(params[1]->value->unit);
+  EXPECT_FALSE(params[2]->unit);
+  EXPECT_EQ(all_of<ir::AstSignal>(c->ast)[0]->unit->unit.text, "m/s");
+  EXPECT_EQ(all_of<ir::AstOutput>(c->ast)[0]->unit->unit.text, "rad/s");
+}
+
+TEST(ParseUnits, BracesThatAreNotAUnitAreWhatTheyWereBefore) {
+  // a settings block holds `=`; a loop's bounds are followed by its body
+  auto c = parse("C c = 0.1 { q0 = 1 {mm} }\nR r = 10 {Ohm} { }\nfor i in 1..3 { param a{i} = i }\n"
+                 "I m = 2 {kg}\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto elements = all_of<ir::AstElement>(c->ast);
+  ASSERT_EQ(elements.size(), 3u);
+  EXPECT_FALSE(elements[0]->value->unit);
+  ASSERT_EQ(elements[0]->attrs.size(), 1u);
+  EXPECT_DOUBLE_EQ(elements[0]->attrs[0].value->number, 1e-3);
+  EXPECT_EQ(elements[1]->value->unit->unit.text, "Ohm");
+  EXPECT_EQ(elements[2]->value->unit->unit.text, "kg");
+  EXPECT_EQ(all_of<std::shared_ptr<ir::AstFor>>(c->ast).size(), 1u);
+}

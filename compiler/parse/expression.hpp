@@ -1,0 +1,56 @@
+// parse/expression.hpp — expressions, names and units of the .mbg language
+// (used only by the parser; the statements are in parse.cpp).
+//
+// Inside a `for` loop a name may interpolate `{expr}` (`link{i-1}.tip`): an
+// identifier immediately followed by `{` (no whitespace) starts one. The name's
+// text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
+//
+// A unit in braces follows a literal (`3 {kg}`, `30 {deg}`) or ends a
+// declaration (`param k = m*g/x0 {N/m}`): braces on one line holding only
+// symbols, numbers and `* . / ^ ( ) -` (a block of settings holds `=`).
+// A literal's value is kept in SI (`30 {deg}` is 0.5236), what was typed beside it.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ir/ast.hpp"
+#include "parse/cursor.hpp"
+
+namespace mbgc::parse {
+
+class ExpressionParser : protected Cursor {
+ public:
+  using Cursor::Cursor;
+
+ protected:
+  /// A name. Inside a for loop it may interpolate: `link{i-1}`, `n{i}_{j}`.
+  Name name(const char* what_for, const std::string& hint = {});
+  /// A dotted path (`crank.a`, `m1.loop.f`); each part may interpolate inside a loop.
+  ir::AstEndpoint endpoint(const char* what_for);
+
+  ir::AstExprPtr expr();
+  /// A declaration's unit, `{N/m}` after its value, if one is there.
+  std::optional<ir::AstUnit> declared_unit();
+
+  int depth_ = 0;        // expression nesting
+  int for_depth_ = 0;    // for-loop nesting: names interpolate inside a loop
+  bool units_here_ = true;  // off in a loop's bounds, whose `{` opens the body
+
+ private:
+  void skip_interpolation(const Token& open);
+  static ir::AstExprPtr make(ir::AstExpr::Kind k, ir::SourceLoc loc);
+  static ir::AstExprPtr binary(char op, ir::SourceLoc loc, ir::AstExprPtr a, ir::AstExprPtr b);
+  ir::AstExprPtr product();
+  ir::AstExprPtr unary();
+  ir::AstExprPtr power();
+  ir::AstExprPtr postfix();
+  ir::AstExprPtr primary();
+  /// The braces at the cursor hold a unit (see above).
+  bool at_unit() const;
+  /// `{unit}` at the cursor, read and checked.
+  ir::AstUnit unit();
+};
+
+}  // namespace mbgc::parse
