@@ -22,6 +22,7 @@
 #include "reduce/reduce.hpp"
 #include "scene/scene.hpp"
 #include "sema/resolve.hpp"
+#include "units/check.hpp"
 
 namespace mbgc::driver {
 namespace {
@@ -158,6 +159,12 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   timed("equations");
   if (failed()) return 1;
   if (opt.dump == Dump::Equations) return finish(ir::print_equations(equations));
+  if (opt.units != Options::Units::Off) {
+    const units::UnitReport report = units::check_units(equations, diags, opt.units == Options::Units::Strict);
+    timed("units");
+    if (failed()) return 1;
+    if (opt.units == Options::Units::Report) return finish(units::print_report(equations.graph, report));
+  }
 
   ir::ReducedSystem reduced = reduce::reduce(std::move(equations), diags, opt.energy_witness);
   timed("reduce");

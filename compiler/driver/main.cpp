@@ -70,10 +70,20 @@ int main(int argc, char** argv) {
   app.add_flag("--no-energy-witness", no_energy_witness,
                "leave out the energy balance (stored_energy() and power(), whose code can reach the "
                "dynamics' own size): the simulator then reports no energy residual");
+  std::string units = "off";
+  app.add_option("--units", units,
+                 "the units of measure: check (equations whose units disagree are errors; the bond-graph "
+                 "statements only, not yet the multibody layer's), strict (also every parameter's unit declared "
+                 "or inferred), report (print every parameter's and output's unit instead of C++), off (the default)")
+      ->check(CLI::IsMember({"check", "strict", "report", "off"}));
   app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
       ->check(CLI::IsMember({"text", "csv"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
   CLI11_PARSE(app, argc, argv);
+  opt.units = units == "strict"   ? mbgc::driver::Options::Units::Strict
+              : units == "report" ? mbgc::driver::Options::Units::Report
+              : units == "off"    ? mbgc::driver::Options::Units::Off
+                                  : mbgc::driver::Options::Units::Check;
   if (!explain.empty()) {
     if (!opt.scene.empty() && opt.scene != explain) {
       std::cerr << "mbgc: error: --scene " << opt.scene << " and --explain-scene " << explain << " name different scenes\n";

@@ -93,6 +93,7 @@ class Builder {
       n.name = rn.name;
       n.loc = rn.loc;
       n.tree_node = rn.tree.node, n.tree_parent = rn.tree.parent;
+      n.generated = rn.generated;
       if (is_two_port(rn.kind)) n.bonds = {-1, -1};
       g_.nodes.push_back(std::move(n));
     }
@@ -805,20 +806,20 @@ class Builder {
         if (!r) continue;
         rate = r->items[0];  // (scalar: the multibody layer writes one entry per signal)
       }
-      g_.signals.push_back({s.name, s.loc, signal_var_.at(s.name), v->items[0], rate});
+      g_.signals.push_back({s.name, s.loc, signal_var_.at(s.name), v->items[0], rate, s.unit, s.generated});
     }
     for (const ResolvedExpr& o : m_.outputs) {
       auto v = lower(*o.expr, lookup_in(o.scope), diags_);
       if (!v) continue;
       if (v->is_scalar()) {
-        g_.outputs.push_back({o.name, o.loc, v->items[0]});
+        g_.outputs.push_back({o.name, o.loc, v->items[0], o.unit});
         continue;
       }
       for (int r = 0; r < v->rows; ++r)
         for (int c = 0; c < v->cols; ++c) {
           std::string col = v->cols == 1 ? fmt::format("{}[{}]", o.name, r + 1)
                                          : fmt::format("{}[{},{}]", o.name, r + 1, c + 1);
-          g_.outputs.push_back({col, o.loc, v->at(r, c)});
+          g_.outputs.push_back({col, o.loc, v->at(r, c), o.unit});
         }
     }
     for (const ResolvedDrawing& d : m_.drawings) {

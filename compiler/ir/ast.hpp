@@ -10,17 +10,14 @@
 #include <variant>
 #include <vector>
 
+#include "ir/declared_unit.hpp"
 #include "ir/diagnostics.hpp"
 #include "ir/drawing.hpp"
-#include "units/unit.hpp"
 
 namespace mbgc::ir {
 
 /// A unit in braces, `{N/m}`, as written (its text) and what it means.
-struct AstUnit {
-  units::Unit unit;
-  SourceLoc loc;  // of the text inside the braces
-};
+using AstUnit = DeclaredUnit;
 
 struct AstExpr;
 using AstExprPtr = std::shared_ptr<const AstExpr>;
@@ -82,6 +79,16 @@ struct AstOutput {
   AstExprPtr value;
   std::optional<AstUnit> unit;
 };
+
+/// The unit a declaration states: the one after its value, else its value's
+/// when that is a literal (`param m = 1400 {kg}`, `param x0 = -3 {mm}`).
+inline std::optional<AstUnit> declared_unit(const std::optional<AstUnit>& after, const AstExprPtr& value) {
+  if (after) return after;
+  const AstExpr* e = value.get();
+  while (e && e->kind == AstExpr::Kind::Unary && !e->args.empty()) e = e->args[0].get();
+  if (e && e->kind == AstExpr::Kind::Number && e->unit) return e->unit;
+  return std::nullopt;
+}
 
 /// `Se supply = expr`, `R fr { e = c*f^2 }`, `C k = 1/k_s { q0 = 0.1 }`.
 struct AstElement {

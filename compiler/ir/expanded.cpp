@@ -9,10 +9,10 @@ bool as_expanded(const AstStmt& s, ExpandedStmt& out) {
       [&](const auto& st) {
         using T = std::decay_t<decltype(st)>;
         if constexpr (std::is_same_v<T, AstParam>) out = ExpandedParam{st, false};
-        else if constexpr (std::is_same_v<T, AstSignal>) out = ExpandedSignal{st, nullptr};
+        else if constexpr (std::is_same_v<T, AstSignal>) out = ExpandedSignal{st, nullptr, false};
         else if constexpr (std::is_same_v<T, AstOutput>) out = ExpandedOutput{st, nullptr, nullptr};
         else if constexpr (std::is_same_v<T, AstElement>) out = as_expanded(st);
-        else if constexpr (std::is_same_v<T, AstJunction>) out = ExpandedJunction{st, {}};
+        else if constexpr (std::is_same_v<T, AstJunction>) out = ExpandedJunction{st, {}, false};
         else if constexpr (std::is_constructible_v<ExpandedStmt, T>) out = st;
         else return false;
         return true;

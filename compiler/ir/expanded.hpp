@@ -33,6 +33,7 @@ struct ExpandedParam : AstParam {
 /// chain rule through `value`.
 struct ExpandedSignal : AstSignal {
   AstExprPtr rate = nullptr;
+  bool generated = false;  // by the multibody layer, not the user (as below)
 };
 
 /// An output. The expansion writes one per body it draws (`drawing` set):
@@ -61,10 +62,15 @@ struct ExpandedElement : AstElement {
   /// length of deflection). The simulator stops there with the reason.
   std::vector<std::pair<double, std::string>> state_limits;
   TreeTag tree;
+  /// Made by the multibody layer (a body's inertia, a joint's rows), not
+  /// written by the user: its equations are not read for units, which that
+  /// layer's folded constants no longer carry.
+  bool generated = false;
 };
 
 struct ExpandedJunction : AstJunction {
   TreeTag tree;
+  bool generated = false;  // as ExpandedElement's
 };
 
 using ExpandedStmt = std::variant<AstModel, ExpandedParam, ExpandedSignal, ExpandedOutput, ExpandedElement,
@@ -75,7 +81,7 @@ struct ExpandedProgram {
 };
 
 /// A user's element as resolve reads it, none of the extensions set.
-inline ExpandedElement as_expanded(const AstElement& e) { return ExpandedElement{e, false, {}, {}}; }
+inline ExpandedElement as_expanded(const AstElement& e) { return ExpandedElement{e, false, {}, {}, false}; }
 
 /// A user's statement as resolve reads it, none of the extensions set;
 /// false for the statements the expansion consumes (bodies, joints,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ir/declared_unit.hpp"
 #include "ir/diagnostics.hpp"
 #include "ir/drawing.hpp"
 #include "ir/expr.hpp"
@@ -72,6 +73,7 @@ struct GraphNode {
   // The body of a kinematic tree in joint coordinates this node belongs to,
   // and its parent body ("" for ground); empty for nodes outside such a tree.
   std::string tree_node, tree_parent;
+  bool generated = false;  // by the multibody layer: its equations are not read for units
 };
 
 struct Bond {
@@ -103,6 +105,7 @@ struct Parameter {
   Expr value;          // in terms of earlier parameters (ordered: dependencies first)
   bool literal = false;
   double literal_value = 0.0;
+  std::optional<DeclaredUnit> unit;  // as the model states it (`param k = 3e4 {N/m}`)
 };
 
 struct Signal {
@@ -111,12 +114,15 @@ struct Signal {
   int var = -1;
   Expr value;
   Expr rate;  // d/dt of the signal in closed form (a body's rotation: R skew(omega)), or null: the chain rule
+  std::optional<DeclaredUnit> unit;
+  bool generated = false;  // a quantity of the multibody layer's (`b.position`)
 };
 
 struct Output {
   std::string name;    // CSV column ("omega", or "v[2]" for vector outputs)
   SourceLoc loc;
   Expr value;
+  std::optional<DeclaredUnit> unit;
 };
 
 /// A drawn body (ir/drawing.hpp): where it is, as expressions over the

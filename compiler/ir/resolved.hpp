@@ -35,6 +35,7 @@ struct ResolvedNode {
   std::optional<int> dim;                // junctions: declared [n]
   SourceLoc dim_loc;
   TreeTag tree;                          // the kinematic tree's body it belongs to (ExpandedElement::tree)
+  bool generated = false;                // by the multibody layer (ExpandedElement::generated)
 };
 
 struct ResolvedEnd {
@@ -57,6 +58,8 @@ struct ResolvedExpr {
   AstExprPtr expr;
   int scope = 0;
   AstExprPtr rate;       // a signal's closed-form time derivative, if the multibody layer gave one
+  std::optional<DeclaredUnit> unit;  // as declared: `output w = j.rate {rad/s}`
+  bool generated = false;            // a signal of the multibody layer's
 };
 
 /// A body the multibody layer draws (ExpandedOutput::drawing).

@@ -60,6 +60,7 @@ void Expander::element(const Build& B, const std::string& kind, const std::strin
   el.value = std::move(value);
   el.attrs = std::move(attrs);
   el.tree = tree_tag_;
+  el.generated = true;
   generated_.push_back(std::move(el));
 }
 
@@ -75,6 +76,7 @@ void Expander::junction(const Build& B, char type, const std::string& name, int 
   for (auto& s : in) j.inputs.push_back({s, B.loc()});
   for (auto& s : out) j.outputs.push_back({s, B.loc()});
   j.tree = tree_tag_;
+  j.generated = true;
   generated_.push_back(std::move(j));
 }
 
@@ -90,7 +92,7 @@ void Expander::bond(const Build& B, const std::string& from, const std::string& 
 
 void Expander::signal(const Build& B, const std::string& name, E value, E rate) {
   generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedSignal{{name, B.loc(), std::move(value), std::nullopt}, std::move(rate)});
+  generated_.push_back(ir::ExpandedSignal{{name, B.loc(), std::move(value), std::nullopt}, std::move(rate), true});
 }
 
 /// A 1-junction with the given elements bonded into / out of it.

@@ -33,6 +33,7 @@ struct PendingParam {
   AstExprPtr expr;
   int scope;  // scope its expression is evaluated in
   bool fold = false;  // ExpandedParam::fold: a constant where its value is one
+  std::optional<DeclaredUnit> unit;
 };
 
 /// A bond end as written, with the scope and port bindings it is read in.
@@ -108,12 +109,14 @@ class Resolver {
               bool fold = false;
               if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold;
               if (claim_name(prefix + st.name, st.loc, "parameter"))
-                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, fold});
+                pending_params_.push_back(
+                    {prefix + st.name, st.loc, st.value, scope, fold, declared_unit(st.unit, st.value)});
             } else if constexpr (std::is_base_of_v<AstSignal, T>) {
               AstExprPtr rate;
-              if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate;
+              bool generated = false;
+              if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate, generated = st.generated;
               if (claim_name(prefix + st.name, st.loc, "signal"))
-                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, rate});
+                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, rate, st.unit, generated});
             } else if constexpr (std::is_base_of_v<AstOutput, T>) {
               if constexpr (std::is_same_v<T, ExpandedOutput>)
                 if (st.drawing) {
@@ -121,7 +124,7 @@ class Resolver {
                   return;
                 }
               if (claim_name("output " + prefix + st.name, st.loc, "output"))
-                m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope, nullptr});
+                m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope, nullptr, st.unit});
             } else if constexpr (std::is_base_of_v<AstElement, T>) {
               if (!claim_name(prefix + st.name, st.loc, "element")) return;
               ResolvedNode n;
@@ -133,6 +136,7 @@ class Resolver {
               if constexpr (std::is_same_v<T, ExpandedElement>) n.element = st;
               else n.element = as_expanded(st);
               n.tree = n.element->tree;
+              n.generated = n.element->generated;
               add_node(std::move(n));
             } else if constexpr (std::is_base_of_v<AstJunction, T>) {
               if (!claim_name(prefix + st.name, st.loc, "junction")) return;
@@ -144,7 +148,7 @@ class Resolver {
               n.scope = scope;
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
-              if constexpr (std::is_same_v<T, ExpandedJunction>) n.tree = st.tree;
+              if constexpr (std::is_same_v<T, ExpandedJunction>) n.tree = st.tree, n.generated = st.generated;
               add_node(std::move(n));
               AstEndpoint self{st.name, st.loc};
               for (const AstEndpoint& in : st.inputs)
@@ -243,7 +247,11 @@ class Resolver {
         }
         port_bindings_[static_cast<std::size_t>(child)][a.key] = {{a.value->name, a.value->loc}, scope};
       } else if (is_param) {
-        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, a.value, scope});
+        // the value's own unit, else the interface's: `param V = 12 {V}`
+        std::optional<DeclaredUnit> unit = declared_unit(std::nullopt, a.value);
+        for (const AstParam& p : comp.params)
+          if (p.name == a.key && !unit) unit = declared_unit(p.unit, p.value);
+        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, a.value, scope, false, unit});
         declared_[m_.scopes.back().prefix + a.key] = a.loc;
       } else {
         std::vector<std::string> names;
@@ -268,7 +276,8 @@ class Resolver {
                      fmt::format("write instance {} = {}(..., {} = value)", in.name, comp.name, p.name));
         continue;
       }
-      pending_params_.push_back({m_.scopes.back().prefix + p.name, p.loc, p.value, child});
+      pending_params_.push_back(
+          {m_.scopes.back().prefix + p.name, p.loc, p.value, child, false, declared_unit(p.unit, p.value)});
       declared_[m_.scopes.back().prefix + p.name] = p.loc;
     }
     stack_.push_back(comp.name);
@@ -411,6 +420,7 @@ class Resolver {
       par.loc = p.loc;
       par.value = v->items[static_cast<std::size_t>(k)];
       par.literal = is_const(par.value, &par.literal_value);
+      par.unit = p.unit;
       m_.params.push_back(par);
       as_params.items[static_cast<std::size_t>(k)] = param(static_cast<int>(m_.params.size()) - 1);
     }

@@ -1,0 +1,429 @@
+#include "units/check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+namespace mbgc::units {
+namespace {
+
+using ir::Expr;
+using ir::Fn;
+using ir::Op;
+
+/// c * u: a term of a linear form over the unknown dimensions' exponents.
+struct Term {
+  int unknown;
+  Rational coef;
+};
+
+/// The dimension of an expression as a product of powers of unknowns and a
+/// known constant: D * prod(u_i ^ c_i). `wild`: a number, which takes the
+/// dimension of whatever it is added to (`x + 1`, `max(x, 0)`). In a product
+/// it counts as none in a parameter's value (`2 * sqrt(k * m)`); elsewhere it
+/// may carry a unit of its own (`R r { e = 0.5 * f^2 }`, or a parameter the
+/// compiler folded into its value), so it is an unknown of that product.
+struct Form {
+  std::vector<Term> terms;  // sorted by unknown, no zero coefficient
+  Dimension constant;
+  bool wild = false;
+
+  static Form known(Dimension d) { return {{}, d.without_angle(), false}; }
+  static Form unknown(int u) { return {{{u, 1}}, {}, false}; }
+  static Form number() { return {{}, {}, true}; }
+  bool determined() const { return terms.empty(); }
+};
+
+/// a * b^k (k = -1: a / b)
+Form combine(const Form& a, const Form& b, Rational k) {
+  Form out;
+  out.constant = a.constant * b.constant.pow(k);
+  std::size_t i = 0, j = 0;
+  while (i < a.terms.size() || j < b.terms.size()) {
+    if (j == b.terms.size() || (i < a.terms.size() && a.terms[i].unknown < b.terms[j].unknown)) {
+      out.terms.push_back(a.terms[i++]);
+    } else if (i == a.terms.size() || b.terms[j].unknown < a.terms[i].unknown) {
+      out.terms.push_back({b.terms[j].unknown, b.terms[j].coef * k});
+      ++j;
+    } else {
+      Rational c = a.terms[i].coef + b.terms[j].coef * k;
+      if (!c.is_zero()) out.terms.push_back({a.terms[i].unknown, c});
+      ++i;
+      ++j;
+    }
+  }
+  return out;
+}
+
+Form power(const Form& a, Rational k) {
+  Form out;
+  out.constant = a.constant.pow(k);
+  if (k.is_zero()) return out;
+  for (const Term& t : a.terms) out.terms.push_back({t.unknown, t.coef * k});
+  return out;
+}
+
+/// The system of equations between unknown dimensions, kept solved: each
+/// solved unknown is a form over unsolved ones only.
+class Solver {
+ public:
+  explicit Solver(std::size_t n) : solved_(n), used_in_(n) {}
+
+  /// A new unknown, which nothing fixes yet.
+  int fresh() {
+    solved_.emplace_back();
+    used_in_.emplace_back();
+    return static_cast<int>(solved_.size()) - 1;
+  }
+
+  /// `f` with every solved unknown replaced by its solution.
+  Form reduce(const Form& f) const {
+    Form out = Form::known(f.constant);
+    out.wild = f.wild;
+    for (const Term& t : f.terms) {
+      const std::optional<Form>& s = solved_[static_cast<std::size_t>(t.unknown)];
+      out = s ? combine(out, *s, t.coef) : combine(out, Form::unknown(t.unknown), t.coef);
+    }
+    return out;
+  }
+
+  /// Adds `f` = none; false when that contradicts what is known.
+  bool require_none(const Form& given) {
+    Form f = reduce(given);
+    if (f.terms.empty()) return f.constant.without_angle().is_none();
+    // the pivot: the unknown that the fewest solutions mention (cheap to substitute)
+    std::size_t p = 0;
+    for (std::size_t i = 1; i < f.terms.size(); ++i)
+      if (used_in_[static_cast<std::size_t>(f.terms[i].unknown)].size() <
+          used_in_[static_cast<std::size_t>(f.terms[p].unknown)].size())
+        p = i;
+    const int u = f.terms[p].unknown;
+    const Rational c = f.terms[p].coef;
+    // u = -(f - c u) / c
+    Form rest = f;
+    rest.terms.erase(rest.terms.begin() + static_cast<std::ptrdiff_t>(p));
+    Form solution = power(rest, Rational(-1) / c);
+    for (int user : used_in_[static_cast<std::size_t>(u)]) {
+      std::optional<Form>& s = solved_[static_cast<std::size_t>(user)];
+      auto it = std::find_if(s->terms.begin(), s->terms.end(), [u](const Term& t) { return t.unknown == u; });
+      if (it == s->terms.end()) continue;  // listed twice
+      Rational k = it->coef;
+      s->terms.erase(it);
+      *s = combine(*s, solution, k);
+      for (const Term& t : solution.terms) used_in_[static_cast<std::size_t>(t.unknown)].push_back(user);
+    }
+    used_in_[static_cast<std::size_t>(u)].clear();
+    for (const Term& t : solution.terms) used_in_[static_cast<std::size_t>(t.unknown)].push_back(u);
+    solved_[static_cast<std::size_t>(u)] = std::move(solution);
+    return true;
+  }
+
+  /// a = b; false when that contradicts what is known. A number agrees with anything.
+  bool unify(const Form& a, const Form& b) {
+    if (a.wild || b.wild) return true;
+    return require_none(combine(a, b, -1));
+  }
+
+  std::optional<Dimension> value(int u) const {
+    Form f = reduce(Form::unknown(u));
+    if (!f.terms.empty()) return std::nullopt;
+    return f.constant;
+  }
+
+ private:
+  std::vector<std::optional<Form>> solved_;
+  std::vector<std::vector<int>> used_in_;
+};
+
+/// A rational close to `x` with a small denominator (an exponent as written: 2, 0.5, 1.5).
+std::optional<Rational> small_rational(double x) {
+  for (int den = 1; den <= 12; ++den) {
+    double n = x * den;
+    if (std::abs(n - std::round(n)) < 1e-9 && std::abs(n) < 1000) return Rational(static_cast<int>(std::round(n)), den);
+  }
+  return std::nullopt;
+}
+
+class Checker {
+ public:
+  Checker(const ir::EquationSystem& sys, ir::Diagnostics& diags)
+      : sys_(sys), g_(sys.graph), diags_(diags), solver_(g_.params.size() + g_.vars.size()) {
+    names_.var = [this](int id) { return g_.vars[static_cast<std::size_t>(id)].name; };
+    names_.param = [this](int id) { return g_.params[static_cast<std::size_t>(id)].name; };
+    for (const ir::GraphNode& n : g_.nodes)
+      if (n.generated || constant_modulus(n)) unread_locs_.insert(loc_key(n.loc));
+  }
+
+  UnitReport run(bool strict) {
+    // What the model states first, so that a contradiction is found at an equation.
+    for (std::size_t i = 0; i < g_.params.size(); ++i)
+      if (g_.params[i].unit) solver_.require_none(combine(param(i), declared(*g_.params[i].unit), -1));
+    for (const ir::Signal& s : g_.signals)
+      if (s.unit) solver_.require_none(combine(Form::unknown(var_unknown(s.var)), declared(*s.unit), -1));
+    in_param_ = true;
+    for (std::size_t i = 0; i < g_.params.size(); ++i) {
+      const ir::Parameter& p = g_.params[i];
+      if (!p.value || p.literal) continue;
+      site_ = {p.loc, fmt::format("param {} = {}", p.name, text(p.value))};
+      agree(param(i), form(p.value), "the parameter", "its value");
+    }
+    in_param_ = false;
+    for (const ir::Bond& b : g_.bonds)
+      for (std::size_t k = 0; k < b.effort_vars.size() && k < b.flow_vars.size(); ++k) {
+        Form ef = combine(Form::unknown(var_unknown(b.effort_vars[k])), Form::unknown(var_unknown(b.flow_vars[k])), 1);
+        site_ = {b.loc, fmt::format("bond {}", b.name)};
+        agree(ef, Form::known(dim::power()), "its effort times its flow", "a power");
+      }
+    for (const ir::StateVar& s : sys_.states) {
+      if (s.der < 0) continue;
+      Form rate = combine(Form::unknown(var_unknown(s.var)), Form::known(dim::time()), -1);
+      solver_.unify(Form::unknown(var_unknown(s.der)), rate);
+    }
+    for (const ir::Signal& s : g_.signals) {
+      if (s.generated) continue;
+      site_ = {s.loc, fmt::format("signal {} = {}", s.name, text(s.value))};
+      agree(Form::unknown(var_unknown(s.var)), form(s.value), "the signal", "its value");
+    }
+    for (const ir::Equation& e : sys_.equations) {
+      // A contact's equation switches between modes (`closed * (g'' + ...) + (1 - closed) * e`):
+      // each mode's side has its own unit, so it is not checked.
+      if (mentions_discrete(e.lhs) || mentions_discrete(e.rhs)) continue;
+      if (unread_locs_.count(loc_key(e.loc))) continue;
+      site_ = {e.loc, e.origin.empty() ? fmt::format("{} = {}", text(e.lhs), text(e.rhs)) : e.origin};
+      agree(form(e.lhs), form(e.rhs), fmt::format("`{}`", text(e.lhs)), fmt::format("`{}`", text(e.rhs)));
+    }
+    UnitReport report;
+    for (const ir::Output& o : g_.outputs) {
+      site_ = {o.loc, fmt::format("output {}", o.name)};
+      Form f = form(o.value);
+      if (o.unit)
+        agree(f, declared(*o.unit), "its value",
+              fmt::format("its unit {{{}}} is {}", o.unit->unit.text, format(o.unit->unit.dimension)));
+      Form r = solver_.reduce(f);
+      report.outputs.push_back(r.terms.empty() && !r.wild ? std::optional<Dimension>(r.constant) : std::nullopt);
+    }
+    for (std::size_t i = 0; i < g_.params.size(); ++i) {
+      report.params.push_back(g_.params[i].unit ? std::optional<Dimension>(g_.params[i].unit->unit.dimension)
+                                                : solver_.value(static_cast<int>(i)));
+      if (strict && !report.params.back())
+        diags_.error(g_.params[i].loc, fmt::format("the unit of parameter `{}` is neither declared nor inferred", g_.params[i].name),
+                     "declare it after the value, e.g. {N/m} (--units strict)");
+    }
+    return report;
+  }
+
+ private:
+  struct Site {
+    ir::SourceLoc loc;
+    std::string what;
+  };
+
+  static long long loc_key(const ir::SourceLoc& l) {
+    return (static_cast<long long>(l.file) << 40) + (static_cast<long long>(l.line) << 16) + l.col;
+  }
+
+  static bool constant_modulus(const ir::GraphNode& n) {
+    if (n.law != ir::LawForm::Linear || n.value.items.empty()) return false;
+    for (const Expr& item : n.value.items)
+      if (!ir::is_const(item)) return false;
+    return true;
+  }
+
+  bool mentions_discrete(const Expr& e) const {
+    std::unordered_set<int> vars;
+    ir::collect_vars(e, vars);
+    for (int v : vars)
+      if (g_.vars[static_cast<std::size_t>(v)].kind == ir::VarKind::Discrete) return true;
+    return false;
+  }
+
+  int var_unknown(int var) const { return static_cast<int>(g_.params.size()) + var; }
+  static Form param(std::size_t i) { return Form::unknown(static_cast<int>(i)); }
+  static Form declared(const ir::DeclaredUnit& u) { return Form::known(u.unit.dimension); }
+
+  std::string text(const Expr& e) const {
+    std::string s = ir::to_string(e, names_);
+    if (s.size() > 60) s = s.substr(0, 57) + "...";
+    return s;
+  }
+
+  /// What `f` is now, for a message: `N/m`, or `not yet known`.
+  std::string shown(const Form& f) const {
+    Form r = solver_.reduce(f);
+    if (r.wild) return "a number";
+    if (!r.terms.empty()) return "of a unit not fixed yet";
+    return format(r.constant);
+  }
+
+  /// a = b at the current site; a contradiction is reported once per site.
+  void agree(const Form& a, const Form& b, const std::string& a_name, const std::string& b_name) {
+    if (solver_.unify(a, b)) return;
+    // `b_name` may say what it is already: "its unit {deg} is rad"
+    report(b_name.find(" is ") != std::string::npos ? fmt::format("{} is {}, {}", a_name, shown(a), b_name)
+                                                    : fmt::format("{} is {}, {} is {}", a_name, shown(a), b_name, shown(b)));
+  }
+
+  void report(const std::string& detail) {
+    if (!reported_.insert(loc_key(site_.loc)).second) return;
+    auto& d = diags_.error(site_.loc, fmt::format("the units of {} do not agree: {}", site_.what, detail),
+                           "declare each parameter's unit after its value, e.g. {N/m}; `mbgc --units report` "
+                           "lists what was inferred");
+    for (int p : declared_params_) {
+      const ir::Parameter& par = g_.params[static_cast<std::size_t>(p)];
+      d.notes.push_back({par.unit->loc, fmt::format("`{}` is declared {}", par.name, par.unit->unit.text)});
+    }
+  }
+
+  /// The dimension of `e`; an addition of things that disagree is reported at the site.
+  Form form(const Expr& e) {
+    declared_params_.clear();
+    return visit(e);
+  }
+
+  Form visit(const Expr& e) {
+    const ir::Node* n = e.get();
+    if (n->op == Op::Param && g_.params[static_cast<std::size_t>(n->id)].unit &&
+        std::find(declared_params_.begin(), declared_params_.end(), n->id) == declared_params_.end())
+      declared_params_.push_back(n->id);
+    auto& memo = in_param_ ? param_memo_ : memo_;
+    auto hit = memo.find(n);
+    if (hit != memo.end()) return hit->second;
+    Form f = compute(e);
+    memo.emplace(n, f);
+    return f;
+  }
+
+  /// Two operands that must agree (a sum, min, atan2); the first's form.
+  Form both(const Expr& a, const Expr& b) {
+    Form fa = visit(a), fb = visit(b);
+    if (fa.wild) return fb;
+    if (fb.wild) return fa;
+    if (!solver_.unify(fa, fb))
+      report(fmt::format("`{}` is {} and `{}` is {}", text(a), shown(fa), text(b), shown(fb)));
+    return fa;
+  }
+
+  /// What a function of a number returns: none in a parameter's value; a
+  /// number elsewhere, which a folded factor may have given a unit
+  /// (`Se f = step(0, 1)` is 1 N from t = 0: `heaviside(t)` once folded).
+  Form function_result() const { return in_param_ ? Form::known({}) : Form::number(); }
+
+  Form none_argument(const Expr& a, const char* fn) {
+    Form fa = visit(a);
+    if (!fa.wild && !solver_.require_none(fa))
+      report(fmt::format("the argument of {} is {}, where a number (or an angle) is read", fn, shown(fa)));
+    return function_result();
+  }
+
+  Form compute(const Expr& e) {
+    const ir::Node* n = e.get();
+    switch (n->op) {
+      case Op::Const: return Form::number();
+      case Op::Param: return param(static_cast<std::size_t>(n->id));
+      case Op::Var: return Form::unknown(var_unknown(n->id));
+      case Op::Time: return Form::known(dim::time());
+      case Op::Neg: return visit(n->args[0]);
+      case Op::Add: return both(n->args[0], n->args[1]);
+      case Op::Sub: return both(n->args[0], n->args[1]);
+      case Op::Mul:
+      case Op::Div: {
+        Form a = visit(n->args[0]), b = visit(n->args[1]);
+        Rational k = n->op == Op::Mul ? 1 : -1;
+        if (a.wild && b.wild) return Form::number();
+        if (a.wild || b.wild) {
+          Form f = a.wild ? power(b, k) : a;
+          return in_param_ ? f : combine(f, Form::unknown(solver_.fresh()), 1);
+        }
+        return combine(a, b, k);
+      }
+      case Op::Pow: {
+        Form a = visit(n->args[0]);
+        double x = 0;
+        if (ir::is_const(n->args[1], &x)) {
+          if (a.wild) return Form::number();
+          if (auto k = small_rational(x)) return power(a, *k);
+        }
+        none_argument(n->args[0], "a power whose exponent is not a small fraction");
+        return none_argument(n->args[1], "an exponent");
+      }
+      case Op::Der: return combine(visit(n->args[0]), Form::known(dim::time()), -1);
+      case Op::Call: break;
+    }
+    const ir::Operands& a = n->args;
+    switch (n->fn) {
+      case Fn::Sin: return none_argument(a[0], "sin");
+      case Fn::Cos: return none_argument(a[0], "cos");
+      case Fn::Tan: return none_argument(a[0], "tan");
+      case Fn::Asin: return none_argument(a[0], "asin");
+      case Fn::Acos: return none_argument(a[0], "acos");
+      case Fn::Atan: return none_argument(a[0], "atan");
+      case Fn::Sinh: return none_argument(a[0], "sinh");
+      case Fn::Cosh: return none_argument(a[0], "cosh");
+      case Fn::Tanh: return none_argument(a[0], "tanh");
+      case Fn::Exp: return none_argument(a[0], "exp");
+      case Fn::Log: return none_argument(a[0], "log");
+      case Fn::Atan2:
+        both(a[0], a[1]);
+        return function_result();
+      case Fn::Sqrt: {
+        Form f = visit(a[0]);
+        return f.wild ? f : power(f, Rational(1, 2));
+      }
+      case Fn::Abs:
+      case Fn::Frozen: return visit(a[0]);
+      case Fn::Sign:
+      case Fn::Step:
+      case Fn::Select: visit(a[0]); return function_result();
+      case Fn::Min:
+      case Fn::Max: return both(a[0], a[1]);
+    }
+    return Form::number();
+  }
+
+  const ir::EquationSystem& sys_;
+  const ir::BondGraph& g_;
+  ir::Diagnostics& diags_;
+  Solver solver_;
+  ir::Namer names_;
+  Site site_;
+  std::unordered_map<const ir::Node*, Form> memo_, param_memo_;
+  bool in_param_ = false;  // in a parameter's value: a number in a product has no unit
+  std::vector<int> declared_params_;  // the declared parameters the current expression reads
+  std::unordered_set<long long> reported_;
+  /// Of the nodes whose equations are not read: those the multibody layer
+  /// made, and elements whose modulus is a number (`I m = 1`: the equation
+  /// `p = f` has lost the 1, and the kg with it).
+  std::unordered_set<long long> unread_locs_;
+};
+
+}  // namespace
+
+UnitReport check_units(const ir::EquationSystem& sys, ir::Diagnostics& diags, bool strict) {
+  return Checker(sys, diags).run(strict);
+}
+
+namespace {
+
+std::string described(const std::optional<ir::DeclaredUnit>& declared, const std::optional<Dimension>& d) {
+  if (declared) return fmt::format("{:<14} declared", declared->unit.text);
+  if (d) return fmt::format("{:<14} inferred", format(*d));
+  return "?              not fixed by the model";
+}
+
+}  // namespace
+
+std::string print_report(const ir::BondGraph& g, const UnitReport& report) {
+  std::string out = "parameters:\n";
+  for (std::size_t i = 0; i < g.params.size(); ++i)
+    out += fmt::format("  {:<24} {}\n", g.params[i].name, described(g.params[i].unit, report.params[i]));
+  out += "outputs:\n";
+  for (std::size_t i = 0; i < g.outputs.size(); ++i)
+    out += fmt::format("  {:<24} {}\n", g.outputs[i].name, described(g.outputs[i].unit, report.outputs[i]));
+  return out;
+}
+
+}  // namespace mbgc::units
