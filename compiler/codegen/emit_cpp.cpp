@@ -272,7 +272,8 @@ class Emitter {
     Located located(*this, f.body);
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
-      const std::string at = located.head(p.loc);
+      std::string at = located.head(p.loc);
+      if (p.unit) at += fmt::format("{}{{{}}}", at.empty() ? "  // " : ", ", p.unit->unit.text);
       std::string value = shared.print(p.value, f.body);
       f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});{}", names_.param(static_cast<int>(i)), i, value, at)));
     }

@@ -158,10 +158,21 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
                               {CppStmt::line(fmt::format("return {{{}}};", fmt::join(outs, ", ")))}});
   CppFunction params{"", "std::vector<mbgrt::ParameterInfo> parameters() const override", {}};
   std::vector<std::string> infos;
-  for (const Parameter& p : g.params)
-    infos.push_back(fmt::format("{{{}, {}, {}}}", cpp_string(p.name),
-                                p.literal ? cpp_double(p.literal_value) : compact ? "computed" : "std::numeric_limits<double>::quiet_NaN()",
-                                cpp_string(p.literal ? "" : computed_doc(p, g))));
+  // A parameter declared in a unit is listed, and set, in that unit (`angle`
+  // in deg); inside, and in the CSV, it is in SI.
+  bool scaled = false;
+  for (const Parameter& p : g.params) {
+    std::string value = p.literal ? cpp_double(p.literal_value)
+                        : compact ? "computed"
+                                  : "std::numeric_limits<double>::quiet_NaN()";
+    std::string doc = p.literal ? "" : computed_doc(p, g);
+    if (p.unit && p.literal) {
+      value = cpp_double(std::stod(fmt::format("{:.15g}", p.literal_value / p.unit->unit.scale)));
+      doc = p.unit->unit.text;
+    }
+    scaled = scaled || (p.unit && !p.unit->unit.is_si());
+    infos.push_back(fmt::format("{{{}, {}, {}}}", cpp_string(p.name), value, cpp_string(doc)));
+  }
   if (infos.empty()) {
     params.body.push_back(CppStmt::line("return {};"));
   } else if (compact) {
@@ -227,7 +238,13 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
     set.body.push_back(CppStmt::line("  if (name != kParams[i]) continue;"));
   }
   if (!g.params.empty()) {
-    set.body.push_back(CppStmt::line("  overrides_[i] = value;"));
+    if (scaled) {  // to SI from the declared units, before the loop
+      std::vector<std::string> scales;
+      for (const Parameter& p : g.params) scales.push_back(cpp_double(p.unit ? p.unit->unit.scale : 1.0));
+      set.body.insert(set.body.end() - 2, CppStmt::line(fmt::format("static const double kToSI[] = {{{}}};",
+                                                                     fmt::join(scales, ", "))));
+    }
+    set.body.push_back(CppStmt::line(scaled ? "  overrides_[i] = value * kToSI[i];" : "  overrides_[i] = value;"));
     set.body.push_back(CppStmt::line("  overridden_[i] = true;"));
     set.body.push_back(CppStmt::line("  return true;"));
     set.body.push_back(CppStmt::line("}"));

@@ -41,8 +41,7 @@ struct Options {
   bool stats_csv = false;     ///< --stats-format=csv
   /// --units: check (contradictions are errors), strict (and every parameter's unit
   /// known), report (print every parameter's and output's unit instead of C++), off
-  /// (the default while the multibody layer does not state its units)
-  enum class Units { Check, Strict, Report, Off } units = Units::Off;
+  enum class Units { Check, Strict, Report, Off } units = Units::Check;
   bool energy_witness = true;  ///< false: --no-energy-witness (no stored_energy() or power(): reduce/energy.hpp)
   ir::Limits limits;          ///< how large a model may grow (the fuzz targets lower them)
 };

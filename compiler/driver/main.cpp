@@ -70,11 +70,11 @@ int main(int argc, char** argv) {
   app.add_flag("--no-energy-witness", no_energy_witness,
                "leave out the energy balance (stored_energy() and power(), whose code can reach the "
                "dynamics' own size): the simulator then reports no energy residual");
-  std::string units = "off";
+  std::string units = "check";
   app.add_option("--units", units,
-                 "the units of measure: check (equations whose units disagree are errors; the bond-graph "
-                 "statements only, not yet the multibody layer's), strict (also every parameter's unit declared "
-                 "or inferred), report (print every parameter's and output's unit instead of C++), off (the default)")
+                 "the units of measure: check (the default: equations whose units disagree are errors), strict "
+                 "(also every parameter's unit declared or inferred), report (print every parameter's and "
+                 "output's unit instead of C++), off")
       ->check(CLI::IsMember({"check", "strict", "report", "off"}));
   app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
       ->check(CLI::IsMember({"text", "csv"}));

@@ -36,6 +36,12 @@ struct Form {
   static Form unknown(int u) { return {{{u, 1}}, {}, false}; }
   static Form number() { return {{}, {}, true}; }
   bool determined() const { return terms.empty(); }
+  /// Exponents small enough to compute with exactly (`x^999^999` is not checked).
+  bool is_small() const {
+    for (const Term& t : terms)
+      if (!t.coef.is_small()) return false;
+    return constant.is_small();
+  }
 };
 
 /// a * b^k (k = -1: a / b)
@@ -93,7 +99,9 @@ class Solver {
 
   /// Adds `f` = none; false when that contradicts what is known.
   bool require_none(const Form& given) {
+    if (!given.is_small()) return true;  // not checked
     Form f = reduce(given);
+    if (!f.is_small()) return true;
     if (f.terms.empty()) return f.constant.without_angle().is_none();
     // the pivot: the unknown that the fewest solutions mention (cheap to substitute)
     std::size_t p = 0;
@@ -156,6 +164,7 @@ class Checker {
     names_.param = [this](int id) { return g_.params[static_cast<std::size_t>(id)].name; };
     for (const ir::GraphNode& n : g_.nodes)
       if (n.generated || constant_modulus(n)) unread_locs_.insert(loc_key(n.loc));
+      else if (ir::is_junction(n.kind)) junction_locs_.insert(loc_key(n.loc));
   }
 
   UnitReport run(bool strict) {
@@ -168,14 +177,14 @@ class Checker {
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const ir::Parameter& p = g_.params[i];
       if (!p.value || p.literal) continue;
-      site_ = {p.loc, fmt::format("param {} = {}", p.name, text(p.value))};
+      site_ = {p.loc, fmt::format("param {} = {}", p.name, text(p.value)), {p.value}};
       agree(param(i), form(p.value), "the parameter", "its value");
     }
     in_param_ = false;
     for (const ir::Bond& b : g_.bonds)
       for (std::size_t k = 0; k < b.effort_vars.size() && k < b.flow_vars.size(); ++k) {
         Form ef = combine(Form::unknown(var_unknown(b.effort_vars[k])), Form::unknown(var_unknown(b.flow_vars[k])), 1);
-        site_ = {b.loc, fmt::format("bond {}", b.name)};
+        site_ = {b.loc, fmt::format("bond {}", b.name), {}};
         agree(ef, Form::known(dim::power()), "its effort times its flow", "a power");
       }
     for (const ir::StateVar& s : sys_.states) {
@@ -185,20 +194,24 @@ class Checker {
     }
     for (const ir::Signal& s : g_.signals) {
       if (s.generated) continue;
-      site_ = {s.loc, fmt::format("signal {} = {}", s.name, text(s.value))};
+      site_ = {s.loc, fmt::format("signal {} = {}", s.name, text(s.value)), {s.value}};
       agree(Form::unknown(var_unknown(s.var)), form(s.value), "the signal", "its value");
     }
-    for (const ir::Equation& e : sys_.equations) {
-      // A contact's equation switches between modes (`closed * (g'' + ...) + (1 - closed) * e`):
-      // each mode's side has its own unit, so it is not checked.
-      if (mentions_discrete(e.lhs) || mentions_discrete(e.rhs)) continue;
-      if (unread_locs_.count(loc_key(e.loc))) continue;
-      site_ = {e.loc, e.origin.empty() ? fmt::format("{} = {}", text(e.lhs), text(e.rhs)) : e.origin};
-      agree(form(e.lhs), form(e.rhs), fmt::format("`{}`", text(e.lhs)), fmt::format("`{}`", text(e.rhs)));
-    }
+    // The junctions first, then the elements' laws in the order written: a
+    // law that contradicts the ones before it is the one reported.
+    for (bool junctions : {true, false})
+      for (const ir::Equation& e : sys_.equations) {
+        if (junction_locs_.count(loc_key(e.loc)) != static_cast<std::size_t>(junctions)) continue;
+        // A contact's equation switches between modes (`closed * (g'' + ...) + (1 - closed) * e`):
+        // each mode's side has its own unit, so it is not checked.
+        if (mentions_discrete(e.lhs) || mentions_discrete(e.rhs)) continue;
+        if (unread_locs_.count(loc_key(e.loc))) continue;
+        site_ = {e.loc, e.origin.empty() ? fmt::format("{} = {}", text(e.lhs), text(e.rhs)) : e.origin, {e.lhs, e.rhs}};
+        agree(form(e.lhs), form(e.rhs), fmt::format("`{}`", text(e.lhs)), fmt::format("`{}`", text(e.rhs)));
+      }
     UnitReport report;
     for (const ir::Output& o : g_.outputs) {
-      site_ = {o.loc, fmt::format("output {}", o.name)};
+      site_ = {o.loc, fmt::format("output {}", o.name), {o.value}};
       Form f = form(o.value);
       if (o.unit)
         agree(f, declared(*o.unit), "its value",
@@ -217,9 +230,12 @@ class Checker {
   }
 
  private:
+  /// Where a contradiction is reported: the model line, what is there, and
+  /// the expressions it reads (their declared parameters are noted).
   struct Site {
     ir::SourceLoc loc;
     std::string what;
+    std::vector<Expr> exprs;
   };
 
   static long long loc_key(const ir::SourceLoc& l) {
@@ -270,25 +286,24 @@ class Checker {
   void report(const std::string& detail) {
     if (!reported_.insert(loc_key(site_.loc)).second) return;
     auto& d = diags_.error(site_.loc, fmt::format("the units of {} do not agree: {}", site_.what, detail),
-                           "declare each parameter's unit after its value, e.g. {N/m}; `mbgc --units report` "
-                           "lists what was inferred");
-    for (int p : declared_params_) {
+                           "each side's unit follows, through the bond graph, from the units the model declares: "
+                           "check those; `mbgc --units report` lists what each parameter was inferred to be");
+    // the units the site's expressions read, as declared
+    std::unordered_set<int> read;
+    for (const Expr& e : site_.exprs) ir::collect_params(e, read);
+    std::vector<int> ids(read.begin(), read.end());
+    std::sort(ids.begin(), ids.end());
+    for (int p : ids) {
       const ir::Parameter& par = g_.params[static_cast<std::size_t>(p)];
-      d.notes.push_back({par.unit->loc, fmt::format("`{}` is declared {}", par.name, par.unit->unit.text)});
+      if (par.unit) d.notes.push_back({par.unit->loc, fmt::format("`{}` is declared {}", par.name, par.unit->unit.text)});
     }
   }
 
   /// The dimension of `e`; an addition of things that disagree is reported at the site.
-  Form form(const Expr& e) {
-    declared_params_.clear();
-    return visit(e);
-  }
+  Form form(const Expr& e) { return visit(e); }
 
   Form visit(const Expr& e) {
     const ir::Node* n = e.get();
-    if (n->op == Op::Param && g_.params[static_cast<std::size_t>(n->id)].unit &&
-        std::find(declared_params_.begin(), declared_params_.end(), n->id) == declared_params_.end())
-      declared_params_.push_back(n->id);
     auto& memo = in_param_ ? param_memo_ : memo_;
     auto hit = memo.find(n);
     if (hit != memo.end()) return hit->second;
@@ -344,8 +359,11 @@ class Checker {
         Form a = visit(n->args[0]);
         double x = 0;
         if (ir::is_const(n->args[1], &x)) {
-          if (a.wild) return Form::number();
-          if (auto k = small_rational(x)) return power(a, *k);
+          if (a.wild || !a.is_small()) return Form::number();
+          if (auto k = small_rational(x)) {
+            Form f = power(a, *k);
+            return f.is_small() ? f : Form::number();
+          }
         }
         none_argument(n->args[0], "a power whose exponent is not a small fraction");
         return none_argument(n->args[1], "an exponent");
@@ -392,12 +410,12 @@ class Checker {
   Site site_;
   std::unordered_map<const ir::Node*, Form> memo_, param_memo_;
   bool in_param_ = false;  // in a parameter's value: a number in a product has no unit
-  std::vector<int> declared_params_;  // the declared parameters the current expression reads
   std::unordered_set<long long> reported_;
   /// Of the nodes whose equations are not read: those the multibody layer
   /// made, and elements whose modulus is a number (`I m = 1`: the equation
   /// `p = f` has lost the 1, and the kg with it).
   std::unordered_set<long long> unread_locs_;
+  std::unordered_set<long long> junction_locs_;
 };
 
 }  // namespace

@@ -9,12 +9,12 @@
 
 namespace mbgc::units {
 
-Rational::Rational(int n, int d) : num(n), den(d) {
+Rational::Rational(long long n, long long d) : num(n), den(d) {
   if (den < 0) {
     num = -num;
     den = -den;
   }
-  int g = std::gcd(num, den);
+  long long g = std::gcd(num, den);
   if (g > 1) {
     num /= g;
     den /= g;
@@ -31,6 +31,12 @@ Dimension Dimension::base(Base b, Rational power) {
 bool Dimension::is_none() const {
   for (const Rational& r : exp_)
     if (!r.is_zero()) return false;
+  return true;
+}
+
+bool Dimension::is_small() const {
+  for (const Rational& r : exp_)
+    if (!r.is_small()) return false;
   return true;
 }
 

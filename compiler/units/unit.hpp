@@ -23,10 +23,12 @@ namespace mbgc::units {
 
 /// A rational exponent, kept reduced with a positive denominator.
 struct Rational {
-  int num = 0;
-  int den = 1;
+  long long num = 0;
+  long long den = 1;
   Rational() = default;
-  Rational(int n, int d = 1);  // NOLINT(google-explicit-constructor): 2 is an exponent
+  Rational(long long n, long long d = 1);  // NOLINT(google-explicit-constructor): 2 is an exponent
+  /// Small enough that products of a few stay exact (the checker gives up past it).
+  bool is_small() const { return num < 1000000 && num > -1000000 && den < 1000000; }
   bool is_zero() const { return num == 0; }
   bool operator==(const Rational&) const = default;
   Rational operator+(Rational o) const { return {num * o.den + o.num * den, den * o.den}; }
@@ -56,6 +58,8 @@ class Dimension {
   Dimension operator/(const Dimension& o) const;
   Dimension pow(Rational p) const;
   bool operator==(const Dimension&) const = default;
+  /// Every exponent Rational::is_small.
+  bool is_small() const;
 
  private:
   std::array<Rational, kBases> exp_{};

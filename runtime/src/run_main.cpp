@@ -27,12 +27,15 @@ namespace detail {
 
 namespace {
 
-/// NAME,DEFAULT lines. A parameter computed from others (a body's r0 from its
-/// joint, say) has no default of its own: `(computed: FORMULA)`, not `nan`.
+/// NAME,DEFAULT lines, NAME,DEFAULT,UNIT for a parameter the model declares
+/// in a unit (`--set` reads it in that unit). A parameter computed from others
+/// (a body's r0 from its joint, say) has no default of its own:
+/// `(computed: FORMULA)`, not `nan`.
 int list_parameters(const Model& model) {
   for (const ParameterInfo& p : model.parameters()) {
     if (!std::isnan(p.default_value)) {
-      fmt::print(stdout, "{},{}\n", p.name, p.default_value);
+      if (p.unit_or_doc.empty()) fmt::print(stdout, "{},{}\n", p.name, p.default_value);
+      else fmt::print(stdout, "{},{},{}\n", p.name, p.default_value, p.unit_or_doc);
       continue;
     }
     std::string formula = p.unit_or_doc.rfind("= ", 0) == 0 ? p.unit_or_doc.substr(2) : p.unit_or_doc;

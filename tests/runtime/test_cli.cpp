@@ -149,6 +149,23 @@ TEST(Cli, ListParametersPrintsNameCommaDefault) {
   EXPECT_EQ(r.out, "k,0.5\nx0,2\n");
 }
 
+/// Decay whose x0 the model declares in mm, as mbgc emits it: listed in mm.
+class DecayInMillimetres : public Decay {
+ public:
+  std::vector<ParameterInfo> parameters() const override {
+    auto out = Decay::parameters();
+    out[1] = {"x0", 2000, "mm"};
+    return out;
+  }
+};
+
+TEST(Cli, ListParametersGivesADeclaredUnitAsAThirdColumn) {
+  DecayInMillimetres m;
+  RunResult r = run(m, {"--list-parameters"}, false);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "k,0.5\nx0,2000,mm\n");
+}
+
 /// Decay with a parameter computed from another, as mbgc emits it.
 class DecayWithComputedParameter : public Decay {
  public:

@@ -502,3 +502,28 @@ TEST(EmitStats, CountsEqualTheOperationsWrittenInEachMethod) {
 }
 
 }  // namespace
+
+// ---- declared units ----------------------------------------------------------------
+
+TEST(EmitUnits, AParameterDeclaredInAUnitIsListedAndSetInItAndComputedInSI) {
+  auto c = compile("param angle = 30 {deg}\nparam k = 4e4 {N/m}\nparam b = 2\nC spring = 1/k\n"
+                   "R damper = b\nI m = 1\n1 j : -> spring, damper, m\noutput a = angle + 0*m.f\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  std::string cpp = emit(*c);
+  // listed in the unit it is declared in, SI inside
+  EXPECT_NE(cpp.find("{\"angle\", 30.0, \"deg\"}"), std::string::npos) << cpp;
+  EXPECT_NE(cpp.find("{\"k\", 40000.0, \"N/m\"}"), std::string::npos) << cpp;
+  EXPECT_NE(cpp.find("{\"b\", 2.0, \"\"}"), std::string::npos) << cpp;
+  EXPECT_NE(cpp.find("angle = param(0, 0.5235987755982988);  // test.mbg:1:7, {deg}"), std::string::npos) << cpp;
+  // --set reads it in its unit
+  EXPECT_NE(cpp.find("static const double kToSI[] = {0.017453292519943295, 1.0, 1.0};"), std::string::npos) << cpp;
+  EXPECT_NE(cpp.find("overrides_[i] = value * kToSI[i];"), std::string::npos) << cpp;
+}
+
+TEST(EmitUnits, AModelInSIUnitsSetsItsParametersAsGiven) {
+  auto c = compile("param k = 4e4 {N/m}\nC spring = 1/k\nI m = 1\n1 j : -> spring, m\n");
+  ASSERT_TRUE(c->ok()) << c->messages();
+  std::string cpp = emit(*c);
+  EXPECT_EQ(cpp.find("kToSI"), std::string::npos);
+  EXPECT_NE(cpp.find("overrides_[i] = value;"), std::string::npos);
+}

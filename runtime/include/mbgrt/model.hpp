@@ -247,8 +247,9 @@ enum class UnknownRole {
 /// A named, overridable model parameter (`--set NAME=VALUE`).
 struct ParameterInfo {
   std::string name;
-  double default_value;      ///< value from the model text (NaN if it is computed from other parameters)
-  std::string unit_or_doc;   ///< free text from the model (may be empty); "= FORMULA" for a computed one
+  double default_value;      ///< value from the model text, in its unit (NaN if it is computed from other parameters)
+  std::string unit_or_doc;   ///< the unit the model declares it in (`deg`: set_parameter takes degrees), or
+                             ///< empty (SI); "= FORMULA" for a computed one
 };
 
 class Model {
