@@ -836,6 +836,12 @@ class Builder {
       }
       g_.drawings.push_back(std::move(body));
     }
+    // What the multibody layer states of the user's settings: a value that does
+    // not lower was reported where the layer read it.
+    for (const ExpandedUnitCheck& c : m_.unit_checks) {
+      Diagnostics scratch(sources_);
+      if (auto v = lower(*c.value, lookup_in(0), scratch)) g_.unit_checks.push_back({v->items, c.dimension, c.loc, c.what});
+    }
   }
 
   const ResolvedModel& m_;

@@ -8,7 +8,7 @@ bool as_expanded(const AstStmt& s, ExpandedStmt& out) {
   return std::visit(
       [&](const auto& st) {
         using T = std::decay_t<decltype(st)>;
-        if constexpr (std::is_same_v<T, AstParam>) out = ExpandedParam{st, false};
+        if constexpr (std::is_same_v<T, AstParam>) out = ExpandedParam{st, false, false};
         else if constexpr (std::is_same_v<T, AstSignal>) out = ExpandedSignal{st, nullptr, false};
         else if constexpr (std::is_same_v<T, AstOutput>) out = ExpandedOutput{st, nullptr, nullptr};
         else if constexpr (std::is_same_v<T, AstElement>) out = as_expanded(st);

@@ -26,6 +26,7 @@ namespace mbgc::ir {
 /// reads a `param`.
 struct ExpandedParam : AstParam {
   bool fold = false;
+  bool generated = false;  // by the multibody layer (a body's mass, a joint's frame), as ExpandedElement's
 };
 
 /// A signal; `rate`, where the expansion knows its time derivative in closed
@@ -76,8 +77,19 @@ struct ExpandedJunction : AstJunction {
 using ExpandedStmt = std::variant<AstModel, ExpandedParam, ExpandedSignal, ExpandedOutput, ExpandedElement,
                                   ExpandedJunction, AstBond, AstSimulate, AstInstance, std::shared_ptr<AstComponent>>;
 
+/// What the multibody layer states of a value the user wrote in one of its
+/// statements (a joint's `torque` is N*m, a body's `mass` kg): units/check
+/// holds the value, lowered, to it.
+struct ExpandedUnitCheck {
+  AstExprPtr value;           // quantities replaced by their definitions
+  units::Dimension dimension;
+  SourceLoc loc;              // of the setting
+  std::string what;           // "the torque of joint `j1`"
+};
+
 struct ExpandedProgram {
   std::vector<ExpandedStmt> stmts;
+  std::vector<ExpandedUnitCheck> unit_checks;
 };
 
 /// A user's element as resolve reads it, none of the extensions set.

@@ -106,6 +106,7 @@ struct Parameter {
   bool literal = false;
   double literal_value = 0.0;
   std::optional<DeclaredUnit> unit;  // as the model states it (`param k = 3e4 {N/m}`)
+  bool generated = false;            // by the multibody layer: its value is not read for units
 };
 
 struct Signal {
@@ -145,6 +146,15 @@ struct DrawnBody {
   }
 };
 
+/// A dimension the multibody layer states for a value the user wrote
+/// (ExpandedUnitCheck), lowered: every entry must have it.
+struct UnitCheck {
+  std::vector<Expr> items;
+  units::Dimension dimension;
+  SourceLoc loc;
+  std::string what;
+};
+
 struct SimSettings {
   std::optional<double> t_end, interval, rtol, atol, step;
   std::optional<std::string> solver;
@@ -165,6 +175,7 @@ struct BondGraph {
   std::vector<Signal> signals;
   std::vector<Output> outputs;
   std::vector<DrawnBody> drawings;
+  std::vector<UnitCheck> unit_checks;
   SimSettings settings;
 
   int add_var(std::string name, VarKind kind, SourceLoc loc, int of = -1) {

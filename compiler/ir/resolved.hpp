@@ -82,6 +82,7 @@ struct ResolvedModel {
   std::vector<ResolvedExpr> signals;
   std::vector<ResolvedExpr> outputs;
   std::vector<ResolvedDrawing> drawings;
+  std::vector<ExpandedUnitCheck> unit_checks;  // at the top level
   SimSettings settings;
   std::vector<std::shared_ptr<const AstComponent>> components;  // keeps ASTs alive
 };

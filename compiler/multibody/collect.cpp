@@ -157,7 +157,7 @@ void Expander::add_body(const AstBody& b) {
       add_flexible_body(body, b, a);
       return;
     }
-  static const std::vector<std::string> keys = {"mass", "inertia", "com", "r0", "quat0", "v0", "w0", "shape"};
+  static const std::vector<std::string> keys = setting_names(body_setting::kAll);
   bool has_mass = false, has_inertia = false, mass_misspelt = false;
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {
@@ -305,7 +305,7 @@ void Expander::add_force(const AstJoint& f) {
     return;
   }
   ForceElement fe{&f, *a, *b, {}};
-  static const std::vector<std::string> keys = {"force", "torque", "stiffness", "damping", "length"};
+  static const std::vector<std::string> keys = setting_names(force_setting::kAll);
   collect_settings(f, keys, fe.attrs, fmt::format("it takes {}", fmt::join(keys, ", ")));
   if (fe.attrs.count("stiffness") && !fe.attrs.count("length"))
     diags_.error(fe.attrs.at("stiffness")->loc, fmt::format("the spring of `{}` has no free length", f.name),

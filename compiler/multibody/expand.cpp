@@ -36,18 +36,19 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
   for (const AstStmt& s : in.stmts)
     if (ir::ExpandedStmt e; ir::as_expanded(s, e)) out.stmts.push_back(rewrite_user(e));
   for (ir::ExpandedStmt& s : generated_) out.stmts.push_back(std::move(s));
+  if (!diags_.has_errors()) state_units(out.unit_checks);
   return out;
 }
 
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/false});
+  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true});
 }
 
 void Expander::property(const Build& B, const std::string& name, E value) {
   generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/true});
+  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs) {

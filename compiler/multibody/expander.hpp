@@ -196,6 +196,11 @@ class Expander {
   E rewrite_expr(const E& e);
   ir::ExpandedStmt rewrite_user(const ir::ExpandedStmt& s);
 
+  // ---- 7. the units of the values users write in these statements (units.cpp)
+  void state_units(std::vector<ir::ExpandedUnitCheck>& out);
+  void state_unit(const AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what,
+                  std::vector<ir::ExpandedUnitCheck>& out);
+
   ir::SourceManager& sources_;                // modal-data files join it (diagnostics, depfile)
   Diagnostics& diags_;
   std::vector<std::string> search_dirs_;     // mbgc -I: where modal-data files are looked for

@@ -1,8 +1,8 @@
 // multibody/settings.hpp — a setting of a multibody statement, declared once:
-// its name, the shape its value must have and how to write it, and whether
-// its value must be known before the run. The joint settings are here: the
-// common ones every joint takes, and those the joint kinds list
-// (JointKind::settings). Parsing (collect.cpp), the joint kinds, the code
+// its name, the shape its value must have and how to write it, whether its
+// value must be known before the run, and its dimension. The joint settings
+// are here: the common ones every joint takes, and those the joint kinds list
+// (JointKind::settings); and a rigid body's and a force element's. Parsing (collect.cpp), the joint kinds, the code
 // that reads a joint's settings and the language reference's test all name
 // a setting through these entries, never by its spelling.
 #pragma once
@@ -12,6 +12,8 @@
 #include <vector>
 
 #include <fmt/format.h>
+
+#include "units/unit.hpp"
 
 namespace mbgc::multibody::detail {
 
@@ -41,32 +43,36 @@ struct Setting {
   /// Its value must be known before the run; false: a function of t or of
   /// the state (a drive's torque, a prescribed motion).
   bool constant = true;
+  /// The dimension of its value (checked against the units the model
+  /// declares); none: a number, or one its joint kind decides (`q0` is an
+  /// angle of a revolute joint, a length of a prismatic one).
+  std::optional<units::Dimension> dimension = std::nullopt;
 };
 
 namespace joint_setting {
-inline const Setting axis{"axis", Expected{{3, 1}, "an axis is a direction [x, y, z] in the frames of both bodies"}};
-inline const Setting axis_a{"axis_a", Expected{{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}};
-inline const Setting axis_b{"axis_b", Expected{{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}};
+inline const Setting axis{"axis", Expected{{3, 1}, "an axis is a direction [x, y, z] in the frames of both bodies"}, true, units::Dimension::none()};
+inline const Setting axis_a{"axis_a", Expected{{3, 1}, "an axis is a direction [x, y, z] in the first body's frame"}, true, units::Dimension::none()};
+inline const Setting axis_b{"axis_b", Expected{{3, 1}, "an axis is a direction [x, y, z] in the second body's frame"}, true, units::Dimension::none()};
 inline const Setting constraint{"constraint", std::nullopt};
 inline const Setting stiffness{"stiffness", Expected{{1, 1}, "the penalty stiffness is a scalar"}};
 inline const Setting damping{"damping", Expected{{1, 1}, "the penalty damping is a scalar"}};
-inline const Setting stabilisation{"stabilisation", std::nullopt};
+inline const Setting stabilisation{"stabilisation", std::nullopt, true, units::dim::time().pow(-1)};
 inline const Setting rot0{"rot0", Expected{{4, 1}, "the initial relative rotation is a quaternion [w, x, y, z], e.g. "
-                                                   "quat_axis_angle([0, 0, 1], 0.5)"}};
+                                                   "quat_axis_angle([0, 0, 1], 0.5)"}, true, units::Dimension::none()};
 inline const Setting r0{"r0", Expected{{3, 1}, "the initial position of the second point from the first is a 3-vector "
-                                               "in the first body's joint axes"}};
+                                               "in the first body's joint axes"}, true, units::dim::length()};
 inline const Setting v0{"v0", Expected{{3, 1}, "the initial velocity of the second point relative to the first is a "
-                                               "3-vector in the first body's joint axes"}};
+                                               "3-vector in the first body's joint axes"}, true, units::dim::velocity()};
 inline const Setting w0{"w0", Expected{{3, 1}, "the initial relative angular velocity is a 3-vector in the second "
-                                               "body's axes (rad/s)"}};
+                                               "body's axes (rad/s)"}, true, units::dim::angular_velocity()};
 inline const Setting q0{"q0", Expected{{1, 1}, "the initial joint coordinate is a scalar, e.g. q0 = 0.3"}};
 inline const Setting rate0{"rate0", Expected{{1, 1}, "the initial joint rate is a scalar, e.g. rate0 = 0"}};
-inline const Setting d0{"d0", Expected{{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}};
-inline const Setting ddot0{"ddot0", Expected{{1, 1}, "the initial axial rate is a scalar"}};
-inline const Setting pitch{"pitch", Expected{{1, 1}, "the pitch is a scalar (m per rad)"}};
-inline const Setting length{"length", Expected{{1, 1}, "the length is a scalar (m)"}};
-inline const Setting torque{"torque", Expected{{1, 1}, "the drive torque about the joint axis is a scalar (N m)"}, false};
-inline const Setting force{"force", Expected{{1, 1}, "the drive force along the joint axis is a scalar (N)"}, false};
+inline const Setting d0{"d0", Expected{{1, 1}, "the initial axial displacement is a scalar, e.g. d0 = 0.1"}, true, units::dim::length()};
+inline const Setting ddot0{"ddot0", Expected{{1, 1}, "the initial axial rate is a scalar"}, true, units::dim::velocity()};
+inline const Setting pitch{"pitch", Expected{{1, 1}, "the pitch is a scalar (m per rad)"}, true, units::dim::length() / units::dim::angle()};
+inline const Setting length{"length", Expected{{1, 1}, "the length is a scalar (m)"}, true, units::dim::length()};
+inline const Setting torque{"torque", Expected{{1, 1}, "the drive torque about the joint axis is a scalar (N m)"}, false, units::dim::torque()};
+inline const Setting force{"force", Expected{{1, 1}, "the drive force along the joint axis is a scalar (N)"}, false, units::dim::force()};
 inline const Setting motion{"motion", Expected{{1, 1}, "a prescribed motion is a scalar function of t, e.g. motion = "
                                                        "0.5 * sin(t)"},
                             false};
@@ -80,6 +86,30 @@ inline const std::vector<const Setting*> kAll = {&axis,  &axis_a, &axis_b, &cons
                                                  &stabilisation, &rot0, &r0, &v0, &w0, &q0, &rate0, &d0, &ddot0,
                                                  &pitch, &length, &torque, &force, &motion};
 }  // namespace joint_setting
+
+/// A rigid body's settings (its reader checks their shapes).
+namespace body_setting {
+inline const Setting mass{"mass", std::nullopt, true, units::dim::mass()};
+inline const Setting inertia{"inertia", std::nullopt, true, units::dim::mass() * units::dim::length().pow(2)};
+inline const Setting com{"com", std::nullopt, true, units::dim::length()};
+inline const Setting r0{"r0", std::nullopt, true, units::dim::length()};
+inline const Setting quat0{"quat0", std::nullopt, true, units::Dimension::none()};
+inline const Setting v0{"v0", std::nullopt, true, units::dim::velocity()};
+inline const Setting w0{"w0", std::nullopt, true, units::dim::angular_velocity()};
+inline const Setting shape{"shape", std::nullopt};
+inline const std::vector<const Setting*> kAll = {&mass, &inertia, &com, &r0, &quat0, &v0, &w0, &shape};
+}  // namespace body_setting
+
+/// A force element's settings: loads on the second point (their opposite on
+/// the first), world axes, and a spring-damper along the line between them.
+namespace force_setting {
+inline const Setting force{"force", std::nullopt, false, units::dim::force()};
+inline const Setting torque{"torque", std::nullopt, false, units::dim::torque()};
+inline const Setting stiffness{"stiffness", std::nullopt, true, units::dim::force() / units::dim::length()};
+inline const Setting damping{"damping", std::nullopt, true, units::dim::force() / units::dim::velocity()};
+inline const Setting length{"length", std::nullopt, true, units::dim::length()};
+inline const std::vector<const Setting*> kAll = {&force, &torque, &stiffness, &damping, &length};
+}  // namespace force_setting
 
 /// The names of `settings`, in their order.
 inline std::vector<std::string> setting_names(const std::vector<const Setting*>& settings) {

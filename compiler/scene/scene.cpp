@@ -283,6 +283,16 @@ SceneReport prune_graph(BondGraph& g, const SelectedScene& scene, Diagnostics& d
   for (Signal& s : g.signals) renumber(s.value), renumber(s.rate);
   for (Output& o : g.outputs) renumber(o.value);
   for (DrawnBody& d : g.drawings) d.for_each_expr(renumber);
+  // A unit check on a removed parameter goes with it.
+  std::vector<UnitCheck> kept_checks;
+  for (UnitCheck& c : g.unit_checks) {
+    std::unordered_set<int> ps;
+    for (const Expr& e : c.items) collect_params(e, ps);
+    if (std::any_of(ps.begin(), ps.end(), [&](int p) { return param_index[at(p)] < 0; })) continue;
+    for (Expr& e : c.items) renumber(e);
+    kept_checks.push_back(std::move(c));
+  }
+  g.unit_checks = std::move(kept_checks);
 
   rep.nodes_after = static_cast<int>(g.nodes.size());
   rep.bonds_after = static_cast<int>(g.bonds.size());

@@ -34,6 +34,7 @@ struct PendingParam {
   int scope;  // scope its expression is evaluated in
   bool fold = false;  // ExpandedParam::fold: a constant where its value is one
   std::optional<DeclaredUnit> unit;
+  bool generated = false;  // ExpandedParam::generated
 };
 
 /// A bond end as written, with the scope and port bindings it is read in.
@@ -106,11 +107,11 @@ class Resolver {
             } else if constexpr (std::is_same_v<T, AstImport>) {
               // spliced by parse
             } else if constexpr (std::is_base_of_v<AstParam, T>) {
-              bool fold = false;
-              if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold;
+              bool fold = false, generated = false;
+              if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold, generated = st.generated;
               if (claim_name(prefix + st.name, st.loc, "parameter"))
                 pending_params_.push_back(
-                    {prefix + st.name, st.loc, st.value, scope, fold, declared_unit(st.unit, st.value)});
+                    {prefix + st.name, st.loc, st.value, scope, fold, declared_unit(st.unit, st.value), generated});
             } else if constexpr (std::is_base_of_v<AstSignal, T>) {
               AstExprPtr rate;
               bool generated = false;
@@ -421,6 +422,7 @@ class Resolver {
       par.value = v->items[static_cast<std::size_t>(k)];
       par.literal = is_const(par.value, &par.literal_value);
       par.unit = p.unit;
+      par.generated = p.generated;
       m_.params.push_back(par);
       as_params.items[static_cast<std::size_t>(k)] = param(static_cast<int>(m_.params.size()) - 1);
     }
@@ -515,6 +517,7 @@ ResolvedModel resolve(const ExpandedProgram& program, const std::string& source_
   m.source_file = source_file;
   Resolver r(diags, m, limits);
   r.run(program);
+  m.unit_checks = program.unit_checks;
   if (m.model_name.empty()) m.model_name = "model";
   return m;
 }

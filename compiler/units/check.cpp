@@ -24,9 +24,11 @@ struct Term {
 /// The dimension of an expression as a product of powers of unknowns and a
 /// known constant: D * prod(u_i ^ c_i). `wild`: a number, which takes the
 /// dimension of whatever it is added to (`x + 1`, `max(x, 0)`). In a product
-/// it counts as none in a parameter's value (`2 * sqrt(k * m)`); elsewhere it
-/// may carry a unit of its own (`R r { e = 0.5 * f^2 }`, or a parameter the
-/// compiler folded into its value), so it is an unknown of that product.
+/// it may carry a unit of its own (`R r { e = 0.5 * f^2 }`, `param It = m *
+/// 1.01 / 12` for a rod of 1 m, a parameter the compiler folded into its
+/// value), so it is an unknown of that product: a number without a unit is
+/// never taken to have none. A function's value (`sin`, `step`) is a number
+/// too: `Se f = step(0, 1)` is 1 N from t = 0, `heaviside(t)` once folded.
 struct Form {
   std::vector<Term> terms;  // sorted by unknown, no zero coefficient
   Dimension constant;
@@ -173,14 +175,12 @@ class Checker {
       if (g_.params[i].unit) solver_.require_none(combine(param(i), declared(*g_.params[i].unit), -1));
     for (const ir::Signal& s : g_.signals)
       if (s.unit) solver_.require_none(combine(Form::unknown(var_unknown(s.var)), declared(*s.unit), -1));
-    in_param_ = true;
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const ir::Parameter& p = g_.params[i];
-      if (!p.value || p.literal) continue;
+      if (!p.value || p.literal || p.generated) continue;
       site_ = {p.loc, fmt::format("param {} = {}", p.name, text(p.value)), {p.value}};
       agree(param(i), form(p.value), "the parameter", "its value");
     }
-    in_param_ = false;
     for (const ir::Bond& b : g_.bonds)
       for (std::size_t k = 0; k < b.effort_vars.size() && k < b.flow_vars.size(); ++k) {
         Form ef = combine(Form::unknown(var_unknown(b.effort_vars[k])), Form::unknown(var_unknown(b.flow_vars[k])), 1);
@@ -209,6 +209,15 @@ class Checker {
         site_ = {e.loc, e.origin.empty() ? fmt::format("{} = {}", text(e.lhs), text(e.rhs)) : e.origin, {e.lhs, e.rhs}};
         agree(form(e.lhs), form(e.rhs), fmt::format("`{}`", text(e.lhs)), fmt::format("`{}`", text(e.rhs)));
       }
+    for (const ir::UnitCheck& c : g_.unit_checks) {
+      site_ = {c.loc, c.what, c.items,
+               fmt::format("its value must be in {}: check the units of what it reads", format(c.dimension))};
+      for (const Expr& item : c.items) {
+        Form f = form(item);
+        if (!solver_.unify(f, Form::known(c.dimension)))
+          report(fmt::format("it is {}, and its value is {}", format(c.dimension), shown(f)));
+      }
+    }
     UnitReport report;
     for (const ir::Output& o : g_.outputs) {
       site_ = {o.loc, fmt::format("output {}", o.name), {o.value}};
@@ -222,7 +231,7 @@ class Checker {
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       report.params.push_back(g_.params[i].unit ? std::optional<Dimension>(g_.params[i].unit->unit.dimension)
                                                 : solver_.value(static_cast<int>(i)));
-      if (strict && !report.params.back())
+      if (strict && !report.params.back() && !g_.params[i].generated)
         diags_.error(g_.params[i].loc, fmt::format("the unit of parameter `{}` is neither declared nor inferred", g_.params[i].name),
                      "declare it after the value, e.g. {N/m} (--units strict)");
     }
@@ -236,6 +245,7 @@ class Checker {
     ir::SourceLoc loc;
     std::string what;
     std::vector<Expr> exprs;
+    std::string hint = {};  // empty: the general one
   };
 
   static long long loc_key(const ir::SourceLoc& l) {
@@ -286,8 +296,11 @@ class Checker {
   void report(const std::string& detail) {
     if (!reported_.insert(loc_key(site_.loc)).second) return;
     auto& d = diags_.error(site_.loc, fmt::format("the units of {} do not agree: {}", site_.what, detail),
-                           "each side's unit follows, through the bond graph, from the units the model declares: "
-                           "check those; `mbgc --units report` lists what each parameter was inferred to be");
+                           !site_.hint.empty()
+                               ? site_.hint
+                               : "each side's unit follows, through the bond graph, from the units the model "
+                                 "declares: check those; `mbgc --units report` lists what each parameter was "
+                                 "inferred to be");
     // the units the site's expressions read, as declared
     std::unordered_set<int> read;
     for (const Expr& e : site_.exprs) ir::collect_params(e, read);
@@ -304,11 +317,10 @@ class Checker {
 
   Form visit(const Expr& e) {
     const ir::Node* n = e.get();
-    auto& memo = in_param_ ? param_memo_ : memo_;
-    auto hit = memo.find(n);
-    if (hit != memo.end()) return hit->second;
+    auto hit = memo_.find(n);
+    if (hit != memo_.end()) return hit->second;
     Form f = compute(e);
-    memo.emplace(n, f);
+    memo_.emplace(n, f);
     return f;
   }
 
@@ -322,10 +334,8 @@ class Checker {
     return fa;
   }
 
-  /// What a function of a number returns: none in a parameter's value; a
-  /// number elsewhere, which a folded factor may have given a unit
-  /// (`Se f = step(0, 1)` is 1 N from t = 0: `heaviside(t)` once folded).
-  Form function_result() const { return in_param_ ? Form::known({}) : Form::number(); }
+  /// What a function of a number returns: a number (see Form).
+  static Form function_result() { return Form::number(); }
 
   Form none_argument(const Expr& a, const char* fn) {
     Form fa = visit(a);
@@ -351,7 +361,7 @@ class Checker {
         if (a.wild && b.wild) return Form::number();
         if (a.wild || b.wild) {
           Form f = a.wild ? power(b, k) : a;
-          return in_param_ ? f : combine(f, Form::unknown(solver_.fresh()), 1);
+          return combine(f, Form::unknown(solver_.fresh()), 1);
         }
         return combine(a, b, k);
       }
@@ -408,8 +418,7 @@ class Checker {
   Solver solver_;
   ir::Namer names_;
   Site site_;
-  std::unordered_map<const ir::Node*, Form> memo_, param_memo_;
-  bool in_param_ = false;  // in a parameter's value: a number in a product has no unit
+  std::unordered_map<const ir::Node*, Form> memo_;
   std::unordered_set<long long> reported_;
   /// Of the nodes whose equations are not read: those the multibody layer
   /// made, and elements whose modulus is a number (`I m = 1`: the equation

@@ -1,0 +1,97 @@
+// multibody/units.cpp — what the multibody layer states of the units of the
+// values users write in its statements: a body's mass is kg, a joint's
+// torque N*m, a point m, gravity m/s^2. A literal's unit is compared here,
+// at its braces (`mass = 3 {m}`); a value that reads parameters or
+// quantities goes to units/check (ir::ExpandedUnitCheck), which infers
+// theirs. The dimensions come from the settings' tables (settings.hpp).
+#include <fmt/format.h>
+
+#include "multibody/expander.hpp"
+#include "multibody/settings.hpp"
+
+namespace mbgc::multibody::detail {
+
+namespace {
+
+/// The setting `key` of `table`, or null.
+const Setting* find_setting(const std::vector<const Setting*>& table, const std::string& key) {
+  for (const Setting* s : table)
+    if (key == s->name) return s;
+  return nullptr;
+}
+
+/// A joint's coordinate: an angle (revolute, screw, the rotation of a
+/// cylindrical joint) or a length (prismatic).
+std::optional<units::Dimension> coordinate(const JointKind& kind) {
+  if (kind.has_angle()) return units::dim::angle();
+  if (kind.has_axial()) return units::dim::length();
+  return std::nullopt;
+}
+
+/// The dimension of a joint's setting: its table's, else its kind's coordinate.
+std::optional<units::Dimension> joint_dimension(const Joint& j, const Setting& s) {
+  if (s.dimension) return s.dimension;
+  if (&s == &joint_setting::q0 || &s == &joint_setting::motion) return coordinate(*j.kind);
+  if (&s == &joint_setting::rate0)
+    if (auto c = coordinate(*j.kind)) return *c / units::dim::time();
+  return std::nullopt;
+}
+
+/// Whether `e` reads a name (a parameter, a quantity, t): then units/check
+/// infers what it is; a value of literals alone is compared here.
+bool reads_a_name(const AstExpr& e) {
+  if (e.kind == AstExpr::Kind::Name) return true;
+  for (const auto& a : e.args)
+    if (a && reads_a_name(*a)) return true;
+  return false;
+}
+
+}  // namespace
+
+void Expander::state_unit(const AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what,
+                          std::vector<ir::ExpandedUnitCheck>& out) {
+  if (!dimension || !a.value) return;
+  // the literals' units, each where it is written
+  bool wrong = false;
+  const std::function<void(const AstExpr&)> literals = [&](const AstExpr& e) {
+    if (e.kind == AstExpr::Kind::Number && e.unit &&
+        !(e.unit->unit.dimension.without_angle() == dimension->without_angle())) {
+      diags_.error(e.unit->loc,
+                   fmt::format("the {} is {}, and {{{}}} is {}", what, units::format(*dimension), e.unit->unit.text,
+                               units::format(e.unit->unit.dimension)),
+                   fmt::format("write it in {} (or in a unit of the same dimension)", units::format(*dimension)));
+      wrong = true;
+    }
+    // entries of a vector or matrix, and a scaled literal (`2 * 3 {mm}`), have the setting's unit
+    const bool entries = e.kind == AstExpr::Kind::List || e.kind == AstExpr::Kind::Unary ||
+                         (e.kind == AstExpr::Kind::Call && e.name == "diag");
+    if (entries)
+      for (const auto& x : e.args) literals(*x);
+  };
+  literals(*a.value);
+  if (!wrong && reads_a_name(*a.value)) out.push_back({rewrite_expr(a.value), *dimension, a.loc, what});
+}
+
+void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
+  for (const auto& [name, body] : bodies_) {
+    if (!body.decl || body.flex) continue;
+    for (const AstAttr& a : body.decl->attrs)
+      if (const Setting* s = find_setting(body_setting::kAll, a.key))
+        state_unit(a, s->dimension, fmt::format("{} of body `{}`", a.key, name), out);
+    for (const ir::AstPoint& p : body.decl->points)
+      state_unit(AstAttr{p.name, p.loc, p.value}, units::dim::length(), fmt::format("point `{}` of `{}`", p.name, name),
+                 out);
+  }
+  for (const Joint& j : joints_)
+    for (const auto& [key, a] : j.attrs)
+      if (const Setting* s = find_setting(joint_setting::kAll, key))
+        state_unit(*a, joint_dimension(j, *s), fmt::format("{} of joint `{}`", key, j.decl->name), out);
+  for (const ForceElement& f : forces_)
+    for (const auto& [key, a] : f.attrs)
+      if (const Setting* s = find_setting(force_setting::kAll, key))
+        state_unit(*a, s->dimension, fmt::format("{} of force `{}`", key, f.decl->name), out);
+  if (gravity_) state_unit(AstAttr{"gravity", gravity_loc_, gravity_}, units::dim::velocity() / units::dim::time(),
+                           "gravity", out);
+}
+
+}  // namespace mbgc::multibody::detail
