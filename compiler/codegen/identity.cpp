@@ -166,8 +166,8 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
                         : compact ? "computed"
                                   : "std::numeric_limits<double>::quiet_NaN()";
     std::string doc = p.literal ? "" : computed_doc(p, g);
-    if (p.unit && p.literal) {
-      value = cpp_double(std::stod(fmt::format("{:.15g}", p.literal_value / p.unit->unit.scale)));
+    if (p.unit && p.literal) {  // (converted back to 15 digits: `30 {deg}` lists 30)
+      if (!p.unit->unit.is_si()) value = cpp_double(std::stod(fmt::format("{:.15g}", p.literal_value / p.unit->unit.scale)));
       doc = p.unit->unit.text;
     }
     scaled = scaled || (p.unit && !p.unit->unit.is_si());

@@ -51,13 +51,21 @@ class Unroller {
     return last_;
   }
 
+  /// `--set NAME=VALUE` is in the unit NAME is declared in (`{deg}`): in SI.
+  double override_in_si(const std::string& name, double value) const {
+    auto p = params_.find(name);
+    if (p == params_.end()) return value;
+    std::optional<ir::AstUnit> unit = ir::declared_unit(p->second->unit, p->second->value);
+    return unit ? value * unit->unit.scale : value;
+  }
+
   // ---- compile-time evaluation ---------------------------------------------------
   bool is_parameter(const std::string& name) const { return overrides_.count(name) || params_.count(name); }
 
   /// Value of a top-level parameter (is_parameter(name)); errors are reported
   /// once, where the parameter is defined, with a note at `use`.
   std::optional<double> param_value(const std::string& name, const SourceLoc& use) {
-    if (auto o = overrides_.find(name); o != overrides_.end()) return o->second;
+    if (auto o = overrides_.find(name); o != overrides_.end()) return override_in_si(name, o->second);
     if (auto c = cache_.find(name); c != cache_.end()) return c->second;
     const AstParam& decl = *params_.at(name);
     if (auto open = std::find(evaluating_.begin(), evaluating_.end(), name); open != evaluating_.end()) {
@@ -453,11 +461,13 @@ class Unroller {
       }
       if (auto* par = std::get_if<AstParam>(&s); par && env.empty() && component_.empty()) {
         if (auto o = overrides_.find(par->name); o != overrides_.end()) {
+          // the value given, in the unit the parameter is declared in
           AstParam copy = *par;
+          copy.unit = ir::declared_unit(par->unit, par->value);
           auto num = std::make_shared<AstExpr>();
           num->kind = AstExpr::Kind::Number;
           num->loc = par->value->loc;
-          num->number = o->second;
+          num->number = copy.unit ? o->second * copy.unit->unit.scale : o->second;
           copy.value = num;
           out.push_back(copy);
           continue;

@@ -239,9 +239,19 @@ AstExprPtr ExpressionParser::primary() {
        "an expression is a number, a name, a call like sin(x), or (...)");
 }
 
-std::optional<ir::AstUnit> ExpressionParser::declared_unit() {
-  if (!at_unit()) return std::nullopt;
-  return unit();
+std::optional<ir::AstUnit> ExpressionParser::declared_unit(const AstExprPtr& value) {
+  if (at_unit()) return unit();
+  if (!value || value->kind == AstExpr::Kind::Number) return std::nullopt;
+  if (value->kind == AstExpr::Kind::Unary && value->args[0]->kind == AstExpr::Kind::Number) return std::nullopt;
+  // the last literal of a longer value, when its braces end the declaration
+  AstExprPtr last = value;
+  while (last->kind == AstExpr::Kind::Binary || last->kind == AstExpr::Kind::Unary) last = last->args.back();
+  if (last->kind != AstExpr::Kind::Number || !last->unit) return std::nullopt;
+  auto literal = std::const_pointer_cast<AstExpr>(last);  // made by this parser
+  std::optional<ir::AstUnit> u = std::move(literal->unit);
+  literal->unit.reset();
+  literal->number = literal->written;
+  return u;
 }
 
 bool ExpressionParser::at_unit() const {

@@ -6,8 +6,9 @@
 // text keeps "{expr}" verbatim, whitespace removed; elaborate substitutes it.
 //
 // A unit in braces follows a literal (`3 {kg}`, `30 {deg}`) or ends a
-// declaration (`param k = m*g/x0 {N/m}`): braces on one line holding only
-// symbols, numbers and `* . / ^ ( ) -` (a block of settings holds `=`).
+// declaration (`param k = m*g/x0 {N/m}`, `param m = 12 * I / a^2 {kg}`):
+// braces on one line holding only symbols, numbers and `* . / ^ ( ) -` (a
+// block of settings holds `=`).
 // A literal's value is kept in SI (`30 {deg}` is 0.5236), what was typed beside it.
 #pragma once
 
@@ -31,8 +32,10 @@ class ExpressionParser : protected Cursor {
   ir::AstEndpoint endpoint(const char* what_for);
 
   ir::AstExprPtr expr();
-  /// A declaration's unit, `{N/m}` after its value, if one is there.
-  std::optional<ir::AstUnit> declared_unit();
+  /// A declaration's unit: `{N/m}` after its value, or the braces that end a
+  /// value of more than one literal (`param m2 = 12 * I2 / a2^2 {kg}` is
+  /// kg, not a squared 2 kg); a lone literal keeps its own (`1400 {kg}`).
+  std::optional<ir::AstUnit> declared_unit(const ir::AstExprPtr& value);
 
   int depth_ = 0;        // expression nesting
   int for_depth_ = 0;    // for-loop nesting: names interpolate inside a loop

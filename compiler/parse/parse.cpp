@@ -116,7 +116,7 @@ class Parser : private ExpressionParser {
       p.loc = n.loc;
       expect(Tok::Assign, "after the parameter's name", fmt::format("write param {} = value", p.name));
       p.value = expr();
-      p.unit = declared_unit();
+      p.unit = declared_unit(p.value);
       return p;
     }
     if (t.text == "signal" || t.text == "output") {
@@ -125,7 +125,7 @@ class Parser : private ExpressionParser {
       Name n = name(is_signal ? "(the signal's name)" : "(the output's name)");
       expect(Tok::Assign, "after the name", fmt::format("write {} {} = expression", is_signal ? "signal" : "output", n.text));
       AstExprPtr v = expr();
-      std::optional<ir::AstUnit> u = declared_unit();
+      std::optional<ir::AstUnit> u = declared_unit(v);
       if (is_signal) return ir::AstSignal{n.text, n.loc, v, u};
       return ir::AstOutput{n.text, n.loc, v, u};
     }
@@ -287,7 +287,7 @@ class Parser : private ExpressionParser {
         const Token& p = expect(Tok::Ident, "(the parameter's name)");
         ir::AstParam par{p.text, p.loc, nullptr, std::nullopt};
         if (accept(Tok::Assign)) par.value = expr();
-        par.unit = declared_unit();
+        par.unit = declared_unit(par.value);
         c->params.push_back(std::move(par));
       } else {
         fail(fmt::format("expected `port` or `param` in the component's interface, found {}", describe(peek())),

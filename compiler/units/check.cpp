@@ -28,15 +28,18 @@ struct Term {
 /// 1.01 / 12` for a rod of 1 m, a parameter the compiler folded into its
 /// value), so it is an unknown of that product: a number without a unit is
 /// never taken to have none. A function's value (`sin`, `step`) is a number
-/// too: `Se f = step(0, 1)` is 1 N from t = 0, `heaviside(t)` once folded.
+/// of no unit in a product (`L * cos(q)` is a length), but on its own any:
+/// `Se f = step(0, 1)` is 1 N from t = 0, `heaviside(t)` once folded.
 struct Form {
   std::vector<Term> terms;  // sorted by unknown, no zero coefficient
   Dimension constant;
   bool wild = false;
+  bool function = false;  // wild: a function's value
 
-  static Form known(Dimension d) { return {{}, d.without_angle(), false}; }
-  static Form unknown(int u) { return {{{u, 1}}, {}, false}; }
-  static Form number() { return {{}, {}, true}; }
+  static Form known(Dimension d) { return {{}, d.without_angle(), false, false}; }
+  static Form unknown(int u) { return {{{u, 1}}, {}, false, false}; }
+  static Form number() { return {{}, {}, true, false}; }
+  static Form function_value() { return {{}, {}, true, true}; }
   bool determined() const { return terms.empty(); }
   /// Exponents small enough to compute with exactly (`x^999^999` is not checked).
   bool is_small() const {
@@ -75,36 +78,58 @@ Form power(const Form& a, Rational k) {
   return out;
 }
 
+/// Up to a few ids, sorted: the declared units a solution rests on.
+using Reasons = std::vector<int>;
+void merge(Reasons& into, const Reasons& from) {
+  for (int r : from)
+    if (into.size() < 8 && std::find(into.begin(), into.end(), r) == into.end()) into.push_back(r);
+  std::sort(into.begin(), into.end());
+}
+
 /// The system of equations between unknown dimensions, kept solved: each
-/// solved unknown is a form over unsolved ones only.
+/// solved unknown is a form over unsolved ones only, with the declared units
+/// (by parameter) it was found from, so that a contradiction can name them.
 class Solver {
  public:
-  explicit Solver(std::size_t n) : solved_(n), used_in_(n) {}
+  explicit Solver(std::size_t n) : solved_(n), reasons_(n), used_in_(n) {}
 
   /// A new unknown, which nothing fixes yet.
   int fresh() {
     solved_.emplace_back();
+    reasons_.emplace_back();
     used_in_.emplace_back();
     return static_cast<int>(solved_.size()) - 1;
   }
 
-  /// `f` with every solved unknown replaced by its solution.
-  Form reduce(const Form& f) const {
+  /// `f` with every solved unknown replaced by its solution; the declared
+  /// units those rest on join `why` if given.
+  Form reduce(const Form& f, Reasons* why = nullptr) const {
     Form out = Form::known(f.constant);
     out.wild = f.wild;
+    out.function = f.function;
     for (const Term& t : f.terms) {
       const std::optional<Form>& s = solved_[static_cast<std::size_t>(t.unknown)];
       out = s ? combine(out, *s, t.coef) : combine(out, Form::unknown(t.unknown), t.coef);
+      if (s && why) merge(*why, reasons_[static_cast<std::size_t>(t.unknown)]);
     }
     return out;
   }
 
+  /// The declared units (parameter ids) the next requirements come from.
+  void because(Reasons r) { because_ = std::move(r); }
+  /// After a contradiction: the declared units its two sides rest on.
+  const Reasons& last_reasons() const { return last_reasons_; }
+
   /// Adds `f` = none; false when that contradicts what is known.
   bool require_none(const Form& given) {
     if (!given.is_small()) return true;  // not checked
-    Form f = reduce(given);
+    Reasons why = because_;
+    Form f = reduce(given, &why);
     if (!f.is_small()) return true;
-    if (f.terms.empty()) return f.constant.without_angle().is_none();
+    if (f.terms.empty()) {
+      last_reasons_ = why;
+      return f.constant.without_angle().is_none();
+    }
     // the pivot: the unknown that the fewest solutions mention (cheap to substitute)
     std::size_t p = 0;
     for (std::size_t i = 1; i < f.terms.size(); ++i)
@@ -124,11 +149,13 @@ class Solver {
       Rational k = it->coef;
       s->terms.erase(it);
       *s = combine(*s, solution, k);
+      merge(reasons_[static_cast<std::size_t>(user)], why);
       for (const Term& t : solution.terms) used_in_[static_cast<std::size_t>(t.unknown)].push_back(user);
     }
     used_in_[static_cast<std::size_t>(u)].clear();
     for (const Term& t : solution.terms) used_in_[static_cast<std::size_t>(t.unknown)].push_back(u);
     solved_[static_cast<std::size_t>(u)] = std::move(solution);
+    reasons_[static_cast<std::size_t>(u)] = std::move(why);
     return true;
   }
 
@@ -146,7 +173,9 @@ class Solver {
 
  private:
   std::vector<std::optional<Form>> solved_;
+  std::vector<Reasons> reasons_;  // of each solved unknown
   std::vector<std::vector<int>> used_in_;
+  Reasons because_, last_reasons_;
 };
 
 /// A rational close to `x` with a small denominator (an exponent as written: 2, 0.5, 1.5).
@@ -172,7 +201,11 @@ class Checker {
   UnitReport run(bool strict) {
     // What the model states first, so that a contradiction is found at an equation.
     for (std::size_t i = 0; i < g_.params.size(); ++i)
-      if (g_.params[i].unit) solver_.require_none(combine(param(i), declared(*g_.params[i].unit), -1));
+      if (g_.params[i].unit) {
+        solver_.because({static_cast<int>(i)});
+        solver_.require_none(combine(param(i), declared(*g_.params[i].unit), -1));
+      }
+    solver_.because({});
     for (const ir::Signal& s : g_.signals)
       if (s.unit) solver_.require_none(combine(Form::unknown(var_unknown(s.var)), declared(*s.unit), -1));
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
@@ -192,16 +225,14 @@ class Checker {
       Form rate = combine(Form::unknown(var_unknown(s.var)), Form::known(dim::time()), -1);
       solver_.unify(Form::unknown(var_unknown(s.der)), rate);
     }
-    for (const ir::Signal& s : g_.signals) {
-      if (s.generated) continue;
-      site_ = {s.loc, fmt::format("signal {} = {}", s.name, text(s.value)), {s.value}};
-      agree(Form::unknown(var_unknown(s.var)), form(s.value), "the signal", "its value");
-    }
-    // The junctions first, then the elements' laws in the order written: a
-    // law that contradicts the ones before it is the one reported.
+    // The junctions first, then the elements' laws in the order written, then
+    // the signals: what contradicts the ones before it is the one reported.
+    std::unordered_set<long long> signal_locs;
+    for (const ir::Signal& s : g_.signals) signal_locs.insert(loc_key(s.loc));
     for (bool junctions : {true, false})
       for (const ir::Equation& e : sys_.equations) {
         if (junction_locs_.count(loc_key(e.loc)) != static_cast<std::size_t>(junctions)) continue;
+        if (signal_locs.count(loc_key(e.loc))) continue;
         // A contact's equation switches between modes (`closed * (g'' + ...) + (1 - closed) * e`):
         // each mode's side has its own unit, so it is not checked.
         if (mentions_discrete(e.lhs) || mentions_discrete(e.rhs)) continue;
@@ -209,6 +240,11 @@ class Checker {
         site_ = {e.loc, e.origin.empty() ? fmt::format("{} = {}", text(e.lhs), text(e.rhs)) : e.origin, {e.lhs, e.rhs}};
         agree(form(e.lhs), form(e.rhs), fmt::format("`{}`", text(e.lhs)), fmt::format("`{}`", text(e.rhs)));
       }
+    for (const ir::Signal& s : g_.signals) {
+      if (s.generated) continue;
+      site_ = {s.loc, fmt::format("signal {} = {}", s.name, text(s.value)), {s.value}};
+      agree(Form::unknown(var_unknown(s.var)), form(s.value), "the signal", "its value");
+    }
     for (const ir::UnitCheck& c : g_.unit_checks) {
       site_ = {c.loc, c.what, c.items,
                fmt::format("its value must be in {}: check the units of what it reads", format(c.dimension))};
@@ -301,8 +337,8 @@ class Checker {
                                : "each side's unit follows, through the bond graph, from the units the model "
                                  "declares: check those; `mbgc --units report` lists what each parameter was "
                                  "inferred to be");
-    // the units the site's expressions read, as declared
-    std::unordered_set<int> read;
+    // the declared units the two sides rest on, and those the site reads
+    std::unordered_set<int> read(solver_.last_reasons().begin(), solver_.last_reasons().end());
     for (const Expr& e : site_.exprs) ir::collect_params(e, read);
     std::vector<int> ids(read.begin(), read.end());
     std::sort(ids.begin(), ids.end());
@@ -334,8 +370,8 @@ class Checker {
     return fa;
   }
 
-  /// What a function of a number returns: a number (see Form).
-  static Form function_result() { return Form::number(); }
+  /// What a function of a number returns (see Form).
+  static Form function_result() { return Form::function_value(); }
 
   Form none_argument(const Expr& a, const char* fn) {
     Form fa = visit(a);
@@ -359,6 +395,8 @@ class Checker {
         Form a = visit(n->args[0]), b = visit(n->args[1]);
         Rational k = n->op == Op::Mul ? 1 : -1;
         if (a.wild && b.wild) return Form::number();
+        if (a.function) return power(b, k);  // `cos(q) * L`
+        if (b.function) return a;
         if (a.wild || b.wild) {
           Form f = a.wild ? power(b, k) : a;
           return combine(f, Form::unknown(solver_.fresh()), 1);

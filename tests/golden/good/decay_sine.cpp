@@ -55,7 +55,7 @@ class decay_sine_model final : public mbgrt::Model {
     return {
         {"k", 0.5, ""},
         {"a", 2.0, ""},
-        {"w", 1.0, ""},
+        {"w", 1.0, "rad/s"},
     };
   }
 
@@ -86,7 +86,7 @@ class decay_sine_model final : public mbgrt::Model {
     // CONSTANTS / PARAMETERS
     k = param(0, 0.5);  // decay_sine.mbg:6:7
     a = param(1, 2.0);  // decay_sine.mbg:7:7
-    w = param(2, 1.0);  // decay_sine.mbg:8:7
+    w = param(2, 1.0);  // decay_sine.mbg:8:7, {rad/s}
     // INITIAL STATE
     x[0] = 1.0;  // m.p (decay_sine.mbg:10:3)
   }
