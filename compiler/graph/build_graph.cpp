@@ -840,7 +840,8 @@ class Builder {
     // not lower was reported where the layer read it.
     for (const ExpandedUnitCheck& c : m_.unit_checks) {
       Diagnostics scratch(sources_);
-      if (auto v = lower(*c.value, lookup_in(0), scratch)) g_.unit_checks.push_back({v->items, c.dimension, c.loc, c.what});
+      if (auto v = lower(*c.value, lookup_in(0), scratch))
+        g_.unit_checks.push_back({v->items, c.dimension, c.loc, c.what, c.quantity});
     }
   }
 

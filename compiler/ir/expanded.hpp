@@ -85,6 +85,9 @@ struct ExpandedUnitCheck {
   units::Dimension dimension;
   SourceLoc loc;              // of the setting
   std::string what;           // "the torque of joint `j1`"
+  /// A quantity of the layer's own that the user's expressions read (`arm.position` is m):
+  /// a fact, taken before the user's equations, not a value the user wrote.
+  bool quantity = false;
 };
 
 struct ExpandedProgram {

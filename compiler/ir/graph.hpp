@@ -153,6 +153,7 @@ struct UnitCheck {
   units::Dimension dimension;
   SourceLoc loc;
   std::string what;
+  bool quantity = false;  // ExpandedUnitCheck::quantity
 };
 
 struct SimSettings {

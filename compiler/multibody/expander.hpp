@@ -217,6 +217,7 @@ class Expander {
   std::map<std::string, CoordinateValues> coordinate_values_;  // coordinates joints
   std::vector<const Joint*> tree_order_;                        // tree joints, breadth first from ground
   std::map<std::string, E> quantity_;
+  std::set<std::string> used_quantities_;  // the quantities the user's expressions name (units.cpp)
   std::map<std::string, E> params_;                // the program's top-level parameters
   std::map<std::string, SourceLoc> point_locs_;    // "body.point" -> declaration
   std::map<std::string, SourceLoc> instances_;     // component instances (their parts are named `instance.part`)

@@ -125,7 +125,10 @@ E Expander::rewrite_expr(const E& e) {
   if (!e) return e;
   if (e->kind == AstExpr::Kind::Name) {
     auto it = quantity_.find(e->name);
-    if (it != quantity_.end()) return it->second;
+    if (it != quantity_.end()) {
+      used_quantities_.insert(e->name);
+      return it->second;
+    }
     check_known(*e);
     return e;
   }

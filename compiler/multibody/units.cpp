@@ -6,6 +6,8 @@
 // theirs. The dimensions come from the settings' tables (settings.hpp).
 #include <fmt/format.h>
 
+#include <map>
+
 #include "multibody/expander.hpp"
 #include "multibody/settings.hpp"
 
@@ -72,7 +74,51 @@ void Expander::state_unit(const AstAttr& a, const std::optional<units::Dimension
   if (!wrong && reads_a_name(*a.value)) out.push_back({rewrite_expr(a.value), *dimension, a.loc, what});
 }
 
+namespace {
+
+/// The dimension of a body's or joint's quantity, by its last part (a
+/// point's `tip.position` as a body's `position`); none: not stated.
+std::optional<units::Dimension> quantity_dimension(const std::string& name) {
+  using namespace units::dim;
+  static const std::map<std::string, units::Dimension> kQuantities = {
+      {"position", length()},
+      {"velocity", velocity()},
+      {"momentum", force() * time()},
+      {"quaternion", units::Dimension::none()},
+      {"rotation", units::Dimension::none()},
+      {"bryant", angle()},
+      {"omega", angular_velocity()},
+      {"omega_world", angular_velocity()},
+      {"angular_momentum", torque() * time()},
+      {"kinetic_energy", torque()},
+      {"potential_energy", torque()},
+      {"angle", angle()},
+      {"rate", angular_velocity()},
+      {"displacement", length()},
+      {"displacement_rate", velocity()},
+      {"gap", length()},
+      {"normal_force", force()},
+      {"friction_force", force()},
+      {"slip_velocity", velocity()},
+  };
+  auto dot = name.rfind('.');
+  auto it = kQuantities.find(name.substr(dot == std::string::npos ? 0 : dot + 1));
+  if (it == kQuantities.end()) return std::nullopt;
+  return it->second;
+}
+
+}  // namespace
+
 void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
+  // what the user's expressions read of the bodies and joints (`arm.tip.position` is m);
+  // not yet of a flexible body, whose points move with its modes
+  for (const std::string& name : used_quantities_)
+    if (auto d = quantity_dimension(name)) {
+      auto owner = bodies_.find(name.substr(0, name.find('.')));
+      if (owner != bodies_.end() && owner->second.flex) continue;
+      const E& value = quantity_.at(name);
+      out.push_back({value, *d, value->loc, fmt::format("`{}`", name), true});
+    }
   for (const auto& [name, body] : bodies_) {
     if (!body.decl || body.flex) continue;
     for (const AstAttr& a : body.decl->attrs)

@@ -225,6 +225,13 @@ class Checker {
       Form rate = combine(Form::unknown(var_unknown(s.var)), Form::known(dim::time()), -1);
       solver_.unify(Form::unknown(var_unknown(s.der)), rate);
     }
+    // What the multibody layer states of its quantities (`arm.position` is m).
+    for (const ir::UnitCheck& c : g_.unit_checks)
+      if (c.quantity) {
+        site_ = {c.loc, c.what, c.items, "the multibody layer's own units disagree: please report it"};
+        for (const Expr& item : c.items)
+          if (!solver_.unify(form(item), Form::known(c.dimension))) report(fmt::format("it is stated {}", format(c.dimension)));
+      }
     // The junctions first, then the elements' laws in the order written, then
     // the signals: what contradicts the ones before it is the one reported.
     std::unordered_set<long long> signal_locs;
@@ -242,10 +249,11 @@ class Checker {
       }
     for (const ir::Signal& s : g_.signals) {
       if (s.generated) continue;
-      site_ = {s.loc, fmt::format("signal {} = {}", s.name, text(s.value)), {s.value}};
+      site_ = {s.loc, fmt::format("signal {}", s.name), {s.value}};
       agree(Form::unknown(var_unknown(s.var)), form(s.value), "the signal", "its value");
     }
     for (const ir::UnitCheck& c : g_.unit_checks) {
+      if (c.quantity) continue;  // taken first
       site_ = {c.loc, c.what, c.items,
                fmt::format("its value must be in {}: check the units of what it reads", format(c.dimension))};
       for (const Expr& item : c.items) {
