@@ -86,7 +86,7 @@ struct ExpandedUnitCheck {
   SourceLoc loc;              // of the setting
   std::string what;           // "the torque of joint `j1`"
   /// A quantity of the layer's own that the user's expressions read (`arm.position` is m):
-  /// a fact, taken before the user's equations, not a value the user wrote.
+  /// where they read it, it has this dimension (not a value the user wrote).
   bool quantity = false;
 };
 

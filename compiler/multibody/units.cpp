@@ -110,12 +110,9 @@ std::optional<units::Dimension> quantity_dimension(const std::string& name) {
 }  // namespace
 
 void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
-  // what the user's expressions read of the bodies and joints (`arm.tip.position` is m);
-  // not yet of a flexible body, whose points move with its modes
+  // what the user's expressions read of the bodies and joints (`arm.tip.position` is m)
   for (const std::string& name : used_quantities_)
     if (auto d = quantity_dimension(name)) {
-      auto owner = bodies_.find(name.substr(0, name.find('.')));
-      if (owner != bodies_.end() && owner->second.flex) continue;
       const E& value = quantity_.at(name);
       out.push_back({value, *d, value->loc, fmt::format("`{}`", name), true});
     }
