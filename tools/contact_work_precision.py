@@ -45,7 +45,7 @@ def run(sim, args):
         if p.returncode != 0:
             return None
         header, *lines = out.read_text().splitlines()
-        col = header.split(",").index("gap")
+        col = [name.split(" [")[0] for name in header.split(",")].index("gap")  # "gap [m]"
         err = max(abs(float(l.split(",")[col]) - gap(float(l.split(",")[0]))) for l in lines)
     wall = float(re.search(r"wall time\s+([0-9.e-]+)", p.stderr).group(1))
     steps = int(re.search(r"steps\s+(\d+)", p.stderr).group(1))

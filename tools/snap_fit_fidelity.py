@@ -21,7 +21,7 @@ def row(cmd, tag):
         csv, log = Path(tmp) / "s.csv", Path(tmp) / "e.csv"
         p = subprocess.run(cmd + ["--event-log", str(log), "-o", str(csv)], capture_output=True, text=True, check=True)
         header, *lines = csv.read_text().splitlines()
-        col = {name: i for i, name in enumerate(header.split(","))}
+        col = {name.split(" [")[0]: i for i, name in enumerate(header.split(","))}  # "push [N]"
         rows = [list(map(float, l.split(","))) for l in lines]
         switches = len(log.read_text().splitlines()) - 1
     P, d = col["insertion_force"], col["hook_deflection"]

@@ -156,6 +156,16 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   for (const Output& o : g.outputs) outs.push_back(cpp_string(o.name));
   c.public_methods.push_back({"", "std::vector<std::string> output_names() const override",
                               {CppStmt::line(fmt::format("return {{{}}};", fmt::join(outs, ", ")))}});
+  // the units outputs are declared in, for the CSV header (`omega [rad/s]`)
+  std::vector<std::string> units;
+  bool any_unit = false;
+  for (const Output& o : g.outputs) {
+    units.push_back(cpp_string(o.unit ? o.unit->unit.text : ""));
+    any_unit = any_unit || o.unit;
+  }
+  if (any_unit)
+    c.public_methods.push_back({"", "std::vector<std::string> output_units() const override",
+                                {CppStmt::line(fmt::format("return {{{}}};", fmt::join(units, ", ")))}});
   CppFunction params{"", "std::vector<mbgrt::ParameterInfo> parameters() const override", {}};
   std::vector<std::string> infos;
   // A parameter declared in a unit is listed, and set, in that unit (`angle`

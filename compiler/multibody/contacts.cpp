@@ -22,21 +22,7 @@ namespace mbgc::multibody::detail {
 
 namespace {
 
-const std::vector<std::string> kContactSettings = {"radius", "surface", "normal", "axis", "surface_radius", "vertices",
-                                                   "strategy", "restitution", "stiffness", "exponent",
-                                                   "friction", "slip_speed", "stabilisation"};
-const std::map<std::string, Expected> kContactShapes = {
-    {"radius", {{1, 1}, "the radius of the sphere around the touching point is a scalar (m); 0: the point itself"}},
-    {"normal", {{3, 1}, "a plane's outward normal is a direction [x, y, z] in the surface body's frame"}},
-    {"axis", {{3, 1}, "a cylinder's axis is a direction [x, y, z] in the surface body's frame"}},
-    {"surface_radius", {{1, 1}, "the radius of the surface's sphere or cylinder is a scalar (m)"}},
-    {"restitution", {{1, 1}, "the coefficient of restitution is a scalar in [0, 1]"}},
-    {"stiffness", {{1, 1}, "the contact stiffness is a scalar (N/m^exponent)"}},
-    {"exponent", {{1, 1}, "the force exponent is a scalar (1.5: Hertz)"}},
-    {"friction", {{1, 1}, "the friction coefficient is a scalar >= 0"}},
-    {"slip_speed", {{1, 1}, "the slip speed of regularised friction is a scalar (m/s)"}},
-    {"stabilisation", {{1, 1}, "the stabilisation is a scalar (rad/s)"}},
-};
+const std::vector<std::string> kContactSettings = setting_names(contact_setting::kAll);
 
 }  // namespace
 
@@ -117,7 +103,8 @@ void Expander::add_contact(const AstJoint& c) {
       continue;
     }
     if (at.key == "vertices") continue;  // (checked below, with the surface)
-    check_shape(*at.value, fmt::format("`{}` of contact `{}`", at.key, c.name), kContactShapes.at(at.key));
+    check_shape(*at.value, fmt::format("`{}` of contact `{}`", at.key, c.name),
+                *find_setting(contact_setting::kAll, at.key)->expected);
   }
   if (!ok) return;
   auto given = [&](const char* key) { return contact.attrs.count(key) > 0; };

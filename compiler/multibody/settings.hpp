@@ -111,6 +111,49 @@ inline const Setting length{"length", std::nullopt, true, units::dim::length()};
 inline const std::vector<const Setting*> kAll = {&force, &torque, &stiffness, &damping, &length};
 }  // namespace force_setting
 
+/// A contact's settings; `surface` and `strategy` are words, `vertices` is
+/// checked with its surface.
+namespace contact_setting {
+inline const Setting radius{"radius", Expected{{1, 1}, "the radius of the sphere around the touching point is a scalar "
+                                                       "(m); 0: the point itself"},
+                            true, units::dim::length()};
+inline const Setting surface{"surface", std::nullopt};
+inline const Setting normal{"normal", Expected{{3, 1}, "a plane's outward normal is a direction [x, y, z] in the "
+                                                       "surface body's frame"},
+                            true, units::Dimension::none()};
+inline const Setting axis{"axis", Expected{{3, 1}, "a cylinder's axis is a direction [x, y, z] in the surface body's "
+                                                   "frame"},
+                          true, units::Dimension::none()};
+inline const Setting surface_radius{"surface_radius", Expected{{1, 1}, "the radius of the surface's sphere or "
+                                                                       "cylinder is a scalar (m)"},
+                                    true, units::dim::length()};
+inline const Setting vertices{"vertices", std::nullopt, true, units::dim::length()};
+inline const Setting strategy{"strategy", std::nullopt};
+inline const Setting restitution{"restitution", Expected{{1, 1}, "the coefficient of restitution is a scalar in [0, 1]"},
+                                 true, units::Dimension::none()};
+/// N/m^exponent: its dimension depends on the exponent
+inline const Setting stiffness{"stiffness", Expected{{1, 1}, "the contact stiffness is a scalar (N/m^exponent)"}};
+inline const Setting exponent{"exponent", Expected{{1, 1}, "the force exponent is a scalar (1.5: Hertz)"}, true,
+                              units::Dimension::none()};
+inline const Setting friction{"friction", Expected{{1, 1}, "the friction coefficient is a scalar >= 0"}, true,
+                              units::Dimension::none()};
+inline const Setting slip_speed{"slip_speed", Expected{{1, 1}, "the slip speed of regularised friction is a scalar "
+                                                               "(m/s)"},
+                                true, units::dim::velocity()};
+inline const Setting stabilisation{"stabilisation", Expected{{1, 1}, "the stabilisation is a scalar (rad/s)"}, true,
+                                   units::dim::time().pow(-1)};
+inline const std::vector<const Setting*> kAll = {&radius,   &surface,     &normal,    &axis,     &surface_radius,
+                                                 &vertices, &strategy,    &restitution, &stiffness, &exponent,
+                                                 &friction, &slip_speed, &stabilisation};
+}  // namespace contact_setting
+
+/// The setting of `table` named `key`, or null.
+inline const Setting* find_setting(const std::vector<const Setting*>& table, const std::string& key) {
+  for (const Setting* s : table)
+    if (key == s->name) return s;
+  return nullptr;
+}
+
 /// The names of `settings`, in their order.
 inline std::vector<std::string> setting_names(const std::vector<const Setting*>& settings) {
   std::vector<std::string> out;

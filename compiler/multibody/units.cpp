@@ -15,13 +15,6 @@ namespace mbgc::multibody::detail {
 
 namespace {
 
-/// The setting `key` of `table`, or null.
-const Setting* find_setting(const std::vector<const Setting*>& table, const std::string& key) {
-  for (const Setting* s : table)
-    if (key == s->name) return s;
-  return nullptr;
-}
-
 /// A joint's coordinate: an angle (revolute, screw, the rotation of a
 /// cylindrical joint) or a length (prismatic).
 std::optional<units::Dimension> coordinate(const JointKind& kind) {
@@ -129,6 +122,10 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     for (const auto& [key, a] : j.attrs)
       if (const Setting* s = find_setting(joint_setting::kAll, key))
         state_unit(*a, joint_dimension(j, *s), fmt::format("{} of joint `{}`", key, j.decl->name), out);
+  for (const Contact& c : contacts_)
+    for (const auto& [key, a] : c.attrs)
+      if (const Setting* s = find_setting(contact_setting::kAll, key))
+        state_unit(*a, s->dimension, fmt::format("{} of contact `{}`", key, c.decl->name), out);
   for (const ForceElement& f : forces_)
     for (const auto& [key, a] : f.attrs)
       if (const Setting* s = find_setting(force_setting::kAll, key))

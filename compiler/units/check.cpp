@@ -264,6 +264,11 @@ class Checker {
           report(fmt::format("it is {}, and its value is {}", format(c.dimension), shown(f)));
       }
     }
+    // A value the run writes or computes is in SI: a unit that needs a factor cannot be its own.
+    for (const ir::Output& o : g_.outputs)
+      if (o.unit && !o.unit->unit.is_si()) not_si(*o.unit, "output", o.name);
+    for (const ir::Signal& s : g_.signals)
+      if (s.unit && !s.unit->unit.is_si()) not_si(*s.unit, "signal", s.name);
     UnitReport report;
     for (const ir::Output& o : g_.outputs) {
       site_ = {o.loc, fmt::format("output {}", o.name), {o.value}};
@@ -337,6 +342,14 @@ class Checker {
     // `b_name` may say what it is already: "its unit {deg} is rad"
     report(b_name.find(" is ") != std::string::npos ? fmt::format("{} is {}, {}", a_name, shown(a), b_name)
                                                     : fmt::format("{} is {}, {} is {}", a_name, shown(a), b_name, shown(b)));
+  }
+
+  void not_si(const ir::DeclaredUnit& u, const char* what, const std::string& name) {
+    if (!reported_.insert(loc_key(u.loc)).second) return;  // a vector output's columns share it
+    diags_.error(u.loc,
+                 fmt::format("{} `{}` is computed and written in SI units, and {{{}}} is not one ({} in SI)", what,
+                             name, u.unit.text, format(u.unit.dimension)),
+                 fmt::format("declare it {{{}}}, or write the conversion in its value", format(u.unit.dimension)));
   }
 
   void report(const std::string& detail) {

@@ -214,6 +214,11 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
   CsvWriter csv(out);
   const std::vector<std::string> names = model.output_names();
   std::vector<double> outputs(names.size());
+  // the CSV header: each output's name, with its unit where the model declares one
+  std::vector<std::string> columns = names;
+  const std::vector<std::string> units = model.output_units();
+  for (std::size_t i = 0; i < columns.size() && i < units.size(); ++i)
+    if (!units[i].empty()) columns[i] += " [" + units[i] + "]";
   ConstraintMonitor monitor(model, guard.constraint_shape());
   std::optional<CsvWriter> constraint_csv;
   if (constraint_out) {
@@ -270,14 +275,14 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     }
     if (r.ok) write_modes(out, modes);
   } else if (o.realtime) {
-    csv.header("t", names);
+    csv.header("t", columns);
     pacer.emplace(*o.realtime, s.t_start_s, OutputGrid(s.t_start_s, s.t_end_s, s.interval_s).size());
     r = march(guard, *integrator, s, y0, yp0, [&] {
       write_row();
       pacer->frame_done(integrator->t());
     }, hooks.stop);
   } else {
-    csv.header("t", names);
+    csv.header("t", columns);
     r = march(guard, *integrator, s, y0, yp0, write_row, hooks.stop);
   }
   const double wall_s =

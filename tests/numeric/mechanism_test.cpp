@@ -295,7 +295,7 @@ TEST(Andrews, AnglesMatchTheTestSetReference) {
   ASSERT_EQ(r.status, 0) << r.log;
   ASSERT_EQ(r.csv.rows.size(), 301u);
   ASSERT_EQ(r.csv.header.size(), 8u);
-  for (std::size_t i = 0; i < 7; ++i) EXPECT_EQ(r.csv.header[i + 1], kAndrewsAngles[i]);
+  for (std::size_t i = 0; i < 7; ++i) EXPECT_EQ(r.csv.header[i + 1], std::string(kAndrewsAngles[i]) + " [rad]");
   // Ten revolutes on seven bodies close three planar loops at E: 3 x 3 rows
   // of the 50 are implied by the others in 3-D.
   EXPECT_EQ(summary_redundant_rows(r.log), 9) << r.log;

@@ -23,7 +23,7 @@ struct Csv {
   std::vector<std::vector<double>> rows;
   std::size_t col(const std::string& name) const {
     for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name) return i;
+      if (header[i] == name || header[i].rfind(name + " [", 0) == 0) return i;  // `omega [rad/s]`
     ADD_FAILURE() << "no column " << name;
     return 0;
   }

@@ -36,6 +36,19 @@ TEST(Csv, HeaderIsTThenOutputsInDeclarationOrder) {
   EXPECT_EQ(lines(r.csv).at(0), "t,a.b,third_of_t");
 }
 
+/// Clock whose first output the model declares in metres, as mbgc emits it.
+class ClockWithUnits : public Clock {
+ public:
+  std::vector<std::string> output_units() const override { return {"m", ""}; }
+};
+
+TEST(Csv, TheHeaderNamesTheUnitAnOutputIsDeclaredIn) {
+  ClockWithUnits m;
+  RunResult r = run(m, {});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines(r.csv).at(0), "t,a.b [m],third_of_t");
+}
+
 TEST(Csv, OneRowPerIntervalIncludingStartAndEnd) {
   Clock m;
   RunResult r = run(m, {});

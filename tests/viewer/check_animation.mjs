@@ -88,7 +88,7 @@ if (o.sim) {
 }
 const [header, ...rows] = readFileSync(csvPath, 'utf8').trim().split('\n').map((line) => line.split(','));
 const column = (name) => {
-  const k = header.indexOf(name);
+  const k = header.findIndex((column) => column === name || column.startsWith(`${name} [`));  // `x [m]`
   if (k < 0) stop(`${csvPath} has no column "${name}" (it has ${header.join(', ')})`);
   return k;
 };

@@ -270,6 +270,10 @@ class Model {
   virtual std::string variable_name(std::size_t i) const = 0;
   /// Output column names, in declaration order (the CSV header after `t`).
   virtual std::vector<std::string> output_names() const = 0;
+  /// The unit each output is declared in (`output omega = shaft.f {rad/s}`),
+  /// "" for one declared in none; empty: no output declares one. The values
+  /// are in SI; the CSV header names the unit: `omega [rad/s]`.
+  virtual std::vector<std::string> output_units() const { return {}; }
   virtual std::vector<ParameterInfo> parameters() const = 0;
 
   virtual bool is_dae() const { return false; }

@@ -51,14 +51,18 @@ class dc_motor_model final : public mbgrt::Model {
     return {"current", "omega"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"A", "rad/s"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"V_supply", 60.0, ""},
-        {"R_a", 0.4, ""},
-        {"L_a", 0.05, ""},
-        {"K_m", 0.678, ""},
-        {"J", 0.57207, ""},
-        {"D", 0.226, ""},
+        {"V_supply", 60.0, "V"},
+        {"R_a", 0.4, "Ohm"},
+        {"L_a", 0.05, "H"},
+        {"K_m", 0.678, "N*m/A"},
+        {"J", 0.57207, "kg*m^2"},
+        {"D", 0.226, "N*m*s/rad"},
     };
   }
 
@@ -89,12 +93,12 @@ class dc_motor_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    V_supply = param(0, 60.0);  // dc_motor.mbg:6:7
-    R_a = param(1, 0.4);  // dc_motor.mbg:7:7
-    L_a = param(2, 0.05);  // dc_motor.mbg:8:7
-    K_m = param(3, 0.678);  // dc_motor.mbg:9:7
-    J = param(4, 0.57207);  // dc_motor.mbg:10:7
-    D = param(5, 0.226);  // dc_motor.mbg:11:7
+    V_supply = param(0, 60.0);  // dc_motor.mbg:6:7, {V}
+    R_a = param(1, 0.4);  // dc_motor.mbg:7:7, {Ohm}
+    L_a = param(2, 0.05);  // dc_motor.mbg:8:7, {H}
+    K_m = param(3, 0.678);  // dc_motor.mbg:9:7, {N*m/A}
+    J = param(4, 0.57207);  // dc_motor.mbg:10:7, {kg*m^2}
+    D = param(5, 0.226);  // dc_motor.mbg:11:7, {N*m*s/rad}
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     // (cseN: a subexpression several equations below share)
     const double cse1 = 1.0 / L_a;
