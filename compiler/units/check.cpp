@@ -142,13 +142,22 @@ class Solver {
     Form rest = f;
     rest.terms.erase(rest.terms.begin() + static_cast<std::ptrdiff_t>(p));
     Form solution = power(rest, Rational(-1) / c);
+    if (!solution.is_small()) return true;  // not checked
+    // the solutions that mention u, with u replaced: all small, or the requirement is not taken
+    std::vector<std::pair<int, Form>> updated;
+    std::unordered_set<int> seen;
     for (int user : used_in_[static_cast<std::size_t>(u)]) {
-      std::optional<Form>& s = solved_[static_cast<std::size_t>(user)];
-      auto it = std::find_if(s->terms.begin(), s->terms.end(), [u](const Term& t) { return t.unknown == u; });
-      if (it == s->terms.end()) continue;  // listed twice
-      Rational k = it->coef;
-      s->terms.erase(it);
-      *s = combine(*s, solution, k);
+      const Form& s = *solved_[static_cast<std::size_t>(user)];
+      auto it = std::find_if(s.terms.begin(), s.terms.end(), [u](const Term& t) { return t.unknown == u; });
+      if (it == s.terms.end() || !seen.insert(user).second) continue;  // listed twice
+      Form rest_of_user = s;
+      rest_of_user.terms.erase(rest_of_user.terms.begin() + (it - s.terms.begin()));
+      Form replaced = combine(rest_of_user, solution, it->coef);
+      if (!replaced.is_small()) return true;
+      updated.emplace_back(user, std::move(replaced));
+    }
+    for (auto& [user, form] : updated) {
+      solved_[static_cast<std::size_t>(user)] = std::move(form);
       merge(reasons_[static_cast<std::size_t>(user)], why);
       for (const Term& t : solution.terms) used_in_[static_cast<std::size_t>(t.unknown)].push_back(user);
     }
