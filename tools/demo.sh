@@ -58,7 +58,7 @@ step "Simulating: $SIM --out $CSV"
 "$SIM" --out "$CSV"
 
 awk -F, '
-  NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+  NR == 1 { for (i = 1; i <= NF; i++) { name = $i; sub(/ \[.*\]$/, "", name); col[name] = i } next }  # "omega [rad/s]"
   { last = $0 }
   END {
     if (!("t" in col) || !("current" in col) || !("omega" in col)) {
@@ -74,7 +74,7 @@ awk -F, '
 
 # 4. Plot current and speed against time, one panel each.
 PNG=$DEMO/dc_motor.png
-column() { head -n 1 "$CSV" | tr ',' '\n' | grep -nx "$1" | cut -d: -f1; }
+column() { head -n 1 "$CSV" | tr ',' '\n' | sed 's/ \[.*\]$//' | grep -nx "$1" | cut -d: -f1; }
 T_COL=$(column t); I_COL=$(column current); W_COL=$(column omega)
 step "Plotting: $PNG"
 if gnuplot -e 'set terminal pngcairo' >/dev/null 2>&1; then

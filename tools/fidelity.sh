@@ -16,7 +16,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 value_at() {  # CSV, column name, time -> value (empty if absent)
-  awk -F, -v name="$2" -v t="$3" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) c = i; next }
+  awk -F, -v name="$2" -v t="$3" 'NR == 1 { for (i = 1; i <= NF; i++) { h = $i; sub(/ \[.*\]$/, "", h); if (h == name) c = i } next }
     c && ($1 - t < 1e-9 && t - $1 < 1e-9) { print $c; exit }' "$1"
 }
 
