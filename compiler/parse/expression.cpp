@@ -85,7 +85,7 @@ ir::AstEndpoint ExpressionParser::endpoint(const char* what_for) {
   return e;
 }
 
-AstExprPtr ExpressionParser::make(AstExpr::Kind k, ir::SourceLoc loc) {
+std::shared_ptr<AstExpr> ExpressionParser::make(AstExpr::Kind k, ir::SourceLoc loc) {
   auto e = std::make_shared<AstExpr>();
   e->kind = k;
   e->loc = loc;
@@ -93,9 +93,7 @@ AstExprPtr ExpressionParser::make(AstExpr::Kind k, ir::SourceLoc loc) {
 }
 
 AstExprPtr ExpressionParser::binary(char op, ir::SourceLoc loc, AstExprPtr a, AstExprPtr b) {
-  auto e = std::make_shared<AstExpr>();
-  e->kind = AstExpr::Kind::Binary;
-  e->loc = loc;
+  auto e = make(AstExpr::Kind::Binary, loc);
   e->op = op;
   e->args = {std::move(a), std::move(b)};
   return e;
@@ -125,9 +123,7 @@ AstExprPtr ExpressionParser::unary() {
   if (at(Tok::Minus) || at(Tok::Plus)) {
     if (++depth_ > 200) fail("expression nested too deeply", "split it into parameters or signals");
     const Token& op = next();
-    auto e = std::make_shared<AstExpr>();
-    e->kind = AstExpr::Kind::Unary;
-    e->loc = op.loc;
+    auto e = make(AstExpr::Kind::Unary, op.loc);
     e->op = op.text[0];
     e->args = {unary()};
     // the caret of `-1e12` or `-x` covers the sign and its operand (an
@@ -159,10 +155,9 @@ AstExprPtr ExpressionParser::postfix() {
   while (at(Tok::LBracket)) {
     ir::SourceLoc loc = next().loc;
     auto idx = make(AstExpr::Kind::Index, loc);
-    auto m = std::const_pointer_cast<AstExpr>(idx);
-    m->args.push_back(e);
-    m->args.push_back(expr());
-    if (accept(Tok::Comma)) m->args.push_back(expr());
+    idx->args.push_back(e);
+    idx->args.push_back(expr());
+    if (accept(Tok::Comma)) idx->args.push_back(expr());
     expect(Tok::RBracket, "to close the index");
     e = idx;
   }
@@ -173,17 +168,13 @@ AstExprPtr ExpressionParser::primary() {
   const Token& t = peek();
   if (t.kind == Tok::String) {  // a file name; the passes that read one take it, others reject it
     next();
-    auto e = std::make_shared<AstExpr>();
-    e->kind = AstExpr::Kind::String;
-    e->loc = t.loc;
+    auto e = make(AstExpr::Kind::String, t.loc);
     e->name = t.text;
     return e;
   }
   if (t.kind == Tok::Number) {
     next();
-    auto e = std::make_shared<AstExpr>();
-    e->kind = AstExpr::Kind::Number;
-    e->loc = t.loc;
+    auto e = make(AstExpr::Kind::Number, t.loc);
     e->number = t.number;
     if (at_unit()) {  // `30 {deg}`: kept in SI
       e->unit = unit();
@@ -200,9 +191,7 @@ AstExprPtr ExpressionParser::primary() {
     ir::AstEndpoint path = endpoint("");
     if (at(Tok::LParen)) {
       next();
-      auto e = std::make_shared<AstExpr>();
-      e->kind = AstExpr::Kind::Call;
-      e->loc = path.loc;
+      auto e = make(AstExpr::Kind::Call, path.loc);
       e->name = path.path;
       while (!at(Tok::RParen)) {
         e->args.push_back(expr());
@@ -211,9 +200,7 @@ AstExprPtr ExpressionParser::primary() {
       expect(Tok::RParen, fmt::format("to close the call of `{}`", path.path).c_str());
       return e;
     }
-    auto e = std::make_shared<AstExpr>();
-    e->kind = AstExpr::Kind::Name;
-    e->loc = path.loc;
+    auto e = make(AstExpr::Kind::Name, path.loc);
     e->name = path.path;
     return e;
   }
@@ -225,9 +212,7 @@ AstExprPtr ExpressionParser::primary() {
   }
   if (t.kind == Tok::LBracket) {
     next();
-    auto e = std::make_shared<AstExpr>();
-    e->kind = AstExpr::Kind::List;
-    e->loc = t.loc;
+    auto e = make(AstExpr::Kind::List, t.loc);
     while (!at(Tok::RBracket)) {
       e->args.push_back(expr());
       if (!accept(Tok::Comma)) break;

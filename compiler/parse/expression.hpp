@@ -12,6 +12,7 @@
 // A literal's value is kept in SI (`30 {deg}` is 0.5236), what was typed beside it.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,7 +44,8 @@ class ExpressionParser : protected Cursor {
 
  private:
   void skip_interpolation(const Token& open);
-  static ir::AstExprPtr make(ir::AstExpr::Kind k, ir::SourceLoc loc);
+  /// A new node of kind `k` at `loc`, to be filled in.
+  static std::shared_ptr<ir::AstExpr> make(ir::AstExpr::Kind k, ir::SourceLoc loc);
   static ir::AstExprPtr binary(char op, ir::SourceLoc loc, ir::AstExprPtr a, ir::AstExprPtr b);
   ir::AstExprPtr product();
   ir::AstExprPtr unary();

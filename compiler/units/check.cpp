@@ -40,7 +40,6 @@ struct Form {
   static Form unknown(int u) { return {{{u, 1}}, {}, false, false}; }
   static Form number() { return {{}, {}, true, false}; }
   static Form function_value() { return {{}, {}, true, true}; }
-  bool determined() const { return terms.empty(); }
   /// Exponents small enough to compute with exactly (`x^999^999` is not checked).
   bool is_small() const {
     for (const Term& t : terms)
