@@ -20,8 +20,10 @@
 #include "codegen/names.hpp"
 #include "codegen/outline.hpp"
 #include "codegen/outline_emit.hpp"
+#include "codegen/shared_values.hpp"
 #include "codegen/shared_temps.hpp"
 #include "codegen/split.hpp"
+#include "codegen/stats.hpp"
 #include "codegen/template.hpp"
 
 namespace mbgc::codegen {
@@ -40,6 +42,8 @@ class Emitter {
     for (std::size_t i = 0; i < g_.vars.size(); ++i) mangle_.get(fmt::format("v{}", i), g_.vars[i].name);
     names_.var = [this](int id) {
       if (const std::string* at = outline_.stored_name(id)) return *at;
+      if (witness_active_)
+        if (auto it = witness_names_.find(id); it != witness_names_.end()) return it->second;
       if (auto it = discrete_name_.find(id); it != discrete_name_.end()) return it->second;
       return mangle_.get(fmt::format("v{}", id), "");
     };
@@ -63,7 +67,7 @@ class Emitter {
                                   "double nominal(std::size_t i) const override",
                                   {CppStmt::line(fmt::format("return i < {} ? nominal_[i] : 1.0;", unknown_count()))}});
     add_long_method(c, s_.dae ? residual() : derivative());
-    if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity());
+    if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity_method(s_));
     if (!s_.jacobian.empty()) {
       c.public_methods.push_back({"", "bool has_jacobian() const override", {CppStmt::line("return true;")}});
       add_long_method(c, jacobian());
@@ -78,12 +82,13 @@ class Emitter {
     }
     if (!s_.constraints.empty()) constraint_functions(c);
     std::optional<EnergyMethods> energy;
+    if (shares_witness_values()) witness_values(c);
     if (s_.energy.available)
       energy = EnergyMethods{
           values_at("STORED ENERGY: H at (t, y), every linear storage's (the energy witness).", "stored_energy", "out",
-                    {stored_energy_value(s_)}, s_.for_energy, "the stored energy"),
+                    {stored_energy_value(s_)}, s_.for_energy, "the stored energy", {}, true),
           values_at("POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).",
-                    "power", "out", power_values(s_), s_.for_power, "the powers")};
+                    "power", "out", power_values(s_), s_.for_power, "the powers", {}, true)};
     add_energy_methods(c, s_, where_fn(), std::move(energy));
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
@@ -117,7 +122,7 @@ class Emitter {
     replace(out, "{{entry_point}}", entry);
     // No trailing blank lines: one newline at the end.
     while (out.size() > 1 && out[out.size() - 1] == '\n' && out[out.size() - 2] == '\n') out.pop_back();
-    if (stats) collect_stats(c, out, *stats);
+    if (stats) *stats = collect_stats(c, out, costs_, s_);
     return out;
   }
 
@@ -127,70 +132,21 @@ class Emitter {
 
   /// A method that may be long (the dynamics, the Jacobian): past
   /// kMaxMethodLines statements it is cut into parts (codegen/split.hpp).
-  void add_long_method(CppClass& c, CppFunction f) {
+  void add_long_method(CppClass& c, CppFunction f, bool is_private = false) {
     auto split = split_method(f, kMaxMethodLines);
+    std::vector<CppFunction>& methods = is_private ? c.private_methods : c.public_methods;
     if (!split) {
-      c.public_methods.push_back(std::move(f));
+      methods.push_back(std::move(f));
       return;
     }
-    c.public_methods.push_back(std::move(split->method));
+    methods.push_back(std::move(split->method));
     for (CppFunction& part : split->parts) c.private_methods.push_back(std::move(part));
     for (std::string& m : split->members)
       if (std::find(scratch_.begin(), scratch_.end(), m) == scratch_.end()) scratch_.push_back(std::move(m));
   }
 
-  /// The costs counted while the methods were built, with their size in the file.
-  void collect_stats(const CppClass& c, const std::string& out, EmitStats& stats) const {
-    stats = {};
-    stats.model = g_.model_name;
-    stats.dae = s_.dae;
-    stats.states = s_.states.size();
-    stats.algebraic = s_.algebraic.size();
-    // both forms print the class inside a namespace, its methods two levels in
-    const int indent = 2;
-    for (const auto* methods : {&c.public_methods, &c.private_methods})
-      for (const CppFunction& f : *methods) {
-        FunctionStats fs;
-        const std::string& sig = f.signature;
-        auto open = sig.find('(');
-        auto start = sig.find_last_of(' ', open);
-        fs.name = sig.substr(start == std::string::npos ? 0 : start + 1, open - (start == std::string::npos ? 0 : start + 1));
-        std::string text = print(f, indent);
-        fs.bytes = text.size();
-        fs.lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-        if (auto it = costs_.find(sig); it != costs_.end()) {
-          fs.ops = it->second.ops;
-          fs.solves = it->second.solves;
-          for (std::size_t n : fs.solves) fs.solve_ops += solve_linear_ops(n);
-        }
-        stats.functions.push_back(std::move(fs));
-      }
-    // A long method's parts (NAME_partK) and its shapes' functions
-    // (NAME_shapeK, whose operations count in NAME once per call) count as
-    // lines and bytes of NAME.
-    for (auto it = stats.functions.begin(); it != stats.functions.end();) {
-      auto cut = it->name.rfind("_part");
-      if (cut == std::string::npos) cut = it->name.rfind("_shape");
-      auto base = cut == std::string::npos ? stats.functions.end()
-                                           : std::find_if(stats.functions.begin(), stats.functions.end(),
-                                                          [&](const FunctionStats& g) { return g.name == it->name.substr(0, cut); });
-      if (base == stats.functions.end()) {
-        ++it;
-        continue;
-      }
-      base->lines += it->lines;
-      base->bytes += it->bytes;
-      it = stats.functions.erase(it);
-    }
-    stats.file_bytes = out.size();
-    stats.file_lines = static_cast<std::size_t>(std::count(out.begin(), out.end(), '\n'));
-  }
-
   /// What a method's expressions and linear solves cost, counted as they are printed.
-  struct Cost {
-    CppOps ops;
-    std::vector<std::size_t> solves;
-  };
+  using Cost = MethodCost;
   /// While the returned guard lives, printed expressions count towards method `f`.
   struct Counting {
     Cost*& cost;
@@ -323,8 +279,10 @@ class Emitter {
 
   // ---- sections with equations ------------------------------------------------------------
   /// Read the unknowns a section uses, compute its assignments, then its results.
+  /// `exporting`: the section is witness_values()'s, whose exported variables
+  /// are set as members (or kept in their outlined runs' arrays) for its callers.
   void section(std::vector<CppStmt>& body, const std::vector<int>& assignment_indices, std::vector<SectionResult> results,
-               const std::string& results_comment) {
+               const std::string& results_comment, bool exporting = false) {
     // Which variables does this section touch?
     std::unordered_set<int> used;
     std::set<int> blocks_read;  // a block's unknowns share its inputs: read them once
@@ -356,7 +314,7 @@ class Emitter {
     // Bodies whose equations are the same up to names: one function per shape (codegen/outline).
     std::vector<const Assignment*> list;
     for (int i : assignment_indices) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
-    Outlined outlined_form = outline_.outline_section(list, results, method_name(cost_signature_));
+    Outlined outlined_form = outline_.outline_section(list, results, method_name(cost_signature_), exporting ? &witness_.exported : nullptr);
     const Outlining& outlined = outlined_form.o;
     const std::vector<std::string>& store = outlined_form.store;
     const std::vector<int>& run_at = outlined_form.run_at;
@@ -401,7 +359,7 @@ class Emitter {
       }
       if (a.block >= 0) {
         if (blocks_done.insert(a.block).second) emit_block(body, a, print_expr);
-        body.push_back(CppStmt::line(fmt::format("const double {} = blk{}_x[{}];", var_name(a.var), a.block + 1, block_position(a))));
+        body.push_back(CppStmt::line(fmt::format("{} = blk{}_x[{}];", defined(a.var, exporting), a.block + 1, block_position(a))));
         continue;
       }
       // One comment heads each run of assignments from the same model line and origin.
@@ -412,7 +370,7 @@ class Emitter {
       // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
       bool shared_whole = shared.take_whole(a.value);
       std::string rhs = print_expr(a.value, body);
-      body.push_back(CppStmt::line(fmt::format("const double {} = {};", var_name(a.var), rhs)));
+      body.push_back(CppStmt::line(fmt::format("{} = {};", defined(a.var, exporting), rhs)));
       if (shared_whole) shared.name_whole(a.value, var_name(a.var));
       if (const int r = copy_after[k]; r >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(r)];
@@ -430,7 +388,67 @@ class Emitter {
       std::string rhs = print_expr(results[i].value, body);
       body.push_back(CppStmt::line(fmt::format("{}[{}] = {};", results[i].array, results[i].index, rhs)));
     }
+    if (exporting)  // what the callers read: its place in an outlined run's array, else its member
+      for (int i : witness_.assignments)
+        if (const int v = s_.assignments[static_cast<std::size_t>(i)].var; witness_.exported.count(v)) {
+          witness_names_[v] = var_name(v);
+          if (!outline_.stored_name(v)) witness_members_.push_back(var_name(v));
+        }
     outline_.finish_section(outlined_form);
+    witness_active_ = false;
+  }
+
+  /// What a section's assignment to `var` starts with: a local, or (an
+  /// exported variable of witness_values()) its member.
+  std::string defined(int var, bool exporting) const {
+    if (exporting && witness_.exported.count(var)) return var_name(var);
+    return "const double " + var_name(var);
+  }
+
+  // ---- what the energy witness's two methods compute alike (codegen/shared_values) ----
+  /// Whether witness_values() is written: with the energy witness, where the
+  /// methods' bodies are outlined (--outline always, or auto on large
+  /// dynamics), so that the file is written compactly.
+  bool shares_witness_values() const {
+    if (!s_.energy.available || opt_.outline == EmitOptions::Outline::never) return false;
+    return opt_.outline == EmitOptions::Outline::always || outline_.large();
+  }
+
+  /// WITNESS VALUES: the assignments power() and stored_energy() need, once
+  /// per call of each (a private method).
+  void witness_values(CppClass& c) {
+    std::vector<Expr> read = power_values(s_);
+    read.push_back(stored_energy_value(s_));
+    witness_ = find_shared_values(s_, {&s_.for_power, &s_.for_energy}, read);
+    if (witness_.empty()) return;
+    const char* y = s_.dae ? "y" : "x";
+    CppFunction f{fmt::format("WITNESS VALUES: what power() and stored_energy() both read (the velocities, the forces), at "
+                              "(t, {}); each calls it first and reads them from members.",
+                              y),
+                  fmt::format("void witness_values(double t, const double* {}{})", y, s_.dae ? ", const double* yp" : ""),
+                  {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
+    if (s_.dae) f.body.push_back(CppStmt::line("(void)yp;"));
+    {
+      const Counting counting = count_into(f);
+      section(f.body, witness_.assignments, {}, "", true);
+    }
+    // its work counts in each caller, once per call (as a shape function's)
+    witness_cost_ = costs_.at(f.signature);
+    costs_.erase(f.signature);
+    witness_call_ = s_.dae ? "witness_values(t, y, yp);" : "witness_values(t, x);";
+    add_long_method(c, std::move(f), true);
+  }
+
+  /// A caller of witness_values(): the call, then nothing of `slice` (all of
+  /// it is computed there), its variables named by their members.
+  std::vector<int> call_witness_values(std::vector<CppStmt>& body, const std::vector<int>& slice) {
+    if (witness_.empty()) return slice;
+    body.push_back(CppStmt::comment("witness_values() sets the members read below"));
+    body.push_back(CppStmt::line(witness_call_));
+    *ops() += witness_cost_.ops;
+    cost_->solves.insert(cost_->solves.end(), witness_cost_.solves.begin(), witness_cost_.solves.end());
+    witness_active_ = true;
+    return {};
   }
 
   std::size_t block_position(const Assignment& a) const {
@@ -525,26 +543,6 @@ class Emitter {
       results.push_back({"r", i, row.value, owner_of(var_name_in_model(unknown)), row.loc, row.origin});
     }
     section(f.body, s_.for_derivative, std::move(results), "residuals");
-    return f;
-  }
-
-  /// Where IDA's matrix dF/dy + c_j dF/dy' can be nonzero (reduce/sparsity.hpp).
-  CppFunction residual_sparsity() const {
-    std::vector<long> starts{0}, rows;
-    for (const std::vector<int>& column : s_.residual_pattern) {
-      rows.insert(rows.end(), column.begin(), column.end());
-      starts.push_back(static_cast<long>(rows.size()));
-    }
-    CppFunction f{fmt::format("SPARSITY: where IDA's matrix dF/dy + c_j dF/dy' can be nonzero, by column (compressed "
-                              "sparse columns: {} of {} entries)",
-                              rows.size(), s_.residual_pattern.size() * s_.residual_pattern.size()),
-                  "bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override",
-                  {}};
-    static_table(f.body, "long", "kStarts", starts);
-    static_table(f.body, "long", "kRows", rows);
-    f.body.push_back(CppStmt::line(fmt::format("column_starts.assign(kStarts, kStarts + {});", starts.size())));
-    f.body.push_back(CppStmt::line(fmt::format("rows.assign(kRows, kRows + {});", rows.size())));
-    f.body.push_back(CppStmt::line("return true;"));
     return f;
   }
 
@@ -655,9 +653,10 @@ class Emitter {
   /// `void NAME(double t, const double* x, const double* yp, double* OUT)`:
   /// OUT[i] = values[i] at (t, y), after the assignments `slice` they need;
   /// owners[i], if given, the body values[i] is about and where it is declared.
+  /// With `witness`, it calls witness_values() first (if written).
   CppFunction values_at(const char* doc, const char* name, const char* out, const std::vector<Expr>& values,
                         const std::vector<int>& slice, const char* comment,
-                        const std::vector<std::pair<std::string, SourceLoc>>& owners = {}) {
+                        const std::vector<std::pair<std::string, SourceLoc>>& owners = {}, bool witness = false) {
     CppFunction f{doc, fmt::format("void {}(double t, const double* {}, const double* yp, double* {}) override", name, s_.dae ? "y" : "x", out),
                   {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
     const Counting counting = count_into(f);
@@ -665,7 +664,7 @@ class Emitter {
     for (std::size_t i = 0; i < values.size(); ++i)
       results.push_back(i < owners.size() ? SectionResult{out, i, values[i], owners[i].first, owners[i].second, {}} : SectionResult{out, i, values[i], {}, {}, {}});
     if (results.empty()) f.body.push_back(CppStmt::line(fmt::format("(void){};", out)));
-    section(f.body, slice, std::move(results), comment);
+    section(f.body, witness ? call_witness_values(f.body, slice) : slice, std::move(results), comment);
     return f;
   }
 
@@ -686,6 +685,13 @@ class Emitter {
       c.private_members.push_back(CppStmt::comment("equations computed by one function per shape (bodies, joints): what the rest reads of them"));
       for (CppStmt& st : outline_.stores()) c.private_members.push_back(std::move(st));
     }
+    if (!witness_members_.empty()) {
+      c.private_members.push_back(CppStmt::comment("witness_values(): what power() and stored_energy() read of it"));
+      for (const std::string& m : witness_members_) c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;", m)));
+    }
+    // (a variable witness_values() keeps is its member in a long method's parts too)
+    const std::unordered_set<std::string> kept(witness_members_.begin(), witness_members_.end());
+    std::erase_if(scratch_, [&](const std::string& m) { return kept.count(m) > 0; });
     if (!scratch_.empty()) {
       c.private_members.push_back(CppStmt::comment("values one part of a long method passes to a later part"));
       for (const std::string& m : scratch_) c.private_members.push_back(CppStmt::line(fmt::format("double {} = 0.0;", m)));
@@ -732,6 +738,12 @@ class Emitter {
   /// thousands of entries).
   bool compact_ = false;
   std::vector<std::string> scratch_;  // members of split methods (codegen/split.hpp), in order of definition
+  SharedValues witness_;                                // what witness_values() computes for power() and stored_energy()
+  std::unordered_map<int, std::string> witness_names_;  // its exported variables -> their members or outlined places
+  std::vector<std::string> witness_members_;            // the members of those not outlined, in order
+  bool witness_active_ = false;                         // a caller's section is printed: witness_names_ name them
+  Cost witness_cost_;                                   // the work of one call
+  std::string witness_call_;                            // the call's statement
   /// Statements per part of a long method: g++ -O2 compiles the 100-rod
   /// chain's derivative (8,300 statements) in 20 s as one function.
   static constexpr std::size_t kMaxMethodLines = 2000;

@@ -263,4 +263,23 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   c.public_methods.push_back(set);
 }
 
+CppFunction residual_sparsity_method(const ir::ReducedSystem& s) {
+  std::vector<long> starts{0}, rows;
+  for (const std::vector<int>& column : s.residual_pattern) {
+    rows.insert(rows.end(), column.begin(), column.end());
+    starts.push_back(static_cast<long>(rows.size()));
+  }
+  CppFunction f{fmt::format("SPARSITY: where IDA's matrix dF/dy + c_j dF/dy' can be nonzero, by column (compressed "
+                            "sparse columns: {} of {} entries)",
+                            rows.size(), s.residual_pattern.size() * s.residual_pattern.size()),
+                "bool residual_sparsity(std::vector<long>& column_starts, std::vector<long>& rows) const override",
+                {}};
+  static_table(f.body, "long", "kStarts", starts);
+  static_table(f.body, "long", "kRows", rows);
+  f.body.push_back(CppStmt::line(fmt::format("column_starts.assign(kStarts, kStarts + {});", starts.size())));
+  f.body.push_back(CppStmt::line(fmt::format("rows.assign(kRows, kRows + {});", rows.size())));
+  f.body.push_back(CppStmt::line("return true;"));
+  return f;
+}
+
 }  // namespace mbgc::codegen

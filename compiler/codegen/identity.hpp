@@ -14,6 +14,10 @@ namespace mbgc::codegen {
 /// (a large model of repeated bodies, codegen/emit_cpp) written compactly.
 void add_identity_methods(CppClass& c, const ir::ReducedSystem& s, const EmitOptions& opt, bool compact);
 
+/// A DAE's residual_sparsity(): where IDA's matrix dF/dy + c_j dF/dy' can be
+/// nonzero, by column (reduce/sparsity.hpp).
+CppFunction residual_sparsity_method(const ir::ReducedSystem& s);
+
 /// Variables and parameters by their names in the model (for comments).
 ir::Namer names_for_dump(const ir::BondGraph& g);
 

@@ -347,13 +347,13 @@ void group_by_body(std::vector<const Assignment*>& list, const ReducedSystem& s,
     labels[i] = best;
     if (best >= 0) label_of[list[i]->var] = best;
   }
-  // The kinematics: everything before the elimination, unless a linear block is among them.
+  // The kinematics: everything before the elimination (all of a section
+  // without one: kinematics(), the poses), unless a linear block is among them.
   std::size_t end = 0;
   while (end < n && !from_tree_elimination(*list[end])) {
     if (list[end]->block >= 0) return;
     ++end;
   }
-  if (end == n) return;
   std::vector<int> body_key(bodies);
   for (std::size_t b = 0; b < bodies; ++b) body_key[b] = pre[b];
   order_by_key(list, end, labels, body_key, reads, s.graph, /*stay=*/false);

@@ -17,7 +17,7 @@ std::vector<Expr> result_values(const std::vector<SectionResult>& results) {
 }
 
 Outlined OutlineEmitter::outline_section(std::vector<const Assignment*>& list, std::vector<SectionResult>& results,
-                                         const std::string& method) {
+                                         const std::string& method, const std::unordered_set<int>* read_later) {
   Outlined out;
   out.method = method;
   out.run_at.assign(list.size(), -1);
@@ -26,7 +26,7 @@ Outlined OutlineEmitter::outline_section(std::vector<const Assignment*>& list, s
   if (mode_ == EmitOptions::Outline::never ||
       (mode_ == EmitOptions::Outline::automatic && !large_ && inline_count({}, list) <= kOutlineFromNodes))
     return out;
-  out.o = find_shapes(list, results);
+  out.o = find_shapes(list, results, read_later);
   if (out.o.shapes.empty()) return out;
   out.shape_names.resize(out.o.shapes.size());
   out.store = store_outlined(out.o, list, method);
@@ -43,12 +43,14 @@ Outlined OutlineEmitter::outline_section(std::vector<const Assignment*>& list, s
   return out;
 }
 
-Outlining OutlineEmitter::find_shapes(std::vector<const Assignment*>& list, std::vector<SectionResult>& results) const {
+Outlining OutlineEmitter::find_shapes(std::vector<const Assignment*>& list, std::vector<SectionResult>& results,
+                                      const std::unordered_set<int>* read_later) const {
   const BondGraph& g = s_.graph;
   ReadsOf reads;
   for (const Assignment* a : list) assignment_inputs(s_, *a, reads[a]);
   std::unordered_set<int> results_read;
   collect_vars(result_values(results), results_read);
+  if (read_later) results_read.insert(read_later->begin(), read_later->end());
   std::vector<SectionResult> grouped_results = results;
   group_results_by_owner(grouped_results);
   auto outline = [&](const std::vector<const Assignment*>& order, const std::vector<int>& labels, const std::vector<std::string>& names) {
@@ -95,7 +97,7 @@ bool OutlineEmitter::measure_dynamics() {
   for (int i : s_.for_derivative) list.push_back(&s_.assignments[static_cast<std::size_t>(i)]);
   large_ = inline_count({}, list) > kOutlineFromNodes;
   std::vector<SectionResult> none;
-  return large_ && !find_shapes(list, none).shapes.empty();
+  return large_ && !find_shapes(list, none, nullptr).shapes.empty();
 }
 
 std::vector<std::string> OutlineEmitter::store_outlined(const Outlining& o, const std::vector<const Assignment*>& list,

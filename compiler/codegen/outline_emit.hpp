@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -58,9 +59,13 @@ class OutlineEmitter {
   bool measure_dynamics();
 
   /// `list` outlined where --outline says so (see find_shapes), in a section
-  /// of method `method`.
+  /// of method `method`; `read_later`, if given, the variables other methods
+  /// read of it (their places are kept, as those its results read).
   Outlined outline_section(std::vector<const ir::Assignment*>& list, std::vector<SectionResult>& results,
-                           const std::string& method);
+                           const std::string& method, const std::unordered_set<int>* read_later = nullptr);
+
+  /// Whether the dynamics are past kOutlineFromNodes (measure_dynamics).
+  bool large() const { return large_; }
 
   /// One outlined run: its other inputs into an array, then the shape's
   /// function (made the first time) with its sources' arrays and its own
@@ -87,7 +92,8 @@ class OutlineEmitter {
   /// eliminations alone in causal order, the one that leaves less inline;
   /// `results` each owner's together (group_results_by_owner) if some of them
   /// are outlined.
-  Outlining find_shapes(std::vector<const ir::Assignment*>& list, std::vector<SectionResult>& results) const;
+  Outlining find_shapes(std::vector<const ir::Assignment*>& list, std::vector<SectionResult>& results,
+                        const std::unordered_set<int>* read_later) const;
 
   /// The expression nodes of the assignments that stay inline.
   static std::size_t inline_count(const Outlining& o, const std::vector<const ir::Assignment*>& list);

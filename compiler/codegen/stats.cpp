@@ -1,8 +1,9 @@
 // codegen/stats.cpp — mbgc --stats: what each generated method costs per call
 // (operations counted by the printer, see ir::to_cpp) and its size.
-#include <fmt/format.h>
+#include "codegen/stats.hpp"
 
-#include "codegen/emit_cpp.hpp"
+#include <algorithm>
+#include <fmt/format.h>
 
 namespace mbgc::codegen {
 namespace {
@@ -51,6 +52,56 @@ std::string sizes(const std::vector<std::size_t>& solves, const char* sep) {
 }
 
 }  // namespace
+
+EmitStats collect_stats(const CppClass& c, const std::string& out, const std::map<std::string, MethodCost>& costs,
+                        const ir::ReducedSystem& s) {
+  EmitStats stats;
+  stats.model = s.graph.model_name;
+  stats.dae = s.dae;
+  stats.states = s.states.size();
+  stats.algebraic = s.algebraic.size();
+  // both forms print the class inside a namespace, its methods two levels in
+  const int indent = 2;
+  for (const auto* methods : {&c.public_methods, &c.private_methods})
+    for (const CppFunction& f : *methods) {
+      FunctionStats fs;
+      const std::string& sig = f.signature;
+      auto open = sig.find('(');
+      auto start = sig.find_last_of(' ', open);
+      fs.name = sig.substr(start == std::string::npos ? 0 : start + 1, open - (start == std::string::npos ? 0 : start + 1));
+      std::string text = print(f, indent);
+      fs.bytes = text.size();
+      fs.lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+      if (auto it = costs.find(sig); it != costs.end()) {
+        fs.ops = it->second.ops;
+        fs.solves = it->second.solves;
+        for (std::size_t n : fs.solves) fs.solve_ops += solve_linear_ops(n);
+      }
+      stats.functions.push_back(std::move(fs));
+    }
+  // A long method's parts (NAME_partK) and its shapes' functions
+  // (NAME_shapeK, whose operations count in NAME once per call) count as
+  // lines and bytes of NAME. witness_values() (codegen/shared_values) has a
+  // row of its own for its lines and bytes; its operations count in each of
+  // its callers, once per call.
+  for (auto it = stats.functions.begin(); it != stats.functions.end();) {
+    auto cut = it->name.rfind("_part");
+    if (cut == std::string::npos) cut = it->name.rfind("_shape");
+    auto base = cut == std::string::npos ? stats.functions.end()
+                                         : std::find_if(stats.functions.begin(), stats.functions.end(),
+                                                        [&](const FunctionStats& g) { return g.name == it->name.substr(0, cut); });
+    if (base == stats.functions.end()) {
+      ++it;
+      continue;
+    }
+    base->lines += it->lines;
+    base->bytes += it->bytes;
+    it = stats.functions.erase(it);
+  }
+  stats.file_bytes = out.size();
+  stats.file_lines = static_cast<std::size_t>(std::count(out.begin(), out.end(), '\n'));
+  return stats;
+}
 
 std::string format_stats(const EmitStats& stats, bool csv) {
   const std::vector<Row> rows = rows_of(stats);

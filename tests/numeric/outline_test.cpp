@@ -8,7 +8,9 @@
 // each body and joint are grouped and outlined instead, and so are the rows
 // each one writes (a body's residual rows, a joint's constraint rows and
 // their derivatives): its residual, constraints, constraint Jacobian, outputs,
-// energy witness and body poses agree bit for bit likewise. And the
+// energy witness and body poses agree bit for bit likewise (outlined, power()
+// and stored_energy() read what they both need from witness_values(), which
+// the inline form does not write: codegen/shared_values). And the
 // outlined form must actually be used (its file reads `_shape1(`), so that
 // the test cannot pass by comparing a model with itself.
 #include <gtest/gtest.h>

@@ -562,75 +562,38 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j3_theta_q = x[5];
     const double j4_theta_q = x[7];
     const double j5_theta_q = x[9];
-    // outlined_chain.mbg:25:7  signal rod1.pose.R21
-    const double rod1_pose_R21 = std::sin(j1_theta_q);
-    // outlined_chain.mbg:25:7  signal rod1.pose.R22
-    const double rod1_pose_R22 = std::cos(j1_theta_q);
-    // outlined_chain.mbg:27:9  signal rod2.pose.R21
-    // (cseN: a subexpression several equations below share)
-    const double cse66 = std::cos(j2_theta_q);
-    const double cse67 = std::sin(j2_theta_q);
-    const double rod2_pose_R21 = rod1_pose_R21 * cse66 + rod1_pose_R22 * cse67;
-    // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double rod2_pose_R22 = -rod1_pose_R21 * cse67 + rod1_pose_R22 * cse66;
-    // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double cse68 = std::cos(j3_theta_q);
-    const double cse69 = std::sin(j3_theta_q);
-    const double rod3_pose_R21 = rod2_pose_R21 * cse68 + rod2_pose_R22 * cse69;
-    // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double rod3_pose_R22 = -rod2_pose_R21 * cse69 + rod2_pose_R22 * cse68;
-    // outlined_chain.mbg:27:9  signal rod4.pose.R21
-    const double cse70 = std::cos(j4_theta_q);
-    const double cse71 = std::sin(j4_theta_q);
-    const double rod4_pose_R21 = rod3_pose_R21 * cse70 + rod3_pose_R22 * cse71;
-    // outlined_chain.mbg:27:9  signal rod4.pose.R22
-    const double rod4_pose_R22 = -rod3_pose_R21 * cse71 + rod3_pose_R22 * cse70;
-    // outlined_chain.mbg:27:9  signal rod5.pose.R21
-    const double cse72 = std::cos(j5_theta_q);
-    const double cse73 = std::sin(j5_theta_q);
-    const double rod5_pose_R21 = rod4_pose_R21 * cse72 + rod4_pose_R22 * cse73;
-    // outlined_chain.mbg:27:9  signal rod5.pose.R22
-    const double rod5_pose_R22 = -rod4_pose_R21 * cse73 + rod4_pose_R22 * cse72;
     // outlined_chain.mbg:25:7  signal rod1.pose.R11
-    const double rod1_pose_R11 = rod1_pose_R22;
+    const double rod1_pose_R11 = std::cos(j1_theta_q);
     // outlined_chain.mbg:25:7  signal rod1.pose.R12
-    const double rod1_pose_R12 = -rod1_pose_R21;
+    // (cseN: a subexpression several equations below share)
+    const double cse66 = std::sin(j1_theta_q);
+    const double rod1_pose_R12 = -cse66;
+    // outlined_chain.mbg:25:7  signal rod1.pose.R21
+    const double rod1_pose_R21 = cse66;
+    // outlined_chain.mbg:25:7  signal rod1.pose.R22
+    const double rod1_pose_R22 = rod1_pose_R11;
     // outlined_chain.mbg:25:7  signal rod1.pose.r1
     const double rod1_pose_r1 = -rod1_pose_R12 * j1_pb_2;
     // outlined_chain.mbg:25:7  signal rod1.pose.r2
     const double rod1_pose_r2 = -rod1_pose_R22 * j1_pb_2;
-    // outlined_chain.mbg:27:9  signal rod2.pose.R11
-    const double rod2_pose_R11 = rod1_pose_R11 * cse66 + rod1_pose_R12 * cse67;
-    // outlined_chain.mbg:27:9  signal rod2.pose.R12
-    const double rod2_pose_R12 = -rod1_pose_R11 * cse67 + rod1_pose_R12 * cse66;
-    // outlined_chain.mbg:27:9  signal rod2.pose.r1
-    const double rod2_pose_r1 = rod1_pose_r1 + rod1_pose_R12 * j2_pa_2 - rod2_pose_R12 * j2_pb_2;
-    // outlined_chain.mbg:27:9  signal rod2.pose.r2
-    const double rod2_pose_r2 = rod1_pose_r2 + rod1_pose_R22 * j2_pa_2 - rod2_pose_R22 * j2_pb_2;
-    // outlined_chain.mbg:27:9  signal rod3.pose.R11
-    const double rod3_pose_R11 = rod2_pose_R11 * cse68 + rod2_pose_R12 * cse69;
-    // outlined_chain.mbg:27:9  signal rod3.pose.R12
-    const double rod3_pose_R12 = -rod2_pose_R11 * cse69 + rod2_pose_R12 * cse68;
-    // outlined_chain.mbg:27:9  signal rod3.pose.r1
-    const double rod3_pose_r1 = rod2_pose_r1 + rod2_pose_R12 * j3_pa_2 - rod3_pose_R12 * j3_pb_2;
-    // outlined_chain.mbg:27:9  signal rod3.pose.r2
-    const double rod3_pose_r2 = rod2_pose_r2 + rod2_pose_R22 * j3_pa_2 - rod3_pose_R22 * j3_pb_2;
-    // outlined_chain.mbg:27:9  signal rod4.pose.R11
-    const double rod4_pose_R11 = rod3_pose_R11 * cse70 + rod3_pose_R12 * cse71;
-    // outlined_chain.mbg:27:9  signal rod4.pose.R12
-    const double rod4_pose_R12 = -rod3_pose_R11 * cse71 + rod3_pose_R12 * cse70;
-    // outlined_chain.mbg:27:9  signal rod4.pose.r1
-    const double rod4_pose_r1 = rod3_pose_r1 + rod3_pose_R12 * j4_pa_2 - rod4_pose_R12 * j4_pb_2;
-    // outlined_chain.mbg:27:9  signal rod4.pose.r2
-    const double rod4_pose_r2 = rod3_pose_r2 + rod3_pose_R22 * j4_pa_2 - rod4_pose_R22 * j4_pb_2;
-    // outlined_chain.mbg:27:9  signal rod5.pose.R11
-    const double rod5_pose_R11 = rod4_pose_R11 * cse72 + rod4_pose_R12 * cse73;
-    // outlined_chain.mbg:27:9  signal rod5.pose.R12
-    const double rod5_pose_R12 = -rod4_pose_R11 * cse73 + rod4_pose_R12 * cse72;
-    // outlined_chain.mbg:27:9  signal rod5.pose.r1
-    const double rod5_pose_r1 = rod4_pose_r1 + rod4_pose_R12 * j5_pa_2 - rod5_pose_R12 * j5_pb_2;
-    // outlined_chain.mbg:27:9  signal rod5.pose.r2
-    const double rod5_pose_r2 = rod4_pose_r2 + rod4_pose_R22 * j5_pa_2 - rod5_pose_R22 * j5_pb_2;
+    rod1_kin[0] = rod1_pose_R11;
+    rod1_kin[1] = rod1_pose_R12;
+    rod1_kin[2] = rod1_pose_R21;
+    rod1_kin[3] = rod1_pose_R22;
+    rod1_kin[4] = rod1_pose_r1;
+    rod1_kin[5] = rod1_pose_r2;
+    // outlined_chain.mbg:27:9  body rod2: body_poses_shape1() (the same equations as 4 bodies)
+    double rod2_in[3] = {j2_theta_q, j2_pa_2, j2_pb_2};
+    body_poses_shape1(rod2_in, rod1_kin, rod2_kin_2);
+    // outlined_chain.mbg:27:9  body rod3: body_poses_shape1() (the same equations as 4 bodies)
+    double rod3_in_4[3] = {j3_theta_q, j3_pa_2, j3_pb_2};
+    body_poses_shape1(rod3_in_4, rod2_kin_2, rod3_kin_2);
+    // outlined_chain.mbg:27:9  body rod4: body_poses_shape1() (the same equations as 4 bodies)
+    double rod4_in_4[3] = {j4_theta_q, j4_pa_2, j4_pb_2};
+    body_poses_shape1(rod4_in_4, rod3_kin_2, rod4_kin_2);
+    // outlined_chain.mbg:27:9  body rod5: body_poses_shape1() (the same equations as 4 bodies)
+    double rod5_in[3] = {j5_theta_q, j5_pa_2, j5_pb_2};
+    body_poses_shape1(rod5_in, rod4_kin_2, rod5_kin_2);
     // 12 per body (origin, rotation row-major), then every modal coordinate
     out[0] = rod1_pose_r1;
     out[1] = rod1_pose_r2;
@@ -644,50 +607,50 @@ class outlined_chain_model final : public mbgrt::Model {
     out[9] = 0.0;
     out[10] = 0.0;
     out[11] = 1.0;
-    out[12] = rod2_pose_r1;
-    out[13] = rod2_pose_r2;
+    out[12] = rod2_kin_2[4];
+    out[13] = rod2_kin_2[5];
     out[14] = 0.0;
-    out[15] = rod2_pose_R11;
-    out[16] = rod2_pose_R12;
+    out[15] = rod2_kin_2[0];
+    out[16] = rod2_kin_2[1];
     out[17] = 0.0;
-    out[18] = rod2_pose_R21;
-    out[19] = rod2_pose_R22;
+    out[18] = rod2_kin_2[2];
+    out[19] = rod2_kin_2[3];
     out[20] = 0.0;
     out[21] = 0.0;
     out[22] = 0.0;
     out[23] = 1.0;
-    out[24] = rod3_pose_r1;
-    out[25] = rod3_pose_r2;
+    out[24] = rod3_kin_2[4];
+    out[25] = rod3_kin_2[5];
     out[26] = 0.0;
-    out[27] = rod3_pose_R11;
-    out[28] = rod3_pose_R12;
+    out[27] = rod3_kin_2[0];
+    out[28] = rod3_kin_2[1];
     out[29] = 0.0;
-    out[30] = rod3_pose_R21;
-    out[31] = rod3_pose_R22;
+    out[30] = rod3_kin_2[2];
+    out[31] = rod3_kin_2[3];
     out[32] = 0.0;
     out[33] = 0.0;
     out[34] = 0.0;
     out[35] = 1.0;
-    out[36] = rod4_pose_r1;
-    out[37] = rod4_pose_r2;
+    out[36] = rod4_kin_2[4];
+    out[37] = rod4_kin_2[5];
     out[38] = 0.0;
-    out[39] = rod4_pose_R11;
-    out[40] = rod4_pose_R12;
+    out[39] = rod4_kin_2[0];
+    out[40] = rod4_kin_2[1];
     out[41] = 0.0;
-    out[42] = rod4_pose_R21;
-    out[43] = rod4_pose_R22;
+    out[42] = rod4_kin_2[2];
+    out[43] = rod4_kin_2[3];
     out[44] = 0.0;
     out[45] = 0.0;
     out[46] = 0.0;
     out[47] = 1.0;
-    out[48] = rod5_pose_r1;
-    out[49] = rod5_pose_r2;
+    out[48] = rod5_kin_2[4];
+    out[49] = rod5_kin_2[5];
     out[50] = 0.0;
-    out[51] = rod5_pose_R11;
-    out[52] = rod5_pose_R12;
+    out[51] = rod5_kin_2[0];
+    out[52] = rod5_kin_2[1];
     out[53] = 0.0;
-    out[54] = rod5_pose_R21;
-    out[55] = rod5_pose_R22;
+    out[54] = rod5_kin_2[2];
+    out[55] = rod5_kin_2[3];
     out[56] = 0.0;
     out[57] = 0.0;
     out[58] = 0.0;
@@ -705,97 +668,12 @@ class outlined_chain_model final : public mbgrt::Model {
     (void)t;
     (void)x;
     (void)yp;
+    // witness_values() sets the members read below
+    witness_values(t, x);
     // states
     const double j1_theta_rate_rate = x[0];
-    const double j2_theta_rate_rate = x[2];
-    const double j2_theta_q = x[3];
-    const double j3_theta_rate_rate = x[4];
-    const double j3_theta_q = x[5];
-    const double j4_theta_rate_rate = x[6];
-    const double j4_theta_q = x[7];
-    const double j5_theta_rate_rate = x[8];
-    const double j5_theta_q = x[9];
-    // outlined_chain.mbg:25:7  MTF j1.m2: f2 = T f1
-    const double j1_m2_f2_1 = j1_pb_2 * j1_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j2.m3: f2 = T f1
-    const double j2_m3_f2_1 = -j2_pa_2 * j1_theta_rate_rate;
-    // outlined_chain.mbg:27:9  0 j2.vpa: flows in = flows out
-    const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_1 = std::cos(j2_theta_q) * j2_m4_f1_1;
-    // outlined_chain.mbg:27:9  0 j2.wsum: flows in = flows out
-    const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j2.m5: f2 = T f1
-    const double j2_m5_f2_1 = j2_pb_2 * j2_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_1 = j2_m4_f2_1 + j2_m5_f2_1;
-    // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
-    const double j3_m3_f2_1 = -j3_pa_2 * j2_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
-    const double j3_m4_f1_1 = j2_reaction_f_f_1 + j3_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
-    const double j2_m4_f2_2 = -std::sin(j2_theta_q) * j2_m4_f1_1;
-    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_2 = j2_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
-    const double j3_m4_f1_2 = j2_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
-    // (cseN: a subexpression several equations below share)
-    const double cse74 = std::cos(j3_theta_q);
-    const double cse75 = std::sin(j3_theta_q);
-    const double j3_m4_f2_1 = cse74 * j3_m4_f1_1 + cse75 * j3_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j3.wsum: flows in = flows out
-    const double j3_reaction_t_f_3 = j2_reaction_t_f_3 + j3_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j3.m5: f2 = T f1
-    const double j3_m5_f2_1 = j3_pb_2 * j3_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
-    const double j3_reaction_f_f_1 = j3_m4_f2_1 + j3_m5_f2_1;
-    // outlined_chain.mbg:27:9  MTF j4.m3: f2 = T f1
-    const double j4_m3_f2_1 = -j4_pa_2 * j3_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
-    const double j4_m4_f1_1 = j3_reaction_f_f_1 + j4_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
-    const double j3_m4_f2_2 = -cse75 * j3_m4_f1_1 + cse74 * j3_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
-    const double j3_reaction_f_f_2 = j3_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
-    const double j4_m4_f1_2 = j3_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
-    const double cse76 = std::cos(j4_theta_q);
-    const double cse77 = std::sin(j4_theta_q);
-    const double j4_m4_f2_1 = cse76 * j4_m4_f1_1 + cse77 * j4_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j4.wsum: flows in = flows out
-    const double j4_reaction_t_f_3 = j3_reaction_t_f_3 + j4_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j4.m5: f2 = T f1
-    const double j4_m5_f2_1 = j4_pb_2 * j4_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
-    const double j4_reaction_f_f_1 = j4_m4_f2_1 + j4_m5_f2_1;
-    // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
-    const double j5_m3_f2_1 = -j5_pa_2 * j4_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
-    const double j5_m4_f1_1 = j4_reaction_f_f_1 + j5_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
-    const double j4_m4_f2_2 = -cse77 * j4_m4_f1_1 + cse76 * j4_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
-    const double j4_reaction_f_f_2 = j4_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
-    const double j5_m4_f1_2 = j4_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
-    const double cse78 = std::sin(j5_theta_q);
-    const double cse79 = std::cos(j5_theta_q);
-    const double j5_m4_f2_2 = -cse78 * j5_m4_f1_1 + cse79 * j5_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
-    const double j5_reaction_f_f_2 = j5_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j5.wsum: flows in = flows out
-    const double j5_reaction_t_f_3 = j4_reaction_t_f_3 + j5_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
-    const double j5_m4_f2_1 = cse79 * j5_m4_f1_1 + cse78 * j5_m4_f1_2;
-    // outlined_chain.mbg:27:9  MTF j5.m5: f2 = T f1
-    const double j5_m5_f2_1 = j5_pb_2 * j5_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
-    const double j5_reaction_f_f_1 = j5_m4_f2_1 + j5_m5_f2_1;
     // the stored energy
-    out[0] = 0.5 * (rod1_mass * (j1_m2_f2_1 * j1_m2_f2_1)) + 0.5 * (rod1_inertia_3_3 * (j1_theta_rate_rate * j1_theta_rate_rate)) + 0.5 * (rod2_mass * (j2_reaction_f_f_1 * j2_reaction_f_f_1) + rod2_mass * (j2_reaction_f_f_2 * j2_reaction_f_f_2)) + 0.5 * (rod2_inertia_3_3 * (j2_reaction_t_f_3 * j2_reaction_t_f_3)) + 0.5 * (rod3_mass * (j3_reaction_f_f_1 * j3_reaction_f_f_1) + rod3_mass * (j3_reaction_f_f_2 * j3_reaction_f_f_2)) + 0.5 * (rod3_inertia_3_3 * (j3_reaction_t_f_3 * j3_reaction_t_f_3)) + 0.5 * (rod4_mass * (j4_reaction_f_f_1 * j4_reaction_f_f_1) + rod4_mass * (j4_reaction_f_f_2 * j4_reaction_f_f_2)) + 0.5 * (rod4_inertia_3_3 * (j4_reaction_t_f_3 * j4_reaction_t_f_3)) + 0.5 * (rod5_mass * (j5_reaction_f_f_1 * j5_reaction_f_f_1) + rod5_mass * (j5_reaction_f_f_2 * j5_reaction_f_f_2)) + 0.5 * (rod5_inertia_3_3 * (j5_reaction_t_f_3 * j5_reaction_t_f_3));
+    out[0] = 0.5 * (rod1_mass * (j1_m2_f2_1 * j1_m2_f2_1)) + 0.5 * (rod1_inertia_3_3 * (j1_theta_rate_rate * j1_theta_rate_rate)) + 0.5 * (rod2_mass * (j2_reaction_f_f_1 * j2_reaction_f_f_1) + rod2_mass * (j2_reaction_f_f_2 * j2_reaction_f_f_2)) + 0.5 * (rod2_inertia_3_3 * (j2_reaction_t_f_3 * j2_reaction_t_f_3)) + 0.5 * (rod3_mass * (rod3_kin_3[5] * rod3_kin_3[5]) + rod3_mass * (rod3_kin_3[2] * rod3_kin_3[2])) + 0.5 * (rod3_inertia_3_3 * (rod3_kin_3[3] * rod3_kin_3[3])) + 0.5 * (rod4_mass * (rod4_kin_3[5] * rod4_kin_3[5]) + rod4_mass * (rod4_kin_3[2] * rod4_kin_3[2])) + 0.5 * (rod4_inertia_3_3 * (rod4_kin_3[3] * rod4_kin_3[3])) + 0.5 * (rod5_mass * (j5_reaction_f_f_1 * j5_reaction_f_f_1) + rod5_mass * (j5_reaction_f_f_2 * j5_reaction_f_f_2)) + 0.5 * (rod5_inertia_3_3 * (j5_reaction_t_f_3 * j5_reaction_t_f_3));
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -804,6 +682,24 @@ class outlined_chain_model final : public mbgrt::Model {
     (void)t;
     (void)x;
     (void)yp;
+    // witness_values() sets the members read below
+    witness_values(t, x);
+    // the powers
+    out[0] = rod1_weight_e_1 * j1_m2_f2_1 + (rod2_weight_e_1 * j2_reaction_f_f_1 + rod2_weight_e_2 * j2_reaction_f_f_2) + (rod3_kin_3[7] * rod3_kin_3[5] + rod3_kin_3[8] * rod3_kin_3[2]) + (rod4_kin_3[7] * rod4_kin_3[5] + rod4_kin_3[8] * rod4_kin_3[2]) + (rod5_weight_e_1 * j5_reaction_f_f_1 + rod5_weight_e_2 * j5_reaction_f_f_2);
+    out[1] = rod2_ejs_v_e_1 * j2_reaction_f_f_1 + rod2_ejs_v_e_2 * j2_reaction_f_f_2 + (rod3_kin_3[4] * rod3_kin_3[5] + rod3_kin_3[6] * rod3_kin_3[2]) + (rod4_kin_3[4] * rod4_kin_3[5] + rod4_kin_3[6] * rod4_kin_3[2]) + (rod5_ejs_v_e_1 * j5_reaction_f_f_1 + rod5_ejs_v_e_2 * j5_reaction_f_f_2);
+  }
+
+  // TERMINAL: nothing to do at the end of a run.
+  void terminal(double t, const double* y) override {
+    (void)t;
+    (void)y;
+  }
+
+ private:
+  // WITNESS VALUES: what power() and stored_energy() both read (the velocities, the forces), at (t, x); each calls it first and reads them from members.
+  void witness_values(double t, const double* x) {
+    (void)t;
+    (void)x;
     // states
     const double j1_theta_rate_rate = x[0];
     const double j1_theta_q = x[1];
@@ -816,168 +712,95 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j5_theta_rate_rate = x[8];
     const double j5_theta_q = x[9];
     // outlined_chain.mbg:25:7  MTF j1.m2: f2 = T f1
-    const double j1_m2_f2_1 = j1_pb_2 * j1_theta_rate_rate;
+    j1_m2_f2_1 = j1_pb_2 * j1_theta_rate_rate;
+    // outlined_chain.mbg:25:7  signal rod1.pose.R21
+    const double rod1_pose_R21 = std::sin(j1_theta_q);
+    // outlined_chain.mbg:25:7  signal rod1.pose.R22
+    const double rod1_pose_R22 = std::cos(j1_theta_q);
+    // outlined_chain.mbg:17:8  Se rod1.weight: e = value
+    rod1_weight_e_1 = -rod1_mass * (9.81 * rod1_pose_R21);
     // outlined_chain.mbg:27:9  MTF j2.m3: f2 = T f1
     const double j2_m3_f2_1 = -j2_pa_2 * j1_theta_rate_rate;
     // outlined_chain.mbg:27:9  0 j2.vpa: flows in = flows out
     const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
     // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse80 = std::cos(j2_theta_q);
-    const double j2_m4_f2_1 = cse80 * j2_m4_f1_1;
+    const double cse69 = std::cos(j2_theta_q);
+    const double j2_m4_f2_1 = cse69 * j2_m4_f1_1;
+    const double cse70 = std::sin(j2_theta_q);
+    const double j2_m4_f2_2 = -cse70 * j2_m4_f1_1;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R21
+    const double rod2_pose_R21 = rod1_pose_R21 * cse69 + rod1_pose_R22 * cse70;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R22
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse70 + rod1_pose_R22 * cse69;
+    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
+    j2_reaction_f_f_2 = j2_m4_f2_2;
+    // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
+    const double rod2_m_p_2 = rod2_mass * j2_reaction_f_f_2;
     // outlined_chain.mbg:27:9  0 j2.wsum: flows in = flows out
-    const double j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
+    j2_reaction_t_f_3 = j1_theta_rate_rate + j2_theta_rate_rate;
+    // outlined_chain.mbg:17:8  R rod2.ejs_v: e = law(f)
+    rod2_ejs_v_e_1 = -j2_reaction_t_f_3 * rod2_m_p_2;
     // outlined_chain.mbg:27:9  MTF j2.m5: f2 = T f1
     const double j2_m5_f2_1 = j2_pb_2 * j2_reaction_t_f_3;
     // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_1 = j2_m4_f2_1 + j2_m5_f2_1;
-    // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
-    const double j3_m3_f2_1 = -j3_pa_2 * j2_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
-    const double j3_m4_f1_1 = j2_reaction_f_f_1 + j3_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
-    const double cse81 = std::sin(j2_theta_q);
-    const double j2_m4_f2_2 = -cse81 * j2_m4_f1_1;
-    // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
-    const double j2_reaction_f_f_2 = j2_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
-    const double j3_m4_f1_2 = j2_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
-    const double cse82 = std::cos(j3_theta_q);
-    const double cse83 = std::sin(j3_theta_q);
-    const double j3_m4_f2_1 = cse82 * j3_m4_f1_1 + cse83 * j3_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j3.wsum: flows in = flows out
-    const double j3_reaction_t_f_3 = j2_reaction_t_f_3 + j3_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j3.m5: f2 = T f1
-    const double j3_m5_f2_1 = j3_pb_2 * j3_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
-    const double j3_reaction_f_f_1 = j3_m4_f2_1 + j3_m5_f2_1;
-    // outlined_chain.mbg:27:9  MTF j4.m3: f2 = T f1
-    const double j4_m3_f2_1 = -j4_pa_2 * j3_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
-    const double j4_m4_f1_1 = j3_reaction_f_f_1 + j4_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
-    const double j3_m4_f2_2 = -cse83 * j3_m4_f1_1 + cse82 * j3_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
-    const double j3_reaction_f_f_2 = j3_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j4.vpa: flows in = flows out
-    const double j4_m4_f1_2 = j3_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
-    const double cse84 = std::cos(j4_theta_q);
-    const double cse85 = std::sin(j4_theta_q);
-    const double j4_m4_f2_1 = cse84 * j4_m4_f1_1 + cse85 * j4_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j4.wsum: flows in = flows out
-    const double j4_reaction_t_f_3 = j3_reaction_t_f_3 + j4_theta_rate_rate;
-    // outlined_chain.mbg:27:9  MTF j4.m5: f2 = T f1
-    const double j4_m5_f2_1 = j4_pb_2 * j4_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
-    const double j4_reaction_f_f_1 = j4_m4_f2_1 + j4_m5_f2_1;
-    // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
-    const double j5_m3_f2_1 = -j5_pa_2 * j4_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
-    const double j5_m4_f1_1 = j4_reaction_f_f_1 + j5_m3_f2_1;
-    // outlined_chain.mbg:27:9  MTF j4.m4: f2 = T f1
-    const double j4_m4_f2_2 = -cse85 * j4_m4_f1_1 + cse84 * j4_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j4.vsum: flows in = flows out
-    const double j4_reaction_f_f_2 = j4_m4_f2_2;
-    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
-    const double j5_m4_f1_2 = j4_reaction_f_f_2;
-    // outlined_chain.mbg:25:7  signal rod1.pose.R21
-    const double rod1_pose_R21 = std::sin(j1_theta_q);
-    // outlined_chain.mbg:25:7  signal rod1.pose.R22
-    const double rod1_pose_R22 = std::cos(j1_theta_q);
-    // outlined_chain.mbg:27:9  signal rod2.pose.R21
-    const double rod2_pose_R21 = rod1_pose_R21 * cse80 + rod1_pose_R22 * cse81;
-    // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double rod2_pose_R22 = -rod1_pose_R21 * cse81 + rod1_pose_R22 * cse80;
-    // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double rod3_pose_R21 = rod2_pose_R21 * cse82 + rod2_pose_R22 * cse83;
-    // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double rod3_pose_R22 = -rod2_pose_R21 * cse83 + rod2_pose_R22 * cse82;
-    // outlined_chain.mbg:27:9  signal rod4.pose.R21
-    const double rod4_pose_R21 = rod3_pose_R21 * cse84 + rod3_pose_R22 * cse85;
-    // outlined_chain.mbg:27:9  signal rod4.pose.R22
-    const double rod4_pose_R22 = -rod3_pose_R21 * cse85 + rod3_pose_R22 * cse84;
-    // outlined_chain.mbg:27:9  signal rod5.pose.R21
-    const double cse86 = std::cos(j5_theta_q);
-    const double cse87 = std::sin(j5_theta_q);
-    const double rod5_pose_R21 = rod4_pose_R21 * cse86 + rod4_pose_R22 * cse87;
-    // outlined_chain.mbg:17:8  Se rod5.weight: e = value
-    const double rod5_weight_e_1 = -rod5_mass * (9.81 * rod5_pose_R21);
-    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
-    const double j5_m4_f2_2 = -cse87 * j5_m4_f1_1 + cse86 * j5_m4_f1_2;
-    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
-    const double j5_reaction_f_f_2 = j5_m4_f2_2;
-    // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
-    const double rod5_m_p_2 = rod5_mass * j5_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  0 j5.wsum: flows in = flows out
-    const double j5_reaction_t_f_3 = j4_reaction_t_f_3 + j5_theta_rate_rate;
-    // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
-    const double rod5_ejs_v_e_1 = -j5_reaction_t_f_3 * rod5_m_p_2;
-    // outlined_chain.mbg:17:8  Se rod4.weight: e = value
-    const double rod4_weight_e_1 = -rod4_mass * (9.81 * rod4_pose_R21);
-    // outlined_chain.mbg:17:8  I rod4.m: p = I f (derivative causality)
-    const double rod4_m_p_2 = rod4_mass * j4_reaction_f_f_2;
-    // outlined_chain.mbg:17:8  R rod4.ejs_v: e = law(f)
-    const double rod4_ejs_v_e_1 = -j4_reaction_t_f_3 * rod4_m_p_2;
-    // outlined_chain.mbg:27:9  signal rod5.pose.R22
-    const double rod5_pose_R22 = -rod4_pose_R21 * cse87 + rod4_pose_R22 * cse86;
-    // outlined_chain.mbg:17:8  Se rod5.weight: e = value
-    const double rod5_weight_e_2 = -rod5_mass * (9.81 * rod5_pose_R22);
-    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
-    const double j5_m4_f2_1 = cse86 * j5_m4_f1_1 + cse87 * j5_m4_f1_2;
-    // outlined_chain.mbg:27:9  MTF j5.m5: f2 = T f1
-    const double j5_m5_f2_1 = j5_pb_2 * j5_reaction_t_f_3;
-    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
-    const double j5_reaction_f_f_1 = j5_m4_f2_1 + j5_m5_f2_1;
-    // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
-    const double rod5_m_p_1 = rod5_mass * j5_reaction_f_f_1;
-    // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
-    const double rod5_ejs_v_e_2 = j5_reaction_t_f_3 * rod5_m_p_1;
-    // outlined_chain.mbg:17:8  Se rod3.weight: e = value
-    const double rod3_weight_e_1 = -rod3_mass * (9.81 * rod3_pose_R21);
-    // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
-    const double rod3_m_p_2 = rod3_mass * j3_reaction_f_f_2;
-    // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
-    const double rod3_ejs_v_e_1 = -j3_reaction_t_f_3 * rod3_m_p_2;
-    // outlined_chain.mbg:17:8  Se rod4.weight: e = value
-    const double rod4_weight_e_2 = -rod4_mass * (9.81 * rod4_pose_R22);
-    // outlined_chain.mbg:17:8  I rod4.m: p = I f (derivative causality)
-    const double rod4_m_p_1 = rod4_mass * j4_reaction_f_f_1;
-    // outlined_chain.mbg:17:8  R rod4.ejs_v: e = law(f)
-    const double rod4_ejs_v_e_2 = j4_reaction_t_f_3 * rod4_m_p_1;
-    // outlined_chain.mbg:17:8  Se rod2.weight: e = value
-    const double rod2_weight_e_1 = -rod2_mass * (9.81 * rod2_pose_R21);
-    // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
-    const double rod2_m_p_2 = rod2_mass * j2_reaction_f_f_2;
-    // outlined_chain.mbg:17:8  R rod2.ejs_v: e = law(f)
-    const double rod2_ejs_v_e_1 = -j2_reaction_t_f_3 * rod2_m_p_2;
-    // outlined_chain.mbg:17:8  Se rod3.weight: e = value
-    const double rod3_weight_e_2 = -rod3_mass * (9.81 * rod3_pose_R22);
-    // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
-    const double rod3_m_p_1 = rod3_mass * j3_reaction_f_f_1;
-    // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
-    const double rod3_ejs_v_e_2 = j3_reaction_t_f_3 * rod3_m_p_1;
-    // outlined_chain.mbg:17:8  Se rod2.weight: e = value
-    const double rod2_weight_e_2 = -rod2_mass * (9.81 * rod2_pose_R22);
+    j2_reaction_f_f_1 = j2_m4_f2_1 + j2_m5_f2_1;
     // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
     const double rod2_m_p_1 = rod2_mass * j2_reaction_f_f_1;
     // outlined_chain.mbg:17:8  R rod2.ejs_v: e = law(f)
-    const double rod2_ejs_v_e_2 = j2_reaction_t_f_3 * rod2_m_p_1;
-    // outlined_chain.mbg:17:8  Se rod1.weight: e = value
-    const double rod1_weight_e_1 = -rod1_mass * (9.81 * rod1_pose_R21);
-    // the powers
-    out[0] = rod1_weight_e_1 * j1_m2_f2_1 + (rod2_weight_e_1 * j2_reaction_f_f_1 + rod2_weight_e_2 * j2_reaction_f_f_2) + (rod3_weight_e_1 * j3_reaction_f_f_1 + rod3_weight_e_2 * j3_reaction_f_f_2) + (rod4_weight_e_1 * j4_reaction_f_f_1 + rod4_weight_e_2 * j4_reaction_f_f_2) + (rod5_weight_e_1 * j5_reaction_f_f_1 + rod5_weight_e_2 * j5_reaction_f_f_2);
-    out[1] = rod2_ejs_v_e_1 * j2_reaction_f_f_1 + rod2_ejs_v_e_2 * j2_reaction_f_f_2 + (rod3_ejs_v_e_1 * j3_reaction_f_f_1 + rod3_ejs_v_e_2 * j3_reaction_f_f_2) + (rod4_ejs_v_e_1 * j4_reaction_f_f_1 + rod4_ejs_v_e_2 * j4_reaction_f_f_2) + (rod5_ejs_v_e_1 * j5_reaction_f_f_1 + rod5_ejs_v_e_2 * j5_reaction_f_f_2);
+    rod2_ejs_v_e_2 = j2_reaction_t_f_3 * rod2_m_p_1;
+    // outlined_chain.mbg:17:8  Se rod2.weight: e = value
+    rod2_weight_e_1 = -rod2_mass * (9.81 * rod2_pose_R21);
+    rod2_weight_e_2 = -rod2_mass * (9.81 * rod2_pose_R22);
+    rod2_kin_3[0] = rod2_pose_R21;
+    rod2_kin_3[1] = rod2_pose_R22;
+    rod2_kin_3[2] = j2_reaction_f_f_2;
+    rod2_kin_3[3] = j2_reaction_t_f_3;
+    rod2_kin_3[4] = rod2_ejs_v_e_1;
+    rod2_kin_3[5] = j2_reaction_f_f_1;
+    rod2_kin_3[6] = rod2_ejs_v_e_2;
+    rod2_kin_3[7] = rod2_weight_e_1;
+    rod2_kin_3[8] = rod2_weight_e_2;
+    // outlined_chain.mbg:27:9  body rod3: witness_values_shape1() (the same equations as 2 bodies)
+    double rod3_in_5[5] = {j3_pa_2, j3_theta_q, rod3_mass, j3_theta_rate_rate, j3_pb_2};
+    witness_values_shape1(rod3_in_5, rod2_kin_3, rod3_kin_3);
+    // outlined_chain.mbg:27:9  body rod4: witness_values_shape1() (the same equations as 2 bodies)
+    double rod4_in_5[5] = {j4_pa_2, j4_theta_q, rod4_mass, j4_theta_rate_rate, j4_pb_2};
+    witness_values_shape1(rod4_in_5, rod3_kin_3, rod4_kin_3);
+    // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
+    const double j5_m3_f2_1 = -j5_pa_2 * rod4_kin_3[3];
+    // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
+    const double j5_m4_f1_1 = rod4_kin_3[5] + j5_m3_f2_1;
+    const double j5_m4_f1_2 = rod4_kin_3[2];
+    // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
+    const double cse73 = std::cos(j5_theta_q);
+    const double cse74 = std::sin(j5_theta_q);
+    const double j5_m4_f2_1 = cse73 * j5_m4_f1_1 + cse74 * j5_m4_f1_2;
+    const double j5_m4_f2_2 = -cse74 * j5_m4_f1_1 + cse73 * j5_m4_f1_2;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R21
+    const double rod5_pose_R21 = rod4_kin_3[0] * cse73 + rod4_kin_3[1] * cse74;
+    // outlined_chain.mbg:27:9  signal rod5.pose.R22
+    const double rod5_pose_R22 = -rod4_kin_3[0] * cse74 + rod4_kin_3[1] * cse73;
+    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
+    j5_reaction_f_f_2 = j5_m4_f2_2;
+    // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
+    const double rod5_m_p_2 = rod5_mass * j5_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  0 j5.wsum: flows in = flows out
+    j5_reaction_t_f_3 = rod4_kin_3[3] + j5_theta_rate_rate;
+    // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
+    rod5_ejs_v_e_1 = -j5_reaction_t_f_3 * rod5_m_p_2;
+    // outlined_chain.mbg:27:9  MTF j5.m5: f2 = T f1
+    const double j5_m5_f2_1 = j5_pb_2 * j5_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
+    j5_reaction_f_f_1 = j5_m4_f2_1 + j5_m5_f2_1;
+    // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
+    const double rod5_m_p_1 = rod5_mass * j5_reaction_f_f_1;
+    // outlined_chain.mbg:17:8  R rod5.ejs_v: e = law(f)
+    rod5_ejs_v_e_2 = j5_reaction_t_f_3 * rod5_m_p_1;
+    // outlined_chain.mbg:17:8  Se rod5.weight: e = value
+    rod5_weight_e_1 = -rod5_mass * (9.81 * rod5_pose_R21);
+    rod5_weight_e_2 = -rod5_mass * (9.81 * rod5_pose_R22);
   }
-
-  // TERMINAL: nothing to do at the end of a run.
-  void terminal(double t, const double* y) override {
-    (void)t;
-    (void)y;
-  }
-
- private:
   // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: j3_m4_f1_1, j3_m4_f1_2, pose_R21, pose_R22, j3_reaction_f_f_2, j3_reaction_t_f_3, ejs_v_e_1, j3_reaction_f_f_1, ejs_v_e_2, weight_e_1, weight_e_2.
   static void derivative_shape1(const double* in, const double* s0, double* out) {
     // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
@@ -1115,6 +938,76 @@ class outlined_chain_model final : public mbgrt::Model {
     out[30] = der_j3_reaction_f_f_1;
     out[31] = der_j3_reaction_f_f_2;
   }
+  // Equations of bodies rod2, rod3, rod4, rod5, the same up to their names (written with rod2's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: pose_R11, pose_R12, pose_R21, pose_R22, pose_r1, pose_r2.
+  static void body_poses_shape1(const double* in, const double* s0, double* out) {
+    // outlined_chain.mbg:27:9  signal rod2.pose.R11
+    // (cseN: a subexpression several equations below share)
+    const double cse67 = std::cos(in[0]);
+    const double cse68 = std::sin(in[0]);
+    const double pose_R11 = s0[0] * cse67 + s0[1] * cse68;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R12
+    const double pose_R12 = -s0[0] * cse68 + s0[1] * cse67;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R21
+    const double pose_R21 = s0[2] * cse67 + s0[3] * cse68;
+    // outlined_chain.mbg:27:9  signal rod2.pose.R22
+    const double pose_R22 = -s0[2] * cse68 + s0[3] * cse67;
+    // outlined_chain.mbg:27:9  signal rod2.pose.r1
+    const double pose_r1 = s0[4] + s0[1] * in[1] - pose_R12 * in[2];
+    // outlined_chain.mbg:27:9  signal rod2.pose.r2
+    const double pose_r2 = s0[5] + s0[3] * in[1] - pose_R22 * in[2];
+    out[0] = pose_R11;
+    out[1] = pose_R12;
+    out[2] = pose_R21;
+    out[3] = pose_R22;
+    out[4] = pose_r1;
+    out[5] = pose_r2;
+  }
+  // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: pose_R21, pose_R22, j3_reaction_f_f_2, j3_reaction_t_f_3, ejs_v_e_1, j3_reaction_f_f_1, ejs_v_e_2, weight_e_1, weight_e_2.
+  static void witness_values_shape1(const double* in, const double* s0, double* out) {
+    // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
+    const double j3_m3_f2_1 = -in[0] * s0[3];
+    // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
+    const double j3_m4_f1_1 = s0[5] + j3_m3_f2_1;
+    const double j3_m4_f1_2 = s0[2];
+    // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse71 = std::cos(in[1]);
+    const double cse72 = std::sin(in[1]);
+    const double j3_m4_f2_1 = cse71 * j3_m4_f1_1 + cse72 * j3_m4_f1_2;
+    const double j3_m4_f2_2 = -cse72 * j3_m4_f1_1 + cse71 * j3_m4_f1_2;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R21
+    const double pose_R21 = s0[0] * cse71 + s0[1] * cse72;
+    // outlined_chain.mbg:27:9  signal rod3.pose.R22
+    const double pose_R22 = -s0[0] * cse72 + s0[1] * cse71;
+    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
+    const double j3_reaction_f_f_2 = j3_m4_f2_2;
+    // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
+    const double m_p_2 = in[2] * j3_reaction_f_f_2;
+    // outlined_chain.mbg:27:9  0 j3.wsum: flows in = flows out
+    const double j3_reaction_t_f_3 = s0[3] + in[3];
+    // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
+    const double ejs_v_e_1 = -j3_reaction_t_f_3 * m_p_2;
+    // outlined_chain.mbg:27:9  MTF j3.m5: f2 = T f1
+    const double j3_m5_f2_1 = in[4] * j3_reaction_t_f_3;
+    // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
+    const double j3_reaction_f_f_1 = j3_m4_f2_1 + j3_m5_f2_1;
+    // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
+    const double m_p_1 = in[2] * j3_reaction_f_f_1;
+    // outlined_chain.mbg:17:8  R rod3.ejs_v: e = law(f)
+    const double ejs_v_e_2 = j3_reaction_t_f_3 * m_p_1;
+    // outlined_chain.mbg:17:8  Se rod3.weight: e = value
+    const double weight_e_1 = -in[2] * (9.81 * pose_R21);
+    const double weight_e_2 = -in[2] * (9.81 * pose_R22);
+    out[0] = pose_R21;
+    out[1] = pose_R22;
+    out[2] = j3_reaction_f_f_2;
+    out[3] = j3_reaction_t_f_3;
+    out[4] = ejs_v_e_1;
+    out[5] = j3_reaction_f_f_1;
+    out[6] = ejs_v_e_2;
+    out[7] = weight_e_1;
+    out[8] = weight_e_2;
+  }
   double param(std::size_t i, double model_value) const {
     return overridden_[i] ? overrides_[i] : model_value;
   }
@@ -1130,6 +1023,33 @@ class outlined_chain_model final : public mbgrt::Model {
   double rod2_acc[32] = {};
   double rod3_acc[32] = {};
   double rod4_acc[32] = {};
+  // body_poses(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) and accelerations (_acc)
+  double rod1_kin[6] = {};
+  double rod2_kin_2[6] = {};
+  double rod3_kin_2[6] = {};
+  double rod4_kin_2[6] = {};
+  double rod5_kin_2[6] = {};
+  // witness_values(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) and accelerations (_acc)
+  double rod2_kin_3[9] = {};
+  double rod3_kin_3[9] = {};
+  double rod4_kin_3[9] = {};
+  // witness_values(): what power() and stored_energy() read of it
+  double j1_m2_f2_1 = 0.0;
+  double j2_reaction_t_f_3 = 0.0;
+  double j2_reaction_f_f_1 = 0.0;
+  double j2_reaction_f_f_2 = 0.0;
+  double rod5_weight_e_1 = 0.0;
+  double j5_reaction_f_f_2 = 0.0;
+  double j5_reaction_t_f_3 = 0.0;
+  double rod5_ejs_v_e_1 = 0.0;
+  double rod5_weight_e_2 = 0.0;
+  double j5_reaction_f_f_1 = 0.0;
+  double rod5_ejs_v_e_2 = 0.0;
+  double rod2_weight_e_1 = 0.0;
+  double rod2_ejs_v_e_1 = 0.0;
+  double rod2_weight_e_2 = 0.0;
+  double rod2_ejs_v_e_2 = 0.0;
+  double rod1_weight_e_1 = 0.0;
   // derived constants (set in initial())
   double derived1_ = 0.0;  // = 1/(rod5.inertia[3,3] + j5.pb[2]*(rod5.mass*j5.pb[2]))
   // parameters (set in initial())

@@ -763,103 +763,17 @@ class planar_below_moving_model final : public mbgrt::Model {
     (void)t;
     (void)x;
     (void)yp;
+    // witness_values() sets the members read below
+    witness_values(t, x);
     // states
     const double ball_spin_rate_rate_1 = x[0];
     const double ball_spin_rate_rate_2 = x[1];
     const double ball_spin_rate_rate_3 = x[2];
-    const double table_x_rate_rate = x[7];
-    const double table_x_q = x[8];
-    const double table_y_rate_rate = x[9];
-    const double table_y_q = x[10];
-    const double table_theta_rate_rate = x[11];
-    const double table_theta_q = x[12];
-    // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    // (cseN: a subexpression several equations below share)
-    const double cse217 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
-    const double cse218 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
-    const double table_m3_f2_1 = cse217 * ball_spin_rate_rate_2 - cse218 * ball_spin_rate_rate_3;
-    // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
-    const double table_m4_f1_1 = -ball_spin_rate_rate_2 + table_m3_f2_1;
-    // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double cse219 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
-    const double table_m3_f2_2 = -cse217 * ball_spin_rate_rate_1 + cse219 * ball_spin_rate_rate_3;
-    // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
-    const double table_m4_f1_2 = ball_spin_rate_rate_1 + table_m3_f2_2;
-    // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double table_m3_f2_3 = cse218 * ball_spin_rate_rate_1 - cse219 * ball_spin_rate_rate_2;
-    // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
-    const double table_m4_f1_3 = table_m3_f2_3;
-    // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse220 = std::cos(table_theta_q);
-    const double cse221 = std::sin(table_theta_q);
-    const double cse222 = 0.05067494832004038 * cse221;
-    const double cse223 = 0.9619937887599698 * cse220 + cse222;
-    const double cse224 = 0.05067494832004038 * cse220;
-    const double cse225 = -0.9619937887599698 * cse221 + cse224;
-    const double cse226 = 0.9619937887599698 * cse223 + 0.05067494832004038 * cse225 + 0.07200000000000001;
-    const double cse227 = cse224 + 0.9324334022399462 * cse221;
-    const double cse228 = -cse222 + 0.9324334022399462 * cse220;
-    const double cse229 = 0.9619937887599698 * cse227 + 0.05067494832004038 * cse228 - 0.09600000000000002;
-    const double cse230 = -0.2683281572999748 * cse220 + 0.3577708763999664 * cse221;
-    const double cse231 = 0.2683281572999748 * cse221 + 0.3577708763999664 * cse220;
-    const double cse232 = 0.9619937887599698 * cse230 + 0.05067494832004038 * cse231 + 0.24000000000000002;
-    const double table_m1_f2_1 = cse226 * ball_spin_rate_rate_1 + cse229 * ball_spin_rate_rate_2 + cse232 * ball_spin_rate_rate_3;
-    // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_1 = (0.2683281572999748 * cse226 - 0.3577708763999664 * cse229 + 0.8944271909999159 * cse232) * table_theta_rate_rate;
-    // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
-    const double table_reaction_t_f_1 = table_m1_f2_1 + table_m2_f2_1;
-    // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse233 = 0.05067494832004038 * cse223 + 0.9324334022399462 * cse225 - 0.09600000000000002;
-    const double cse234 = 0.05067494832004038 * cse227 + 0.9324334022399462 * cse228 + 0.12800000000000003;
-    const double cse235 = 0.05067494832004038 * cse230 + 0.9324334022399462 * cse231 - 0.32000000000000006;
-    const double table_m1_f2_2 = cse233 * ball_spin_rate_rate_1 + cse234 * ball_spin_rate_rate_2 + cse235 * ball_spin_rate_rate_3;
-    // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_2 = (0.2683281572999748 * cse233 - 0.3577708763999664 * cse234 + 0.8944271909999159 * cse235) * table_theta_rate_rate;
-    // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
-    const double table_reaction_t_f_2 = table_m1_f2_2 + table_m2_f2_2;
-    // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_1 = cse226 * table_m4_f1_1 + cse229 * table_m4_f1_2 + cse232 * table_m4_f1_3;
-    // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_1 = (0.9619937887599698 * cse226 + 0.05067494832004038 * cse229 - 0.2683281572999748 * cse232) * table_x_rate_rate;
-    // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_1 = (0.05067494832004038 * cse226 + 0.9324334022399462 * cse229 + 0.3577708763999664 * cse232) * table_y_rate_rate;
-    // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse236 = -0.2683281572999748 * cse223 + 0.3577708763999664 * cse225 + 0.24000000000000002;
-    const double cse237 = -0.2683281572999748 * cse227 + 0.3577708763999664 * cse228 - 0.32000000000000006;
-    const double cse238 = -0.2683281572999748 * cse230 + 0.3577708763999664 * cse231 + 0.7999999999999999;
-    const double table_m1_f2_3 = cse236 * ball_spin_rate_rate_1 + cse237 * ball_spin_rate_rate_2 + cse238 * ball_spin_rate_rate_3;
-    // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_3 = (0.2683281572999748 * cse236 - 0.3577708763999664 * cse237 + 0.8944271909999159 * cse238) * table_theta_rate_rate;
-    // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
-    const double table_reaction_t_f_3 = table_m1_f2_3 + table_m2_f2_3;
-    // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
-    const double table_m7_f2_1 = 0.1 * table_reaction_t_f_3;
-    // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
-    const double table_reaction_f_f_1 = table_m4_f2_1 + table_m5_f2_1 + table_m6_f2_1 + table_m7_f2_1;
-    // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_2 = cse233 * table_m4_f1_1 + cse234 * table_m4_f1_2 + cse235 * table_m4_f1_3;
-    // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_2 = (0.9619937887599698 * cse233 + 0.05067494832004038 * cse234 - 0.2683281572999748 * cse235) * table_x_rate_rate;
-    // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_2 = (0.05067494832004038 * cse233 + 0.9324334022399462 * cse234 + 0.3577708763999664 * cse235) * table_y_rate_rate;
-    // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
-    const double table_m7_f2_2 = -0.2 * table_reaction_t_f_3;
-    // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
-    const double table_reaction_f_f_2 = table_m4_f2_2 + table_m5_f2_2 + table_m6_f2_2 + table_m7_f2_2;
-    // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_3 = cse236 * table_m4_f1_1 + cse237 * table_m4_f1_2 + cse238 * table_m4_f1_3;
-    // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_3 = (0.9619937887599698 * cse236 + 0.05067494832004038 * cse237 - 0.2683281572999748 * cse238) * table_x_rate_rate;
-    // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_3 = (0.05067494832004038 * cse236 + 0.9324334022399462 * cse237 + 0.3577708763999664 * cse238) * table_y_rate_rate;
-    // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
-    const double table_m7_f2_3 = -0.1 * table_reaction_t_f_1 + 0.2 * table_reaction_t_f_2;
-    // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
-    const double table_reaction_f_f_3 = table_m4_f2_3 + table_m5_f2_3 + table_m6_f2_3 + table_m7_f2_3;
     // the stored energy
-    const double cse239 = ball_spin_rate_rate_2 * ball_spin_rate_rate_2;
-    const double cse240 = ball_spin_rate_rate_1 * ball_spin_rate_rate_1;
-    out[0] = 0.5 * (cse239 + cse240) + 0.5 * (0.1 * cse240 + 0.2 * cse239 + 0.3 * (ball_spin_rate_rate_3 * ball_spin_rate_rate_3)) + 0.5 * (table_reaction_f_f_1 * table_reaction_f_f_1 + table_reaction_f_f_2 * table_reaction_f_f_2 + table_reaction_f_f_3 * table_reaction_f_f_3) + 0.5 * (0.1 * (table_reaction_t_f_1 * table_reaction_t_f_1) + 0.1 * (table_reaction_t_f_2 * table_reaction_t_f_2) + 0.1 * (table_reaction_t_f_3 * table_reaction_t_f_3));
+    // (cseN: a subexpression several equations below share)
+    const double cse244 = ball_spin_rate_rate_2 * ball_spin_rate_rate_2;
+    const double cse245 = ball_spin_rate_rate_1 * ball_spin_rate_rate_1;
+    out[0] = 0.5 * (cse244 + cse245) + 0.5 * (0.1 * cse245 + 0.2 * cse244 + 0.3 * (ball_spin_rate_rate_3 * ball_spin_rate_rate_3)) + 0.5 * (table_reaction_f_f_1 * table_reaction_f_f_1 + table_reaction_f_f_2 * table_reaction_f_f_2 + table_reaction_f_f_3 * table_reaction_f_f_3) + 0.5 * (0.1 * (table_reaction_t_f_1 * table_reaction_t_f_1) + 0.1 * (table_reaction_t_f_2 * table_reaction_t_f_2) + 0.1 * (table_reaction_t_f_3 * table_reaction_t_f_3));
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -868,6 +782,28 @@ class planar_below_moving_model final : public mbgrt::Model {
     (void)t;
     (void)x;
     (void)yp;
+    // witness_values() sets the members read below
+    witness_values(t, x);
+    // states
+    const double ball_spin_rate_rate_1 = x[0];
+    const double ball_spin_rate_rate_2 = x[1];
+    const double ball_spin_rate_rate_3 = x[2];
+    // the powers
+    out[0] = -upper_weight_e_1 * ball_spin_rate_rate_2 + upper_weight_e_2 * ball_spin_rate_rate_1 + (lower_weight_e_1 * table_reaction_f_f_1 + lower_weight_e_2 * table_reaction_f_f_2 + lower_weight_e_3 * table_reaction_f_f_3);
+    out[1] = -upper_ejs_v_e_1 * ball_spin_rate_rate_2 + upper_ejs_v_e_2 * ball_spin_rate_rate_1 + (upper_ejs_e_1 * ball_spin_rate_rate_1 + upper_ejs_e_2 * ball_spin_rate_rate_2 + upper_ejs_e_3 * ball_spin_rate_rate_3) + (lower_ejs_v_e_1 * table_reaction_f_f_1 + lower_ejs_v_e_2 * table_reaction_f_f_2 + lower_ejs_v_e_3 * table_reaction_f_f_3) + (lower_ejs_e_1 * table_reaction_t_f_1 + lower_ejs_e_2 * table_reaction_t_f_2 + lower_ejs_e_3 * table_reaction_t_f_3);
+  }
+
+  // TERMINAL: nothing to do at the end of a run.
+  void terminal(double t, const double* y) override {
+    (void)t;
+    (void)y;
+  }
+
+ private:
+  // WITNESS VALUES: what power() and stored_energy() both read (the velocities, the forces), at (t, x); each calls it first and reads them from members.
+  void witness_values(double t, const double* x) {
+    (void)t;
+    (void)x;
     // states
     const double ball_spin_rate_rate_1 = x[0];
     const double ball_spin_rate_rate_2 = x[1];
@@ -886,157 +822,170 @@ class planar_below_moving_model final : public mbgrt::Model {
     const double upper_J_p_1 = 0.1 * ball_spin_rate_rate_1;
     const double upper_J_p_3 = 0.3 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:11:6  R upper.ejs: e = law(f)
-    const double upper_ejs_e_2 = ball_spin_rate_rate_3 * upper_J_p_1 - ball_spin_rate_rate_1 * upper_J_p_3;
+    upper_ejs_e_2 = ball_spin_rate_rate_3 * upper_J_p_1 - ball_spin_rate_rate_1 * upper_J_p_3;
     // planar_below_moving.mbg:13:7  signal ball.Rpc32
     // (cseN: a subexpression several equations below share)
-    const double cse241 = ball_rot_q_1 * ball_rot_q_1;
-    const double cse242 = ball_rot_q_2 * ball_rot_q_2;
-    const double cse243 = ball_rot_q_3 * ball_rot_q_3;
-    const double cse244 = ball_rot_q_4 * ball_rot_q_4;
-    const double cse245 = cse241 + cse242 + cse243 + cse244;
-    const double ball_Rpc32 = 2.0 * (ball_rot_q_3 * ball_rot_q_4 + ball_rot_q_1 * ball_rot_q_2) / cse245;
+    const double cse217 = ball_rot_q_1 * ball_rot_q_1;
+    const double cse218 = ball_rot_q_2 * ball_rot_q_2;
+    const double cse219 = ball_rot_q_3 * ball_rot_q_3;
+    const double cse220 = ball_rot_q_4 * ball_rot_q_4;
+    const double cse221 = cse217 + cse218 + cse219 + cse220;
+    const double ball_Rpc32 = 2.0 * (ball_rot_q_3 * ball_rot_q_4 + ball_rot_q_1 * ball_rot_q_2) / cse221;
     // planar_below_moving.mbg:11:6  Se upper.weight: e = value
-    const double upper_weight_e_2 = -9.81 * ball_Rpc32;
+    upper_weight_e_2 = -9.81 * ball_Rpc32;
     // planar_below_moving.mbg:11:6  R upper.ejs_v: e = law(f)
-    const double upper_ejs_v_e_2 = -ball_spin_rate_rate_3 * ball_spin_rate_rate_2;
+    upper_ejs_v_e_2 = -ball_spin_rate_rate_3 * ball_spin_rate_rate_2;
     // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double cse246 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
-    const double cse247 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
-    const double table_m3_f2_1 = cse246 * ball_spin_rate_rate_2 - cse247 * ball_spin_rate_rate_3;
+    const double cse222 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
+    const double cse223 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
+    const double table_m3_f2_1 = cse222 * ball_spin_rate_rate_2 - cse223 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
     const double table_m4_f1_1 = -ball_spin_rate_rate_2 + table_m3_f2_1;
     // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double cse248 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
-    const double table_m3_f2_2 = -cse246 * ball_spin_rate_rate_1 + cse248 * ball_spin_rate_rate_3;
+    const double cse224 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
+    const double table_m3_f2_2 = -cse222 * ball_spin_rate_rate_1 + cse224 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
     const double table_m4_f1_2 = ball_spin_rate_rate_1 + table_m3_f2_2;
     // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double table_m3_f2_3 = cse247 * ball_spin_rate_rate_1 - cse248 * ball_spin_rate_rate_2;
+    const double table_m3_f2_3 = cse223 * ball_spin_rate_rate_1 - cse224 * ball_spin_rate_rate_2;
     // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
     const double table_m4_f1_3 = table_m3_f2_3;
     // planar_below_moving.mbg:11:6  I upper.J: p = I f (derivative causality)
     const double upper_J_p_2 = 0.2 * ball_spin_rate_rate_2;
     // planar_below_moving.mbg:11:6  R upper.ejs: e = law(f)
-    const double upper_ejs_e_3 = ball_spin_rate_rate_1 * upper_J_p_2 - ball_spin_rate_rate_2 * upper_J_p_1;
+    upper_ejs_e_3 = ball_spin_rate_rate_1 * upper_J_p_2 - ball_spin_rate_rate_2 * upper_J_p_1;
     // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse249 = std::cos(table_theta_q);
-    const double cse250 = std::sin(table_theta_q);
-    const double cse251 = 0.05067494832004038 * cse250;
-    const double cse252 = 0.9619937887599698 * cse249 + cse251;
-    const double cse253 = 0.05067494832004038 * cse249;
-    const double cse254 = -0.9619937887599698 * cse250 + cse253;
-    const double cse255 = 0.9619937887599698 * cse252 + 0.05067494832004038 * cse254 + 0.07200000000000001;
-    const double cse256 = cse253 + 0.9324334022399462 * cse250;
-    const double cse257 = -cse251 + 0.9324334022399462 * cse249;
-    const double cse258 = 0.9619937887599698 * cse256 + 0.05067494832004038 * cse257 - 0.09600000000000002;
-    const double cse259 = -0.2683281572999748 * cse249 + 0.3577708763999664 * cse250;
-    const double cse260 = 0.2683281572999748 * cse250 + 0.3577708763999664 * cse249;
-    const double cse261 = 0.9619937887599698 * cse259 + 0.05067494832004038 * cse260 + 0.24000000000000002;
-    const double table_m1_f2_1 = cse255 * ball_spin_rate_rate_1 + cse258 * ball_spin_rate_rate_2 + cse261 * ball_spin_rate_rate_3;
+    const double cse225 = std::cos(table_theta_q);
+    const double cse226 = std::sin(table_theta_q);
+    const double cse227 = 0.05067494832004038 * cse226;
+    const double cse228 = 0.9619937887599698 * cse225 + cse227;
+    const double cse229 = 0.05067494832004038 * cse225;
+    const double cse230 = -0.9619937887599698 * cse226 + cse229;
+    const double cse231 = 0.9619937887599698 * cse228 + 0.05067494832004038 * cse230 + 0.07200000000000001;
+    const double cse232 = cse229 + 0.9324334022399462 * cse226;
+    const double cse233 = -cse227 + 0.9324334022399462 * cse225;
+    const double cse234 = 0.9619937887599698 * cse232 + 0.05067494832004038 * cse233 - 0.09600000000000002;
+    const double cse235 = -0.2683281572999748 * cse225 + 0.3577708763999664 * cse226;
+    const double cse236 = 0.2683281572999748 * cse226 + 0.3577708763999664 * cse225;
+    const double cse237 = 0.9619937887599698 * cse235 + 0.05067494832004038 * cse236 + 0.24000000000000002;
+    const double table_m1_f2_1 = cse231 * ball_spin_rate_rate_1 + cse234 * ball_spin_rate_rate_2 + cse237 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_1 = (0.2683281572999748 * cse255 - 0.3577708763999664 * cse258 + 0.8944271909999159 * cse261) * table_theta_rate_rate;
+    const double table_m2_f2_1 = (0.2683281572999748 * cse231 - 0.3577708763999664 * cse234 + 0.8944271909999159 * cse237) * table_theta_rate_rate;
     // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
-    const double table_reaction_t_f_1 = table_m1_f2_1 + table_m2_f2_1;
+    table_reaction_t_f_1 = table_m1_f2_1 + table_m2_f2_1;
     // planar_below_moving.mbg:12:6  I lower.J: p = I f (derivative causality)
     const double lower_J_p_1 = 0.1 * table_reaction_t_f_1;
     // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse262 = 0.05067494832004038 * cse252 + 0.9324334022399462 * cse254 - 0.09600000000000002;
-    const double cse263 = 0.05067494832004038 * cse256 + 0.9324334022399462 * cse257 + 0.12800000000000003;
-    const double cse264 = 0.05067494832004038 * cse259 + 0.9324334022399462 * cse260 - 0.32000000000000006;
-    const double table_m1_f2_2 = cse262 * ball_spin_rate_rate_1 + cse263 * ball_spin_rate_rate_2 + cse264 * ball_spin_rate_rate_3;
+    const double cse238 = 0.05067494832004038 * cse228 + 0.9324334022399462 * cse230 - 0.09600000000000002;
+    const double cse239 = 0.05067494832004038 * cse232 + 0.9324334022399462 * cse233 + 0.12800000000000003;
+    const double cse240 = 0.05067494832004038 * cse235 + 0.9324334022399462 * cse236 - 0.32000000000000006;
+    const double table_m1_f2_2 = cse238 * ball_spin_rate_rate_1 + cse239 * ball_spin_rate_rate_2 + cse240 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_2 = (0.2683281572999748 * cse262 - 0.3577708763999664 * cse263 + 0.8944271909999159 * cse264) * table_theta_rate_rate;
+    const double table_m2_f2_2 = (0.2683281572999748 * cse238 - 0.3577708763999664 * cse239 + 0.8944271909999159 * cse240) * table_theta_rate_rate;
     // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
-    const double table_reaction_t_f_2 = table_m1_f2_2 + table_m2_f2_2;
+    table_reaction_t_f_2 = table_m1_f2_2 + table_m2_f2_2;
     // planar_below_moving.mbg:12:6  I lower.J: p = I f (derivative causality)
     const double lower_J_p_2 = 0.1 * table_reaction_t_f_2;
     // planar_below_moving.mbg:12:6  R lower.ejs: e = law(f)
-    const double lower_ejs_e_3 = table_reaction_t_f_1 * lower_J_p_2 - table_reaction_t_f_2 * lower_J_p_1;
+    lower_ejs_e_3 = table_reaction_t_f_1 * lower_J_p_2 - table_reaction_t_f_2 * lower_J_p_1;
     // planar_below_moving.mbg:13:7  signal ball.Rpc31
-    const double ball_Rpc31 = 2.0 * (ball_rot_q_2 * ball_rot_q_4 - ball_rot_q_1 * ball_rot_q_3) / cse245;
+    const double ball_Rpc31 = 2.0 * (ball_rot_q_2 * ball_rot_q_4 - ball_rot_q_1 * ball_rot_q_3) / cse221;
     // planar_below_moving.mbg:13:7  signal ball.Rpc33
-    const double ball_Rpc33 = (cse241 + cse244 - cse242 - cse243) / cse245;
+    const double ball_Rpc33 = (cse217 + cse220 - cse218 - cse219) / cse221;
     // planar_below_moving.mbg:14:7  signal lower.pose.R33
-    const double cse265 = -0.2683281572999748 * cse252 + 0.3577708763999664 * cse254 + 0.24000000000000002;
-    const double cse266 = -0.2683281572999748 * cse256 + 0.3577708763999664 * cse257 - 0.32000000000000006;
-    const double cse267 = -0.2683281572999748 * cse259 + 0.3577708763999664 * cse260 + 0.7999999999999999;
-    const double lower_pose_R33 = ball_Rpc31 * cse265 + ball_Rpc32 * cse266 + ball_Rpc33 * cse267;
+    const double cse241 = -0.2683281572999748 * cse228 + 0.3577708763999664 * cse230 + 0.24000000000000002;
+    const double cse242 = -0.2683281572999748 * cse232 + 0.3577708763999664 * cse233 - 0.32000000000000006;
+    const double cse243 = -0.2683281572999748 * cse235 + 0.3577708763999664 * cse236 + 0.7999999999999999;
+    const double lower_pose_R33 = ball_Rpc31 * cse241 + ball_Rpc32 * cse242 + ball_Rpc33 * cse243;
     // planar_below_moving.mbg:12:6  Se lower.weight: e = value
-    const double lower_weight_e_3 = -9.81 * lower_pose_R33;
+    lower_weight_e_3 = -9.81 * lower_pose_R33;
     // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_1 = cse255 * table_m4_f1_1 + cse258 * table_m4_f1_2 + cse261 * table_m4_f1_3;
+    const double table_m4_f2_1 = cse231 * table_m4_f1_1 + cse234 * table_m4_f1_2 + cse237 * table_m4_f1_3;
     // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_1 = (0.9619937887599698 * cse255 + 0.05067494832004038 * cse258 - 0.2683281572999748 * cse261) * table_x_rate_rate;
+    const double table_m5_f2_1 = (0.9619937887599698 * cse231 + 0.05067494832004038 * cse234 - 0.2683281572999748 * cse237) * table_x_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_1 = (0.05067494832004038 * cse255 + 0.9324334022399462 * cse258 + 0.3577708763999664 * cse261) * table_y_rate_rate;
+    const double table_m6_f2_1 = (0.05067494832004038 * cse231 + 0.9324334022399462 * cse234 + 0.3577708763999664 * cse237) * table_y_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double table_m1_f2_3 = cse265 * ball_spin_rate_rate_1 + cse266 * ball_spin_rate_rate_2 + cse267 * ball_spin_rate_rate_3;
+    const double table_m1_f2_3 = cse241 * ball_spin_rate_rate_1 + cse242 * ball_spin_rate_rate_2 + cse243 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_3 = (0.2683281572999748 * cse265 - 0.3577708763999664 * cse266 + 0.8944271909999159 * cse267) * table_theta_rate_rate;
+    const double table_m2_f2_3 = (0.2683281572999748 * cse241 - 0.3577708763999664 * cse242 + 0.8944271909999159 * cse243) * table_theta_rate_rate;
     // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
-    const double table_reaction_t_f_3 = table_m1_f2_3 + table_m2_f2_3;
+    table_reaction_t_f_3 = table_m1_f2_3 + table_m2_f2_3;
     // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
     const double table_m7_f2_1 = 0.1 * table_reaction_t_f_3;
     // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
-    const double table_reaction_f_f_1 = table_m4_f2_1 + table_m5_f2_1 + table_m6_f2_1 + table_m7_f2_1;
+    table_reaction_f_f_1 = table_m4_f2_1 + table_m5_f2_1 + table_m6_f2_1 + table_m7_f2_1;
     // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_2 = cse262 * table_m4_f1_1 + cse263 * table_m4_f1_2 + cse264 * table_m4_f1_3;
+    const double table_m4_f2_2 = cse238 * table_m4_f1_1 + cse239 * table_m4_f1_2 + cse240 * table_m4_f1_3;
     // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_2 = (0.9619937887599698 * cse262 + 0.05067494832004038 * cse263 - 0.2683281572999748 * cse264) * table_x_rate_rate;
+    const double table_m5_f2_2 = (0.9619937887599698 * cse238 + 0.05067494832004038 * cse239 - 0.2683281572999748 * cse240) * table_x_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_2 = (0.05067494832004038 * cse262 + 0.9324334022399462 * cse263 + 0.3577708763999664 * cse264) * table_y_rate_rate;
+    const double table_m6_f2_2 = (0.05067494832004038 * cse238 + 0.9324334022399462 * cse239 + 0.3577708763999664 * cse240) * table_y_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
     const double table_m7_f2_2 = -0.2 * table_reaction_t_f_3;
     // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
-    const double table_reaction_f_f_2 = table_m4_f2_2 + table_m5_f2_2 + table_m6_f2_2 + table_m7_f2_2;
+    table_reaction_f_f_2 = table_m4_f2_2 + table_m5_f2_2 + table_m6_f2_2 + table_m7_f2_2;
     // planar_below_moving.mbg:12:6  R lower.ejs_v: e = law(f)
-    const double lower_ejs_v_e_3 = table_reaction_t_f_1 * table_reaction_f_f_2 - table_reaction_t_f_2 * table_reaction_f_f_1;
+    lower_ejs_v_e_3 = table_reaction_t_f_1 * table_reaction_f_f_2 - table_reaction_t_f_2 * table_reaction_f_f_1;
     // planar_below_moving.mbg:14:7  signal lower.pose.R32
-    const double lower_pose_R32 = ball_Rpc31 * cse262 + ball_Rpc32 * cse263 + ball_Rpc33 * cse264;
+    const double lower_pose_R32 = ball_Rpc31 * cse238 + ball_Rpc32 * cse239 + ball_Rpc33 * cse240;
     // planar_below_moving.mbg:12:6  Se lower.weight: e = value
-    const double lower_weight_e_2 = -9.81 * lower_pose_R32;
+    lower_weight_e_2 = -9.81 * lower_pose_R32;
     // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_3 = cse265 * table_m4_f1_1 + cse266 * table_m4_f1_2 + cse267 * table_m4_f1_3;
+    const double table_m4_f2_3 = cse241 * table_m4_f1_1 + cse242 * table_m4_f1_2 + cse243 * table_m4_f1_3;
     // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_3 = (0.9619937887599698 * cse265 + 0.05067494832004038 * cse266 - 0.2683281572999748 * cse267) * table_x_rate_rate;
+    const double table_m5_f2_3 = (0.9619937887599698 * cse241 + 0.05067494832004038 * cse242 - 0.2683281572999748 * cse243) * table_x_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_3 = (0.05067494832004038 * cse265 + 0.9324334022399462 * cse266 + 0.3577708763999664 * cse267) * table_y_rate_rate;
+    const double table_m6_f2_3 = (0.05067494832004038 * cse241 + 0.9324334022399462 * cse242 + 0.3577708763999664 * cse243) * table_y_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
     const double table_m7_f2_3 = -lower_J_p_1 + 0.2 * table_reaction_t_f_2;
     // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
-    const double table_reaction_f_f_3 = table_m4_f2_3 + table_m5_f2_3 + table_m6_f2_3 + table_m7_f2_3;
+    table_reaction_f_f_3 = table_m4_f2_3 + table_m5_f2_3 + table_m6_f2_3 + table_m7_f2_3;
     // planar_below_moving.mbg:12:6  R lower.ejs_v: e = law(f)
-    const double lower_ejs_v_e_2 = table_reaction_t_f_3 * table_reaction_f_f_1 - table_reaction_t_f_1 * table_reaction_f_f_3;
+    lower_ejs_v_e_2 = table_reaction_t_f_3 * table_reaction_f_f_1 - table_reaction_t_f_1 * table_reaction_f_f_3;
     // planar_below_moving.mbg:12:6  I lower.J: p = I f (derivative causality)
     const double lower_J_p_3 = table_m7_f2_1;
     // planar_below_moving.mbg:12:6  R lower.ejs: e = law(f)
-    const double lower_ejs_e_2 = table_reaction_t_f_3 * lower_J_p_1 - table_reaction_t_f_1 * lower_J_p_3;
+    lower_ejs_e_2 = table_reaction_t_f_3 * lower_J_p_1 - table_reaction_t_f_1 * lower_J_p_3;
     // planar_below_moving.mbg:14:7  signal lower.pose.R31
-    const double lower_pose_R31 = ball_Rpc31 * cse255 + ball_Rpc32 * cse258 + ball_Rpc33 * cse261;
+    const double lower_pose_R31 = ball_Rpc31 * cse231 + ball_Rpc32 * cse234 + ball_Rpc33 * cse237;
     // planar_below_moving.mbg:12:6  Se lower.weight: e = value
-    const double lower_weight_e_1 = -9.81 * lower_pose_R31;
+    lower_weight_e_1 = -9.81 * lower_pose_R31;
     // planar_below_moving.mbg:12:6  R lower.ejs_v: e = law(f)
-    const double lower_ejs_v_e_1 = table_reaction_t_f_2 * table_reaction_f_f_3 - table_reaction_t_f_3 * table_reaction_f_f_2;
+    lower_ejs_v_e_1 = table_reaction_t_f_2 * table_reaction_f_f_3 - table_reaction_t_f_3 * table_reaction_f_f_2;
     // planar_below_moving.mbg:11:6  R upper.ejs: e = law(f)
-    const double upper_ejs_e_1 = ball_spin_rate_rate_2 * upper_J_p_3 - ball_spin_rate_rate_3 * upper_J_p_2;
+    upper_ejs_e_1 = ball_spin_rate_rate_2 * upper_J_p_3 - ball_spin_rate_rate_3 * upper_J_p_2;
     // planar_below_moving.mbg:12:6  R lower.ejs: e = law(f)
-    const double lower_ejs_e_1 = table_reaction_t_f_2 * lower_J_p_3 - table_reaction_t_f_3 * lower_J_p_2;
+    lower_ejs_e_1 = table_reaction_t_f_2 * lower_J_p_3 - table_reaction_t_f_3 * lower_J_p_2;
     // planar_below_moving.mbg:11:6  Se upper.weight: e = value
-    const double upper_weight_e_1 = -9.81 * ball_Rpc31;
+    upper_weight_e_1 = -9.81 * ball_Rpc31;
     // planar_below_moving.mbg:11:6  R upper.ejs_v: e = law(f)
-    const double upper_ejs_v_e_1 = -ball_spin_rate_rate_3 * ball_spin_rate_rate_1;
-    // the powers
-    out[0] = -upper_weight_e_1 * ball_spin_rate_rate_2 + upper_weight_e_2 * ball_spin_rate_rate_1 + (lower_weight_e_1 * table_reaction_f_f_1 + lower_weight_e_2 * table_reaction_f_f_2 + lower_weight_e_3 * table_reaction_f_f_3);
-    out[1] = -upper_ejs_v_e_1 * ball_spin_rate_rate_2 + upper_ejs_v_e_2 * ball_spin_rate_rate_1 + (upper_ejs_e_1 * ball_spin_rate_rate_1 + upper_ejs_e_2 * ball_spin_rate_rate_2 + upper_ejs_e_3 * ball_spin_rate_rate_3) + (lower_ejs_v_e_1 * table_reaction_f_f_1 + lower_ejs_v_e_2 * table_reaction_f_f_2 + lower_ejs_v_e_3 * table_reaction_f_f_3) + (lower_ejs_e_1 * table_reaction_t_f_1 + lower_ejs_e_2 * table_reaction_t_f_2 + lower_ejs_e_3 * table_reaction_t_f_3);
+    upper_ejs_v_e_1 = -ball_spin_rate_rate_3 * ball_spin_rate_rate_1;
   }
 
-  // TERMINAL: nothing to do at the end of a run.
-  void terminal(double t, const double* y) override {
-    (void)t;
-    (void)y;
-  }
-
- private:
+  // witness_values(): what power() and stored_energy() read of it
+  double upper_ejs_e_2 = 0.0;
+  double upper_weight_e_2 = 0.0;
+  double upper_ejs_v_e_2 = 0.0;
+  double upper_ejs_e_3 = 0.0;
+  double table_reaction_t_f_1 = 0.0;
+  double table_reaction_t_f_2 = 0.0;
+  double lower_ejs_e_3 = 0.0;
+  double lower_weight_e_3 = 0.0;
+  double table_reaction_t_f_3 = 0.0;
+  double table_reaction_f_f_1 = 0.0;
+  double table_reaction_f_f_2 = 0.0;
+  double lower_ejs_v_e_3 = 0.0;
+  double lower_weight_e_2 = 0.0;
+  double table_reaction_f_f_3 = 0.0;
+  double lower_ejs_v_e_2 = 0.0;
+  double lower_ejs_e_2 = 0.0;
+  double lower_weight_e_1 = 0.0;
+  double lower_ejs_v_e_1 = 0.0;
+  double upper_ejs_e_1 = 0.0;
+  double lower_ejs_e_1 = 0.0;
+  double upper_weight_e_1 = 0.0;
+  double upper_ejs_v_e_1 = 0.0;
 };
 
 }  // namespace
