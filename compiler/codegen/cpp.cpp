@@ -12,13 +12,23 @@ static void put(std::string& out, int indent, const std::string& text) {
   out += '\n';
 }
 
+std::string CppStmt::code() const {
+  switch (kind) {
+    case Kind::Comment:
+    case Kind::Line: return text;
+    case Kind::Blank: return {};
+    case Kind::Local: return "const double " + name + " = " + text + ";";
+    case Kind::Read: return fmt::format("const double {} = {}[{}];", name, array, index);
+    case Kind::Assign: return name + " = " + text + ";";
+  }
+  return text;
+}
+
 static void put_body(std::string& out, int indent, const std::vector<CppStmt>& body) {
   for (const CppStmt& s : body) {
-    switch (s.kind) {
-      case CppStmt::Kind::Blank: out += '\n'; break;
-      case CppStmt::Kind::Comment: put(out, indent, "// " + s.text); break;
-      case CppStmt::Kind::Line: put(out, indent, s.text); break;
-    }
+    if (s.kind == CppStmt::Kind::Blank) out += '\n';
+    else if (s.kind == CppStmt::Kind::Comment) put(out, indent, "// " + s.text);
+    else put(out, indent, s.code());
   }
 }
 

@@ -2,18 +2,43 @@
 // model class (members, methods, statements), printed with consistent layout.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace mbgc::codegen {
 
+/// A statement of a generated method. The ones later passes reason about
+/// are typed: a local's definition, an unknown read from the method's
+/// input, an assignment (codegen/split moves them between a long method's
+/// parts without reading their text); anything else is a line as written.
 struct CppStmt {
-  enum class Kind { Comment, Blank, Line };
+  enum class Kind {
+    Comment,  // `// text`
+    Blank,
+    Line,     // `text`: a full statement without indentation
+    Local,    // `const double name = text;`
+    Read,     // `const double name = array[index];`: an unknown read from one of the method's inputs
+    Assign,   // `name = text;` (name: a variable, a member or an array's place)
+  };
   Kind kind = Kind::Line;
-  std::string text;  // Line: a full statement without indentation
-  static CppStmt comment(std::string t) { return {Kind::Comment, std::move(t)}; }
-  static CppStmt blank() { return {Kind::Blank, {}}; }
-  static CppStmt line(std::string t) { return {Kind::Line, std::move(t)}; }
+  std::string text;
+  std::string name;   // Local, Read, Assign
+  std::string array;  // Read
+  std::size_t index = 0;
+
+  static CppStmt comment(std::string t) { return {Kind::Comment, std::move(t), {}, {}, 0}; }
+  static CppStmt blank() { return {Kind::Blank, {}, {}, {}, 0}; }
+  static CppStmt line(std::string t) { return {Kind::Line, std::move(t), {}, {}, 0}; }
+  static CppStmt local(std::string name, std::string value) { return {Kind::Local, std::move(value), std::move(name), {}, 0}; }
+  static CppStmt read(std::string name, std::string array, std::size_t index) {
+    return {Kind::Read, {}, std::move(name), std::move(array), index};
+  }
+  static CppStmt assign(std::string name, std::string value) { return {Kind::Assign, std::move(value), std::move(name), {}, 0}; }
+  /// Whether it defines a local (`const double name = ...;`).
+  bool defines_local() const { return kind == Kind::Local || kind == Kind::Read; }
+  /// The statement as printed, without indentation (a comment without its `// `).
+  std::string code() const;
 };
 
 struct CppFunction {

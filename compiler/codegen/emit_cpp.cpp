@@ -238,7 +238,7 @@ class Emitter {
       // a derived constant that recurs whole is reused by its own name
       bool shared_whole = shared.take_pending(e);
       std::string value = shared.print(e, f.body);
-      f.body.push_back(CppStmt::line(fmt::format("{} = {};", hoisted_.at(e), value)));
+      f.body.push_back(CppStmt::assign(hoisted_.at(e), std::move(value)));
       if (shared_whole) shared.name_whole(e, hoisted_.at(e));
     }
     for (std::size_t c = 0; c < s_.contacts.size(); ++c)
@@ -299,17 +299,17 @@ class Emitter {
       if (!used.count(v)) continue;
       if (!any_read) body.push_back(CppStmt::comment(s_.dae ? "unknowns from the integrator" : "states"));
       any_read = true;
-      body.push_back(CppStmt::line(fmt::format("const double {} = {}[{}];", var_name(v), y, i)));
+      body.push_back(CppStmt::read(var_name(v), y, i));
     }
     for (std::size_t j = 0; j < s_.algebraic.size(); ++j) {
       int v = s_.algebraic[j];
       if (!used.count(v)) continue;
-      body.push_back(CppStmt::line(fmt::format("const double {} = y[{}];", var_name(v), s_.states.size() + j)));
+      body.push_back(CppStmt::read(var_name(v), "y", s_.states.size() + j));
     }
     for (std::size_t i = 0; i < s_.derivative_unknowns.size(); ++i) {
       int v = s_.derivative_unknowns[i];
       if (v < 0 || !used.count(v)) continue;
-      body.push_back(CppStmt::line(fmt::format("const double {} = yp[{}];", var_name(v), i)));
+      body.push_back(CppStmt::read(var_name(v), "yp", i));
     }
     // Bodies whose equations are the same up to names: one function per shape (codegen/outline).
     std::vector<const Assignment*> list;
@@ -359,7 +359,7 @@ class Emitter {
       }
       if (a.block >= 0) {
         if (blocks_done.insert(a.block).second) emit_block(body, a, print_expr);
-        body.push_back(CppStmt::line(fmt::format("{} = blk{}_x[{}];", defined(a.var, exporting), a.block + 1, block_position(a))));
+        body.push_back(defined(a.var, exporting, fmt::format("blk{}_x[{}]", a.block + 1, block_position(a))));
         continue;
       }
       // One comment heads each run of assignments from the same model line and origin.
@@ -370,13 +370,13 @@ class Emitter {
       // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
       bool shared_whole = shared.take_whole(a.value);
       std::string rhs = print_expr(a.value, body);
-      body.push_back(CppStmt::line(fmt::format("{} = {};", defined(a.var, exporting), rhs)));
+      body.push_back(defined(a.var, exporting, std::move(rhs)));
       if (shared_whole) shared.name_whole(a.value, var_name(a.var));
       if (const int r = copy_after[k]; r >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(r)];
         for (std::size_t j = 0; j < run.outputs.size(); ++j)
           body.push_back(
-              CppStmt::line(fmt::format("{}[{}] = {};", store[static_cast<std::size_t>(r)], run.slots[j], var_name(run.defined[run.outputs[j]]))));
+              CppStmt::assign(fmt::format("{}[{}]", store[static_cast<std::size_t>(r)], run.slots[j]), var_name(run.defined[run.outputs[j]])));
       }
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
@@ -386,7 +386,7 @@ class Emitter {
         continue;
       }
       std::string rhs = print_expr(results[i].value, body);
-      body.push_back(CppStmt::line(fmt::format("{}[{}] = {};", results[i].array, results[i].index, rhs)));
+      body.push_back(CppStmt::assign(fmt::format("{}[{}]", results[i].array, results[i].index), std::move(rhs)));
     }
     if (exporting)  // what the callers read: its place in an outlined run's array, else its member
       for (int i : witness_.assignments)
@@ -398,11 +398,11 @@ class Emitter {
     witness_active_ = false;
   }
 
-  /// What a section's assignment to `var` starts with: a local, or (an
-  /// exported variable of witness_values()) its member.
-  std::string defined(int var, bool exporting) const {
-    if (exporting && witness_.exported.count(var)) return var_name(var);
-    return "const double " + var_name(var);
+  /// A section's assignment of `value` to `var`: a local, or (an exported
+  /// variable of witness_values()) its member.
+  CppStmt defined(int var, bool exporting, std::string value) const {
+    if (exporting && witness_.exported.count(var)) return CppStmt::assign(var_name(var), std::move(value));
+    return CppStmt::local(var_name(var), std::move(value));
   }
 
   // ---- what the energy witness's two methods compute alike (codegen/shared_values) ----

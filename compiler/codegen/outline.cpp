@@ -430,7 +430,7 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
       if (!origin.empty() && origin != last) f.body.push_back(CppStmt::comment(origin));
       last = std::move(origin);
       std::string rhs = shared.print(r.value, f.body);
-      f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", run.offsets[i - run.begin], rhs)));
+      f.body.push_back(CppStmt::assign(fmt::format("out[{}]", run.offsets[i - run.begin]), std::move(rhs)));
     }
     return f;
   }
@@ -441,10 +441,10 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
     last = std::move(origin);
     const bool whole = shared.take_whole(a.value);
     std::string rhs = shared.print(a.value, f.body);
-    f.body.push_back(CppStmt::line(fmt::format("const double {} = {};", local.at(a.var), rhs)));
+    f.body.push_back(CppStmt::local(local.at(a.var), std::move(rhs)));
     if (whole) shared.name_whole(a.value, local.at(a.var));
   }
-  for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", run.slots[k], outs[k])));
+  for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::assign(fmt::format("out[{}]", run.slots[k]), outs[k]));
   return f;
 }
 

@@ -37,7 +37,7 @@ std::string SharedTemps::print(const Expr& e, std::vector<CppStmt>& body) {
       std::string name = fmt::format("cse{}", ++counter_);
       if (!announced_) body.push_back(CppStmt::comment("(cseN: a subexpression several equations below share)"));
       announced_ = true;
-      body.push_back(CppStmt::line(fmt::format("const double {} = {};", name, print_with_temps(x, /*top=*/true))));
+      body.push_back(CppStmt::local(name, print_with_temps(x, /*top=*/true)));
       temp[x] = name;
     }
   };

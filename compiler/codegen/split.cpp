@@ -41,14 +41,8 @@ std::vector<std::string> identifiers(const std::string& s) {
   return out;
 }
 
-/// NAME if the statement is `const double NAME = ...;`, else "".
-std::string defined_scalar(const CppStmt& st) {
-  static const std::string prefix = "const double ";
-  if (st.kind != CppStmt::Kind::Line || st.text.rfind(prefix, 0) != 0) return {};
-  std::size_t j = prefix.size();
-  while (j < st.text.size() && ident_char(st.text[j])) ++j;
-  return st.text.compare(j, 3, " = ") == 0 ? st.text.substr(prefix.size(), j - prefix.size()) : std::string{};
-}
+/// NAME if the statement defines a local `const double NAME`, else "".
+std::string defined_scalar(const CppStmt& st) { return st.defines_local() ? st.name : std::string{}; }
 
 /// NAME if the statement defines a local that a part may not pass to the
 /// next: a linear block's arrays (`double NAME[n]`, `int NAME[n]`), its rank
@@ -65,16 +59,10 @@ std::string defined_block_local(const CppStmt& st) {
   return {};
 }
 
-/// Whether the statement is `const double NAME = ARG[k];`, a plain read of
-/// one of `inputs` (the method's `const double*` parameters).
+/// Whether the statement reads an unknown from one of `inputs` (the
+/// method's `const double*` parameters).
 bool reads_input(const CppStmt& st, const std::vector<std::string>& inputs) {
-  const std::string name = defined_scalar(st);
-  if (name.empty()) return false;
-  const std::string rhs = st.text.substr(std::string("const double ").size() + name.size() + 3);
-  const auto open = rhs.find('[');
-  if (open == std::string::npos || rhs.size() < open + 3 || rhs.compare(rhs.size() - 2, 2, "];") != 0) return false;
-  if (std::find(inputs.begin(), inputs.end(), rhs.substr(0, open)) == inputs.end()) return false;
-  return std::all_of(rhs.begin() + static_cast<long>(open) + 1, rhs.end() - 2, [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  return st.kind == CppStmt::Kind::Read && std::find(inputs.begin(), inputs.end(), st.array) != inputs.end();
 }
 
 struct Signature {
@@ -150,12 +138,13 @@ std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_li
   for (std::size_t i = 0; i < n; ++i) {
     const CppStmt& st = body[i];
     may_start[i] = depth == 0 && st.kind == CppStmt::Kind::Comment;
-    if (st.kind != CppStmt::Kind::Line) continue;
-    reads[i] = identifiers(st.text);
+    if (st.kind == CppStmt::Kind::Comment || st.kind == CppStmt::Kind::Blank) continue;
+    const std::string code = st.code();
+    reads[i] = identifiers(code);
     if (std::string a = defined_block_local(st); !a.empty()) block_span[a] = {i, i};
     for (const std::string& id : reads[i])
       if (auto it = block_span.find(id); it != block_span.end()) it->second.second = i;
-    for (char c : st.text) depth += c == '{' ? 1 : c == '}' ? -1 : 0;
+    for (char c : code) depth += c == '{' ? 1 : c == '}' ? -1 : 0;
   }
   for (const auto& [name, span] : block_span)
     for (std::size_t i = span.first + 1; i <= span.second; ++i) may_start[i] = false;
@@ -215,7 +204,7 @@ std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_li
           std::find(sig.names.begin(), sig.names.end(), st.text.substr(6, st.text.size() - 7)) != sig.names.end())
         continue;  // the method's own (void) of a parameter: every part has its own
       if (std::string d = defined_scalar(st); !d.empty() && promoted.count(d))
-        st.text.erase(0, std::string("const double ").size());
+        st = CppStmt::assign(d, st.kind == CppStmt::Kind::Read ? fmt::format("{}[{}]", st.array, st.index) : st.text);
       fn.body.push_back(std::move(st));
     }
     out.method.body.push_back(CppStmt::line(fmt::format("{}({});", part, args)));

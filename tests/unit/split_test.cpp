@@ -18,24 +18,24 @@ CppFunction method(std::vector<CppStmt> body) {
 
 std::vector<std::string> texts(const CppFunction& f) {
   std::vector<std::string> out;
-  for (const CppStmt& s : f.body) out.push_back(s.text);
+  for (const CppStmt& s : f.body) out.push_back(s.code());
   return out;
 }
 
 TEST(SplitMethod, AShortMethodStaysWhole) {
-  EXPECT_FALSE(split_method(method({CppStmt::line("(void)t;"), CppStmt::line("xdot[0] = x[0];")}), 5));
+  EXPECT_FALSE(split_method(method({CppStmt::line("(void)t;"), CppStmt::assign("xdot[0]", "x[0]")}), 5));
 }
 
 TEST(SplitMethod, CutsAtCommentsAndMakesWhatLaterPartsReadMembers) {
   const CppFunction f = method({
       CppStmt::line("(void)t;"),
       CppStmt::comment("model.mbg:1:1  first"),
-      CppStmt::line("const double a = x[0];"),      // a read of x: each part that reads it reads x
-      CppStmt::line("const double b = 2.0 * a;"),   // read in its own part only
-      CppStmt::line("const double c = a + b;"),     // read by part 2
+      CppStmt::read("a", "x", 0),      // a read of x: each part that reads it reads x
+      CppStmt::local("b", "2.0 * a"),   // read in its own part only
+      CppStmt::local("c", "a + b"),     // read by part 2
       CppStmt::comment("model.mbg:2:1  second"),
-      CppStmt::line("const double d = std::cos(c) * 1e-08;"),
-      CppStmt::line("xdot[0] = d + a;"),
+      CppStmt::local("d", "std::cos(c) * 1e-08"),
+      CppStmt::assign("xdot[0]", "d + a"),
   });
   const auto split = split_method(f, 5);
   ASSERT_TRUE(split);
@@ -59,15 +59,15 @@ TEST(SplitMethod, EachPartReadsTheUnknownsItUsesUnderTheirComment) {
   const CppFunction f = method({
       CppStmt::line("(void)t;"),
       CppStmt::comment("states"),
-      CppStmt::line("const double a = x[0];"),
-      CppStmt::line("const double b = x[1];"),
-      CppStmt::line("const double c = x[2];"),
+      CppStmt::read("a", "x", 0),
+      CppStmt::read("b", "x", 1),
+      CppStmt::read("c", "x", 2),
       CppStmt::comment("model.mbg:1:1  first"),
-      CppStmt::line("const double d = a * c;"),
-      CppStmt::line("xdot[0] = d;"),
+      CppStmt::local("d", "a * c"),
+      CppStmt::assign("xdot[0]", "d"),
       CppStmt::comment("model.mbg:2:1  second"),
-      CppStmt::line("xdot[1] = b + d;"),
-      CppStmt::line("xdot[2] = b;"),
+      CppStmt::assign("xdot[1]", "b + d"),
+      CppStmt::assign("xdot[2]", "b"),
   });
   // the reads do not count towards a part's lines: 6 statements left, in two parts
   const auto split = split_method(f, 4);
@@ -82,12 +82,12 @@ TEST(SplitMethod, EachPartReadsTheUnknownsItUsesUnderTheirComment) {
 }
 
 TEST(SplitMethod, NeverCutsBetweenALinearBlocksArraysAndTheirReaders) {
-  std::vector<CppStmt> body{CppStmt::comment("one"), CppStmt::line("const double a = x[0];"),
+  std::vector<CppStmt> body{CppStmt::comment("one"), CppStmt::read("a", "x", 0),
                             CppStmt::line("double blk1_a[1] = {"), CppStmt::line("    a,"), CppStmt::line("};"),
                             CppStmt::line("double blk1_x[1] = {1.0};"), CppStmt::comment("inside the block's span"),
                             CppStmt::line("mbgrt::solve_linear(1, blk1_a, blk1_x);"),
-                            CppStmt::line("const double u = blk1_x[0];"), CppStmt::comment("after it"),
-                            CppStmt::line("xdot[0] = u;")};
+                            CppStmt::local("u", "blk1_x[0]"), CppStmt::comment("after it"),
+                            CppStmt::assign("xdot[0]", "u")};
   const auto split = split_method(method(body), 4);
   ASSERT_TRUE(split);
   ASSERT_EQ(split->parts.size(), 2u);
@@ -99,7 +99,7 @@ TEST(SplitMethod, AConstMethodIsNotCut) {
   CppFunction f{"", "double energy(const double* x) const", {}};
   for (int i = 0; i < 10; ++i) {
     f.body.push_back(CppStmt::comment("c"));
-    f.body.push_back(CppStmt::line("const double a" + std::to_string(i) + " = x[0];"));
+    f.body.push_back(CppStmt::read("a" + std::to_string(i), "x", 0));
   }
   EXPECT_FALSE(split_method(f, 4));
 }
