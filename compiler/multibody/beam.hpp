@@ -20,6 +20,7 @@ namespace mbgc::multibody::detail {
 /// compiler integrates the modes); material and section may be parameters.
 class Beam final : public Deformation {
  public:
+  const std::vector<const Setting*>& settings() const override { return beam_setting::kAll; }
   int count() const override { return offset_torsion() + (torsion ? torsion->count() : 0); }
   std::map<std::string, std::array<double, 3>> points() const override;
   Eta split(const std::function<E(int)>& eta) const override;

@@ -25,6 +25,7 @@
 #include "ir/drawing.hpp"
 #include "multibody/build.hpp"
 #include "multibody/modal_algebra.hpp"
+#include "multibody/settings.hpp"
 
 namespace mbgc::multibody::detail {
 
@@ -46,6 +47,8 @@ struct FieldParams {
 class Deformation {
  public:
   virtual ~Deformation() = default;
+  /// The settings its body takes (settings.hpp), with their dimensions.
+  virtual const std::vector<const Setting*>& settings() const = 0;
   /// The number of modal coordinates.
   virtual int count() const = 0;
   /// Undeformed body-frame position of each point.

@@ -105,8 +105,8 @@ class Expander {
   static bool mentions_time(const AstExpr& e);
   void check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant = true);
 
-  // ---- 1b. settings of flexible bodies: beams and modal-data files (flexible_settings.cpp)
-  static const std::map<std::string, std::string>& beam_settings();
+  // ---- 1b. settings of flexible bodies: beams and modal-data files (flexible_settings.cpp;
+  // their tables: settings.hpp)
   void check_frame(Beam& beam, const AstBody& b, const AstAttr* given);
   bool tisserand_allowed(const Beam& beam, const AstBody& b, const SourceLoc& loc);
   void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind);

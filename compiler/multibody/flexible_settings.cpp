@@ -18,34 +18,6 @@
 namespace mbgc::multibody::detail {
 
 // ---- 1b. flexible bodies -------------------------------------------------------------
-/// Settings of `flexible = beam`; what each one must be.
-const std::map<std::string, std::string>& Expander::beam_settings() {
-  static const std::map<std::string, std::string> keys = {
-      {"flexible", "beam"},
-      {"length", "the beam's length (m), a number or constant parameter"},
-      {"density", "the material density (kg/m^3)"},
-      {"E", "Young's modulus (Pa)"},
-      {"section", "rectangle(width_y, height_z), circle(diameter) or tube(outer, inner) (m)"},
-      {"area", "the section area (m^2), with Iy and Iz instead of `section`"},
-      {"Iy", "the second moment of area about the body y axis (m^4): bending in the x-z plane"},
-      {"Iz", "the second moment of area about the body z axis (m^4): bending in the x-y plane"},
-      {"modes_xy", "the mode set of bending in the x-y plane, e.g. clamped_free(3)"},
-      {"modes_xz", "the mode set of bending in the x-z plane, e.g. pinned_pinned(2)"},
-      {"modes_axial", "the mode set of stretch along x, e.g. fixed_free(2)"},
-      {"modes_torsion", "the mode set of twist about x, e.g. fixed_free(1)"},
-      {"G", "the shear modulus (Pa), for torsion"},
-      {"torsion_constant", "the section's torsion constant (m^4); circle and tube: the polar moment, rectangle: Roark's formula"},
-      {"damping", "the modal damping ratio (0.01 = 1 % of critical in every mode)"},
-      {"geometric_stiffness", "on or off"},
-      {"slope_limit", "the largest slope (rad) one mode may give the beam before the run stops; default 0.3"},
-      {"frame", "joint (fixed to the beam at x = 0), centre (to its centre section), buckens or tisserand (mean axes of free-free modes)"},
-      {"r0", "the initial position of the frame origin (world)"},
-      {"quat0", "the initial orientation"},
-      {"v0", "the initial velocity of the frame origin (world)"},
-      {"w0", "the initial angular velocity (body frame)"}};
-  return keys;
-}
-
 /// The floating frame (thesis Ch. 5). `joint`: attached to the beam at
 /// x = 0, which the mode set must leave in place (every set but free_free).
 /// `buckens`: the mean axes, whose conditions int u dm = 0 and
@@ -160,7 +132,6 @@ bool Expander::tisserand_allowed(const Beam& beam, const AstBody& b, const Sourc
 }
 
 void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
-  const auto& keys = beam_settings();
   const AstExpr& v = *kind.value;
   if (v.kind == AstExpr::Kind::Call && v.name == "modal") {
     add_modal_body(body, b, v);
@@ -174,11 +145,11 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
   }
   auto beam = std::make_shared<Beam>();
   std::map<std::string, const AstAttr*> given;
-  std::vector<std::string> names;
-  for (const auto& [k, what] : keys) names.push_back(k);
+  std::vector<std::string> names = setting_names(beam_setting::kAll);
+  std::sort(names.begin(), names.end());
   std::set<std::string> meant;  // settings a misspelt one was taken for: not reported missing too
   for (const AstAttr& a : b.attrs) {
-    if (!keys.count(a.key)) {
+    if (!find_setting(beam_setting::kAll, a.key)) {
       std::string near = closest_name(a.key, names);
       meant.insert(near);
       const char* computed = (a.key == "mass" || a.key == "inertia" || a.key == "com")
@@ -196,7 +167,8 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
     auto it = given.find(key);
     if (it != given.end()) return it->second;
     if (!meant.count(key))
-      diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, key), fmt::format("give {}", keys.at(key)));
+      diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, key),
+                   fmt::format("give {}", find_setting(beam_setting::kAll, key)->what));
     return nullptr;
   };
   if (const AstAttr* len = need("length")) {
@@ -332,8 +304,7 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     body_order_.push_back(b.name);
     return;
   }
-  static const std::vector<std::string> keys = {"flexible",       "damping", "slope_limit", "stiffness_scale",
-                                                "r0",             "quat0",   "v0",          "w0"};
+  static const std::vector<std::string> keys = setting_names(modal_setting::kAll);
   double slope_limit_rad = Deformation::kDefaultSlopeLimit;
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {

@@ -16,6 +16,7 @@ namespace mbgc::multibody::detail {
 class ModalBody final : public Deformation {
  public:
   explicit ModalBody(std::shared_ptr<const flex::ModalData> data) : data_(std::move(data)) {}
+  const std::vector<const Setting*>& settings() const override { return modal_setting::kAll; }
   int count() const override { return data_->count; }
   std::map<std::string, std::array<double, 3>> points() const override;
   /// No planes: every coordinate in Eta::y.

@@ -47,6 +47,9 @@ struct Setting {
   /// declares); none: a number, or one its joint kind decides (`q0` is an
   /// angle of a revolute joint, a length of a prismatic one).
   std::optional<units::Dimension> dimension = std::nullopt;
+  /// What it is and how it is written, for a diagnostic that asks for it
+  /// (a flexible body's settings).
+  const char* what = nullptr;
 };
 
 namespace joint_setting {
@@ -146,6 +149,58 @@ inline const std::vector<const Setting*> kAll = {&radius,   &surface,     &norma
                                                  &vertices, &strategy,    &restitution, &stiffness, &exponent,
                                                  &friction, &slip_speed, &stabilisation};
 }  // namespace contact_setting
+
+/// A beam's settings (`flexible = beam`), each with what it is.
+namespace beam_setting {
+using units::Dimension;
+namespace d = units::dim;
+inline const Setting flexible{"flexible", std::nullopt, true, std::nullopt, "beam"};
+inline const Setting length{"length", std::nullopt, true, d::length(), "the beam's length (m), a number or constant parameter"};
+inline const Setting density{"density", std::nullopt, true, d::mass() / d::length().pow(3), "the material density (kg/m^3)"};
+inline const Setting E{"E", std::nullopt, true, d::force() / d::length().pow(2), "Young's modulus (Pa)"};
+/// rectangle(width_y, height_z), circle(diameter), tube(outer, inner): each argument is a length
+inline const Setting section{"section", std::nullopt, true, d::length(),
+                             "rectangle(width_y, height_z), circle(diameter) or tube(outer, inner) (m)"};
+inline const Setting area{"area", std::nullopt, true, d::length().pow(2), "the section area (m^2), with Iy and Iz instead of `section`"};
+inline const Setting Iy{"Iy", std::nullopt, true, d::length().pow(4),
+                        "the second moment of area about the body y axis (m^4): bending in the x-z plane"};
+inline const Setting Iz{"Iz", std::nullopt, true, d::length().pow(4),
+                        "the second moment of area about the body z axis (m^4): bending in the x-y plane"};
+inline const Setting modes_xy{"modes_xy", std::nullopt, true, std::nullopt, "the mode set of bending in the x-y plane, e.g. clamped_free(3)"};
+inline const Setting modes_xz{"modes_xz", std::nullopt, true, std::nullopt, "the mode set of bending in the x-z plane, e.g. pinned_pinned(2)"};
+inline const Setting modes_axial{"modes_axial", std::nullopt, true, std::nullopt, "the mode set of stretch along x, e.g. fixed_free(2)"};
+inline const Setting modes_torsion{"modes_torsion", std::nullopt, true, std::nullopt, "the mode set of twist about x, e.g. fixed_free(1)"};
+inline const Setting G{"G", std::nullopt, true, d::force() / d::length().pow(2), "the shear modulus (Pa), for torsion"};
+inline const Setting torsion_constant{"torsion_constant", std::nullopt, true, d::length().pow(4),
+                                      "the section's torsion constant (m^4); circle and tube: the polar moment, rectangle: "
+                                      "Roark's formula"};
+inline const Setting damping{"damping", std::nullopt, true, Dimension::none(),
+                             "the modal damping ratio (0.01 = 1 % of critical in every mode)"};
+inline const Setting geometric_stiffness{"geometric_stiffness", std::nullopt, true, std::nullopt, "on or off"};
+inline const Setting slope_limit{"slope_limit", std::nullopt, true, d::angle(),
+                                 "the largest slope (rad) one mode may give the beam before the run stops; default 0.3"};
+inline const Setting frame{"frame", std::nullopt, true, std::nullopt,
+                           "joint (fixed to the beam at x = 0), centre (to its centre section), buckens or tisserand (mean "
+                           "axes of free-free modes)"};
+inline const Setting r0{"r0", std::nullopt, true, d::length(), "the initial position of the frame origin (world)"};
+inline const Setting quat0{"quat0", std::nullopt, true, Dimension::none(), "the initial orientation"};
+inline const Setting v0{"v0", std::nullopt, true, d::velocity(), "the initial velocity of the frame origin (world)"};
+inline const Setting w0{"w0", std::nullopt, true, d::angular_velocity(), "the initial angular velocity (body frame)"};
+inline const std::vector<const Setting*> kAll = {&flexible, &length,   &density,  &E,        &section,          &area,
+                                                 &Iy,       &Iz,       &modes_xy, &modes_xz, &modes_axial,      &modes_torsion,
+                                                 &G,        &torsion_constant, &damping, &geometric_stiffness, &slope_limit,
+                                                 &frame,    &r0,       &quat0,    &v0,       &w0};
+}  // namespace beam_setting
+
+/// A body read from a modal-data file (`flexible = modal("file.mbm")`): the
+/// file gives its mass, stiffness and nodes, the model what is left.
+namespace modal_setting {
+inline const Setting stiffness_scale{"stiffness_scale", std::nullopt, true, units::Dimension::none(),
+                                     "a factor on the file's modal stiffness"};
+inline const std::vector<const Setting*> kAll = {&beam_setting::flexible, &beam_setting::damping, &beam_setting::slope_limit,
+                                                 &stiffness_scale,        &beam_setting::r0,      &beam_setting::quat0,
+                                                 &beam_setting::v0,       &beam_setting::w0};
+}  // namespace modal_setting
 
 /// The setting of `table` named `key`, or null.
 inline const Setting* find_setting(const std::vector<const Setting*>& table, const std::string& key) {

@@ -110,10 +110,17 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
       out.push_back({value, *d, value->loc, fmt::format("`{}`", name), true});
     }
   for (const auto& [name, body] : bodies_) {
-    if (!body.decl || body.flex) continue;
-    for (const AstAttr& a : body.decl->attrs)
-      if (const Setting* s = find_setting(body_setting::kAll, a.key))
-        state_unit(a, s->dimension, fmt::format("{} of body `{}`", a.key, name), out);
+    if (!body.decl) continue;
+    const std::vector<const Setting*>& table = body.flex ? body.flex->settings() : body_setting::kAll;
+    for (const AstAttr& a : body.decl->attrs) {
+      const Setting* s = find_setting(table, a.key);
+      if (!s) continue;
+      const std::string what = fmt::format("{} of body `{}`", a.key, name);
+      if (s == &beam_setting::section && a.value && a.value->kind == AstExpr::Kind::Call)  // each dimension a length
+        for (const auto& x : a.value->args)
+          state_unit(AstAttr{a.key, x->loc, x}, s->dimension, what, out);
+      else state_unit(a, s->dimension, what, out);
+    }
     for (const ir::AstPoint& p : body.decl->points)
       state_unit(AstAttr{p.name, p.loc, p.value}, units::dim::length(), fmt::format("point `{}` of `{}`", p.name, name),
                  out);
