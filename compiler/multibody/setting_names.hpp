@@ -3,12 +3,17 @@
 // tests/unit/language_reference_test.cpp.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "units/unit.hpp"
 
 namespace mbgc::multibody::detail {
 
 std::vector<std::string> contact_setting_names();
 std::vector<std::string> tyre_setting_names();
+/// The dimension of a tyre's setting (none: a coefficient; nullopt: no such setting).
+std::optional<units::Dimension> tyre_setting_dimension(const std::string& name);
 
 }  // namespace mbgc::multibody::detail

@@ -34,12 +34,16 @@ struct TyreSetting {
   const char* name;
   double default_value;
   const char* meaning;
+  /// The unit of its value: the load, the radius and the radial stiffness
+  /// and damping have one, the Magic Formula's coefficients none (a
+  /// relaxation length is given over R0, a shift over FNOMIN).
+  units::Dimension dimension = units::Dimension::none();
 };
 const std::vector<TyreSetting> kTyreSettings = {
-    {"FNOMIN", 4000, "nominal wheel load (N)"},
-    {"UNLOADED_RADIUS", 0.3, "free tyre radius R0 (m)"},
-    {"VERTICAL_STIFFNESS", 2.0e5, "radial stiffness kz (N/m)"},
-    {"VERTICAL_DAMPING", 500, "radial damping cz (N s/m)"},
+    {"FNOMIN", 4000, "nominal wheel load (N)", units::dim::force()},
+    {"UNLOADED_RADIUS", 0.3, "free tyre radius R0 (m)", units::dim::length()},
+    {"VERTICAL_STIFFNESS", 2.0e5, "radial stiffness kz (N/m)", units::dim::force() / units::dim::length()},
+    {"VERTICAL_DAMPING", 500, "radial damping cz (N s/m)", units::dim::force() / units::dim::velocity()},
     {"LMUX", 1, "scale of the longitudinal friction (road)"},
     {"LMUY", 1, "scale of the lateral friction (road)"},
     // longitudinal, pure slip
@@ -96,6 +100,14 @@ const std::vector<TyreSetting> kTyreSettings = {
 
 
 }  // namespace
+
+std::optional<units::Dimension> tyre_setting_dimension(const std::string& name) {
+  if (name == "axis") return units::Dimension::none();
+  if (name == "profile") return units::dim::length();  // [[x1, h1], ...]
+  for (const TyreSetting& s : kTyreSettings)
+    if (name == s.name) return s.dimension;
+  return std::nullopt;
+}
 
 std::vector<std::string> tyre_setting_names() {
   std::vector<std::string> names = {"axis", "profile"};

@@ -9,6 +9,7 @@
 #include <map>
 
 #include "multibody/expander.hpp"
+#include "multibody/setting_names.hpp"
 #include "multibody/settings.hpp"
 
 namespace mbgc::multibody::detail {
@@ -51,10 +52,12 @@ void Expander::state_unit(const AstAttr& a, const std::optional<units::Dimension
   const std::function<void(const AstExpr&)> literals = [&](const AstExpr& e) {
     if (e.kind == AstExpr::Kind::Number && e.unit &&
         !(e.unit->unit.dimension.without_angle() == dimension->without_angle())) {
+      const bool number = dimension->is_none();  // a coefficient, a ratio
       diags_.error(e.unit->loc,
-                   fmt::format("the {} is {}, and {{{}}} is {}", what, units::format(*dimension), e.unit->unit.text,
-                               units::format(e.unit->unit.dimension)),
-                   fmt::format("write it in {} (or in a unit of the same dimension)", units::format(*dimension)));
+                   fmt::format("the {} is {}, and {{{}}} is {}", what, number ? "a number" : units::format(*dimension),
+                               e.unit->unit.text, units::format(e.unit->unit.dimension)),
+                   number ? std::string("write it without a unit (or {1})")
+                          : fmt::format("write it in {} (or in a unit of the same dimension)", units::format(*dimension)));
       wrong = true;
     }
     // entries of a vector or matrix, and a scaled literal (`2 * 3 {mm}`), have the setting's unit
@@ -137,6 +140,9 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     for (const auto& [key, a] : f.attrs)
       if (const Setting* s = find_setting(force_setting::kAll, key))
         state_unit(*a, s->dimension, fmt::format("{} of force `{}`", key, f.decl->name), out);
+  for (const Tyre& t : tyres_)
+    for (const auto& [key, a] : t.attrs)
+      state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name), out);
   if (gravity_) state_unit(AstAttr{"gravity", gravity_loc_, gravity_}, units::dim::velocity() / units::dim::time(),
                            "gravity", out);
 }
