@@ -96,6 +96,41 @@ std::optional<units::Dimension> quantity_dimension(const std::string& name) {
       {"normal_force", force()},
       {"friction_force", force()},
       {"slip_velocity", velocity()},
+      {"torque", torque()},
+      {"length", length()},
+      {"normal", units::Dimension::none()},
+      // a tyre's (docs/language.md, section 9)
+      {"Fx", force()},
+      {"Fy", force()},
+      {"Fz", force()},
+      {"Fx0", force()},
+      {"Fy0", force()},
+      {"Dx", force()},
+      {"Dy", force()},
+      {"Kx", force()},
+      {"Ky", force() / angle()},
+      {"contact_point", length()},
+      {"power", torque() / time()},
+      {"slip_ratio", units::Dimension::none()},
+      {"slip_angle", angle()},
+      {"alpha_y", angle()},
+      {"kappa_x", units::Dimension::none()},
+      {"deflection", length()},
+      {"centre_height", length()},
+      {"forward", units::Dimension::none()},
+      {"left", units::Dimension::none()},
+      {"Vcx", velocity()},
+      {"Vcy", velocity()},
+      {"Vsx", velocity()},
+      {"spin", angular_velocity()},
+      {"sigma_kappa", length()},
+      {"sigma_alpha", length()},
+      {"dfz", units::Dimension::none()},
+      {"mu_y", units::Dimension::none()},
+      {"Gx", units::Dimension::none()},
+      {"Gy", units::Dimension::none()},
+      {"road_height", length()},
+      {"road_slope", units::Dimension::none()},
   };
   auto dot = name.rfind('.');
   auto it = kQuantities.find(name.substr(dot == std::string::npos ? 0 : dot + 1));
@@ -140,9 +175,14 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     for (const auto& [key, a] : f.attrs)
       if (const Setting* s = find_setting(force_setting::kAll, key))
         state_unit(*a, s->dimension, fmt::format("{} of force `{}`", key, f.decl->name), out);
-  for (const Tyre& t : tyres_)
+  for (const Tyre& t : tyres_) {
     for (const auto& [key, a] : t.attrs)
       state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name), out);
+    // its quantities are signals it writes (`tyre1.Fz`), which the check does not read: their units are stated
+    const std::string prefix = t.decl->name + ".";
+    for (auto it = generated_names_.lower_bound(prefix); it != generated_names_.end() && it->starts_with(prefix); ++it)
+      if (auto d = quantity_dimension(*it)) out.push_back({Build(t.decl->loc).name(*it), *d, t.decl->loc, fmt::format("`{}`", *it), true});
+  }
   if (gravity_) state_unit(AstAttr{"gravity", gravity_loc_, gravity_}, units::dim::velocity() / units::dim::time(),
                            "gravity", out);
 }
