@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <numeric>
 
+#include "compensated.hpp"
+
 namespace mbgc::fe {
 namespace {
 
@@ -153,12 +155,9 @@ std::optional<Reduction> craig_bampton(const Mesh& mesh, const SparseMatrix& sti
   }
 
   // Orthogonalisation (eqs. 2.224–2.225): M_r x = mu K_r x on the reduced pair.
-  // K_r in long double, as the file's modal stiffness (invariants.cpp).
-  using LongMatrix = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  const LongMatrix v_l = v.cast<long double>();
-  const LongMatrix kv = Eigen::SparseMatrix<long double, Eigen::ColMajor, long>(k.cast<long double>()) * v_l;
-  Eigen::MatrixXd k_r = (v_l.transpose() * kv).cast<double>(), m_r = v.transpose() * (m * v);
-  k_r = (0.5 * (k_r + k_r.transpose())).eval();
+  // K_r compensated, as the file's modal stiffness (invariants.cpp).
+  const Eigen::MatrixXd k_r = congruence(k, v);
+  Eigen::MatrixXd m_r = v.transpose() * (m * v);
   m_r = (0.5 * (m_r + m_r.transpose())).eval();
   const Eigen::LLT<Eigen::MatrixXd> k_r_factor(k_r);
   if (k_r_factor.info() != Eigen::Success) {
