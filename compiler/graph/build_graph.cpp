@@ -1,4 +1,5 @@
 #include "graph/build_graph.hpp"
+#include "graph/element_settings.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
@@ -498,7 +499,8 @@ class Builder {
       bool has_law = false;
       bool misspelt = false;  // a setting it has none of: likely the law meant, so not reported missing too
       for (const AstAttr& a : el.attrs) {
-        if (is_law_key(n.kind, a.key)) {
+        const ElementSetting* setting = find_element_setting(n.kind, a.key);
+        if (setting && setting->role == ElementSetting::Role::Law) {
           if (el.value || has_law) {
             diags_.error(a.loc, fmt::format("{} `{}` has two constitutive laws", el.kind, n.name),
                          "give either `= value` or one law in { }, not both");
@@ -531,12 +533,12 @@ class Builder {
             check_constraint_inputs(n, a, /*signals_too=*/stabilised);
             continue;
           }
-          n.law = law_form(n.kind, a.key);
+          n.law = setting->law;
           check_law_inputs(n, a);
-        } else if (is_initial_key(n.kind, a.key) || is_penalty_key(n.kind, a.key)) {
-          // handled after the law is known
+        } else if (setting) {
+          // an initial value or a CN's settings: handled after the law is known
         } else {
-          std::vector<std::string> keys = allowed_keys(n.kind);
+          std::vector<std::string> keys = element_setting_keys(n.kind);
           std::string near = closest_name(a.key, keys);
           misspelt = true;
           diags_.error(a.loc, fmt::format("{} `{}` has no setting `{}`", el.kind, n.name, a.key),
@@ -563,11 +565,6 @@ class Builder {
     }
   }
 
-  static bool is_penalty_key(NodeKind k, const std::string& key) {
-    return k == NodeKind::CN && (key == "stiffness" || key == "damping" || key == "stabilisation" || key == "restitution" ||
-                                 key == "exponent" || key == "friction");
-  }
-
   /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
   /// e = stiffness * g + damping * f per component, an ODE instead of a multiplier.
   ///
@@ -577,7 +574,7 @@ class Builder {
   void lower_penalty(GraphNode& n, const AstElement& el, const NameLookup& lookup, std::map<std::string, Value>& locals) {
     std::optional<Value> k, d, w, e, x, mu;
     for (const AstAttr& a : el.attrs) {
-      if (!is_penalty_key(n.kind, a.key)) continue;
+      if (!is_element_setting(n.kind, a.key, ElementSetting::Role::Constraint)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
       if (a.key == "restitution" || a.key == "exponent" || a.key == "friction") {
@@ -693,46 +690,6 @@ class Builder {
     return ok;
   }
 
-  static bool is_law_key(NodeKind k, const std::string& key) {
-    switch (k) {
-      case NodeKind::R: return key == "e" || key == "f";
-      case NodeKind::C: return key == "e";
-      case NodeKind::I: return key == "f";
-      case NodeKind::CN: return key == "g";
-      default: return false;
-    }
-  }
-  static bool is_initial_key(NodeKind k, const std::string& key) {
-    if (k == NodeKind::I) return key == "p0" || key == "f0";
-    if (k == NodeKind::C) return key == "q0" || key == "e0";
-    if (k == NodeKind::Sf) return key == "rate0";
-    return false;
-  }
-  static std::vector<std::string> allowed_keys(NodeKind k) {
-    switch (k) {
-      case NodeKind::R: return {"e", "f"};
-      case NodeKind::C: return {"e", "q0", "e0"};
-      case NodeKind::I: return {"f", "p0", "f0"};
-      case NodeKind::CN: return {"g", "stiffness", "damping", "stabilisation", "restitution", "exponent", "friction"};
-      case NodeKind::Sf: return {"rate0"};
-      default: return {};
-    }
-  }
-  static LawForm law_form(NodeKind k, const std::string& key) {
-    if (k == NodeKind::R) return key == "e" ? LawForm::EffortOfFlow : LawForm::FlowOfEffort;
-    if (k == NodeKind::C) return LawForm::EffortOfState;
-    return LawForm::FlowOfState;
-  }
-  static std::string law_hint(NodeKind k, const std::string& name) {
-    switch (k) {
-      case NodeKind::R: return fmt::format("write R {} = resistance, or R {} {{ e = expression of f }}", name, name);
-      case NodeKind::C: return fmt::format("write C {} = capacitance, or C {} {{ e = expression of q }}", name, name);
-      case NodeKind::I: return fmt::format("write I {} = inertia, or I {} {{ f = expression of p }}", name, name);
-      case NodeKind::CN: return fmt::format("write CN {} {{ g = position constraint }} (add stiffness/damping for a penalty)", name);
-      default: return fmt::format("write {} {} = value", node_kind_name(k), name);
-    }
-  }
-
   /// A law may read its own input (f for e = phi(f), q for e = phi(q), ...) but not its output.
   void check_law_inputs(const GraphNode& n, const AstAttr& a) {
     std::unordered_set<int> vars;
@@ -758,7 +715,7 @@ class Builder {
   void lower_initial(GraphNode& n, const AstElement& el, const NameLookup& lookup) {
     n.initial = Value{n.dim, 1, std::vector<Expr>(static_cast<std::size_t>(n.dim), constant(0))};
     for (const AstAttr& a : el.attrs) {
-      if (!is_initial_key(n.kind, a.key)) continue;
+      if (!is_element_setting(n.kind, a.key, ElementSetting::Role::Initial)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
       if (!only_params(*v)) {

@@ -1,0 +1,60 @@
+#include "graph/element_settings.hpp"
+
+#include <fmt/format.h>
+
+namespace mbgc::graph {
+
+using ir::LawForm;
+using ir::NodeKind;
+using Role = ElementSetting::Role;
+
+const std::vector<ElementSetting>& element_settings(NodeKind k) {
+  static const std::vector<ElementSetting> r = {{"e", Role::Law, LawForm::EffortOfFlow}, {"f", Role::Law, LawForm::FlowOfEffort}};
+  static const std::vector<ElementSetting> c = {
+      {"e", Role::Law, LawForm::EffortOfState}, {"q0", Role::Initial}, {"e0", Role::Initial}};
+  static const std::vector<ElementSetting> i = {
+      {"f", Role::Law, LawForm::FlowOfState}, {"p0", Role::Initial}, {"f0", Role::Initial}};
+  static const std::vector<ElementSetting> cn = {{"g", Role::Law, LawForm::Constraint}, {"stiffness", Role::Constraint},
+                                                 {"damping", Role::Constraint},          {"stabilisation", Role::Constraint},
+                                                 {"restitution", Role::Constraint},      {"exponent", Role::Constraint},
+                                                 {"friction", Role::Constraint}};
+  static const std::vector<ElementSetting> sf = {{"rate0", Role::Initial}};
+  static const std::vector<ElementSetting> none;
+  switch (k) {
+    case NodeKind::R: return r;
+    case NodeKind::C: return c;
+    case NodeKind::I: return i;
+    case NodeKind::CN: return cn;
+    case NodeKind::Sf: return sf;
+    default: return none;
+  }
+}
+
+const ElementSetting* find_element_setting(NodeKind k, const std::string& key) {
+  for (const ElementSetting& s : element_settings(k))
+    if (key == s.key) return &s;
+  return nullptr;
+}
+
+bool is_element_setting(NodeKind k, const std::string& key, Role role) {
+  const ElementSetting* s = find_element_setting(k, key);
+  return s && s->role == role;
+}
+
+std::vector<std::string> element_setting_keys(NodeKind k) {
+  std::vector<std::string> out;
+  for (const ElementSetting& s : element_settings(k)) out.emplace_back(s.key);
+  return out;
+}
+
+std::string law_hint(NodeKind k, const std::string& name) {
+  switch (k) {
+    case NodeKind::R: return fmt::format("write R {} = resistance, or R {} {{ e = expression of f }}", name, name);
+    case NodeKind::C: return fmt::format("write C {} = capacitance, or C {} {{ e = expression of q }}", name, name);
+    case NodeKind::I: return fmt::format("write I {} = inertia, or I {} {{ f = expression of p }}", name, name);
+    case NodeKind::CN: return fmt::format("write CN {} {{ g = position constraint }} (add stiffness/damping for a penalty)", name);
+    default: return fmt::format("write {} {} = value", ir::node_kind_name(k), name);
+  }
+}
+
+}  // namespace mbgc::graph
