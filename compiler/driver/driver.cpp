@@ -24,6 +24,8 @@
 #include "sema/resolve.hpp"
 #include "units/check.hpp"
 
+#include <unistd.h>  // getpid
+
 namespace mbgc::driver {
 namespace {
 
@@ -32,8 +34,22 @@ namespace {
 /// an existing file with the same text is left untouched: a build system
 /// that checks outputs after a command (Ninja's restat, which CMake sets for
 /// custom commands) then skips recompiling a simulator when a new mbgc
-/// generates the same C++.
-bool write_atomically(const std::string& path, const std::string& text, bool keep_unchanged) {
+/// generates the same C++. A path that is not a regular file (`-o
+/// /dev/null`, a pipe) is written in place: renaming over it would replace
+/// the device with a file. The temporary's name carries the process id, so
+/// that two compilations writing the same path never share one.
+bool write_atomically(const std::string& given, const std::string& text, bool keep_unchanged) {
+  namespace fs = std::filesystem;
+  std::error_code status_error;
+  if (const auto st = fs::status(given, status_error); !status_error && fs::exists(st) && !fs::is_regular_file(st)) {
+    std::ofstream f(given, std::ios::binary);
+    return f && (f << text) && f.flush();
+  }
+  // a symbolic link keeps pointing where it did: its target is replaced
+  std::error_code link_error;
+  const std::string path = fs::is_symlink(fs::symlink_status(given, link_error)) && !link_error
+                               ? fs::weakly_canonical(given, link_error).string()
+                               : given;
   if (keep_unchanged) {
     std::ifstream existing(path, std::ios::binary);
     if (existing) {
@@ -41,7 +57,7 @@ bool write_atomically(const std::string& path, const std::string& text, bool kee
       if (old == text) return true;
     }
   }
-  std::string tmp = path + ".mbgc-tmp";
+  const std::string tmp = path + ".mbgc-tmp-" + std::to_string(::getpid());
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) return false;
