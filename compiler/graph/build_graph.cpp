@@ -496,10 +496,24 @@ class Builder {
                                                 : "give a nonlinear law instead, e.g. I m { f = p / mass(p) }");
         }
       }
-      bool has_law = false;
+      // a CN's settings, typed: the multibody layer's as written, a user's read from its braces
+      ConstraintLaw law = el.constraint.value_or(ConstraintLaw{});
+      bool has_law = law.g != nullptr;
       bool misspelt = false;  // a setting it has none of: likely the law meant, so not reported missing too
       for (const AstAttr& a : el.attrs) {
         const ElementSetting* setting = find_element_setting(n.kind, a.key);
+        if (n.kind == NodeKind::CN && setting) {
+          const bool is_g = setting->role == ElementSetting::Role::Law;
+          if (is_g && has_law) {
+            diags_.error(a.loc, fmt::format("{} `{}` has two constitutive laws", el.kind, n.name),
+                         "give either `= value` or one law in { }, not both");
+            continue;
+          }
+          has_law = has_law || is_g;
+          for (const ConstraintLaw::Field& f : ConstraintLaw::fields())
+            if (a.key == f.key) law.*f.member = a.value;
+          continue;
+        }
         if (setting && setting->role == ElementSetting::Role::Law) {
           if (el.value || has_law) {
             diags_.error(a.loc, fmt::format("{} `{}` has two constitutive laws", el.kind, n.name),
@@ -510,29 +524,12 @@ class Builder {
           auto v = lower(*a.value, with_locals, diags_);
           if (!v) continue;
           if (!(v->is_scalar() || (v->is_vector() && v->length() == n.dim))) {
-            if (n.kind == NodeKind::CN)
-              diags_.error(a.value->loc, fmt::format("the constraint g of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
-                           fmt::format("a constraintor holds one row of g per dimension of its bond: give g {} row{}, or "
-                                       "give the CN's junction dimension [{}]",
-                                       n.dim, n.dim == 1 ? "" : "s", v->is_vector() ? v->length() : v->rows));
-            else
-              diags_.error(a.value->loc, fmt::format("the law of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
-                           n.dim == 1 ? "a scalar element's law is a scalar expression"
-                                      : fmt::format("give a vector of {} components (a scalar applies to every component)", n.dim));
+            diags_.error(a.value->loc, fmt::format("the law of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
+                         n.dim == 1 ? "a scalar element's law is a scalar expression"
+                                    : fmt::format("give a vector of {} components (a scalar applies to every component)", n.dim));
             continue;
           }
           n.law_rhs = v->is_scalar() ? std::vector<Expr>(static_cast<std::size_t>(n.dim), v->items[0]) : v->items;
-          if (n.kind == NodeKind::CN) {
-            n.constraint_g = Value{n.dim, 1, n.law_rhs};
-            n.law_rhs.clear();
-            n.law = LawForm::Constraint;
-            // (a cut joint's or a contact's g may read the pose signals of bodies moved by joint coordinates)
-            const bool stabilised = std::any_of(el.attrs.begin(), el.attrs.end(), [](const AstAttr& x) {
-              return x.key == "stabilisation" || x.key == "restitution";
-            });
-            check_constraint_inputs(n, a, /*signals_too=*/stabilised);
-            continue;
-          }
           n.law = setting->law;
           check_law_inputs(n, a);
         } else if (setting) {
@@ -561,8 +558,27 @@ class Builder {
         continue;
       }
       if (is_storage(n.kind)) lower_initial(n, el, plain);
-      if (n.kind == NodeKind::CN && n.law == LawForm::Constraint) lower_penalty(n, el, plain, locals);
+      if (n.kind == NodeKind::CN) lower_constraint(n, law, with_locals, plain, locals);
     }
+  }
+
+  /// A CN: its rows g, then what holds them (lower_penalty).
+  void lower_constraint(GraphNode& n, const ConstraintLaw& law, const NameLookup& with_locals, const NameLookup& plain,
+                        std::map<std::string, Value>& locals) {
+    auto v = lower(*law.g, with_locals, diags_);
+    if (!v) return;
+    if (!(v->is_scalar() || (v->is_vector() && v->length() == n.dim))) {
+      diags_.error(law.g->loc, fmt::format("the constraint g of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
+                   fmt::format("a constraintor holds one row of g per dimension of its bond: give g {} row{}, or "
+                               "give the CN's junction dimension [{}]",
+                               n.dim, n.dim == 1 ? "" : "s", v->is_vector() ? v->length() : v->rows));
+      return;
+    }
+    n.constraint_g = Value{n.dim, 1, v->is_scalar() ? std::vector<Expr>(static_cast<std::size_t>(n.dim), v->items[0]) : v->items};
+    n.law = LawForm::Constraint;
+    // (a cut joint's or a contact's g may read the pose signals of bodies moved by joint coordinates)
+    check_constraint_inputs(n, *law.g, /*signals_too=*/law.stabilisation || law.restitution);
+    lower_penalty(n, law, plain, locals);
   }
 
   /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
@@ -571,39 +587,40 @@ class Builder {
   /// A CN with a `restitution` is a contact (a unilateral row g >= 0): with a
   /// `stiffness` (and `exponent`) a compliant Hunt-Crossley force, else a
   /// row held while it pushes (LawForm::Unilateral, Compliant).
-  void lower_penalty(GraphNode& n, const AstElement& el, const NameLookup& lookup, std::map<std::string, Value>& locals) {
+  void lower_penalty(GraphNode& n, const ConstraintLaw& law, const NameLookup& lookup, std::map<std::string, Value>& locals) {
+    using L = ConstraintLaw;
     std::optional<Value> k, d, w, e, x, mu;
-    for (const AstAttr& a : el.attrs) {
-      if (!is_element_setting(n.kind, a.key, ElementSetting::Role::Constraint)) continue;
-      auto v = lower(*a.value, lookup, diags_);
+    for (const L::Field& f : L::fields()) {
+      const AstExprPtr& value = law.*f.member;
+      if (!value || f.member == &L::g) continue;
+      auto v = lower(*value, lookup, diags_);
       if (!v) return;
-      if (a.key == "restitution" || a.key == "exponent" || a.key == "friction") {
-        if (!v->is_scalar() || !only_params(*v)) {
-          diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name),
-                       a.key == "restitution" ? "restitution = 0.8: the normal speed after an impact is -0.8 times the one before"
-                       : a.key == "exponent"  ? "exponent = 1.5 (Hertz: a sphere on a plane)"
-                                              : "friction = 0.3: Coulomb's coefficient");
+      const bool constant = v->is_scalar() && only_params(*v);
+      if (f.member == &L::restitution || f.member == &L::exponent || f.member == &L::friction) {
+        if (!constant) {
+          diags_.error(value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", f.key, n.name),
+                       f.member == &L::restitution ? "restitution = 0.8: the normal speed after an impact is -0.8 times the one before"
+                       : f.member == &L::exponent  ? "exponent = 1.5 (Hertz: a sphere on a plane)"
+                                                   : "friction = 0.3: Coulomb's coefficient");
           return;
         }
-        (a.key == "restitution" ? e : a.key == "exponent" ? x : mu) = v;
-        continue;
-      }
-      if (a.key == "stabilisation") {
-        if (!v->is_scalar() || !only_params(*v)) {
-          diags_.error(a.value->loc, fmt::format("the stabilisation of `{}` must be a constant scalar (rad/s)", n.name),
+        (f.member == &L::restitution ? e : f.member == &L::exponent ? x : mu) = v;
+      } else if (f.member == &L::stabilisation) {
+        if (!constant) {
+          diags_.error(value->loc, fmt::format("the stabilisation of `{}` must be a constant scalar (rad/s)", n.name),
                        "stabilisation = 20 keeps g'' + 2 w g' + w^2 g = 0 with w = 20 rad/s");
           return;
         }
         w = v;
-        continue;
+      } else {  // a penalty's stiffness or damping
+        if (!constant) {
+          diags_.error(value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", f.key, n.name),
+                       fmt::format("the penalty effort is e = stiffness * g + damping * f with constant coefficients, e.g. {} = 1e6",
+                                   f.key));
+          return;
+        }
+        (f.member == &L::stiffness ? k : d) = v;
       }
-      if (!v->is_scalar() || !only_params(*v)) {
-        diags_.error(a.value->loc, fmt::format("the {} of `{}` must be a constant scalar (numbers and parameters)", a.key, n.name),
-                     fmt::format("the penalty effort is e = stiffness * g + damping * f with constant coefficients, e.g. {} = 1e6",
-                                 a.key));
-        return;
-      }
-      (a.key == "stiffness" ? k : d) = v;
     }
     if (mu && (!e || k)) {
       diags_.error(n.loc, fmt::format("CN `{}` has a friction but is not a unilateral contact", n.name),
@@ -662,14 +679,14 @@ class Builder {
   }
 
   /// g must be a function of states (the positions whose rate the CN's flow is), not of efforts or flows.
-  void check_constraint_inputs(const GraphNode& n, const AstAttr& a, bool signals_too) {
+  void check_constraint_inputs(const GraphNode& n, const AstExpr& g, bool signals_too) {
     for (const Expr& e : n.constraint_g.items) {
       std::unordered_set<int> vars;
       collect_vars(e, vars);
       for (int id : vars) {
         VarKind k = g_.vars[static_cast<std::size_t>(id)].kind;
         if (k != VarKind::State && !(signals_too && k == VarKind::Signal)) {
-          diags_.error(a.value->loc, fmt::format("the constraint g of `{}` depends on `{}`, which is not a state", n.name, g_.vars[static_cast<std::size_t>(id)].name),
+          diags_.error(g.loc, fmt::format("the constraint g of `{}` depends on `{}`, which is not a state", n.name, g_.vars[static_cast<std::size_t>(id)].name),
                        "g is a position-level constraint: write it in terms of displacements (a C element's q)");
           return;
         }

@@ -14,10 +14,14 @@ const std::vector<ElementSetting>& element_settings(NodeKind k) {
       {"e", Role::Law, LawForm::EffortOfState}, {"q0", Role::Initial}, {"e0", Role::Initial}};
   static const std::vector<ElementSetting> i = {
       {"f", Role::Law, LawForm::FlowOfState}, {"p0", Role::Initial}, {"f0", Role::Initial}};
-  static const std::vector<ElementSetting> cn = {{"g", Role::Law, LawForm::Constraint}, {"stiffness", Role::Constraint},
-                                                 {"damping", Role::Constraint},          {"stabilisation", Role::Constraint},
-                                                 {"restitution", Role::Constraint},      {"exponent", Role::Constraint},
-                                                 {"friction", Role::Constraint}};
+  // a CN's: its rows g, then what holds them (ir::ConstraintLaw, whose fields name them)
+  static const std::vector<ElementSetting> cn = [] {
+    std::vector<ElementSetting> out;
+    for (const ir::ConstraintLaw::Field& f : ir::ConstraintLaw::fields())
+      out.push_back(f.member == &ir::ConstraintLaw::g ? ElementSetting{f.key, Role::Law, LawForm::Constraint}
+                                                      : ElementSetting{f.key, Role::Constraint});
+    return out;
+  }();
   static const std::vector<ElementSetting> sf = {{"rate0", Role::Initial}};
   static const std::vector<ElementSetting> none;
   switch (k) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ir/expanded.hpp"
 #include "ir/graph.hpp"
 
 namespace mbgc::graph {

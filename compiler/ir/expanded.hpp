@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -53,6 +54,34 @@ struct TreeTag {
   std::string node, parent;
 };
 
+/// A constraintor's settings, typed: what holds its rows `g`, a penalty
+/// (stiffness, damping), a Baumgarte rate (a cut joint's, a unilateral
+/// contact's stabilisation) or a contact's law (restitution, and a compliant
+/// one's stiffness and exponent, a unilateral one's friction). The
+/// multibody layer writes its joints' and contacts' CNs with it; a user's CN
+/// gives the same settings in braces, read into it by name (fields()).
+struct ConstraintLaw {
+  AstExprPtr g, stiffness, damping, stabilisation, restitution, exponent, friction;
+
+  struct Field {
+    const char* key;  // as a CN's braces name it
+    AstExprPtr ConstraintLaw::*member;
+  };
+  /// Every setting, `g` first, in the order they are read and printed.
+  static const std::vector<Field>& fields() {
+    static const std::vector<Field> all = {
+        {"g", &ConstraintLaw::g},
+        {"stiffness", &ConstraintLaw::stiffness},
+        {"damping", &ConstraintLaw::damping},
+        {"stabilisation", &ConstraintLaw::stabilisation},
+        {"restitution", &ConstraintLaw::restitution},
+        {"exponent", &ConstraintLaw::exponent},
+        {"friction", &ConstraintLaw::friction},
+    };
+    return all;
+  }
+};
+
 struct ExpandedElement : AstElement {
   /// An I whose matrix depends on the configuration (a flexible body's mass
   /// matrix M(eta)), written only together with the efforts dT/deta that keep
@@ -67,6 +96,9 @@ struct ExpandedElement : AstElement {
   /// written by the user: its equations are not read for units, which that
   /// layer's folded constants no longer carry.
   bool generated = false;
+  /// A CN the multibody layer writes: its settings (a user's CN has them in
+  /// `attrs`, by name).
+  std::optional<ConstraintLaw> constraint = std::nullopt;
 };
 
 struct ExpandedJunction : AstJunction {
@@ -96,7 +128,7 @@ struct ExpandedProgram {
 };
 
 /// A user's element as resolve reads it, none of the extensions set.
-inline ExpandedElement as_expanded(const AstElement& e) { return ExpandedElement{e, false, {}, {}, false}; }
+inline ExpandedElement as_expanded(const AstElement& e) { return ExpandedElement{e, false, {}, {}, false, std::nullopt}; }
 
 /// A user's statement as resolve reads it, none of the extensions set;
 /// false for the statements the expansion consumes (bodies, joints,

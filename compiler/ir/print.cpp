@@ -90,7 +90,12 @@ static void ast_stmts(std::string& out, const std::vector<Stmt>& stmts, int inde
           else if constexpr (std::is_base_of_v<AstElement, T>) {
             out += fmt::format("{}{} {}", pad, st.kind, st.name);
             if (st.value) out += " = " + ast_expr(*st.value);
-            if (!st.attrs.empty()) out += " " + attrs(st.attrs);
+            std::vector<AstAttr> settings = st.attrs;
+            if constexpr (std::is_same_v<T, ExpandedElement>)
+              if (st.constraint)  // printed as a user would write it
+                for (const ConstraintLaw::Field& f : ConstraintLaw::fields())
+                  if (const AstExprPtr& v = (*st.constraint).*f.member) settings.push_back({f.key, v->loc, v});
+            if (!settings.empty()) out += " " + attrs(settings);
             out += "\n";
           } else if constexpr (std::is_base_of_v<AstJunction, T>) {
             std::vector<std::string> in, o;

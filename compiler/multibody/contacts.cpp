@@ -313,18 +313,20 @@ void Expander::emit_contact(const Contact& c) {
   };
   rates_into(B, cn + ".ca", rows_vec, frame_of(c.a, a), cn + ".c", true, true);
   rates_into(B, cn + ".cb", rows_vec, frame_of(c.b, b), cn + ".c", true, true);
-  std::vector<AstAttr> law = {kv("g", rows_vec, B.loc()), kv("restitution", B.name(cn + ".restitution"), B.loc())};
+  ir::ConstraintLaw law;
+  law.g = rows_vec;
+  law.restitution = B.name(cn + ".restitution");
   if (c.strategy == ContactStrategy::Compliant) {
     param(B, cn + ".stiffness", setting("stiffness", nullptr));
     param(B, cn + ".exponent", setting("exponent", B.num(1.5)));
-    law.push_back(kv("stiffness", B.name(cn + ".stiffness"), B.loc()));
-    law.push_back(kv("exponent", B.name(cn + ".exponent"), B.loc()));
+    law.stiffness = B.name(cn + ".stiffness");
+    law.exponent = B.name(cn + ".exponent");
   } else {
     param(B, cn + ".stabilisation", setting("stabilisation", B.num(20)));
-    law.push_back(kv("stabilisation", B.name(cn + ".stabilisation"), B.loc()));
-    if (friction) law.push_back(kv("friction", B.name(cn + ".friction"), B.loc()));
+    law.stabilisation = B.name(cn + ".stabilisation");
+    if (friction) law.friction = B.name(cn + ".friction");
   }
-  element(B, "CN", cn + ".cn", nullptr, law);
+  constraint(B, cn + ".cn", std::move(law));
   // The push (>= 0): the CN's effort, signed so that it parts the bodies
   // (power e f into the CN is -push * g'); the friction likewise.
   E effort = B.name(cn + ".cn.e");

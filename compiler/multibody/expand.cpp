@@ -65,6 +65,11 @@ void Expander::element(const Build& B, const std::string& kind, const std::strin
   generated_.push_back(std::move(el));
 }
 
+void Expander::constraint(const Build& B, const std::string& name, ir::ConstraintLaw law) {
+  element(B, "CN", name, nullptr);
+  std::get<ir::ExpandedElement>(generated_.back()).constraint = std::move(law);
+}
+
 void Expander::junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out) {
   generated_names_.insert(name);
   ir::ExpandedJunction j;

@@ -71,6 +71,8 @@ class Expander {
   void param(const Build& B, const std::string& name, E value);
   void property(const Build& B, const std::string& name, E value);
   void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
+  /// A CN `name` holding `law.g` as `law` says (ir::ConstraintLaw).
+  void constraint(const Build& B, const std::string& name, ir::ConstraintLaw law);
   void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
   void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt);
   void signal(const Build& B, const std::string& name, E value, E rate = nullptr);

@@ -183,13 +183,14 @@ void Expander::emit_joint(Joint& j) {
   junction(B, '0', jn + ".c", k, {}, {jn + ".cn"});
   rates_into(B, jn + ".ca", gvec, A, jn + ".c", true, true);
   rates_into(B, jn + ".cb", gvec, Bf, jn + ".c", true, true);
-  std::vector<AstAttr> cn = {kv("g", gvec, d.loc)};
+  ir::ConstraintLaw law;
+  law.g = gvec;
   if (j.strategy == Strategy::Coordinates) {
     // A cut joint on a tree in joint coordinates: its rows' multipliers keep
     // g'' + 2 w g' + w^2 g = 0 (Baumgarte, critically damped at w rad/s), an
     // acceleration-level condition solved with the tree's accelerations.
     param(B, jn + ".stabilisation", setting_or(j, joint_setting::stabilisation, B.num(20)));
-    cn.push_back(kv("stabilisation", B.name(jn + ".stabilisation"), d.loc));
+    law.stabilisation = B.name(jn + ".stabilisation");
   }
   if (j.strategy == Strategy::Penalty) {
     // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
@@ -199,10 +200,10 @@ void Expander::emit_joint(Joint& j) {
     E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
     param(B, jn + ".stiffness", setting_or(j, joint_setting::stiffness, B.op('*', m, B.num(1e6))));
     param(B, jn + ".damping", setting_or(j, joint_setting::damping, B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
-    cn.push_back(kv("stiffness", B.name(jn + ".stiffness"), d.loc));
-    cn.push_back(kv("damping", B.name(jn + ".damping"), d.loc));
+    law.stiffness = B.name(jn + ".stiffness");
+    law.damping = B.name(jn + ".damping");
   }
-  element(B, "CN", jn + ".cn", nullptr, cn);
+  constraint(B, jn + ".cn", std::move(law));
   if (given(j, joint_setting::motion)) {
     // the prescribed motion's explicit time dependence enters the rate as a flow source
     element(B, "Sf", jn + ".motion", B.call("partial_t", {gvec}));
