@@ -82,13 +82,15 @@ class Emitter {
     }
     if (!s_.constraints.empty()) constraint_functions(c);
     std::optional<EnergyMethods> energy;
-    if (shares_witness_values()) witness_values(c);
-    if (s_.energy.available)
+    if (s_.energy.available) {
+      const std::vector<Expr> stored = {stored_energy_value(s_)}, powers = power_values(s_);
+      if (shares_witness_values()) witness_values(c, stored, powers);
       energy = EnergyMethods{
           values_at("STORED ENERGY: H at (t, y), every linear storage's (the energy witness).", "stored_energy", "out",
-                    {stored_energy_value(s_)}, s_.for_energy, "the stored energy", {}, true),
+                    stored, s_.for_energy, "the stored energy", {}, true),
           values_at("POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).",
-                    "power", "out", power_values(s_), s_.for_power, "the powers", {}, true)};
+                    "power", "out", powers, s_.for_power, "the powers", {}, true)};
+    }
     add_energy_methods(c, s_, where_fn(), std::move(energy));
     c.public_methods.push_back({"TERMINAL: nothing to do at the end of a run.",
                                 "void terminal(double t, const double* y) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)y;")}});
@@ -406,19 +408,19 @@ class Emitter {
   }
 
   // ---- what the energy witness's two methods compute alike (codegen/shared_values) ----
-  /// Whether witness_values() is written: with the energy witness, where the
+  /// Whether the energy witness's methods share witness_values(): where the
   /// methods' bodies are outlined (--outline always, or auto on large
   /// dynamics), so that the file is written compactly.
   bool shares_witness_values() const {
-    if (!s_.energy.available || opt_.outline == EmitOptions::Outline::never) return false;
+    if (opt_.outline == EmitOptions::Outline::never) return false;
     return opt_.outline == EmitOptions::Outline::always || outline_.large();
   }
 
   /// WITNESS VALUES: the assignments power() and stored_energy() need, once
-  /// per call of each (a private method).
-  void witness_values(CppClass& c) {
-    std::vector<Expr> read = power_values(s_);
-    read.push_back(stored_energy_value(s_));
+  /// per call of each (a private method); `stored` and `powers` are their results.
+  void witness_values(CppClass& c, const std::vector<Expr>& stored, const std::vector<Expr>& powers) {
+    std::vector<Expr> read = powers;
+    read.insert(read.end(), stored.begin(), stored.end());
     witness_ = find_shared_values(s_, {&s_.for_power, &s_.for_energy}, read);
     if (witness_.empty()) return;
     const char* y = s_.dae ? "y" : "x";

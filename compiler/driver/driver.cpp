@@ -46,10 +46,10 @@ bool write_atomically(const std::string& given, const std::string& text, bool ke
     return f && (f << text) && f.flush();
   }
   // a symbolic link keeps pointing where it did: its target is replaced
+  std::string path = given;
   std::error_code link_error;
-  const std::string path = fs::is_symlink(fs::symlink_status(given, link_error)) && !link_error
-                               ? fs::weakly_canonical(given, link_error).string()
-                               : given;
+  if (fs::is_symlink(fs::symlink_status(given, link_error)) && !link_error)
+    if (fs::path target = fs::weakly_canonical(given, link_error); !link_error) path = target.string();
   if (keep_unchanged) {
     std::ifstream existing(path, std::ios::binary);
     if (existing) {
