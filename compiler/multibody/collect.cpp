@@ -318,7 +318,7 @@ void Expander::add_force(const AstJoint& f) {
     if (body.particle && fe.attrs.count("torque"))
       diags_.error(fe.attrs.at("torque")->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
                    "give the body an inertia, or remove the torque");
-    if (!body.ground) loads_[sd->body].push_back(f.name);
+    if (!body.ground) loads_[sd->body].push_back(ForceSym(f.name));
   }
   if (!diags_.has_errors()) forces_.push_back(fe);
 }

@@ -171,7 +171,7 @@ void Expander::add_contact(const AstJoint& c) {
                  "add friction = mu, or remove slip_speed");
   if (given("friction") && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
     for (const Side* sd : {&contact.a, &contact.b})
-      if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(c.name + ".friction");
+      if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(LoadSym(Sym::legacy(c.name + ".friction")));
   if (!diags_.has_errors()) contacts_.push_back(std::move(contact));
 }
 
@@ -355,9 +355,9 @@ void Expander::emit_contact(const Contact& c) {
     E eps = B.name(cn + ".slip_speed");
     E scale = B.call("sqrt", {B.op('+', B.dot(tangential, tangential), B.op('*', eps, eps))});
     friction_force = B.op('*', B.op('/', B.neg(B.op('*', B.name(cn + ".friction"), push)), scale), tangential);
-    apply_load(B, cn + ".friction.on_" + c.a.body, c.a, friction_force,
+    apply_load(B, LoadSym(Sym::legacy(cn + ".friction")), c.a, friction_force,
                B.call("cross", {B.op('-', point, pa), friction_force}), 1.0);
-    apply_load(B, cn + ".friction.on_" + c.b.body, c.b, friction_force,
+    apply_load(B, LoadSym(Sym::legacy(cn + ".friction")), c.b, friction_force,
                B.call("cross", {B.op('-', point, pb), friction_force}), -1.0);
   }
   quantity_[cn + ".friction_force"] = friction_force;

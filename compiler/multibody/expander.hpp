@@ -78,6 +78,27 @@ class Expander {
   void signal(const Build& B, const std::string& name, E value, E rate = nullptr);
   void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {});
   void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to);
+  // The same, named by their symbols (symbols.hpp).
+  void param(const Build& B, const Sym& name, E value) { param(B, name.str(), std::move(value)); }
+  void property(const Build& B, const Sym& name, E value) { property(B, name.str(), std::move(value)); }
+  void element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs = {}) {
+    element(B, kind, name.str(), std::move(value), std::move(attrs));
+  }
+  void constraint(const Build& B, const Sym& name, ir::ConstraintLaw law) { constraint(B, name.str(), std::move(law)); }
+  void junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out) {
+    junction(B, type, name.str(), dim, strs(in), strs(out));
+  }
+  void bond(const Build& B, const Sym& from, const Sym& to, std::optional<int> dim = std::nullopt) { bond(B, from.str(), to.str(), dim); }
+  void signal(const Build& B, const Sym& name, E value, E rate = nullptr) { signal(B, name.str(), std::move(value), std::move(rate)); }
+  void junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out = {}) {
+    junction_(B, name.str(), strs(in), strs(out));
+  }
+  void named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to) { named_bond(B, name.str(), from.str(), to.str()); }
+  static std::vector<std::string> strs(const std::vector<Sym>& syms) {
+    std::vector<std::string> out;
+    for (const Sym& s : syms) out.push_back(s.str());
+    return out;
+  }
 
   // ---- 1. collect and check bodies, joints, force elements and settings (collect.cpp; contacts: contacts.cpp)
   void collect(const AstProgram& in);
@@ -169,7 +190,7 @@ class Expander {
   // ---- 5. force elements (forces.cpp)
   std::pair<E, E> world_point(const Build& B, const Side& s);
   void emit_force(const ForceElement& f);
-  void apply_load(const Build& B, const std::string& base, const Side& s, E force, E torque, double sign);
+  void apply_load(const Build& B, const LoadSym& source, const Side& s, E force, E torque, double sign);
 
   // ---- 5b. contacts (contacts.cpp)
   void add_contact(const AstJoint& c);
@@ -212,7 +233,7 @@ class Expander {
   std::vector<ForceElement> forces_;
   std::vector<Contact> contacts_;
   std::vector<Tyre> tyres_;
-  std::map<std::string, std::vector<std::string>> loads_;  // body -> force elements acting on it
+  std::map<std::string, std::vector<LoadSym>> loads_;  // body -> what pushes on it (force elements, friction, tyres)
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
   struct CoordinateValues { E angle, rate, displacement, displacement_rate; };

@@ -38,7 +38,7 @@ void Expander::emit_flexible(const Body& body) {
   std::vector<std::string> nu_in;
   if (gravity_) nu_in.push_back(n + ".weight");
   if (auto it = loads_.find(n); it != loads_.end())
-    for (const std::string& f : it->second) nu_in.push_back(f + ".on_" + n);
+    for (const LoadSym& f : it->second) nu_in.push_back(f.on(n).str());
   std::vector<std::string> nu_out = {n + ".M", n + ".ejs"};
   if (own_states) nu_out.insert(nu_out.end(), {n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
   junction(B, '1', n + ".nu", N, nu_in, nu_out);

@@ -18,7 +18,8 @@ namespace mbgc::multibody::detail {
 /// World position and velocity of a force element's point.
 std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
   const Body& body = bodies_.at(s.body);
-  E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
+  const BodySym n(s.body);
+  E local = s.point.empty() ? B.vec(0, 0, 0) : B.ref(n.point(s.point));
   if (body.ground) return {local, B.vec(0, 0, 0)};
   E r = position(B, s.body), v = velocity(B, s.body);
   if (body.particle) return {r, v};
@@ -27,12 +28,12 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
     return flexible_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : body.flex->point(B, s.body, s.point, eta));
   }
   E R = rotation(B, s.body);
-  E arm = B.op('-', local, B.name(s.body + ".com"));
-  return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.name(s.body + ".w.f"), arm})))};
+  E arm = B.op('-', local, B.ref(n.com()));
+  return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.ref(n.w().flow()), arm})))};
 }
 
 void Expander::emit_force(const ForceElement& f) {
-  const std::string& fn = f.decl->name;
+  const ForceSym fn(f.decl->name);
   Build B(f.decl->loc);
   auto user = [&](const char* key) -> E {
     auto it = f.attrs.find(key);
@@ -41,47 +42,49 @@ void Expander::emit_force(const ForceElement& f) {
   auto [pa, va] = world_point(B, f.a);
   auto [pb, vb] = world_point(B, f.b);
   E d = B.op('-', pb, pa);
-  quantity_[fn + ".length"] = B.call("norm", {d});
+  quantity_[fn.quantity("length").str()] = B.call("norm", {d});
   E force = user("force");
   if (E k = user("stiffness"), c = user("damping"); k || c) {
-    if (k) param(B, fn + ".stiffness", k);
-    if (c) param(B, fn + ".damping", c);
-    if (E l0 = user("length")) param(B, fn + ".length0", l0);
+    if (k) param(B, fn.stiffness(), k);
+    if (c) param(B, fn.damping(), c);
+    if (E l0 = user("length")) param(B, fn.length0(), l0);
     E len = B.call("norm", {d}), u = B.op('/', d, len);
     E tension = B.num(0);
-    if (k) tension = B.op('*', B.name(fn + ".stiffness"), B.op('-', len, B.name(fn + ".length0")));
-    if (c) tension = B.op('+', tension, B.op('*', B.name(fn + ".damping"), B.dot(u, B.op('-', vb, va))));
+    if (k) tension = B.op('*', B.ref(fn.stiffness()), B.op('-', len, B.ref(fn.length0())));
+    if (c) tension = B.op('+', tension, B.op('*', B.ref(fn.damping()), B.dot(u, B.op('-', vb, va))));
     E spring = B.neg(B.op('*', tension, u));
     force = force ? B.op('+', force, spring) : spring;
   }
   if (!force) force = B.vec(0, 0, 0);
   E torque = user("torque");
-  quantity_[fn + ".force"] = force;
-  if (torque) quantity_[fn + ".torque"] = torque;
-  apply_load(B, fn + ".on_" + f.a.body, f.a, force, torque, -1.0);
-  apply_load(B, fn + ".on_" + f.b.body, f.b, force, torque, 1.0);
+  quantity_[fn.quantity("force").str()] = force;
+  if (torque) quantity_[fn.quantity("torque").str()] = torque;
+  apply_load(B, fn, f.a, force, torque, -1.0);
+  apply_load(B, fn, f.b, force, torque, 1.0);
 }
 
 /// `sign` times a world force at side s's point and a world torque (may be
-/// null) on its body, as effort sources `base_f`, `base_t` (a flexible body:
-/// one source `base` on its whole junction); nothing on ground.
-void Expander::apply_load(const Build& B, const std::string& base, const Side& s, E force, E torque, double sign) {
+/// null) on its body, as the effort sources of `source` on it (LoadSym::on:
+/// a force and a torque, or on a flexible body one source on its whole
+/// junction); nothing on ground.
+void Expander::apply_load(const Build& B, const LoadSym& source, const Side& s, E force, E torque, double sign) {
   const Body& body = bodies_.at(s.body);
   if (body.ground) return;
   auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
   if (body.flex) {
-    element(B, "Se", base, signed_(flexible_load(B, s.body, s.point, force, torque)));
+    element(B, "Se", source.on(s.body), signed_(flexible_load(B, s.body, s.point, force, torque)));
     return;
   }
-  element(B, "Se", base + "_f",
+  element(B, "Se", source.on(s.body, 'f'),
           signed_(body_frame_velocity(body) ? B.op('*', B.call("transpose", {rotation(B, s.body)}), force) : force));
   if (body.particle) return;
   E Rt = B.call("transpose", {rotation(B, s.body)});
-  E local = s.point.empty() ? B.vec(0, 0, 0) : B.name(s.body + "." + s.point);
-  E arm = B.op('-', local, B.name(s.body + ".com"));
+  const BodySym n(s.body);
+  E local = s.point.empty() ? B.vec(0, 0, 0) : B.ref(n.point(s.point));
+  E arm = B.op('-', local, B.ref(n.com()));
   E moment = B.call("cross", {arm, B.op('*', Rt, force)});
   if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
-  element(B, "Se", base + "_t", signed_(moment));
+  element(B, "Se", source.on(s.body, 't'), signed_(moment));
 }
 
 }  // namespace mbgc::multibody::detail

@@ -155,7 +155,7 @@ void Expander::add_tyre(const AstJoint& t) {
       diags_.error(it->second->value->loc, fmt::format("{} of tyre `{}` is {}", key, t.name, *v), fmt::format("{} must be > 0", key));
   }
   if (diags_.has_errors()) return;
-  loads_[wheel->body].push_back(t.name);  // its loads `t.on_<wheel>_f`, `_t` (apply_load)
+  loads_[wheel->body].push_back(LoadSym(Sym::legacy(t.name)));  // its loads `t.on_<wheel>_f`, `_t` (apply_load)
   tyres_.push_back(std::move(tyre));
 }
 
@@ -323,7 +323,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   quantity_[tn + ".contact_point"] = sub(centre, mul(hc, n));
   // the power of the road's force on the wheel: F . v of the wheel's material point at the contact
   quantity_[tn + ".power"] = B.dot(force, add(v_centre, B.call("cross", {omega, mul(B.neg(hc), n)})));
-  apply_load(B, tn + ".on_" + wheel, tyre.wheel, force, torque, 1.0);
+  apply_load(B, LoadSym(Sym::legacy(tn)), tyre.wheel, force, torque, 1.0);
 }
 
 /// A 3-vector as three signals `name[1..3]` (vectors cannot be signals), the

@@ -1,0 +1,122 @@
+// multibody/symbols.hpp — the names of what the multibody layer writes.
+//
+// Every parameter, signal, element, junction and bond the layer writes is
+// named here, once, by the entity it belongs to: `BodySym(n).mass()` is the
+// parameter `n.mass`, `BodySym(n).v()` the junction of its velocity. The
+// fragments refer to one another only through these symbols (Build::ref,
+// and the Expander's writers take them), never by building a name, so that
+// what one fragment reads is what another wrote. The other kinds' symbols:
+// flexible_symbols.hpp, joint_symbols.hpp, contact_symbols.hpp.
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+
+namespace mbgc::multibody::detail {
+
+/// A name the layer writes or reads: a parameter, a signal, an element, a
+/// junction, a bond, or one of their variables.
+class Sym {
+ public:
+  const std::string& str() const { return name_; }
+
+  // The variables the graph gives an element or a junction.
+  Sym effort() const { return part("e"); }
+  Sym flow() const { return part("f"); }
+  Sym momentum() const { return part("p"); }      // an I's state
+  Sym displacement() const { return part("q"); }  // a C's state
+  /// End k (1 or 2) of a two-port (MTF, TF, GY), as a bond names it.
+  Sym port(int k) const { return part(fmt::format("p{}", k)); }
+
+  /// Inside an element's own law: its flow and its displacement.
+  static Sym own_flow() { return Sym("f"); }
+  static Sym own_displacement() { return Sym("q"); }
+  /// The built-in constant.
+  static Sym pi() { return Sym("pi"); }
+  /// The gravity vector (`gravity = [...]`, world frame).
+  static Sym gravity() { return Sym("gravity"); }
+  /// A point the user declared on ground.
+  static Sym ground_point(const std::string& point) { return Sym("ground." + point); }
+
+  bool operator==(const Sym&) const = default;
+
+  /// TRANSITION: a name built elsewhere, while the layer's files move to
+  /// their symbols; removed once none is left.
+  static Sym legacy(std::string name) { return Sym(std::move(name)); }
+
+ protected:
+  /// An entity's own name, as its declaration gives it.
+  explicit Sym(std::string name) : name_(std::move(name)) {}
+  /// A name the entity owns: `entity.what`.
+  Sym part(const std::string& what) const { return Sym(name_ + "." + what); }
+
+ private:
+  std::string name_;
+};
+
+/// What pushes on a body: a force element, a contact's friction, a tyre.
+/// Its load on body `b` is one effort source on a flexible body's junction
+/// (`on(b)`), a force and a torque on a rigid one's (`on(b, 'f')`, `on(b, 't')`).
+class LoadSym : public Sym {
+ public:
+  explicit LoadSym(const Sym& source) : Sym(source) {}
+
+ protected:
+  explicit LoadSym(const std::string& source) : Sym(source) {}
+
+ public:
+  Sym on(const std::string& body) const { return part("on_" + body); }
+  Sym on(const std::string& body, char part_) const { return part(fmt::format("on_{}_{}", body, part_)); }
+};
+
+/// A body: its properties, its bond-graph fragment, its pose.
+class BodySym : public Sym {
+ public:
+  explicit BodySym(const std::string& body) : Sym(body) {}
+
+  // properties
+  Sym mass() const { return part("mass"); }
+  Sym com() const { return part("com"); }
+  Sym inertia() const { return part("inertia"); }
+  Sym point(const std::string& p) const { return part(p); }
+  // initial values
+  Sym r0() const { return part("r0"); }
+  Sym v0() const { return part("v0"); }
+  Sym q0() const { return part("q0"); }
+  Sym w0() const { return part("w0"); }
+  // the fragment: junctions of the velocity and the angular velocity, their
+  // inertias, the position and quaternion states, the weight, the Euler
+  // junction structures, the quaternion's rate
+  Sym v() const { return part("v"); }
+  Sym w() const { return part("w"); }
+  Sym m() const { return part("m"); }
+  Sym J() const { return part("J"); }
+  Sym r() const { return part("r"); }
+  Sym q() const { return part("q"); }
+  Sym weight() const { return part("weight"); }
+  Sym ejs() const { return part("ejs"); }
+  Sym ejs_v() const { return part("ejs_v"); }
+  Sym qrate() const { return part("qrate"); }
+  /// Moved by joint coordinates: its pose as signals of the tree joint
+  /// (position r1..r3, quaternion q1..q4, rotation matrix R11..R33).
+  Sym pose_r(int k) const { return part(fmt::format("pose.r{}", k)); }
+  Sym pose_q(int k) const { return part(fmt::format("pose.q{}", k)); }
+  Sym pose_R(int r, int c) const { return part(fmt::format("pose.R{}{}", r, c)); }
+  /// Drawn for --animate: the pose of the drawing's origin.
+  Sym drawing() const { return part("drawing"); }
+};
+
+/// A force element (`force f (a, b) { ... }`): its settings as parameters,
+/// its loads on the two bodies (LoadSym), the quantities users read.
+class ForceSym : public LoadSym {
+ public:
+  explicit ForceSym(const std::string& force) : LoadSym(force) {}
+  Sym stiffness() const { return part("stiffness"); }
+  Sym damping() const { return part("damping"); }
+  Sym length0() const { return part("length0"); }
+  Sym quantity(const std::string& q) const { return part(q); }  // `length`, `force`, `torque`
+};
+
+}  // namespace mbgc::multibody::detail
