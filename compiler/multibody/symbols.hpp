@@ -108,6 +108,18 @@ class BodySym : public Sym {
   Sym drawing() const { return part("drawing"); }
 };
 
+/// A flexible body: a body whose field adds modal coordinates eta (the
+/// floating-frame fragment, flexible_body.cpp; what each kind adds of its
+/// own: flexible_symbols.hpp).
+class FlexibleSym : public BodySym {
+ public:
+  explicit FlexibleSym(const std::string& body) : BodySym(body) {}
+  Sym eta() const { return part("eta"); }        // the C of the modal coordinates (its state: eta().displacement())
+  Sym etadot() const { return part("etadot"); }  // the 1-junction of their rates
+  Sym nu() const { return part("nu"); }          // the 1-junction of the body-frame velocities and the rates
+  Sym M() const { return part("M"); }            // the I of the whole mass matrix
+};
+
 /// A force element (`force f (a, b) { ... }`): its settings as parameters,
 /// its loads on the two bodies (LoadSym), the quantities users read.
 class ForceSym : public LoadSym {
