@@ -24,6 +24,7 @@
 #include "multibody/build.hpp"
 #include "multibody/expand.hpp"
 #include "multibody/joint_kind.hpp"
+#include "multibody/joint_symbols.hpp"
 #include "multibody/model.hpp"
 #include "multibody/settings.hpp"
 
@@ -156,11 +157,19 @@ class Expander {
   void flexible_quantities(const Build& B, const Body& body);
 
   // ---- 3. joints as constraint rows: lagrange and penalty (joint_rows.cpp)
-  Frame frame(const Build& B, const Joint& j, const Side& s, const std::string& tag);
+  /// The joint frame on side 'a' or 'b' (`s`), in world axes.
+  Frame frame(const Build& B, const Joint& j, const Side& s, char side);
   void joint_params(const Build& B, const Joint& j);
   std::vector<E> rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
-  void rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
+  void rates_into(const Build& B, const std::function<Sym(char)>& mtf, E rows_vec, const Frame& f, const Sym& sum,
                   bool towards_sum, bool translational);
+  /// TRANSITION: the MTFs named `prefix` + 't', 'r', 'e' (contacts.cpp);
+  /// removed once its callers name them by their symbols.
+  void rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
+                  bool towards_sum, bool translational) {
+    rates_into(B, [&](char flow) { return Sym::legacy(prefix + flow); }, std::move(rows_vec), f, Sym::legacy(sum), towards_sum,
+               translational);
+  }
   void emit_joint(Joint& j);
   void drive_loads(const Build& B, const Joint& j);
   std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);

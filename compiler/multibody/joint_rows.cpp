@@ -13,15 +13,15 @@
 
 namespace mbgc::multibody::detail {
 
-Frame Expander::frame(const Build& B, const Joint& j, const Side& s, const std::string& tag) {
+Frame Expander::frame(const Build& B, const Joint& j, const Side& s, char side) {
   const Body& body = bodies_.at(s.body);
   Frame f;
   f.ground = body.ground;
   f.particle = body.particle;
   f.body = s.body;
-  const std::string jn = j.decl->name;
+  const JointSym jn(j.decl->name);
   f.R = rotation(B, s.body);
-  E local = B.name(jn + ".p" + tag);  // the point in CoM-relative body coordinates (ground: absolute)
+  E local = B.ref(jn.point(side));  // the point in CoM-relative body coordinates (ground: absolute)
   E turn = f.R;                       // the joint frame's rotation (a beam's section turns with its slope)
   if (body.flex && !s.point.empty()) {
     Eta eta = state_eta(B, s.body, *body.flex);
@@ -32,7 +32,7 @@ Frame Expander::frame(const Build& B, const Joint& j, const Side& s, const std::
   else if (body.particle) f.p = position(B, s.body);
   else f.p = B.op('+', position(B, s.body), B.op('*', f.R, local));
   f.local = local;
-  E F = B.op('*', turn, B.name(jn + ".F" + tag));
+  E F = B.op('*', turn, B.ref(jn.frame_R(side)));
   f.X = B.op('*', F, B.vec(1, 0, 0));
   f.Y = B.op('*', F, B.vec(0, 1, 0));
   f.Z = B.op('*', F, B.vec(0, 0, 1));
@@ -40,18 +40,19 @@ Frame Expander::frame(const Build& B, const Joint& j, const Side& s, const std::
 }
 
 void Expander::joint_params(const Build& B, const Joint& j) {
-  const std::string jn = j.decl->name;
-  for (const auto& [s, tag] : {std::pair{&j.a, "a"}, std::pair{&j.b, "b"}}) {
+  const JointSym jn(j.decl->name);
+  for (const auto& [s, side] : {std::pair{&j.a, 'a'}, std::pair{&j.b, 'b'}}) {
     const Body& body = bodies_.at(s->body);
-    E point = s->point.empty() ? B.vec(0, 0, 0) : B.name(s->body + "." + s->point);
-    if (body.ground || body.particle) property(B, jn + ".p" + tag, point);
-    else property(B, jn + ".p" + tag, B.op('-', point, B.name(s->body + ".com")));
-    const AstAttr* ax = given_attr(j, *tag == 'a' ? joint_setting::axis_a : joint_setting::axis_b);
+    const BodySym on(s->body);
+    E point = s->point.empty() ? B.vec(0, 0, 0) : B.ref(on.point(s->point));
+    if (body.ground || body.particle) property(B, jn.point(side), point);
+    else property(B, jn.point(side), B.op('-', point, B.ref(on.com())));
+    const AstAttr* ax = given_attr(j, side == 'a' ? joint_setting::axis_a : joint_setting::axis_b);
     if (!ax) ax = given_attr(j, joint_setting::axis);
     E axis = ax ? ax->value : B.vec(0, 0, 1);
-    property(B, jn + ".axis_" + tag, B.op('/', axis, B.call("norm", {axis})));
-    property(B, jn + ".f" + tag, B.call("quat_arc", {B.name(jn + ".axis_" + tag)}));
-    property(B, jn + ".F" + tag, B.call("rotq", {B.name(jn + ".f" + tag)}));
+    property(B, jn.axis(side), B.op('/', axis, B.call("norm", {axis})));
+    property(B, jn.frame_q(side), B.call("quat_arc", {B.ref(jn.axis(side))}));
+    property(B, jn.frame_R(side), B.call("rotq", {B.ref(jn.frame_q(side))}));
   }
   // Length scale that turns the angular rows (dot products) into metres: the
   // radius of gyration of the lighter body, so one stiffness suits all rows.
@@ -59,18 +60,19 @@ void Expander::joint_params(const Build& B, const Joint& j) {
   for (const Side* s : {&j.a, &j.b}) {
     const Body& body = bodies_.at(s->body);
     if (body.ground || body.particle) continue;
-    E I = B.name(s->body + ".inertia");
+    const BodySym on(s->body);
+    E I = B.ref(on.inertia());
     E trace = B.op('+', B.op('+', idx2(B, I, 1, 1), idx2(B, I, 2, 2)), idx2(B, I, 3, 3));
-    radii.push_back(B.call("sqrt", {B.op('/', trace, B.op('*', B.num(3), B.name(s->body + ".mass")))}));
+    radii.push_back(B.call("sqrt", {B.op('/', trace, B.op('*', B.num(3), B.ref(on.mass())))}));
   }
   E scale = radii.empty() ? B.num(1) : radii.size() == 1 ? radii[0] : B.call("min", {radii[0], radii[1]});
-  property(B, jn + ".scale", scale);
+  property(B, jn.scale(), scale);
 }
 
 /// The constraint rows g (each a scalar AST expression) of a joint: its
 /// kind's, then a prescribed motion's.
 std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf) {
-  const JointFrames f{B, j, A, Bf, B.op('-', Bf.p, A.p), B.name(j.decl->name + ".scale")};
+  const JointFrames f{B, j, A, Bf, B.op('-', Bf.p, A.p), B.ref(JointSym(j.decl->name).scale())};
   std::vector<E> r;
   j.kind->rows(f, r);
   if (const AstAttr* m = given_attr(j, joint_setting::motion)) {
@@ -83,12 +85,14 @@ std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, co
 
 /// The rate of `rows` (a k-vector of position-level expressions) collected on
 /// 0-junction `sum`: one MTF per body junction, modulus d(rows)/d(position) times
-/// the map from the junction's flow to that position's rate.
-void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
-                bool towards_sum, bool translational) {
+/// the map from the junction's flow to that position's rate; `mtf` names them
+/// by the junction: 't' the velocity, 'r' the angular velocity, 'e' the modal rates.
+void Expander::rates_into(const Build& B, const std::function<Sym(char)>& mtf, E rows_vec, const Frame& f, const Sym& sum,
+                          bool towards_sum, bool translational) {
   if (f.ground) return;
   const std::string& b = f.body;
-  std::vector<std::pair<std::string, std::string>> parts;  // (MTF name, body junction)
+  const BodySym on(b);
+  std::vector<std::pair<Sym, Sym>> parts;  // (MTF, body junction)
   const Body& body = bodies_.at(b);
   if (body.by_coordinates) {
     // (a cut joint on a body moved by joint coordinates: its pose is signals,
@@ -96,13 +100,13 @@ void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec,
     E r = position(B, b), R = rotation(B, b);
     if (translational) {
       E Jr = B.call("jacobian", {rows_vec, r});
-      element(B, "MTF", prefix + "t", body_frame_velocity(body) ? B.op('*', Jr, R) : Jr);
-      parts.push_back({prefix + "t", b + ".v"});
+      element(B, "MTF", mtf('t'), body_frame_velocity(body) ? B.op('*', Jr, R) : Jr);
+      parts.push_back({mtf('t'), on.v()});
     }
     if (!f.particle) {
       std::vector<E> entries;
       for (int i = 1; i <= 3; ++i)
-        for (int k = 1; k <= 3; ++k) entries.push_back(B.name(fmt::format("{}.pose.R{}{}", b, i, k)));
+        for (int k = 1; k <= 3; ++k) entries.push_back(B.ref(on.pose_R(i, k)));
       E JR = B.call("jacobian", {rows_vec, B.list(entries)});  // k x 9, row-major R
       std::vector<E> columns;
       for (int axis = 0; axis < 3; ++axis) {
@@ -112,64 +116,65 @@ void Expander::rates_into(const Build& B, const std::string& prefix, E rows_vec,
           for (int k = 1; k <= 3; ++k) flat.push_back(idx2(B, turn, i, k));
         columns.push_back(B.op('*', JR, B.list(flat)));
       }
-      element(B, "MTF", prefix + "r", B.call("hcat", {columns[0], columns[1], columns[2]}));
-      parts.push_back({prefix + "r", b + ".w"});
+      element(B, "MTF", mtf('r'), B.call("hcat", {columns[0], columns[1], columns[2]}));
+      parts.push_back({mtf('r'), on.w()});
     }
   } else {
     if (translational) {
-      element(B, "MTF", prefix + "t", B.call("jacobian", {rows_vec, B.name(b + ".r.q")}));
-      parts.push_back({prefix + "t", b + ".v"});
+      element(B, "MTF", mtf('t'), B.call("jacobian", {rows_vec, B.ref(on.r().displacement())}));
+      parts.push_back({mtf('t'), on.v()});
     }
     if (!f.particle) {
-      element(B, "MTF", prefix + "r",
-              B.op('*', B.call("jacobian", {rows_vec, B.name(b + ".q.q")}), B.call("quat_rate", {B.name(b + ".q.q")})));
-      parts.push_back({prefix + "r", b + ".w"});
+      const Sym q = on.q().displacement();
+      element(B, "MTF", mtf('r'), B.op('*', B.call("jacobian", {rows_vec, B.ref(q)}), B.call("quat_rate", {B.ref(q)})));
+      parts.push_back({mtf('r'), on.w()});
     }
   }
   if (bodies_.at(b).flex) {  // the joint's point moves with the beam's deflection
-    element(B, "MTF", prefix + "e", B.call("jacobian", {rows_vec, B.name(b + ".eta.q")}));
-    parts.push_back({prefix + "e", b + ".etadot"});
+    const FlexibleSym flex(b);
+    element(B, "MTF", mtf('e'), B.call("jacobian", {rows_vec, B.ref(flex.eta().displacement())}));
+    parts.push_back({mtf('e'), flex.etadot()});
   }
-  for (const auto& [mtf, junc] : parts) {
+  for (const auto& [through, junc] : parts) {
     if (towards_sum) {
-      bond(B, junc, mtf + ".p1");
-      bond(B, mtf + ".p2", sum);
+      bond(B, junc, through.port(1));
+      bond(B, through.port(2), sum);
     } else {
-      bond(B, sum, mtf + ".p2");
-      bond(B, mtf + ".p1", junc);
+      bond(B, sum, through.port(2));
+      bond(B, through.port(1), junc);
     }
   }
 }
 
 /// The joint's `torque` or `force` as an effort source on its drive port
-/// (`NAME.drive`, a 1-junction on the joint coordinate's rate).
+/// (JointSym::drive, a 1-junction on the joint coordinate's rate).
 void Expander::drive_loads(const Build& B, const Joint& j) {
-  const std::string& jn = j.decl->name;
+  const JointSym jn(j.decl->name);
   for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
     const AstAttr* load = given_attr(j, *drive);
     if (!load) continue;
-    element(B, "Se", jn + ".applied", load->value);
+    element(B, "Se", jn.applied(), load->value);
     applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
-    bond(B, jn + ".applied", jn + ".drive");
+    bond(B, jn.applied(), jn.drive());
   }
 }
 
 void Expander::emit_joint(Joint& j) {
   const AstJoint& d = *j.decl;
-  const std::string jn = d.name;
+  const JointSym jn(d.name);
   Build B(d.loc);
   joint_params(B, j);
   j.kind->params(j, [&](const std::string& name, E value) { property(B, name, std::move(value)); });
-  Frame A = frame(B, j, j.a, "a");
-  Frame Bf = frame(B, j, j.b, "b");
-  frames_[jn] = {A, Bf};
+  Frame A = frame(B, j, j.a, 'a');
+  Frame Bf = frame(B, j, j.b, 'b');
+  frames_[d.name] = {A, Bf};
   if (j.strategy == Strategy::Coordinates && j.tree) {
     emit_coordinate_joint(B, j);
     return;
   }
   std::vector<E> g = rows(B, j, A, Bf);
   if (g.empty()) {
-    diags_.error(d.loc, fmt::format("free joint `{}` constrains nothing, so it has no rows for {}", jn,
+    diags_.error(d.loc, fmt::format("free joint `{}` constrains nothing, so it has no rows for {}", d.name,
                                     j.strategy == Strategy::Coordinates ? "closing a loop" : "multipliers"),
                  j.strategy == Strategy::Coordinates
                      ? "a free joint belongs on a tree from ground: attach its body to nothing else that reaches ground"
@@ -180,45 +185,45 @@ void Expander::emit_joint(Joint& j) {
   int k = static_cast<int>(g.size());
   E gvec = B.list(g);
   // constraint fragment: body junctions -> MTFs -> 0-junction -> CN
-  junction(B, '0', jn + ".c", k, {}, {jn + ".cn"});
-  rates_into(B, jn + ".ca", gvec, A, jn + ".c", true, true);
-  rates_into(B, jn + ".cb", gvec, Bf, jn + ".c", true, true);
+  junction(B, '0', jn.rows(), k, {}, {jn.constraint()});
+  rates_into(B, [&](char flow) { return jn.row_rate('a', flow); }, gvec, A, jn.rows(), true, true);
+  rates_into(B, [&](char flow) { return jn.row_rate('b', flow); }, gvec, Bf, jn.rows(), true, true);
   ir::ConstraintLaw law;
   law.g = gvec;
   if (j.strategy == Strategy::Coordinates) {
     // A cut joint on a tree in joint coordinates: its rows' multipliers keep
     // g'' + 2 w g' + w^2 g = 0 (Baumgarte, critically damped at w rad/s), an
     // acceleration-level condition solved with the tree's accelerations.
-    param(B, jn + ".stabilisation", setting_or(j, joint_setting::stabilisation, B.num(20)));
-    law.stabilisation = B.name(jn + ".stabilisation");
+    param(B, jn.stabilisation(), setting_or(j, joint_setting::stabilisation, B.num(20)));
+    law.stabilisation = B.ref(jn.stabilisation());
   }
   if (j.strategy == Strategy::Penalty) {
     // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
     std::vector<E> masses;
     for (const Frame* f : {&A, &Bf})
-      if (!f->ground) masses.push_back(B.name(f->body + ".mass"));
+      if (!f->ground) masses.push_back(B.ref(BodySym(f->body).mass()));
     E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
-    param(B, jn + ".stiffness", setting_or(j, joint_setting::stiffness, B.op('*', m, B.num(1e6))));
-    param(B, jn + ".damping", setting_or(j, joint_setting::damping, B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.name(jn + ".stiffness"))}))));
-    law.stiffness = B.name(jn + ".stiffness");
-    law.damping = B.name(jn + ".damping");
+    param(B, jn.stiffness(), setting_or(j, joint_setting::stiffness, B.op('*', m, B.num(1e6))));
+    param(B, jn.damping(), setting_or(j, joint_setting::damping, B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.ref(jn.stiffness()))}))));
+    law.stiffness = B.ref(jn.stiffness());
+    law.damping = B.ref(jn.damping());
   }
-  constraint(B, jn + ".cn", std::move(law));
+  constraint(B, jn.constraint(), std::move(law));
   if (given(j, joint_setting::motion)) {
     // the prescribed motion's explicit time dependence enters the rate as a flow source
-    element(B, "Sf", jn + ".motion", B.call("partial_t", {gvec}));
-    bond(B, jn + ".motion", jn + ".c");
+    element(B, "Sf", jn.motion(), B.call("partial_t", {gvec}));
+    bond(B, jn.motion(), jn.rows());
   }
   // drive port: a 1-junction whose flow is the joint coordinate's rate
   std::optional<E> coordinate = joint_coordinate(B, j, A, Bf);
   if (coordinate) {
-    coordinates_[jn] = *coordinate;
+    coordinates_[d.name] = *coordinate;
     const bool translational = j.kind->drives_along_axis();
-    junction(B, '1', jn + ".drive", 1, {}, {jn + ".dsum"});
-    junction(B, '0', jn + ".dsum", 1, {}, {});
+    junction(B, '1', jn.drive(), 1, {}, {jn.drive_sum()});
+    junction(B, '0', jn.drive_sum(), 1, {}, {});
     E cvec = B.list({*coordinate});
-    rates_into(B, jn + ".da", cvec, A, jn + ".dsum", false, translational);
-    rates_into(B, jn + ".db", cvec, Bf, jn + ".dsum", false, translational);
+    rates_into(B, [&](char flow) { return jn.drive_rate('a', flow); }, cvec, A, jn.drive_sum(), false, translational);
+    rates_into(B, [&](char flow) { return jn.drive_rate('b', flow); }, cvec, Bf, jn.drive_sum(), false, translational);
     drive_loads(B, j);
   }
 }
