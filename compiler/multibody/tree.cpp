@@ -163,13 +163,14 @@ void Expander::place_bodies() {
                          placed_hint(body.placed_by));
       continue;
     }
+    const BodySym at(n);
     E r0 = attr(d, "r0"), v0 = attr(d, "v0");
-    param(B, n + ".r0", r0 ? r0 : B.vec(0, 0, 0));
-    param(B, n + ".v0", v0 ? v0 : B.vec(0, 0, 0));
+    param(B, at.r0(), r0 ? r0 : B.vec(0, 0, 0));
+    param(B, at.v0(), v0 ? v0 : B.vec(0, 0, 0));
     if (body.particle) continue;
     E q0 = attr(d, "quat0"), w0 = attr(d, "w0");
-    param(B, n + ".q0", q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
-    param(B, n + ".w0", w0 ? w0 : B.vec(0, 0, 0));
+    param(B, at.q0(), q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    param(B, at.w0(), w0 ? w0 : B.vec(0, 0, 0));
   }
 }
 
@@ -186,21 +187,23 @@ std::string Expander::placed_hint(const std::string& jn) const {
 Pose Expander::pose(const Build& B, const std::string& body) {
   const Body& b = bodies_.at(body);
   if (b.ground) return {B.list({B.num(1), B.num(0), B.num(0), B.num(0)}), B.call("eye", {B.num(3)}), B.vec(0, 0, 0), B.vec(0, 0, 0), B.vec(0, 0, 0)};
-  E q = b.particle ? B.list({B.num(1), B.num(0), B.num(0), B.num(0)}) : B.name(body + ".q0");
-  E w = b.particle ? B.vec(0, 0, 0) : B.name(body + ".w0");
-  return {q, B.call("rotq", {q}), B.name(body + ".r0"), B.name(body + ".v0"), w};
+  const BodySym n(body);
+  E q = b.particle ? B.list({B.num(1), B.num(0), B.num(0), B.num(0)}) : B.ref(n.q0());
+  E w = b.particle ? B.vec(0, 0, 0) : B.ref(n.w0());
+  return {q, B.call("rotq", {q}), B.ref(n.r0()), B.ref(n.v0()), w};
 }
 
 /// Initial pose of the child of a tree joint from its parent and the joint coordinates.
 void Expander::place(const Joint& j, bool a_is_parent) {
-  const std::string jn = j.decl->name;
+  const JointSym jn(j.decl->name);
   Build B(j.decl->loc);
   const auto [angle, angle_rate, axial, axial_rate, qrel, w_rel, v_rel] = j.kind->initial(B, j);
-  E axis_a = B.name(jn + ".axis_a");
-  E pa = B.op('+', B.name(jn + ".pa"), B.op('*', axis_a, axial));  // A's point, moved along the axis
-  E pb = B.name(jn + ".pb");
-  E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
+  E axis_a = B.ref(jn.axis('a'));
+  E pa = B.op('+', B.ref(jn.point('a')), B.op('*', axis_a, axial));  // A's point, moved along the axis
+  E pb = B.ref(jn.point('b'));
+  E fa = B.ref(jn.frame_q('a')), fb = B.ref(jn.frame_q('b'));
   const std::string& child = a_is_parent ? j.b.body : j.a.body;
+  const BodySym placed(child);
   const std::string& parent = a_is_parent ? j.a.body : j.b.body;
   const Body& cb = bodies_.at(child);
   Pose P = pose(B, parent);
@@ -208,7 +211,7 @@ void Expander::place(const Joint& j, bool a_is_parent) {
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
   if (!cb.particle) {
     E q = a_is_parent ? qmul(qmul(qmul(P.q, fa), qrel), conj(fb)) : qmul(qmul(qmul(P.q, fb), conj(qrel)), conj(fa));
-    param(B, child + ".q0", q);
+    param(B, placed.q0(), q);
   }
   Pose C = pose(B, child);
   auto cross = [&](E x, E y) { return B.call("cross", {std::move(x), std::move(y)}); };
@@ -221,16 +224,16 @@ void Expander::place(const Joint& j, bool a_is_parent) {
   bool parent_ground = bodies_.at(parent).ground;
   if (a_is_parent) {
     E pa_world = world_point(P, pa, parent_ground);
-    param(B, child + ".r0", B.op('-', pa_world, B.op('*', C.R, pb)));
-    if (!cb.particle) param(B, child + ".w0", B.op('*', B.op('*', T(C.R), P.R), B.op('+', P.w, rel_w)));
+    param(B, placed.r0(), B.op('-', pa_world, B.op('*', C.R, pb)));
+    if (!cb.particle) param(B, placed.w0(), B.op('*', B.op('*', T(C.R), P.R), B.op('+', P.w, rel_w)));
     E v = B.op('+', B.op('+', P.v, B.op('*', P.R, cross(P.w, pa))), B.op('*', P.R, rel_v));
-    param(B, child + ".v0", B.op('-', v, B.op('*', C.R, cross(C.w, pb))));
+    param(B, placed.v0(), B.op('-', v, B.op('*', C.R, cross(C.w, pb))));
   } else {
     E pb_world = world_point(P, pb, parent_ground);
-    param(B, child + ".r0", B.op('-', pb_world, B.op('*', C.R, pa)));
-    if (!cb.particle) param(B, child + ".w0", B.op('-', B.op('*', B.op('*', T(C.R), P.R), P.w), rel_w));
+    param(B, placed.r0(), B.op('-', pb_world, B.op('*', C.R, pa)));
+    if (!cb.particle) param(B, placed.w0(), B.op('-', B.op('*', B.op('*', T(C.R), P.R), P.w), rel_w));
     E v = B.op('+', P.v, B.op('*', P.R, cross(P.w, pb)));
-    param(B, child + ".v0", B.op('-', B.op('-', v, B.op('*', C.R, cross(C.w, pa))), B.op('*', C.R, rel_v)));
+    param(B, placed.v0(), B.op('-', B.op('-', v, B.op('*', C.R, cross(C.w, pa))), B.op('*', C.R, rel_v)));
   }
 }
 
