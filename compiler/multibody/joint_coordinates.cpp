@@ -24,12 +24,13 @@ namespace mbgc::multibody::detail {
 /// rate sources' zero-effort equations.
 void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const AstJoint& d = *j.decl;
-  const std::string jn = d.name;
+  const JointSym jn(d.name);
   const bool fwd = j.a_is_parent;
   const std::string& parent = fwd ? j.a.body : j.b.body;
   const std::string& child = fwd ? j.b.body : j.a.body;
   const Body& P = bodies_.at(parent);
   const Body& C = bodies_.at(child);
+  const FlexibleSym on_parent(parent), on_child(child);  // (modal names only where flexible)
   TreeScope tree(*this, child);
   // The relative motion of B's joint frame in A's: a translation disp (A's
   // axes) and a rotation qrel, from the kind. Each rate junction k adds
@@ -37,20 +38,21 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   class Rates final : public Mobilizer {
    public:
     Rates(Expander& x, const Build& b, const Joint& j, bool child_particle) : Mobilizer(b, j, child_particle), x_(x) {}
-    Rate& rate(const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) override {
-      const std::string jn = joint.decl->name;
+    Rate& rate(const Sym& junction, const std::string& c, E q0, E rate0, bool prescribed) override {
       const SourceLoc& at = joint.decl->loc;
-      Rate k{junction, nullptr, B.name(jn + "." + c + "_rate.f"), nullptr, nullptr, nullptr};
+      const Sym source = sym.rate_source(c);
+      Rate k{junction, nullptr, B.ref(source.flow()), nullptr, nullptr, nullptr};
       if (prescribed) {
         E motion = given_attr(joint, joint_setting::motion)->value;
-        x_.element(B, "Sf", jn + "." + c + "_rate", B.call("partial_t", {motion}));
-        x_.junction_(B, junction, {jn + "." + c + "_rate"});
+        x_.element(B, "Sf", source, B.call("partial_t", {motion}));
+        x_.junction_(B, junction, {source});
         k.value = motion;
       } else {
-        x_.element(B, "Sf", jn + "." + c + "_rate", nullptr, {kv("rate0", rate0, at)});
-        x_.element(B, "C", jn + "." + c, nullptr, {kv("e", zero, at), kv("q0", q0, at)});
-        x_.junction_(B, junction, {jn + "." + c + "_rate"}, {jn + "." + c});
-        k.value = B.name(jn + "." + c + ".q");
+        const Sym coordinate = sym.coordinate(c);
+        x_.element(B, "Sf", source, nullptr, {kv("rate0", rate0, at)});
+        x_.element(B, "C", coordinate, nullptr, {kv("e", zero, at), kv("q0", q0, at)});
+        x_.junction_(B, junction, {source}, {coordinate});
+        k.value = B.ref(coordinate.displacement());
       }
       rates.push_back(k);
       return rates.back();
@@ -58,20 +60,19 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     /// The relative angular velocity in B's joint frame, integrated into the
     /// relative quaternion as a body's orientation is.
     void ball() override {
-      const std::string jn = joint.decl->name;
       const SourceLoc& at = joint.decl->loc;
-      const std::string spin = jn + ".spin";
-      x_.element(B, "Sf", jn + ".spin_rate", nullptr, {kv("rate0", setting_or(joint_setting::w0, B.vec(0, 0, 0)), at)});
-      x_.element(B, "C", jn + ".rot", nullptr,
+      x_.element(B, "Sf", sym.spin_rate(), nullptr, {kv("rate0", setting_or(joint_setting::w0, B.vec(0, 0, 0)), at)});
+      x_.element(B, "C", sym.rot(), nullptr,
                  {kv("e", B.list({zero, zero, zero, zero}), at),
                   kv("q0", setting_or(joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), at)});
-      x_.element(B, "MTF", jn + ".rotrate", B.call("quat_rate", {B.name(jn + ".rot.q")}));
-      x_.junction(B, '1', spin, 3, {jn + ".spin_rate"}, {jn + ".rotrate.p1"});
-      x_.bond(B, jn + ".rotrate.p2", jn + ".rot", 4);
-      qrel = B.name(jn + ".rot.q");
+      x_.element(B, "MTF", sym.rot_rate(), B.call("quat_rate", {B.ref(sym.rot().displacement())}));
+      x_.junction(B, '1', sym.spin(), 3, {sym.spin_rate()}, {sym.rot_rate().port(1)});
+      x_.bond(B, sym.rot_rate().port(2), sym.rot(), 4);
+      qrel = B.ref(sym.rot().displacement());
       free_rotation = true;
       // the spin is B's angular velocity in B's joint axes: W = R(q) in A's, I in B's
-      rates.push_back({spin, nullptr, B.name(jn + ".spin_rate.f"), B.call("rotq", {qrel}), nullptr, B.call("eye", {B.num(3)})});
+      rates.push_back({sym.spin(), nullptr, B.ref(sym.spin_rate().flow()), B.call("rotq", {qrel}), nullptr,
+                       B.call("eye", {B.num(3)})});
     }
     std::deque<Rate> rates;  // a deque: references rate() returned stay valid
 
@@ -90,8 +91,8 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // pose of the child as signals of the coordinates
   auto T = [&](E x) { return B.call("transpose", {std::move(x)}); };
   auto times = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };
-  E Fa = B.name(jn + ".Fa"), Fb = B.name(jn + ".Fb");
-  E fa = B.name(jn + ".fa"), fb = B.name(jn + ".fb");
+  E Fa = B.ref(jn.frame_R('a')), Fb = B.ref(jn.frame_R('b'));
+  E fa = B.ref(jn.frame_q('a')), fb = B.ref(jn.frame_q('b'));
   // On a flexible body the joint's point deflects with the modes and its
   // section turns by the small rotation theta(eta): the joint frame there is
   // turned by rotq([1, theta / 2]) (orthonormal; its angular velocity is
@@ -103,9 +104,9 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (seat_a.turn) Fa = times(seat_a.turn, Fa);
   if (seat_b.turn) Fb = times(seat_b.turn, Fb);
   // A's point, moved by d; a particle's joint point is its position
-  E pa = B.op('+', bodies_.at(j.a.body).particle ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.name(jn + ".pa"),
+  E pa = B.op('+', bodies_.at(j.a.body).particle ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.ref(jn.point('a')),
               B.op('*', Fa, disp));
-  E pb = bodies_.at(j.b.body).particle ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.name(jn + ".pb");
+  E pb = bodies_.at(j.b.body).particle ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.ref(jn.point('b'));
   E qP = quaternion(B, parent), RP = rotation(B, parent);
   if (seat.quaternion) qP = qmul(qP, seat.quaternion);
   E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
@@ -113,7 +114,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // R_PC = R_P^T R_C, the relative rotation of the bodies: the joint's own
   // turn between its fixed frames F_a and F_b.
   E Rrel = fwd ? times(times(Fa, rot), T(Fb)) : times(times(Fb, T(rot)), T(Fa));
-  // As signals jn.Rpc{r}{c} where its rate is known in closed form,
+  // As signals (JointSym::relative_R) where its rate is known in closed form,
   // R_PC skew(omega_rel) with omega_rel = sum Fb Wb u in the child's axes:
   // every modulus below is R_PC^T times constants, and what they carry is
   // differentiated for the accelerations (the bias terms), through these
@@ -135,34 +136,34 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       std::vector<E> rows_;
       for (int r = 1; r <= 3; ++r) {
         std::vector<E> row;
-        for (int c = 1; c <= 3; ++c) row.push_back(B.name(fmt::format("{}.Rpc{}{}", jn, r, c)));
+        for (int c = 1; c <= 3; ++c) row.push_back(B.ref(jn.relative_R(r, c)));
         rows_.push_back(B.list(row));
       }
       const E named = B.list(rows_), rate = times(named, B.call("skew", {omega}));
       for (int r = 1; r <= 3; ++r)
         for (int c = 1; c <= 3; ++c)
-          signal(B, fmt::format("{}.Rpc{}{}", jn, r, c), idx2(B, Rrel, r, c), idx2(B, rate, r, c));
+          signal(B, jn.relative_R(r, c), idx2(B, Rrel, r, c), idx2(B, rate, r, c));
       Rrel = named;
     }
   }
   if (!C.particle) {
-    for (int k = 0; k < 4; ++k) signal(B, fmt::format("{}.pose.q{}", child, k + 1), B.at(qC, k + 1));
+    for (int k = 0; k < 4; ++k) signal(B, on_child.pose_q(k + 1), B.at(qC, k + 1));
     // The child's rotation matrix, propagated from its parent's (R_C = R_P R_PC):
     // no quaternion product and no normalisation. Its rate is R_C skew(omega_C)
     // with omega_C the child's angular velocity in its own axes (the flow of
     // the bond into its omega junction, below): 2 products an entry, where the
     // chain rule through R_P R_PC(q) would differentiate every factor.
     E Rc = P.ground || P.particle ? Rrel : times(RP, Rrel);
-    const E rate = times(rotation(B, child), B.call("skew", {B.name(jn + ".reaction_t.f")}));
+    const E rate = times(rotation(B, child), B.call("skew", {B.ref(jn.reaction_torque().flow())}));
     for (int r = 1; r <= 3; ++r)
       for (int c = 1; c <= 3; ++c)
-        signal(B, fmt::format("{}.pose.R{}{}", child, r, c), idx2(B, Rc, r, c), idx2(B, rate, r, c));
+        signal(B, on_child.pose_R(r, c), idx2(B, Rc, r, c), idx2(B, rate, r, c));
   }
   E RC = rotation(B, child);
   E joint_point = B.op('+', position(B, parent), B.op('*', RP, fwd ? pa : pb));
   if (P.ground) joint_point = fwd ? pa : pb;  // ground points are absolute
   E rC = B.op('-', joint_point, B.op('*', RC, fwd ? pb : pa));
-  for (int k = 0; k < 3; ++k) signal(B, fmt::format("{}.pose.r{}", child, k + 1), B.at(rC, k + 1));
+  for (int k = 0; k < 3; ++k) signal(B, on_child.pose_r(k + 1), B.at(rC, k + 1));
   // Velocities as sums of MTF flows: the child's omega in its own axes and
   // its centre-of-mass velocity, in its own axes too where it turns
   // (body_frame_velocity), else (a particle) in world axes. In the child's
@@ -171,14 +172,14 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // joint) times constants of the joint.
   auto skew = [&](E x) { return B.call("skew", {std::move(x)}); };
   int fed = 0;
-  auto feed = [&](const std::string& from, E modulus, const std::string& sum) {
-    const std::string mtf = fmt::format("{}.m{}", jn, ++fed);
+  auto feed = [&](const Sym& from, E modulus, const Sym& sum) {
+    const Sym mtf = jn.feed(++fed);
     element(B, "MTF", mtf, std::move(modulus));
-    bond(B, from, mtf + ".p1");
-    bond(B, mtf + ".p2", sum);
+    bond(B, from, mtf.port(1));
+    bond(B, mtf.port(2), sum);
   };
   // (a particle has no angular-velocity junction: nothing turns it, nothing reads it)
-  const std::string wsum = jn + ".wsum", vsum = jn + ".vsum";
+  const Sym wsum = jn.w_sum(), vsum = jn.v_sum();
   const bool parent_turns = !P.ground && !P.particle;
   E RrelT = T(Rrel);  // R_PC^T: parent axes -> child axes
   // Nothing turns the child when the parent does not turn and the joint has
@@ -189,13 +190,13 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
                      std::any_of(rates.begin(), rates.end(), [](const Mobilizer::Rate& r) { return bool(r.W); });
   if (!C.particle && turns) {
     junction(B, '0', wsum, 3, {}, {});
-    if (parent_turns) feed(parent + ".w", RrelT, wsum);
+    if (parent_turns) feed(on_parent.w(), RrelT, wsum);
     // in the child's axes, R_PC^T Fa W = Fb R^T W: where the kind gives R^T W
     // (Wb), no product of the rotation with its transpose is left to fold
     for (const Mobilizer::Rate& r : rates)
       if (r.W) feed(r.junction, fwd ? (r.Wb ? times(Fb, r.Wb) : times(times(RrelT, Fa), r.W)) : B.neg(times(Fa, r.W)), wsum);
   } else if (!C.particle) {
-    element(B, "Sf", jn + ".still", B.vec(0, 0, 0));
+    element(B, "Sf", jn.still(), B.vec(0, 0, 0));
   }
   junction(B, '0', vsum, 3, {}, {});
   if (!C.particle) {
@@ -207,38 +208,39 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       // parent then reads the child's force there (R_PC f) and its moment
       // about the parent's centre through the lever arm's MTF: a x (the
       // force it reads), not a second product with the rotation.
-      const std::string vpa = jn + ".vpa";
+      const Sym vpa = jn.point_velocity();
       junction(B, '0', vpa, 3, {}, {});
-      named_bond(B, jn + ".parent_v", parent + ".v", vpa);
-      feed(parent + ".w", B.neg(skew(fwd ? pa : pb)), vpa);
+      named_bond(B, jn.parent_velocity(), on_parent.v(), vpa);
+      feed(on_parent.w(), B.neg(skew(fwd ? pa : pb)), vpa);
       feed(vpa, RrelT, vsum);
     } else {
-      if (!P.ground) feed(parent + ".v", body_frame_velocity(P) || P.particle ? RrelT : times(RrelT, T(RP)), vsum);
-      if (parent_turns) feed(parent + ".w", times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
+      if (!P.ground) feed(on_parent.v(), body_frame_velocity(P) || P.particle ? RrelT : times(RrelT, T(RP)), vsum);
+      if (parent_turns) feed(on_parent.w(), times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
     }
     for (const Mobilizer::Rate& r : rates)
       if (r.V) feed(r.junction, fwd ? times(times(RrelT, Fa), r.V) : B.neg(times(Fa, r.V)), vsum);
-    feed(child + ".w", skew(fwd ? pb : pa), vsum);
+    feed(on_child.w(), skew(fwd ? pb : pa), vsum);
     if (seat.point) {  // the parent's modal rates move and turn the joint's seat
-      E q = B.name(parent + ".eta.q");
-      feed(parent + ".etadot", times(RrelT, B.call("jacobian", {fwd ? pa : pb, q})), vsum);
-      if (seat.turn) feed(parent + ".etadot", times(times(RrelT, seat.turn_rate), B.call("jacobian", {seat.slope, q})), wsum);
+      E q = B.ref(on_parent.eta().displacement());
+      feed(on_parent.etadot(), times(RrelT, B.call("jacobian", {fwd ? pa : pb, q})), vsum);
+      if (seat.turn) feed(on_parent.etadot(), times(times(RrelT, seat.turn_rate), B.call("jacobian", {seat.slope, q})), wsum);
     }
     if (own_seat.point) {  // and the child's own modal rates move and turn its seat under the joint
-      E q = B.name(child + ".eta.q");
-      feed(child + ".etadot", B.neg(B.call("jacobian", {fwd ? pb : pa, q})), vsum);
-      if (own_seat.turn) feed(child + ".etadot", B.neg(times(own_seat.turn_rate, B.call("jacobian", {own_seat.slope, q}))), wsum);
+      E q = B.ref(on_child.eta().displacement());
+      feed(on_child.etadot(), B.neg(B.call("jacobian", {fwd ? pb : pa, q})), vsum);
+      if (own_seat.turn) feed(on_child.etadot(), B.neg(times(own_seat.turn_rate, B.call("jacobian", {own_seat.slope, q}))), wsum);
     }
-    named_bond(B, jn + ".reaction_t", turns ? wsum : jn + ".still", child + ".w");
+    named_bond(B, jn.reaction_torque(), turns ? wsum : jn.still(), on_child.w());
   } else {  // world axes
-    if (seat.point) feed(parent + ".etadot", times(RP, B.call("jacobian", {fwd ? pa : pb, B.name(parent + ".eta.q")})), vsum);
-    if (!P.ground) feed(parent + ".v", body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
-    if (parent_turns) feed(parent + ".w", B.neg(times(RP, skew(fwd ? pa : pb))), vsum);
+    if (seat.point)
+      feed(on_parent.etadot(), times(RP, B.call("jacobian", {fwd ? pa : pb, B.ref(on_parent.eta().displacement())})), vsum);
+    if (!P.ground) feed(on_parent.v(), body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
+    if (parent_turns) feed(on_parent.w(), B.neg(times(RP, skew(fwd ? pa : pb))), vsum);
     for (const Mobilizer::Rate& r : rates)
       if (r.V) feed(r.junction, fwd ? times(times(RP, Fa), r.V) : B.neg(times(times(RC, Fa), r.V)), vsum);
   }
-  named_bond(B, jn + ".reaction_f", vsum, child + ".v");
-  coordinate_values_[jn] = {m.angle, m.angle_rate, m.axial, m.axial_rate};
+  named_bond(B, jn.reaction_force(), vsum, on_child.v());
+  coordinate_values_[d.name] = {m.angle, m.angle_rate, m.axial, m.axial_rate};
 }
 
 Expander::FlexibleSeat Expander::flexible_seat(const Build& B, const Side& s, bool free_rotation) const {

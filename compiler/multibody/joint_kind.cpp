@@ -66,7 +66,7 @@ E JointKind::displacement(const JointFrames& f) const { return f.B.dot(f.A.Z, f.
 
 // ---- coordinates -----------------------------------------------------------------------
 Mobilizer::Mobilizer(const Build& b, const Joint& j, bool child_particle)
-    : B(b), joint(j), child_particle(child_particle), zero(b.num(0)), ex(b.vec(1, 0, 0)), ey(b.vec(0, 1, 0)),
+    : B(b), joint(j), sym(j.decl->name), child_particle(child_particle), zero(b.num(0)), ex(b.vec(1, 0, 0)), ey(b.vec(0, 1, 0)),
       ez(b.vec(0, 0, 1)), disp(b.vec(0, 0, 0)), qrel(b.list({b.num(1), b.num(0), b.num(0), b.num(0)})), angle(zero),
       angle_rate(zero), axial(zero), axial_rate(zero) {}
 
@@ -76,7 +76,7 @@ bool Mobilizer::prescribed() const { return given(joint, joint_setting::motion);
 
 Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   const Build& B = m.B;
-  Mobilizer::Rate& r = m.rate(m.joint.decl->name + ".drive", "theta", m.setting_or(joint_setting::q0, m.zero),
+  Mobilizer::Rate& r = m.rate(m.sym.drive(), "theta", m.setting_or(joint_setting::q0, m.zero),
                               m.setting_or(joint_setting::rate0, m.zero), m.prescribed());
   r.W = m.ez;
   r.Wb = m.ez;  // a turn about z leaves z where it is
@@ -86,10 +86,9 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   return r;
 }
 
-Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const Setting& q0, const Setting& rate0,
+Mobilizer::Rate& slide_along_axis(Mobilizer& m, const Sym& junction, const Setting& q0, const Setting& rate0,
                                   bool prescribed) {
-  Mobilizer::Rate& s = m.rate(m.joint.decl->name + "." + junction, "s", m.setting_or(q0, m.zero),
-                              m.setting_or(rate0, m.zero), prescribed);
+  Mobilizer::Rate& s = m.rate(junction, "s", m.setting_or(q0, m.zero), m.setting_or(rate0, m.zero), prescribed);
   s.V = m.ez;
   m.axial = s.value, m.axial_rate = s.rate;
   m.disp = m.B.op('*', m.ez, m.axial);

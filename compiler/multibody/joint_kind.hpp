@@ -34,6 +34,7 @@
 #include "multibody/settings.hpp"
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
+#include "multibody/joint_symbols.hpp"
 #include "multibody/model.hpp"
 
 namespace mbgc::multibody::detail {
@@ -47,8 +48,8 @@ struct JointFrames {
   E d;              // Bf.p - A.p: from A's joint point to B's
   E scale;          // `j.scale`: turns dot products of axes into metres
 
-  std::string name() const { return joint.decl->name; }
-  E param(const std::string& suffix) const { return B.name(name() + "." + suffix); }
+  /// The joint's names.
+  JointSym sym() const { return JointSym(joint.decl->name); }
   /// scale * u . v: zero when u and v are perpendicular.
   E perp(const E& u, const E& v) const;
   /// The joint points coincide (3 rows).
@@ -69,7 +70,7 @@ struct JointFrames {
 class Mobilizer {
  public:
   struct Rate {
-    std::string junction;  // the 1-junction carrying the rate
+    Sym junction;          // the 1-junction carrying the rate
     E value;               // the coordinate (or the prescribed motion f(t))
     E rate;                // its rate
     E W, V;                // angular and linear velocity per unit rate, A's joint axes (null: none)
@@ -78,20 +79,21 @@ class Mobilizer {
   Mobilizer(const Build& b, const Joint& j, bool child_particle);
   virtual ~Mobilizer() = default;
 
-  /// A scalar coordinate `c` with its rate on 1-junction `junction`, starting
-  /// at q0 with rate rate0; `prescribed`: driven by the joint's motion = f(t).
-  virtual Rate& rate(const std::string& junction, const std::string& c, E q0, E rate0, bool prescribed) = 0;
+  /// A scalar coordinate `c` (JointSym::coordinate) with its rate on
+  /// 1-junction `junction`, starting at q0 with rate rate0; `prescribed`:
+  /// driven by the joint's motion = f(t).
+  virtual Rate& rate(const Sym& junction, const std::string& c, E q0, E rate0, bool prescribed) = 0;
   /// Three rates: the relative angular velocity in B's joint frame,
   /// integrated into a relative quaternion (a ball joint); sets qrel.
   virtual void ball() = 0;
 
   /// The joint's setting `key`, or `fallback`.
   E setting_or(const Setting& s, E fallback) const;
-  E param(const std::string& suffix) const { return B.name(joint.decl->name + "." + suffix); }
   bool prescribed() const;  // the joint has motion = f(t)
 
   const Build& B;
   const Joint& joint;
+  const JointSym sym;         // the joint's names
   const bool child_particle;  // the child body has no orientation
   E zero, ex, ey, ez;
   // The relative pose of B's joint frame in A's: the translation disp (A's
@@ -144,7 +146,7 @@ class JointKind {
   virtual void check_constant(const ir::AstJoint& /*joint*/, const ir::AstAttr& /*setting*/, double /*value*/,
                               ir::Diagnostics& /*diags*/) const {}
   /// Writes the kind's own parameters (a screw's pitch, a rod's length).
-  virtual void params(const Joint& /*joint*/, const std::function<void(const std::string&, E)>& /*param*/) const {}
+  virtual void params(const Joint& /*joint*/, const std::function<void(const Sym&, E)>& /*param*/) const {}
 
   /// The constraint rows g = 0, appended to `rows`.
   virtual void rows(const JointFrames& f, std::vector<E>& rows) const = 0;
@@ -162,12 +164,13 @@ const JointKind* find_joint_kind(std::string_view name);
 std::vector<std::string> joint_kind_names();
 
 /// The rotation about A's joint z axis by the joint's q0 / rate0 (or its
-/// prescribed motion), on junction `j.drive`: revolute, cylindrical, screw.
+/// prescribed motion), on the joint's drive(): revolute, cylindrical, screw.
 Mobilizer::Rate& turn_about_axis(Mobilizer& m);
 
 /// A slide along A's joint z axis by the settings `q0`, `rate0` (or the
-/// prescribed motion), on junction `j.<junction>`: prismatic, cylindrical.
-Mobilizer::Rate& slide_along_axis(Mobilizer& m, const std::string& junction, const Setting& q0, const Setting& rate0,
+/// prescribed motion), on 1-junction `junction` (the joint's drive() or
+/// slide()): prismatic, cylindrical.
+Mobilizer::Rate& slide_along_axis(Mobilizer& m, const Sym& junction, const Setting& q0, const Setting& rate0,
                                   bool prescribed);
 
 }  // namespace mbgc::multibody::detail

@@ -164,7 +164,7 @@ void Expander::emit_joint(Joint& j) {
   const JointSym jn(d.name);
   Build B(d.loc);
   joint_params(B, j);
-  j.kind->params(j, [&](const std::string& name, E value) { property(B, name, std::move(value)); });
+  j.kind->params(j, [&](const Sym& name, E value) { property(B, name, std::move(value)); });
   Frame A = frame(B, j, j.a, 'a');
   Frame Bf = frame(B, j, j.b, 'b');
   frames_[d.name] = {A, Bf};

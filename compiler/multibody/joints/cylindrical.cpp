@@ -16,10 +16,10 @@ class Cylindrical final : public JointKind {
     f.on_axis(r);
     f.aligned(r);
   }
-  /// The angle on `j.drive` (the drive's torque acts on it), the slide on `j.slide`.
+  /// The angle on the drive (the drive's torque acts on it), the slide on its own junction.
   void mobilize(Mobilizer& m) const override {
     turn_about_axis(m);
-    slide_along_axis(m, "slide", joint_setting::d0, joint_setting::ddot0, false);
+    slide_along_axis(m, m.sym.slide(), joint_setting::d0, joint_setting::ddot0, false);
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);

@@ -21,13 +21,13 @@ class Distance final : public JointKind {
                   "a distance joint keeps two points `length` apart and must be positive; points that coincide are a "
                   "spherical joint: write joint " + j.name + " spherical(...)");
   }
-  void params(const Joint& j, const std::function<void(const std::string&, E)>& param) const override {
-    param(j.decl->name + ".length", given_attr(j, joint_setting::length)->value);
+  void params(const Joint& j, const std::function<void(const Sym&, E)>& param) const override {
+    param(JointSym(j.decl->name).length(), given_attr(j, joint_setting::length)->value);
   }
   /// (|d|^2 - L^2) / (2 L): one row, in metres.
   void rows(const JointFrames& f, std::vector<E>& r) const override {
     const Build& B = f.B;
-    E L = f.param("length");
+    E L = B.ref(f.sym().length());
     r.push_back(B.op('/', B.op('-', B.dot(f.d, f.d), B.op('^', L, B.num(2))), B.op('*', B.num(2), L)));
   }
   E displacement(const JointFrames& f) const override { return f.B.call("norm", {f.d}); }
@@ -37,21 +37,21 @@ class Distance final : public JointKind {
   /// rod a body turns freely, as on a ball joint.
   void mobilize(Mobilizer& m) const override {
     const Build& B = m.B;
-    Mobilizer::Rate& a = m.rate(m.joint.decl->name + ".alphadot", "alpha", m.zero, m.zero, false);
-    Mobilizer::Rate& b = m.rate(m.joint.decl->name + ".betadot", "beta", m.zero, m.zero, false);
+    Mobilizer::Rate& a = m.rate(m.sym.rate_junction("alpha"), "alpha", m.zero, m.zero, false);
+    Mobilizer::Rate& b = m.rate(m.sym.rate_junction("beta"), "beta", m.zero, m.zero, false);
     E qa = B.call("quat_axis_angle", {m.ex, a.value});
     E arm_b = B.op('*', B.call("rotq", {qa}), m.ey);
     E turned = B.call("quat_mul", {qa, B.call("quat_axis_angle", {m.ey, b.value})});
-    m.disp = B.op('*', B.op('*', B.call("rotq", {turned}), m.ez), m.param("length"));
+    m.disp = B.op('*', B.op('*', B.call("rotq", {turned}), m.ez), B.ref(m.sym.length()));
     a.V = B.call("cross", {m.ex, m.disp});
     b.V = B.call("cross", {arm_b, m.disp});
-    m.axial = m.param("length");  // `j.displacement`
+    m.axial = B.ref(m.sym.length());  // `j.displacement`
     if (!m.child_particle) m.ball();
   }
   /// The rod starts along the joint axis.
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.axial = B.name(j.decl->name + ".length");
+    m.axial = B.ref(JointSym(j.decl->name).length());
     return m;
   }
 };

@@ -19,13 +19,12 @@ class Free final : public JointKind {
   }
   void rows(const JointFrames& /*f*/, std::vector<E>& /*r*/) const override {}
   void mobilize(Mobilizer& m) const override {
-    const std::string jn = m.joint.decl->name;
     const E r0 = m.setting_or(joint_setting::r0, m.B.vec(0, 0, 0)), v0 = m.setting_or(joint_setting::v0, m.B.vec(0, 0, 0));
     const char* names[3] = {"x", "y", "z"};
     const E axes[3] = {m.ex, m.ey, m.ez};
     std::vector<E> disp;
     for (int i = 0; i < 3; ++i) {
-      Mobilizer::Rate& s = m.rate(jn + "." + names[i] + "dot", names[i], m.B.at(r0, i + 1), m.B.at(v0, i + 1), false);
+      Mobilizer::Rate& s = m.rate(m.sym.rate_junction(names[i]), names[i], m.B.at(r0, i + 1), m.B.at(v0, i + 1), false);
       s.V = axes[i];
       disp.push_back(s.value);
     }

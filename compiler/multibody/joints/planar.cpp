@@ -29,11 +29,11 @@ class Planar final : public JointKind {
   }
   void mobilize(Mobilizer& m) const override {
     const E v0 = m.setting_or(joint_setting::v0, m.B.vec(0, 0, 0)), w0 = m.setting_or(joint_setting::w0, m.B.vec(0, 0, 0));
-    Mobilizer::Rate& x = m.rate(m.joint.decl->name + ".xdot", "x", m.zero, m.B.at(v0, 1), false);
+    Mobilizer::Rate& x = m.rate(m.sym.rate_junction("x"), "x", m.zero, m.B.at(v0, 1), false);
     x.V = m.ex;
-    Mobilizer::Rate& y = m.rate(m.joint.decl->name + ".ydot", "y", m.zero, m.B.at(v0, 2), false);
+    Mobilizer::Rate& y = m.rate(m.sym.rate_junction("y"), "y", m.zero, m.B.at(v0, 2), false);
     y.V = m.ey;
-    Mobilizer::Rate& turn = m.rate(m.joint.decl->name + ".turn", "theta", m.zero, m.B.at(w0, 3), false);
+    Mobilizer::Rate& turn = m.rate(m.sym.turn(), "theta", m.zero, m.B.at(w0, 3), false);
     turn.W = m.ez;
     m.disp = m.B.list({x.value, y.value, m.zero});
     m.qrel = m.B.call("quat_axis_angle", {m.ez, turn.value});

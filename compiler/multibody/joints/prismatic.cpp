@@ -17,7 +17,7 @@ class Prismatic final : public JointKind {
     r.push_back(f.perp(f.A.X, f.Bf.Y));
   }
   void mobilize(Mobilizer& m) const override {
-    slide_along_axis(m, "drive", joint_setting::q0, joint_setting::rate0, m.prescribed());
+    slide_along_axis(m, m.sym.drive(), joint_setting::q0, joint_setting::rate0, m.prescribed());
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);

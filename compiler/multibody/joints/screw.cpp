@@ -20,29 +20,30 @@ class Screw final : public JointKind {
                   "a screw advances `pitch` metres per radian; with no advance it is a revolute joint: write joint " +
                       j.name + " revolute(...)");
   }
-  void params(const Joint& j, const std::function<void(const std::string&, E)>& param) const override {
-    param(j.decl->name + ".pitch", given_attr(j, joint_setting::pitch)->value);
+  void params(const Joint& j, const std::function<void(const Sym&, E)>& param) const override {
+    param(JointSym(j.decl->name).pitch(), given_attr(j, joint_setting::pitch)->value);
   }
   /// On the axis, aligned, and the slide s = pitch * theta, written without
   /// atan2 (no wrap): pitch * sin(theta - s / pitch) = 0. 5 rows.
   void rows(const JointFrames& f, std::vector<E>& r) const override {
     f.on_axis(r);
     f.aligned(r);
-    E h = f.param("pitch");
+    E h = f.B.ref(f.sym().pitch());
     E phase = f.B.op('/', f.B.dot(f.A.Z, f.d), h);
     r.push_back(f.B.op('*', h, f.turned_by(phase)));
   }
   void mobilize(Mobilizer& m) const override {
     Mobilizer::Rate& r = turn_about_axis(m);
-    E h = m.param("pitch");
+    E h = m.B.ref(m.sym.pitch());
     r.V = m.B.op('*', h, m.ez);
     m.axial = m.B.op('*', h, m.angle), m.axial_rate = m.B.op('*', h, m.angle_rate);
     m.disp = m.B.op('*', m.ez, m.axial);
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.axial = B.op('*', B.name(j.decl->name + ".pitch"), m.angle);
-    m.axial_rate = B.op('*', B.name(j.decl->name + ".pitch"), m.angle_rate);
+    const E h = B.ref(JointSym(j.decl->name).pitch());
+    m.axial = B.op('*', h, m.angle);
+    m.axial_rate = B.op('*', h, m.angle_rate);
     return m;
   }
 };

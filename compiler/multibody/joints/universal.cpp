@@ -33,9 +33,9 @@ class Universal final : public JointKind {
   void mobilize(Mobilizer& m) const override {
     const Build& B = m.B;
     const E w0 = m.setting_or(joint_setting::w0, B.vec(0, 0, 0));
-    Mobilizer::Rate& a = m.rate(m.joint.decl->name + ".alphadot", "alpha", m.zero, B.at(w0, 1), false);
+    Mobilizer::Rate& a = m.rate(m.sym.rate_junction("alpha"), "alpha", m.zero, B.at(w0, 1), false);
     a.W = m.ex;
-    Mobilizer::Rate& b = m.rate(m.joint.decl->name + ".betadot", "beta", m.zero, B.at(w0, 2), false);
+    Mobilizer::Rate& b = m.rate(m.sym.rate_junction("beta"), "beta", m.zero, B.at(w0, 2), false);
     E qa = B.call("quat_axis_angle", {m.ex, a.value});
     E Ra = B.call("rot_axis_angle", {m.ex, a.value});
     b.W = B.op('*', Ra, m.ey);
