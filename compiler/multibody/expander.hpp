@@ -23,6 +23,7 @@
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
 #include "multibody/expand.hpp"
+#include "multibody/flexible_symbols.hpp"
 #include "multibody/joint_kind.hpp"
 #include "multibody/model.hpp"
 #include "multibody/settings.hpp"
