@@ -15,7 +15,8 @@ namespace mbgc::multibody::detail {
 
 /// eta of the body's state, split by group.
 Eta Expander::state_eta(const Build& B, const std::string& body, const Deformation& field) const {
-  return field.split([&](int k) { return eta_of(B, body, k); });
+  const FlexibleSym n(body);
+  return field.split([&](int k) { return eta_of(B, n, k); });
 }
 
 void Expander::emit_flexible(const Body& body) {
@@ -23,7 +24,7 @@ void Expander::emit_flexible(const Body& body) {
   const FlexibleSym n(d.name);
   const Deformation& beam = *body.flex;
   Build B(d.loc);
-  beam.params({B, d, [&](const std::string& name, E value) { property(B, name, std::move(value)); }, diags_});
+  beam.params({B, d, [&](const Sym& name, E value) { property(B, name, std::move(value)); }, diags_});
   for (const auto& [p, v] : body.points) property(B, n.point(p), v);
   const int ne = beam.count(), N = 6 + ne;
   Eta eta = state_eta(B, d.name, beam);
@@ -46,25 +47,25 @@ void Expander::emit_flexible(const Body& body) {
   if (own_states) {
     E R0 = B.call("rotq", {B.ref(n.q0())});
     E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.ref(n.v0())), B.ref(n.w0()), B.call("zeros", {B.num(ne)})});
-    M_init.push_back(kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, d.name, rest)), nu0), d.loc));
+    M_init.push_back(kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc));
   }
-  element(B, "I", n.M(), rows_to_matrix(B, beam.mass_matrix(B, d.name, eta)), M_init);
+  element(B, "I", n.M(), rows_to_matrix(B, beam.mass_matrix(B, n, eta)), M_init);
   std::get<ir::ExpandedElement>(generated_.back()).configuration_dependent = true;
   E f = B.ref(Sym::own_flow()), p = B.ref(n.M().momentum());
   auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
   E V = part(f, 1), w = part(f, 4), P = part(p, 1), H = part(p, 4);
   auto cross = [&](E a, E b) { return B.call("cross", {std::move(a), std::move(b)}); };
   // dT/deta at constant nu (Kirchhoff): the kinetic energy's change with the beam's shape
-  E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, beam.mass_matrix(B, d.name, eta)), f)));
+  E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, eta)), f)));
   E dT = B.call("transpose", {B.call("jacobian", {T, B.ref(n.eta().displacement())})});
   element(B, "R", n.ejs(), nullptr,
           {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
   if (gravity_) {
     // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
     E g = B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity()));
-    E coupling = rows_to_matrix(B, beam.translation_coupling(B, d.name, eta));
+    E coupling = rows_to_matrix(B, beam.translation_coupling(B, n, eta));
     element(B, "Se", n.weight(),
-            B.call("vcat", {B.op('*', B.ref(n.mass()), g), cross(beam.first_moment(B, d.name, eta), g),
+            B.call("vcat", {B.op('*', B.ref(n.mass()), g), cross(beam.first_moment(B, n, eta), g),
                             B.op('*', B.call("transpose", {coupling}), g)}));
   }
   // selectors (own states): V (turned to world axes), omega, eta'; or
@@ -105,7 +106,7 @@ void Expander::emit_flexible(const Body& body) {
   junction(B, '1', n.etadot(), ne, modal_in, modal_out);
   Rows K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
   Rows D = K;
-  beam.stiffness_and_damping(B, d.name, K, D);
+  beam.stiffness_and_damping(B, n, K, D);
   element(B, "C", n.eta(), nullptr,
           {kv("e", B.op('*', rows_to_matrix(B, K), B.ref(Sym::own_displacement())), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
   std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(d.name);
@@ -133,7 +134,7 @@ E Expander::flexible_load(const Build& B, const std::string& body, const std::st
   const Deformation& beam = *bodies_.at(body).flex;
   const FlexibleSym n(body);
   Eta eta = state_eta(B, body, beam);
-  E at = point.empty() ? B.vec(0, 0, 0) : beam.point(B, body, point, eta);
+  E at = point.empty() ? B.vec(0, 0, 0) : beam.point(B, n, point, eta);
   E Rt = B.call("transpose", {rotation(B, body)}), F = B.op('*', Rt, force), q = B.ref(n.eta().displacement());
   E moment = B.call("cross", {at, F});
   E modal = B.op('*', B.call("transpose", {B.call("jacobian", {at, q})}), F);
@@ -141,7 +142,7 @@ E Expander::flexible_load(const Build& B, const std::string& body, const std::st
     E T = B.op('*', Rt, torque);
     moment = B.op('+', moment, T);
     if (!point.empty())
-      modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam.slope(B, body, point, eta), q})}), T));
+      modal = B.op('+', modal, B.op('*', B.call("transpose", {B.call("jacobian", {beam.slope(B, n, point, eta), q})}), T));
   }
   return B.call("vcat", {F, moment, modal});
 }
@@ -170,15 +171,15 @@ void Expander::flexible_quantities(const Build& B, const Body& body) {
   E elastic = B.op('*', B.num(0.5), B.dot(B.ref(n.eta().displacement()), B.ref(n.eta().effort())));
   quantity_[n.elastic_energy().str()] = elastic;
   E gravity = gravity_ ? B.neg(B.dot(B.ref(Sym::gravity()), B.op('+', B.op('*', B.ref(n.mass()), r),
-                                                                    B.op('*', R, beam.first_moment(B, name, eta)))))
+                                                                    B.op('*', R, beam.first_moment(B, n, eta)))))
                        : B.num(0);
   quantity_[n.quantity("potential_energy").str()] = B.op('+', gravity, elastic);
   for (const auto& [pt, at] : beam.points()) {
-    E local = beam.point(B, name, pt, eta);
+    E local = beam.point(B, n, pt, eta);
     std::tie(quantity_[n.point_quantity(pt, "position").str()], quantity_[n.point_quantity(pt, "velocity").str()]) =
         flexible_point_motion(B, name, local);
     quantity_[n.point_quantity(pt, "deflection").str()] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
-    quantity_[n.point_quantity(pt, "rotation_vector").str()] = beam.slope(B, name, pt, eta);  // small, body axes
+    quantity_[n.point_quantity(pt, "rotation_vector").str()] = beam.slope(B, n, pt, eta);  // small, body axes
   }
 }
 
