@@ -11,6 +11,7 @@
 #include "flex/beam_modes.hpp"
 #include "flex/rod_modes.hpp"
 #include "multibody/deformation.hpp"
+#include "multibody/flexible_symbols.hpp"
 
 namespace mbgc::multibody::detail {
 
@@ -25,14 +26,14 @@ class Beam final : public Deformation {
   std::map<std::string, std::array<double, 3>> points() const override;
   Eta split(const std::function<E(int)>& eta) const override;
   void params(const FieldParams& p) const override;
-  E first_moment(const Build& B, const std::string& n, const Eta& eta) const override;
-  Rows translation_coupling(const Build& B, const std::string& n, const Eta& eta) const override;
-  Rows mass_matrix(const Build& B, const std::string& n, const Eta& eta) const override;
-  E point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
-  E slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
+  E first_moment(const Build& B, const FlexibleSym& n, const Eta& eta) const override;
+  Rows translation_coupling(const Build& B, const FlexibleSym& n, const Eta& eta) const override;
+  Rows mass_matrix(const Build& B, const FlexibleSym& n, const Eta& eta) const override;
+  E point(const Build& B, const FlexibleSym& n, const std::string& pt, const Eta& eta) const override;
+  E slope(const Build& B, const FlexibleSym& n, const std::string& pt, const Eta& eta) const override;
   bool origin_fixed() const override;
-  Limits limits(const std::string& n) const override;
-  void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const override;
+  Limits limits(const std::string& body) const override;
+  void stiffness_and_damping(const Build& B, const FlexibleSym& n, Rows& K, Rows& D) const override;
   ir::Drawing drawing(double scale) const override;
 
   // eta = [eta_y; eta_z; eta_axial; eta_torsion]
@@ -51,9 +52,9 @@ class Beam final : public Deformation {
   std::map<std::string, double> point_x; // point name -> x along the beam
 
  private:
-  void add_stretch_and_twist(const Build& B, const std::string& n, const Eta& eta, Rows& M) const;
+  void add_stretch_and_twist(const Build& B, const BeamSym& n, const Eta& eta, Rows& M) const;
   void rod_params(const FieldParams& p) const;
-  void add_bending_limits(const std::string& n, Limits& limits) const;
+  void add_bending_limits(const std::string& body, Limits& limits) const;
   static constexpr double kStrainLimit = 0.01;
 };
 

@@ -40,7 +40,7 @@ using Limits = std::vector<std::pair<double, std::string>>;
 struct FieldParams {
   const Build& B;
   const ir::AstBody& decl;                                 // the body's declaration (its settings)
-  std::function<void(const std::string&, E)> param;       // writes `param NAME = value`
+  std::function<void(const Sym&, E)> param;               // writes `param NAME = value`
   ir::Diagnostics& diags;                                  // for notes on what the compiler left out
 };
 
@@ -57,23 +57,26 @@ class Deformation {
   virtual Eta split(const std::function<E(int)>& eta) const = 0;
   /// Mass, J0, the inertia invariants, stiffness, damping and the points' shapes, as parameters.
   virtual void params(const FieldParams& p) const = 0;
+  // What follows reads the parameters params() wrote for body n (through
+  // its own symbols: flexible_symbols.hpp).
   /// s(eta) = int (r0 + u) dm about the frame origin, body axes.
-  virtual E first_moment(const Build& B, const std::string& n, const Eta& eta) const = 0;
+  virtual E first_moment(const Build& B, const FlexibleSym& n, const Eta& eta) const = 0;
   /// d s / d eta (3 x count): the translational coupling M_V,eta.
-  virtual Rows translation_coupling(const Build& B, const std::string& n, const Eta& eta) const = 0;
+  virtual Rows translation_coupling(const Build& B, const FlexibleSym& n, const Eta& eta) const = 0;
   /// The generalised mass matrix M(eta), (6 + count) x (6 + count).
-  virtual Rows mass_matrix(const Build& B, const std::string& n, const Eta& eta) const = 0;
+  virtual Rows mass_matrix(const Build& B, const FlexibleSym& n, const Eta& eta) const = 0;
   /// A point's deflected body-frame position.
-  virtual E point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const = 0;
+  virtual E point(const Build& B, const FlexibleSym& n, const std::string& pt, const Eta& eta) const = 0;
   /// The small rotation of the section at a point (body axes).
-  virtual E slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const = 0;
+  virtual E slope(const Build& B, const FlexibleSym& n, const std::string& pt, const Eta& eta) const = 0;
   /// Does the frame's origin stay put and unturned whatever the modes do (a
   /// clamped root with the frame there)? A joint may then hold the body there.
   virtual bool origin_fixed() const = 0;
-  /// Where each modal coordinate leaves the model's range.
-  virtual Limits limits(const std::string& n) const = 0;
+  /// Where each modal coordinate leaves the model's range (`body`: the
+  /// declared name, for the messages).
+  virtual Limits limits(const std::string& body) const = 0;
   /// The modal stiffness and damping matrices, count x count, from the parameters.
-  virtual void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const = 0;
+  virtual void stiffness_and_damping(const Build& B, const FlexibleSym& n, Rows& K, Rows& D) const = 0;
   /// How it is drawn (--animate): a surface in body axes from the frame
   /// origin with one displacement field per modal coordinate. `scale`: the
   /// model's size, for parts the field does not give.

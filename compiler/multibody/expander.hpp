@@ -23,6 +23,7 @@
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
 #include "multibody/expand.hpp"
+#include "multibody/flexible_symbols.hpp"
 #include "multibody/joint_kind.hpp"
 #include "multibody/joint_symbols.hpp"
 #include "multibody/model.hpp"
@@ -150,10 +151,10 @@ class Expander {
 
   // ---- 2b. flexible bodies: the floating-frame fragment every deformation kind shares (flexible_body.cpp;
   //      the kinds: beam.hpp, modal_body.hpp)
-  Eta state_eta(const Build& B, const std::string& n, const Deformation& field) const;
+  Eta state_eta(const Build& B, const std::string& body, const Deformation& field) const;
   void emit_flexible(const Body& body);
-  std::pair<E, E> flexible_point_motion(const Build& B, const std::string& n, E local) const;
-  E flexible_load(const Build& B, const std::string& n, const std::string& point, E force, E torque);
+  std::pair<E, E> flexible_point_motion(const Build& B, const std::string& body, E local) const;
+  E flexible_load(const Build& B, const std::string& body, const std::string& point, E force, E torque);
   void flexible_quantities(const Build& B, const Body& body);
 
   // ---- 3. joints as constraint rows: lagrange and penalty (joint_rows.cpp)

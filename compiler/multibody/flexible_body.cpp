@@ -13,20 +13,21 @@
 
 namespace mbgc::multibody::detail {
 
-/// eta of body n's state, split by group.
-Eta Expander::state_eta(const Build& B, const std::string& n, const Deformation& field) const {
+/// eta of the body's state, split by group.
+Eta Expander::state_eta(const Build& B, const std::string& body, const Deformation& field) const {
+  const FlexibleSym n(body);
   return field.split([&](int k) { return eta_of(B, n, k); });
 }
 
 void Expander::emit_flexible(const Body& body) {
   const AstBody& d = *body.decl;
-  const std::string& n = d.name;
+  const FlexibleSym n(d.name);
   const Deformation& beam = *body.flex;
   Build B(d.loc);
-  beam.params({B, d, [&](const std::string& name, E value) { property(B, name, std::move(value)); }, diags_});
-  for (const auto& [p, v] : body.points) property(B, n + "." + p, v);
+  beam.params({B, d, [&](const Sym& name, E value) { property(B, name, std::move(value)); }, diags_});
+  for (const auto& [p, v] : body.points) property(B, n.point(p), v);
   const int ne = beam.count(), N = 6 + ne;
-  Eta eta = state_eta(B, n, beam);
+  Eta eta = state_eta(B, d.name, beam);
   Eta rest = beam.split([&](int) { return B.num(0); });
   // the I field and its velocity terms on the common junction nu = [V; omega; eta']
   // (V in body axes). With its own states (rows strategies) nu is the I
@@ -35,36 +36,36 @@ void Expander::emit_flexible(const Body& body) {
   // rates, free rates of its own (the modal accelerations join the body's
   // block in the tree elimination).
   const bool own_states = !body.by_coordinates;
-  std::vector<std::string> nu_in;
-  if (gravity_) nu_in.push_back(n + ".weight");
-  if (auto it = loads_.find(n); it != loads_.end())
-    for (const LoadSym& f : it->second) nu_in.push_back(f.on(n).str());
-  std::vector<std::string> nu_out = {n + ".M", n + ".ejs"};
-  if (own_states) nu_out.insert(nu_out.end(), {n + ".sv.p1", n + ".sw.p1", n + ".se.p1"});
-  junction(B, '1', n + ".nu", N, nu_in, nu_out);
+  std::vector<Sym> nu_in;
+  if (gravity_) nu_in.push_back(n.weight());
+  if (auto it = loads_.find(d.name); it != loads_.end())
+    for (const LoadSym& f : it->second) nu_in.push_back(f.on(d.name));
+  std::vector<Sym> nu_out = {n.M(), n.ejs()};
+  if (own_states) nu_out.insert(nu_out.end(), {n.sv().port(1), n.sw().port(1), n.se().port(1)});
+  junction(B, '1', n.nu(), N, nu_in, nu_out);
   std::vector<AstAttr> M_init;
   if (own_states) {
-    E R0 = B.call("rotq", {B.name(n + ".q0")});
-    E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.name(n + ".v0")), B.name(n + ".w0"), B.call("zeros", {B.num(ne)})});
+    E R0 = B.call("rotq", {B.ref(n.q0())});
+    E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.ref(n.v0())), B.ref(n.w0()), B.call("zeros", {B.num(ne)})});
     M_init.push_back(kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc));
   }
-  element(B, "I", n + ".M", rows_to_matrix(B, beam.mass_matrix(B, n, eta)), M_init);
+  element(B, "I", n.M(), rows_to_matrix(B, beam.mass_matrix(B, n, eta)), M_init);
   std::get<ir::ExpandedElement>(generated_.back()).configuration_dependent = true;
-  E f = B.name("f"), p = B.name(n + ".M.p");
+  E f = B.ref(Sym::own_flow()), p = B.ref(n.M().momentum());
   auto part = [&](E v, int from) { return B.list({B.at(v, from), B.at(v, from + 1), B.at(v, from + 2)}); };
   E V = part(f, 1), w = part(f, 4), P = part(p, 1), H = part(p, 4);
   auto cross = [&](E a, E b) { return B.call("cross", {std::move(a), std::move(b)}); };
   // dT/deta at constant nu (Kirchhoff): the kinetic energy's change with the beam's shape
   E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, eta)), f)));
-  E dT = B.call("transpose", {B.call("jacobian", {T, B.name(n + ".eta.q")})});
-  element(B, "R", n + ".ejs", nullptr,
+  E dT = B.call("transpose", {B.call("jacobian", {T, B.ref(n.eta().displacement())})});
+  element(B, "R", n.ejs(), nullptr,
           {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
   if (gravity_) {
     // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
-    E g = B.op('*', B.call("transpose", {rotation(B, n)}), B.name("gravity"));
+    E g = B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity()));
     E coupling = rows_to_matrix(B, beam.translation_coupling(B, n, eta));
-    element(B, "Se", n + ".weight",
-            B.call("vcat", {B.op('*', B.name(n + ".mass"), g), cross(beam.first_moment(B, n, eta), g),
+    element(B, "Se", n.weight(),
+            B.call("vcat", {B.op('*', B.ref(n.mass()), g), cross(beam.first_moment(B, n, eta), g),
                             B.op('*', B.call("transpose", {coupling}), g)}));
   }
   // selectors (own states): V (turned to world axes), omega, eta'; or
@@ -73,43 +74,43 @@ void Expander::emit_flexible(const Body& body) {
   E pick_w = B.call("hcat", {B.call("zeros", {B.num(3), B.num(3)}), B.call("eye", {B.num(3)}), B.call("zeros", {B.num(3), B.num(ne)})});
   E pick_e = B.call("hcat", {B.call("zeros", {B.num(ne), B.num(6)}), B.call("eye", {B.num(ne)})});
   auto T_ = [&](E x) { return B.call("transpose", {std::move(x)}); };
-  std::vector<std::string> modal_in, modal_out = {n + ".eta"};
+  std::vector<Sym> modal_in, modal_out = {n.eta()};
   if (own_states) {
-    E Rq = B.call("rotq", {B.name(n + ".q.q")});
-    element(B, "MTF", n + ".sv", B.op('*', Rq, pick_v));
-    element(B, "MTF", n + ".sw", pick_w);
-    element(B, "MTF", n + ".se", pick_e);
+    E Rq = B.call("rotq", {B.ref(n.q().displacement())});
+    element(B, "MTF", n.sv(), B.op('*', Rq, pick_v));
+    element(B, "MTF", n.sw(), pick_w);
+    element(B, "MTF", n.se(), pick_e);
     // position and orientation, as on a rigid body
-    junction(B, '1', n + ".v", 3, {n + ".sv.p2"}, {n + ".r"});
-    element(B, "C", n + ".r", nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.name(n + ".r0"), d.loc)});
-    junction(B, '1', n + ".w", 3, {n + ".sw.p2"}, {n + ".qrate.p1"});
-    element(B, "MTF", n + ".qrate", B.call("quat_rate", {B.name(n + ".q.q")}));
-    element(B, "C", n + ".q", nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.name(n + ".q0"), d.loc)});
-    bond(B, n + ".qrate.p2", n + ".q", 4);
-    modal_in.push_back(n + ".se.p2");
+    junction(B, '1', n.v(), 3, {n.sv().port(2)}, {n.r()});
+    element(B, "C", n.r(), nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.ref(n.r0()), d.loc)});
+    junction(B, '1', n.w(), 3, {n.sw().port(2)}, {n.qrate().port(1)});
+    element(B, "MTF", n.qrate(), B.call("quat_rate", {B.ref(n.q().displacement())}));
+    element(B, "C", n.q(), nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.ref(n.q0()), d.loc)});
+    bond(B, n.qrate().port(2), n.q(), 4);
+    modal_in.push_back(n.se().port(2));
   } else {
     // the tree joint's flows arrive on v and w (body axes); the modal rates are free
-    junction(B, '1', n + ".v", 3, {}, {n + ".av.p1"});
-    junction(B, '1', n + ".w", 3, {}, {n + ".aw.p1"});
-    element(B, "MTF", n + ".av", T_(pick_v));
-    element(B, "MTF", n + ".aw", T_(pick_w));
-    element(B, "MTF", n + ".ae", T_(pick_e));
-    element(B, "Sf", n + ".eta_rate", nullptr, {kv("rate0", B.call("zeros", {B.num(ne)}), d.loc)});
-    modal_in.push_back(n + ".eta_rate");
-    modal_out.push_back(n + ".ae.p1");
-    junction(B, '0', n + ".nusum", N, {n + ".av.p2", n + ".aw.p2", n + ".ae.p2"}, {});
-    bond(B, n + ".nusum", n + ".nu");
+    junction(B, '1', n.v(), 3, {}, {n.av().port(1)});
+    junction(B, '1', n.w(), 3, {}, {n.aw().port(1)});
+    element(B, "MTF", n.av(), T_(pick_v));
+    element(B, "MTF", n.aw(), T_(pick_w));
+    element(B, "MTF", n.ae(), T_(pick_e));
+    element(B, "Sf", n.eta_rate(), nullptr, {kv("rate0", B.call("zeros", {B.num(ne)}), d.loc)});
+    modal_in.push_back(n.eta_rate());
+    modal_out.push_back(n.ae().port(1));
+    junction(B, '0', n.nusum(), N, {n.av().port(2), n.aw().port(2), n.ae().port(2)}, {});
+    bond(B, n.nusum(), n.nu());
   }
   // elasticity and modal damping on eta'
-  if (attr(d, "damping")) modal_out.push_back(n + ".damp");
-  junction(B, '1', n + ".etadot", ne, modal_in, modal_out);
+  if (attr(d, "damping")) modal_out.push_back(n.damp());
+  junction(B, '1', n.etadot(), ne, modal_in, modal_out);
   Rows K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
   Rows D = K;
   beam.stiffness_and_damping(B, n, K, D);
-  element(B, "C", n + ".eta", nullptr,
-          {kv("e", B.op('*', rows_to_matrix(B, K), B.name("q")), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
-  std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(n);
-  if (attr(d, "damping")) element(B, "R", n + ".damp", rows_to_matrix(B, D));
+  element(B, "C", n.eta(), nullptr,
+          {kv("e", B.op('*', rows_to_matrix(B, K), B.ref(Sym::own_displacement())), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
+  std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(d.name);
+  if (attr(d, "damping")) element(B, "R", n.damp(), rows_to_matrix(B, D));
 }
 
 /// The load on b (world force F at Q, torque T) and its opposite on a, as
@@ -118,21 +119,23 @@ void Expander::emit_flexible(const Body& body) {
 /// angular-velocity one. A spring-damper acts along the line P -> Q.
 /// World position and velocity of a beam's point at `local` (body axes,
 /// deflected): it moves with the frame and, through the modes, on it.
-std::pair<E, E> Expander::flexible_point_motion(const Build& B, const std::string& n, E local) const {
-  E R = rotation(B, n);
-  E rate = B.op('+', B.call("cross", {B.name(n + ".w.f"), local}),
-                B.op('*', B.call("jacobian", {local, B.name(n + ".eta.q")}), B.name(n + ".etadot.f")));
-  return {B.op('+', position(B, n), B.op('*', R, local)), B.op('+', velocity(B, n), B.op('*', R, rate))};
+std::pair<E, E> Expander::flexible_point_motion(const Build& B, const std::string& body, E local) const {
+  const FlexibleSym n(body);
+  E R = rotation(B, body);
+  E rate = B.op('+', B.call("cross", {B.ref(n.w().flow()), local}),
+                B.op('*', B.call("jacobian", {local, B.ref(n.eta().displacement())}), B.ref(n.etadot().flow())));
+  return {B.op('+', position(B, body), B.op('*', R, local)), B.op('+', velocity(B, body), B.op('*', R, rate))};
 }
 
 /// A force F (and torque T), world axes, at a beam's point as an effort on
 /// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
 /// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
-E Expander::flexible_load(const Build& B, const std::string& n, const std::string& point, E force, E torque) {
-  const Deformation& beam = *bodies_.at(n).flex;
-  Eta eta = state_eta(B, n, beam);
+E Expander::flexible_load(const Build& B, const std::string& body, const std::string& point, E force, E torque) {
+  const Deformation& beam = *bodies_.at(body).flex;
+  const FlexibleSym n(body);
+  Eta eta = state_eta(B, body, beam);
   E at = point.empty() ? B.vec(0, 0, 0) : beam.point(B, n, point, eta);
-  E Rt = B.call("transpose", {rotation(B, n)}), F = B.op('*', Rt, force), q = B.name(n + ".eta.q");
+  E Rt = B.call("transpose", {rotation(B, body)}), F = B.op('*', Rt, force), q = B.ref(n.eta().displacement());
   E moment = B.call("cross", {at, F});
   E modal = B.op('*', B.call("transpose", {B.call("jacobian", {at, q})}), F);
   if (torque) {
@@ -147,34 +150,36 @@ E Expander::flexible_load(const Build& B, const std::string& n, const std::strin
 /// A beam's quantities: those of a rigid body, for its frame origin (x = 0),
 /// plus its modal coordinates, elastic energy and the deflection of its points.
 void Expander::flexible_quantities(const Build& B, const Body& body) {
-  const std::string& n = body.decl->name;
+  const std::string& name = body.decl->name;
+  const FlexibleSym n(name);
   const Deformation& beam = *body.flex;
-  Eta eta = state_eta(B, n, beam);
-  E r = position(B, n), v = velocity(B, n), q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
-  E p = B.name(n + ".M.p");
+  Eta eta = state_eta(B, name, beam);
+  E r = position(B, name), v = velocity(B, name), q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
+  E p = B.ref(n.M().momentum());
   auto part = [&](E x, int from) { return B.list({B.at(x, from), B.at(x, from + 1), B.at(x, from + 2)}); };
-  quantity_[n + ".position"] = r;
-  quantity_[n + ".velocity"] = v;
-  quantity_[n + ".momentum"] = B.op('*', R, part(p, 1));
-  quantity_[n + ".quaternion"] = q;
-  quantity_[n + ".rotation"] = R;
-  quantity_[n + ".bryant"] = B.call("bryant", {q});
-  quantity_[n + ".omega"] = w;
-  quantity_[n + ".omega_world"] = B.op('*', R, w);
-  quantity_[n + ".angular_momentum"] = B.op('*', R, part(p, 4));  // about the frame origin
-  quantity_[n + ".modes"] = B.name(n + ".eta.q");
-  quantity_[n + ".kinetic_energy"] = B.op('*', B.num(0.5), B.dot(B.name(n + ".nu.f"), p));
-  E elastic = B.op('*', B.num(0.5), B.dot(B.name(n + ".eta.q"), B.name(n + ".eta.e")));
-  quantity_[n + ".elastic_energy"] = elastic;
-  E gravity = gravity_ ? B.neg(B.dot(B.name("gravity"), B.op('+', B.op('*', B.name(n + ".mass"), r),
-                                                               B.op('*', R, beam.first_moment(B, n, eta)))))
+  quantity_[n.quantity("position").str()] = r;
+  quantity_[n.quantity("velocity").str()] = v;
+  quantity_[n.quantity("momentum").str()] = B.op('*', R, part(p, 1));
+  quantity_[n.quantity("quaternion").str()] = q;
+  quantity_[n.quantity("rotation").str()] = R;
+  quantity_[n.quantity("bryant").str()] = B.call("bryant", {q});
+  quantity_[n.quantity("omega").str()] = w;
+  quantity_[n.quantity("omega_world").str()] = B.op('*', R, w);
+  quantity_[n.quantity("angular_momentum").str()] = B.op('*', R, part(p, 4));  // about the frame origin
+  quantity_[n.modes().str()] = B.ref(n.eta().displacement());
+  quantity_[n.quantity("kinetic_energy").str()] = B.op('*', B.num(0.5), B.dot(B.ref(n.nu().flow()), p));
+  E elastic = B.op('*', B.num(0.5), B.dot(B.ref(n.eta().displacement()), B.ref(n.eta().effort())));
+  quantity_[n.elastic_energy().str()] = elastic;
+  E gravity = gravity_ ? B.neg(B.dot(B.ref(Sym::gravity()), B.op('+', B.op('*', B.ref(n.mass()), r),
+                                                                    B.op('*', R, beam.first_moment(B, n, eta)))))
                        : B.num(0);
-  quantity_[n + ".potential_energy"] = B.op('+', gravity, elastic);
+  quantity_[n.quantity("potential_energy").str()] = B.op('+', gravity, elastic);
   for (const auto& [pt, at] : beam.points()) {
     E local = beam.point(B, n, pt, eta);
-    std::tie(quantity_[n + "." + pt + ".position"], quantity_[n + "." + pt + ".velocity"]) = flexible_point_motion(B, n, local);
-    quantity_[n + "." + pt + ".deflection"] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
-    quantity_[n + "." + pt + ".rotation_vector"] = beam.slope(B, n, pt, eta);            // small, body axes
+    std::tie(quantity_[n.point_quantity(pt, "position").str()], quantity_[n.point_quantity(pt, "velocity").str()]) =
+        flexible_point_motion(B, name, local);
+    quantity_[n.point_quantity(pt, "deflection").str()] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
+    quantity_[n.point_quantity(pt, "rotation_vector").str()] = beam.slope(B, n, pt, eta);  // small, body axes
   }
 }
 

@@ -352,7 +352,7 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
       continue;
     }
     body.points[name] = B.vec(pt.position[0], pt.position[1], pt.position[2]);
-    point_locs_[b.name + "." + name] = file.loc;
+    point_locs_[BodySym(b.name).point(name).str()] = file.loc;
   }
   auto modal = std::make_shared<ModalBody>(std::make_shared<const flex::ModalData>(std::move(*data)));
   modal->slope_limit_rad = slope_limit_rad;

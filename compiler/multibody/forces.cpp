@@ -25,7 +25,7 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
   if (body.particle) return {r, v};
   if (body.flex) {
     Eta eta = state_eta(B, s.body, *body.flex);
-    return flexible_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : body.flex->point(B, s.body, s.point, eta));
+    return flexible_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : body.flex->point(B, FlexibleSym(s.body), s.point, eta));
   }
   E R = rotation(B, s.body);
   E arm = B.op('-', local, B.ref(n.com()));

@@ -248,8 +248,8 @@ Expander::FlexibleSeat Expander::flexible_seat(const Build& B, const Side& s, bo
   if (!P.flex || s.point.empty()) return {};  // rigid, or a flexible body's fixed origin (check_coordinates)
   const Eta eta = state_eta(B, s.body, *P.flex);
   FlexibleSeat seat;
-  seat.point = P.flex->point(B, s.body, s.point, eta);
-  seat.slope = P.flex->slope(B, s.body, s.point, eta);
+  seat.point = P.flex->point(B, FlexibleSym(s.body), s.point, eta);
+  seat.slope = P.flex->slope(B, FlexibleSym(s.body), s.point, eta);
   if (free_rotation) return seat;
   // q = [1, theta / 2] (normalised by rotq): omega = 2 vec(q' q*) / |q|^2 = (theta' + theta x theta' / 2) / (1 + |theta|^2 / 4)
   E half = B.op('*', B.num(0.5), seat.slope);

@@ -25,8 +25,8 @@ Frame Expander::frame(const Build& B, const Joint& j, const Side& s, char side) 
   E turn = f.R;                       // the joint frame's rotation (a beam's section turns with its slope)
   if (body.flex && !s.point.empty()) {
     Eta eta = state_eta(B, s.body, *body.flex);
-    local = body.flex->point(B, s.body, s.point, eta);
-    turn = B.op('*', f.R, section_turn(B, body.flex->slope(B, s.body, s.point, eta)));
+    local = body.flex->point(B, FlexibleSym(s.body), s.point, eta);
+    turn = B.op('*', f.R, section_turn(B, body.flex->slope(B, FlexibleSym(s.body), s.point, eta)));
   }
   if (body.ground) f.p = local;
   else if (body.particle) f.p = position(B, s.body);

@@ -4,25 +4,25 @@
 namespace mbgc::multibody::detail {
 
 /// eta_k of beam n as an AST expression (1-based component of the modal C's state).
-E eta_of(const Build& B, const std::string& n, int k) { return B.at(B.name(n + ".eta.q"), k + 1); }
+E eta_of(const Build& B, const FlexibleSym& n, int k) { return B.at(B.ref(n.eta().displacement()), k + 1); }
 
 /// sum_ij P[i][j] x_i y_j for a parameter matrix P (1-based indexing).
-E quadratic(const Build& B, const std::string& P, const std::vector<E>& x, const std::vector<E>& y) {
+E quadratic(const Build& B, const Sym& P, const std::vector<E>& x, const std::vector<E>& y) {
   E sum = nullptr;
   for (std::size_t i = 0; i < x.size(); ++i)
     for (std::size_t j = 0; j < y.size(); ++j) {
-      E term = B.op('*', B.op('*', idx2(B, B.name(P), static_cast<int>(i) + 1, static_cast<int>(j) + 1), x[i]), y[j]);
+      E term = B.op('*', B.op('*', idx2(B, B.ref(P), static_cast<int>(i) + 1, static_cast<int>(j) + 1), x[i]), y[j]);
       sum = sum ? B.op('+', sum, term) : term;
     }
   return sum ? sum : B.num(0);
 }
 
 /// (P x)_i, or (P^T x)_i, for a parameter matrix P.
-E row_dot(const Build& B, const std::string& P, int i, const std::vector<E>& x, bool transposed) {
+E row_dot(const Build& B, const Sym& P, int i, const std::vector<E>& x, bool transposed) {
   E sum = nullptr;
   for (std::size_t j = 0; j < x.size(); ++j) {
     int r = transposed ? static_cast<int>(j) + 1 : i + 1, c = transposed ? i + 1 : static_cast<int>(j) + 1;
-    E term = B.op('*', idx2(B, B.name(P), r, c), x[j]);
+    E term = B.op('*', idx2(B, B.ref(P), r, c), x[j]);
     sum = sum ? B.op('+', sum, term) : term;
   }
   return sum ? sum : B.num(0);
@@ -52,9 +52,9 @@ E vector_param(const Build& B, const std::vector<double>& v) {
 }
 
 /// sum_k P[k] x_k for a parameter vector P (0 for no x).
-E vec_dot(const Build& B, const std::string& P, const std::vector<E>& x) {
+E vec_dot(const Build& B, const Sym& P, const std::vector<E>& x) {
   std::vector<E> terms;
-  for (std::size_t k = 0; k < x.size(); ++k) terms.push_back(B.op('*', B.at(B.name(P), static_cast<int>(k) + 1), x[k]));
+  for (std::size_t k = 0; k < x.size(); ++k) terms.push_back(B.op('*', B.at(B.ref(P), static_cast<int>(k) + 1), x[k]));
   return sum_of(B, terms);
 }
 
@@ -84,11 +84,11 @@ bool all_zero(const flex::Matrix& m) {
   return true;
 }
 
-E modal_damping(const Build& B, E zeta, int count, const std::string& K, const std::string& M) {
+E modal_damping(const Build& B, E zeta, int count, const Sym& K, const Sym& M) {
   std::vector<E> c;
   for (int i = 1; i <= count; ++i)
     c.push_back(B.op('*', B.op('*', B.num(2), zeta ? zeta : B.num(0)),
-                     B.call("sqrt", {B.op('*', idx2(B, B.name(K), i, i), idx2(B, B.name(M), i, i))})));
+                     B.call("sqrt", {B.op('*', idx2(B, B.ref(K), i, i), idx2(B, B.ref(M), i, i))})));
   return c.size() == 1 ? B.list({B.list({c[0]})}) : B.call("diag", c);
 }
 

@@ -4,7 +4,6 @@
 // assembled from rows of scalars.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "flex/beam_modes.hpp"
@@ -15,13 +14,13 @@ namespace mbgc::multibody::detail {
 using Rows = std::vector<std::vector<E>>;
 
 /// eta_k of body n as an AST expression (1-based component of the modal C's state).
-E eta_of(const Build& B, const std::string& n, int k);
+E eta_of(const Build& B, const FlexibleSym& n, int k);
 /// sum_ij P[i][j] x_i y_j for a parameter matrix P (0 for no terms).
-E quadratic(const Build& B, const std::string& P, const std::vector<E>& x, const std::vector<E>& y);
+E quadratic(const Build& B, const Sym& P, const std::vector<E>& x, const std::vector<E>& y);
 /// (P x)_i, or (P^T x)_i, for a parameter matrix P.
-E row_dot(const Build& B, const std::string& P, int i, const std::vector<E>& x, bool transposed = false);
+E row_dot(const Build& B, const Sym& P, int i, const std::vector<E>& x, bool transposed = false);
 /// sum_k P[k] x_k for a parameter vector P (0 for no x).
-E vec_dot(const Build& B, const std::string& P, const std::vector<E>& x);
+E vec_dot(const Build& B, const Sym& P, const std::vector<E>& x);
 /// The sum of the non-null terms (0 for none).
 E sum_of(const Build& B, const std::vector<E>& terms);
 /// A constant matrix or vector as a list literal.
@@ -40,6 +39,6 @@ bool all_zero(const flex::Matrix& m);
 E section_quaternion(const Build& B, E theta);  // [1, theta / 2], not normalised
 E section_turn(const Build& B, E theta);
 /// Modal damping 2 zeta omega_i m_i = 2 zeta sqrt(K_ii M_ii) per mode (zeta: the body's `damping`, or none).
-E modal_damping(const Build& B, E zeta, int count, const std::string& K, const std::string& M);
+E modal_damping(const Build& B, E zeta, int count, const Sym& K, const Sym& M);
 
 }  // namespace mbgc::multibody::detail

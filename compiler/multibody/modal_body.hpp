@@ -10,6 +10,7 @@
 
 #include "flex/modal_file.hpp"
 #include "multibody/deformation.hpp"
+#include "multibody/flexible_symbols.hpp"
 
 namespace mbgc::multibody::detail {
 
@@ -22,21 +23,20 @@ class ModalBody final : public Deformation {
   /// No planes: every coordinate in Eta::y.
   Eta split(const std::function<E(int)>& eta) const override;
   void params(const FieldParams& p) const override;
-  E first_moment(const Build& B, const std::string& n, const Eta& eta) const override;
-  Rows translation_coupling(const Build& B, const std::string& n, const Eta& eta) const override;
-  Rows mass_matrix(const Build& B, const std::string& n, const Eta& eta) const override;
-  E point(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
-  E slope(const Build& B, const std::string& n, const std::string& pt, const Eta& eta) const override;
+  E first_moment(const Build& B, const FlexibleSym& n, const Eta& eta) const override;
+  Rows translation_coupling(const Build& B, const FlexibleSym& n, const Eta& eta) const override;
+  Rows mass_matrix(const Build& B, const FlexibleSym& n, const Eta& eta) const override;
+  E point(const Build& B, const FlexibleSym& n, const std::string& pt, const Eta& eta) const override;
+  E slope(const Build& B, const FlexibleSym& n, const std::string& pt, const Eta& eta) const override;
   bool origin_fixed() const override { return false; }  // the file does not say how the origin moves
-  Limits limits(const std::string& n) const override;
-  void stiffness_and_damping(const Build& B, const std::string& n, Rows& K, Rows& D) const override;
+  Limits limits(const std::string& body) const override;
+  void stiffness_and_damping(const Build& B, const FlexibleSym& n, Rows& K, Rows& D) const override;
   ir::Drawing drawing(double scale) const override;
   std::string point_file() const override { return data_->path; }
 
  private:
-  /// A node's deflected position (what = "shape", at = its undeformed position) or small rotation ("slope").
-  E node(const Build& B, const std::string& n, const std::string& pt, const char* what, std::array<double, 3> at,
-         const std::vector<E>& eta) const;
+  /// A node's deflected position (P = its shapes, at = its undeformed position) or small rotation (P = its slopes).
+  static E node(const Build& B, const Sym& P, std::array<double, 3> at, const std::vector<E>& eta);
   std::shared_ptr<const flex::ModalData> data_;
 };
 

@@ -118,6 +118,30 @@ class FlexibleSym : public BodySym {
   Sym etadot() const { return part("etadot"); }  // the 1-junction of their rates
   Sym nu() const { return part("nu"); }          // the 1-junction of the body-frame velocities and the rates
   Sym M() const { return part("M"); }            // the I of the whole mass matrix
+  // (ejs(), inherited: the R of M(eta)'s velocity terms on nu; weight(): gravity's Se on nu)
+  /// With its own states: the MTFs selecting from nu the velocity (turned to
+  /// world axes), the angular velocity and the modal rates.
+  Sym sv() const { return part("sv"); }
+  Sym sw() const { return part("sw"); }
+  Sym se() const { return part("se"); }
+  /// Moved by joint coordinates: their transposes assembling nu from the
+  /// velocity, the angular velocity and the modal rates, on the 0-junction
+  /// nusum; and the Sf of the free modal rates.
+  Sym av() const { return part("av"); }
+  Sym aw() const { return part("aw"); }
+  Sym ae() const { return part("ae"); }
+  Sym nusum() const { return part("nusum"); }
+  Sym eta_rate() const { return part("eta_rate"); }
+  Sym damp() const { return part("damp"); }  // the R of the modal damping on etadot
+  /// The undeformed inertia about the frame origin, body axes (a parameter).
+  Sym J0() const { return part("J0"); }
+  /// Quantities users read: a rigid body's (`position`, `velocity`, ...:
+  /// kBodyQuantities), the modal coordinates, the elastic energy, and a
+  /// point's (`position`, `velocity`, `deflection`, `rotation_vector`).
+  Sym quantity(const std::string& q) const { return part(q); }
+  Sym modes() const { return part("modes"); }
+  Sym elastic_energy() const { return part("elastic_energy"); }
+  Sym point_quantity(const std::string& p, const std::string& q) const { return part(fmt::format("{}.{}", p, q)); }
 };
 
 /// A force element (`force f (a, b) { ... }`): its settings as parameters,
