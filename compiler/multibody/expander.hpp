@@ -22,6 +22,7 @@
 #include "ir/expanded.hpp"
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
+#include "multibody/contact_symbols.hpp"
 #include "multibody/expand.hpp"
 #include "multibody/joint_kind.hpp"
 #include "multibody/model.hpp"

@@ -1,0 +1,71 @@
+// multibody/contact_symbols.hpp — the names contacts and tyres write
+// (contacts.cpp, tyres.cpp), what is drawn of them (drawing.cpp), and the
+// quantities users read of bodies, their points and joints (quantities.cpp).
+// In the style of symbols.hpp: each name built once, by its entity.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "multibody/symbols.hpp"
+
+namespace mbgc::multibody::detail {
+
+/// A CN: besides its effort, the flags its unilateral law gives it
+/// (graph/build_graph: LawForm::Unilateral).
+class ConstraintSym : public Sym {
+ public:
+  explicit ConstraintSym(const Sym& cn) : Sym(cn) {}
+  Sym closed() const { return part("closed"); }  // 1 while the contact is closed
+  Sym stick() const { return part("stick"); }    // 1 while its friction sticks
+};
+
+/// A contact (`contact c (a.p, b.q) { ... }`): its settings as parameters,
+/// the surface's directions in body b's frame, its row(s) written like a
+/// joint's (the 0-junction of their rates, the MTFs from each body, the CN),
+/// its friction's loads (a compliant contact's), the quantities users read.
+class ContactSym : public Sym {
+ public:
+  explicit ContactSym(const std::string& contact) : Sym(contact) {}
+  // settings
+  Sym radius() const { return part("radius"); }
+  Sym restitution() const { return part("restitution"); }
+  Sym stiffness() const { return part("stiffness"); }
+  Sym exponent() const { return part("exponent"); }
+  Sym stabilisation() const { return part("stabilisation"); }
+  Sym friction() const { return part("friction"); }  // the coefficient mu
+  Sym slip_speed() const { return part("slip_speed"); }
+  Sym surface_radius() const { return part("surface_radius"); }
+  // the surface's unit directions in body b's frame: a plane's normal, a
+  // cylinder's axis, a plane's first tangent (for friction rows)
+  Sym normal_b() const { return part("normal_b"); }
+  Sym axis_b() const { return part("axis_b"); }
+  Sym tangent_b() const { return part("tangent_b"); }
+  // the rows: the 0-junction of their rates, the prefixes of the MTFs from
+  // bodies a and b into it (rates_into), the CN
+  Sym c() const { return part("c"); }
+  Sym ca() const { return part("ca"); }
+  Sym cb() const { return part("cb"); }
+  ConstraintSym cn() const { return ConstraintSym(part("cn")); }
+  /// A compliant contact's regularised friction, a load on both bodies (its
+  /// name is the coefficient's: `c.friction.on_<body>_f`).
+  LoadSym friction_load() const { return LoadSym(part("friction")); }
+  /// Drawn for --animate: the pose of the surface.
+  Sym drawing() const { return part("drawing"); }
+  // the quantities users read
+  Sym gap() const { return part("gap"); }
+  Sym normal() const { return part("normal"); }
+  Sym normal_force() const { return part("normal_force"); }
+  Sym tangents() const { return part("tangents"); }  // a unilateral contact with friction: [t1, t2]
+  Sym slip_velocity() const { return part("slip_velocity"); }
+  Sym friction_force() const { return part("friction_force"); }
+  Sym force() const { return part("force"); }
+  Sym closed() const { return part("closed"); }
+  Sym stuck() const { return part("stuck"); }
+};
+
+}  // namespace mbgc::multibody::detail
