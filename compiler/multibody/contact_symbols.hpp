@@ -24,6 +24,17 @@ class ConstraintSym : public Sym {
   Sym stick() const { return part("stick"); }    // 1 while its friction sticks
 };
 
+/// A 3-vector written as three signals `v_1`, `v_2`, `v_3` (a signal is a
+/// scalar); `v` itself names the quantity their list is.
+class VectorSym : public Sym {
+ public:
+  explicit VectorSym(const Sym& vector) : Sym(vector) {}
+  Sym component(int i) const { return VectorSym(fmt::format("{}_{}", str(), i)); }
+
+ private:
+  explicit VectorSym(std::string name) : Sym(std::move(name)) {}
+};
+
 /// A contact (`contact c (a.p, b.q) { ... }`): its settings as parameters,
 /// the surface's directions in body b's frame, its row(s) written like a
 /// joint's (the 0-junction of their rates, the MTFs from each body, the CN),
@@ -66,6 +77,40 @@ class ContactSym : public Sym {
   Sym force() const { return part("force"); }
   Sym closed() const { return part("closed"); }
   Sym stuck() const { return part("stuck"); }
+};
+
+/// A tyre (`tyre t (wheel.centre, ground) { ... }`): a load on its wheel; its
+/// settings as properties, the signals of the Magic Formula, its lagged
+/// slips, the quantities users read.
+class TyreSym : public LoadSym {
+ public:
+  explicit TyreSym(const std::string& tyre) : LoadSym(tyre) {}
+  /// A setting as a .tir file names it (`FNOMIN`, `PCX1`, ...).
+  Sym setting(const std::string& key) const { return part(key); }
+  /// A scalar signal of the tyre's equations (`Fz`, `Vsx`, `slip_angle`, ...).
+  Sym signal(const std::string& what) const { return part(what); }
+  /// A lagged slip (`kappa`, `tan_alpha`): the C whose state it is, the Sf of
+  /// its rate, the 1-junction joining them.
+  Sym lag(const std::string& slip) const { return part(slip); }
+  Sym lag_rate(const std::string& slip) const { return part(slip + "_rate"); }
+  Sym lag_junction(const std::string& slip) const { return part(slip + "_lag"); }
+  // vectors (signals by component, and quantities): the road's normal, the
+  // tyre's forward and left directions, the road's force on the wheel
+  VectorSym normal() const { return VectorSym(part("normal")); }
+  VectorSym forward() const { return VectorSym(part("forward")); }
+  VectorSym left() const { return VectorSym(part("left")); }
+  VectorSym force() const { return VectorSym(part("force")); }
+  // the quantities users read besides its signals
+  Sym slip_ratio() const { return part("slip_ratio"); }
+  Sym contact_point() const { return part("contact_point"); }
+  Sym power() const { return part("power"); }
+  /// A name the tyre wrote (one of the Expander's generated names), as its
+  /// symbol; nothing if it is not the tyre's.
+  std::optional<Sym> written(const std::string& name) const {
+    const std::string under = str() + ".";
+    if (!name.starts_with(under) || name.size() == under.size()) return std::nullopt;
+    return part(name.substr(under.size()));
+  }
 };
 
 }  // namespace mbgc::multibody::detail
