@@ -15,6 +15,17 @@
 
 namespace mbgc::multibody::detail {
 
+/// A two-port element (MTF, TF, GY): the variables of the bond at its end k
+/// (1 or 2), as the graph names them (`m.e1`, `m.f1`: graph/build_graph).
+class TwoPortSym : public Sym {
+ public:
+  explicit TwoPortSym(const Sym& element) : Sym(element) {}
+  using Sym::effort;
+  using Sym::flow;
+  Sym effort(int k) const { return part(fmt::format("e{}", k)); }
+  Sym flow(int k) const { return part(fmt::format("f{}", k)); }
+};
+
 /// A CN: besides its effort, the flags its unilateral law gives it
 /// (graph/build_graph: LawForm::Unilateral).
 class ConstraintSym : public Sym {
@@ -111,6 +122,32 @@ class TyreSym : public LoadSym {
     if (!name.starts_with(under) || name.size() == under.size()) return std::nullopt;
     return part(name.substr(under.size()));
   }
+};
+
+/// A body's point (BodySym::point): the quantities users read of it
+/// (`position`, `velocity`).
+class PointSym : public Sym {
+ public:
+  explicit PointSym(const Sym& point) : Sym(point) {}
+  Sym quantity(const std::string& q) const { return part(q); }
+};
+
+/// TRANSITION (to merge into JointSym, joint_symbols.hpp): what a joint's
+/// quantities (quantities.cpp) name and read of its fragment.
+class JointQuantitySym : public Sym {
+ public:
+  explicit JointQuantitySym(const std::string& joint) : Sym(joint) {}
+  /// `violation`, `force`, `torque`, `angle`, `rate`, `displacement`, `displacement_rate`.
+  Sym quantity(const std::string& q) const { return part(q); }
+  /// Its frames' scale (the property joint_params writes).
+  Sym scale() const { return part("scale"); }
+  /// In joint coordinates: the bonds into the child's velocity and angular
+  /// velocity junctions, whose efforts are the reaction.
+  Sym reaction_f() const { return part("reaction_f"); }
+  Sym reaction_t() const { return part("reaction_t"); }
+  /// As rows: the MTF carrying body `side`'s ('a' or 'b') velocity
+  /// (`motion` 't') or angular velocity ('r') to the rows' rates (rates_into).
+  TwoPortSym rows_from(char side, char motion) const { return TwoPortSym(part(fmt::format("c{}{}", side, motion))); }
 };
 
 }  // namespace mbgc::multibody::detail
