@@ -124,6 +124,14 @@ class TyreSym : public LoadSym {
   }
 };
 
+/// A road the tyres run on, as drawn for --animate: one per distinct profile,
+/// `road`, `road_2`, ... (k from 1).
+class RoadSym : public Sym {
+ public:
+  explicit RoadSym(std::size_t k) : Sym(k == 1 ? std::string("road") : fmt::format("road_{}", k)) {}
+  Sym drawing() const { return part("drawing"); }
+};
+
 /// A body's point (BodySym::point): the quantities users read of it
 /// (`position`, `velocity`).
 class PointSym : public Sym {
