@@ -219,7 +219,7 @@ void Expander::add_points(Body& body, const AstBody& b, const std::string& owner
   for (const AstPoint& p : b.points) {
     if (auto first = body.points.find(p.name); first != body.points.end()) {
       auto& d = diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "give each point its own name");
-      d.notes.push_back({point_locs_[owner + "." + p.name], "first declared here"});
+      d.notes.push_back({point_locs_[BodySym(owner).point(p.name).str()], "first declared here"});
       continue;
     }
     if (!body.ground && (kBodyInternalNames.count(p.name) ||
@@ -234,7 +234,7 @@ void Expander::add_points(Body& body, const AstBody& b, const std::string& owner
                 {{3, 1}, body.ground ? "a ground point is a world position [x, y, z]"
                                      : "a point is a body-frame position [x, y, z] (the frame of the body's own axes)"});
     body.points[p.name] = p.value;
-    point_locs_[owner + "." + p.name] = p.loc;
+    point_locs_[BodySym(owner).point(p.name).str()] = p.loc;
   }
 }
 

@@ -171,7 +171,7 @@ void Expander::add_contact(const AstJoint& c) {
                  "add friction = mu, or remove slip_speed");
   if (given("friction") && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
     for (const Side* sd : {&contact.a, &contact.b})
-      if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(LoadSym(Sym::legacy(c.name + ".friction")));
+      if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(ContactSym(c.name).friction_load());
   if (!diags_.has_errors()) contacts_.push_back(std::move(contact));
 }
 
@@ -220,14 +220,14 @@ std::pair<E, E> Expander::polygon_gap(const Build& B, const Contact& c, E d) {
 }
 
 void Expander::emit_contact(const Contact& c) {
-  const std::string cn = c.decl->name;
+  const ContactSym cn(c.decl->name);
   Build B(c.decl->loc);
   auto setting = [&](const char* key, E fallback) -> E {
     auto it = c.attrs.find(key);
     return it == c.attrs.end() ? fallback : it->second->value;
   };
-  param(B, cn + ".radius", setting("radius", B.num(0)));
-  param(B, cn + ".restitution", setting("restitution", B.num(0)));
+  param(B, cn.radius(), setting("radius", B.num(0)));
+  param(B, cn.restitution(), setting("restitution", B.num(0)));
   const Body& a = bodies_.at(c.a.body);
   const Body& b = bodies_.at(c.b.body);
   auto [pa, va] = world_point(B, c.a);
@@ -241,28 +241,28 @@ void Expander::emit_contact(const Contact& c) {
     normal = turned(normal);
   } else if (c.surface == Surface::Plane) {
     E n = setting("normal", nullptr);
-    property(B, cn + ".normal_b", B.op('/', n, B.call("norm", {n})));
-    normal = turned(B.name(cn + ".normal_b"));
+    property(B, cn.normal_b(), B.op('/', n, B.call("norm", {n})));
+    normal = turned(B.ref(cn.normal_b()));
     gap = B.dot(normal, d);
   } else {
-    param(B, cn + ".surface_radius", setting("surface_radius", nullptr));
+    param(B, cn.surface_radius(), setting("surface_radius", nullptr));
     E radial = d;
     if (c.surface == Surface::Cylinder) {
       E axis = setting("axis", nullptr);
-      property(B, cn + ".axis_b", B.op('/', axis, B.call("norm", {axis})));
-      E ax = turned(B.name(cn + ".axis_b"));
+      property(B, cn.axis_b(), B.op('/', axis, B.call("norm", {axis})));
+      E ax = turned(B.ref(cn.axis_b()));
       radial = B.op('-', d, B.op('*', B.dot(ax, d), ax));
     }
     E len = B.call("norm", {radial});
     normal = B.op('/', radial, len);
-    gap = B.op('-', len, B.name(cn + ".surface_radius"));
+    gap = B.op('-', len, B.ref(cn.surface_radius()));
   }
-  gap = B.op('-', gap, B.name(cn + ".radius"));
+  gap = B.op('-', gap, B.ref(cn.radius()));
   const bool unilateral = c.strategy == ContactStrategy::Unilateral;
   const bool friction = c.attrs.count("friction") > 0;
-  if (friction) param(B, cn + ".friction", setting("friction", nullptr));
+  if (friction) param(B, cn.friction(), setting("friction", nullptr));
   // the contact point: on A's sphere, towards the surface
-  E point = B.op('-', pa, B.op('*', B.name(cn + ".radius"), normal));
+  E point = B.op('-', pa, B.op('*', B.ref(cn.radius()), normal));
   // The rows: the gap and, for a unilateral contact with friction, the two
   // tangential rows whose rate is the sliding velocity of the bodies' material
   // points at the contact: t_i . (a's point - b's point), the tangents and the
@@ -272,25 +272,25 @@ void Expander::emit_contact(const Contact& c) {
   if (unilateral && friction) {
     E t1, t2;
     if (c.surface == Surface::Cylinder) {
-      t1 = turned(B.name(cn + ".axis_b"));
+      t1 = turned(B.ref(cn.axis_b()));
     } else if (c.surface == Surface::Polygon) {
       t1 = turned(B.vec(0, 1, 0));  // the extrusion
     } else {
       // a fixed direction of the surface body not along the normal: its x axis, or y near the x axis
-      E n_b = c.surface == Surface::Plane ? B.name(cn + ".normal_b") : B.vec(0, 0, 1);
+      E n_b = c.surface == Surface::Plane ? B.ref(cn.normal_b()) : B.vec(0, 0, 1);
       E pick = B.op('+', B.vec(1, 0, 0),
                     B.op('*', B.call("heaviside", {B.op('-', B.call("abs", {B.at(n_b, 1)}), B.num(0.9))}), B.vec(-1, 1, 0)));
       if (c.surface == Surface::Plane) {
         E across = B.call("cross", {n_b, pick});
-        property(B, cn + ".tangent_b", B.op('/', across, B.call("norm", {across})));
-        t1 = turned(B.name(cn + ".tangent_b"));
+        property(B, cn.tangent_b(), B.op('/', across, B.call("norm", {across})));
+        t1 = turned(B.ref(cn.tangent_b()));
       } else {
         E across = B.call("cross", {normal, turned(pick)});
         t1 = B.op('/', across, B.call("norm", {across}));
       }
     }
     t2 = B.call("cross", {normal, t1});
-    quantity_[cn + ".tangents"] = B.call("hcat", {t1, t2});
+    quantity_[cn.tangents().str()] = B.call("hcat", {t1, t2});
     auto material = [&](const Body& body, const Side& s, E p) -> E {  // the body's point now at `point`
       if (body.ground || body.particle) return B.op('+', p, B.call("frozen", {B.op('-', point, p)}));
       E R = rotation(B, s.body);
@@ -303,7 +303,7 @@ void Expander::emit_contact(const Contact& c) {
   const int dim = static_cast<int>(rows.size());
   E rows_vec = B.list(rows);
   // the row(s): body junctions -> MTFs (d rows / d position) -> 0-junction -> CN
-  junction(B, '0', cn + ".c", dim, {}, {cn + ".cn"});
+  junction(B, '0', cn.c(), dim, {}, {cn.cn()});
   auto frame_of = [&](const Side& s, const Body& body) {
     Frame f;
     f.ground = body.ground;
@@ -311,57 +311,55 @@ void Expander::emit_contact(const Contact& c) {
     f.body = s.body;
     return f;
   };
-  rates_into(B, cn + ".ca", rows_vec, frame_of(c.a, a), cn + ".c", true, true);
-  rates_into(B, cn + ".cb", rows_vec, frame_of(c.b, b), cn + ".c", true, true);
+  rates_into(B, cn.ca().str(), rows_vec, frame_of(c.a, a), cn.c().str(), true, true);
+  rates_into(B, cn.cb().str(), rows_vec, frame_of(c.b, b), cn.c().str(), true, true);
   ir::ConstraintLaw law;
   law.g = rows_vec;
-  law.restitution = B.name(cn + ".restitution");
+  law.restitution = B.ref(cn.restitution());
   if (c.strategy == ContactStrategy::Compliant) {
-    param(B, cn + ".stiffness", setting("stiffness", nullptr));
-    param(B, cn + ".exponent", setting("exponent", B.num(1.5)));
-    law.stiffness = B.name(cn + ".stiffness");
-    law.exponent = B.name(cn + ".exponent");
+    param(B, cn.stiffness(), setting("stiffness", nullptr));
+    param(B, cn.exponent(), setting("exponent", B.num(1.5)));
+    law.stiffness = B.ref(cn.stiffness());
+    law.exponent = B.ref(cn.exponent());
   } else {
-    param(B, cn + ".stabilisation", setting("stabilisation", B.num(20)));
-    law.stabilisation = B.name(cn + ".stabilisation");
-    if (friction) law.friction = B.name(cn + ".friction");
+    param(B, cn.stabilisation(), setting("stabilisation", B.num(20)));
+    law.stabilisation = B.ref(cn.stabilisation());
+    if (friction) law.friction = B.ref(cn.friction());
   }
-  constraint(B, cn + ".cn", std::move(law));
+  constraint(B, cn.cn(), std::move(law));
   // The push (>= 0): the CN's effort, signed so that it parts the bodies
   // (power e f into the CN is -push * g'); the friction likewise.
-  E effort = B.name(cn + ".cn.e");
+  E effort = B.ref(cn.cn().effort());
   E push = B.neg(dim == 1 ? effort : B.at(effort, 1));
-  quantity_[cn + ".gap"] = gap;
-  quantity_[cn + ".normal"] = normal;
-  quantity_[cn + ".normal_force"] = push;
-  quantity_[cn + ".closed"] = B.name(cn + ".cn.closed");  // 1 while in contact
-  if (unilateral && friction) quantity_[cn + ".stuck"] = B.name(cn + ".cn.stick");
+  quantity_[cn.gap().str()] = gap;
+  quantity_[cn.normal().str()] = normal;
+  quantity_[cn.normal_force().str()] = push;
+  quantity_[cn.closed().str()] = B.ref(cn.cn().closed());  // 1 while in contact
+  if (unilateral && friction) quantity_[cn.stuck().str()] = B.ref(cn.cn().stick());
   auto spin = [&](const Body& body, const Side& s) -> E {  // world angular velocity
     if (body.ground || body.particle) return nullptr;
-    return B.op('*', rotation(B, s.body), B.name(s.body + ".w.f"));
+    return B.op('*', rotation(B, s.body), B.ref(BodySym(s.body).w().flow()));
   };
   auto point_velocity = [&](E v, E w, E arm) { return w ? B.op('+', v, B.call("cross", {w, arm})) : v; };
   E slip = B.op('-', point_velocity(va, spin(a, c.a), B.op('-', point, pa)), point_velocity(vb, spin(b, c.b), B.op('-', point, pb)));
   E tangential = B.op('-', slip, B.op('*', B.dot(normal, slip), normal));
-  quantity_[cn + ".slip_velocity"] = tangential;
+  quantity_[cn.slip_velocity().str()] = tangential;
   E friction_force = B.vec(0, 0, 0);
   if (friction && unilateral) {
     // the CN's tangential rows: their efforts (signed like the push) along the tangents
-    E tangents = quantity_.at(cn + ".tangents");
+    E tangents = quantity_.at(cn.tangents().str());
     friction_force = B.neg(B.op('*', tangents, B.list({B.at(effort, 2), B.at(effort, 3)})));
   } else if (friction) {
     // regularised Coulomb: -mu push vt / sqrt(|vt|^2 + eps^2) on A, its opposite on B
-    param(B, cn + ".slip_speed", setting("slip_speed", B.num(1e-4)));
-    E eps = B.name(cn + ".slip_speed");
+    param(B, cn.slip_speed(), setting("slip_speed", B.num(1e-4)));
+    E eps = B.ref(cn.slip_speed());
     E scale = B.call("sqrt", {B.op('+', B.dot(tangential, tangential), B.op('*', eps, eps))});
-    friction_force = B.op('*', B.op('/', B.neg(B.op('*', B.name(cn + ".friction"), push)), scale), tangential);
-    apply_load(B, LoadSym(Sym::legacy(cn + ".friction")), c.a, friction_force,
-               B.call("cross", {B.op('-', point, pa), friction_force}), 1.0);
-    apply_load(B, LoadSym(Sym::legacy(cn + ".friction")), c.b, friction_force,
-               B.call("cross", {B.op('-', point, pb), friction_force}), -1.0);
+    friction_force = B.op('*', B.op('/', B.neg(B.op('*', B.ref(cn.friction()), push)), scale), tangential);
+    apply_load(B, cn.friction_load(), c.a, friction_force, B.call("cross", {B.op('-', point, pa), friction_force}), 1.0);
+    apply_load(B, cn.friction_load(), c.b, friction_force, B.call("cross", {B.op('-', point, pb), friction_force}), -1.0);
   }
-  quantity_[cn + ".friction_force"] = friction_force;
-  quantity_[cn + ".force"] = B.op('+', B.op('*', push, normal), friction_force);
+  quantity_[cn.friction_force().str()] = friction_force;
+  quantity_[cn.force().str()] = B.op('+', B.op('*', push, normal), friction_force);
 }
 
 }  // namespace mbgc::multibody::detail

@@ -256,7 +256,8 @@ void Expander::draw_bodies() {
     d->body = n;
     d->colour = palette(index++);
     E R = body.particle ? B.call("eye", {B.num(3)}) : rotation(B, n);
-    ir::ExpandedOutput out{{n + ".drawing", B.loc(), B.call("hcat", {R, position(B, n)}), std::nullopt}, d, body.flex ? B.name(n + ".eta.q") : nullptr};
+    ir::ExpandedOutput out{{BodySym(n).drawing().str(), B.loc(), B.call("hcat", {R, position(B, n)}), std::nullopt}, d,
+                           body.flex ? B.ref(FlexibleSym(n).eta().displacement()) : nullptr};
     generated_.push_back(std::move(out));
   }
   draw_surfaces();
@@ -276,7 +277,9 @@ std::optional<double> Expander::drawn_number(const AstExpr& e, int depth) const 
 /// compiling is not drawn (like a body's shape, a drawing is compile-time data).
 void Expander::draw_surfaces() {
   std::size_t index = 0;
-  auto add = [&](std::shared_ptr<Drawing> d, const Side& on, const std::array<std::array<double, 3>, 3>* turn, const SourceLoc& loc) {
+  // (`drawn`: the name of the output posing it)
+  auto add = [&](std::shared_ptr<Drawing> d, const Sym& drawn, const Side& on, const std::array<std::array<double, 3>, 3>* turn,
+                 const SourceLoc& loc) {
     Build B(loc);
     const Body& body = bodies_.at(on.body);
     E R = rotation(B, on.body);
@@ -286,7 +289,7 @@ void Expander::draw_surfaces() {
       R = body.ground || body.particle ? B.list(rows) : B.op('*', R, B.list(rows));
     }
     d->surface = true;
-    generated_.push_back(ir::ExpandedOutput{{d->body + ".drawing", B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt}, d, nullptr});
+    generated_.push_back(ir::ExpandedOutput{{drawn.str(), B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt}, d, nullptr});
   };
   for (const Contact& c : contacts_) {
     if (bodies_.at(c.b.body).points_unknown) continue;
@@ -337,7 +340,7 @@ void Expander::draw_surfaces() {
         turn = frame_along(*axis), turned = true;
       }
     }
-    add(d, c.b, turned ? &turn : nullptr, c.decl->loc);
+    add(d, ContactSym(c.decl->name).drawing(), c.b, turned ? &turn : nullptr, c.decl->loc);
   }
   std::vector<std::vector<double>> roads;  // each distinct profile once ({}: flat)
   std::vector<std::shared_ptr<Drawing>> road_drawings;  // (a road's wheels join its drawing until the end)
@@ -357,11 +360,12 @@ void Expander::draw_surfaces() {
     auto d = std::make_shared<Drawing>();
     road_drawings.push_back(d);
     d->covers.push_back(t.wheel.body);
-    d->body = roads.size() == 1 ? "road" : fmt::format("road_{}", roads.size());
+    const RoadSym road(roads.size());
+    d->body = road.str();
     d->shape = Drawing::Shape::Road;
     d->colour = kRoadColour;
     d->profile = std::move(profile);
-    add(d, Side{"ground", ""}, nullptr, t.decl->loc);
+    add(d, road.drawing(), Side{"ground", ""}, nullptr, t.decl->loc);
   }
 }
 

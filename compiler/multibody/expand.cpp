@@ -14,8 +14,8 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
   if (diags_.has_errors()) return {};
   if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && contacts_.empty() && tyres_.empty() && !gravity_)
     return ir::as_expanded(in);  // nothing multibody here
-  if (gravity_) property(Build(gravity_loc_), "gravity", gravity_);
-  for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), "ground." + p, v);
+  if (gravity_) property(Build(gravity_loc_), Sym::gravity(), gravity_);
+  for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), Sym::ground_point(p), v);
   find_tree();
   choose_strategy();
   check_coordinates();

@@ -22,6 +22,7 @@
 #include "ir/expanded.hpp"
 #include "ir/diagnostics.hpp"
 #include "multibody/build.hpp"
+#include "multibody/contact_symbols.hpp"
 #include "multibody/expand.hpp"
 #include "multibody/flexible_symbols.hpp"
 #include "multibody/joint_kind.hpp"
@@ -212,7 +213,7 @@ class Expander {
   void add_tyre(const AstJoint& t);
   void check_profile(const Tyre& t, const AstExpr& v);
   void emit_tyre(const Tyre& t);
-  E sig_vector(const Build& B, const std::string& name, E value);
+  E sig_vector(const Build& B, const VectorSym& name, E value);
 
   // ---- 6b. how bodies are drawn for --animate (drawing.cpp)
   std::optional<std::array<double, 3>> constant_point(const AstExpr& e, int depth = 0) const;

@@ -14,87 +14,92 @@
 namespace mbgc::multibody::detail {
 
 void Expander::define_quantities() {
-  for (const std::string& n : body_order_) {
-    const Body& body = bodies_.at(n);
+  for (const std::string& name : body_order_) {
+    const Body& body = bodies_.at(name);
+    const BodySym n(name);
     Build B(body.decl->loc);
     if (body.flex) {
       flexible_quantities(B, body);
       continue;
     }
-    E r = position(B, n), v = velocity(B, n);
-    quantity_[n + ".position"] = r;
-    quantity_[n + ".velocity"] = v;
-    quantity_[n + ".momentum"] =
-        body_frame_velocity(body) ? B.op('*', rotation(B, n), B.name(n + ".m.p")) : B.name(n + ".m.p");
-    E ke = B.op('*', B.num(0.5), B.dot(B.name(n + ".v.f"), B.name(n + ".m.p")));  // in the junction's own axes
+    auto quantity = [&](const char* q) -> E& { return quantity_[n.quantity(q).str()]; };
+    E r = position(B, name), v = velocity(B, name);
+    quantity("position") = r;
+    quantity("velocity") = v;
+    quantity("momentum") =
+        body_frame_velocity(body) ? B.op('*', rotation(B, name), B.ref(n.m().momentum())) : B.ref(n.m().momentum());
+    E ke = B.op('*', B.num(0.5), B.dot(B.ref(n.v().flow()), B.ref(n.m().momentum())));  // in the junction's own axes
     if (!body.particle) {
-      E q = quaternion(B, n), R = rotation(B, n), w = B.name(n + ".w.f");
-      quantity_[n + ".quaternion"] = q;
-      quantity_[n + ".rotation"] = R;
-      quantity_[n + ".bryant"] = B.call("bryant", {q});
-      quantity_[n + ".omega"] = w;
-      quantity_[n + ".omega_world"] = B.op('*', R, w);
-      quantity_[n + ".angular_momentum"] = B.op('*', R, B.name(n + ".J.p"));
-      ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.name(n + ".J.p"))));
+      E q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
+      quantity("quaternion") = q;
+      quantity("rotation") = R;
+      quantity("bryant") = B.call("bryant", {q});
+      quantity("omega") = w;
+      quantity("omega_world") = B.op('*', R, w);
+      quantity("angular_momentum") = B.op('*', R, B.ref(n.J().momentum()));
+      ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.ref(n.J().momentum()))));
       for (const auto& [p, x] : body.points) {
-        E local = B.op('-', B.name(n + "." + p), B.name(n + ".com"));
-        quantity_[n + "." + p + ".position"] = B.op('+', r, B.op('*', R, local));
-        quantity_[n + "." + p + ".velocity"] = B.op('+', v, B.op('*', R, B.call("cross", {w, local})));
+        const PointSym point(n.point(p));
+        E local = B.op('-', B.ref(point), B.ref(n.com()));
+        quantity_[point.quantity("position").str()] = B.op('+', r, B.op('*', R, local));
+        quantity_[point.quantity("velocity").str()] = B.op('+', v, B.op('*', R, B.call("cross", {w, local})));
       }
     }
-    quantity_[n + ".kinetic_energy"] = ke;
-    quantity_[n + ".potential_energy"] =
-        gravity_ ? B.neg(B.op('*', B.name(n + ".mass"), B.dot(B.name("gravity"), r))) : B.num(0);
+    quantity("kinetic_energy") = ke;
+    quantity("potential_energy") = gravity_ ? B.neg(B.op('*', B.ref(n.mass()), B.dot(B.ref(Sym::gravity()), r))) : B.num(0);
   }
   for (const Joint& j : joints_) {
-    const std::string jn = j.decl->name;
+    const JointQuantitySym jn(j.decl->name);
     Build B(j.decl->loc);
-    const auto& [A, Bf] = frames_.at(jn);
+    auto quantity = [&](const char* q) -> E& { return quantity_[jn.quantity(q).str()]; };
+    const auto& [A, Bf] = frames_.at(j.decl->name);
     const Frame& body_side = Bf.ground ? A : Bf;
     // a joint with no rows (free) constrains nothing: it has no violation
-    if (std::vector<E> r = rows(B, j, A, Bf); !r.empty()) quantity_[jn + ".violation"] = B.list(r);
-    if (auto cv = coordinate_values_.find(jn); cv != coordinate_values_.end()) {
+    if (std::vector<E> r = rows(B, j, A, Bf); !r.empty()) quantity("violation") = B.list(r);
+    if (auto cv = coordinate_values_.find(j.decl->name); cv != coordinate_values_.end()) {
       // joint coordinates: the reaction is the effort on the bonds into the
       // child's junctions (force world, torque body frame); on b, by Newton's third law
       const std::string child = j.a_is_parent ? j.b.body : j.a.body;
       E sign = B.num(j.a_is_parent ? 1 : -1);
-      E reaction_f = B.name(jn + ".reaction_f.e");
+      E reaction_f = B.ref(jn.reaction_f().effort());
       if (body_frame_velocity(bodies_.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
-      quantity_[jn + ".force"] = B.op('*', sign, reaction_f);
+      quantity("force") = B.op('*', sign, reaction_f);
       if (!bodies_.at(child).particle)
-        quantity_[jn + ".torque"] = B.op('*', sign, B.op('*', rotation(B, child), B.name(jn + ".reaction_t.e")));
+        quantity("torque") = B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_t().effort())));
       if (j.kind->has_angle()) {
-        quantity_[jn + ".angle"] = cv->second.angle;
-        quantity_[jn + ".rate"] = cv->second.rate;
+        quantity("angle") = cv->second.angle;
+        quantity("rate") = cv->second.rate;
       }
       if (j.kind->has_displacement()) {
-        quantity_[jn + ".displacement"] = cv->second.displacement;
+        quantity("displacement") = cv->second.displacement;
         // its rate (a spring-damper in the joint's `force`): a state here, joint coordinates only
-        if (cv->second.displacement_rate) quantity_[jn + ".displacement_rate"] = cv->second.displacement_rate;
+        if (cv->second.displacement_rate) quantity("displacement_rate") = cv->second.displacement_rate;
       }
       continue;
     }
     // reaction on the second body (on the first, negated, if the second is ground)
-    std::string side = Bf.ground ? "ca" : "cb";
-    E force = Bf.ground ? B.name(jn + "." + side + "t.e1") : B.neg(B.name(jn + "." + side + "t.e1"));
+    const char side = Bf.ground ? 'a' : 'b';
+    E force = B.ref(jn.rows_from(side, 't').effort(1));
+    if (!Bf.ground) force = B.neg(force);
     // (a cut joint on a body moved by joint coordinates: that junction is in the body's axes)
     if (body_frame_velocity(bodies_.at(body_side.body))) force = B.op('*', body_side.R, force);
     if (body_side.particle) {
-      quantity_[jn + ".force"] = force;
+      quantity("force") = force;
     } else {
-      E torque_body = Bf.ground ? B.name(jn + "." + side + "r.e1") : B.neg(B.name(jn + "." + side + "r.e1"));
+      E torque_body = B.ref(jn.rows_from(side, 'r').effort(1));
+      if (!Bf.ground) torque_body = B.neg(torque_body);
       E lever = B.op('*', body_side.R, body_side.local);
-      quantity_[jn + ".force"] = force;
-      quantity_[jn + ".torque"] = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
+      quantity("force") = force;
+      quantity("torque") = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
     }
-    E wrel = B.op('-', Bf.ground || Bf.particle ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.name(Bf.body + ".w.f")),
-                  A.ground || A.particle ? B.vec(0, 0, 0) : B.op('*', A.R, B.name(A.body + ".w.f")));
+    E wrel = B.op('-', Bf.ground || Bf.particle ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.ref(BodySym(Bf.body).w().flow())),
+                  A.ground || A.particle ? B.vec(0, 0, 0) : B.op('*', A.R, B.ref(BodySym(A.body).w().flow())));
     if (j.kind->has_angle()) {
-      quantity_[jn + ".angle"] = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
-      quantity_[jn + ".rate"] = B.dot(A.Z, wrel);
+      quantity("angle") = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
+      quantity("rate") = B.dot(A.Z, wrel);
     }
     if (j.kind->has_displacement())
-      quantity_[jn + ".displacement"] = j.kind->displacement({B, j, A, Bf, B.op('-', Bf.p, A.p), B.name(jn + ".scale")});
+      quantity("displacement") = j.kind->displacement({B, j, A, Bf, B.op('-', Bf.p, A.p), B.ref(jn.scale())});
   }
 }
 

@@ -106,6 +106,8 @@ class BodySym : public Sym {
   Sym pose_R(int r, int c) const { return part(fmt::format("pose.R{}{}", r, c)); }
   /// Drawn for --animate: the pose of the drawing's origin.
   Sym drawing() const { return part("drawing"); }
+  /// A quantity users read (kBodyQuantities: `position`, `velocity`, ...).
+  Sym quantity(const std::string& q) const { return part(q); }
 };
 
 /// A flexible body: a body whose field adds modal coordinates eta (the

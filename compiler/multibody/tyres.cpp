@@ -155,7 +155,7 @@ void Expander::add_tyre(const AstJoint& t) {
       diags_.error(it->second->value->loc, fmt::format("{} of tyre `{}` is {}", key, t.name, *v), fmt::format("{} must be > 0", key));
   }
   if (diags_.has_errors()) return;
-  loads_[wheel->body].push_back(LoadSym(Sym::legacy(t.name)));  // its loads `t.on_<wheel>_f`, `_t` (apply_load)
+  loads_[wheel->body].push_back(TyreSym(t.name));  // its loads on the wheel (apply_load)
   tyres_.push_back(std::move(tyre));
 }
 
@@ -188,19 +188,19 @@ void Expander::check_profile(const Tyre& tyre, const AstExpr& v) {
 }
 
 void Expander::emit_tyre(const Tyre& tyre) {
-  const std::string& tn = tyre.decl->name;
+  const TyreSym tn(tyre.decl->name);
   const std::string& wheel = tyre.wheel.body;
   Build B(tyre.decl->loc);
-  auto p = [&](const std::string& key) { return B.name(tn + "." + key); };
+  auto p = [&](const std::string& key) { return B.ref(tn.setting(key)); };
   // Properties: folded where they are numbers (the defaults' zeros remove
   // whole terms), run-time parameters where the model gives a parameter.
   for (const TyreSetting& s : kTyreSettings) {
     auto it = tyre.attrs.find(s.name);
-    property(B, tn + "." + s.name, it == tyre.attrs.end() ? B.num(s.default_value) : it->second->value);
+    property(B, tn.setting(s.name), it == tyre.attrs.end() ? B.num(s.default_value) : it->second->value);
   }
-  auto sig = [&](const std::string& name, E value) {
-    signal(B, tn + "." + name, std::move(value));
-    return B.name(tn + "." + name);
+  auto sig = [&](const std::string& what, E value) {
+    signal(B, tn.signal(what), std::move(value));
+    return B.ref(tn.signal(what));
   };
   auto mul = [&](E a, E b) { return B.op('*', std::move(a), std::move(b)); };
   auto add = [&](E a, E b) { return B.op('+', std::move(a), std::move(b)); };
@@ -224,7 +224,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   E R = rotation(B, wheel);
   E axis_local = tyre.attrs.count("axis") ? tyre.attrs.at("axis")->value : B.vec(0, 1, 0);
   E axle = mul(R, div(axis_local, B.call("norm", {axis_local})));
-  E omega = mul(R, B.name(wheel + ".w.f"));
+  E omega = mul(R, B.ref(BodySym(wheel).w().flow()));
 
   // The road below the centre: height h(x) and slope h'(x) along world x.
   E h = num(0), slope = num(0);
@@ -240,11 +240,11 @@ void Expander::emit_tyre(const Tyre& tyre) {
     slope = sig("road_slope", slope);
   }
   E root = fn("sqrt", add(num(1), mul(slope, slope)));
-  E n = sig_vector(B, tn + ".normal", B.list({div(B.neg(slope), root), num(0), div(num(1), root)}));
+  E n = sig_vector(B, tn.normal(), B.list({div(B.neg(slope), root), num(0), div(num(1), root)}));
   E hc = sig("centre_height", div(sub(B.at(centre, 3), h), root));
   E ex = B.call("cross", {axle, n});
-  ex = sig_vector(B, tn + ".forward", div(ex, B.call("norm", {ex})));
-  E ey = sig_vector(B, tn + ".left", B.call("cross", {n, ex}));
+  ex = sig_vector(B, tn.forward(), div(ex, B.call("norm", {ex})));
+  E ey = sig_vector(B, tn.left(), B.call("cross", {n, ex}));
 
   // Vertical: the radial spring and damper, pushing only.
   E rho = sig("deflection", sub(p("UNLOADED_RADIUS"), hc));
@@ -263,18 +263,18 @@ void Expander::emit_tyre(const Tyre& tyre) {
                                                                    div(p("UNLOADED_RADIUS"), p("FNOMIN")))}));
   E sigma_alpha = sig("sigma_alpha", B.call("max", {floor, mul(mul(p("PTY1"), sin_2atan(div(fz, mul(p("PTY2"), p("FNOMIN"))))),
                                                                p("UNLOADED_RADIUS"))}));
-  auto lag = [&](const std::string& name, E rate) {
+  auto lag = [&](const std::string& slip, E rate) {
     const SourceLoc& at = tyre.decl->loc;
-    element(B, "Sf", tn + "." + name + "_rate", std::move(rate));
-    element(B, "C", tn + "." + name, nullptr, {kv("e", num(0), at), kv("q0", num(0), at)});
-    junction_(B, tn + "." + name + "_lag", {tn + "." + name + "_rate"}, {tn + "." + name});
-    return B.name(tn + "." + name + ".q");
+    element(B, "Sf", tn.lag_rate(slip), std::move(rate));
+    element(B, "C", tn.lag(slip), nullptr, {kv("e", num(0), at), kv("q0", num(0), at)});
+    junction_(B, tn.lag_junction(slip), {tn.lag_rate(slip)}, {tn.lag(slip)});
+    return B.ref(tn.lag(slip).displacement());
   };
   E speed = fn("abs", vcx);
-  E kappa = lag("kappa", div(sub(B.neg(vsx), mul(speed, p("kappa.q"))), sigma_kappa));
-  E tan_alpha = lag("tan_alpha", div(sub(vcy, mul(speed, p("tan_alpha.q"))), sigma_alpha));
+  E kappa = lag("kappa", div(sub(B.neg(vsx), mul(speed, B.ref(tn.lag("kappa").displacement()))), sigma_kappa));
+  E tan_alpha = lag("tan_alpha", div(sub(vcy, mul(speed, B.ref(tn.lag("tan_alpha").displacement()))), sigma_alpha));
   E alpha = sig("slip_angle", fn("atan", tan_alpha));
-  quantity_[tn + ".slip_ratio"] = kappa;
+  quantity_[tn.slip_ratio().str()] = kappa;
 
   // Magic Formula, pure slip.
   auto magic = [&](E b, E c, E d, E e, E x) {  // D sin(C atan(B x - E (B x - atan(B x))))
@@ -318,25 +318,24 @@ void Expander::emit_tyre(const Tyre& tyre) {
   E fy = sig("Fy", add(mul(gyk, fy0), svyk));
 
   // On the wheel: the force at the contact point, hc below the centre along -n.
-  E force = sig_vector(B, tn + ".force", add(add(mul(fx, ex), mul(fy, ey)), mul(fz, n)));
+  E force = sig_vector(B, tn.force(), add(add(mul(fx, ex), mul(fy, ey)), mul(fz, n)));
   E torque = B.call("cross", {mul(B.neg(hc), n), force});
-  quantity_[tn + ".contact_point"] = sub(centre, mul(hc, n));
+  quantity_[tn.contact_point().str()] = sub(centre, mul(hc, n));
   // the power of the road's force on the wheel: F . v of the wheel's material point at the contact
-  quantity_[tn + ".power"] = B.dot(force, add(v_centre, B.call("cross", {omega, mul(B.neg(hc), n)})));
-  apply_load(B, LoadSym(Sym::legacy(tn)), tyre.wheel, force, torque, 1.0);
+  quantity_[tn.power().str()] = B.dot(force, add(v_centre, B.call("cross", {omega, mul(B.neg(hc), n)})));
+  apply_load(B, tn, tyre.wheel, force, torque, 1.0);
 }
 
-/// A 3-vector as three signals `name[1..3]` (vectors cannot be signals), the
-/// expression of their list.
-E Expander::sig_vector(const Build& B, const std::string& name, E value) {
+/// A 3-vector as three signals (vectors cannot be signals: VectorSym), the
+/// expression of their list, which is also the quantity `name`.
+E Expander::sig_vector(const Build& B, const VectorSym& name, E value) {
   std::vector<E> items;
   for (int i = 1; i <= 3; ++i) {
-    const std::string item = fmt::format("{}_{}", name, i);
-    signal(B, item, B.at(value, i));
-    items.push_back(B.name(item));
+    signal(B, name.component(i), B.at(value, i));
+    items.push_back(B.ref(name.component(i)));
   }
   E v = B.list(std::move(items));
-  quantity_[name] = v;
+  quantity_[name.str()] = v;
   return v;
 }
 

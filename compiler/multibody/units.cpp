@@ -179,9 +179,12 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     for (const auto& [key, a] : t.attrs)
       state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name), out);
     // its quantities are signals it writes (`tyre1.Fz`), which the check does not read: their units are stated
-    const std::string prefix = t.decl->name + ".";
-    for (auto it = generated_names_.lower_bound(prefix); it != generated_names_.end() && it->starts_with(prefix); ++it)
-      if (auto d = quantity_dimension(*it)) out.push_back({Build(t.decl->loc).name(*it), *d, t.decl->loc, fmt::format("`{}`", *it), true});
+    // (the names it wrote are among those that begin with its own, which sort together)
+    const TyreSym tyre(t.decl->name);
+    for (auto it = generated_names_.lower_bound(tyre.str()); it != generated_names_.end() && it->starts_with(tyre.str()); ++it)
+      if (auto own = tyre.written(*it))
+        if (auto d = quantity_dimension(*it))
+          out.push_back({Build(t.decl->loc).ref(*own), *d, t.decl->loc, fmt::format("`{}`", *it), true});
   }
   if (gravity_) state_unit(AstAttr{"gravity", gravity_loc_, gravity_}, units::dim::velocity() / units::dim::time(),
                            "gravity", out);

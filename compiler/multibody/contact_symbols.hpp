@@ -1,0 +1,161 @@
+// multibody/contact_symbols.hpp — the names contacts and tyres write
+// (contacts.cpp, tyres.cpp), what is drawn of them (drawing.cpp), and the
+// quantities users read of bodies, their points and joints (quantities.cpp).
+// In the style of symbols.hpp: each name built once, by its entity.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "multibody/symbols.hpp"
+
+namespace mbgc::multibody::detail {
+
+/// A two-port element (MTF, TF, GY): the variables of the bond at its end k
+/// (1 or 2), as the graph names them (`m.e1`, `m.f1`: graph/build_graph).
+class TwoPortSym : public Sym {
+ public:
+  explicit TwoPortSym(const Sym& element) : Sym(element) {}
+  using Sym::effort;
+  using Sym::flow;
+  Sym effort(int k) const { return part(fmt::format("e{}", k)); }
+  Sym flow(int k) const { return part(fmt::format("f{}", k)); }
+};
+
+/// A CN: besides its effort, the flags its unilateral law gives it
+/// (graph/build_graph: LawForm::Unilateral).
+class ConstraintSym : public Sym {
+ public:
+  explicit ConstraintSym(const Sym& cn) : Sym(cn) {}
+  Sym closed() const { return part("closed"); }  // 1 while the contact is closed
+  Sym stick() const { return part("stick"); }    // 1 while its friction sticks
+};
+
+/// A 3-vector written as three signals `v_1`, `v_2`, `v_3` (a signal is a
+/// scalar); `v` itself names the quantity their list is.
+class VectorSym : public Sym {
+ public:
+  explicit VectorSym(const Sym& vector) : Sym(vector) {}
+  Sym component(int i) const { return VectorSym(fmt::format("{}_{}", str(), i)); }
+
+ private:
+  explicit VectorSym(std::string name) : Sym(std::move(name)) {}
+};
+
+/// A contact (`contact c (a.p, b.q) { ... }`): its settings as parameters,
+/// the surface's directions in body b's frame, its row(s) written like a
+/// joint's (the 0-junction of their rates, the MTFs from each body, the CN),
+/// its friction's loads (a compliant contact's), the quantities users read.
+class ContactSym : public Sym {
+ public:
+  explicit ContactSym(const std::string& contact) : Sym(contact) {}
+  // settings
+  Sym radius() const { return part("radius"); }
+  Sym restitution() const { return part("restitution"); }
+  Sym stiffness() const { return part("stiffness"); }
+  Sym exponent() const { return part("exponent"); }
+  Sym stabilisation() const { return part("stabilisation"); }
+  Sym friction() const { return part("friction"); }  // the coefficient mu
+  Sym slip_speed() const { return part("slip_speed"); }
+  Sym surface_radius() const { return part("surface_radius"); }
+  // the surface's unit directions in body b's frame: a plane's normal, a
+  // cylinder's axis, a plane's first tangent (for friction rows)
+  Sym normal_b() const { return part("normal_b"); }
+  Sym axis_b() const { return part("axis_b"); }
+  Sym tangent_b() const { return part("tangent_b"); }
+  // the rows: the 0-junction of their rates, the prefixes of the MTFs from
+  // bodies a and b into it (rates_into), the CN
+  Sym c() const { return part("c"); }
+  Sym ca() const { return part("ca"); }
+  Sym cb() const { return part("cb"); }
+  ConstraintSym cn() const { return ConstraintSym(part("cn")); }
+  /// A compliant contact's regularised friction, a load on both bodies (its
+  /// name is the coefficient's: `c.friction.on_<body>_f`).
+  LoadSym friction_load() const { return LoadSym(part("friction")); }
+  /// Drawn for --animate: the pose of the surface.
+  Sym drawing() const { return part("drawing"); }
+  // the quantities users read
+  Sym gap() const { return part("gap"); }
+  Sym normal() const { return part("normal"); }
+  Sym normal_force() const { return part("normal_force"); }
+  Sym tangents() const { return part("tangents"); }  // a unilateral contact with friction: [t1, t2]
+  Sym slip_velocity() const { return part("slip_velocity"); }
+  Sym friction_force() const { return part("friction_force"); }
+  Sym force() const { return part("force"); }
+  Sym closed() const { return part("closed"); }
+  Sym stuck() const { return part("stuck"); }
+};
+
+/// A tyre (`tyre t (wheel.centre, ground) { ... }`): a load on its wheel; its
+/// settings as properties, the signals of the Magic Formula, its lagged
+/// slips, the quantities users read.
+class TyreSym : public LoadSym {
+ public:
+  explicit TyreSym(const std::string& tyre) : LoadSym(tyre) {}
+  /// A setting as a .tir file names it (`FNOMIN`, `PCX1`, ...).
+  Sym setting(const std::string& key) const { return part(key); }
+  /// A scalar signal of the tyre's equations (`Fz`, `Vsx`, `slip_angle`, ...).
+  Sym signal(const std::string& what) const { return part(what); }
+  /// A lagged slip (`kappa`, `tan_alpha`): the C whose state it is, the Sf of
+  /// its rate, the 1-junction joining them.
+  Sym lag(const std::string& slip) const { return part(slip); }
+  Sym lag_rate(const std::string& slip) const { return part(slip + "_rate"); }
+  Sym lag_junction(const std::string& slip) const { return part(slip + "_lag"); }
+  // vectors (signals by component, and quantities): the road's normal, the
+  // tyre's forward and left directions, the road's force on the wheel
+  VectorSym normal() const { return VectorSym(part("normal")); }
+  VectorSym forward() const { return VectorSym(part("forward")); }
+  VectorSym left() const { return VectorSym(part("left")); }
+  VectorSym force() const { return VectorSym(part("force")); }
+  // the quantities users read besides its signals
+  Sym slip_ratio() const { return part("slip_ratio"); }
+  Sym contact_point() const { return part("contact_point"); }
+  Sym power() const { return part("power"); }
+  /// A name the tyre wrote (one of the Expander's generated names), as its
+  /// symbol; nothing if it is not the tyre's.
+  std::optional<Sym> written(const std::string& name) const {
+    const std::string under = str() + ".";
+    if (!name.starts_with(under) || name.size() == under.size()) return std::nullopt;
+    return part(name.substr(under.size()));
+  }
+};
+
+/// A road the tyres run on, as drawn for --animate: one per distinct profile,
+/// `road`, `road_2`, ... (k from 1).
+class RoadSym : public Sym {
+ public:
+  explicit RoadSym(std::size_t k) : Sym(k == 1 ? std::string("road") : fmt::format("road_{}", k)) {}
+  Sym drawing() const { return part("drawing"); }
+};
+
+/// A body's point (BodySym::point): the quantities users read of it
+/// (`position`, `velocity`).
+class PointSym : public Sym {
+ public:
+  explicit PointSym(const Sym& point) : Sym(point) {}
+  Sym quantity(const std::string& q) const { return part(q); }
+};
+
+/// TRANSITION (to merge into JointSym, joint_symbols.hpp): what a joint's
+/// quantities (quantities.cpp) name and read of its fragment.
+class JointQuantitySym : public Sym {
+ public:
+  explicit JointQuantitySym(const std::string& joint) : Sym(joint) {}
+  /// `violation`, `force`, `torque`, `angle`, `rate`, `displacement`, `displacement_rate`.
+  Sym quantity(const std::string& q) const { return part(q); }
+  /// Its frames' scale (the property joint_params writes).
+  Sym scale() const { return part("scale"); }
+  /// In joint coordinates: the bonds into the child's velocity and angular
+  /// velocity junctions, whose efforts are the reaction.
+  Sym reaction_f() const { return part("reaction_f"); }
+  Sym reaction_t() const { return part("reaction_t"); }
+  /// As rows: the MTF carrying body `side`'s ('a' or 'b') velocity
+  /// (`motion` 't') or angular velocity ('r') to the rows' rates (rates_into).
+  TwoPortSym rows_from(char side, char motion) const { return TwoPortSym(part(fmt::format("c{}{}", side, motion))); }
+};
+
+}  // namespace mbgc::multibody::detail
