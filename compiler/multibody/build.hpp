@@ -19,9 +19,9 @@ class Build {
  public:
   explicit Build(ir::SourceLoc loc) : loc_(loc) {}
   E num(double v) const { return make(ir::AstExpr::Kind::Number, [&](ir::AstExpr& e) { e.number = v; }); }
-  E name(const std::string& n) const { return make(ir::AstExpr::Kind::Name, [&](ir::AstExpr& e) { e.name = n; }); }
-  /// What the layer wrote under `s`, or one of its variables.
-  E ref(const Sym& s) const { return name(s.str()); }
+  /// What the layer wrote under `s`, or one of its variables (a name is
+  /// never built here: symbols.hpp).
+  E ref(const Sym& s) const { return make(ir::AstExpr::Kind::Name, [&](ir::AstExpr& e) { e.name = s.str(); }); }
   E op(char o, E a, E b) const {
     return make(ir::AstExpr::Kind::Binary, [&](ir::AstExpr& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });
   }

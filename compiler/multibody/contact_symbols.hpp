@@ -1,6 +1,6 @@
 // multibody/contact_symbols.hpp — the names contacts and tyres write
 // (contacts.cpp, tyres.cpp), what is drawn of them (drawing.cpp), and the
-// quantities users read of bodies, their points and joints (quantities.cpp).
+// quantities users read of them.
 // In the style of symbols.hpp: each name built once, by its entity.
 #pragma once
 
@@ -15,16 +15,6 @@
 
 namespace mbgc::multibody::detail {
 
-/// A two-port element (MTF, TF, GY): the variables of the bond at its end k
-/// (1 or 2), as the graph names them (`m.e1`, `m.f1`: graph/build_graph).
-class TwoPortSym : public Sym {
- public:
-  explicit TwoPortSym(const Sym& element) : Sym(element) {}
-  using Sym::effort;
-  using Sym::flow;
-  Sym effort(int k) const { return part(fmt::format("e{}", k)); }
-  Sym flow(int k) const { return part(fmt::format("f{}", k)); }
-};
 
 /// A CN: besides its effort, the flags its unilateral law gives it
 /// (graph/build_graph: LawForm::Unilateral).
@@ -67,12 +57,12 @@ class ContactSym : public Sym {
   Sym normal_b() const { return part("normal_b"); }
   Sym axis_b() const { return part("axis_b"); }
   Sym tangent_b() const { return part("tangent_b"); }
-  // the rows: the 0-junction of their rates, the prefixes of the MTFs from
-  // bodies a and b into it (rates_into), the CN
-  Sym c() const { return part("c"); }
-  Sym ca() const { return part("ca"); }
-  Sym cb() const { return part("cb"); }
-  ConstraintSym cn() const { return ConstraintSym(part("cn")); }
+  // the row, as a joint's (JointSym): the 0-junction of its rate, the MTF
+  // carrying side `side`'s ('a', 'b') body flow `flow` ('t' velocity, 'r'
+  // angular velocity, 'e' modal rates) into it (rates_into), the CN
+  Sym rows() const { return part("c"); }
+  Sym row_rate(char side, char flow) const { return part(fmt::format("c{}{}", side, flow)); }
+  ConstraintSym constraint() const { return ConstraintSym(part("cn")); }
   /// A compliant contact's regularised friction, a load on both bodies (its
   /// name is the coefficient's: `c.friction.on_<body>_f`).
   LoadSym friction_load() const { return LoadSym(part("friction")); }
@@ -115,13 +105,6 @@ class TyreSym : public LoadSym {
   Sym slip_ratio() const { return part("slip_ratio"); }
   Sym contact_point() const { return part("contact_point"); }
   Sym power() const { return part("power"); }
-  /// A name the tyre wrote (one of the Expander's generated names), as its
-  /// symbol; nothing if it is not the tyre's.
-  std::optional<Sym> written(const std::string& name) const {
-    const std::string under = str() + ".";
-    if (!name.starts_with(under) || name.size() == under.size()) return std::nullopt;
-    return part(name.substr(under.size()));
-  }
 };
 
 /// A road the tyres run on, as drawn for --animate: one per distinct profile,
@@ -132,30 +115,6 @@ class RoadSym : public Sym {
   Sym drawing() const { return part("drawing"); }
 };
 
-/// A body's point (BodySym::point): the quantities users read of it
-/// (`position`, `velocity`).
-class PointSym : public Sym {
- public:
-  explicit PointSym(const Sym& point) : Sym(point) {}
-  Sym quantity(const std::string& q) const { return part(q); }
-};
 
-/// TRANSITION (to merge into JointSym, joint_symbols.hpp): what a joint's
-/// quantities (quantities.cpp) name and read of its fragment.
-class JointQuantitySym : public Sym {
- public:
-  explicit JointQuantitySym(const std::string& joint) : Sym(joint) {}
-  /// `violation`, `force`, `torque`, `angle`, `rate`, `displacement`, `displacement_rate`.
-  Sym quantity(const std::string& q) const { return part(q); }
-  /// Its frames' scale (the property joint_params writes).
-  Sym scale() const { return part("scale"); }
-  /// In joint coordinates: the bonds into the child's velocity and angular
-  /// velocity junctions, whose efforts are the reaction.
-  Sym reaction_f() const { return part("reaction_f"); }
-  Sym reaction_t() const { return part("reaction_t"); }
-  /// As rows: the MTF carrying body `side`'s ('a' or 'b') velocity
-  /// (`motion` 't') or angular velocity ('r') to the rows' rates (rates_into).
-  TwoPortSym rows_from(char side, char motion) const { return TwoPortSym(part(fmt::format("c{}{}", side, motion))); }
-};
 
 }  // namespace mbgc::multibody::detail

@@ -303,7 +303,7 @@ void Expander::emit_contact(const Contact& c) {
   const int dim = static_cast<int>(rows.size());
   E rows_vec = B.list(rows);
   // the row(s): body junctions -> MTFs (d rows / d position) -> 0-junction -> CN
-  junction(B, '0', cn.c(), dim, {}, {cn.cn()});
+  junction(B, '0', cn.rows(), dim, {}, {cn.constraint()});
   auto frame_of = [&](const Side& s, const Body& body) {
     Frame f;
     f.ground = body.ground;
@@ -311,8 +311,8 @@ void Expander::emit_contact(const Contact& c) {
     f.body = s.body;
     return f;
   };
-  rates_into(B, cn.ca().str(), rows_vec, frame_of(c.a, a), cn.c().str(), true, true);
-  rates_into(B, cn.cb().str(), rows_vec, frame_of(c.b, b), cn.c().str(), true, true);
+  rates_into(B, [&](char flow) { return cn.row_rate('a', flow); }, rows_vec, frame_of(c.a, a), cn.rows(), true, true);
+  rates_into(B, [&](char flow) { return cn.row_rate('b', flow); }, rows_vec, frame_of(c.b, b), cn.rows(), true, true);
   ir::ConstraintLaw law;
   law.g = rows_vec;
   law.restitution = B.ref(cn.restitution());
@@ -326,16 +326,16 @@ void Expander::emit_contact(const Contact& c) {
     law.stabilisation = B.ref(cn.stabilisation());
     if (friction) law.friction = B.ref(cn.friction());
   }
-  constraint(B, cn.cn(), std::move(law));
+  constraint(B, cn.constraint(), std::move(law));
   // The push (>= 0): the CN's effort, signed so that it parts the bodies
   // (power e f into the CN is -push * g'); the friction likewise.
-  E effort = B.ref(cn.cn().effort());
+  E effort = B.ref(cn.constraint().effort());
   E push = B.neg(dim == 1 ? effort : B.at(effort, 1));
   quantity_[cn.gap().str()] = gap;
   quantity_[cn.normal().str()] = normal;
   quantity_[cn.normal_force().str()] = push;
-  quantity_[cn.closed().str()] = B.ref(cn.cn().closed());  // 1 while in contact
-  if (unilateral && friction) quantity_[cn.stuck().str()] = B.ref(cn.cn().stick());
+  quantity_[cn.closed().str()] = B.ref(cn.constraint().closed());  // 1 while in contact
+  if (unilateral && friction) quantity_[cn.stuck().str()] = B.ref(cn.constraint().stick());
   auto spin = [&](const Body& body, const Side& s) -> E {  // world angular velocity
     if (body.ground || body.particle) return nullptr;
     return B.op('*', rotation(B, s.body), B.ref(BodySym(s.body).w().flow()));

@@ -41,22 +41,22 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
 }
 
 // ---- 2. bodies -------------------------------------------------------------------------
-void Expander::param(const Build& B, const std::string& name, E value) {
-  generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true});
+void Expander::param(const Build& B, const Sym& name, E value) {
+  generated_names_.insert(name.str());
+  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true});
 }
 
-void Expander::property(const Build& B, const std::string& name, E value) {
-  generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedParam{{name, B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true});
+void Expander::property(const Build& B, const Sym& name, E value) {
+  generated_names_.insert(name.str());
+  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true});
 }
 
-void Expander::element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs) {
-  generated_names_.insert(name);
+void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs) {
+  generated_names_.insert(name.str());
   ir::ExpandedElement el;
   el.kind = kind;
   el.kind_loc = B.loc();
-  el.name = name;
+  el.name = name.str();
   el.loc = B.loc();
   el.value = std::move(value);
   el.attrs = std::move(attrs);
@@ -65,51 +65,50 @@ void Expander::element(const Build& B, const std::string& kind, const std::strin
   generated_.push_back(std::move(el));
 }
 
-void Expander::constraint(const Build& B, const std::string& name, ir::ConstraintLaw law) {
+void Expander::constraint(const Build& B, const Sym& name, ir::ConstraintLaw law) {
   element(B, "CN", name, nullptr);
   std::get<ir::ExpandedElement>(generated_.back()).constraint = std::move(law);
 }
 
-void Expander::junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out) {
-  generated_names_.insert(name);
+void Expander::junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out) {
+  generated_names_.insert(name.str());
   ir::ExpandedJunction j;
   j.type = type;
   j.kind_loc = B.loc();
-  j.name = name;
+  j.name = name.str();
   j.loc = B.loc();
   j.dim = dim;
   j.dim_loc = B.loc();
-  for (auto& s : in) j.inputs.push_back({s, B.loc()});
-  for (auto& s : out) j.outputs.push_back({s, B.loc()});
+  for (const Sym& s : in) j.inputs.push_back({s.str(), B.loc()});
+  for (const Sym& s : out) j.outputs.push_back({s.str(), B.loc()});
   j.tree = tree_tag_;
   j.generated = true;
   generated_.push_back(std::move(j));
 }
 
-void Expander::bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim) {
+void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optional<int> dim) {
   AstBond b;
   b.loc = B.loc();
   b.dim = dim;
   b.dim_loc = B.loc();
-  b.from = {from, B.loc()};
-  b.to = {to, B.loc()};
+  b.from = {from.str(), B.loc()};
+  b.to = {to.str(), B.loc()};
   generated_.push_back(std::move(b));
 }
 
-void Expander::signal(const Build& B, const std::string& name, E value, E rate) {
-  generated_names_.insert(name);
-  generated_.push_back(ir::ExpandedSignal{{name, B.loc(), std::move(value), std::nullopt}, std::move(rate), true});
+void Expander::signal(const Build& B, const Sym& name, E value, E rate) {
+  generated_names_.insert(name.str());
+  generated_.push_back(ir::ExpandedSignal{{name.str(), B.loc(), std::move(value), std::nullopt}, std::move(rate), true});
 }
 
-/// A 1-junction with the given elements bonded into / out of it.
-void Expander::junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out) {
-  junction(B, '1', name, 1, std::move(in), std::move(out));
+void Expander::junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out) {
+  junction(B, '1', name, 1, in, out);
 }
 
-void Expander::named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to) {
+void Expander::named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to) {
   bond(B, from, to);
-  std::get<AstBond>(generated_.back()).name = name;
-  generated_names_.insert(name);
+  std::get<AstBond>(generated_.back()).name = name.str();
+  generated_names_.insert(name.str());
 }
 
 }  // namespace detail

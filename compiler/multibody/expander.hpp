@@ -71,37 +71,17 @@ class Expander {
   // A run-time parameter (a setting: a penalty's stiffness, a force's law,
   // an initial value), and a property (geometry, mass, frames, modal
   // integrals, gravity), folded where it depends on literals (ExpandedParam::fold).
-  void param(const Build& B, const std::string& name, E value);
-  void property(const Build& B, const std::string& name, E value);
-  void element(const Build& B, const std::string& kind, const std::string& name, E value, std::vector<AstAttr> attrs = {});
+  void param(const Build& B, const Sym& name, E value);
+  void property(const Build& B, const Sym& name, E value);
+  void element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs = {});
   /// A CN `name` holding `law.g` as `law` says (ir::ConstraintLaw).
-  void constraint(const Build& B, const std::string& name, ir::ConstraintLaw law);
-  void junction(const Build& B, char type, const std::string& name, int dim, std::vector<std::string> in, std::vector<std::string> out);
-  void bond(const Build& B, const std::string& from, const std::string& to, std::optional<int> dim = std::nullopt);
-  void signal(const Build& B, const std::string& name, E value, E rate = nullptr);
-  void junction_(const Build& B, const std::string& name, std::vector<std::string> in, std::vector<std::string> out = {});
-  void named_bond(const Build& B, const std::string& name, const std::string& from, const std::string& to);
-  // The same, named by their symbols (symbols.hpp).
-  void param(const Build& B, const Sym& name, E value) { param(B, name.str(), std::move(value)); }
-  void property(const Build& B, const Sym& name, E value) { property(B, name.str(), std::move(value)); }
-  void element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs = {}) {
-    element(B, kind, name.str(), std::move(value), std::move(attrs));
-  }
-  void constraint(const Build& B, const Sym& name, ir::ConstraintLaw law) { constraint(B, name.str(), std::move(law)); }
-  void junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out) {
-    junction(B, type, name.str(), dim, strs(in), strs(out));
-  }
-  void bond(const Build& B, const Sym& from, const Sym& to, std::optional<int> dim = std::nullopt) { bond(B, from.str(), to.str(), dim); }
-  void signal(const Build& B, const Sym& name, E value, E rate = nullptr) { signal(B, name.str(), std::move(value), std::move(rate)); }
-  void junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out = {}) {
-    junction_(B, name.str(), strs(in), strs(out));
-  }
-  void named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to) { named_bond(B, name.str(), from.str(), to.str()); }
-  static std::vector<std::string> strs(const std::vector<Sym>& syms) {
-    std::vector<std::string> out;
-    for (const Sym& s : syms) out.push_back(s.str());
-    return out;
-  }
+  void constraint(const Build& B, const Sym& name, ir::ConstraintLaw law);
+  void junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out);
+  void bond(const Build& B, const Sym& from, const Sym& to, std::optional<int> dim = std::nullopt);
+  void signal(const Build& B, const Sym& name, E value, E rate = nullptr);
+  /// A 1-junction with the given elements bonded into / out of it.
+  void junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out = {});
+  void named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to);
 
   // ---- 1. collect and check bodies, joints, force elements and settings (collect.cpp; contacts: contacts.cpp)
   void collect(const AstProgram& in);
@@ -165,13 +145,6 @@ class Expander {
   std::vector<E> rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
   void rates_into(const Build& B, const std::function<Sym(char)>& mtf, E rows_vec, const Frame& f, const Sym& sum,
                   bool towards_sum, bool translational);
-  /// TRANSITION: the MTFs named `prefix` + 't', 'r', 'e' (contacts.cpp);
-  /// removed once its callers name them by their symbols.
-  void rates_into(const Build& B, const std::string& prefix, E rows_vec, const Frame& f, const std::string& sum,
-                  bool towards_sum, bool translational) {
-    rates_into(B, [&](char flow) { return Sym::legacy(prefix + flow); }, std::move(rows_vec), f, Sym::legacy(sum), towards_sum,
-               translational);
-  }
   void emit_joint(Joint& j);
   void drive_loads(const Build& B, const Joint& j);
   std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);

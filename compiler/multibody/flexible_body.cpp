@@ -176,10 +176,10 @@ void Expander::flexible_quantities(const Build& B, const Body& body) {
   quantity_[n.quantity("potential_energy").str()] = B.op('+', gravity, elastic);
   for (const auto& [pt, at] : beam.points()) {
     E local = beam.point(B, n, pt, eta);
-    std::tie(quantity_[n.point_quantity(pt, "position").str()], quantity_[n.point_quantity(pt, "velocity").str()]) =
+    std::tie(quantity_[n.point(pt).quantity("position").str()], quantity_[n.point(pt).quantity("velocity").str()]) =
         flexible_point_motion(B, name, local);
-    quantity_[n.point_quantity(pt, "deflection").str()] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
-    quantity_[n.point_quantity(pt, "rotation_vector").str()] = beam.slope(B, n, pt, eta);  // small, body axes
+    quantity_[n.point(pt).quantity("deflection").str()] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
+    quantity_[n.point(pt).quantity("rotation_vector").str()] = beam.slope(B, n, pt, eta);  // small, body axes
   }
 }
 

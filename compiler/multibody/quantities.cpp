@@ -39,7 +39,7 @@ void Expander::define_quantities() {
       quantity("angular_momentum") = B.op('*', R, B.ref(n.J().momentum()));
       ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.ref(n.J().momentum()))));
       for (const auto& [p, x] : body.points) {
-        const PointSym point(n.point(p));
+        const PointSym point = n.point(p);
         E local = B.op('-', B.ref(point), B.ref(n.com()));
         quantity_[point.quantity("position").str()] = B.op('+', r, B.op('*', R, local));
         quantity_[point.quantity("velocity").str()] = B.op('+', v, B.op('*', R, B.call("cross", {w, local})));
@@ -49,7 +49,7 @@ void Expander::define_quantities() {
     quantity("potential_energy") = gravity_ ? B.neg(B.op('*', B.ref(n.mass()), B.dot(B.ref(Sym::gravity()), r))) : B.num(0);
   }
   for (const Joint& j : joints_) {
-    const JointQuantitySym jn(j.decl->name);
+    const JointSym jn(j.decl->name);
     Build B(j.decl->loc);
     auto quantity = [&](const char* q) -> E& { return quantity_[jn.quantity(q).str()]; };
     const auto& [A, Bf] = frames_.at(j.decl->name);
@@ -61,11 +61,11 @@ void Expander::define_quantities() {
       // child's junctions (force world, torque body frame); on b, by Newton's third law
       const std::string child = j.a_is_parent ? j.b.body : j.a.body;
       E sign = B.num(j.a_is_parent ? 1 : -1);
-      E reaction_f = B.ref(jn.reaction_f().effort());
+      E reaction_f = B.ref(jn.reaction_force().effort());
       if (body_frame_velocity(bodies_.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
       quantity("force") = B.op('*', sign, reaction_f);
       if (!bodies_.at(child).particle)
-        quantity("torque") = B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_t().effort())));
+        quantity("torque") = B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_torque().effort())));
       if (j.kind->has_angle()) {
         quantity("angle") = cv->second.angle;
         quantity("rate") = cv->second.rate;
@@ -79,14 +79,14 @@ void Expander::define_quantities() {
     }
     // reaction on the second body (on the first, negated, if the second is ground)
     const char side = Bf.ground ? 'a' : 'b';
-    E force = B.ref(jn.rows_from(side, 't').effort(1));
+    E force = B.ref(jn.row_rate(side, 't').effort(1));
     if (!Bf.ground) force = B.neg(force);
     // (a cut joint on a body moved by joint coordinates: that junction is in the body's axes)
     if (body_frame_velocity(bodies_.at(body_side.body))) force = B.op('*', body_side.R, force);
     if (body_side.particle) {
       quantity("force") = force;
     } else {
-      E torque_body = B.ref(jn.rows_from(side, 'r').effort(1));
+      E torque_body = B.ref(jn.row_rate(side, 'r').effort(1));
       if (!Bf.ground) torque_body = B.neg(torque_body);
       E lever = B.op('*', body_side.R, body_side.local);
       quantity("force") = force;

@@ -29,6 +29,9 @@ class Sym {
   Sym displacement() const { return part("q"); }  // a C's state
   /// End k (1 or 2) of a two-port (MTF, TF, GY), as a bond names it.
   Sym port(int k) const { return part(fmt::format("p{}", k)); }
+  /// The effort and flow of a two-port's bond at end k (`m.e1`, `m.f1`).
+  Sym effort(int k) const { return part(fmt::format("e{}", k)); }
+  Sym flow(int k) const { return part(fmt::format("f{}", k)); }
 
   /// Inside an element's own law: its flow and its displacement.
   static Sym own_flow() { return Sym("f"); }
@@ -42,9 +45,6 @@ class Sym {
 
   bool operator==(const Sym&) const = default;
 
-  /// TRANSITION: a name built elsewhere, while the layer's files move to
-  /// their symbols; removed once none is left.
-  static Sym legacy(std::string name) { return Sym(std::move(name)); }
 
  protected:
   /// An entity's own name, as its declaration gives it.
@@ -71,6 +71,15 @@ class LoadSym : public Sym {
   Sym on(const std::string& body, char part_) const { return part(fmt::format("on_{}_{}", body, part_)); }
 };
 
+/// A body's point (BodySym::point): a property, and the quantities users
+/// read of it (`position`, `velocity`; a flexible body's also `deflection`,
+/// `rotation_vector`).
+class PointSym : public Sym {
+ public:
+  explicit PointSym(const Sym& point) : Sym(point) {}
+  Sym quantity(const std::string& q) const { return part(q); }
+};
+
 /// A body: its properties, its bond-graph fragment, its pose.
 class BodySym : public Sym {
  public:
@@ -80,7 +89,7 @@ class BodySym : public Sym {
   Sym mass() const { return part("mass"); }
   Sym com() const { return part("com"); }
   Sym inertia() const { return part("inertia"); }
-  Sym point(const std::string& p) const { return part(p); }
+  PointSym point(const std::string& p) const { return PointSym(part(p)); }
   // initial values
   Sym r0() const { return part("r0"); }
   Sym v0() const { return part("v0"); }
@@ -137,13 +146,10 @@ class FlexibleSym : public BodySym {
   Sym damp() const { return part("damp"); }  // the R of the modal damping on etadot
   /// The undeformed inertia about the frame origin, body axes (a parameter).
   Sym J0() const { return part("J0"); }
-  /// Quantities users read: a rigid body's (`position`, `velocity`, ...:
-  /// kBodyQuantities), the modal coordinates, the elastic energy, and a
-  /// point's (`position`, `velocity`, `deflection`, `rotation_vector`).
-  Sym quantity(const std::string& q) const { return part(q); }
+  /// Quantities users read besides a body's (BodySym::quantity): the modal
+  /// coordinates and the elastic energy.
   Sym modes() const { return part("modes"); }
   Sym elastic_energy() const { return part("elastic_energy"); }
-  Sym point_quantity(const std::string& p, const std::string& q) const { return part(fmt::format("{}.{}", p, q)); }
 };
 
 /// A force element (`force f (a, b) { ... }`): its settings as parameters,

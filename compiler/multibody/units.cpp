@@ -72,9 +72,9 @@ void Expander::state_unit(const AstAttr& a, const std::optional<units::Dimension
 
 namespace {
 
-/// The dimension of a body's or joint's quantity, by its last part (a
-/// point's `tip.position` as a body's `position`); none: not stated.
-std::optional<units::Dimension> quantity_dimension(const std::string& name) {
+/// The dimensions of the quantities the layer defines, by their last part
+/// (a point's `tip.position` as a body's `position`), a tyre's signals too.
+const std::map<std::string, units::Dimension>& quantity_dimensions() {
   using namespace units::dim;
   static const std::map<std::string, units::Dimension> kQuantities = {
       {"position", length()},
@@ -132,6 +132,12 @@ std::optional<units::Dimension> quantity_dimension(const std::string& name) {
       {"road_height", length()},
       {"road_slope", units::Dimension::none()},
   };
+  return kQuantities;
+}
+
+/// The dimension of the quantity `name` (quantity_dimensions); none: not stated.
+std::optional<units::Dimension> quantity_dimension(const std::string& name) {
+  const std::map<std::string, units::Dimension>& kQuantities = quantity_dimensions();
   auto dot = name.rfind('.');
   auto it = kQuantities.find(name.substr(dot == std::string::npos ? 0 : dot + 1));
   if (it == kQuantities.end()) return std::nullopt;
@@ -179,12 +185,10 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     for (const auto& [key, a] : t.attrs)
       state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name), out);
     // its quantities are signals it writes (`tyre1.Fz`), which the check does not read: their units are stated
-    // (the names it wrote are among those that begin with its own, which sort together)
     const TyreSym tyre(t.decl->name);
-    for (auto it = generated_names_.lower_bound(tyre.str()); it != generated_names_.end() && it->starts_with(tyre.str()); ++it)
-      if (auto own = tyre.written(*it))
-        if (auto d = quantity_dimension(*it))
-          out.push_back({Build(t.decl->loc).ref(*own), *d, t.decl->loc, fmt::format("`{}`", *it), true});
+    for (const auto& [q, d] : quantity_dimensions())
+      if (const Sym s = tyre.signal(q); generated_names_.count(s.str()))
+        out.push_back({Build(t.decl->loc).ref(s), d, t.decl->loc, fmt::format("`{}`", s.str()), true});
   }
   if (gravity_) state_unit(AstAttr{"gravity", gravity_loc_, gravity_}, units::dim::velocity() / units::dim::time(),
                            "gravity", out);
