@@ -73,16 +73,19 @@ void expect_documented(const Names& names, const char* what, bool may_be_empty =
   }
 }
 
-/// The quantity names the multibody layer defines: `quantity_[n + ".NAME"]`
-/// and `quantity_[... + ".NAME"]` in every source, and the tyre's signals.
+/// The quantity names the multibody layer defines, in every source: through
+/// a symbol's `quantity("NAME")` and as `quantity_[x.NAME().str()]`, and the
+/// tyre's signals (`sig("NAME", ...)`, `sig_vector(B, tn.NAME(), ...)`).
 std::set<std::string> quantity_names() {
   std::set<std::string> names;
-  const std::regex defined(R"(quantity_\[[^\]]*"\.([A-Za-z_][A-Za-z_0-9]*)\"\s*\])");
-  const std::regex tyre_signal(R"(\bsig(?:_vector)?\((?:B, *tn \+ )?"\.?([A-Za-z_][A-Za-z_0-9]*)\")");
+  const std::regex named(R"re(\bquantity\("([A-Za-z_][A-Za-z_0-9]*)"\))re");
+  const std::regex member(R"re(quantity_\[[A-Za-z_0-9.()]*\.([A-Za-z_][A-Za-z_0-9]*)\(\)\.str\(\)\])re");
+  const std::regex tyre_signal(R"re(\bsig\("([A-Za-z_][A-Za-z_0-9]*)")re");
+  const std::regex tyre_vector(R"re(\bsig_vector\(B, *tn\.([A-Za-z_][A-Za-z_0-9]*)\(\))re");
   for (const auto& e : fs::directory_iterator(fs::path(MBGC_SOURCE_DIR) / "compiler" / "multibody")) {
     if (e.path().extension() != ".cpp") continue;
     const std::string text = read(e.path());
-    for (const std::regex* r : {&defined, &tyre_signal})
+    for (const std::regex* r : {&named, &member, &tyre_signal, &tyre_vector})
       for (auto it = std::sregex_iterator(text.begin(), text.end(), *r); it != std::sregex_iterator(); ++it)
         names.insert((*it)[1]);
   }
