@@ -153,7 +153,7 @@ void Expander::add_body(const AstBody& b) {
   Body body;
   body.decl = &b;
   for (const AstAttr& a : b.attrs)
-    if (a.key == "flexible") {
+    if (a.key == beam_setting::flexible.name) {
       add_flexible_body(body, b, a);
       return;
     }
@@ -165,7 +165,7 @@ void Expander::add_body(const AstBody& b) {
       std::string near = closest_name(a.key, keys);
       diags_.error(a.loc, fmt::format("body `{}` has no setting `{}`", b.name, a.key),
                    near.empty() ? fmt::format("a body takes {}", fmt::join(keys, ", ")) : fmt::format("did you mean `{}`?", near));
-      mass_misspelt |= near == "mass";
+      mass_misspelt |= near == body_setting::mass.name;
       continue;
     }
     if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
@@ -173,25 +173,25 @@ void Expander::add_body(const AstBody& b) {
       d.notes.push_back({first->second->loc, "first given here"});
       continue;
     }
-    if (a.key == "shape") {
+    if (a.key == body_setting::shape.name) {
       body.shape = read_shape(b, *a.value);
       continue;
     }
-    has_mass |= a.key == "mass";
-    has_inertia |= a.key == "inertia";
-    check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
+    has_mass |= a.key == body_setting::mass.name;
+    has_inertia |= a.key == body_setting::inertia.name;
+    check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), *find_setting(body_setting::kAll, a.key)->expected);
   }
   if (!has_mass && !mass_misspelt)
     diags_.error(b.loc, fmt::format("body `{}` has no mass", b.name),
                  fmt::format("the mass is the inertance of the body's translational I element: write body {} {{ mass = ...; "
                              "inertia = ... }} (no inertia: a particle)",
                              b.name));
-  if (auto m = given.find("mass"); m != given.end())
+  if (auto m = given.find(body_setting::mass.name); m != given.end())
     if (auto v = constant_of(*m->second->value); v && !(*v > 0))
       diags_.error(m->second->value->loc, fmt::format("the mass of body `{}` is {}", b.name, *v),
                    "the mass is the inertance of the body's translational I element and must be positive; a massless "
                    "link between bodies is a joint (e.g. distance)");
-  if (auto in = given.find("inertia"); in != given.end() && in->second->value->kind == AstExpr::Kind::Call &&
+  if (auto in = given.find(body_setting::inertia.name); in != given.end() && in->second->value->kind == AstExpr::Kind::Call &&
                                        in->second->value->name == "diag")
     for (const E& x : in->second->value->args)
       if (auto v = constant_of(*x); v && !(*v > 0))
@@ -200,7 +200,7 @@ void Expander::add_body(const AstBody& b) {
   body.particle = !has_inertia;
   if (body.particle)
     for (const AstAttr& a : b.attrs)
-      if (a.key == "com" || a.key == "quat0" || a.key == "w0")
+      if (find_setting({&body_setting::com, &body_setting::quat0, &body_setting::w0}, a.key))
         diags_.error(a.loc, fmt::format("body `{}` has no inertia, so it is a particle: `{}` means nothing", b.name, a.key),
                      fmt::format("a particle is a translational 1-junction only (mass, position, velocity): it has no "
                                  "orientation, centre-of-mass offset or angular-velocity junction. Give it an inertia "
@@ -307,16 +307,18 @@ void Expander::add_force(const AstJoint& f) {
   ForceElement fe{&f, *a, *b, {}};
   static const std::vector<std::string> keys = setting_names(force_setting::kAll);
   collect_settings(f, keys, fe.attrs, fmt::format("it takes {}", fmt::join(keys, ", ")));
-  if (fe.attrs.count("stiffness") && !fe.attrs.count("length"))
-    diags_.error(fe.attrs.at("stiffness")->loc, fmt::format("the spring of `{}` has no free length", f.name),
+  const auto* stiffness = given_in(fe.attrs, force_setting::stiffness);
+  const auto* length = given_in(fe.attrs, force_setting::length);
+  if (stiffness && !length)
+    diags_.error(stiffness->loc, fmt::format("the spring of `{}` has no free length", f.name),
                  "add length = L0 (m): the spring pushes the points apart below it and pulls them together above it");
-  if (fe.attrs.count("length") && !fe.attrs.count("stiffness"))
-    diags_.error(fe.attrs.at("length")->loc, fmt::format("`length` of `{}` needs a stiffness", f.name),
+  if (length && !stiffness)
+    diags_.error(length->loc, fmt::format("`length` of `{}` needs a stiffness", f.name),
                  "add stiffness = k (N/m), or remove length");
   for (const Side* sd : {&fe.a, &fe.b}) {
     const Body& body = bodies_.at(sd->body);
-    if (body.particle && fe.attrs.count("torque"))
-      diags_.error(fe.attrs.at("torque")->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
+    if (const auto* torque = given_in(fe.attrs, force_setting::torque); body.particle && torque)
+      diags_.error(torque->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
                    "give the body an inertia, or remove the torque");
     if (!body.ground) loads_[sd->body].push_back(ForceSym(f.name));
   }

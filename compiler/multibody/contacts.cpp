@@ -33,7 +33,7 @@ std::vector<std::string> contact_setting_names() { return kContactSettings; }
 /// z up); when they are numbers, checked.
 void Expander::check_polygon(const Contact& contact) {
   const AstJoint& c = *contact.decl;
-  auto it = contact.attrs.find("vertices");
+  auto it = contact.attrs.find(contact_setting::vertices.name);
   const char* how = "write vertices = [[x1, z1], [x2, z2], [x3, z3], ...]: the corners of a convex polygon in the "
                     "surface body's x-z plane, counter-clockwise (x to the right, z up); it is extruded along y";
   if (it == contact.attrs.end()) {
@@ -81,8 +81,8 @@ void Expander::add_contact(const AstJoint& c) {
   bool ok = collect_settings(c, kContactSettings, contact.attrs, fmt::format("it takes {}", fmt::join(kContactSettings, ", ")));
   for (const AstAttr& at : c.attrs) {  // in the text's order, each collected setting once
     if (auto it = contact.attrs.find(at.key); it == contact.attrs.end() || it->second != &at) continue;
-    if (at.key == "surface" || at.key == "strategy") {
-      const bool surface = at.key == "surface";
+    if (at.key == contact_setting::surface.name || at.key == contact_setting::strategy.name) {
+      const bool surface = at.key == contact_setting::surface.name;
       const std::vector<std::string> choices = surface ? std::vector<std::string>{"plane", "sphere", "cylinder", "polygon"}
                                                        : std::vector<std::string>{"unilateral", "compliant"};
       const std::string word = at.value->kind == AstExpr::Kind::Name ? at.value->name : "";
@@ -102,16 +102,17 @@ void Expander::add_contact(const AstJoint& c) {
       else contact.strategy = static_cast<ContactStrategy>(index);
       continue;
     }
-    if (at.key == "vertices") continue;  // (checked below, with the surface)
+    if (at.key == contact_setting::vertices.name) continue;  // (checked below, with the surface)
     check_shape(*at.value, fmt::format("`{}` of contact `{}`", at.key, c.name),
                 *find_setting(contact_setting::kAll, at.key)->expected);
   }
   if (!ok) return;
-  auto given = [&](const char* key) { return contact.attrs.count(key) > 0; };
-  auto constant = [&](const char* key) -> std::optional<double> {
-    return given(key) ? constant_of(*contact.attrs.at(key)->value) : std::nullopt;
+  using namespace contact_setting;
+  auto given = [&](const Setting& s) { return given_in(contact.attrs, s) != nullptr; };
+  auto constant = [&](const Setting& s) -> std::optional<double> {
+    return given(s) ? constant_of(*given_in(contact.attrs, s)->value) : std::nullopt;
   };
-  auto error_at = [&](const char* key) { return given(key) ? contact.attrs.at(key)->value->loc : c.loc; };
+  auto error_at = [&](const Setting& s) { return given(s) ? given_in(contact.attrs, s)->value->loc : c.loc; };
   const Body& surface_body = bodies_.at(b->body);
   const char* surface_name = contact.surface == Surface::Plane    ? "plane"
                              : contact.surface == Surface::Sphere ? "sphere"
@@ -122,54 +123,55 @@ void Expander::add_contact(const AstJoint& c) {
                  fmt::format("a particle has no orientation to carry a {}: put a sphere on it (surface = sphere; "
                              "surface_radius = R), or give `{}` an inertia",
                              surface_name, b->body));
-  if (contact.surface == Surface::Plane && !given("normal"))
+  if (contact.surface == Surface::Plane && !given(normal))
     diags_.error(c.loc, fmt::format("the plane of contact `{}` has no normal", c.name),
                  fmt::format("give its outward normal in `{}`'s frame, e.g. normal = [0, 0, 1]", b->body));
-  if (contact.surface == Surface::Cylinder && !given("axis"))
+  if (contact.surface == Surface::Cylinder && !given(axis))
     diags_.error(c.loc, fmt::format("the cylinder of contact `{}` has no axis", c.name),
                  fmt::format("give its axis in `{}`'s frame, e.g. axis = [0, 0, 1]", b->body));
   const bool round = contact.surface == Surface::Sphere || contact.surface == Surface::Cylinder;
-  if (round && !given("surface_radius"))
+  if (round && !given(surface_radius))
     diags_.error(c.loc, fmt::format("the {} of contact `{}` has no radius", surface_name, c.name),
                  "give it: surface_radius = R (m)");
-  if (!round && given("surface_radius"))
-    diags_.error(contact.attrs.at("surface_radius")->loc, fmt::format("a {} has no radius (contact `{}`)", surface_name, c.name),
+  if (!round && given(surface_radius))
+    diags_.error(given_in(contact.attrs, surface_radius)->loc, fmt::format("a {} has no radius (contact `{}`)", surface_name, c.name),
                  "remove surface_radius, or make the surface a sphere or a cylinder");
   if (contact.surface == Surface::Polygon) check_polygon(contact);
-  else if (given("vertices"))
-    diags_.error(contact.attrs.at("vertices")->loc, fmt::format("a {} has no vertices (contact `{}`)", surface_name, c.name),
+  else if (given(vertices))
+    diags_.error(given_in(contact.attrs, vertices)->loc, fmt::format("a {} has no vertices (contact `{}`)", surface_name, c.name),
                  "vertices belong to surface = polygon");
-  for (const char* key : {"radius", "surface_radius", "friction", "slip_speed", "stiffness"}) {
-    auto v = constant(key);
+  for (const Setting* s : {&radius, &surface_radius, &friction, &slip_speed, &stiffness}) {
+    auto v = constant(*s);
     if (!v) continue;
-    const bool positive = std::string_view(key) == "slip_speed" || std::string_view(key) == "stiffness";
+    const bool positive = s == &slip_speed || s == &stiffness;
     if (positive ? *v > 0 : *v >= 0) continue;
-    diags_.error(error_at(key), fmt::format("the {} of contact `{}` is {}", key, c.name, *v),
-                 std::string_view(key) == "friction" ? "a Coulomb coefficient is >= 0 (0: frictionless)"
+    const char* key = s->name;
+    diags_.error(error_at(*s), fmt::format("the {} of contact `{}` is {}", key, c.name, *v),
+                 s == &friction ? "a Coulomb coefficient is >= 0 (0: frictionless)"
                  : positive                          ? fmt::format("the {} must be > 0", key)
                                                      : fmt::format("a {} is >= 0", key));
   }
-  if (auto e = constant("restitution"); e && (*e < 0 || *e > 1))
-    diags_.error(error_at("restitution"), fmt::format("the restitution of contact `{}` is {}", c.name, *e),
+  if (auto e = constant(restitution); e && (*e < 0 || *e > 1))
+    diags_.error(error_at(restitution), fmt::format("the restitution of contact `{}` is {}", c.name, *e),
                  "Newton's coefficient is in [0, 1]: 0 a plastic impact, 1 an elastic one");
   if (contact.strategy == ContactStrategy::Compliant) {
-    if (!given("stiffness"))
+    if (!given(stiffness))
       diags_.error(c.loc, fmt::format("compliant contact `{}` has no stiffness", c.name),
                    "the Hunt-Crossley force is k d^n (1 + damping): give stiffness = k (N/m^1.5 for the default exponent 1.5)");
-    if (!given("restitution"))
+    if (!given(restitution))
       diags_.error(c.loc, fmt::format("compliant contact `{}` has no restitution", c.name),
                    "its damping follows from the restitution e (0 < e <= 1): give restitution = e");
-    else if (auto e = constant("restitution"); e && *e == 0)
-      diags_.error(error_at("restitution"), fmt::format("compliant contact `{}` has restitution 0", c.name),
+    else if (auto e = constant(restitution); e && *e == 0)
+      diags_.error(error_at(restitution), fmt::format("compliant contact `{}` has restitution 0", c.name),
                    "a Hunt-Crossley force needs unbounded damping to stop a body dead: give e > 0, or use the "
                    "unilateral strategy");
   }
   // (a unilateral contact keeps its stiffness and exponent, a compliant one its stabilisation: unused,
   // they describe the contact under the other strategy, which mbgc --contacts may choose)
-  if (given("slip_speed") && !given("friction"))
-    diags_.error(contact.attrs.at("slip_speed")->loc, fmt::format("contact `{}` has a slip speed but no friction", c.name),
+  if (given(slip_speed) && !given(friction))
+    diags_.error(given_in(contact.attrs, slip_speed)->loc, fmt::format("contact `{}` has a slip speed but no friction", c.name),
                  "add friction = mu, or remove slip_speed");
-  if (given("friction") && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
+  if (given(friction) && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
     for (const Side* sd : {&contact.a, &contact.b})
       if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(ContactSym(c.name).friction_load());
   if (!diags_.has_errors()) contacts_.push_back(std::move(contact));
@@ -182,7 +184,7 @@ void Expander::add_contact(const AstJoint& c) {
 /// C1 outside; a sphere of radius r around the point keeps the distance >= r
 /// while it touches, so the direction to a corner is always defined.
 std::pair<E, E> Expander::polygon_gap(const Build& B, const Contact& c, E d) {
-  const AstExpr& v = *c.attrs.at("vertices")->value;
+  const AstExpr& v = *c.attrs.at(contact_setting::vertices.name)->value;
   const std::size_t n = v.args.size();
   const E X = B.at(d, 1), Z = B.at(d, 3);
   auto step = [&](E x) { return B.call("select", {x}); };  // (continuous choices: not events)
@@ -222,12 +224,12 @@ std::pair<E, E> Expander::polygon_gap(const Build& B, const Contact& c, E d) {
 void Expander::emit_contact(const Contact& c) {
   const ContactSym cn(c.decl->name);
   Build B(c.decl->loc);
-  auto setting = [&](const char* key, E fallback) -> E {
-    auto it = c.attrs.find(key);
-    return it == c.attrs.end() ? fallback : it->second->value;
+  auto setting = [&](const Setting& s, E fallback) -> E {
+    const AstAttr* given = given_in(c.attrs, s);
+    return given ? given->value : fallback;
   };
-  param(B, cn.radius(), setting("radius", B.num(0)));
-  param(B, cn.restitution(), setting("restitution", B.num(0)));
+  param(B, cn.radius(), setting(contact_setting::radius, B.num(0)));
+  param(B, cn.restitution(), setting(contact_setting::restitution, B.num(0)));
   const Body& a = bodies_.at(c.a.body);
   const Body& b = bodies_.at(c.b.body);
   auto [pa, va] = world_point(B, c.a);
@@ -240,15 +242,15 @@ void Expander::emit_contact(const Contact& c) {
     std::tie(gap, normal) = polygon_gap(B, c, Rb ? B.op('*', B.call("transpose", {Rb}), d) : d);
     normal = turned(normal);
   } else if (c.surface == Surface::Plane) {
-    E n = setting("normal", nullptr);
+    E n = setting(contact_setting::normal, nullptr);
     property(B, cn.normal_b(), B.op('/', n, B.call("norm", {n})));
     normal = turned(B.ref(cn.normal_b()));
     gap = B.dot(normal, d);
   } else {
-    param(B, cn.surface_radius(), setting("surface_radius", nullptr));
+    param(B, cn.surface_radius(), setting(contact_setting::surface_radius, nullptr));
     E radial = d;
     if (c.surface == Surface::Cylinder) {
-      E axis = setting("axis", nullptr);
+      E axis = setting(contact_setting::axis, nullptr);
       property(B, cn.axis_b(), B.op('/', axis, B.call("norm", {axis})));
       E ax = turned(B.ref(cn.axis_b()));
       radial = B.op('-', d, B.op('*', B.dot(ax, d), ax));
@@ -259,8 +261,8 @@ void Expander::emit_contact(const Contact& c) {
   }
   gap = B.op('-', gap, B.ref(cn.radius()));
   const bool unilateral = c.strategy == ContactStrategy::Unilateral;
-  const bool friction = c.attrs.count("friction") > 0;
-  if (friction) param(B, cn.friction(), setting("friction", nullptr));
+  const bool friction = given_in(c.attrs, contact_setting::friction) != nullptr;
+  if (friction) param(B, cn.friction(), setting(contact_setting::friction, nullptr));
   // the contact point: on A's sphere, towards the surface
   E point = B.op('-', pa, B.op('*', B.ref(cn.radius()), normal));
   // The rows: the gap and, for a unilateral contact with friction, the two
@@ -317,12 +319,12 @@ void Expander::emit_contact(const Contact& c) {
   law.g = rows_vec;
   law.restitution = B.ref(cn.restitution());
   if (c.strategy == ContactStrategy::Compliant) {
-    param(B, cn.stiffness(), setting("stiffness", nullptr));
-    param(B, cn.exponent(), setting("exponent", B.num(1.5)));
+    param(B, cn.stiffness(), setting(contact_setting::stiffness, nullptr));
+    param(B, cn.exponent(), setting(contact_setting::exponent, B.num(1.5)));
     law.stiffness = B.ref(cn.stiffness());
     law.exponent = B.ref(cn.exponent());
   } else {
-    param(B, cn.stabilisation(), setting("stabilisation", B.num(20)));
+    param(B, cn.stabilisation(), setting(contact_setting::stabilisation, B.num(20)));
     law.stabilisation = B.ref(cn.stabilisation());
     if (friction) law.friction = B.ref(cn.friction());
   }
@@ -351,7 +353,7 @@ void Expander::emit_contact(const Contact& c) {
     friction_force = B.neg(B.op('*', tangents, B.list({B.at(effort, 2), B.at(effort, 3)})));
   } else if (friction) {
     // regularised Coulomb: -mu push vt / sqrt(|vt|^2 + eps^2) on A, its opposite on B
-    param(B, cn.slip_speed(), setting("slip_speed", B.num(1e-4)));
+    param(B, cn.slip_speed(), setting(contact_setting::slip_speed, B.num(1e-4)));
     E eps = B.ref(cn.slip_speed());
     E scale = B.call("sqrt", {B.op('+', B.dot(tangential, tangential), B.op('*', eps, eps))});
     friction_force = B.op('*', B.op('/', B.neg(B.op('*', B.ref(cn.friction()), push)), scale), tangential);

@@ -198,7 +198,7 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
     return d;
   }
   const std::array<double, 3> com = [&] {
-    const E c = attr(*body.decl, "com");
+    const E c = attr(*body.decl, body_setting::com);
     auto p = c ? constant_point(*c) : std::optional<std::array<double, 3>>(std::array<double, 3>{});
     return p.value_or(std::array<double, 3>{});
   }();
@@ -212,7 +212,7 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
   std::array<double, 3> edge{};
   for (std::size_t k = 0; k < 3; ++k) edge[k] = hi[k] - lo[k], d.centre[k] = 0.5 * (hi[k] + lo[k]);
   if (!any) {  // the box of the same inertia
-    const E in = attr(*body.decl, "inertia"), m = attr(*body.decl, "mass");
+    const E in = attr(*body.decl, body_setting::inertia), m = attr(*body.decl, body_setting::mass);
     auto mass = m ? constant_of(*m) : std::nullopt;
     if (in && mass && *mass > 0 && in->kind == AstExpr::Kind::Call && in->name == "diag" && in->args.size() == 3) {
       std::array<double, 3> J{};
@@ -235,7 +235,7 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
 double Expander::model_scale() const {
   double scale = 0;
   for (const auto& [n, body] : bodies_) {
-    if (const E r0 = body.decl ? attr(*body.decl, "r0") : nullptr)
+    if (const E r0 = body.decl ? attr(*body.decl, body_setting::r0) : nullptr)
       if (auto v = constant_point(*r0)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
     for (const auto& [p, x] : body.points)
       if (auto v = constant_point(*x)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
@@ -297,13 +297,12 @@ void Expander::draw_surfaces() {
     d->body = c.decl->name;
     d->colour = surface_colour(index++);
     if (!bodies_.at(c.a.body).ground) d->covers.push_back(c.a.body);
-    auto number = [&](const char* key) -> std::optional<double> {
-      auto it = c.attrs.find(key);
-      return it == c.attrs.end() ? std::nullopt : drawn_number(*it->second->value);
+    auto number = [&](const Setting& s) -> std::optional<double> {
+      const AstAttr* given = given_in(c.attrs, s);
+      return given ? drawn_number(*given->value) : std::nullopt;
     };
-    auto direction = [&](const char* key) -> std::optional<std::array<double, 3>> {
-      auto it = c.attrs.find(key);
-      const AstExpr& v = *it->second->value;
+    auto direction = [&](const Setting& s) -> std::optional<std::array<double, 3>> {
+      const AstExpr& v = *given_in(c.attrs, s)->value;
       if (v.kind != AstExpr::Kind::List || v.args.size() != 3) return std::nullopt;
       std::array<double, 3> n{};
       for (std::size_t k = 0; k < 3; ++k) {
@@ -319,23 +318,24 @@ void Expander::draw_surfaces() {
     std::array<std::array<double, 3>, 3> turn{};
     bool turned = false;
     if (c.surface == Surface::Plane) {
-      auto n = direction("normal");
+      auto n = direction(contact_setting::normal);
       if (!n) continue;
       d->shape = Drawing::Shape::Plane;
       turn = frame_along(*n), turned = true;
     } else if (c.surface == Surface::Polygon) {
       d->shape = Drawing::Shape::Prism;
-      for (const E& p : c.attrs.at("vertices")->value->args)
+      const AstExpr& vertices = *given_in(c.attrs, contact_setting::vertices)->value;
+      for (const E& p : vertices.args)
         for (const E& x : p->args)
           if (auto v = drawn_number(*x)) d->profile.push_back(*v);
-      if (d->profile.size() != 2 * c.attrs.at("vertices")->value->args.size()) continue;
+      if (d->profile.size() != 2 * vertices.args.size()) continue;
     } else {
-      auto r = number("surface_radius");
+      auto r = number(contact_setting::surface_radius);
       if (!r || !(*r > 0)) continue;
       d->size = {*r, 0, 0};  // a cylinder's length: from the run
       d->shape = c.surface == Surface::Sphere ? Drawing::Shape::Sphere : Drawing::Shape::Cylinder;
       if (c.surface == Surface::Cylinder) {
-        auto axis = direction("axis");
+        auto axis = direction(contact_setting::axis);
         if (!axis) continue;
         turn = frame_along(*axis), turned = true;
       }
@@ -346,11 +346,11 @@ void Expander::draw_surfaces() {
   std::vector<std::shared_ptr<Drawing>> road_drawings;  // (a road's wheels join its drawing until the end)
   for (const Tyre& t : tyres_) {
     std::vector<double> profile;
-    if (auto it = t.attrs.find("profile"); it != t.attrs.end()) {
-      for (const E& p : it->second->value->args)
+    if (const AstAttr* given = given_in(t.attrs, tyre_setting::profile)) {
+      for (const E& p : given->value->args)
         for (const E& x : p->args)
           if (auto v = drawn_number(*x)) profile.push_back(*v);
-      if (profile.size() != 2 * it->second->value->args.size()) continue;
+      if (profile.size() != 2 * given->value->args.size()) continue;
     }
     if (auto same = std::find(roads.begin(), roads.end(), profile); same != roads.end()) {
       road_drawings[static_cast<std::size_t>(same - roads.begin())]->covers.push_back(t.wheel.body);

@@ -34,15 +34,6 @@ namespace mbgc::multibody::detail {
 
 using namespace mbgc::ir;  // the multibody layer builds the AST's statements throughout
 
-inline const std::map<std::string, Expected> kBodySettingShapes = {
-    {"mass", {{1, 1}, "the mass is a scalar (kg), e.g. mass = 2"}},
-    {"inertia", {{3, 3}, "the inertia tensor about the centre of mass, in body axes, is a 3x3 matrix, e.g. inertia = diag(Jx, Jy, Jz)"}},
-    {"com", {{3, 1}, "the centre of mass is a body-frame position [x, y, z]"}},
-    {"r0", {{3, 1}, "the initial position of the centre of mass is [x, y, z] (world frame)"}},
-    {"v0", {{3, 1}, "the initial velocity of the centre of mass is [vx, vy, vz] (world frame)"}},
-    {"w0", {{3, 1}, "the initial angular velocity is [wx, wy, wz] (body frame)"}},
-    {"quat0", {{4, 1}, "the initial orientation is a quaternion [w, x, y, z], e.g. quat_axis_angle([0, 0, 1], 0.3)"}},
-};
 /// Quantities `body.NAME` and `joint.NAME` users may read (defined in define_quantities).
 inline const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
                                                   "omega", "omega_world", "angular_momentum", "kinetic_energy",

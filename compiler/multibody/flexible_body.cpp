@@ -102,7 +102,7 @@ void Expander::emit_flexible(const Body& body) {
     bond(B, n.nusum(), n.nu());
   }
   // elasticity and modal damping on eta'
-  if (attr(d, "damping")) modal_out.push_back(n.damp());
+  if (attr(d, beam_setting::damping)) modal_out.push_back(n.damp());
   junction(B, '1', n.etadot(), ne, modal_in, modal_out);
   Rows K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
   Rows D = K;
@@ -110,7 +110,7 @@ void Expander::emit_flexible(const Body& body) {
   element(B, "C", n.eta(), nullptr,
           {kv("e", B.op('*', rows_to_matrix(B, K), B.ref(Sym::own_displacement())), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
   std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(d.name);
-  if (attr(d, "damping")) element(B, "R", n.damp(), rows_to_matrix(B, D));
+  if (attr(d, beam_setting::damping)) element(B, "R", n.damp(), rows_to_matrix(B, D));
 }
 
 /// The load on b (world force F at Q, torque T) and its opposite on a, as

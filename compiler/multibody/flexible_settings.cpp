@@ -152,7 +152,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
     if (!find_setting(beam_setting::kAll, a.key)) {
       std::string near = closest_name(a.key, names);
       meant.insert(near);
-      const char* computed = (a.key == "mass" || a.key == "inertia" || a.key == "com")
+      const char* computed = (a.key == body_setting::mass.name || a.key == body_setting::inertia.name || a.key == body_setting::com.name)
                                  ? "a beam's mass, inertia and centre of mass follow from its length, density and section; remove it"
                                  : nullptr;
       diags_.error(a.loc, fmt::format("flexible body `{}` has no setting `{}`", b.name, a.key),
@@ -163,32 +163,32 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
     }
     record_setting(given, a, b);
   }
-  auto need = [&](const char* key) -> const AstAttr* {
-    auto it = given.find(key);
+  auto need = [&](const Setting& s) -> const AstAttr* {
+    auto it = given.find(s.name);
     if (it != given.end()) return it->second;
-    if (!meant.count(key))
-      diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, key),
-                   fmt::format("give {}", find_setting(beam_setting::kAll, key)->what));
+    if (!meant.count(s.name))
+      diags_.error(b.loc, fmt::format("flexible body `{}` has no `{}`", b.name, s.name), fmt::format("give {}", s.what));
     return nullptr;
   };
-  if (const AstAttr* len = need("length")) {
+  if (const AstAttr* len = need(beam_setting::length)) {
     auto v = constant_of(*len->value);
     if (!v || !(*v > 0))
       diags_.error(len->value->loc, fmt::format("the length of beam `{}` must be a positive constant", b.name),
                    "the compiler integrates the mode shapes over the length: write a number or a constant parameter");
     else beam->length_m = *v;
   }
-  need("density");
-  need("E");
-  if (given.count("section") && (given.count("area") || given.count("Iy") || given.count("Iz")))
-    diags_.error(given.at("section")->loc, fmt::format("beam `{}` has both `section` and section properties", b.name),
+  need(beam_setting::density);
+  need(beam_setting::E);
+  if (given.count(beam_setting::section.name) && (given.count(beam_setting::area.name) || given.count(beam_setting::Iy.name) || given.count(beam_setting::Iz.name)))
+    diags_.error(given.at(beam_setting::section.name)->loc, fmt::format("beam `{}` has both `section` and section properties", b.name),
                  "give either section = rectangle(...)/circle(...)/tube(...) or area, Iy and Iz");
-  else if (!given.count("section")) {
-    need("area");
-    need("Iy");
-    need("Iz");
-  } else check_section(*given.at("section")->value);
-  for (const char* plane : {"modes_xy", "modes_xz"}) {
+  else if (!given.count(beam_setting::section.name)) {
+    need(beam_setting::area);
+    need(beam_setting::Iy);
+    need(beam_setting::Iz);
+  } else check_section(*given.at(beam_setting::section.name)->value);
+  for (const Setting* modes : {&beam_setting::modes_xy, &beam_setting::modes_xz}) {
+    const char* plane = modes->name;
     auto it = given.find(plane);
     if (it == given.end() || beam->length_m <= 0) continue;
     const AstExpr& v = *it->second->value;
@@ -200,9 +200,10 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                    "1 to 12 modes");
       continue;
     }
-    (plane[7] == 'y' ? beam->y : beam->z).emplace(sup, beam->length_m, n);
+    (modes == &beam_setting::modes_xy ? beam->y : beam->z).emplace(sup, beam->length_m, n);
   }
-  for (const char* key : {"modes_axial", "modes_torsion"}) {
+  for (const Setting* modes : {&beam_setting::modes_axial, &beam_setting::modes_torsion}) {
+    const char* key = modes->name;
     auto it = given.find(key);
     if (it == given.end() || beam->length_m <= 0) continue;
     const AstExpr& v = *it->second->value;
@@ -213,24 +214,24 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                    "write ends(number of modes): fixed_free(2), fixed_fixed(2) or free_free(2); 1 to 12 modes");
       continue;
     }
-    (key[6] == 'a' ? beam->axial : beam->torsion).emplace(ends, beam->length_m, n);
+    (modes == &beam_setting::modes_axial ? beam->axial : beam->torsion).emplace(ends, beam->length_m, n);
   }
-  if (given.count("modes_torsion")) {
-    need("G");
-    if (!given.count("section") && !given.count("torsion_constant"))
-      diags_.error(given.at("modes_torsion")->loc, fmt::format("beam `{}` twists but has no torsion constant", b.name),
+  if (given.count(beam_setting::modes_torsion.name)) {
+    need(beam_setting::G);
+    if (!given.count(beam_setting::section.name) && !given.count(beam_setting::torsion_constant.name))
+      diags_.error(given.at(beam_setting::modes_torsion.name)->loc, fmt::format("beam `{}` twists but has no torsion constant", b.name),
                    "give torsion_constant (m^4), or a section = rectangle(...)/circle(...)/tube(...) to compute it from");
   } else {
-    for (const char* key : {"G", "torsion_constant"})
-      if (given.count(key))
+    for (const Setting* torsion : {&beam_setting::G, &beam_setting::torsion_constant})
+      if (const char* key = torsion->name; given.count(key))
         diags_.error(given.at(key)->loc, fmt::format("`{}` of beam `{}` is for torsion, which it has no modes of", key, b.name),
                      "give modes_torsion = fixed_free(1) (or another mode set), or remove it");
   }
-  if (!given.count("modes_xy") && !given.count("modes_xz") && !given.count("modes_axial") && !given.count("modes_torsion"))
+  if (!given.count(beam_setting::modes_xy.name) && !given.count(beam_setting::modes_xz.name) && !given.count(beam_setting::modes_axial.name) && !given.count(beam_setting::modes_torsion.name))
     diags_.error(b.loc, fmt::format("beam `{}` has no modes", b.name),
                  "give the assumed modes of at least one bending plane, e.g. modes_xy = clamped_free(3), or of "
                  "stretch or twist (modes_axial, modes_torsion)");
-  if (auto g = given.find("geometric_stiffness"); g != given.end()) {
+  if (auto g = given.find(beam_setting::geometric_stiffness.name); g != given.end()) {
     const AstExpr& v = *g->second->value;
     auto flag = constant_of(v);  // 1 or 0: a parameter, so that `mbgc --set` can switch it
     if (v.kind == AstExpr::Kind::Name && (v.name == "on" || v.name == "off")) beam->geometric_stiffness = v.name == "on";
@@ -239,8 +240,8 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                       "on: the dynamic geometric stiffness of the axial load (spin stiffening, buckling); off: the linear "
                       "model the thesis compares against");
   }
-  check_frame(*beam, b, given.count("frame") ? given.at("frame") : nullptr);
-  if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(beam->slope_limit_rad, b, *s->second);
+  check_frame(*beam, b, given.count(beam_setting::frame.name) ? given.at(beam_setting::frame.name) : nullptr);
+  if (auto s = given.find(beam_setting::slope_limit.name); s != given.end()) read_slope_limit(beam->slope_limit_rad, b, *s->second);
   body.flex = beam;
   add_points(body, b, b.name);
   for (const AstPoint& p : b.points) {
@@ -280,8 +281,8 @@ void Expander::record_setting(std::map<std::string, const AstAttr*>& given, cons
     auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
     d.notes.push_back({first->second->loc, "first given here"});
   }
-  if (kBodySettingShapes.count(a.key))
-    check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), kBodySettingShapes.at(a.key));
+  if (const Setting* s = find_setting(body_setting::kAll, a.key); s && s->expected)  // an initial value
+    check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), *s->expected);
 }
 
 void Expander::read_slope_limit(double& limit_rad, const AstBody& b, const AstAttr& a) {
@@ -309,13 +310,17 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {
     if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {
-      const bool from_file = a.key == "mass" || a.key == "inertia" || a.key == "com" || a.key == "length" ||
-                             a.key == "E" || a.key == "density" || a.key.rfind("modes", 0) == 0 || a.key == "section";
+      // what a beam, or a rigid body, takes that the file gives
+      const bool from_file = a.key == body_setting::mass.name || a.key == body_setting::inertia.name ||
+                             a.key == body_setting::com.name || a.key.rfind("modes", 0) == 0 ||
+                             find_setting({&beam_setting::length, &beam_setting::E, &beam_setting::density,
+                                           &beam_setting::section},
+                                          a.key);
       diags_.error(a.loc, fmt::format("flexible body `{}` from a modal-data file has no setting `{}`", b.name, a.key),
-                   a.key == "geometric_stiffness"
+                   a.key == beam_setting::geometric_stiffness.name
                        ? std::string("a modal-data body is linear in its modal coordinates (format version 1): no "
                                      "geometric stiffness; use flexible = beam where stress stiffening matters")
-                   : a.key == "frame" ? std::string("its frame is the one its file is written in")
+                   : a.key == beam_setting::frame.name ? std::string("its frame is the one its file is written in")
                    : from_file ? std::string("its mass, inertia, stiffness and modes come from the file; remove it")
                                : fmt::format("a modal body takes {}", fmt::join(keys, ", ")));
       continue;
@@ -325,8 +330,8 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   for (const AstPoint& p : b.points)
     diags_.error(p.loc, fmt::format("point `{}`: the points of modal body `{}` are the nodes of its file", p.name, b.name),
                  "add the node to the file (records point, shape and slope) and attach joints to it by name");
-  if (auto s = given.find("slope_limit"); s != given.end()) read_slope_limit(slope_limit_rad, b, *s->second);
-  if (auto s = given.find("stiffness_scale"); s != given.end()) {
+  if (auto s = given.find(beam_setting::slope_limit.name); s != given.end()) read_slope_limit(slope_limit_rad, b, *s->second);
+  if (auto s = given.find(modal_setting::stiffness_scale.name); s != given.end()) {
     // a parameter may stand here (the simulator's --set changes it); its value as written must already hold
     auto k = constant_of(*s->second->value);
     if (k && !(*k > 0 && std::isfinite(*k)))

@@ -35,19 +35,19 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
 void Expander::emit_force(const ForceElement& f) {
   const ForceSym fn(f.decl->name);
   Build B(f.decl->loc);
-  auto user = [&](const char* key) -> E {
-    auto it = f.attrs.find(key);
-    return it == f.attrs.end() ? nullptr : rewrite_expr(it->second->value);
+  auto user = [&](const Setting& s) -> E {
+    const AstAttr* given = given_in(f.attrs, s);
+    return given ? rewrite_expr(given->value) : nullptr;
   };
   auto [pa, va] = world_point(B, f.a);
   auto [pb, vb] = world_point(B, f.b);
   E d = B.op('-', pb, pa);
   quantity_[fn.quantity("length").str()] = B.call("norm", {d});
-  E force = user("force");
-  if (E k = user("stiffness"), c = user("damping"); k || c) {
+  E force = user(force_setting::force);
+  if (E k = user(force_setting::stiffness), c = user(force_setting::damping); k || c) {
     if (k) param(B, fn.stiffness(), k);
     if (c) param(B, fn.damping(), c);
-    if (E l0 = user("length")) param(B, fn.length0(), l0);
+    if (E l0 = user(force_setting::length)) param(B, fn.length0(), l0);
     E len = B.call("norm", {d}), u = B.op('/', d, len);
     E tension = B.num(0);
     if (k) tension = B.op('*', B.ref(fn.stiffness()), B.op('-', len, B.ref(fn.length0())));
@@ -56,7 +56,7 @@ void Expander::emit_force(const ForceElement& f) {
     force = force ? B.op('+', force, spring) : spring;
   }
   if (!force) force = B.vec(0, 0, 0);
-  E torque = user("torque");
+  E torque = user(force_setting::torque);
   quantity_[fn.quantity("force").str()] = force;
   if (torque) quantity_[fn.quantity("torque").str()] = torque;
   apply_load(B, fn, f.a, force, torque, -1.0);

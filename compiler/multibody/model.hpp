@@ -85,10 +85,10 @@ struct Tyre {
   std::map<std::string, const ir::AstAttr*> attrs;
 };
 
-/// A body's setting `key` (null: not given).
-inline E attr(const ir::AstBody& b, const std::string& key) {
+/// A body's setting `s` (null: not given).
+inline E attr(const ir::AstBody& b, const Setting& s) {
   for (const ir::AstAttr& a : b.attrs)
-    if (a.key == key) return a.value;
+    if (a.key == s.name) return a.value;
   return nullptr;
 }
 

@@ -22,7 +22,7 @@ void Expander::emit_body(const Body& body) {
     emit_flexible(body);
     return;
   }
-  property(B, n.mass(), attr(d, "mass"));
+  property(B, n.mass(), attr(d, body_setting::mass));
   for (const auto& [p, v] : body.points) property(B, n.point(p), v);
   // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
   // applied loads (force elements) push into the body's junctions
@@ -56,9 +56,9 @@ void Expander::emit_body(const Body& body) {
   if (body_axes)
     element(B, "R", n.ejs_v(), nullptr, {kv("e", B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
   if (body.particle) return;
-  E com = attr(d, "com");
+  E com = attr(d, body_setting::com);
   property(B, n.com(), com ? com : B.vec(0, 0, 0));
-  property(B, n.inertia(), attr(d, "inertia"));
+  property(B, n.inertia(), attr(d, body_setting::inertia));
   std::vector<Sym> w_out = {n.J(), n.ejs()};
   if (own_states) w_out.push_back(n.qrate().port(1));
   junction(B, '1', n.w(), 3, torques_in, w_out);

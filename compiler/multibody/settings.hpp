@@ -90,15 +90,24 @@ inline const std::vector<const Setting*> kAll = {&axis,  &axis_a, &axis_b, &cons
                                                  &pitch, &length, &torque, &force, &motion};
 }  // namespace joint_setting
 
-/// A rigid body's settings (its reader checks their shapes).
+/// A rigid body's settings; a flexible body's initial values are these too.
 namespace body_setting {
-inline const Setting mass{"mass", std::nullopt, true, units::dim::mass()};
-inline const Setting inertia{"inertia", std::nullopt, true, units::dim::mass() * units::dim::length().pow(2)};
-inline const Setting com{"com", std::nullopt, true, units::dim::length()};
-inline const Setting r0{"r0", std::nullopt, true, units::dim::length()};
-inline const Setting quat0{"quat0", std::nullopt, true, units::Dimension::none()};
-inline const Setting v0{"v0", std::nullopt, true, units::dim::velocity()};
-inline const Setting w0{"w0", std::nullopt, true, units::dim::angular_velocity()};
+inline const Setting mass{"mass", Expected{{1, 1}, "the mass is a scalar (kg), e.g. mass = 2"}, true, units::dim::mass()};
+inline const Setting inertia{"inertia",
+                             Expected{{3, 3}, "the inertia tensor about the centre of mass, in body axes, is a 3x3 matrix, e.g. "
+                                              "inertia = diag(Jx, Jy, Jz)"},
+                             true, units::dim::mass() * units::dim::length().pow(2)};
+inline const Setting com{"com", Expected{{3, 1}, "the centre of mass is a body-frame position [x, y, z]"}, true,
+                         units::dim::length()};
+inline const Setting r0{"r0", Expected{{3, 1}, "the initial position of the centre of mass is [x, y, z] (world frame)"}, true,
+                        units::dim::length()};
+inline const Setting quat0{"quat0", Expected{{4, 1}, "the initial orientation is a quaternion [w, x, y, z], e.g. "
+                                                     "quat_axis_angle([0, 0, 1], 0.3)"},
+                           true, units::Dimension::none()};
+inline const Setting v0{"v0", Expected{{3, 1}, "the initial velocity of the centre of mass is [vx, vy, vz] (world frame)"},
+                        true, units::dim::velocity()};
+inline const Setting w0{"w0", Expected{{3, 1}, "the initial angular velocity is [wx, wy, wz] (body frame)"}, true,
+                        units::dim::angular_velocity()};
 inline const Setting shape{"shape", std::nullopt};
 inline const std::vector<const Setting*> kAll = {&mass, &inertia, &com, &r0, &quat0, &v0, &w0, &shape};
 }  // namespace body_setting
@@ -150,6 +159,17 @@ inline const std::vector<const Setting*> kAll = {&radius,   &surface,     &norma
                                                  &friction, &slip_speed, &stabilisation};
 }  // namespace contact_setting
 
+/// A tyre's settings besides the Magic Formula's coefficients (their table:
+/// tyres.cpp, kTyreSettings).
+namespace tyre_setting {
+inline const Setting axis{"axis", Expected{{3, 1}, "the wheel's axle is a direction [x, y, z] in the wheel's frame, e.g. "
+                                                   "axis = [0, 1, 0]"},
+                          true, units::Dimension::none()};
+/// [[x1, h1], ...]: checked by its reader
+inline const Setting profile{"profile", std::nullopt, true, units::dim::length()};
+inline const std::vector<const Setting*> kAll = {&axis, &profile};
+}  // namespace tyre_setting
+
 /// A beam's settings (`flexible = beam`), each with what it is.
 namespace beam_setting {
 using units::Dimension;
@@ -182,14 +202,11 @@ inline const Setting slope_limit{"slope_limit", std::nullopt, true, d::angle(),
 inline const Setting frame{"frame", std::nullopt, true, std::nullopt,
                            "joint (fixed to the beam at x = 0), centre (to its centre section), buckens or tisserand (mean "
                            "axes of free-free modes)"};
-inline const Setting r0{"r0", std::nullopt, true, d::length(), "the initial position of the frame origin (world)"};
-inline const Setting quat0{"quat0", std::nullopt, true, Dimension::none(), "the initial orientation"};
-inline const Setting v0{"v0", std::nullopt, true, d::velocity(), "the initial velocity of the frame origin (world)"};
-inline const Setting w0{"w0", std::nullopt, true, d::angular_velocity(), "the initial angular velocity (body frame)"};
 inline const std::vector<const Setting*> kAll = {&flexible, &length,   &density,  &E,        &section,          &area,
                                                  &Iy,       &Iz,       &modes_xy, &modes_xz, &modes_axial,      &modes_torsion,
                                                  &G,        &torsion_constant, &damping, &geometric_stiffness, &slope_limit,
-                                                 &frame,    &r0,       &quat0,    &v0,       &w0};
+                                                 &frame,    &body_setting::r0, &body_setting::quat0, &body_setting::v0,
+                                                 &body_setting::w0};
 }  // namespace beam_setting
 
 /// A body read from a modal-data file (`flexible = modal("file.mbm")`): the
@@ -198,8 +215,8 @@ namespace modal_setting {
 inline const Setting stiffness_scale{"stiffness_scale", std::nullopt, true, units::Dimension::none(),
                                      "a factor on the file's modal stiffness"};
 inline const std::vector<const Setting*> kAll = {&beam_setting::flexible, &beam_setting::damping, &beam_setting::slope_limit,
-                                                 &stiffness_scale,        &beam_setting::r0,      &beam_setting::quat0,
-                                                 &beam_setting::v0,       &beam_setting::w0};
+                                                 &stiffness_scale,        &body_setting::r0,      &body_setting::quat0,
+                                                 &body_setting::v0,       &body_setting::w0};
 }  // namespace modal_setting
 
 /// The setting of `table` named `key`, or null.
@@ -207,6 +224,14 @@ inline const Setting* find_setting(const std::vector<const Setting*>& table, con
   for (const Setting* s : table)
     if (key == s->name) return s;
   return nullptr;
+}
+
+/// A statement's setting `s`, from its settings by name (`attrs`: a body's,
+/// a contact's, ...): null where not given.
+template <class Map>
+inline auto given_in(const Map& attrs, const Setting& s) -> typename Map::mapped_type {
+  auto it = attrs.find(s.name);
+  return it == attrs.end() ? nullptr : it->second;
 }
 
 /// The names of `settings`, in their order.

@@ -156,19 +156,19 @@ void Expander::place_bodies() {
     const AstBody& d = *body.decl;
     Build B(d.loc);
     if (body.placed) {
-      for (const char* key : {"r0", "quat0", "v0", "w0"})
+      for (const Setting* initial : {&body_setting::r0, &body_setting::quat0, &body_setting::v0, &body_setting::w0})
         for (const AstAttr& a : d.attrs)
-          if (a.key == key)
-            diags_.error(a.loc, fmt::format("body `{}` is placed by joint `{}`, so `{}` cannot be given", n, body.placed_by, key),
+          if (a.key == initial->name)
+            diags_.error(a.loc, fmt::format("body `{}` is placed by joint `{}`, so `{}` cannot be given", n, body.placed_by, a.key),
                          placed_hint(body.placed_by));
       continue;
     }
     const BodySym at(n);
-    E r0 = attr(d, "r0"), v0 = attr(d, "v0");
+    E r0 = attr(d, body_setting::r0), v0 = attr(d, body_setting::v0);
     param(B, at.r0(), r0 ? r0 : B.vec(0, 0, 0));
     param(B, at.v0(), v0 ? v0 : B.vec(0, 0, 0));
     if (body.particle) continue;
-    E q0 = attr(d, "quat0"), w0 = attr(d, "w0");
+    E q0 = attr(d, body_setting::quat0), w0 = attr(d, body_setting::w0);
     param(B, at.q0(), q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
     param(B, at.w0(), w0 ? w0 : B.vec(0, 0, 0));
   }

@@ -38,11 +38,14 @@ struct TyreSetting {
   /// and damping have one, the Magic Formula's coefficients none (a
   /// relaxation length is given over R0, a shift over FNOMIN).
   units::Dimension dimension = units::Dimension::none();
+  /// Only a value > 0 makes sense (a load, a radius, a stiffness, a
+  /// relaxation length's factors): a constant that is not is an error.
+  bool positive = false;
 };
 const std::vector<TyreSetting> kTyreSettings = {
-    {"FNOMIN", 4000, "nominal wheel load (N)", units::dim::force()},
-    {"UNLOADED_RADIUS", 0.3, "free tyre radius R0 (m)", units::dim::length()},
-    {"VERTICAL_STIFFNESS", 2.0e5, "radial stiffness kz (N/m)", units::dim::force() / units::dim::length()},
+    {"FNOMIN", 4000, "nominal wheel load (N)", units::dim::force(), true},
+    {"UNLOADED_RADIUS", 0.3, "free tyre radius R0 (m)", units::dim::length(), true},
+    {"VERTICAL_STIFFNESS", 2.0e5, "radial stiffness kz (N/m)", units::dim::force() / units::dim::length(), true},
     {"VERTICAL_DAMPING", 500, "radial damping cz (N s/m)", units::dim::force() / units::dim::velocity()},
     {"LMUX", 1, "scale of the longitudinal friction (road)"},
     {"LMUY", 1, "scale of the lateral friction (road)"},
@@ -69,7 +72,7 @@ const std::vector<TyreSetting> kTyreSettings = {
     {"PEY2", 0, "variation of Ey with load"},
     {"PEY3", 0, "Ey's asymmetry in the slip angle's sign"},
     {"PKY1", -15, "maximum of the cornering stiffness Ky / FNOMIN"},
-    {"PKY2", 1.7, "load (/ FNOMIN) at which Ky is largest"},
+    {"PKY2", 1.7, "load (/ FNOMIN) at which Ky is largest", units::Dimension::none(), true},
     {"PHY1", 0, "horizontal shift SHy at FNOMIN"},
     {"PHY2", 0, "variation of SHy with load"},
     {"PVY1", 0, "vertical shift SVy / Fz at FNOMIN"},
@@ -91,26 +94,25 @@ const std::vector<TyreSetting> kTyreSettings = {
     {"RVY5", 1.9, "its variation with the slip ratio"},
     {"RVY6", 10, "its variation with the slip ratio (atan)"},
     // relaxation lengths
-    {"PTX1", 0.8, "longitudinal relaxation length / R0 at FNOMIN"},
+    {"PTX1", 0.8, "longitudinal relaxation length / R0 at FNOMIN", units::Dimension::none(), true},
     {"PTX2", 0, "its variation with load"},
     {"PTX3", 0, "its exponential variation with load"},
-    {"PTY1", 2.0, "largest lateral relaxation length / R0"},
-    {"PTY2", 1.7, "load (/ FNOMIN) at which it is largest"},
+    {"PTY1", 2.0, "largest lateral relaxation length / R0", units::Dimension::none(), true},
+    {"PTY2", 1.7, "load (/ FNOMIN) at which it is largest", units::Dimension::none(), true},
 };
 
 
 }  // namespace
 
 std::optional<units::Dimension> tyre_setting_dimension(const std::string& name) {
-  if (name == "axis") return units::Dimension::none();
-  if (name == "profile") return units::dim::length();  // [[x1, h1], ...]
+  if (const Setting* s = find_setting(tyre_setting::kAll, name)) return s->dimension;
   for (const TyreSetting& s : kTyreSettings)
     if (name == s.name) return s.dimension;
   return std::nullopt;
 }
 
 std::vector<std::string> tyre_setting_names() {
-  std::vector<std::string> names = {"axis", "profile"};
+  std::vector<std::string> names = setting_names(tyre_setting::kAll);
   for (const TyreSetting& s : kTyreSettings) names.push_back(s.name);
   return names;
 }
@@ -140,17 +142,17 @@ void Expander::add_tyre(const AstJoint& t) {
                                    "PTX1, PTY1)");
   for (const AstAttr& at : t.attrs) {  // in the text's order, each collected setting once
     if (auto it = tyre.attrs.find(at.key); it == tyre.attrs.end() || it->second != &at) continue;
-    if (at.key == "axis")
-      check_shape(*at.value, fmt::format("`axis` of tyre `{}`", t.name),
-                  {{3, 1}, "the wheel's axle is a direction [x, y, z] in the wheel's frame, e.g. axis = [0, 1, 0]"});
-    else if (at.key != "profile")
+    if (at.key == tyre_setting::axis.name)
+      check_shape(*at.value, fmt::format("`axis` of tyre `{}`", t.name), *tyre_setting::axis.expected);
+    else if (at.key != tyre_setting::profile.name)
       check_shape(*at.value, fmt::format("`{}` of tyre `{}`", at.key, t.name), {{1, 1}, "a tyre coefficient is a scalar"});
   }
   if (!ok) return;
-  if (auto it = tyre.attrs.find("profile"); it != tyre.attrs.end()) check_profile(tyre, *it->second->value);
-  for (const char* key : {"FNOMIN", "UNLOADED_RADIUS", "VERTICAL_STIFFNESS", "PTX1", "PTY1", "PTY2", "PKY2"}) {
-    auto it = tyre.attrs.find(key);
-    if (it == tyre.attrs.end()) continue;
+  if (const AstAttr* profile = given_in(tyre.attrs, tyre_setting::profile)) check_profile(tyre, *profile->value);
+  for (const TyreSetting& s : kTyreSettings) {
+    auto it = tyre.attrs.find(s.name);
+    if (!s.positive || it == tyre.attrs.end()) continue;
+    const char* key = s.name;
     if (auto v = constant_of(*it->second->value); v && !(*v > 0))
       diags_.error(it->second->value->loc, fmt::format("{} of tyre `{}` is {}", key, t.name, *v), fmt::format("{} must be > 0", key));
   }
@@ -222,16 +224,17 @@ void Expander::emit_tyre(const Tyre& tyre) {
   // The wheel: its centre, its velocity, its axle and angular velocity (world).
   auto [centre, v_centre] = world_point(B, tyre.wheel);
   E R = rotation(B, wheel);
-  E axis_local = tyre.attrs.count("axis") ? tyre.attrs.at("axis")->value : B.vec(0, 1, 0);
+  const AstAttr* axis = given_in(tyre.attrs, tyre_setting::axis);
+  E axis_local = axis ? axis->value : B.vec(0, 1, 0);
   E axle = mul(R, div(axis_local, B.call("norm", {axis_local})));
   E omega = mul(R, B.ref(BodySym(wheel).w().flow()));
 
   // The road below the centre: height h(x) and slope h'(x) along world x.
   E h = num(0), slope = num(0);
-  if (auto it = tyre.attrs.find("profile"); it != tyre.attrs.end()) {
-    const AstExpr& pts = *it->second->value;
+  if (const AstAttr* profile = given_in(tyre.attrs, tyre_setting::profile)) {
+    const AstExpr& pts = *profile->value;
     E x = sig("x", B.at(centre, 1));
-    h = sig("road_height", B.call("table", {x, it->second->value}));  // the language's table: exact kinks
+    h = sig("road_height", B.call("table", {x, profile->value}));  // the language's table: exact kinks
     // its slope: each segment's between its two points (select: a step that is no event)
     for (std::size_t k = 0; k + 1 < pts.args.size(); ++k) {
       const E &x0 = pts.args[k]->args[0], &h0 = pts.args[k]->args[1], &x1 = pts.args[k + 1]->args[0], &h1 = pts.args[k + 1]->args[1];

@@ -117,7 +117,7 @@ TEST(LanguageReference, EveryJointKindAndSetting) {
 
 TEST(LanguageReference, EveryBodyContactAndTyreSetting) {
   namespace mb = mbgc::multibody::detail;
-  expect_documented(mb::kBodySettingShapes, "body setting");
+  expect_documented(mb::setting_names(mb::body_setting::kAll), "body setting");
   expect_documented(mb::contact_setting_names(), "contact setting");
   expect_documented(mb::tyre_setting_names(), "tyre setting");
 }
