@@ -1,5 +1,5 @@
 #include "graph/build_graph.hpp"
-#include "graph/element_settings.hpp"
+#include "ir/element_settings.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>

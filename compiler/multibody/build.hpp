@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ir/ast.hpp"
+#include "ir/element_settings.hpp"
 #include "multibody/symbols.hpp"
 
 namespace mbgc::multibody::detail {
@@ -56,7 +57,7 @@ inline E idx2(const Build& B, E m, int r, int c) {
   return e;
 }
 
-/// A `key = value` setting of a generated element.
-inline ir::AstAttr kv(const std::string& key, E value, const ir::SourceLoc& loc) { return ir::AstAttr{key, loc, std::move(value)}; }
+/// A setting of a generated element (ir::element_setting: `q0`, `f0`, a law `e`, ...).
+inline ir::AstAttr kv(const ir::ElementSetting& s, E value, const ir::SourceLoc& loc) { return ir::AstAttr{s.key, loc, std::move(value)}; }
 
 }  // namespace mbgc::multibody::detail

@@ -47,7 +47,7 @@ void Expander::emit_flexible(const Body& body) {
   if (own_states) {
     E R0 = B.call("rotq", {B.ref(n.q0())});
     E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.ref(n.v0())), B.ref(n.w0()), B.call("zeros", {B.num(ne)})});
-    M_init.push_back(kv("p0", B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc));
+    M_init.push_back(kv(element_setting::p0, B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, rest)), nu0), d.loc));
   }
   element(B, "I", n.M(), rows_to_matrix(B, beam.mass_matrix(B, n, eta)), M_init);
   std::get<ir::ExpandedElement>(generated_.back()).configuration_dependent = true;
@@ -59,7 +59,7 @@ void Expander::emit_flexible(const Body& body) {
   E T = B.op('*', B.num(0.5), B.dot(f, B.op('*', rows_to_matrix(B, beam.mass_matrix(B, n, eta)), f)));
   E dT = B.call("transpose", {B.call("jacobian", {T, B.ref(n.eta().displacement())})});
   element(B, "R", n.ejs(), nullptr,
-          {kv("e", B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
+          {kv(element_setting::r_effort, B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
   if (gravity_) {
     // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
     E g = B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity()));
@@ -82,10 +82,12 @@ void Expander::emit_flexible(const Body& body) {
     element(B, "MTF", n.se(), pick_e);
     // position and orientation, as on a rigid body
     junction(B, '1', n.v(), 3, {n.sv().port(2)}, {n.r()});
-    element(B, "C", n.r(), nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.ref(n.r0()), d.loc)});
+    element(B, "C", n.r(), nullptr, {kv(element_setting::c_effort, B.vec(0, 0, 0), d.loc), kv(element_setting::q0, B.ref(n.r0()), d.loc)});
     junction(B, '1', n.w(), 3, {n.sw().port(2)}, {n.qrate().port(1)});
     element(B, "MTF", n.qrate(), B.call("quat_rate", {B.ref(n.q().displacement())}));
-    element(B, "C", n.q(), nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.ref(n.q0()), d.loc)});
+    element(B, "C", n.q(), nullptr,
+            {kv(element_setting::c_effort, B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc),
+             kv(element_setting::q0, B.ref(n.q0()), d.loc)});
     bond(B, n.qrate().port(2), n.q(), 4);
     modal_in.push_back(n.se().port(2));
   } else {
@@ -95,7 +97,7 @@ void Expander::emit_flexible(const Body& body) {
     element(B, "MTF", n.av(), T_(pick_v));
     element(B, "MTF", n.aw(), T_(pick_w));
     element(B, "MTF", n.ae(), T_(pick_e));
-    element(B, "Sf", n.eta_rate(), nullptr, {kv("rate0", B.call("zeros", {B.num(ne)}), d.loc)});
+    element(B, "Sf", n.eta_rate(), nullptr, {kv(element_setting::rate0, B.call("zeros", {B.num(ne)}), d.loc)});
     modal_in.push_back(n.eta_rate());
     modal_out.push_back(n.ae().port(1));
     junction(B, '0', n.nusum(), N, {n.av().port(2), n.aw().port(2), n.ae().port(2)}, {});
@@ -108,7 +110,8 @@ void Expander::emit_flexible(const Body& body) {
   Rows D = K;
   beam.stiffness_and_damping(B, n, K, D);
   element(B, "C", n.eta(), nullptr,
-          {kv("e", B.op('*', rows_to_matrix(B, K), B.ref(Sym::own_displacement())), d.loc), kv("q0", B.call("zeros", {B.num(ne)}), d.loc)});
+          {kv(element_setting::c_effort, B.op('*', rows_to_matrix(B, K), B.ref(Sym::own_displacement())), d.loc),
+           kv(element_setting::q0, B.call("zeros", {B.num(ne)}), d.loc)});
   std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(d.name);
   if (attr(d, beam_setting::damping)) element(B, "R", n.damp(), rows_to_matrix(B, D));
 }

@@ -163,6 +163,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
     }
     record_setting(given, a, b);
   }
+  auto has = [&](const Setting& s) { return given.count(s.name) > 0; };
   auto need = [&](const Setting& s) -> const AstAttr* {
     auto it = given.find(s.name);
     if (it != given.end()) return it->second;
@@ -179,10 +180,10 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
   }
   need(beam_setting::density);
   need(beam_setting::E);
-  if (given.count(beam_setting::section.name) && (given.count(beam_setting::area.name) || given.count(beam_setting::Iy.name) || given.count(beam_setting::Iz.name)))
+  if (has(beam_setting::section) && (has(beam_setting::area) || has(beam_setting::Iy) || has(beam_setting::Iz)))
     diags_.error(given.at(beam_setting::section.name)->loc, fmt::format("beam `{}` has both `section` and section properties", b.name),
                  "give either section = rectangle(...)/circle(...)/tube(...) or area, Iy and Iz");
-  else if (!given.count(beam_setting::section.name)) {
+  else if (!has(beam_setting::section)) {
     need(beam_setting::area);
     need(beam_setting::Iy);
     need(beam_setting::Iz);
@@ -216,9 +217,9 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
     }
     (modes == &beam_setting::modes_axial ? beam->axial : beam->torsion).emplace(ends, beam->length_m, n);
   }
-  if (given.count(beam_setting::modes_torsion.name)) {
+  if (has(beam_setting::modes_torsion)) {
     need(beam_setting::G);
-    if (!given.count(beam_setting::section.name) && !given.count(beam_setting::torsion_constant.name))
+    if (!has(beam_setting::section) && !has(beam_setting::torsion_constant))
       diags_.error(given.at(beam_setting::modes_torsion.name)->loc, fmt::format("beam `{}` twists but has no torsion constant", b.name),
                    "give torsion_constant (m^4), or a section = rectangle(...)/circle(...)/tube(...) to compute it from");
   } else {
@@ -227,7 +228,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
         diags_.error(given.at(key)->loc, fmt::format("`{}` of beam `{}` is for torsion, which it has no modes of", key, b.name),
                      "give modes_torsion = fixed_free(1) (or another mode set), or remove it");
   }
-  if (!given.count(beam_setting::modes_xy.name) && !given.count(beam_setting::modes_xz.name) && !given.count(beam_setting::modes_axial.name) && !given.count(beam_setting::modes_torsion.name))
+  if (!has(beam_setting::modes_xy) && !has(beam_setting::modes_xz) && !has(beam_setting::modes_axial) && !has(beam_setting::modes_torsion))
     diags_.error(b.loc, fmt::format("beam `{}` has no modes", b.name),
                  "give the assumed modes of at least one bending plane, e.g. modes_xy = clamped_free(3), or of "
                  "stretch or twist (modes_axial, modes_torsion)");
@@ -240,7 +241,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                       "on: the dynamic geometric stiffness of the axial load (spin stiffening, buckling); off: the linear "
                       "model the thesis compares against");
   }
-  check_frame(*beam, b, given.count(beam_setting::frame.name) ? given.at(beam_setting::frame.name) : nullptr);
+  check_frame(*beam, b, has(beam_setting::frame) ? given.at(beam_setting::frame.name) : nullptr);
   if (auto s = given.find(beam_setting::slope_limit.name); s != given.end()) read_slope_limit(beam->slope_limit_rad, b, *s->second);
   body.flex = beam;
   add_points(body, b, b.name);

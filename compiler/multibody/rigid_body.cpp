@@ -46,15 +46,17 @@ void Expander::emit_body(const Body& body) {
   if (body_axes) v_out.push_back(n.ejs_v());
   junction(B, '1', n.v(), 3, forces_in, v_out);
   std::vector<AstAttr> m_init, J_init;
-  if (own_states) m_init.push_back(kv("f0", B.ref(n.v0()), d.loc)), J_init.push_back(kv("f0", B.ref(n.w0()), d.loc));
+  if (own_states) m_init.push_back(kv(element_setting::f0, B.ref(n.v0()), d.loc)), J_init.push_back(kv(element_setting::f0, B.ref(n.w0()), d.loc));
   element(B, "I", n.m(), B.op('*', B.ref(n.mass()), B.call("eye", {B.num(3)})), m_init);
-  if (own_states) element(B, "C", n.r(), nullptr, {kv("e", B.vec(0, 0, 0), d.loc), kv("q0", B.ref(n.r0()), d.loc)});
+  if (own_states)
+    element(B, "C", n.r(), nullptr,
+            {kv(element_setting::c_effort, B.vec(0, 0, 0), d.loc), kv(element_setting::q0, B.ref(n.r0()), d.loc)});
   if (gravity_)
     element(B, "Se", n.weight(),
             B.op('*', B.ref(n.mass()),
                  body_axes ? B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity())) : B.ref(Sym::gravity())));
   if (body_axes)
-    element(B, "R", n.ejs_v(), nullptr, {kv("e", B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
+    element(B, "R", n.ejs_v(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
   if (body.particle) return;
   E com = attr(d, body_setting::com);
   property(B, n.com(), com ? com : B.vec(0, 0, 0));
@@ -64,10 +66,12 @@ void Expander::emit_body(const Body& body) {
   junction(B, '1', n.w(), 3, torques_in, w_out);
   element(B, "I", n.J(), B.ref(n.inertia()), J_init);
   // Euler junction structure: torque omega x h on the body-frame junction, no power.
-  element(B, "R", n.ejs(), nullptr, {kv("e", B.call("cross", {B.ref(Sym::own_flow()), B.ref(n.J().momentum())}), d.loc)});
+  element(B, "R", n.ejs(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(Sym::own_flow()), B.ref(n.J().momentum())}), d.loc)});
   if (!own_states) return;
   element(B, "MTF", n.qrate(), B.call("quat_rate", {B.ref(n.q().displacement())}));
-  element(B, "C", n.q(), nullptr, {kv("e", B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc), kv("q0", B.ref(n.q0()), d.loc)});
+  element(B, "C", n.q(), nullptr,
+          {kv(element_setting::c_effort, B.list({B.num(0), B.num(0), B.num(0), B.num(0)}), d.loc),
+           kv(element_setting::q0, B.ref(n.q0()), d.loc)});
   bond(B, n.qrate().port(2), n.q(), 4);
 }
 

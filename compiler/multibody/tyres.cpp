@@ -269,7 +269,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   auto lag = [&](const std::string& slip, E rate) {
     const SourceLoc& at = tyre.decl->loc;
     element(B, "Sf", tn.lag_rate(slip), std::move(rate));
-    element(B, "C", tn.lag(slip), nullptr, {kv("e", num(0), at), kv("q0", num(0), at)});
+    element(B, "C", tn.lag(slip), nullptr, {kv(element_setting::c_effort, num(0), at), kv(element_setting::q0, num(0), at)});
     junction_(B, tn.lag_junction(slip), {tn.lag_rate(slip)}, {tn.lag(slip)});
     return B.ref(tn.lag(slip).displacement());
   };

@@ -1,28 +1,25 @@
-#include "graph/element_settings.hpp"
+#include "ir/element_settings.hpp"
 
 #include <fmt/format.h>
 
-namespace mbgc::graph {
+namespace mbgc::ir {
 
-using ir::LawForm;
-using ir::NodeKind;
 using Role = ElementSetting::Role;
 
 const std::vector<ElementSetting>& element_settings(NodeKind k) {
-  static const std::vector<ElementSetting> r = {{"e", Role::Law, LawForm::EffortOfFlow}, {"f", Role::Law, LawForm::FlowOfEffort}};
-  static const std::vector<ElementSetting> c = {
-      {"e", Role::Law, LawForm::EffortOfState}, {"q0", Role::Initial}, {"e0", Role::Initial}};
-  static const std::vector<ElementSetting> i = {
-      {"f", Role::Law, LawForm::FlowOfState}, {"p0", Role::Initial}, {"f0", Role::Initial}};
+  using namespace element_setting;
+  static const std::vector<ElementSetting> r = {r_effort, r_flow};
+  static const std::vector<ElementSetting> c = {c_effort, q0, e0};
+  static const std::vector<ElementSetting> i = {i_flow, p0, f0};
   // a CN's: its rows g, then what holds them (ir::ConstraintLaw, whose fields name them)
   static const std::vector<ElementSetting> cn = [] {
     std::vector<ElementSetting> out;
-    for (const ir::ConstraintLaw::Field& f : ir::ConstraintLaw::fields())
-      out.push_back(f.member == &ir::ConstraintLaw::g ? ElementSetting{f.key, Role::Law, LawForm::Constraint}
-                                                      : ElementSetting{f.key, Role::Constraint});
+    for (const ConstraintLaw::Field& f : ConstraintLaw::fields())
+      out.push_back(f.member == &ConstraintLaw::g ? ElementSetting{f.key, Role::Law, LawForm::Constraint}
+                                                  : ElementSetting{f.key, Role::Constraint});
     return out;
   }();
-  static const std::vector<ElementSetting> sf = {{"rate0", Role::Initial}};
+  static const std::vector<ElementSetting> sf = {rate0};
   static const std::vector<ElementSetting> none;
   switch (k) {
     case NodeKind::R: return r;
@@ -57,8 +54,8 @@ std::string law_hint(NodeKind k, const std::string& name) {
     case NodeKind::C: return fmt::format("write C {} = capacitance, or C {} {{ e = expression of q }}", name, name);
     case NodeKind::I: return fmt::format("write I {} = inertia, or I {} {{ f = expression of p }}", name, name);
     case NodeKind::CN: return fmt::format("write CN {} {{ g = position constraint }} (add stiffness/damping for a penalty)", name);
-    default: return fmt::format("write {} {} = value", ir::node_kind_name(k), name);
+    default: return fmt::format("write {} {} = value", node_kind_name(k), name);
   }
 }
 
-}  // namespace mbgc::graph
+}  // namespace mbgc::ir
