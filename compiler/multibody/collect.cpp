@@ -16,7 +16,7 @@ namespace mbgc::multibody::detail {
 // ---- 1. collect and check ------------------------------------------------------------
 void Expander::collect(const AstProgram& in) {
   Body ground;
-  ground.ground = true;
+  ground.kind = Ground{};
   ground.placed = true;
   bodies_["ground"] = ground;
   for (const AstStmt& s : in.stmts) {
@@ -197,8 +197,8 @@ void Expander::add_body(const AstBody& b) {
       if (auto v = constant_of(*x); v && !(*v > 0))
         diags_.error(x->loc, fmt::format("a principal moment of inertia of body `{}` is {}", b.name, *v),
                      "the inertia tensor is the inertance of the body's rotational I element and must be positive definite");
-  body.particle = !has_inertia;
-  if (body.particle)
+  if (!has_inertia) body.kind = Particle{};
+  if (body.kind.particle())
     for (const AstAttr& a : b.attrs)
       if (find_setting({&body_setting::com, &body_setting::quat0, &body_setting::w0}, a.key))
         diags_.error(a.loc, fmt::format("body `{}` has no inertia, so it is a particle: `{}` means nothing", b.name, a.key),
@@ -207,7 +207,7 @@ void Expander::add_body(const AstBody& b) {
                                  "(inertia = diag(Jx, Jy, Jz)) to make it a rigid body, or remove `{}`",
                                  a.key));
   add_points(body, b, b.name);
-  if (body.particle && !body.points.empty())
+  if (body.kind.particle() && !body.points.empty())
     diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name),
                  "a body without inertia is a point mass: it has no orientation, so a point away from it could not "
                  "turn with it. Give it an inertia (inertia = diag(Jx, Jy, Jz)) to have points, or join the particle itself");
@@ -222,7 +222,7 @@ void Expander::add_points(Body& body, const AstBody& b, const std::string& owner
       d.notes.push_back({point_locs_[BodySym(owner).point(p.name).str()], "first declared here"});
       continue;
     }
-    if (!body.ground && (kBodyInternalNames.count(p.name) ||
+    if (!body.kind.ground() && (kBodyInternalNames.count(p.name) ||
                          std::find(kBodyQuantities.begin(), kBodyQuantities.end(), p.name) != kBodyQuantities.end())) {
       diags_.error(p.loc, fmt::format("a point cannot be named `{}`", p.name),
                    fmt::format("`{}.{}` already means the body's own {}: rename the point, e.g. `{}_point`", owner, p.name,
@@ -231,7 +231,7 @@ void Expander::add_points(Body& body, const AstBody& b, const std::string& owner
       continue;
     }
     check_shape(*p.value, fmt::format("point `{}` of `{}`", p.name, owner),
-                {{3, 1}, body.ground ? "a ground point is a world position [x, y, z]"
+                {{3, 1}, body.kind.ground() ? "a ground point is a world position [x, y, z]"
                                      : "a point is a body-frame position [x, y, z] (the frame of the body's own axes)"});
     body.points[p.name] = p.value;
     point_locs_[BodySym(owner).point(p.name).str()] = p.loc;
@@ -258,9 +258,9 @@ std::optional<Side> Expander::side(const AstEndpoint& ep) {
   if (!point.empty() && !it->second.points.count(point)) {
     std::vector<std::string> names;
     for (const auto& [n, x] : it->second.points) names.push_back(n);
-    if (it->second.flex && !it->second.flex->point_file().empty()) {
+    if (it->second.kind.field() && !it->second.kind.field()->point_file().empty()) {
       diags_.error(ep.loc, fmt::format("modal body `{}` has no point `{}`", body, point),
-                   fmt::format("its points are the nodes of {}: {}", it->second.flex->point_file(), fmt::join(names, ", ")));
+                   fmt::format("its points are the nodes of {}: {}", it->second.kind.field()->point_file(), fmt::join(names, ", ")));
       return std::nullopt;
     }
     std::string near = closest_name(point, names);
@@ -317,10 +317,10 @@ void Expander::add_force(const AstJoint& f) {
                  "add stiffness = k (N/m), or remove length");
   for (const Side* sd : {&fe.a, &fe.b}) {
     const Body& body = bodies_.at(sd->body);
-    if (const auto* torque = given_in(fe.attrs, force_setting::torque); body.particle && torque)
+    if (const auto* torque = given_in(fe.attrs, force_setting::torque); body.kind.particle() && torque)
       diags_.error(torque->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
                    "give the body an inertia, or remove the torque");
-    if (!body.ground) loads_[sd->body].push_back(ForceSym(f.name));
+    if (!body.kind.ground()) loads_[sd->body].push_back(ForceSym(f.name));
   }
   if (!diags_.has_errors()) forces_.push_back(fe);
 }
@@ -416,7 +416,7 @@ void Expander::add_joint(const AstJoint& j) {
                    fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required->name));
   for (const Side* s : {&joint.a, &joint.b}) {
     const Body& body = bodies_.at(s->body);
-    if (body.particle && kind->needs_orientation())
+    if (body.kind.particle() && kind->needs_orientation())
       diags_.error(j.loc, fmt::format("a {} joint needs the orientation of `{}`, which is a particle", j.type, s->body),
                    fmt::format("a particle (a body without inertia) has a translational 1-junction only, no "
                                "angular-velocity junction for the joint's rotational rows to act on: give `{}` an "

@@ -118,7 +118,7 @@ void Expander::add_contact(const AstJoint& c) {
                              : contact.surface == Surface::Sphere ? "sphere"
                              : contact.surface == Surface::Cylinder ? "cylinder"
                                                                     : "polygon";
-  if (surface_body.particle && contact.surface != Surface::Sphere)
+  if (surface_body.kind.particle() && contact.surface != Surface::Sphere)
     diags_.error(c.loc, fmt::format("a {} on `{}`, which is a particle", surface_name, b->body),
                  fmt::format("a particle has no orientation to carry a {}: put a sphere on it (surface = sphere; "
                              "surface_radius = R), or give `{}` an inertia",
@@ -173,7 +173,7 @@ void Expander::add_contact(const AstJoint& c) {
                  "add friction = mu, or remove slip_speed");
   if (given(friction) && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
     for (const Side* sd : {&contact.a, &contact.b})
-      if (!bodies_.at(sd->body).ground) loads_[sd->body].push_back(ContactSym(c.name).friction_load());
+      if (!bodies_.at(sd->body).kind.ground()) loads_[sd->body].push_back(ContactSym(c.name).friction_load());
   if (!diags_.has_errors()) contacts_.push_back(std::move(contact));
 }
 
@@ -234,7 +234,7 @@ void Expander::emit_contact(const Contact& c) {
   const Body& b = bodies_.at(c.b.body);
   auto [pa, va] = world_point(B, c.a);
   auto [pb, vb] = world_point(B, c.b);
-  E Rb = b.ground || b.particle ? nullptr : rotation(B, c.b.body);
+  E Rb = !b.kind.turns() ? nullptr : rotation(B, c.b.body);
   auto turned = [&](E local) { return Rb ? B.op('*', Rb, local) : local; };
   E d = B.op('-', pa, pb);
   E gap, normal;
@@ -294,7 +294,7 @@ void Expander::emit_contact(const Contact& c) {
     t2 = B.call("cross", {normal, t1});
     quantity_[cn.tangents().str()] = B.call("hcat", {t1, t2});
     auto material = [&](const Body& body, const Side& s, E p) -> E {  // the body's point now at `point`
-      if (body.ground || body.particle) return B.op('+', p, B.call("frozen", {B.op('-', point, p)}));
+      if (!body.kind.turns()) return B.op('+', p, B.call("frozen", {B.op('-', point, p)}));
       E R = rotation(B, s.body);
       return B.op('+', p, B.op('*', R, B.call("frozen", {B.op('*', B.call("transpose", {R}), B.op('-', point, p))})));
     };
@@ -308,8 +308,7 @@ void Expander::emit_contact(const Contact& c) {
   junction(B, '0', cn.rows(), dim, {}, {cn.constraint()});
   auto frame_of = [&](const Side& s, const Body& body) {
     Frame f;
-    f.ground = body.ground;
-    f.particle = body.particle;
+    f.kind = body.kind;
     f.body = s.body;
     return f;
   };
@@ -339,7 +338,7 @@ void Expander::emit_contact(const Contact& c) {
   quantity_[cn.closed().str()] = B.ref(cn.constraint().closed());  // 1 while in contact
   if (unilateral && friction) quantity_[cn.stuck().str()] = B.ref(cn.constraint().stick());
   auto spin = [&](const Body& body, const Side& s) -> E {  // world angular velocity
-    if (body.ground || body.particle) return nullptr;
+    if (!body.kind.turns()) return nullptr;
     return B.op('*', rotation(B, s.body), B.ref(BodySym(s.body).w().flow()));
   };
   auto point_velocity = [&](E v, E w, E arm) { return w ? B.op('+', v, B.call("cross", {w, arm})) : v; };

@@ -192,7 +192,7 @@ std::shared_ptr<Drawing> Expander::read_shape(const AstBody& b, const AstExpr& v
 /// of the same inertia, a_i = sqrt(6 (tr J - 2 J_ii) / m). A particle: a ball.
 Drawing Expander::default_drawing(const Body& body, double scale) const {
   Drawing d;
-  if (body.particle) {
+  if (body.kind.particle()) {
     d.shape = Drawing::Shape::Sphere;
     d.size = {0.03 * scale, 0, 0};
     return d;
@@ -239,8 +239,8 @@ double Expander::model_scale() const {
       if (auto v = constant_point(*r0)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
     for (const auto& [p, x] : body.points)
       if (auto v = constant_point(*x)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
-    if (body.flex)
-      for (const auto& [p, x] : body.flex->points()) scale = std::max({scale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+    if (body.kind.field())
+      for (const auto& [p, x] : body.kind.field()->points()) scale = std::max({scale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
   }
   return scale > 0 ? scale : 1.0;
 }
@@ -250,14 +250,14 @@ void Expander::draw_bodies() {
   std::size_t index = 0;
   for (const std::string& n : body_order_) {
     const Body& body = bodies_.at(n);
-    if (body.ground || body.points_unknown) continue;
+    if (body.kind.ground() || body.points_unknown) continue;
     Build B(body.decl->loc);
-    auto d = std::make_shared<Drawing>(body.flex ? body.flex->drawing(scale) : body.shape ? *body.shape : default_drawing(body, scale));
+    auto d = std::make_shared<Drawing>(body.kind.field() ? body.kind.field()->drawing(scale) : body.shape ? *body.shape : default_drawing(body, scale));
     d->body = n;
     d->colour = palette(index++);
-    E R = body.particle ? B.call("eye", {B.num(3)}) : rotation(B, n);
+    E R = body.kind.particle() ? B.call("eye", {B.num(3)}) : rotation(B, n);
     ir::ExpandedOutput out{{BodySym(n).drawing().str(), B.loc(), B.call("hcat", {R, position(B, n)}), std::nullopt}, d,
-                           body.flex ? B.ref(FlexibleSym(n).eta().displacement()) : nullptr};
+                           body.kind.field() ? B.ref(FlexibleSym(n).eta().displacement()) : nullptr};
     generated_.push_back(std::move(out));
   }
   draw_surfaces();
@@ -286,7 +286,7 @@ void Expander::draw_surfaces() {
     if (turn) {
       std::vector<E> rows;
       for (const auto& row : *turn) rows.push_back(B.list({B.num(row[0]), B.num(row[1]), B.num(row[2])}));
-      R = body.ground || body.particle ? B.list(rows) : B.op('*', R, B.list(rows));
+      R = !body.kind.turns() ? B.list(rows) : B.op('*', R, B.list(rows));
     }
     d->surface = true;
     generated_.push_back(ir::ExpandedOutput{{drawn.str(), B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt}, d, nullptr});
@@ -296,7 +296,7 @@ void Expander::draw_surfaces() {
     auto d = std::make_shared<Drawing>();
     d->body = c.decl->name;
     d->colour = surface_colour(index++);
-    if (!bodies_.at(c.a.body).ground) d->covers.push_back(c.a.body);
+    if (!bodies_.at(c.a.body).kind.ground()) d->covers.push_back(c.a.body);
     auto number = [&](const Setting& s) -> std::optional<double> {
       const AstAttr* given = given_in(c.attrs, s);
       return given ? drawn_number(*given->value) : std::nullopt;

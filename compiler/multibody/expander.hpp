@@ -115,6 +115,7 @@ class Expander {
 
   // ---- 2. rigid bodies and particles; the pose of any body (rigid_body.cpp)
   void emit_body(const Body& body);
+  void emit_rigid(const Body& body);
   E position(const Build& B, const std::string& body) const;
   E quaternion(const Build& B, const std::string& body) const;
   E rotation(const Build& B, const std::string& body) const;

@@ -22,7 +22,7 @@ Eta Expander::state_eta(const Build& B, const std::string& body, const Deformati
 void Expander::emit_flexible(const Body& body) {
   const AstBody& d = *body.decl;
   const FlexibleSym n(d.name);
-  const Deformation& beam = *body.flex;
+  const Deformation& beam = *body.kind.field();
   Build B(d.loc);
   beam.params({B, d, [&](const Sym& name, E value) { property(B, name, std::move(value)); }, diags_});
   for (const auto& [p, v] : body.points) property(B, n.point(p), v);
@@ -134,7 +134,7 @@ std::pair<E, E> Expander::flexible_point_motion(const Build& B, const std::strin
 /// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
 /// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
 E Expander::flexible_load(const Build& B, const std::string& body, const std::string& point, E force, E torque) {
-  const Deformation& beam = *bodies_.at(body).flex;
+  const Deformation& beam = *bodies_.at(body).kind.field();
   const FlexibleSym n(body);
   Eta eta = state_eta(B, body, beam);
   E at = point.empty() ? B.vec(0, 0, 0) : beam.point(B, n, point, eta);
@@ -155,7 +155,7 @@ E Expander::flexible_load(const Build& B, const std::string& body, const std::st
 void Expander::flexible_quantities(const Build& B, const Body& body) {
   const std::string& name = body.decl->name;
   const FlexibleSym n(name);
-  const Deformation& beam = *body.flex;
+  const Deformation& beam = *body.kind.field();
   Eta eta = state_eta(B, name, beam);
   E r = position(B, name), v = velocity(B, name), q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
   E p = B.ref(n.M().momentum());

@@ -243,7 +243,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
   }
   check_frame(*beam, b, has(beam_setting::frame) ? given.at(beam_setting::frame.name) : nullptr);
   if (auto s = given.find(beam_setting::slope_limit.name); s != given.end()) read_slope_limit(beam->slope_limit_rad, b, *s->second);
-  body.flex = beam;
+  body.kind = Flexible{beam};
   add_points(body, b, b.name);
   for (const AstPoint& p : b.points) {
     bool on_axis = false;
@@ -362,7 +362,7 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   }
   auto modal = std::make_shared<ModalBody>(std::make_shared<const flex::ModalData>(std::move(*data)));
   modal->slope_limit_rad = slope_limit_rad;
-  body.flex = modal;
+  body.kind = Flexible{modal};
   bodies_[b.name] = body;
   body_order_.push_back(b.name);
 }

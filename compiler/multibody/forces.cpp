@@ -20,16 +20,19 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
   const Body& body = bodies_.at(s.body);
   const BodySym n(s.body);
   E local = s.point.empty() ? B.vec(0, 0, 0) : B.ref(n.point(s.point));
-  if (body.ground) return {local, B.vec(0, 0, 0)};
-  E r = position(B, s.body), v = velocity(B, s.body);
-  if (body.particle) return {r, v};
-  if (body.flex) {
-    Eta eta = state_eta(B, s.body, *body.flex);
-    return flexible_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : body.flex->point(B, FlexibleSym(s.body), s.point, eta));
-  }
-  E R = rotation(B, s.body);
-  E arm = B.op('-', local, B.ref(n.com()));
-  return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.ref(n.w().flow()), arm})))};
+  using Motion = std::pair<E, E>;
+  return body.kind.visit(
+      [&](const Ground&) -> Motion { return {local, B.vec(0, 0, 0)}; },
+      [&](const Particle&) -> Motion { return {position(B, s.body), velocity(B, s.body)}; },
+      [&](const Rigid&) -> Motion {
+        E r = position(B, s.body), v = velocity(B, s.body), R = rotation(B, s.body);
+        E arm = B.op('-', local, B.ref(n.com()));
+        return {B.op('+', r, B.op('*', R, arm)), B.op('+', v, B.op('*', R, B.call("cross", {B.ref(n.w().flow()), arm})))};
+      },
+      [&](const Flexible& f) -> Motion {
+        Eta eta = state_eta(B, s.body, *f.field);
+        return flexible_point_motion(B, s.body, s.point.empty() ? B.vec(0, 0, 0) : f.field->point(B, FlexibleSym(s.body), s.point, eta));
+      });
 }
 
 void Expander::emit_force(const ForceElement& f) {
@@ -69,22 +72,26 @@ void Expander::emit_force(const ForceElement& f) {
 /// junction); nothing on ground.
 void Expander::apply_load(const Build& B, const LoadSym& source, const Side& s, E force, E torque, double sign) {
   const Body& body = bodies_.at(s.body);
-  if (body.ground) return;
   auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
-  if (body.flex) {
-    element(B, "Se", source.on(s.body), signed_(flexible_load(B, s.body, s.point, force, torque)));
-    return;
-  }
-  element(B, "Se", source.on(s.body, 'f'),
-          signed_(body_frame_velocity(body) ? B.op('*', B.call("transpose", {rotation(B, s.body)}), force) : force));
-  if (body.particle) return;
-  E Rt = B.call("transpose", {rotation(B, s.body)});
-  const BodySym n(s.body);
-  E local = s.point.empty() ? B.vec(0, 0, 0) : B.ref(n.point(s.point));
-  E arm = B.op('-', local, B.ref(n.com()));
-  E moment = B.call("cross", {arm, B.op('*', Rt, force)});
-  if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
-  element(B, "Se", source.on(s.body, 't'), signed_(moment));
+  // the force on the junction of the centre's velocity (in the body's axes where that is)
+  auto push = [&] {
+    element(B, "Se", source.on(s.body, 'f'),
+            signed_(body_frame_velocity(body) ? B.op('*', B.call("transpose", {rotation(B, s.body)}), force) : force));
+  };
+  body.kind.visit(
+      [](const Ground&) {},
+      [&](const Particle&) { push(); },
+      [&](const Rigid&) {  // and its moment about the centre, with the torque, on the angular velocity's
+        push();
+        E Rt = B.call("transpose", {rotation(B, s.body)});
+        const BodySym n(s.body);
+        E local = s.point.empty() ? B.vec(0, 0, 0) : B.ref(n.point(s.point));
+        E arm = B.op('-', local, B.ref(n.com()));
+        E moment = B.call("cross", {arm, B.op('*', Rt, force)});
+        if (torque) moment = B.op('+', moment, B.op('*', Rt, torque));
+        element(B, "Se", source.on(s.body, 't'), signed_(moment));
+      },
+      [&](const Flexible&) { element(B, "Se", source.on(s.body), signed_(flexible_load(B, s.body, s.point, force, torque))); });
 }
 
 }  // namespace mbgc::multibody::detail

@@ -79,7 +79,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
    private:
     Expander& x_;
   };
-  Rates m(*this, B, j, C.particle);
+  Rates m(*this, B, j, C.kind.particle());
   j.kind->mobilize(m);
   const std::deque<Mobilizer::Rate>& rates = m.rates;
   const E& disp = m.disp;
@@ -104,9 +104,9 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (seat_a.turn) Fa = times(seat_a.turn, Fa);
   if (seat_b.turn) Fb = times(seat_b.turn, Fb);
   // A's point, moved by d; a particle's joint point is its position
-  E pa = B.op('+', bodies_.at(j.a.body).particle ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.ref(jn.point('a')),
+  E pa = B.op('+', bodies_.at(j.a.body).kind.particle() ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.ref(jn.point('a')),
               B.op('*', Fa, disp));
-  E pb = bodies_.at(j.b.body).particle ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.ref(jn.point('b'));
+  E pb = bodies_.at(j.b.body).kind.particle() ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.ref(jn.point('b'));
   E qP = quaternion(B, parent), RP = rotation(B, parent);
   if (seat.quaternion) qP = qmul(qP, seat.quaternion);
   E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
@@ -124,7 +124,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // than the signals (the planar chain: 1.5 % fewer operations).
   int turning = 0;
   for (const Mobilizer::Rate& r : rates) turning += r.W ? 1 : 0;
-  if (fwd && !C.particle && !seat_a.turn && !seat_b.turn && (m.free_rotation || turning > 1)) {
+  if (fwd && !C.kind.particle() && !seat_a.turn && !seat_b.turn && (m.free_rotation || turning > 1)) {
     E omega = nullptr;
     bool known = true;
     for (const Mobilizer::Rate& r : rates) {
@@ -146,14 +146,14 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       Rrel = named;
     }
   }
-  if (!C.particle) {
+  if (!C.kind.particle()) {
     for (int k = 0; k < 4; ++k) signal(B, on_child.pose_q(k + 1), B.at(qC, k + 1));
     // The child's rotation matrix, propagated from its parent's (R_C = R_P R_PC):
     // no quaternion product and no normalisation. Its rate is R_C skew(omega_C)
     // with omega_C the child's angular velocity in its own axes (the flow of
     // the bond into its omega junction, below): 2 products an entry, where the
     // chain rule through R_P R_PC(q) would differentiate every factor.
-    E Rc = P.ground || P.particle ? Rrel : times(RP, Rrel);
+    E Rc = !P.kind.turns() ? Rrel : times(RP, Rrel);
     const E rate = times(rotation(B, child), B.call("skew", {B.ref(jn.reaction_torque().flow())}));
     for (int r = 1; r <= 3; ++r)
       for (int c = 1; c <= 3; ++c)
@@ -161,7 +161,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   }
   E RC = rotation(B, child);
   E joint_point = B.op('+', position(B, parent), B.op('*', RP, fwd ? pa : pb));
-  if (P.ground) joint_point = fwd ? pa : pb;  // ground points are absolute
+  if (P.kind.ground()) joint_point = fwd ? pa : pb;  // ground points are absolute
   E rC = B.op('-', joint_point, B.op('*', RC, fwd ? pb : pa));
   for (int k = 0; k < 3; ++k) signal(B, on_child.pose_r(k + 1), B.at(rC, k + 1));
   // Velocities as sums of MTF flows: the child's omega in its own axes and
@@ -180,7 +180,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   };
   // (a particle has no angular-velocity junction: nothing turns it, nothing reads it)
   const Sym wsum = jn.w_sum(), vsum = jn.v_sum();
-  const bool parent_turns = !P.ground && !P.particle;
+  const bool parent_turns = P.kind.turns();
   E RrelT = T(Rrel);  // R_PC^T: parent axes -> child axes
   // Nothing turns the child when the parent does not turn and the joint has
   // no rotation (a prismatic joint from ground): its angular velocity is 0,
@@ -188,18 +188,18 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   // would have no bond to set its effort).
   const bool turns = parent_turns || seat.turn || own_seat.turn ||
                      std::any_of(rates.begin(), rates.end(), [](const Mobilizer::Rate& r) { return bool(r.W); });
-  if (!C.particle && turns) {
+  if (!C.kind.particle() && turns) {
     junction(B, '0', wsum, 3, {}, {});
     if (parent_turns) feed(on_parent.w(), RrelT, wsum);
     // in the child's axes, R_PC^T Fa W = Fb R^T W: where the kind gives R^T W
     // (Wb), no product of the rotation with its transpose is left to fold
     for (const Mobilizer::Rate& r : rates)
       if (r.W) feed(r.junction, fwd ? (r.Wb ? times(Fb, r.Wb) : times(times(RrelT, Fa), r.W)) : B.neg(times(Fa, r.W)), wsum);
-  } else if (!C.particle) {
+  } else if (!C.kind.particle()) {
     element(B, "Sf", jn.still(), B.vec(0, 0, 0));
   }
   junction(B, '0', vsum, 3, {}, {});
-  if (!C.particle) {
+  if (!C.kind.particle()) {
     // V_C = R_PC^T (V_P + omega_P x a + Fa d') - omega_C x b, with a and b the
     // joint's points from the parent's and the child's centre of mass
     if (parent_turns && body_frame_velocity(P)) {
@@ -214,7 +214,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       feed(on_parent.w(), B.neg(skew(fwd ? pa : pb)), vpa);
       feed(vpa, RrelT, vsum);
     } else {
-      if (!P.ground) feed(on_parent.v(), body_frame_velocity(P) || P.particle ? RrelT : times(RrelT, T(RP)), vsum);
+      if (!P.kind.ground()) feed(on_parent.v(), body_frame_velocity(P) || P.kind.particle() ? RrelT : times(RrelT, T(RP)), vsum);
       if (parent_turns) feed(on_parent.w(), times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
     }
     for (const Mobilizer::Rate& r : rates)
@@ -234,7 +234,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   } else {  // world axes
     if (seat.point)
       feed(on_parent.etadot(), times(RP, B.call("jacobian", {fwd ? pa : pb, B.ref(on_parent.eta().displacement())})), vsum);
-    if (!P.ground) feed(on_parent.v(), body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
+    if (!P.kind.ground()) feed(on_parent.v(), body_frame_velocity(P) ? RP : B.call("eye", {B.num(3)}), vsum);
     if (parent_turns) feed(on_parent.w(), B.neg(times(RP, skew(fwd ? pa : pb))), vsum);
     for (const Mobilizer::Rate& r : rates)
       if (r.V) feed(r.junction, fwd ? times(times(RP, Fa), r.V) : B.neg(times(times(RC, Fa), r.V)), vsum);
@@ -245,11 +245,11 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
 
 Expander::FlexibleSeat Expander::flexible_seat(const Build& B, const Side& s, bool free_rotation) const {
   const Body& P = bodies_.at(s.body);
-  if (!P.flex || s.point.empty()) return {};  // rigid, or a flexible body's fixed origin (check_coordinates)
-  const Eta eta = state_eta(B, s.body, *P.flex);
+  if (!P.kind.field() || s.point.empty()) return {};  // rigid, or a flexible body's fixed origin (check_coordinates)
+  const Eta eta = state_eta(B, s.body, *P.kind.field());
   FlexibleSeat seat;
-  seat.point = P.flex->point(B, FlexibleSym(s.body), s.point, eta);
-  seat.slope = P.flex->slope(B, FlexibleSym(s.body), s.point, eta);
+  seat.point = P.kind.field()->point(B, FlexibleSym(s.body), s.point, eta);
+  seat.slope = P.kind.field()->slope(B, FlexibleSym(s.body), s.point, eta);
   if (free_rotation) return seat;
   // q = [1, theta / 2] (normalised by rotq): omega = 2 vec(q' q*) / |q|^2 = (theta' + theta x theta' / 2) / (1 + |theta|^2 / 4)
   E half = B.op('*', B.num(0.5), seat.slope);

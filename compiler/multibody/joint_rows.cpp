@@ -16,20 +16,19 @@ namespace mbgc::multibody::detail {
 Frame Expander::frame(const Build& B, const Joint& j, const Side& s, char side) {
   const Body& body = bodies_.at(s.body);
   Frame f;
-  f.ground = body.ground;
-  f.particle = body.particle;
+  f.kind = body.kind;
   f.body = s.body;
   const JointSym jn(j.decl->name);
   f.R = rotation(B, s.body);
   E local = B.ref(jn.point(side));  // the point in CoM-relative body coordinates (ground: absolute)
   E turn = f.R;                       // the joint frame's rotation (a beam's section turns with its slope)
-  if (body.flex && !s.point.empty()) {
-    Eta eta = state_eta(B, s.body, *body.flex);
-    local = body.flex->point(B, FlexibleSym(s.body), s.point, eta);
-    turn = B.op('*', f.R, section_turn(B, body.flex->slope(B, FlexibleSym(s.body), s.point, eta)));
+  if (body.kind.field() && !s.point.empty()) {
+    Eta eta = state_eta(B, s.body, *body.kind.field());
+    local = body.kind.field()->point(B, FlexibleSym(s.body), s.point, eta);
+    turn = B.op('*', f.R, section_turn(B, body.kind.field()->slope(B, FlexibleSym(s.body), s.point, eta)));
   }
-  if (body.ground) f.p = local;
-  else if (body.particle) f.p = position(B, s.body);
+  if (body.kind.ground()) f.p = local;
+  else if (body.kind.particle()) f.p = position(B, s.body);
   else f.p = B.op('+', position(B, s.body), B.op('*', f.R, local));
   f.local = local;
   E F = B.op('*', turn, B.ref(jn.frame_R(side)));
@@ -45,7 +44,7 @@ void Expander::joint_params(const Build& B, const Joint& j) {
     const Body& body = bodies_.at(s->body);
     const BodySym on(s->body);
     E point = s->point.empty() ? B.vec(0, 0, 0) : B.ref(on.point(s->point));
-    if (body.ground || body.particle) property(B, jn.point(side), point);
+    if (!body.kind.turns()) property(B, jn.point(side), point);
     else property(B, jn.point(side), B.op('-', point, B.ref(on.com())));
     const AstAttr* ax = given_attr(j, side == 'a' ? joint_setting::axis_a : joint_setting::axis_b);
     if (!ax) ax = given_attr(j, joint_setting::axis);
@@ -59,7 +58,7 @@ void Expander::joint_params(const Build& B, const Joint& j) {
   std::vector<E> radii;
   for (const Side* s : {&j.a, &j.b}) {
     const Body& body = bodies_.at(s->body);
-    if (body.ground || body.particle) continue;
+    if (!body.kind.turns()) continue;
     const BodySym on(s->body);
     E I = B.ref(on.inertia());
     E trace = B.op('+', B.op('+', idx2(B, I, 1, 1), idx2(B, I, 2, 2)), idx2(B, I, 3, 3));
@@ -89,7 +88,7 @@ std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, co
 /// by the junction: 't' the velocity, 'r' the angular velocity, 'e' the modal rates.
 void Expander::rates_into(const Build& B, const std::function<Sym(char)>& mtf, E rows_vec, const Frame& f, const Sym& sum,
                           bool towards_sum, bool translational) {
-  if (f.ground) return;
+  if (f.kind.ground()) return;
   const std::string& b = f.body;
   const BodySym on(b);
   std::vector<std::pair<Sym, Sym>> parts;  // (MTF, body junction)
@@ -103,7 +102,7 @@ void Expander::rates_into(const Build& B, const std::function<Sym(char)>& mtf, E
       element(B, "MTF", mtf('t'), body_frame_velocity(body) ? B.op('*', Jr, R) : Jr);
       parts.push_back({mtf('t'), on.v()});
     }
-    if (!f.particle) {
+    if (!f.kind.particle()) {
       std::vector<E> entries;
       for (int i = 1; i <= 3; ++i)
         for (int k = 1; k <= 3; ++k) entries.push_back(B.ref(on.pose_R(i, k)));
@@ -124,13 +123,13 @@ void Expander::rates_into(const Build& B, const std::function<Sym(char)>& mtf, E
       element(B, "MTF", mtf('t'), B.call("jacobian", {rows_vec, B.ref(on.r().displacement())}));
       parts.push_back({mtf('t'), on.v()});
     }
-    if (!f.particle) {
+    if (!f.kind.particle()) {
       const Sym q = on.q().displacement();
       element(B, "MTF", mtf('r'), B.op('*', B.call("jacobian", {rows_vec, B.ref(q)}), B.call("quat_rate", {B.ref(q)})));
       parts.push_back({mtf('r'), on.w()});
     }
   }
-  if (bodies_.at(b).flex) {  // the joint's point moves with the beam's deflection
+  if (bodies_.at(b).kind.field()) {  // the joint's point moves with the beam's deflection
     const FlexibleSym flex(b);
     element(B, "MTF", mtf('e'), B.call("jacobian", {rows_vec, B.ref(flex.eta().displacement())}));
     parts.push_back({mtf('e'), flex.etadot()});
@@ -201,7 +200,7 @@ void Expander::emit_joint(Joint& j) {
     // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
     std::vector<E> masses;
     for (const Frame* f : {&A, &Bf})
-      if (!f->ground) masses.push_back(B.ref(BodySym(f->body).mass()));
+      if (!f->kind.ground()) masses.push_back(B.ref(BodySym(f->body).mass()));
     E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
     param(B, jn.stiffness(), setting_or(j, joint_setting::stiffness, B.op('*', m, B.num(1e6))));
     param(B, jn.damping(), setting_or(j, joint_setting::damping, B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.ref(jn.stiffness()))}))));

@@ -16,6 +16,7 @@
 #include "flex/rod_modes.hpp"
 #include "ir/ast.hpp"
 #include "multibody/settings.hpp"
+#include "multibody/body_kind.hpp"
 #include "multibody/build.hpp"
 #include "multibody/deformation.hpp"
 #include "multibody/expand.hpp"
@@ -26,9 +27,7 @@ class JointKind;
 
 struct Body {
   const ir::AstBody* decl = nullptr;
-  std::shared_ptr<Deformation> flex;     // a flexible body's deformation field (null: rigid)
-  bool ground = false;
-  bool particle = false;                 // no inertia: translation only
+  BodyKind kind = Rigid{};               // ground, a particle (no inertia), rigid, or flexible (its field)
   std::map<std::string, E> points;       // name -> body-frame coordinates (ground: inertial)
   bool placed = false;                   // initial pose known (ground, or from a tree joint)
   std::string placed_by;                 // joint that placed it
@@ -108,7 +107,7 @@ inline E setting_or(const Joint& j, const Setting& s, E fallback) {
 
 /// World-frame expressions of one side of a joint.
 struct Frame {
-  bool ground = false, particle = false;
+  BodyKind kind = Rigid{};  // its body's
   std::string body;
   E R;         // rotation body -> world (eye(3) for ground and particles)
   E p;         // joint point, world

@@ -18,7 +18,7 @@ void Expander::define_quantities() {
     const Body& body = bodies_.at(name);
     const BodySym n(name);
     Build B(body.decl->loc);
-    if (body.flex) {
+    if (body.kind.field()) {
       flexible_quantities(B, body);
       continue;
     }
@@ -29,7 +29,7 @@ void Expander::define_quantities() {
     quantity("momentum") =
         body_frame_velocity(body) ? B.op('*', rotation(B, name), B.ref(n.m().momentum())) : B.ref(n.m().momentum());
     E ke = B.op('*', B.num(0.5), B.dot(B.ref(n.v().flow()), B.ref(n.m().momentum())));  // in the junction's own axes
-    if (!body.particle) {
+    if (!body.kind.particle()) {
       E q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
       quantity("quaternion") = q;
       quantity("rotation") = R;
@@ -53,7 +53,7 @@ void Expander::define_quantities() {
     Build B(j.decl->loc);
     auto quantity = [&](const char* q) -> E& { return quantity_[jn.quantity(q).str()]; };
     const auto& [A, Bf] = frames_.at(j.decl->name);
-    const Frame& body_side = Bf.ground ? A : Bf;
+    const Frame& body_side = Bf.kind.ground() ? A : Bf;
     // a joint with no rows (free) constrains nothing: it has no violation
     if (std::vector<E> r = rows(B, j, A, Bf); !r.empty()) quantity("violation") = B.list(r);
     if (auto cv = coordinate_values_.find(j.decl->name); cv != coordinate_values_.end()) {
@@ -64,7 +64,7 @@ void Expander::define_quantities() {
       E reaction_f = B.ref(jn.reaction_force().effort());
       if (body_frame_velocity(bodies_.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
       quantity("force") = B.op('*', sign, reaction_f);
-      if (!bodies_.at(child).particle)
+      if (!bodies_.at(child).kind.particle())
         quantity("torque") = B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_torque().effort())));
       if (j.kind->has_angle()) {
         quantity("angle") = cv->second.angle;
@@ -78,22 +78,22 @@ void Expander::define_quantities() {
       continue;
     }
     // reaction on the second body (on the first, negated, if the second is ground)
-    const char side = Bf.ground ? 'a' : 'b';
+    const char side = Bf.kind.ground() ? 'a' : 'b';
     E force = B.ref(jn.row_rate(side, 't').effort(1));
-    if (!Bf.ground) force = B.neg(force);
+    if (!Bf.kind.ground()) force = B.neg(force);
     // (a cut joint on a body moved by joint coordinates: that junction is in the body's axes)
     if (body_frame_velocity(bodies_.at(body_side.body))) force = B.op('*', body_side.R, force);
-    if (body_side.particle) {
+    if (body_side.kind.particle()) {
       quantity("force") = force;
     } else {
       E torque_body = B.ref(jn.row_rate(side, 'r').effort(1));
-      if (!Bf.ground) torque_body = B.neg(torque_body);
+      if (!Bf.kind.ground()) torque_body = B.neg(torque_body);
       E lever = B.op('*', body_side.R, body_side.local);
       quantity("force") = force;
       quantity("torque") = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
     }
-    E wrel = B.op('-', Bf.ground || Bf.particle ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.ref(BodySym(Bf.body).w().flow())),
-                  A.ground || A.particle ? B.vec(0, 0, 0) : B.op('*', A.R, B.ref(BodySym(A.body).w().flow())));
+    E wrel = B.op('-', !Bf.kind.turns() ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.ref(BodySym(Bf.body).w().flow())),
+                  !A.kind.turns() ? B.vec(0, 0, 0) : B.op('*', A.R, B.ref(BodySym(A.body).w().flow())));
     if (j.kind->has_angle()) {
       quantity("angle") = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
       quantity("rate") = B.dot(A.Z, wrel);

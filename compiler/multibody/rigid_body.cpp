@@ -14,14 +14,16 @@
 namespace mbgc::multibody::detail {
 
 void Expander::emit_body(const Body& body) {
+  TreeScope tree(*this, body.decl->name);
+  body.kind.visit([](const Ground&) {}, [&](const Particle&) { emit_rigid(body); }, [&](const Rigid&) { emit_rigid(body); },
+                  [&](const Flexible&) { emit_flexible(body); });
+}
+
+/// A rigid body's fragment; a particle's is its translational half.
+void Expander::emit_rigid(const Body& body) {
   const AstBody& d = *body.decl;
   const BodySym n(d.name);
   Build B(d.loc);
-  TreeScope tree(*this, d.name);
-  if (body.flex) {
-    emit_flexible(body);
-    return;
-  }
   property(B, n.mass(), attr(d, body_setting::mass));
   for (const auto& [p, v] : body.points) property(B, n.point(p), v);
   // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
@@ -31,7 +33,7 @@ void Expander::emit_body(const Body& body) {
   if (auto it = loads_.find(d.name); it != loads_.end())
     for (const LoadSym& f : it->second) {
       forces_in.push_back(f.on(d.name, 'f'));
-      if (!body.particle) torques_in.push_back(f.on(d.name, 't'));
+      if (!body.kind.particle()) torques_in.push_back(f.on(d.name, 't'));
     }
   // A body moved by joint coordinates has no states of its own: its inertias
   // take derivative causality and its pose is a function of the coordinates.
@@ -57,7 +59,7 @@ void Expander::emit_body(const Body& body) {
                  body_axes ? B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity())) : B.ref(Sym::gravity())));
   if (body_axes)
     element(B, "R", n.ejs_v(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
-  if (body.particle) return;
+  if (body.kind.particle()) return;
   E com = attr(d, body_setting::com);
   property(B, n.com(), com ? com : B.vec(0, 0, 0));
   property(B, n.inertia(), attr(d, body_setting::inertia));
@@ -79,7 +81,7 @@ void Expander::emit_body(const Body& body) {
 /// Centre-of-mass position, world frame.
 E Expander::position(const Build& B, const std::string& body) const {
   const Body& b = bodies_.at(body);
-  if (b.ground) return B.vec(0, 0, 0);
+  if (b.kind.ground()) return B.vec(0, 0, 0);
   const BodySym n(body);
   if (!b.by_coordinates) return B.ref(n.r().displacement());
   return B.list({B.ref(n.pose_r(1)), B.ref(n.pose_r(2)), B.ref(n.pose_r(3))});
@@ -88,7 +90,7 @@ E Expander::position(const Build& B, const std::string& body) const {
 /// Orientation quaternion [w, x, y, z], body -> world.
 E Expander::quaternion(const Build& B, const std::string& body) const {
   const Body& b = bodies_.at(body);
-  if (b.ground || b.particle) return B.list({B.num(1), B.num(0), B.num(0), B.num(0)});
+  if (!b.kind.turns()) return B.list({B.num(1), B.num(0), B.num(0), B.num(0)});
   const BodySym n(body);
   if (!b.by_coordinates) return B.ref(n.q().displacement());
   std::vector<E> q;
@@ -97,12 +99,12 @@ E Expander::quaternion(const Build& B, const std::string& body) const {
 }
 
 /// Is the body's translational junction in its own axes (a turning body moved by joint coordinates)?
-bool Expander::body_frame_velocity(const Body& b) const { return b.by_coordinates && !b.particle && !b.ground; }
+bool Expander::body_frame_velocity(const Body& b) const { return b.by_coordinates && !b.kind.particle() && !b.kind.ground(); }
 
 /// Centre-of-mass velocity, world frame.
 E Expander::velocity(const Build& B, const std::string& body) const {
   const Body& b = bodies_.at(body);
-  if (b.ground) return B.vec(0, 0, 0);
+  if (b.kind.ground()) return B.vec(0, 0, 0);
   const Sym v = BodySym(body).v().flow();
   if (body_frame_velocity(b)) return B.op('*', rotation(B, body), B.ref(v));
   return B.ref(v);
@@ -111,7 +113,7 @@ E Expander::velocity(const Build& B, const std::string& body) const {
 /// Rotation matrix body -> world (computed once per body in coordinates).
 E Expander::rotation(const Build& B, const std::string& body) const {
   const Body& b = bodies_.at(body);
-  if (b.ground || b.particle) return B.call("eye", {B.num(3)});
+  if (!b.kind.turns()) return B.call("eye", {B.num(3)});
   const BodySym n(body);
   if (!b.by_coordinates) return B.call("rotq", {B.ref(n.q().displacement())});
   std::vector<E> rows_;

@@ -100,7 +100,7 @@ std::vector<Expander::Problem> Expander::coordinate_problems() const {
     const AstJoint& d = *j.decl;
     if (j.strategy == Strategy::Coordinates) {
       for (const Side* s : {&j.a, &j.b})
-        if (bodies_.at(s->body).flex && s->point.empty() && !bodies_.at(s->body).flex->origin_fixed()) {
+        if (bodies_.at(s->body).kind.field() && s->point.empty() && !bodies_.at(s->body).kind.field()->origin_fixed()) {
           out.push_back({d.loc, fmt::format("joint `{}` holds the flexible body `{}` at its frame's origin, which moves with "
                                             "its modes: not implemented in joint coordinates",
                                             d.name, s->body),
@@ -112,7 +112,7 @@ std::vector<Expander::Problem> Expander::coordinate_problems() const {
     }
     if (j.strategy == Strategy::Coordinates && j.tree && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
-        if (bodies_.at(s->body).particle) {
+        if (bodies_.at(s->body).kind.particle()) {
           const bool parent = (s == &j.a) == j.a_is_parent;
           if (parent)
             out.push_back({d.loc, fmt::format("joint `{}` hangs `{}` from the particle `{}`, which joint coordinates "
@@ -167,7 +167,7 @@ void Expander::place_bodies() {
     E r0 = attr(d, body_setting::r0), v0 = attr(d, body_setting::v0);
     param(B, at.r0(), r0 ? r0 : B.vec(0, 0, 0));
     param(B, at.v0(), v0 ? v0 : B.vec(0, 0, 0));
-    if (body.particle) continue;
+    if (body.kind.particle()) continue;
     E q0 = attr(d, body_setting::quat0), w0 = attr(d, body_setting::w0);
     param(B, at.q0(), q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
     param(B, at.w0(), w0 ? w0 : B.vec(0, 0, 0));
@@ -186,10 +186,10 @@ std::string Expander::placed_hint(const std::string& jn) const {
 
 Pose Expander::pose(const Build& B, const std::string& body) {
   const Body& b = bodies_.at(body);
-  if (b.ground) return {B.list({B.num(1), B.num(0), B.num(0), B.num(0)}), B.call("eye", {B.num(3)}), B.vec(0, 0, 0), B.vec(0, 0, 0), B.vec(0, 0, 0)};
+  if (b.kind.ground()) return {B.list({B.num(1), B.num(0), B.num(0), B.num(0)}), B.call("eye", {B.num(3)}), B.vec(0, 0, 0), B.vec(0, 0, 0), B.vec(0, 0, 0)};
   const BodySym n(body);
-  E q = b.particle ? B.list({B.num(1), B.num(0), B.num(0), B.num(0)}) : B.ref(n.q0());
-  E w = b.particle ? B.vec(0, 0, 0) : B.ref(n.w0());
+  E q = b.kind.particle() ? B.list({B.num(1), B.num(0), B.num(0), B.num(0)}) : B.ref(n.q0());
+  E w = b.kind.particle() ? B.vec(0, 0, 0) : B.ref(n.w0());
   return {q, B.call("rotq", {q}), B.ref(n.r0()), B.ref(n.v0()), w};
 }
 
@@ -209,7 +209,7 @@ void Expander::place(const Joint& j, bool a_is_parent) {
   Pose P = pose(B, parent);
   auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
-  if (!cb.particle) {
+  if (!cb.kind.particle()) {
     E q = a_is_parent ? qmul(qmul(qmul(P.q, fa), qrel), conj(fb)) : qmul(qmul(qmul(P.q, fb), conj(qrel)), conj(fa));
     param(B, placed.q0(), q);
   }
@@ -221,17 +221,17 @@ void Expander::place(const Joint& j, bool a_is_parent) {
   E rel_v = v_rel ? B.op('*', B.call("rotq", {fa}), v_rel) : B.op('*', axis_a, axial_rate);
   // Ground points are absolute: their "local" coordinates already are world positions.
   auto world_point = [&](const Pose& X, E local, bool ground) { return ground ? local : B.op('+', X.r, B.op('*', X.R, local)); };
-  bool parent_ground = bodies_.at(parent).ground;
+  bool parent_ground = bodies_.at(parent).kind.ground();
   if (a_is_parent) {
     E pa_world = world_point(P, pa, parent_ground);
     param(B, placed.r0(), B.op('-', pa_world, B.op('*', C.R, pb)));
-    if (!cb.particle) param(B, placed.w0(), B.op('*', B.op('*', T(C.R), P.R), B.op('+', P.w, rel_w)));
+    if (!cb.kind.particle()) param(B, placed.w0(), B.op('*', B.op('*', T(C.R), P.R), B.op('+', P.w, rel_w)));
     E v = B.op('+', B.op('+', P.v, B.op('*', P.R, cross(P.w, pa))), B.op('*', P.R, rel_v));
     param(B, placed.v0(), B.op('-', v, B.op('*', C.R, cross(C.w, pb))));
   } else {
     E pb_world = world_point(P, pb, parent_ground);
     param(B, placed.r0(), B.op('-', pb_world, B.op('*', C.R, pa)));
-    if (!cb.particle) param(B, placed.w0(), B.op('-', B.op('*', B.op('*', T(C.R), P.R), P.w), rel_w));
+    if (!cb.kind.particle()) param(B, placed.w0(), B.op('-', B.op('*', B.op('*', T(C.R), P.R), P.w), rel_w));
     E v = B.op('+', P.v, B.op('*', P.R, cross(P.w, pb)));
     param(B, placed.v0(), B.op('-', B.op('-', v, B.op('*', C.R, cross(C.w, pa))), B.op('*', C.R, rel_v)));
   }

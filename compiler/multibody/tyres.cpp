@@ -122,10 +122,13 @@ void Expander::add_tyre(const AstJoint& t) {
   auto road = side(t.b);
   if (!wheel || !road) return;
   const Body& w = bodies_.at(wheel->body);
-  if (w.ground || w.particle || w.flex) {
-    diags_.error(t.a.loc,
-                 w.ground ? fmt::format("tyre `{}` is on ground, not on a wheel", t.name)
-                          : fmt::format("tyre `{}` is on `{}`, which is {}", t.name, wheel->body, w.particle ? "a particle" : "a flexible body"),
+  const std::string not_a_wheel = w.kind.visit(
+      [&](const Ground&) { return fmt::format("tyre `{}` is on ground, not on a wheel", t.name); },
+      [&](const Particle&) { return fmt::format("tyre `{}` is on `{}`, which is a particle", t.name, wheel->body); },
+      [&](const Flexible&) { return fmt::format("tyre `{}` is on `{}`, which is a flexible body", t.name, wheel->body); },
+      [](const Rigid&) { return std::string(); });
+  if (!not_a_wheel.empty()) {
+    diags_.error(t.a.loc, not_a_wheel,
                  "a tyre's first point is the centre of a rigid wheel (a body with an inertia, turning on its axle)");
     return;
   }

@@ -155,7 +155,7 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     }
   for (const auto& [name, body] : bodies_) {
     if (!body.decl) continue;
-    const std::vector<const Setting*>& table = body.flex ? body.flex->settings() : body_setting::kAll;
+    const std::vector<const Setting*>& table = body.kind.field() ? body.kind.field()->settings() : body_setting::kAll;
     for (const AstAttr& a : body.decl->attrs) {
       const Setting* s = find_setting(table, a.key);
       if (!s) continue;
