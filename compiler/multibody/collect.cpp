@@ -1,5 +1,5 @@
 // multibody/collect.cpp — collect and check bodies, joints, force elements and settings.
-#include "multibody/expander.hpp"
+#include "multibody/collect.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,14 +13,18 @@
 
 namespace mbgc::multibody::detail {
 
-// ---- 1. collect and check ------------------------------------------------------------
-void Expander::collect(const AstProgram& in) {
+Model Collector::run(const AstProgram& in) {
+  collect(in);
+  return std::move(m_);
+}
+
+void Collector::collect(const AstProgram& in) {
   Body ground;
   ground.kind = Ground{};
   ground.placed = true;
-  bodies_["ground"] = ground;
+  m_.bodies["ground"] = ground;
   for (const AstStmt& s : in.stmts) {
-    if (auto* p = std::get_if<AstParam>(&s)) params_[p->name] = p->value;
+    if (auto* p = std::get_if<AstParam>(&s)) m_.params[p->name] = p->value;
     if (auto* i = std::get_if<AstInstance>(&s)) instances_[i->name] = i->loc;
   }
   for (const AstStmt& s : in.stmts) {
@@ -42,13 +46,13 @@ void Expander::collect(const AstProgram& in) {
 
 /// Joints and force elements name the parts they generate (`j1.cn`, `j1.angle`):
 /// their names must differ from each other's and from the bodies'.
-bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen) {
+bool Collector::connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen) {
   const char* what = connector_noun(j.connector);
   if (j.name == "ground") {
     diags_.error(j.loc, fmt::format("a {} cannot be named `ground`", what), "`ground` is the fixed frame: choose another name");
     return false;
   }
-  if (auto b = bodies_.find(j.name); b != bodies_.end()) {
+  if (auto b = m_.bodies.find(j.name); b != m_.bodies.end()) {
     auto& d = diags_.error(j.loc, fmt::format("{} `{}` has the name of a body", what, j.name),
                            fmt::format("bodies, joints and force elements share one namespace (`{}.angle`, `{}.position`): "
                                        "rename the {}, e.g. `{}_{}`",
@@ -80,7 +84,7 @@ bool Expander::connector_name_ok(const AstJoint& j, std::map<std::string, const 
 }
 
 /// A second declaration of `name`; inside a loop (the same statement again) reported once.
-void Expander::duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first) {
+void Collector::duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first) {
   if (at.file == first.file && at.line == first.line && at.col == first.col) {
     if (!repeated_.insert(name).second) return;
     diags_.error(at, fmt::format("{} `{}` is declared again in every iteration of the loop", what, name),
@@ -92,15 +96,15 @@ void Expander::duplicate(const char* what, const std::string& name, const Source
   d.notes.push_back({first, "the first one is declared here"});
 }
 
-void Expander::setting(const AstSetting& st) {
+void Collector::setting(const AstSetting& st) {
   if (st.key == "gravity") {
-    if (gravity_) {
+    if (m_.gravity) {
       auto& d = diags_.error(st.loc, "gravity is set twice", "keep one `gravity = [gx, gy, gz]`");
-      d.notes.push_back({gravity_loc_, "gravity is first set here"});
+      d.notes.push_back({m_.gravity_loc, "gravity is first set here"});
     }
     check_shape(*st.value, "gravity", {{3, 1}, "gravity is an acceleration in the world frame: gravity = [gx, gy, gz] (m/s^2), e.g. [0, -9.81, 0]"});
-    gravity_ = st.value;
-    gravity_loc_ = st.loc;
+    m_.gravity = st.value;
+    m_.gravity_loc = st.loc;
     return;
   }
   if (st.key == "constraints") {
@@ -112,7 +116,7 @@ void Expander::setting(const AstSetting& st) {
 }
 
 /// `constraints = ...` (the model's) or `constraint = ...` (a joint's).
-std::optional<Strategy> Expander::strategy_of(const AstExpr& v, const char* key) {
+std::optional<Strategy> Collector::strategy_of(const AstExpr& v, const char* key) {
   const std::string choices =
       "auto (the default: coordinates where joint coordinates can move every joint, else lagrange), lagrange "
       "(multipliers: a DAE for IDA), penalty (stiff spring-dampers: an ODE) or coordinates (joint coordinates as "
@@ -132,15 +136,15 @@ std::optional<Strategy> Expander::strategy_of(const AstExpr& v, const char* key)
   return std::nullopt;
 }
 
-void Expander::add_body(const AstBody& b) {
+void Collector::add_body(const AstBody& b) {
   if (b.name == "ground") {
-    Body& g = bodies_["ground"];
+    Body& g = m_.bodies["ground"];
     for (const AstAttr& a : b.attrs)
       diags_.error(a.loc, fmt::format("ground has no setting `{}`", a.key), "ground only declares points: ground { point pivot = [x, y, z] }");
     add_points(g, b, "ground");
     return;
   }
-  if (auto first = bodies_.find(b.name); first != bodies_.end()) {
+  if (auto first = m_.bodies.find(b.name); first != m_.bodies.end()) {
     duplicate("body", b.name, b.loc, first->second.decl->loc);
     return;
   }
@@ -187,14 +191,14 @@ void Expander::add_body(const AstBody& b) {
                              "inertia = ... }} (no inertia: a particle)",
                              b.name));
   if (auto m = given.find(body_setting::mass.name); m != given.end())
-    if (auto v = constant_of(*m->second->value); v && !(*v > 0))
+    if (auto v = constants_.constant_of(*m->second->value); v && !(*v > 0))
       diags_.error(m->second->value->loc, fmt::format("the mass of body `{}` is {}", b.name, *v),
                    "the mass is the inertance of the body's translational I element and must be positive; a massless "
                    "link between bodies is a joint (e.g. distance)");
   if (auto in = given.find(body_setting::inertia.name); in != given.end() && in->second->value->kind == AstExpr::Kind::Call &&
                                        in->second->value->name == "diag")
     for (const E& x : in->second->value->args)
-      if (auto v = constant_of(*x); v && !(*v > 0))
+      if (auto v = constants_.constant_of(*x); v && !(*v > 0))
         diags_.error(x->loc, fmt::format("a principal moment of inertia of body `{}` is {}", b.name, *v),
                      "the inertia tensor is the inertance of the body's rotational I element and must be positive definite");
   if (!has_inertia) body.kind = Particle{};
@@ -211,11 +215,11 @@ void Expander::add_body(const AstBody& b) {
     diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name),
                  "a body without inertia is a point mass: it has no orientation, so a point away from it could not "
                  "turn with it. Give it an inertia (inertia = diag(Jx, Jy, Jz)) to have points, or join the particle itself");
-  bodies_[b.name] = body;
-  body_order_.push_back(b.name);
+  m_.bodies[b.name] = body;
+  m_.body_order.push_back(b.name);
 }
 
-void Expander::add_points(Body& body, const AstBody& b, const std::string& owner) {
+void Collector::add_points(Body& body, const AstBody& b, const std::string& owner) {
   for (const AstPoint& p : b.points) {
     if (auto first = body.points.find(p.name); first != body.points.end()) {
       auto& d = diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "give each point its own name");
@@ -238,13 +242,13 @@ void Expander::add_points(Body& body, const AstBody& b, const std::string& owner
   }
 }
 
-std::optional<Side> Expander::side(const AstEndpoint& ep) {
+std::optional<Side> Collector::side(const AstEndpoint& ep) {
   std::string body = ep.path.substr(0, ep.path.find('.'));
   std::string point = body.size() < ep.path.size() ? ep.path.substr(body.size() + 1) : "";
-  auto it = bodies_.find(body);
-  if (it == bodies_.end()) {
+  auto it = m_.bodies.find(body);
+  if (it == m_.bodies.end()) {
     std::vector<std::string> names;
-    for (const auto& [n, x] : bodies_) names.push_back(n);
+    for (const auto& [n, x] : m_.bodies) names.push_back(n);
     std::string near = closest_name(body, names);
     SourceLoc at = ep.loc;
     at.length = static_cast<int>(body.size());
@@ -272,7 +276,7 @@ std::optional<Side> Expander::side(const AstEndpoint& ep) {
   return Side{body, point};
 }
 
-bool Expander::collect_settings(const AstJoint& c, const std::vector<std::string>& keys,
+bool Collector::collect_settings(const AstJoint& c, const std::vector<std::string>& keys,
                                 std::map<std::string, const AstAttr*>& attrs, const std::string& unknown_hint) {
   bool ok = true;
   for (const AstAttr& at : c.attrs) {
@@ -295,7 +299,7 @@ bool Expander::collect_settings(const AstJoint& c, const std::vector<std::string
   return ok;
 }
 
-void Expander::add_force(const AstJoint& f) {
+void Collector::add_force(const AstJoint& f) {
   auto a = side(f.a);
   auto b = side(f.b);
   if (!a || !b) return;
@@ -316,32 +320,32 @@ void Expander::add_force(const AstJoint& f) {
     diags_.error(length->loc, fmt::format("`length` of `{}` needs a stiffness", f.name),
                  "add stiffness = k (N/m), or remove length");
   for (const Side* sd : {&fe.a, &fe.b}) {
-    const Body& body = bodies_.at(sd->body);
+    const Body& body = m_.bodies.at(sd->body);
     if (const auto* torque = given_in(fe.attrs, force_setting::torque); body.kind.particle() && torque)
       diags_.error(torque->loc, fmt::format("`{}` is a particle: a torque cannot act on it", sd->body),
                    "give the body an inertia, or remove the torque");
-    if (!body.kind.ground()) loads_[sd->body].push_back(ForceSym(f.name));
+    if (!body.kind.ground()) m_.loads[sd->body].push_back(ForceSym(f.name));
   }
-  if (!diags_.has_errors()) forces_.push_back(fe);
+  if (!diags_.has_errors()) m_.forces.push_back(fe);
 }
 
 /// Settings whose constant value would make the joint degenerate.
-void Expander::check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at) {
+void Collector::check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at) {
   if (at.key == joint_setting::axis.name || at.key == joint_setting::axis_a.name || at.key == joint_setting::axis_b.name) {
     if (at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
     for (const E& x : at.value->args) {
-      auto v = constant_of(*x);
+      auto v = constants_.constant_of(*x);
       if (!v || *v != 0) return;
     }
     diags_.error(at.value->loc, fmt::format("`{}` of joint `{}` is the zero vector", at.key, j.name),
                  "an axis is a direction (it is normalised): give a nonzero vector, e.g. axis = [0, 0, 1]");
     return;
   }
-  if (auto v = constant_of(*at.value)) kind.check_constant(j, at, *v, diags_);
+  if (auto v = constants_.constant_of(*at.value)) kind.check_constant(j, at, *v, diags_);
   const std::vector<int> fixed = kind.fixed_components(at.key);
   if (fixed.empty() || at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
   for (int c : fixed) {
-    auto v = constant_of(*at.value->args[static_cast<std::size_t>(c - 1)]);
+    auto v = constants_.constant_of(*at.value->args[static_cast<std::size_t>(c - 1)]);
     if (v && *v == 0) continue;
     diags_.error(at.value->args[static_cast<std::size_t>(c - 1)]->loc,
                  fmt::format("component {} of `{}` of {} joint `{}` must be 0", c, at.key, kind.name(), j.name),
@@ -349,7 +353,7 @@ void Expander::check_joint_constant(const JointKind& kind, const AstJoint& j, co
   }
 }
 
-void Expander::add_joint(const AstJoint& j) {
+void Collector::add_joint(const AstJoint& j) {
   const JointKind* kind = find_joint_kind(j.type);
   if (!kind) {
     std::vector<std::string> names = joint_kind_names();
@@ -415,7 +419,7 @@ void Expander::add_joint(const AstJoint& j) {
       diags_.error(j.loc, fmt::format("{} joint `{}` needs `{}`", j.type, j.name, required->name),
                    fmt::format("write joint {} {}(...) {{ {} = ... }}", j.name, j.type, required->name));
   for (const Side* s : {&joint.a, &joint.b}) {
-    const Body& body = bodies_.at(s->body);
+    const Body& body = m_.bodies.at(s->body);
     if (body.kind.particle() && kind->needs_orientation())
       diags_.error(j.loc, fmt::format("a {} joint needs the orientation of `{}`, which is a particle", j.type, s->body),
                    fmt::format("a particle (a body without inertia) has a translational 1-junction only, no "
@@ -423,7 +427,7 @@ void Expander::add_joint(const AstJoint& j) {
                                "inertia (inertia = diag(Jx, Jy, Jz)), or use a spherical or distance joint",
                                s->body));
   }
-  joints_.push_back(std::move(joint));
+  m_.joints.push_back(std::move(joint));
 }
 
 }  // namespace mbgc::multibody::detail

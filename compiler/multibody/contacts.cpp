@@ -9,6 +9,7 @@
 // moments and modal forces included: the same path joints take, for rigid
 // bodies, particles, beams and modal bodies, in body or joint coordinates.
 // Friction is a regularised Coulomb load at the contact point (apply_load).
+#include "multibody/collect.hpp"
 #include "multibody/expander.hpp"
 #include "multibody/setting_names.hpp"
 
@@ -31,7 +32,7 @@ std::vector<std::string> contact_setting_names() { return kContactSettings; }
 /// `vertices = [[x1, z1], [x2, z2], ...]`: at least three corners of a convex
 /// polygon in the surface body's x-z plane, counter-clockwise (x to the right,
 /// z up); when they are numbers, checked.
-void Expander::check_polygon(const Contact& contact) {
+void Collector::check_polygon(const Contact& contact) {
   const AstJoint& c = *contact.decl;
   auto it = contact.attrs.find(contact_setting::vertices.name);
   const char* how = "write vertices = [[x1, z1], [x2, z2], [x3, z3], ...]: the corners of a convex polygon in the "
@@ -49,7 +50,7 @@ void Expander::check_polygon(const Contact& contact) {
   }
   std::vector<std::array<double, 2>> corners;
   for (const E& p : v.args) {
-    auto x = constant_of(*p->args[0]), z = constant_of(*p->args[1]);
+    auto x = constants_.constant_of(*p->args[0]), z = constants_.constant_of(*p->args[1]);
     if (!x || !z) return;  // (parameters: not checked)
     corners.push_back({*x, *z});
   }
@@ -68,7 +69,7 @@ void Expander::check_polygon(const Contact& contact) {
   }
 }
 
-void Expander::add_contact(const AstJoint& c) {
+void Collector::add_contact(const AstJoint& c) {
   auto a = side(c.a);
   auto b = side(c.b);
   if (!a || !b) return;
@@ -110,10 +111,10 @@ void Expander::add_contact(const AstJoint& c) {
   using namespace contact_setting;
   auto given = [&](const Setting& s) { return given_in(contact.attrs, s) != nullptr; };
   auto constant = [&](const Setting& s) -> std::optional<double> {
-    return given(s) ? constant_of(*given_in(contact.attrs, s)->value) : std::nullopt;
+    return given(s) ? constants_.constant_of(*given_in(contact.attrs, s)->value) : std::nullopt;
   };
   auto error_at = [&](const Setting& s) { return given(s) ? given_in(contact.attrs, s)->value->loc : c.loc; };
-  const Body& surface_body = bodies_.at(b->body);
+  const Body& surface_body = m_.bodies.at(b->body);
   const char* surface_name = contact.surface == Surface::Plane    ? "plane"
                              : contact.surface == Surface::Sphere ? "sphere"
                              : contact.surface == Surface::Cylinder ? "cylinder"
@@ -173,8 +174,8 @@ void Expander::add_contact(const AstJoint& c) {
                  "add friction = mu, or remove slip_speed");
   if (given(friction) && contact.strategy == ContactStrategy::Compliant)  // (a unilateral contact's friction: its rows)
     for (const Side* sd : {&contact.a, &contact.b})
-      if (!bodies_.at(sd->body).kind.ground()) loads_[sd->body].push_back(ContactSym(c.name).friction_load());
-  if (!diags_.has_errors()) contacts_.push_back(std::move(contact));
+      if (!m_.bodies.at(sd->body).kind.ground()) m_.loads[sd->body].push_back(ContactSym(c.name).friction_load());
+  if (!diags_.has_errors()) m_.contacts.push_back(std::move(contact));
 }
 
 /// A convex polygon's signed distance to local point d (in its x-z plane),
@@ -230,8 +231,8 @@ void Expander::emit_contact(const Contact& c) {
   };
   param(B, cn.radius(), setting(contact_setting::radius, B.num(0)));
   param(B, cn.restitution(), setting(contact_setting::restitution, B.num(0)));
-  const Body& a = bodies_.at(c.a.body);
-  const Body& b = bodies_.at(c.b.body);
+  const Body& a = m_.bodies.at(c.a.body);
+  const Body& b = m_.bodies.at(c.b.body);
   auto [pa, va] = world_point(B, c.a);
   auto [pb, vb] = world_point(B, c.b);
   E Rb = !b.kind.turns() ? nullptr : rotation(B, c.b.body);

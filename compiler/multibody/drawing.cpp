@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "multibody/collect.hpp"
 #include "multibody/expander.hpp"
 #include "multibody/mesh_file.hpp"
 
@@ -123,27 +124,10 @@ std::array<std::array<double, 3>, 3> frame_along(const std::array<double, 3>& n)
 
 }  // namespace
 
-std::optional<std::array<double, 3>> Expander::constant_point(const AstExpr& e, int depth) const {
-  if (depth > 50) return std::nullopt;
-  if (e.kind == AstExpr::Kind::Name) {
-    auto p = params_.find(e.name);
-    if (p == params_.end() || !p->second) return std::nullopt;
-    return constant_point(*p->second, depth + 1);
-  }
-  if (e.kind != AstExpr::Kind::List || e.args.size() != 3) return std::nullopt;
-  std::array<double, 3> out{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    auto v = constant_of(*e.args[k]);
-    if (!v) return std::nullopt;
-    out[k] = *v;
-  }
-  return out;
-}
-
 /// `shape = box(a, b, c) | cylinder(radius, length) | sphere(radius) |
 /// mesh("file.obj")`, centred on the centre of mass (a mesh: its own
 /// coordinates, body axes from the centre of mass). Errors go to diags_.
-std::shared_ptr<Drawing> Expander::read_shape(const AstBody& b, const AstExpr& v) {
+std::shared_ptr<Drawing> Collector::read_shape(const AstBody& b, const AstExpr& v) {
   const std::string how = "write shape = box(a, b, c), cylinder(radius, length), sphere(radius) or mesh(\"file.obj\")";
   if (v.kind != AstExpr::Kind::Call) {
     diags_.error(v.loc, fmt::format("the shape of body `{}` is not one of the shapes", b.name), how);
@@ -174,7 +158,7 @@ std::shared_ptr<Drawing> Expander::read_shape(const AstBody& b, const AstExpr& v
   }
   d->shape = v.name == "box" ? Drawing::Shape::Box : v.name == "cylinder" ? Drawing::Shape::Cylinder : Drawing::Shape::Sphere;
   for (std::size_t k = 0; k < want; ++k) {
-    auto x = constant_of(*v.args[k]);
+    auto x = constants_.constant_of(*v.args[k]);
     if (!x || !std::isfinite(*x) || !(*x > 0)) {
       diags_.error(v.args[k]->loc,
                    x ? fmt::format("a dimension of body `{}`'s {} is {}", b.name, v.name, *x)
@@ -199,13 +183,13 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
   }
   const std::array<double, 3> com = [&] {
     const E c = attr(*body.decl, body_setting::com);
-    auto p = c ? constant_point(*c) : std::optional<std::array<double, 3>>(std::array<double, 3>{});
+    auto p = c ? constants_.constant_point(*c) : std::optional<std::array<double, 3>>(std::array<double, 3>{});
     return p.value_or(std::array<double, 3>{});
   }();
   std::array<double, 3> lo{}, hi{};  // around the centre of mass
   bool any = false;
   for (const auto& [name, x] : body.points)
-    if (auto p = constant_point(*x)) {
+    if (auto p = constants_.constant_point(*x)) {
       any = true;
       for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], (*p)[k] - com[k]), hi[k] = std::max(hi[k], (*p)[k] - com[k]);
     }
@@ -213,12 +197,12 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
   for (std::size_t k = 0; k < 3; ++k) edge[k] = hi[k] - lo[k], d.centre[k] = 0.5 * (hi[k] + lo[k]);
   if (!any) {  // the box of the same inertia
     const E in = attr(*body.decl, body_setting::inertia), m = attr(*body.decl, body_setting::mass);
-    auto mass = m ? constant_of(*m) : std::nullopt;
+    auto mass = m ? constants_.constant_of(*m) : std::nullopt;
     if (in && mass && *mass > 0 && in->kind == AstExpr::Kind::Call && in->name == "diag" && in->args.size() == 3) {
       std::array<double, 3> J{};
       bool ok = true;
       for (std::size_t k = 0; k < 3; ++k) {
-        auto v = constant_of(*in->args[k]);
+        auto v = constants_.constant_of(*in->args[k]);
         ok = ok && v.has_value();
         J[k] = v.value_or(0);
       }
@@ -234,11 +218,11 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
 /// The length the model's geometry spans (its points and initial positions), for default sizes.
 double Expander::model_scale() const {
   double scale = 0;
-  for (const auto& [n, body] : bodies_) {
+  for (const auto& [n, body] : m_.bodies) {
     if (const E r0 = body.decl ? attr(*body.decl, body_setting::r0) : nullptr)
-      if (auto v = constant_point(*r0)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
+      if (auto v = constants_.constant_point(*r0)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
     for (const auto& [p, x] : body.points)
-      if (auto v = constant_point(*x)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
+      if (auto v = constants_.constant_point(*x)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
     if (body.kind.field())
       for (const auto& [p, x] : body.kind.field()->points()) scale = std::max({scale, std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
   }
@@ -248,8 +232,8 @@ double Expander::model_scale() const {
 void Expander::draw_bodies() {
   const double scale = model_scale();
   std::size_t index = 0;
-  for (const std::string& n : body_order_) {
-    const Body& body = bodies_.at(n);
+  for (const std::string& n : m_.body_order) {
+    const Body& body = m_.bodies.at(n);
     if (body.kind.ground() || body.points_unknown) continue;
     Build B(body.decl->loc);
     auto d = std::make_shared<Drawing>(body.kind.field() ? body.kind.field()->drawing(scale) : body.shape ? *body.shape : default_drawing(body, scale));
@@ -261,12 +245,6 @@ void Expander::draw_bodies() {
     generated_.push_back(std::move(out));
   }
   draw_surfaces();
-}
-
-/// A number the text gives, as constant_of, also through the functions and
-/// `pi` a surface's settings may use (the snap-fit's ramp: tan(alpha * pi / 180)).
-std::optional<double> Expander::drawn_number(const AstExpr& e, int depth) const {
-  return ir::constant_value(e, constant_rules(true), depth);
 }
 
 /// The surfaces bodies touch, each posed by its surface point and the
@@ -281,7 +259,7 @@ void Expander::draw_surfaces() {
   auto add = [&](std::shared_ptr<Drawing> d, const Sym& drawn, const Side& on, const std::array<std::array<double, 3>, 3>* turn,
                  const SourceLoc& loc) {
     Build B(loc);
-    const Body& body = bodies_.at(on.body);
+    const Body& body = m_.bodies.at(on.body);
     E R = rotation(B, on.body);
     if (turn) {
       std::vector<E> rows;
@@ -291,22 +269,22 @@ void Expander::draw_surfaces() {
     d->surface = true;
     generated_.push_back(ir::ExpandedOutput{{drawn.str(), B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt}, d, nullptr});
   };
-  for (const Contact& c : contacts_) {
-    if (bodies_.at(c.b.body).points_unknown) continue;
+  for (const Contact& c : m_.contacts) {
+    if (m_.bodies.at(c.b.body).points_unknown) continue;
     auto d = std::make_shared<Drawing>();
     d->body = c.decl->name;
     d->colour = surface_colour(index++);
-    if (!bodies_.at(c.a.body).kind.ground()) d->covers.push_back(c.a.body);
+    if (!m_.bodies.at(c.a.body).kind.ground()) d->covers.push_back(c.a.body);
     auto number = [&](const Setting& s) -> std::optional<double> {
       const AstAttr* given = given_in(c.attrs, s);
-      return given ? drawn_number(*given->value) : std::nullopt;
+      return given ? constants_.drawn_number(*given->value) : std::nullopt;
     };
     auto direction = [&](const Setting& s) -> std::optional<std::array<double, 3>> {
       const AstExpr& v = *given_in(c.attrs, s)->value;
       if (v.kind != AstExpr::Kind::List || v.args.size() != 3) return std::nullopt;
       std::array<double, 3> n{};
       for (std::size_t k = 0; k < 3; ++k) {
-        auto x = drawn_number(*v.args[k]);
+        auto x = constants_.drawn_number(*v.args[k]);
         if (!x) return std::nullopt;
         n[k] = *x;
       }
@@ -327,7 +305,7 @@ void Expander::draw_surfaces() {
       const AstExpr& vertices = *given_in(c.attrs, contact_setting::vertices)->value;
       for (const E& p : vertices.args)
         for (const E& x : p->args)
-          if (auto v = drawn_number(*x)) d->profile.push_back(*v);
+          if (auto v = constants_.drawn_number(*x)) d->profile.push_back(*v);
       if (d->profile.size() != 2 * vertices.args.size()) continue;
     } else {
       auto r = number(contact_setting::surface_radius);
@@ -344,12 +322,12 @@ void Expander::draw_surfaces() {
   }
   std::vector<std::vector<double>> roads;  // each distinct profile once ({}: flat)
   std::vector<std::shared_ptr<Drawing>> road_drawings;  // (a road's wheels join its drawing until the end)
-  for (const Tyre& t : tyres_) {
+  for (const Tyre& t : m_.tyres) {
     std::vector<double> profile;
     if (const AstAttr* given = given_in(t.attrs, tyre_setting::profile)) {
       for (const E& p : given->value->args)
         for (const E& x : p->args)
-          if (auto v = drawn_number(*x)) profile.push_back(*v);
+          if (auto v = constants_.drawn_number(*x)) profile.push_back(*v);
       if (profile.size() != 2 * given->value->args.size()) continue;
     }
     if (auto same = std::find(roads.begin(), roads.end(), profile); same != roads.end()) {

@@ -1,6 +1,8 @@
 #include "multibody/expand.hpp"
 
+#include "multibody/collect.hpp"
 #include "multibody/expander.hpp"
+#include "multibody/spanning_tree.hpp"
 
 #include <tuple>
 
@@ -10,18 +12,16 @@ namespace mbgc::multibody {
 namespace detail {
 
 ir::ExpandedProgram Expander::run(const AstProgram& in) {
-  collect(in);
+  m_ = Collector(sources_, diags_, options_).run(in);
   if (diags_.has_errors()) return {};
-  if (bodies_.size() <= 1 && joints_.empty() && forces_.empty() && contacts_.empty() && tyres_.empty() && !gravity_)
+  if (m_.bodies.size() <= 1 && m_.joints.empty() && m_.forces.empty() && m_.contacts.empty() && m_.tyres.empty() && !m_.gravity)
     return ir::as_expanded(in);  // nothing multibody here
-  if (gravity_) property(Build(gravity_loc_), Sym::gravity(), gravity_);
-  for (const auto& [p, v] : bodies_.at("ground").points) property(Build(v->loc), Sym::ground_point(p), v);
-  find_tree();
-  choose_strategy();
-  check_coordinates();
+  if (m_.gravity) property(Build(m_.gravity_loc), Sym::gravity(), m_.gravity);
+  for (const auto& [p, v] : m_.bodies.at("ground").points) property(Build(v->loc), Sym::ground_point(p), v);
+  plan_tree(m_, diags_, options_.strategy_report);
   if (diags_.has_errors()) return {};
-  for (const std::string& name : body_order_) emit_body(bodies_.at(name));
-  for (Joint& j : joints_) emit_joint(j);
+  for (const std::string& name : m_.body_order) emit_body(m_.bodies.at(name));
+  for (Joint& j : m_.joints) emit_joint(j);
   place_bodies();
   define_quantities();
   draw_bodies();
@@ -29,9 +29,9 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
     auto& el = std::get<ir::ExpandedElement>(generated_[k]);
     el.value = rewrite_expr(el.value);
   }
-  for (const ForceElement& f : forces_) emit_force(f);
-  for (const Contact& c : contacts_) emit_contact(c);
-  for (const Tyre& t : tyres_) emit_tyre(t);
+  for (const ForceElement& f : m_.forces) emit_force(f);
+  for (const Contact& c : m_.contacts) emit_contact(c);
+  for (const Tyre& t : m_.tyres) emit_tyre(t);
   ir::ExpandedProgram out;
   for (const AstStmt& s : in.stmts)
     if (ir::ExpandedStmt e; ir::as_expanded(s, e)) out.stmts.push_back(rewrite_user(e));

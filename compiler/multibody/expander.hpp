@@ -29,31 +29,16 @@
 #include "multibody/joint_symbols.hpp"
 #include "multibody/model.hpp"
 #include "multibody/settings.hpp"
+#include "multibody/shapes.hpp"
 
 namespace mbgc::multibody::detail {
 
 using namespace mbgc::ir;  // the multibody layer builds the AST's statements throughout
 
-/// Quantities `body.NAME` and `joint.NAME` users may read (defined in define_quantities).
-inline const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
-                                                  "omega", "omega_world", "angular_momentum", "kinetic_energy",
-                                                  "potential_energy"};
-/// Names a flexible body's expansion adds (`arm.eta`, `arm.nu`, ...): not free for a modal body's nodes.
-inline const std::set<std::string> kFlexibleInternalNames = {"eta", "nu", "M", "sv", "sw", "se", "etadot", "damp", "modes",
-                                                      "J0", "first_moment", "mean", "stiffness", "damping",
-                                                      "modal_mass", "J1", "J2", "Hw", "elastic_energy"};
-/// Names a body's expansion uses for itself (`bob.mass`, `bob.v`, ...): not free for points.
-inline const std::set<std::string> kBodyInternalNames = {"mass", "inertia", "com", "r0", "v0", "q0", "w0", "v", "m", "r",
-                                                  "weight", "w", "J", "ejs", "qrate", "q"};
-
-class Beam;
-
 class Expander {
  public:
   Expander(ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options)
-      : sources_(sources), diags_(diags), search_dirs_(options.search_dirs), override_(options.constraints),
-        strategy_(options.constraints.value_or(Strategy::Auto)), strategy_report_(options.strategy_report),
-        contact_strategy_(options.contacts.value_or(ContactStrategy::Unilateral)) {}
+      : sources_(sources), diags_(diags), options_(options) {}
 
   ir::ExpandedProgram run(const AstProgram& in);
 
@@ -73,45 +58,6 @@ class Expander {
   /// A 1-junction with the given elements bonded into / out of it.
   void junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out = {});
   void named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to);
-
-  // ---- 1. collect and check bodies, joints, force elements and settings (collect.cpp; contacts: contacts.cpp)
-  void collect(const AstProgram& in);
-  bool connector_name_ok(const AstJoint& j, std::map<std::string, const AstJoint*>& seen);
-  void duplicate(const char* what, const std::string& name, const SourceLoc& at, const SourceLoc& first);
-  void setting(const AstSetting& st);
-  std::optional<Strategy> strategy_of(const AstExpr& v, const char* key);
-  void add_body(const AstBody& b);
-  void add_points(Body& body, const AstBody& b, const std::string& owner);
-  std::optional<Side> side(const AstEndpoint& ep);
-  void add_force(const AstJoint& f);
-  /// A connector's settings by key into `attrs`: an unknown key (with a
-  /// did-you-mean, else `unknown_hint`) or a key given twice is an error.
-  bool collect_settings(const AstJoint& c, const std::vector<std::string>& keys,
-                        std::map<std::string, const AstAttr*>& attrs, const std::string& unknown_hint);
-  void check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at);
-  void add_joint(const AstJoint& j);
-
-  // ---- shapes and constants known from the text (shapes.cpp)
-  std::optional<Shape> shape_of(const AstExpr& e, int depth = 0) const;
-  std::optional<double> constant_of(const AstExpr& e, int depth = 0) const;
-  /// ir::constant_value's rules here: parameters by their definitions, to
-  /// kMaxConstantDepth levels (a definition that refers back to itself has
-  /// no value); with `functions`, also pi and the scalar functions.
-  ir::ConstantRules constant_rules(bool functions) const;
-  static constexpr int kMaxConstantDepth = 50;
-  static bool mentions_time(const AstExpr& e);
-  void check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant = true);
-
-  // ---- 1b. settings of flexible bodies: beams and modal-data files (flexible_settings.cpp;
-  // their tables: settings.hpp)
-  void check_frame(Beam& beam, const AstBody& b, const AstAttr* given);
-  bool tisserand_allowed(const Beam& beam, const AstBody& b, const SourceLoc& loc);
-  void add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind);
-  int mode_count(const AstExpr& v) const;
-  void record_setting(std::map<std::string, const AstAttr*>& given, const AstAttr& a, const AstBody& b);
-  void read_slope_limit(double& limit_rad, const AstBody& b, const AstAttr& a);
-  void add_modal_body(Body& body, const AstBody& b, const AstExpr& v);
-  void check_section(const AstExpr& v);
 
   // ---- 2. rigid bodies and particles; the pose of any body (rigid_body.cpp)
   void emit_body(const Body& body);
@@ -150,14 +96,7 @@ class Expander {
   struct FlexibleSeat { E point, slope, turn, quaternion, turn_rate; };
   FlexibleSeat flexible_seat(const Build& B, const Side& side, bool free_rotation) const;
 
-  // ---- 4. the spanning tree and initial conditions along it (tree.cpp)
-  void find_tree();
-  std::vector<std::string> path_to_ground(std::string body) const;
-  struct Problem { SourceLoc loc; std::string message, hint; };
-  std::vector<Problem> coordinate_problems() const;
-  void mark_coordinate_bodies();
-  void choose_strategy();
-  void check_coordinates();
+  // ---- 4. initial conditions along the spanning tree (tree.cpp; the tree itself: spanning_tree.hpp)
   void place_bodies();
   std::string placed_hint(const std::string& jn) const;
   Pose pose(const Build& B, const std::string& body);
@@ -169,24 +108,17 @@ class Expander {
   void apply_load(const Build& B, const LoadSym& source, const Side& s, E force, E torque, double sign);
 
   // ---- 5b. contacts (contacts.cpp)
-  void add_contact(const AstJoint& c);
   void emit_contact(const Contact& c);
-  void check_polygon(const Contact& c);
   std::pair<E, E> polygon_gap(const Build& B, const Contact& c, E d);
 
   // ---- 5c. tyres (tyres.cpp)
-  void add_tyre(const AstJoint& t);
-  void check_profile(const Tyre& t, const AstExpr& v);
   void emit_tyre(const Tyre& t);
   E sig_vector(const Build& B, const VectorSym& name, E value);
 
   // ---- 6b. how bodies are drawn for --animate (drawing.cpp)
-  std::optional<std::array<double, 3>> constant_point(const AstExpr& e, int depth = 0) const;
-  std::shared_ptr<Drawing> read_shape(const AstBody& b, const AstExpr& v);
   Drawing default_drawing(const Body& body, double scale) const;
   double model_scale() const;
   void draw_bodies();
-  std::optional<double> drawn_number(const AstExpr& e, int depth = 0) const;
   void draw_surfaces();
 
   // ---- 6. quantities users may name (quantities.cpp)
@@ -200,35 +132,19 @@ class Expander {
   void state_unit(const AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what,
                   std::vector<ir::ExpandedUnitCheck>& out);
 
-  ir::SourceManager& sources_;                // modal-data files join it (diagnostics, depfile)
+  ir::SourceManager& sources_;  // (for the collect pass)
   Diagnostics& diags_;
-  std::vector<std::string> search_dirs_;     // mbgc -I: where modal-data files are looked for
-  std::map<std::string, Body> bodies_;
-  std::vector<std::string> body_order_;
-  std::vector<Joint> joints_;
-  std::vector<ForceElement> forces_;
-  std::vector<Contact> contacts_;
-  std::vector<Tyre> tyres_;
-  std::map<std::string, std::vector<LoadSym>> loads_;  // body -> what pushes on it (force elements, friction, tyres)
+  ExpandOptions options_;
+  Model m_;                     // what the collect pass read (collect.hpp); the tree pass marks its bodies and joints
+  Constants constants_{m_.params};
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
   struct CoordinateValues { E angle, rate, displacement, displacement_rate; };
   std::map<std::string, CoordinateValues> coordinate_values_;  // coordinates joints
-  std::vector<const Joint*> tree_order_;                        // tree joints, breadth first from ground
   std::map<std::string, E> quantity_;
   std::set<std::string> used_quantities_;  // the quantities the user's expressions name (units.cpp)
-  std::map<std::string, E> params_;                // the program's top-level parameters
-  std::map<std::string, SourceLoc> point_locs_;    // "body.point" -> declaration
-  std::map<std::string, SourceLoc> instances_;     // component instances (their parts are named `instance.part`)
-  std::set<std::string> repeated_;                 // names reported as declared in every loop iteration
   std::set<std::string> generated_names_;          // parameters, elements and junctions expand wrote
   std::vector<std::size_t> applied_;               // generated_ indices of joint drive loads (user expressions)
-  E gravity_;
-  SourceLoc gravity_loc_;
-  std::optional<Strategy> override_;  // mbgc --constraints
-  Strategy strategy_;                  // the model-level strategy
-  std::string* strategy_report_;       // ExpandOptions::strategy_report
-  ContactStrategy contact_strategy_;   // of contacts without their own (mbgc --contacts)
   std::vector<ir::ExpandedStmt> generated_;
   // While a body moved by joint coordinates (and its tree joint) is written:
   // the tree body and its parent every element and junction is tagged with.
@@ -237,7 +153,7 @@ class Expander {
   class TreeScope {
    public:
     TreeScope(Expander& x, const std::string& n) : x_(x), saved_(x.tree_tag_) {
-      const Body& b = x.bodies_.at(n);
+      const Body& b = x.m_.bodies.at(n);
       if (b.by_coordinates) x.tree_tag_ = {n, b.tree_parent};
     }
     ~TreeScope() { x_.tree_tag_ = saved_; }

@@ -37,8 +37,8 @@ void Expander::emit_flexible(const Body& body) {
   // block in the tree elimination).
   const bool own_states = !body.by_coordinates;
   std::vector<Sym> nu_in;
-  if (gravity_) nu_in.push_back(n.weight());
-  if (auto it = loads_.find(d.name); it != loads_.end())
+  if (m_.gravity) nu_in.push_back(n.weight());
+  if (auto it = m_.loads.find(d.name); it != m_.loads.end())
     for (const LoadSym& f : it->second) nu_in.push_back(f.on(d.name));
   std::vector<Sym> nu_out = {n.M(), n.ejs()};
   if (own_states) nu_out.insert(nu_out.end(), {n.sv().port(1), n.sw().port(1), n.se().port(1)});
@@ -60,7 +60,7 @@ void Expander::emit_flexible(const Body& body) {
   E dT = B.call("transpose", {B.call("jacobian", {T, B.ref(n.eta().displacement())})});
   element(B, "R", n.ejs(), nullptr,
           {kv(element_setting::r_effort, B.call("vcat", {cross(w, P), B.op('+', cross(w, H), cross(V, P)), B.neg(dT)}), d.loc)});
-  if (gravity_) {
+  if (m_.gravity) {
     // generalised gravity force: -dU/d(position, rotation, eta) with U = -g . (m r + R s(eta))
     E g = B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity()));
     E coupling = rows_to_matrix(B, beam.translation_coupling(B, n, eta));
@@ -134,7 +134,7 @@ std::pair<E, E> Expander::flexible_point_motion(const Build& B, const std::strin
 /// its junction nu = [V; omega; eta']: the power F.v_P + T.w_P written in
 /// nu, i.e. [R'F; P x R'F + R'T; (dP/deta)' R'F + (dtheta/deta)' R'T].
 E Expander::flexible_load(const Build& B, const std::string& body, const std::string& point, E force, E torque) {
-  const Deformation& beam = *bodies_.at(body).kind.field();
+  const Deformation& beam = *m_.bodies.at(body).kind.field();
   const FlexibleSym n(body);
   Eta eta = state_eta(B, body, beam);
   E at = point.empty() ? B.vec(0, 0, 0) : beam.point(B, n, point, eta);
@@ -173,7 +173,7 @@ void Expander::flexible_quantities(const Build& B, const Body& body) {
   quantity_[n.quantity("kinetic_energy").str()] = B.op('*', B.num(0.5), B.dot(B.ref(n.nu().flow()), p));
   E elastic = B.op('*', B.num(0.5), B.dot(B.ref(n.eta().displacement()), B.ref(n.eta().effort())));
   quantity_[n.elastic_energy().str()] = elastic;
-  E gravity = gravity_ ? B.neg(B.dot(B.ref(Sym::gravity()), B.op('+', B.op('*', B.ref(n.mass()), r),
+  E gravity = m_.gravity ? B.neg(B.dot(B.ref(Sym::gravity()), B.op('+', B.op('*', B.ref(n.mass()), r),
                                                                     B.op('*', R, beam.first_moment(B, n, eta)))))
                        : B.num(0);
   quantity_[n.quantity("potential_energy").str()] = B.op('+', gravity, elastic);

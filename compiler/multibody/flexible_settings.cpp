@@ -1,5 +1,5 @@
 // multibody/flexible_settings.cpp — settings of flexible bodies: beams and modal-data files.
-#include "multibody/expander.hpp"
+#include "multibody/collect.hpp"
 
 #include "multibody/beam.hpp"
 #include "multibody/modal_body.hpp"
@@ -24,7 +24,7 @@ namespace mbgc::multibody::detail {
 /// int r0 x u dm = 0 free-free modes satisfy (they are orthogonal to the
 /// rigid motions); those two couplings then drop out of M(eta), and the
 /// compiler says so. The default is the one the mode sets allow.
-void Expander::check_frame(Beam& beam, const AstBody& b, const AstAttr* given) {
+void Collector::check_frame(Beam& beam, const AstBody& b, const AstAttr* given) {
   bool any_free = false, all_free = true;
   auto count_set = [&](bool free) {
     any_free = any_free || free;
@@ -100,7 +100,7 @@ void Expander::check_frame(Beam& beam, const AstBody& b, const AstAttr* given) {
 /// Any other mode set makes 5.34 the nonholonomic constraint
 /// eta^T G eta' = 0, whose row G^T eta vanishes at the undeformed shape:
 /// a multiplier for it is undefined where every run starts.
-bool Expander::tisserand_allowed(const Beam& beam, const AstBody& b, const SourceLoc& loc) {
+bool Collector::tisserand_allowed(const Beam& beam, const AstBody& b, const SourceLoc& loc) {
   const bool free_y = beam.y && beam.y->supports() == flex::Supports::FreeFree;
   const bool free_z = beam.z && beam.z->supports() == flex::Supports::FreeFree;
   if (beam.torsion) {
@@ -131,7 +131,7 @@ bool Expander::tisserand_allowed(const Beam& beam, const AstBody& b, const Sourc
   return true;
 }
 
-void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
+void Collector::add_flexible_body(Body& body, const AstBody& b, const AstAttr& kind) {
   const AstExpr& v = *kind.value;
   if (v.kind == AstExpr::Kind::Call && v.name == "modal") {
     add_modal_body(body, b, v);
@@ -172,7 +172,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
     return nullptr;
   };
   if (const AstAttr* len = need(beam_setting::length)) {
-    auto v = constant_of(*len->value);
+    auto v = constants_.constant_of(*len->value);
     if (!v || !(*v > 0))
       diags_.error(len->value->loc, fmt::format("the length of beam `{}` must be a positive constant", b.name),
                    "the compiler integrates the mode shapes over the length: write a number or a constant parameter");
@@ -234,7 +234,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                  "stretch or twist (modes_axial, modes_torsion)");
   if (auto g = given.find(beam_setting::geometric_stiffness.name); g != given.end()) {
     const AstExpr& v = *g->second->value;
-    auto flag = constant_of(v);  // 1 or 0: a parameter, so that `mbgc --set` can switch it
+    auto flag = constants_.constant_of(v);  // 1 or 0: a parameter, so that `mbgc --set` can switch it
     if (v.kind == AstExpr::Kind::Name && (v.name == "on" || v.name == "off")) beam->geometric_stiffness = v.name == "on";
     else if (flag && (*flag == 0 || *flag == 1)) beam->geometric_stiffness = *flag == 1;
     else diags_.error(v.loc, "geometric_stiffness is `on` or `off` (or a constant 1 or 0)",
@@ -248,7 +248,7 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
   for (const AstPoint& p : b.points) {
     bool on_axis = false;
     if (p.value->kind == AstExpr::Kind::List && p.value->args.size() == 3) {
-      auto x = constant_of(*p.value->args[0]), y = constant_of(*p.value->args[1]), z = constant_of(*p.value->args[2]);
+      auto x = constants_.constant_of(*p.value->args[0]), y = constants_.constant_of(*p.value->args[1]), z = constants_.constant_of(*p.value->args[2]);
       const double c = beam->origin_m;  // body x is measured from the frame's origin
       if (x && y && z && *y == 0 && *z == 0 && *x >= -c && *x <= beam->length_m - c) {
         on_axis = true;
@@ -265,19 +265,19 @@ void Expander::add_flexible_body(Body& body, const AstBody& b, const AstAttr& ki
                                      "the centre): the joint there sees the beam's deflection and slope at x",
                                      -beam->origin_m, beam->length_m - beam->origin_m));
   }
-  bodies_[b.name] = body;
-  body_order_.push_back(b.name);
+  m_.bodies[b.name] = body;
+  m_.body_order.push_back(b.name);
 }
 
 /// The n of a mode set `name(n)` (n a whole constant, 1 to 12); 0 if it is not one.
-int Expander::mode_count(const AstExpr& v) const {
+int Collector::mode_count(const AstExpr& v) const {
   if (v.kind != AstExpr::Kind::Call || v.args.size() != 1) return 0;
-  auto n = constant_of(*v.args[0]);
+  auto n = constants_.constant_of(*v.args[0]);
   return n && *n >= 1 && *n <= 12 && *n == std::floor(*n) ? static_cast<int>(*n) : 0;
 }
 
 /// A flexible body's known setting: reported if given twice, its shape checked.
-void Expander::record_setting(std::map<std::string, const AstAttr*>& given, const AstAttr& a, const AstBody& b) {
+void Collector::record_setting(std::map<std::string, const AstAttr*>& given, const AstAttr& a, const AstBody& b) {
   if (auto [first, fresh] = given.emplace(a.key, &a); !fresh) {
     auto& d = diags_.error(a.loc, fmt::format("`{}` of body `{}` is given twice", a.key, b.name), "keep one of them");
     d.notes.push_back({first->second->loc, "first given here"});
@@ -286,8 +286,8 @@ void Expander::record_setting(std::map<std::string, const AstAttr*>& given, cons
     check_shape(*a.value, fmt::format("`{}` of body `{}`", a.key, b.name), *s->expected);
 }
 
-void Expander::read_slope_limit(double& limit_rad, const AstBody& b, const AstAttr& a) {
-  auto v = constant_of(*a.value);
+void Collector::read_slope_limit(double& limit_rad, const AstBody& b, const AstAttr& a) {
+  auto v = constants_.constant_of(*a.value);
   if (!v || !(*v > 0) || *v > 1.5)
     diags_.error(a.value->loc, fmt::format("the slope limit of flexible body `{}` must be a constant in (0, 1.5] rad", b.name),
                  "the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by more "
@@ -298,12 +298,12 @@ void Expander::read_slope_limit(double& limit_rad, const AstBody& b, const AstAt
 /// `flexible = modal("file.mbm")`: a reduced body whose mass, stiffness and
 /// nodes come from a modal-data file (docs/modal_format.md). The model
 /// adds only its damping ratio, slope limit and initial state.
-void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
+void Collector::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   if (v.args.size() != 1 || v.args[0]->kind != AstExpr::Kind::String) {
     diags_.error(v.loc, "modal(...) takes the name of a modal-data file", "write flexible = modal(\"arm.mbm\")");
     body.points_unknown = true;
-    bodies_[b.name] = body;
-    body_order_.push_back(b.name);
+    m_.bodies[b.name] = body;
+    m_.body_order.push_back(b.name);
     return;
   }
   static const std::vector<std::string> keys = setting_names(modal_setting::kAll);
@@ -334,7 +334,7 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   if (auto s = given.find(beam_setting::slope_limit.name); s != given.end()) read_slope_limit(slope_limit_rad, b, *s->second);
   if (auto s = given.find(modal_setting::stiffness_scale.name); s != given.end()) {
     // a parameter may stand here (the simulator's --set changes it); its value as written must already hold
-    auto k = constant_of(*s->second->value);
+    auto k = constants_.constant_of(*s->second->value);
     if (k && !(*k > 0 && std::isfinite(*k)))
       diags_.error(s->second->value->loc,
                    fmt::format("the stiffness scale of modal body `{}` is {}: it must be positive", b.name, *k),
@@ -345,8 +345,8 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   auto data = flex::read_modal_file(file.name, file.loc, search_dirs_, sources_, diags_);
   if (!data) {
     body.points_unknown = true;  // registered all the same: joints to it are not reported again
-    bodies_[b.name] = body;
-    body_order_.push_back(b.name);
+    m_.bodies[b.name] = body;
+    m_.body_order.push_back(b.name);
     return;
   }
   Build B(file.loc);
@@ -363,11 +363,11 @@ void Expander::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   auto modal = std::make_shared<ModalBody>(std::make_shared<const flex::ModalData>(std::move(*data)));
   modal->slope_limit_rad = slope_limit_rad;
   body.kind = Flexible{modal};
-  bodies_[b.name] = body;
-  body_order_.push_back(b.name);
+  m_.bodies[b.name] = body;
+  m_.body_order.push_back(b.name);
 }
 
-void Expander::check_section(const AstExpr& v) {
+void Collector::check_section(const AstExpr& v) {
   static const std::map<std::string, std::size_t> arity = {{"rectangle", 2}, {"circle", 1}, {"tube", 2}};
   auto it = v.kind == AstExpr::Kind::Call ? arity.find(v.name) : arity.end();
   if (it == arity.end() || it->second != v.args.size())

@@ -17,7 +17,7 @@ namespace mbgc::multibody::detail {
 // ---- 4. force elements ------------------------------------------------------------
 /// World position and velocity of a force element's point.
 std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
-  const Body& body = bodies_.at(s.body);
+  const Body& body = m_.bodies.at(s.body);
   const BodySym n(s.body);
   E local = s.point.empty() ? B.vec(0, 0, 0) : B.ref(n.point(s.point));
   using Motion = std::pair<E, E>;
@@ -71,7 +71,7 @@ void Expander::emit_force(const ForceElement& f) {
 /// a force and a torque, or on a flexible body one source on its whole
 /// junction); nothing on ground.
 void Expander::apply_load(const Build& B, const LoadSym& source, const Side& s, E force, E torque, double sign) {
-  const Body& body = bodies_.at(s.body);
+  const Body& body = m_.bodies.at(s.body);
   auto signed_ = [&](E e) { return sign < 0 ? B.neg(e) : e; };
   // the force on the junction of the centre's velocity (in the body's axes where that is)
   auto push = [&] {

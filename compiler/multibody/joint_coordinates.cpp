@@ -28,8 +28,8 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const bool fwd = j.a_is_parent;
   const std::string& parent = fwd ? j.a.body : j.b.body;
   const std::string& child = fwd ? j.b.body : j.a.body;
-  const Body& P = bodies_.at(parent);
-  const Body& C = bodies_.at(child);
+  const Body& P = m_.bodies.at(parent);
+  const Body& C = m_.bodies.at(child);
   const FlexibleSym on_parent(parent), on_child(child);  // (modal names only where flexible)
   TreeScope tree(*this, child);
   // The relative motion of B's joint frame in A's: a translation disp (A's
@@ -104,9 +104,9 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   if (seat_a.turn) Fa = times(seat_a.turn, Fa);
   if (seat_b.turn) Fb = times(seat_b.turn, Fb);
   // A's point, moved by d; a particle's joint point is its position
-  E pa = B.op('+', bodies_.at(j.a.body).kind.particle() ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.ref(jn.point('a')),
+  E pa = B.op('+', m_.bodies.at(j.a.body).kind.particle() ? B.vec(0, 0, 0) : seat_a.point ? seat_a.point : B.ref(jn.point('a')),
               B.op('*', Fa, disp));
-  E pb = bodies_.at(j.b.body).kind.particle() ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.ref(jn.point('b'));
+  E pb = m_.bodies.at(j.b.body).kind.particle() ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.ref(jn.point('b'));
   E qP = quaternion(B, parent), RP = rotation(B, parent);
   if (seat.quaternion) qP = qmul(qP, seat.quaternion);
   E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
@@ -244,7 +244,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
 }
 
 Expander::FlexibleSeat Expander::flexible_seat(const Build& B, const Side& s, bool free_rotation) const {
-  const Body& P = bodies_.at(s.body);
+  const Body& P = m_.bodies.at(s.body);
   if (!P.kind.field() || s.point.empty()) return {};  // rigid, or a flexible body's fixed origin (check_coordinates)
   const Eta eta = state_eta(B, s.body, *P.kind.field());
   FlexibleSeat seat;

@@ -14,7 +14,7 @@
 namespace mbgc::multibody::detail {
 
 Frame Expander::frame(const Build& B, const Joint& j, const Side& s, char side) {
-  const Body& body = bodies_.at(s.body);
+  const Body& body = m_.bodies.at(s.body);
   Frame f;
   f.kind = body.kind;
   f.body = s.body;
@@ -41,7 +41,7 @@ Frame Expander::frame(const Build& B, const Joint& j, const Side& s, char side) 
 void Expander::joint_params(const Build& B, const Joint& j) {
   const JointSym jn(j.decl->name);
   for (const auto& [s, side] : {std::pair{&j.a, 'a'}, std::pair{&j.b, 'b'}}) {
-    const Body& body = bodies_.at(s->body);
+    const Body& body = m_.bodies.at(s->body);
     const BodySym on(s->body);
     E point = s->point.empty() ? B.vec(0, 0, 0) : B.ref(on.point(s->point));
     if (!body.kind.turns()) property(B, jn.point(side), point);
@@ -57,7 +57,7 @@ void Expander::joint_params(const Build& B, const Joint& j) {
   // radius of gyration of the lighter body, so one stiffness suits all rows.
   std::vector<E> radii;
   for (const Side* s : {&j.a, &j.b}) {
-    const Body& body = bodies_.at(s->body);
+    const Body& body = m_.bodies.at(s->body);
     if (!body.kind.turns()) continue;
     const BodySym on(s->body);
     E I = B.ref(on.inertia());
@@ -92,7 +92,7 @@ void Expander::rates_into(const Build& B, const std::function<Sym(char)>& mtf, E
   const std::string& b = f.body;
   const BodySym on(b);
   std::vector<std::pair<Sym, Sym>> parts;  // (MTF, body junction)
-  const Body& body = bodies_.at(b);
+  const Body& body = m_.bodies.at(b);
   if (body.by_coordinates) {
     // (a cut joint on a body moved by joint coordinates: its pose is signals,
     // r and R; r' = R V for V in body axes (else V), R' = R skew(omega))
@@ -129,7 +129,7 @@ void Expander::rates_into(const Build& B, const std::function<Sym(char)>& mtf, E
       parts.push_back({mtf('r'), on.w()});
     }
   }
-  if (bodies_.at(b).kind.field()) {  // the joint's point moves with the beam's deflection
+  if (m_.bodies.at(b).kind.field()) {  // the joint's point moves with the beam's deflection
     const FlexibleSym flex(b);
     element(B, "MTF", mtf('e'), B.call("jacobian", {rows_vec, B.ref(flex.eta().displacement())}));
     parts.push_back({mtf('e'), flex.etadot()});

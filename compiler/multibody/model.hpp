@@ -115,6 +115,22 @@ struct Frame {
   E X, Y, Z;   // joint-frame axes, world
 };
 
+/// What the collect pass (collect.hpp) reads of a model, checked: the input
+/// of the passes that write its bond graph.
+struct Model {
+  std::map<std::string, Body> bodies;          // by name, ground among them
+  std::vector<std::string> body_order;         // as declared (ground not among them)
+  std::vector<Joint> joints;
+  std::vector<ForceElement> forces;
+  std::vector<Contact> contacts;
+  std::vector<Tyre> tyres;
+  std::map<std::string, std::vector<LoadSym>> loads;  // body -> what pushes on it (force elements, friction, tyres)
+  std::map<std::string, E> params;             // the program's top-level parameters
+  E gravity;                                   // `gravity = [...]` (null: none)
+  ir::SourceLoc gravity_loc;
+  std::vector<const Joint*> tree_order;        // the spanning tree's joints, breadth first from ground (spanning_tree.hpp)
+};
+
 /// Pose and velocity of a placed body at the start (ground: constants).
 struct Pose { E q, R, r, v, w; };
 

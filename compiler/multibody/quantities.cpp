@@ -14,8 +14,8 @@
 namespace mbgc::multibody::detail {
 
 void Expander::define_quantities() {
-  for (const std::string& name : body_order_) {
-    const Body& body = bodies_.at(name);
+  for (const std::string& name : m_.body_order) {
+    const Body& body = m_.bodies.at(name);
     const BodySym n(name);
     Build B(body.decl->loc);
     if (body.kind.field()) {
@@ -46,9 +46,9 @@ void Expander::define_quantities() {
       }
     }
     quantity("kinetic_energy") = ke;
-    quantity("potential_energy") = gravity_ ? B.neg(B.op('*', B.ref(n.mass()), B.dot(B.ref(Sym::gravity()), r))) : B.num(0);
+    quantity("potential_energy") = m_.gravity ? B.neg(B.op('*', B.ref(n.mass()), B.dot(B.ref(Sym::gravity()), r))) : B.num(0);
   }
-  for (const Joint& j : joints_) {
+  for (const Joint& j : m_.joints) {
     const JointSym jn(j.decl->name);
     Build B(j.decl->loc);
     auto quantity = [&](const char* q) -> E& { return quantity_[jn.quantity(q).str()]; };
@@ -62,9 +62,9 @@ void Expander::define_quantities() {
       const std::string child = j.a_is_parent ? j.b.body : j.a.body;
       E sign = B.num(j.a_is_parent ? 1 : -1);
       E reaction_f = B.ref(jn.reaction_force().effort());
-      if (body_frame_velocity(bodies_.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
+      if (body_frame_velocity(m_.bodies.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
       quantity("force") = B.op('*', sign, reaction_f);
-      if (!bodies_.at(child).kind.particle())
+      if (!m_.bodies.at(child).kind.particle())
         quantity("torque") = B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_torque().effort())));
       if (j.kind->has_angle()) {
         quantity("angle") = cv->second.angle;
@@ -82,7 +82,7 @@ void Expander::define_quantities() {
     E force = B.ref(jn.row_rate(side, 't').effort(1));
     if (!Bf.kind.ground()) force = B.neg(force);
     // (a cut joint on a body moved by joint coordinates: that junction is in the body's axes)
-    if (body_frame_velocity(bodies_.at(body_side.body))) force = B.op('*', body_side.R, force);
+    if (body_frame_velocity(m_.bodies.at(body_side.body))) force = B.op('*', body_side.R, force);
     if (body_side.kind.particle()) {
       quantity("force") = force;
     } else {
@@ -109,7 +109,7 @@ void Expander::check_known(const AstExpr& e) {
   std::size_t dot = e.name.find('.');
   if (dot == std::string::npos) return;
   const std::string owner = e.name.substr(0, dot);
-  const bool is_body = owner != "ground" && bodies_.count(owner);
+  const bool is_body = owner != "ground" && m_.bodies.count(owner);
   const bool is_joint = frames_.count(owner) > 0;
   if (!is_body && !is_joint) return;
   if (generated_names_.count(e.name)) return;
@@ -118,7 +118,7 @@ void Expander::check_known(const AstExpr& e) {
   for (const auto& [q, x] : quantity_)
     if (q.compare(0, owner.size() + 1, owner + ".") == 0) offered.push_back(q.substr(owner.size() + 1));
   if (is_body)
-    for (const auto& [p, x] : bodies_.at(owner).points) offered.push_back(p);
+    for (const auto& [p, x] : m_.bodies.at(owner).points) offered.push_back(p);
   std::string rest = e.name.substr(dot + 1);
   std::string near = closest_name(rest, offered);
   diags_.error(e.loc, fmt::format("{} `{}` has no quantity `{}`", is_body ? "body" : "joint", owner, rest),

@@ -29,8 +29,8 @@ void Expander::emit_rigid(const Body& body) {
   // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
   // applied loads (force elements) push into the body's junctions
   std::vector<Sym> forces_in, torques_in;
-  if (gravity_) forces_in.push_back(n.weight());
-  if (auto it = loads_.find(d.name); it != loads_.end())
+  if (m_.gravity) forces_in.push_back(n.weight());
+  if (auto it = m_.loads.find(d.name); it != m_.loads.end())
     for (const LoadSym& f : it->second) {
       forces_in.push_back(f.on(d.name, 'f'));
       if (!body.kind.particle()) torques_in.push_back(f.on(d.name, 't'));
@@ -53,7 +53,7 @@ void Expander::emit_rigid(const Body& body) {
   if (own_states)
     element(B, "C", n.r(), nullptr,
             {kv(element_setting::c_effort, B.vec(0, 0, 0), d.loc), kv(element_setting::q0, B.ref(n.r0()), d.loc)});
-  if (gravity_)
+  if (m_.gravity)
     element(B, "Se", n.weight(),
             B.op('*', B.ref(n.mass()),
                  body_axes ? B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity())) : B.ref(Sym::gravity())));
@@ -80,7 +80,7 @@ void Expander::emit_rigid(const Body& body) {
 // ---- pose of a body: its states, or (joint coordinates) signals of its tree joint ----
 /// Centre-of-mass position, world frame.
 E Expander::position(const Build& B, const std::string& body) const {
-  const Body& b = bodies_.at(body);
+  const Body& b = m_.bodies.at(body);
   if (b.kind.ground()) return B.vec(0, 0, 0);
   const BodySym n(body);
   if (!b.by_coordinates) return B.ref(n.r().displacement());
@@ -89,7 +89,7 @@ E Expander::position(const Build& B, const std::string& body) const {
 
 /// Orientation quaternion [w, x, y, z], body -> world.
 E Expander::quaternion(const Build& B, const std::string& body) const {
-  const Body& b = bodies_.at(body);
+  const Body& b = m_.bodies.at(body);
   if (!b.kind.turns()) return B.list({B.num(1), B.num(0), B.num(0), B.num(0)});
   const BodySym n(body);
   if (!b.by_coordinates) return B.ref(n.q().displacement());
@@ -103,7 +103,7 @@ bool Expander::body_frame_velocity(const Body& b) const { return b.by_coordinate
 
 /// Centre-of-mass velocity, world frame.
 E Expander::velocity(const Build& B, const std::string& body) const {
-  const Body& b = bodies_.at(body);
+  const Body& b = m_.bodies.at(body);
   if (b.kind.ground()) return B.vec(0, 0, 0);
   const Sym v = BodySym(body).v().flow();
   if (body_frame_velocity(b)) return B.op('*', rotation(B, body), B.ref(v));
@@ -112,7 +112,7 @@ E Expander::velocity(const Build& B, const std::string& body) const {
 
 /// Rotation matrix body -> world (computed once per body in coordinates).
 E Expander::rotation(const Build& B, const std::string& body) const {
-  const Body& b = bodies_.at(body);
+  const Body& b = m_.bodies.at(body);
   if (!b.kind.turns()) return B.call("eye", {B.num(3)});
   const BodySym n(body);
   if (!b.by_coordinates) return B.call("rotq", {B.ref(n.q().displacement())});

@@ -1,5 +1,7 @@
 // multibody/shapes.cpp — shapes and constants known from the text.
-#include "multibody/expander.hpp"
+#include "multibody/shapes.hpp"
+
+#include "multibody/collect.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,10 +15,9 @@
 
 namespace mbgc::multibody::detail {
 
-// ---- shapes and constants known from the text ---------------------------------------
-/// The shape of `e` if it follows from numbers, lists, parameters and the
-/// built-in functions; nullopt when it cannot be told here (checked later).
-std::optional<Shape> Expander::shape_of(const AstExpr& e, int depth) const {
+using ir::AstExpr;
+
+std::optional<Shape> Constants::shape_of(const AstExpr& e, int depth) const {
   if (depth > 50) return std::nullopt;
   auto sub = [&](std::size_t k) { return k < e.args.size() ? shape_of(*e.args[k], depth + 1) : std::nullopt; };
   switch (e.kind) {
@@ -99,25 +100,45 @@ std::optional<Shape> Expander::shape_of(const AstExpr& e, int depth) const {
   return std::nullopt;
 }
 
-/// The value of `e` if it is a constant: numbers, parameters and + - * / ^
-/// (ir::constant_value, with a parameter's definition evaluated in turn).
-std::optional<double> Expander::constant_of(const AstExpr& e, int depth) const {
-  return ir::constant_value(e, constant_rules(false), depth);
+/// (ir::constant_value, with a parameter's definition evaluated in turn)
+std::optional<double> Constants::constant_of(const AstExpr& e, int depth) const {
+  return ir::constant_value(e, rules(false), depth);
 }
 
-ir::ConstantRules Expander::constant_rules(bool functions) const {
-  ir::ConstantRules rules;
-  rules.functions = functions;
-  rules.max_depth = kMaxConstantDepth;
-  rules.name = [this, functions](const AstExpr& name, int depth) -> std::optional<double> {
+std::optional<double> Constants::drawn_number(const AstExpr& e, int depth) const {
+  return ir::constant_value(e, rules(true), depth);
+}
+
+std::optional<std::array<double, 3>> Constants::constant_point(const AstExpr& e, int depth) const {
+  if (depth > 50) return std::nullopt;
+  if (e.kind == AstExpr::Kind::Name) {
+    auto p = params_.find(e.name);
+    if (p == params_.end() || !p->second) return std::nullopt;
+    return constant_point(*p->second, depth + 1);
+  }
+  if (e.kind != AstExpr::Kind::List || e.args.size() != 3) return std::nullopt;
+  std::array<double, 3> out{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    auto v = constant_of(*e.args[k]);
+    if (!v) return std::nullopt;
+    out[k] = *v;
+  }
+  return out;
+}
+
+ir::ConstantRules Constants::rules(bool functions) const {
+  ir::ConstantRules r;
+  r.functions = functions;
+  r.max_depth = kMaxDepth;
+  r.name = [this, functions](const AstExpr& name, int depth) -> std::optional<double> {
     auto p = params_.find(name.name);
     if (p == params_.end() || !p->second) return std::nullopt;
-    return ir::constant_value(*p->second, constant_rules(functions), depth + 1);
+    return ir::constant_value(*p->second, rules(functions), depth + 1);
   };
-  return rules;
+  return r;
 }
 
-bool Expander::mentions_time(const AstExpr& e) {
+bool Constants::mentions_time(const AstExpr& e) {
   if (e.kind == AstExpr::Kind::Name && e.name == "t") return true;
   for (const E& a : e.args)
     if (a && mentions_time(*a)) return true;
@@ -125,14 +146,14 @@ bool Expander::mentions_time(const AstExpr& e) {
 }
 
 /// Reports a setting whose shape is known and wrong, or that depends on time.
-void Expander::check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant) {
-  if (constant && mentions_time(value)) {
+void Collector::check_shape(const AstExpr& value, const std::string& what, const Expected& want, bool constant) {
+  if (constant && Constants::mentions_time(value)) {
     diags_.error(value.loc, fmt::format("{} depends on time", what),
                  "body, joint and gravity settings are constants (parameters of the bond graph's elements); a "
                  "time-varying load is a joint's torque or force, or a force element");
     return;
   }
-  auto got = shape_of(value);
+  auto got = constants_.shape_of(value);
   if (!got || *got == want.shape) return;
   diags_.error(value.loc, fmt::format("{} is {}, but it must be {}", what, got->text(), want.shape.text()), want.how);
 }

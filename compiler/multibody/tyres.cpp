@@ -16,6 +16,7 @@
 // alpha = atan(t): no division by the speed, so the wheel may stand still.
 // The force Fx e_x + Fy e_y + Fz n acts at the contact point, below the
 // centre: on the wheel, the same force at the centre and its moment.
+#include "multibody/collect.hpp"
 #include "multibody/expander.hpp"
 #include "multibody/setting_names.hpp"
 
@@ -117,11 +118,11 @@ std::vector<std::string> tyre_setting_names() {
   return names;
 }
 
-void Expander::add_tyre(const AstJoint& t) {
+void Collector::add_tyre(const AstJoint& t) {
   auto wheel = side(t.a);
   auto road = side(t.b);
   if (!wheel || !road) return;
-  const Body& w = bodies_.at(wheel->body);
+  const Body& w = m_.bodies.at(wheel->body);
   const std::string not_a_wheel = w.kind.visit(
       [&](const Ground&) { return fmt::format("tyre `{}` is on ground, not on a wheel", t.name); },
       [&](const Particle&) { return fmt::format("tyre `{}` is on `{}`, which is a particle", t.name, wheel->body); },
@@ -156,18 +157,18 @@ void Expander::add_tyre(const AstJoint& t) {
     auto it = tyre.attrs.find(s.name);
     if (!s.positive || it == tyre.attrs.end()) continue;
     const char* key = s.name;
-    if (auto v = constant_of(*it->second->value); v && !(*v > 0))
+    if (auto v = constants_.constant_of(*it->second->value); v && !(*v > 0))
       diags_.error(it->second->value->loc, fmt::format("{} of tyre `{}` is {}", key, t.name, *v), fmt::format("{} must be > 0", key));
   }
   if (diags_.has_errors()) return;
-  loads_[wheel->body].push_back(TyreSym(t.name));  // its loads on the wheel (apply_load)
-  tyres_.push_back(std::move(tyre));
+  m_.loads[wheel->body].push_back(TyreSym(t.name));  // its loads on the wheel (apply_load)
+  m_.tyres.push_back(std::move(tyre));
 }
 
 /// `profile = [[x1, h1], [x2, h2], ...]`: two or more points of the road's
 /// height along world x, x increasing; constant before the first and after
 /// the last.
-void Expander::check_profile(const Tyre& tyre, const AstExpr& v) {
+void Collector::check_profile(const Tyre& tyre, const AstExpr& v) {
   const char* how = "write profile = [[x1, h1], [x2, h2], ...]: the road's height h (m) at world x (m), x increasing; "
                     "between the points it is linear, outside them constant";
   const bool listed = v.kind == AstExpr::Kind::List && v.args.size() >= 2 &&
@@ -178,7 +179,7 @@ void Expander::check_profile(const Tyre& tyre, const AstExpr& v) {
   }
   std::optional<double> previous;
   for (const E& p : v.args) {
-    auto x = constant_of(*p->args[0]);
+    auto x = constants_.constant_of(*p->args[0]);
     if (!x) {
       diags_.error(p->args[0]->loc, fmt::format("the profile of tyre `{}` has an x that is not a number", tyre.decl->name),
                    "the points of a profile are numbers (or parameters of numbers)");
@@ -220,7 +221,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   auto is_one = [&](const char* key) {  // a setting that is (by default or literally) 1
     auto it = tyre.attrs.find(key);
     if (it == tyre.attrs.end()) return true;
-    auto v = constant_of(*it->second->value);
+    auto v = constants_.constant_of(*it->second->value);
     return v && *v == 1;
   };
 
@@ -290,7 +291,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   auto signed_ = [&](const char* coefficient, E x) {  // 1 - P sign(x), only when P may be nonzero
     auto it = tyre.attrs.find(coefficient);
     if (it == tyre.attrs.end()) return num(1);
-    if (auto v = constant_of(*it->second->value); v && *v == 0) return num(1);
+    if (auto v = constants_.constant_of(*it->second->value); v && *v == 0) return num(1);
     return sub(num(1), mul(p(coefficient), fn("sign", x)));
   };
   E kx = sig("kappa_x", add(kappa, add(p("PHX1"), mul(p("PHX2"), dfz))));

@@ -153,7 +153,7 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
       const E& value = quantity_.at(name);
       out.push_back({value, *d, value->loc, fmt::format("`{}`", name), true});
     }
-  for (const auto& [name, body] : bodies_) {
+  for (const auto& [name, body] : m_.bodies) {
     if (!body.decl) continue;
     const std::vector<const Setting*>& table = body.kind.field() ? body.kind.field()->settings() : body_setting::kAll;
     for (const AstAttr& a : body.decl->attrs) {
@@ -169,19 +169,19 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
       state_unit(AstAttr{p.name, p.loc, p.value}, units::dim::length(), fmt::format("point `{}` of `{}`", p.name, name),
                  out);
   }
-  for (const Joint& j : joints_)
+  for (const Joint& j : m_.joints)
     for (const auto& [key, a] : j.attrs)
       if (const Setting* s = find_setting(joint_setting::kAll, key))
         state_unit(*a, joint_dimension(j, *s), fmt::format("{} of joint `{}`", key, j.decl->name), out);
-  for (const Contact& c : contacts_)
+  for (const Contact& c : m_.contacts)
     for (const auto& [key, a] : c.attrs)
       if (const Setting* s = find_setting(contact_setting::kAll, key))
         state_unit(*a, s->dimension, fmt::format("{} of contact `{}`", key, c.decl->name), out);
-  for (const ForceElement& f : forces_)
+  for (const ForceElement& f : m_.forces)
     for (const auto& [key, a] : f.attrs)
       if (const Setting* s = find_setting(force_setting::kAll, key))
         state_unit(*a, s->dimension, fmt::format("{} of force `{}`", key, f.decl->name), out);
-  for (const Tyre& t : tyres_) {
+  for (const Tyre& t : m_.tyres) {
     for (const auto& [key, a] : t.attrs)
       state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name), out);
     // its quantities are signals it writes (`tyre1.Fz`), which the check does not read: their units are stated
@@ -190,7 +190,7 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
       if (const Sym s = tyre.signal(q); generated_names_.count(s.str()))
         out.push_back({Build(t.decl->loc).ref(s), d, t.decl->loc, fmt::format("`{}`", s.str()), true});
   }
-  if (gravity_) state_unit(AstAttr{"gravity", gravity_loc_, gravity_}, units::dim::velocity() / units::dim::time(),
+  if (m_.gravity) state_unit(AstAttr{"gravity", m_.gravity_loc, m_.gravity}, units::dim::velocity() / units::dim::time(),
                            "gravity", out);
 }
 
