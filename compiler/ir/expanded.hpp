@@ -28,6 +28,9 @@ namespace mbgc::ir {
 struct ExpandedParam : AstParam {
   bool fold = false;
   bool generated = false;  // by the multibody layer (a body's mass, a joint's frame), as ExpandedElement's
+  /// What the multibody layer states of a generated one's dimension (a
+  /// body's mass is kg), where it knows it: its value is not read for units.
+  std::optional<units::Dimension> dimension = std::nullopt;
 };
 
 /// A signal; `rate`, where the expansion knows its time derivative in closed

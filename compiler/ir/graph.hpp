@@ -107,6 +107,7 @@ struct Parameter {
   double literal_value = 0.0;
   std::optional<DeclaredUnit> unit;  // as the model states it (`param k = 3e4 {N/m}`)
   bool generated = false;            // by the multibody layer: its value is not read for units
+  std::optional<units::Dimension> stated;  // the dimension the multibody layer states of it (a body's mass: kg)
 };
 
 struct Signal {

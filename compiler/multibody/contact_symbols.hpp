@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "multibody/setting_names.hpp"
 #include "multibody/symbols.hpp"
 
 namespace mbgc::multibody::detail {
@@ -44,19 +45,19 @@ class ContactSym : public Sym {
  public:
   explicit ContactSym(const std::string& contact) : Sym(contact) {}
   // settings
-  Sym radius() const { return part("radius"); }
-  Sym restitution() const { return part("restitution"); }
+  Sym radius() const { return part(contact_setting::radius); }
+  Sym restitution() const { return part(contact_setting::restitution); }
   Sym stiffness() const { return part("stiffness"); }
-  Sym exponent() const { return part("exponent"); }
-  Sym stabilisation() const { return part("stabilisation"); }
-  Sym friction() const { return part("friction"); }  // the coefficient mu
-  Sym slip_speed() const { return part("slip_speed"); }
-  Sym surface_radius() const { return part("surface_radius"); }
+  Sym exponent() const { return part(contact_setting::exponent); }
+  Sym stabilisation() const { return part(contact_setting::stabilisation); }
+  Sym friction() const { return part(contact_setting::friction); }  // the coefficient mu
+  Sym slip_speed() const { return part(contact_setting::slip_speed); }
+  Sym surface_radius() const { return part(contact_setting::surface_radius); }
   // the surface's unit directions in body b's frame: a plane's normal, a
   // cylinder's axis, a plane's first tangent (for friction rows)
-  Sym normal_b() const { return part("normal_b"); }
-  Sym axis_b() const { return part("axis_b"); }
-  Sym tangent_b() const { return part("tangent_b"); }
+  Sym normal_b() const { return part("normal_b", units::Dimension::none()); }
+  Sym axis_b() const { return part("axis_b", units::Dimension::none()); }
+  Sym tangent_b() const { return part("tangent_b", units::Dimension::none()); }
   // the row, as a joint's (JointSym): the 0-junction of its rate, the MTF
   // carrying side `side`'s ('a', 'b') body flow `flow` ('t' velocity, 'r'
   // angular velocity, 'e' modal rates) into it (rates_into), the CN
@@ -87,7 +88,7 @@ class TyreSym : public LoadSym {
  public:
   explicit TyreSym(const std::string& tyre) : LoadSym(tyre) {}
   /// A setting as a .tir file names it (`FNOMIN`, `PCX1`, ...).
-  Sym setting(const std::string& key) const { return part(key); }
+  Sym setting(const std::string& key) const { return part(key, tyre_setting_dimension(key)); }
   /// A scalar signal of the tyre's equations (`Fz`, `Vsx`, `slip_angle`, ...).
   Sym signal(const std::string& what) const { return part(what); }
   /// A lagged slip (`kappa`, `tan_alpha`): the C whose state it is, the Sf of

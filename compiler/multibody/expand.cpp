@@ -43,12 +43,12 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const Sym& name, E value) {
   generated_names_.insert(name.str());
-  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true});
+  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true, name.dimension()});
 }
 
 void Expander::property(const Build& B, const Sym& name, E value) {
   generated_names_.insert(name.str());
-  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true});
+  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true, name.dimension()});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs) {

@@ -43,16 +43,16 @@ class BeamSym : public FlexibleSym {
   explicit BeamSym(const FlexibleSym& body) : FlexibleSym(body) {}
 
   // material and section
-  Sym length() const { return part("length"); }
-  Sym density() const { return part("density"); }
-  Sym youngs_modulus() const { return part("E"); }
-  Sym shear_modulus() const { return part("G"); }
-  Sym area() const { return part("area"); }
-  Sym Iy() const { return part("Iy"); }  // second moments of area about y and z
-  Sym Iz() const { return part("Iz"); }
-  Sym Ip() const { return part("Ip"); }  // the polar moment, Iy + Iz
-  Sym torsion_constant() const { return part("torsion_constant"); }
-  Sym mass_per_length() const { return part("mu"); }
+  Sym length() const { return part(beam_setting::length); }
+  Sym density() const { return part(beam_setting::density); }
+  Sym youngs_modulus() const { return part(beam_setting::E); }
+  Sym shear_modulus() const { return part(beam_setting::G); }
+  Sym area() const { return part(beam_setting::area); }
+  Sym Iy() const { return part(beam_setting::Iy); }  // second moments of area about y and z
+  Sym Iz() const { return part(beam_setting::Iz); }
+  Sym Ip() const { return part("Ip", beam_setting::Iy.dimension); }  // the polar moment, Iy + Iz
+  Sym torsion_constant() const { return part(beam_setting::torsion_constant); }
+  Sym mass_per_length() const { return part("mu", units::dim::mass() / units::dim::length()); }
 
   /// The integrals of group g's modes.
   BeamModesSym group(char g) const { return BeamModesSym(part(std::string(1, g))); }

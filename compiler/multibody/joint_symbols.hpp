@@ -22,23 +22,23 @@ class JointSym : public Sym {
 
   // ---- properties (joint_params): on side 'a' or 'b'
   /// The joint point relative to the body's centre of mass, body axes (on ground: absolute).
-  Sym point(char side) const { return part(fmt::format("p{}", side)); }
+  Sym point(char side) const { return part(fmt::format("p{}", side), units::dim::length()); }
   /// The joint axis, normalised, body axes.
-  Sym axis(char side) const { return part(fmt::format("axis_{}", side)); }
+  Sym axis(char side) const { return part(fmt::format("axis_{}", side), units::Dimension::none()); }
   /// The joint frame's orientation in the body: its quaternion and its rotation matrix.
-  Sym frame_q(char side) const { return part(fmt::format("f{}", side)); }
-  Sym frame_R(char side) const { return part(fmt::format("F{}", side)); }
+  Sym frame_q(char side) const { return part(fmt::format("f{}", side), units::Dimension::none()); }
+  Sym frame_R(char side) const { return part(fmt::format("F{}", side), units::Dimension::none()); }
   /// The length that turns the angular rows (dot products of axes) into metres.
-  Sym scale() const { return part("scale"); }
+  Sym scale() const { return part("scale", units::dim::length()); }
   // a kind's own: a distance rod's length, a screw's advance per radian
-  Sym length() const { return part("length"); }
-  Sym pitch() const { return part("pitch"); }
+  Sym length() const { return part(joint_setting::length); }
+  Sym pitch() const { return part(joint_setting::pitch); }
 
   // ---- the rows strategies (lagrange, penalty; a cut joint in joint coordinates)
   // penalty's spring-damper; a cut joint's Baumgarte rate (rad/s)
   Sym stiffness() const { return part("stiffness"); }
   Sym damping() const { return part("damping"); }
-  Sym stabilisation() const { return part("stabilisation"); }
+  Sym stabilisation() const { return part(joint_setting::stabilisation); }
   Sym rows() const { return part("c"); }         // the 0-junction of the rows' rates
   Sym constraint() const { return part("cn"); }  // the CN holding them at 0
   Sym motion() const { return part("motion"); }  // the Sf of a prescribed motion's explicit rate

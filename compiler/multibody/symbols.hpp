@@ -9,18 +9,25 @@
 // flexible_symbols.hpp, joint_symbols.hpp, contact_symbols.hpp.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "multibody/settings.hpp"
+#include "units/unit.hpp"
+
 namespace mbgc::multibody::detail {
 
 /// A name the layer writes or reads: a parameter, a signal, an element, a
-/// junction, a bond, or one of their variables.
+/// junction, a bond, or one of their variables; a parameter's symbol also
+/// says its dimension where the layer knows it (the units check and the
+/// report read it: ExpandedParam::dimension).
 class Sym {
  public:
   const std::string& str() const { return name_; }
+  const std::optional<units::Dimension>& dimension() const { return dimension_; }
 
   // The variables the graph gives an element or a junction.
   Sym effort() const { return part("e"); }
@@ -39,21 +46,27 @@ class Sym {
   /// The built-in constant.
   static Sym pi() { return Sym("pi"); }
   /// The gravity vector (`gravity = [...]`, world frame).
-  static Sym gravity() { return Sym("gravity"); }
+  static Sym gravity() { return Sym("gravity", units::dim::velocity() / units::dim::time()); }
   /// A point the user declared on ground.
-  static Sym ground_point(const std::string& point) { return Sym("ground." + point); }
+  static Sym ground_point(const std::string& point) { return Sym("ground." + point, units::dim::length()); }
 
   bool operator==(const Sym&) const = default;
 
 
  protected:
   /// An entity's own name, as its declaration gives it.
-  explicit Sym(std::string name) : name_(std::move(name)) {}
-  /// A name the entity owns: `entity.what`.
-  Sym part(const std::string& what) const { return Sym(name_ + "." + what); }
+  explicit Sym(std::string name, std::optional<units::Dimension> dimension = std::nullopt)
+      : name_(std::move(name)), dimension_(std::move(dimension)) {}
+  /// A name the entity owns: `entity.what`, of that dimension where it is a parameter the layer knows.
+  Sym part(const std::string& what, std::optional<units::Dimension> dimension = std::nullopt) const {
+    return Sym(name_ + "." + what, std::move(dimension));
+  }
+  /// A parameter that holds setting `s`'s value: its name and its dimension.
+  Sym part(const Setting& s) const { return part(s.name, s.dimension); }
 
  private:
   std::string name_;
+  std::optional<units::Dimension> dimension_;
 };
 
 /// What pushes on a body: a force element, a contact's friction, a tyre.
@@ -86,15 +99,15 @@ class BodySym : public Sym {
   explicit BodySym(const std::string& body) : Sym(body) {}
 
   // properties
-  Sym mass() const { return part("mass"); }
-  Sym com() const { return part("com"); }
-  Sym inertia() const { return part("inertia"); }
-  PointSym point(const std::string& p) const { return PointSym(part(p)); }
-  // initial values
-  Sym r0() const { return part("r0"); }
-  Sym v0() const { return part("v0"); }
-  Sym q0() const { return part("q0"); }
-  Sym w0() const { return part("w0"); }
+  Sym mass() const { return part(body_setting::mass); }
+  Sym com() const { return part(body_setting::com); }
+  Sym inertia() const { return part(body_setting::inertia); }
+  PointSym point(const std::string& p) const { return PointSym(part(p, units::dim::length())); }
+  // initial values (the orientation's a quaternion, of the setting quat0)
+  Sym r0() const { return part(body_setting::r0); }
+  Sym v0() const { return part(body_setting::v0); }
+  Sym q0() const { return part("q0", body_setting::quat0.dimension); }
+  Sym w0() const { return part(body_setting::w0); }
   // the fragment: junctions of the velocity and the angular velocity, their
   // inertias, the position and quaternion states, the weight, the Euler
   // junction structures, the quaternion's rate
@@ -145,7 +158,7 @@ class FlexibleSym : public BodySym {
   Sym eta_rate() const { return part("eta_rate"); }
   Sym damp() const { return part("damp"); }  // the R of the modal damping on etadot
   /// The undeformed inertia about the frame origin, body axes (a parameter).
-  Sym J0() const { return part("J0"); }
+  Sym J0() const { return part("J0", body_setting::inertia.dimension); }
   /// Quantities users read besides a body's (BodySym::quantity): the modal
   /// coordinates and the elastic energy.
   Sym modes() const { return part("modes"); }
@@ -157,9 +170,9 @@ class FlexibleSym : public BodySym {
 class ForceSym : public LoadSym {
  public:
   explicit ForceSym(const std::string& force) : LoadSym(force) {}
-  Sym stiffness() const { return part("stiffness"); }
-  Sym damping() const { return part("damping"); }
-  Sym length0() const { return part("length0"); }
+  Sym stiffness() const { return part(force_setting::stiffness); }
+  Sym damping() const { return part(force_setting::damping); }
+  Sym length0() const { return part("length0", force_setting::length.dimension); }
   Sym quantity(const std::string& q) const { return part(q); }  // `length`, `force`, `torque`
 };
 

@@ -35,6 +35,7 @@ struct PendingParam {
   bool fold = false;  // ExpandedParam::fold: a constant where its value is one
   std::optional<DeclaredUnit> unit;
   bool generated = false;  // ExpandedParam::generated
+  std::optional<units::Dimension> stated;  // ExpandedParam::dimension
 };
 
 /// A bond end as written, with the scope and port bindings it is read in.
@@ -108,10 +109,11 @@ class Resolver {
               // spliced by parse
             } else if constexpr (std::is_base_of_v<AstParam, T>) {
               bool fold = false, generated = false;
-              if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold, generated = st.generated;
+              std::optional<units::Dimension> stated;
+              if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold, generated = st.generated, stated = st.dimension;
               if (claim_name(prefix + st.name, st.loc, "parameter"))
                 pending_params_.push_back(
-                    {prefix + st.name, st.loc, st.value, scope, fold, declared_unit(st.unit, st.value), generated});
+                    {prefix + st.name, st.loc, st.value, scope, fold, declared_unit(st.unit, st.value), generated, stated});
             } else if constexpr (std::is_base_of_v<AstSignal, T>) {
               AstExprPtr rate;
               bool generated = false;
@@ -423,6 +425,7 @@ class Resolver {
       par.literal = is_const(par.value, &par.literal_value);
       par.unit = p.unit;
       par.generated = p.generated;
+      par.stated = p.stated;
       m_.params.push_back(par);
       as_params.items[static_cast<std::size_t>(k)] = param(static_cast<int>(m_.params.size()) - 1);
     }

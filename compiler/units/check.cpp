@@ -209,9 +209,10 @@ class Checker {
   UnitReport run(bool strict) {
     // What the model states first, so that a contradiction is found at an equation.
     for (std::size_t i = 0; i < g_.params.size(); ++i)
-      if (g_.params[i].unit) {
+      if (g_.params[i].unit || g_.params[i].stated) {
         solver_.because({static_cast<int>(i)});
-        solver_.require_none(combine(param(i), declared(*g_.params[i].unit), -1));
+        const ir::Parameter& p = g_.params[i];
+        solver_.require_none(combine(param(i), p.unit ? declared(*p.unit) : Form::known(*p.stated), -1));
       }
     solver_.because({});
     for (const ir::Signal& s : g_.signals)
@@ -288,8 +289,9 @@ class Checker {
       report.outputs.push_back(r.terms.empty() && !r.wild ? std::optional<Dimension>(r.constant) : std::nullopt);
     }
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
-      report.params.push_back(g_.params[i].unit ? std::optional<Dimension>(g_.params[i].unit->unit.dimension)
-                                                : solver_.value(static_cast<int>(i)));
+      report.params.push_back(g_.params[i].unit     ? std::optional<Dimension>(g_.params[i].unit->unit.dimension)
+                              : g_.params[i].stated ? g_.params[i].stated
+                                                    : solver_.value(static_cast<int>(i)));
       if (strict && !report.params.back() && !g_.params[i].generated)
         diags_.error(g_.params[i].loc, fmt::format("the unit of parameter `{}` is neither declared nor inferred", g_.params[i].name),
                      "declare it after the value, e.g. {N/m} (--units strict)");
@@ -504,8 +506,10 @@ UnitReport check_units(const ir::EquationSystem& sys, ir::Diagnostics& diags, bo
 
 namespace {
 
-std::string described(const std::optional<ir::DeclaredUnit>& declared, const std::optional<Dimension>& d) {
+std::string described(const std::optional<ir::DeclaredUnit>& declared, const std::optional<Dimension>& stated,
+                      const std::optional<Dimension>& d) {
   if (declared) return fmt::format("{:<14} declared", declared->unit.text);
+  if (stated) return fmt::format("{:<14} stated by the multibody layer", format(*stated));
   if (d) return fmt::format("{:<14} inferred", format(*d));
   return "?              not fixed by the model";
 }
@@ -515,10 +519,10 @@ std::string described(const std::optional<ir::DeclaredUnit>& declared, const std
 std::string print_report(const ir::BondGraph& g, const UnitReport& report) {
   std::string out = "parameters:\n";
   for (std::size_t i = 0; i < g.params.size(); ++i)
-    out += fmt::format("  {:<24} {}\n", g.params[i].name, described(g.params[i].unit, report.params[i]));
+    out += fmt::format("  {:<24} {}\n", g.params[i].name, described(g.params[i].unit, g.params[i].stated, report.params[i]));
   out += "outputs:\n";
   for (std::size_t i = 0; i < g.outputs.size(); ++i)
-    out += fmt::format("  {:<24} {}\n", g.outputs[i].name, described(g.outputs[i].unit, report.outputs[i]));
+    out += fmt::format("  {:<24} {}\n", g.outputs[i].name, described(g.outputs[i].unit, std::nullopt, report.outputs[i]));
   return out;
 }
 

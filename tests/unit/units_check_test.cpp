@@ -8,8 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 
+#include "driver/driver.hpp"
 #include "pipeline.hpp"
 
 namespace {
@@ -100,6 +104,60 @@ TEST(UnitsCheck, TheReportSaysWhatIsDeclaredAndWhatInferred) {
   EXPECT_NE(text.find("V                        V              declared"), std::string::npos) << text;
   EXPECT_NE(text.find("L                        H              inferred"), std::string::npos) << text;
   EXPECT_NE(text.find("i                        A              declared"), std::string::npos) << text;
+}
+
+/// mbgc on `model` (written to a file of the test's name) with --units `units`: its exit status, output and errors.
+struct Driven {
+  int status;
+  std::string out, err;
+};
+Driven drive(const std::string& model, mbgc::driver::Options::Units units) {
+  const std::string path =
+      std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_units.mbg";
+  std::ofstream(path) << model;
+  mbgc::driver::Options opt;
+  opt.input = path;
+  opt.units = units;
+  std::ostringstream out, err;
+  const int status = mbgc::driver::compile(opt, out, err);
+  std::remove(path.c_str());
+  return {status, out.str(), err.str()};
+}
+
+TEST(UnitsCheck, TheMultibodyLayerStatesWhatItWrites) {
+  // a body's mass, inertia and points, a joint's frame and a force's spring: what the
+  // layer writes of a model without a unit is in the report (where it is a parameter,
+  // not folded to a number), and a user's expression that reads one is held to it
+  const std::string pendulum = R"(
+param m = 3
+param J = 0.01
+param L = 0.5
+param k = 100
+param g = 9.81
+gravity = [0, -g, 0]
+ground { point pivot = [0, 0, 0] }
+body arm {
+  mass = m
+  inertia = diag(J, J, 2 * J)
+  point tip = [L, 0, 0]
+}
+joint hinge revolute(ground.pivot, arm) { axis = [0, 0, 1] }
+force spring(ground.pivot, arm.tip) { stiffness = k; length = 0.8 * L }
+)";
+  using Units = mbgc::driver::Options::Units;
+  const Driven report = drive(pendulum, Units::Report);
+  ASSERT_EQ(report.status, 0) << report.err;
+  for (const char* line : {"arm.mass                 kg             stated by the multibody layer",
+                           "arm.inertia[1,1]         kg*m^2         stated by the multibody layer",
+                           "arm.tip[1]               m              stated by the multibody layer",
+                           "spring.stiffness         N/m            stated by the multibody layer",
+                           "m                        kg             inferred"})
+    EXPECT_NE(report.out.find(line), std::string::npos) << line << "\n" << report.out;
+
+  const Driven wrong = drive(pendulum + "output w = arm.mass {m}\n", Units::Check);
+  EXPECT_NE(wrong.status, 0);
+  EXPECT_NE(wrong.err.find("the units of output w do not agree: its value is kg, its unit {m} is m"), std::string::npos)
+      << wrong.err;
 }
 
 }  // namespace
