@@ -167,6 +167,26 @@ struct SimSettings {
   std::optional<std::string> form_option;
 };
 
+/// The `simulate { ... }` block's settings, declared once, in the order the
+/// language reference lists them: a number's (where its value goes, its
+/// dimension), or the solver's, a word (no slot).
+struct SimSetting {
+  const char* name;
+  std::optional<double> SimSettings::*slot;
+  std::optional<units::Dimension> dimension;
+};
+inline const std::vector<SimSetting>& sim_settings() {
+  static const std::vector<SimSetting> all = {
+      {"t_end", &SimSettings::t_end, units::dim::time()},
+      {"interval", &SimSettings::interval, units::dim::time()},
+      {"solver", nullptr, std::nullopt},
+      {"rtol", &SimSettings::rtol, units::Dimension::none()},
+      {"atol", &SimSettings::atol, std::nullopt},  // in each state's own unit
+      {"step", &SimSettings::step, units::dim::time()},
+  };
+  return all;
+}
+
 struct BondGraph {
   std::string model_name;
   std::string source_file;

@@ -11,6 +11,7 @@
 #include "multibody/expander.hpp"
 #include "multibody/setting_names.hpp"
 #include "multibody/settings.hpp"
+#include "units/literals.hpp"
 
 namespace mbgc::multibody::detail {
 
@@ -33,41 +34,14 @@ std::optional<units::Dimension> joint_dimension(const Joint& j, const Setting& s
   return std::nullopt;
 }
 
-/// Whether `e` reads a name (a parameter, a quantity, t): then units/check
-/// infers what it is; a value of literals alone is compared here.
-bool reads_a_name(const AstExpr& e) {
-  if (e.kind == AstExpr::Kind::Name) return true;
-  for (const auto& a : e.args)
-    if (a && reads_a_name(*a)) return true;
-  return false;
-}
-
 }  // namespace
 
 void Expander::state_unit(const AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what,
                           std::vector<ir::ExpandedUnitCheck>& out) {
   if (!dimension || !a.value) return;
   // the literals' units, each where it is written
-  bool wrong = false;
-  const std::function<void(const AstExpr&)> literals = [&](const AstExpr& e) {
-    if (e.kind == AstExpr::Kind::Number && e.unit &&
-        !(e.unit->unit.dimension.without_angle() == dimension->without_angle())) {
-      const bool number = dimension->is_none();  // a coefficient, a ratio
-      diags_.error(e.unit->loc,
-                   fmt::format("the {} is {}, and {{{}}} is {}", what, number ? "a number" : units::format(*dimension),
-                               e.unit->unit.text, units::format(e.unit->unit.dimension)),
-                   number ? std::string("write it without a unit (or {1})")
-                          : fmt::format("write it in {} (or in a unit of the same dimension)", units::format(*dimension)));
-      wrong = true;
-    }
-    // entries of a vector or matrix, and a scaled literal (`2 * 3 {mm}`), have the setting's unit
-    const bool entries = e.kind == AstExpr::Kind::List || e.kind == AstExpr::Kind::Unary ||
-                         (e.kind == AstExpr::Kind::Call && e.name == "diag");
-    if (entries)
-      for (const auto& x : e.args) literals(*x);
-  };
-  literals(*a.value);
-  if (!wrong && reads_a_name(*a.value)) out.push_back({rewrite_expr(a.value), *dimension, a.loc, what});
+  const bool wrong = !units::check_literal_units(*a.value, *dimension, what, diags_);
+  if (!wrong && units::reads_a_name(*a.value)) out.push_back({rewrite_expr(a.value), *dimension, a.loc, what});
 }
 
 namespace {

@@ -1,6 +1,7 @@
 #include "sema/resolve.hpp"
 
 #include "mbgrt/integrators.hpp"
+#include "units/literals.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
@@ -293,7 +294,19 @@ class Resolver {
 
   void read_settings(const AstSimulate& sim) {
     for (const AstAttr& a : sim.settings) {
-      if (a.key == "solver") {
+      const SimSetting* setting = nullptr;
+      for (const SimSetting& s : sim_settings())
+        if (a.key == s.name) setting = &s;
+      if (!setting) {
+        std::vector<std::string> names;
+        for (const SimSetting& s : sim_settings()) names.emplace_back(s.name);
+        std::string near = closest_name(a.key, names);
+        diags_.error(a.loc, fmt::format("unknown simulation setting `{}`", a.key),
+                     near.empty() ? fmt::format("settings are {}", fmt::join(names, ", "))
+                                  : fmt::format("did you mean `{}`?", near));
+        continue;
+      }
+      if (!setting->slot) {  // the solver
         if (a.value->kind != AstExpr::Kind::Name || !mbgrt::find_integrator(a.value->name)) {
           diags_.error(a.value->loc, "unknown solver", "choose one of " + mbgrt::integrator_names());
           continue;
@@ -302,20 +315,12 @@ class Resolver {
         m_.settings.solver_loc = a.value->loc;
         continue;
       }
-      std::optional<double>* slot = nullptr;
-      if (a.key == "t_end") slot = &m_.settings.t_end;
-      else if (a.key == "interval") slot = &m_.settings.interval;
-      else if (a.key == "rtol") slot = &m_.settings.rtol;
-      else if (a.key == "atol") slot = &m_.settings.atol;
-      else if (a.key == "step") slot = &m_.settings.step;
-      if (!slot) {
-        std::string near = closest_name(a.key, {"t_end", "interval", "solver", "rtol", "atol", "step"});
-        diags_.error(a.loc, fmt::format("unknown simulation setting `{}`", a.key),
-                     near.empty() ? "settings are t_end, interval, solver, rtol, atol, step"
-                                  : fmt::format("did you mean `{}`?", near));
-        continue;
+      if (setting->dimension) {  // a literal's unit here; a parameter's, with the model's (units/check)
+        const std::string what = fmt::format("{} of the simulate block", a.key);
+        if (!units::check_literal_units(*a.value, *setting->dimension, what, diags_)) continue;
+        if (units::reads_a_name(*a.value)) m_.unit_checks.push_back({a.value, *setting->dimension, a.loc, what});
       }
-      settings_.push_back({slot, a});
+      settings_.push_back({&(m_.settings.*(setting->slot)), a});
     }
   }
 
@@ -520,7 +525,7 @@ ResolvedModel resolve(const ExpandedProgram& program, const std::string& source_
   m.source_file = source_file;
   Resolver r(diags, m, limits);
   r.run(program);
-  m.unit_checks = program.unit_checks;
+  m.unit_checks.insert(m.unit_checks.begin(), program.unit_checks.begin(), program.unit_checks.end());
   if (m.model_name.empty()) m.model_name = "model";
   return m;
 }

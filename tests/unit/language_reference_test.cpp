@@ -15,6 +15,7 @@
 #include <sstream>
 #include <string>
 
+#include "ir/graph.hpp"
 #include "ir/value.hpp"
 #include "multibody/expander.hpp"
 #include "multibody/joint_kind.hpp"
@@ -120,6 +121,12 @@ TEST(LanguageReference, EveryBodyContactAndTyreSetting) {
   expect_documented(mb::setting_names(mb::body_setting::kAll), "body setting");
   expect_documented(mb::contact_setting_names(), "contact setting");
   expect_documented(mb::tyre_setting_names(), "tyre setting");
+}
+
+TEST(LanguageReference, EverySimulateSetting) {
+  std::vector<std::string> names;
+  for (const mbgc::ir::SimSetting& s : mbgc::ir::sim_settings()) names.emplace_back(s.name);
+  expect_documented(names, "simulate setting");
 }
 
 TEST(LanguageReference, EveryQuantity) {
