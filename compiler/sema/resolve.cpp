@@ -255,7 +255,7 @@ class Resolver {
         std::optional<DeclaredUnit> unit = declared_unit(std::nullopt, a.value);
         for (const AstParam& p : comp.params)
           if (p.name == a.key && !unit) unit = declared_unit(p.unit, p.value);
-        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, a.value, scope, false, unit});
+        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, a.value, scope, false, unit, false, std::nullopt});
         declared_[m_.scopes.back().prefix + a.key] = a.loc;
       } else {
         std::vector<std::string> names;
@@ -281,7 +281,7 @@ class Resolver {
         continue;
       }
       pending_params_.push_back(
-          {m_.scopes.back().prefix + p.name, p.loc, p.value, child, false, declared_unit(p.unit, p.value)});
+          {m_.scopes.back().prefix + p.name, p.loc, p.value, child, false, declared_unit(p.unit, p.value), false, std::nullopt});
       declared_[m_.scopes.back().prefix + p.name] = p.loc;
     }
     stack_.push_back(comp.name);
