@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "codegen/names.hpp"
+#include "units/unit.hpp"
 #include "mbgrt/integrators.hpp"
 
 namespace mbgc::codegen {
@@ -181,7 +182,8 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
       doc = p.unit->unit.text;
     }
     scaled = scaled || (p.unit && !p.unit->unit.is_si());
-    infos.push_back(fmt::format("{{{}, {}, {}}}", cpp_string(p.name), value, cpp_string(doc)));
+    const std::string si = p.dimension ? units::format(*p.dimension) : "";
+    infos.push_back(fmt::format("{{{}, {}, {}, {}}}", cpp_string(p.name), value, cpp_string(doc), cpp_string(si)));
   }
   if (infos.empty()) {
     params.body.push_back(CppStmt::line("return {};"));
@@ -194,12 +196,13 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
     params.body.push_back(CppStmt::line("  const char* name;"));
     params.body.push_back(CppStmt::line("  double value;"));
     params.body.push_back(CppStmt::line("  const char* doc;"));
+    params.body.push_back(CppStmt::line("  const char* unit;"));
     params.body.push_back(CppStmt::line("};"));
     params.body.push_back(CppStmt::line("static const Row kRows[] = {"));
     for (const std::string& s : infos) params.body.push_back(CppStmt::line("    " + s + ","));
     params.body.push_back(CppStmt::line("};"));
     params.body.push_back(CppStmt::line("std::vector<mbgrt::ParameterInfo> out;"));
-    params.body.push_back(CppStmt::line("for (const Row& r : kRows) out.push_back({r.name, r.value, r.doc});"));
+    params.body.push_back(CppStmt::line("for (const Row& r : kRows) out.push_back({r.name, r.value, r.doc, r.unit});"));
     params.body.push_back(CppStmt::line("return out;"));
   } else {
     params.body.push_back(CppStmt::line("return {"));

@@ -180,6 +180,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
     timed("units");
     if (failed()) return 1;
     if (opt.units == Options::Units::Report) return finish(units::print_report(equations.graph, report));
+    units::record_dimensions(equations.graph, report);
   }
 
   ir::ReducedSystem reduced = reduce::reduce(std::move(equations), diags, opt.energy_witness);

@@ -108,6 +108,10 @@ struct Parameter {
   std::optional<DeclaredUnit> unit;  // as the model states it (`param k = 3e4 {N/m}`)
   bool generated = false;            // by the multibody layer: its value is not read for units
   std::optional<units::Dimension> stated;  // the dimension the multibody layer states of it (a body's mass: kg)
+  /// Its dimension as the units pass found it (declared, stated or
+  /// inferred: units::record_dimensions); nullopt where nothing fixes it,
+  /// or the check is off. The simulator lists it (--list-parameters).
+  std::optional<units::Dimension> dimension;
 };
 
 struct Signal {

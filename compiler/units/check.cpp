@@ -516,6 +516,10 @@ std::string described(const std::optional<ir::DeclaredUnit>& declared, const std
 
 }  // namespace
 
+void record_dimensions(ir::BondGraph& g, const UnitReport& report) {
+  for (std::size_t i = 0; i < g.params.size() && i < report.params.size(); ++i) g.params[i].dimension = report.params[i];
+}
+
 std::string print_report(const ir::BondGraph& g, const UnitReport& report) {
   std::string out = "parameters:\n";
   for (std::size_t i = 0; i < g.params.size(); ++i)

@@ -36,6 +36,10 @@ struct UnitReport {
 /// nor inferred is an error too.
 UnitReport check_units(const ir::EquationSystem& sys, ir::Diagnostics& diags, bool strict = false);
 
+/// Writes each parameter's dimension (`report.params`) into the graph's
+/// parameters, for the passes after this one (Parameter::dimension).
+void record_dimensions(ir::BondGraph& g, const UnitReport& report);
+
 /// `mbgc --units report`: every parameter and output with its unit, and
 /// whether the model declares it or it was inferred.
 std::string print_report(const ir::BondGraph& g, const UnitReport& report);

@@ -27,19 +27,21 @@ namespace detail {
 
 namespace {
 
-/// NAME,DEFAULT lines, NAME,DEFAULT,UNIT for a parameter the model declares
-/// in a unit (`--set` reads it in that unit). A parameter computed from others
-/// (a body's r0 from its joint, say) has no default of its own:
-/// `(computed: FORMULA)`, not `nan`.
+/// NAME,DEFAULT,UNIT lines: the unit a parameter is declared in (`--set`
+/// reads it in that unit), else its SI unit where the compiler found it, else
+/// none (NAME,DEFAULT). A parameter computed from others (a body's r0 from
+/// its joint, say) has no default of its own: `(computed: FORMULA)`, not `nan`.
 int list_parameters(const Model& model) {
   for (const ParameterInfo& p : model.parameters()) {
-    if (!std::isnan(p.default_value)) {
-      if (p.unit_or_doc.empty()) fmt::print(stdout, "{},{}\n", p.name, p.default_value);
-      else fmt::print(stdout, "{},{},{}\n", p.name, p.default_value, p.unit_or_doc);
+    const bool computed = std::isnan(p.default_value);
+    const std::string& unit = !computed && !p.unit_or_doc.empty() ? p.unit_or_doc : p.si_unit;
+    const std::string tail = unit.empty() ? "" : "," + unit;
+    if (!computed) {
+      fmt::print(stdout, "{},{}{}\n", p.name, p.default_value, tail);
       continue;
     }
     std::string formula = p.unit_or_doc.rfind("= ", 0) == 0 ? p.unit_or_doc.substr(2) : p.unit_or_doc;
-    fmt::print(stdout, "{},(computed{}{})\n", p.name, formula.empty() ? "" : ": ", formula);
+    fmt::print(stdout, "{},(computed{}{}){}\n", p.name, formula.empty() ? "" : ": ", formula, tail);
   }
   std::fflush(stdout);
   return kExitSuccess;

@@ -177,6 +177,24 @@ class DecayWithComputedParameter : public Decay {
   }
 };
 
+/// Decay whose units the compiler found (declared in SI, or inferred): listed in SI.
+class DecayWithSiUnits : public Decay {
+ public:
+  std::vector<ParameterInfo> parameters() const override {
+    auto out = Decay::parameters();
+    out[0].si_unit = "1/s";
+    out.push_back({"tau", std::nan(""), "= 1/k", "s"});
+    return out;
+  }
+};
+
+TEST(Cli, ListParametersGivesAnSiUnitTheCompilerFound) {
+  DecayWithSiUnits m;
+  RunResult r = run(m, {"--list-parameters"}, false);
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, "k,0.5,1/s\nx0,2\ntau,(computed: 1/k),s\n");
+}
+
 TEST(Cli, ListParametersShowsComputedOnesByFormulaNotNan) {
   DecayWithComputedParameter m;
   RunResult r = run(m, {"--list-parameters"}, false);

@@ -154,6 +154,13 @@ force spring(ground.pivot, arm.tip) { stiffness = k; length = 0.8 * L }
                            "m                        kg             inferred"})
     EXPECT_NE(report.out.find(line), std::string::npos) << line << "\n" << report.out;
 
+  // the generated parameters() gives each its SI unit (the simulator's --list-parameters shows it)
+  const Driven code = drive(pendulum, Units::Check);
+  ASSERT_EQ(code.status, 0) << code.err;
+  EXPECT_NE(code.out.find(R"({"arm.mass", std::numeric_limits<double>::quiet_NaN(), "= m", "kg"})"), std::string::npos)
+      << code.out;
+  EXPECT_NE(code.out.find(R"({"m", 3.0, "", "kg"})"), std::string::npos) << code.out;
+
   const Driven wrong = drive(pendulum + "output w = arm.mass {m}\n", Units::Check);
   EXPECT_NE(wrong.status, 0);
   EXPECT_NE(wrong.err.find("the units of output w do not agree: its value is kg, its unit {m} is m"), std::string::npos)

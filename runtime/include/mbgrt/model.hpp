@@ -250,6 +250,8 @@ struct ParameterInfo {
   double default_value;      ///< value from the model text, in its unit (NaN if it is computed from other parameters)
   std::string unit_or_doc;   ///< the unit the model declares it in (`deg`: set_parameter takes degrees), or
                              ///< empty (SI); "= FORMULA" for a computed one
+  std::string si_unit = {};  ///< its unit in SI where the compiler's units check fixed it (declared, stated by the
+                             ///< multibody layer, or inferred: `kg*m^2`, `1` for a number); empty: not known
 };
 
 class Model {

@@ -78,7 +78,7 @@ class beam_load_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"F", 2.0, ""},
+        {"F", 2.0, "", "N"},
     };
   }
 

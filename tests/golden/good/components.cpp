@@ -53,10 +53,10 @@ class components_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"u1.R", 2.0, ""},
-        {"u1.Cc", 1.0, ""},
-        {"u2.Cc", 3.0, ""},
-        {"u2.R", 1.0, ""},
+        {"u1.R", 2.0, "", ""},
+        {"u1.Cc", 1.0, "", ""},
+        {"u2.Cc", 3.0, "", ""},
+        {"u2.R", 1.0, "", ""},
     };
   }
 

@@ -57,12 +57,12 @@ class dc_motor_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"V_supply", 60.0, "V"},
-        {"R_a", 0.4, "Ohm"},
-        {"L_a", 0.05, "H"},
-        {"K_m", 0.678, "N*m/A"},
-        {"J", 0.57207, "kg*m^2"},
-        {"D", 0.226, "N*m*s/rad"},
+        {"V_supply", 60.0, "V", "V"},
+        {"R_a", 0.4, "Ohm", "Ohm"},
+        {"L_a", 0.05, "H", "H"},
+        {"K_m", 0.678, "N*m/A", "Wb"},
+        {"J", 0.57207, "kg*m^2", "kg*m^2"},
+        {"D", 0.226, "N*m*s/rad", "N*m*s/rad"},
     };
   }
 

@@ -53,9 +53,9 @@ class decay_sine_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"k", 0.5, ""},
-        {"a", 2.0, ""},
-        {"w", 1.0, "rad/s"},
+        {"k", 0.5, "", "1/s"},
+        {"a", 2.0, "", "kg^(1/2)*m/s^2"},
+        {"w", 1.0, "rad/s", "rad/s"},
     };
   }
 

@@ -53,9 +53,9 @@ class derivative_causality_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"F", 2.0, ""},
-        {"m1", 1.0, ""},
-        {"m2", 3.0, ""},
+        {"F", 2.0, "", ""},
+        {"m1", 1.0, "", ""},
+        {"m2", 3.0, "", ""},
     };
   }
 

@@ -53,9 +53,9 @@ class imports_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"m", 0.5, ""},
-        {"sd.k", 50.0, ""},
-        {"sd.c", 2.0, ""},
+        {"m", 0.5, "", ""},
+        {"sd.k", 50.0, "", ""},
+        {"sd.c", 2.0, "", ""},
     };
   }
 

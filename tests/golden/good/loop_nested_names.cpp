@@ -53,12 +53,12 @@ class loop_nested_names_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"N", 2.0, ""},
-        {"M", 2.0, ""},
-        {"k1_1", 11.0, ""},
-        {"k1_2", 12.0, ""},
-        {"k2_1", 21.0, ""},
-        {"k2_2", 22.0, ""},
+        {"N", 2.0, "", ""},
+        {"M", 2.0, "", ""},
+        {"k1_1", 11.0, "", ""},
+        {"k1_2", 12.0, "", ""},
+        {"k2_1", 21.0, "", ""},
+        {"k2_2", 22.0, "", ""},
     };
   }
 

@@ -53,7 +53,7 @@ class modulated_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"g", 9.81, ""},
+        {"g", 9.81, "", ""},
     };
   }
 

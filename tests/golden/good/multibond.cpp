@@ -61,8 +61,8 @@ class multibond_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"m", 2.0, ""},
-        {"k", 10.0, ""},
+        {"m", 2.0, "", ""},
+        {"k", 10.0, "", ""},
     };
   }
 

@@ -53,9 +53,9 @@ class model_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"V", 10.0, ""},
-        {"R1", 2.0, ""},
-        {"C1", 0.05, ""},
+        {"V", 10.0, "", ""},
+        {"R1", 2.0, "", ""},
+        {"C1", 0.05, "", ""},
     };
   }
 

@@ -53,11 +53,11 @@ class pendulum_mtf_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"m", 1.0, ""},
-        {"L", 1.0, ""},
-        {"g", 9.81, ""},
-        {"J_hub", 0.01, ""},
-        {"theta0", 0.5, ""},
+        {"m", 1.0, "", ""},
+        {"L", 1.0, "", ""},
+        {"g", 9.81, "", ""},
+        {"J_hub", 0.01, "", "kg*m^2"},
+        {"theta0", 0.5, "", ""},
     };
   }
 

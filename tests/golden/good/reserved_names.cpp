@@ -50,11 +50,11 @@ class reserved_names_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"mutable", 2.0, ""},
-        {"M_PI", 3.0, ""},
-        {"name", 1.0, ""},
-        {"_X", 0.5, ""},
-        {"size", 4.0, ""},
+        {"mutable", 2.0, "", ""},
+        {"M_PI", 3.0, "", ""},
+        {"name", 1.0, "", ""},
+        {"_X", 0.5, "", ""},
+        {"size", 4.0, "", ""},
     };
   }
 

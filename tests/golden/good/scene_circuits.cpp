@@ -54,7 +54,7 @@ class scene_circuits_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"V", 5.0, ""},
+        {"V", 5.0, "", ""},
     };
   }
 

@@ -64,19 +64,19 @@ class solver_gives_way_to_form_model final : public mbgrt::Model {
 
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
-        {"bob.q0[1]", 0.9689124217106446, ""},
-        {"bob.q0[2]", 0.0, ""},
-        {"bob.q0[3]", 0.24740395925452288, ""},
-        {"bob.q0[4]", 0.0, ""},
-        {"bob.r0[1]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0"},
-        {"bob.r0[2]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0"},
-        {"bob.r0[3]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0"},
-        {"bob.w0[1]", 0.0, ""},
-        {"bob.w0[2]", 0.0, ""},
-        {"bob.w0[3]", 0.0, ""},
-        {"bob.v0[1]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0, bob.w0"},
-        {"bob.v0[2]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0, bob.w0"},
-        {"bob.v0[3]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0, bob.w0"},
+        {"bob.q0[1]", 0.9689124217106446, "", "1"},
+        {"bob.q0[2]", 0.0, "", "1"},
+        {"bob.q0[3]", 0.24740395925452288, "", "1"},
+        {"bob.q0[4]", 0.0, "", "1"},
+        {"bob.r0[1]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0", "m"},
+        {"bob.r0[2]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0", "m"},
+        {"bob.r0[3]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0", "m"},
+        {"bob.w0[1]", 0.0, "", "rad/s"},
+        {"bob.w0[2]", 0.0, "", "rad/s"},
+        {"bob.w0[3]", 0.0, "", "rad/s"},
+        {"bob.v0[1]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0, bob.w0", "m/s"},
+        {"bob.v0[2]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0, bob.w0", "m/s"},
+        {"bob.v0[3]", std::numeric_limits<double>::quiet_NaN(), "= a function of bob.q0, bob.w0", "m/s"},
     };
   }
 
