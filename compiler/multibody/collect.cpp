@@ -141,7 +141,7 @@ void Collector::add_body(const AstBody& b) {
     Body& g = m_.bodies["ground"];
     for (const AstAttr& a : b.attrs)
       diags_.error(a.loc, fmt::format("ground has no setting `{}`", a.key), "ground only declares points: ground { point pivot = [x, y, z] }");
-    add_points(g, b, "ground");
+    add_points(g, b, "ground", {});
     return;
   }
   if (auto first = m_.bodies.find(b.name); first != m_.bodies.end()) {
@@ -210,7 +210,7 @@ void Collector::add_body(const AstBody& b) {
                                  "orientation, centre-of-mass offset or angular-velocity junction. Give it an inertia "
                                  "(inertia = diag(Jx, Jy, Jz)) to make it a rigid body, or remove `{}`",
                                  a.key));
-  add_points(body, b, b.name);
+  add_points(body, b, b.name, BodySym::parts());
   if (body.kind.particle() && !body.points.empty())
     diags_.error(b.points.front().loc, fmt::format("particle `{}` has points", b.name),
                  "a body without inertia is a point mass: it has no orientation, so a point away from it could not "
@@ -219,18 +219,18 @@ void Collector::add_body(const AstBody& b) {
   m_.body_order.push_back(b.name);
 }
 
-void Collector::add_points(Body& body, const AstBody& b, const std::string& owner) {
+void Collector::add_points(Body& body, const AstBody& b, const std::string& owner, const std::set<std::string>& reserved) {
   for (const AstPoint& p : b.points) {
     if (auto first = body.points.find(p.name); first != body.points.end()) {
       auto& d = diags_.error(p.loc, fmt::format("point `{}` of `{}` is declared twice", p.name, owner), "give each point its own name");
       d.notes.push_back({point_locs_[BodySym(owner).point(p.name).str()], "first declared here"});
       continue;
     }
-    if (!body.kind.ground() && (kBodyInternalNames.count(p.name) ||
-                         std::find(kBodyQuantities.begin(), kBodyQuantities.end(), p.name) != kBodyQuantities.end())) {
+    const bool quantity = !body.kind.ground() && BodySym::quantities().count(p.name);
+    if (quantity || reserved.count(p.name)) {
       diags_.error(p.loc, fmt::format("a point cannot be named `{}`", p.name),
                    fmt::format("`{}.{}` already means the body's own {}: rename the point, e.g. `{}_point`", owner, p.name,
-                               kBodyInternalNames.count(p.name) ? "setting or bond-graph element" : "quantity", p.name));
+                               quantity ? "quantity" : "setting or bond-graph element", p.name));
       body.points[p.name] = p.value;  // known, so that joints naming it are not reported again
       continue;
     }

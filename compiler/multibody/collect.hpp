@@ -26,18 +26,6 @@ namespace mbgc::multibody::detail {
 
 using namespace mbgc::ir;  // the multibody layer reads and builds the AST's statements throughout
 
-/// Quantities `body.NAME` and `joint.NAME` users may read (defined in define_quantities).
-inline const std::vector<std::string> kBodyQuantities = {"position", "velocity", "momentum", "quaternion", "rotation", "bryant",
-                                                  "omega", "omega_world", "angular_momentum", "kinetic_energy",
-                                                  "potential_energy"};
-/// Names a flexible body's expansion adds (`arm.eta`, `arm.nu`, ...): not free for a modal body's nodes.
-inline const std::set<std::string> kFlexibleInternalNames = {"eta", "nu", "M", "sv", "sw", "se", "etadot", "damp", "modes",
-                                                      "J0", "first_moment", "mean", "stiffness", "damping",
-                                                      "modal_mass", "J1", "J2", "Hw", "elastic_energy"};
-/// Names a body's expansion uses for itself (`bob.mass`, `bob.v`, ...): not free for points.
-inline const std::set<std::string> kBodyInternalNames = {"mass", "inertia", "com", "r0", "v0", "q0", "w0", "v", "m", "r",
-                                                  "weight", "w", "J", "ejs", "qrate", "q"};
-
 class Beam;
 
 class Collector {
@@ -58,7 +46,8 @@ class Collector {
   void setting(const AstSetting& st);
   std::optional<Strategy> strategy_of(const AstExpr& v, const char* key);
   void add_body(const AstBody& b);
-  void add_points(Body& body, const AstBody& b, const std::string& owner);
+  /// The points of `b` into `body`; none may take a name of `reserved` (the body's own parts, its symbol's).
+  void add_points(Body& body, const AstBody& b, const std::string& owner, const std::set<std::string>& reserved);
   std::optional<Side> side(const AstEndpoint& ep);
   void add_force(const AstJoint& f);
   /// A connector's settings by key into `attrs`: an unknown key (with a

@@ -2,6 +2,7 @@
 #include "multibody/collect.hpp"
 
 #include "multibody/beam.hpp"
+#include "multibody/flexible_symbols.hpp"
 #include "multibody/modal_body.hpp"
 
 #include <algorithm>
@@ -244,7 +245,7 @@ void Collector::add_flexible_body(Body& body, const AstBody& b, const AstAttr& k
   check_frame(*beam, b, has(beam_setting::frame) ? given.at(beam_setting::frame.name) : nullptr);
   if (auto s = given.find(beam_setting::slope_limit.name); s != given.end()) read_slope_limit(beam->slope_limit_rad, b, *s->second);
   body.kind = Flexible{beam};
-  add_points(body, b, b.name);
+  add_points(body, b, b.name, BeamSym::parts());
   for (const AstPoint& p : b.points) {
     bool on_axis = false;
     if (p.value->kind == AstExpr::Kind::List && p.value->args.size() == 3) {
@@ -351,8 +352,7 @@ void Collector::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
   }
   Build B(file.loc);
   for (const auto& [name, pt] : data->points) {
-    if (kBodyInternalNames.count(name) || kFlexibleInternalNames.count(name) ||
-        std::find(kBodyQuantities.begin(), kBodyQuantities.end(), name) != kBodyQuantities.end()) {
+    if (ModalSym::parts().count(name)) {
       diags_.error(file.loc, fmt::format("the modal-data file names a point `{}`, which body `{}` uses for itself", name, b.name),
                    "rename the node in the file");
       continue;

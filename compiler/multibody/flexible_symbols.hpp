@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -53,6 +54,15 @@ class BeamSym : public FlexibleSym {
   Sym Ip() const { return part("Ip", beam_setting::Iy.dimension); }  // the polar moment, Iy + Iz
   Sym torsion_constant() const { return part(beam_setting::torsion_constant); }
   Sym mass_per_length() const { return part("mu", units::dim::mass() / units::dim::length()); }
+  /// A flexible body's parts and those above: what a beam's point cannot be named.
+  static const std::set<std::string>& parts() {
+    static const std::set<std::string> all = [] {
+      std::set<std::string> out = FlexibleSym::parts();
+      out.insert({"length", "density", "E", "G", "area", "Iy", "Iz", "Ip", "torsion_constant", "mu"});
+      return out;
+    }();
+    return all;
+  }
 
   /// The integrals of group g's modes.
   BeamModesSym group(char g) const { return BeamModesSym(part(std::string(1, g))); }
@@ -88,6 +98,15 @@ class ModalSym : public FlexibleSym {
   /// Node p's mode shapes (its displacement per mode) and slopes (its small rotation per mode).
   Sym shape(const std::string& p) const { return part(fmt::format("{}.shape", p)); }
   Sym slope(const std::string& p) const { return part(fmt::format("{}.slope", p)); }
+  /// A flexible body's parts and those above: what a node of its file cannot be named.
+  static const std::set<std::string>& parts() {
+    static const std::set<std::string> all = [] {
+      std::set<std::string> out = FlexibleSym::parts();
+      out.insert({"first_moment", "mean", "J1", "J2", "coupling", "coupling_eta", "modal_mass", "stiffness", "damping"});
+      return out;
+    }();
+    return all;
+  }
 
  private:
   static char axis(std::size_t i) { return "xyz"[i]; }

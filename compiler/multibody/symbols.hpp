@@ -10,6 +10,7 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -51,7 +52,6 @@ class Sym {
   static Sym ground_point(const std::string& point) { return Sym("ground." + point, units::dim::length()); }
 
   bool operator==(const Sym&) const = default;
-
 
  protected:
   /// An entity's own name, as its declaration gives it.
@@ -128,8 +128,23 @@ class BodySym : public Sym {
   Sym pose_R(int r, int c) const { return part(fmt::format("pose.R{}{}", r, c)); }
   /// Drawn for --animate: the pose of the drawing's origin.
   Sym drawing() const { return part("drawing"); }
-  /// A quantity users read (kBodyQuantities: `position`, `velocity`, ...).
+  /// A quantity users read (`position`, `velocity`, ...: quantities()).
   Sym quantity(const std::string& q) const { return part(q); }
+
+  /// The names of the parts above, which a point of the body cannot take
+  /// (`arm.mass`, `arm.v` are the body's own). Keep it with the members.
+  static const std::set<std::string>& parts() {
+    static const std::set<std::string> all = {"mass", "com", "inertia", "r0",    "v0",  "q0",    "w0",   "v",      "w",
+                                              "m",    "J",   "r",       "q",     "weight", "ejs", "ejs_v", "qrate"};
+    return all;
+  }
+  /// The quantities users read of a body (quantities.cpp defines them).
+  static const std::set<std::string>& quantities() {
+    static const std::set<std::string> all = {"position", "velocity",         "momentum",       "quaternion",
+                                              "rotation", "bryant",           "omega",          "omega_world",
+                                              "angular_momentum", "kinetic_energy", "potential_energy"};
+    return all;
+  }
 };
 
 /// A flexible body: a body whose field adds modal coordinates eta (the
@@ -163,6 +178,19 @@ class FlexibleSym : public BodySym {
   /// coordinates and the elastic energy.
   Sym modes() const { return part("modes"); }
   Sym elastic_energy() const { return part("elastic_energy"); }
+
+  /// A body's parts and quantities and those above: what a flexible body's
+  /// point cannot be named (its kind adds its own: BeamSym, ModalSym).
+  static const std::set<std::string>& parts() {
+    static const std::set<std::string> all = [] {
+      std::set<std::string> out = BodySym::parts();
+      out.insert(BodySym::quantities().begin(), BodySym::quantities().end());
+      out.insert({"eta", "etadot", "nu", "M", "sv", "sw", "se", "av", "aw", "ae", "nusum", "eta_rate", "damp", "J0",
+                  "modes", "elastic_energy"});
+      return out;
+    }();
+    return all;
+  }
 };
 
 /// A force element (`force f (a, b) { ... }`): its settings as parameters,
