@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstddef>
-#include <optional>
 #include <string>
 #include <utility>
 
@@ -15,7 +14,6 @@
 #include "multibody/symbols.hpp"
 
 namespace mbgc::multibody::detail {
-
 
 /// A CN: besides its effort, the flags its unilateral law gives it
 /// (graph/build_graph: LawForm::Unilateral).
@@ -115,7 +113,5 @@ class RoadSym : public Sym {
   explicit RoadSym(std::size_t k) : Sym(k == 1 ? std::string("road") : fmt::format("road_{}", k)) {}
   Sym drawing() const { return part("drawing"); }
 };
-
-
 
 }  // namespace mbgc::multibody::detail
