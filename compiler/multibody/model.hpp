@@ -92,10 +92,7 @@ inline E attr(const ir::AstBody& b, const Setting& s) {
 }
 
 /// A joint's setting `s` as given (null: not given).
-inline const ir::AstAttr* given_attr(const Joint& j, const Setting& s) {
-  auto it = j.attrs.find(s.name);
-  return it == j.attrs.end() ? nullptr : it->second;
-}
+inline const ir::AstAttr* given_attr(const Joint& j, const Setting& s) { return given_in(j.attrs, s); }
 /// Whether a joint's setting `s` is given.
 inline bool given(const Joint& j, const Setting& s) { return given_attr(j, s) != nullptr; }
 /// A joint's setting `s`, or `fallback`.

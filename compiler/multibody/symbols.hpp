@@ -51,8 +51,6 @@ class Sym {
   /// A point the user declared on ground.
   static Sym ground_point(const std::string& point) { return Sym("ground." + point, units::dim::length()); }
 
-  bool operator==(const Sym&) const = default;
-
  protected:
   /// An entity's own name, as its declaration gives it.
   explicit Sym(std::string name, std::optional<units::Dimension> dimension = std::nullopt)
