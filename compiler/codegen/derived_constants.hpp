@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "codegen/shared_temps.hpp"
+#include "codegen/cse.hpp"
 #include "ir/expr.hpp"
 #include "ir/reduced.hpp"
 

@@ -8,8 +8,10 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <type_traits>
 
 #include "codegen/constraints.hpp"
+#include "codegen/cse.hpp"
 #include "codegen/cpp.hpp"
 #include "codegen/derived_constants.hpp"
 #include "codegen/drawings.hpp"
@@ -20,8 +22,8 @@
 #include "codegen/names.hpp"
 #include "codegen/outline.hpp"
 #include "codegen/outline_emit.hpp"
+#include "codegen/render.hpp"
 #include "codegen/shared_values.hpp"
-#include "codegen/shared_temps.hpp"
 #include "codegen/split.hpp"
 #include "codegen/stats.hpp"
 #include "codegen/template.hpp"
@@ -216,36 +218,25 @@ class Emitter {
     if (!s_.dae) f.body.push_back(CppStmt::line("(void)yp;"));
     if (!g_.params.empty()) f.body.push_back(CppStmt::comment("CONSTANTS / PARAMETERS"));
     // Derived parameters (a joint frame from its axis, an initial pose along a
-    // chain) repeat subexpressions: share them here too. A parameter only
-    // reads earlier ones, so a temporary defined before its first use reads
-    // parameters that are already set (overrides included).
-    const ExprNames none;
-    SharedTemps shared(none, names_, cse_counter_, ops());
-    for (const Parameter& p : g_.params) shared.count(p.value);
-    for (const Expr& e : hoisted_order_) shared.count(e);
-    for (const StateVar& st : s_.states) shared.count(st.initial);
-    for (const Expr& e : s_.nominal) shared.count(e);
-    for (const ContactRow& c : s_.contacts) shared.count(c.restitution);
-    shared.finish_counting();
+    // chain) repeat subexpressions: they are shared here too (codegen/cse).
+    // A parameter only reads earlier ones, so a temporary defined before its
+    // first use reads parameters that are already set (overrides included).
+    const std::size_t from = f.body.size();
     Located located(*this, f.body);
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
       std::string at = located.head(p.loc);
       if (p.unit) at += fmt::format("{}{{{}}}", at.empty() ? "  // " : ", ", p.unit->unit.text);
-      std::string value = shared.print(p.value, f.body);
-      f.body.push_back(CppStmt::line(fmt::format("{} = param({}, {});{}", names_.param(static_cast<int>(i)), i, value, at)));
+      f.body.push_back(CppStmt::param(names_.param(static_cast<int>(i)), i, p.value, std::move(at)));
     }
     if (!hoisted_order_.empty()) f.body.push_back(CppStmt::comment("DERIVED CONSTANTS: parameter expressions, computed once per run"));
     for (const Expr& e : hoisted_order_) {
-      // a derived constant that recurs whole is reused by its own name
-      bool shared_whole = shared.take_pending(e);
-      std::string value = shared.print(e, f.body);
-      f.body.push_back(CppStmt::assign(hoisted_.at(e), std::move(value)));
-      if (shared_whole) shared.name_whole(e, hoisted_.at(e));
+      f.body.push_back(CppStmt::assign(hoisted_.at(e), e));
+      f.body.back().may_name = CppStmt::Naming::always;  // a derived constant that recurs whole is read by its name
     }
     for (std::size_t c = 0; c < s_.contacts.size(); ++c)
-      f.body.push_back(CppStmt::line(fmt::format("contact_restitution_[{}] = {};  // {}", c, shared.print(s_.contacts[c].restitution, f.body),
-                                                 where(s_.contacts[c].loc))));
+      f.body.push_back(CppStmt::assign(fmt::format("contact_restitution_[{}]", c), s_.contacts[c].restitution,
+                                       "  // " + where(s_.contacts[c].loc)));
     if (!s_.states.empty()) f.body.push_back(CppStmt::comment("INITIAL STATE"));
     const char* y = s_.dae ? "y" : "x";
     located.restart();
@@ -253,9 +244,8 @@ class Emitter {
       const StateVar& st = s_.states[i];
       const Variable& v = g_.vars[static_cast<std::size_t>(st.var)];
       if (compact_) located.head(v.loc);
-      std::string value = shared.print(st.initial, f.body);
       const std::string at = compact_ ? "" : fmt::format(" ({})", where(v.loc));
-      f.body.push_back(CppStmt::line(fmt::format("{}[{}] = {};  // {}{}", y, i, value, v.name, at)));
+      f.body.push_back(CppStmt::assign(fmt::format("{}[{}]", y, i), st.initial, fmt::format("  // {}{}", v.name, at)));
     }
     if (any_nominal()) {
       f.body.push_back(CppStmt::comment("NOMINAL SIZES: each unknown's absolute tolerance is atol x nominal (reduce/nominal.hpp)"));
@@ -263,9 +253,12 @@ class Emitter {
       for (std::size_t i = 0; i < s_.nominal.size(); ++i) {
         if (is_one(s_.nominal[i])) continue;
         const Variable& v = g_.vars[static_cast<std::size_t>(s_.states[i].var)];
-        f.body.push_back(CppStmt::line(fmt::format("nominal_[{}] = {};  // {}", i, shared.print(s_.nominal[i], f.body), v.name)));
+        f.body.push_back(CppStmt::assign(fmt::format("nominal_[{}]", i), s_.nominal[i], "  // " + v.name));
       }
     }
+    const ExprNames none;
+    share_subexpressions(f.body, from, none, cse_counter_);
+    render(f.body, from, none, names_, ops());
     if (s_.dae) {
       if (compact_ && !s_.algebraic.empty())  // (their names: variable_name(i))
         f.body.push_back(CppStmt::line(fmt::format("for (std::size_t i = {}; i < {}; ++i) y[i] = 0.0;  // the algebraic unknowns: "
@@ -322,45 +315,19 @@ class Emitter {
     const std::vector<int>& run_at = outlined_form.run_at;
     const std::vector<int>& copy_after = outlined_form.copy_after;
     const std::vector<int>& result_run_at = outlined_form.result_run_at;
-    // Common subexpressions: anything non-trivial used twice or more in this section.
-    SharedTemps shared(hoisted_, names_, cse_counter_, ops());
-    auto visit = [&](const Expr& e) { shared.count(e); };
-    std::set<int> blocks_counted;
-    for (std::size_t k = 0; k < list.size(); ++k) {
-      const Assignment& a = *list[k];
-      if (run_at[k] >= 0) {  // an outlined run reads its inputs, once
-        if (outlined.runs[static_cast<std::size_t>(run_at[k])].begin == k)
-          for (const Expr& e : outlined.runs[static_cast<std::size_t>(run_at[k])].inputs) visit(e);
-        continue;
-      }
-      if (a.block < 0) {
-        visit(a.value);
-        continue;
-      }
-      if (!blocks_counted.insert(a.block).second) continue;  // count each block once
-      const LinearBlock& lb = s_.linear_blocks[static_cast<std::size_t>(a.block)];
-      for (const Expr& e : lb.a) visit(e);
-      for (const Expr& e : lb.b) visit(e);
-    }
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      if (const int r = result_run_at[i]; r < 0) visit(results[i].value);
-      else if (outlined.runs[static_cast<std::size_t>(r)].begin == i)
-        for (const Expr& e : outlined.runs[static_cast<std::size_t>(r)].inputs) visit(e);
-    }
-    shared.finish_counting();
-    auto print_expr = [&](const Expr& e, std::vector<CppStmt>& out_body) { return shared.print(e, out_body); };
+    const std::size_t from = body.size();
     std::set<int> blocks_done;
     std::string last_origin;
     for (std::size_t k = 0; k < list.size(); ++k) {
       const Assignment& a = *list[k];
       if (run_at[k] >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(run_at[k])];
-        if (run.begin == k) outline_.call_shape(body, outlined_form, run_at[k], list, results, shared, *ops());
+        if (run.begin == k) outline_.call_shape(body, outlined_form, run_at[k], list, results, *ops());
         last_origin.clear();
         continue;
       }
       if (a.block >= 0) {
-        if (blocks_done.insert(a.block).second) emit_block(body, a, print_expr);
+        if (blocks_done.insert(a.block).second) emit_block(body, a);
         body.push_back(defined(a.var, exporting, fmt::format("blk{}_x[{}]", a.block + 1, block_position(a))));
         continue;
       }
@@ -368,12 +335,7 @@ class Emitter {
       std::string origin = fmt::format("{}  {}", where(a.loc), a.origin);
       if (origin != last_origin) body.push_back(CppStmt::comment(origin));
       last_origin = std::move(origin);
-      // An assignment whose whole value recurs elsewhere becomes the shared
-      // name itself: `hub_f = hub_p / J_hub`, reused, rather than a cseN copy.
-      bool shared_whole = shared.take_whole(a.value);
-      std::string rhs = print_expr(a.value, body);
-      body.push_back(defined(a.var, exporting, std::move(rhs)));
-      if (shared_whole) shared.name_whole(a.value, var_name(a.var));
+      body.push_back(defined(a.var, exporting, a.value));
       if (const int r = copy_after[k]; r >= 0) {
         const OutlinedRun& run = outlined.runs[static_cast<std::size_t>(r)];
         for (std::size_t j = 0; j < run.outputs.size(); ++j)
@@ -384,12 +346,14 @@ class Emitter {
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
     for (std::size_t i = 0; i < results.size(); ++i) {
       if (const int r = result_run_at[i]; r >= 0) {
-        if (outlined.runs[static_cast<std::size_t>(r)].begin == i) outline_.call_shape(body, outlined_form, r, list, results, shared, *ops());
+        if (outlined.runs[static_cast<std::size_t>(r)].begin == i) outline_.call_shape(body, outlined_form, r, list, results, *ops());
         continue;
       }
-      std::string rhs = print_expr(results[i].value, body);
-      body.push_back(CppStmt::assign(fmt::format("{}[{}]", results[i].array, results[i].index), std::move(rhs)));
+      body.push_back(CppStmt::assign(fmt::format("{}[{}]", results[i].array, results[i].index), results[i].value));
     }
+    // Common subexpressions: anything non-trivial used twice or more in this section.
+    share_subexpressions(body, from, hoisted_, cse_counter_);
+    render(body, from, hoisted_, names_, ops());
     if (exporting)  // what the callers read: its place in an outlined run's array, else its member
       for (int i : witness_.assignments)
         if (const int v = s_.assignments[static_cast<std::size_t>(i)].var; witness_.exported.count(v)) {
@@ -401,10 +365,15 @@ class Emitter {
   }
 
   /// A section's assignment of `value` to `var`: a local, or (an exported
-  /// variable of witness_values()) its member.
-  CppStmt defined(int var, bool exporting, std::string value) const {
-    if (exporting && witness_.exported.count(var)) return CppStmt::assign(var_name(var), std::move(value));
-    return CppStmt::local(var_name(var), std::move(value));
+  /// variable of witness_values()) its member. An equation's value may
+  /// become a shared name (codegen/cse); one read from a place (a linear
+  /// block's solution) is C++ already.
+  template <class Value>
+  CppStmt defined(int var, bool exporting, Value value) const {
+    CppStmt st = exporting && witness_.exported.count(var) ? CppStmt::assign(var_name(var), std::move(value))
+                                                           : CppStmt::local(var_name(var), std::move(value));
+    if constexpr (std::is_same_v<Value, Expr>) st.may_name = CppStmt::Naming::unnamed;
+    return st;
   }
 
   // ---- what the energy witness's two methods compute alike (codegen/shared_values) ----
@@ -459,25 +428,17 @@ class Emitter {
   }
 
   /// A numerically solved loop: fill A and b, solve in place.
-  template <class Print>
-  void emit_block(std::vector<CppStmt>& body, const Assignment& a, Print& print_expr) {
+  void emit_block(std::vector<CppStmt>& body, const Assignment& a) {
     const LinearBlock& lb = s_.linear_blocks[static_cast<std::size_t>(a.block)];
     std::size_t n = lb.unknowns.size();
     std::vector<std::string> names;
     for (int u : lb.unknowns) names.push_back(g_.vars[static_cast<std::size_t>(u)].name);
     body.push_back(CppStmt::comment(fmt::format("{}  {}", where(a.loc), a.origin)));
     body.push_back(CppStmt::comment(fmt::format("A x = b for x = ({})", fmt::join(names, ", "))));
-    std::vector<std::string> entries, rhs;
-    for (const Expr& e : lb.a) entries.push_back(print_expr(e, body));
-    for (const Expr& e : lb.b) rhs.push_back(print_expr(e, body));
     std::string id = fmt::format("blk{}", a.block + 1);
-    body.push_back(CppStmt::line(fmt::format("double {}_a[{}] = {{", id, n * n)));
-    for (std::size_t r = 0; r < n; ++r) {
-      std::vector<std::string> row(entries.begin() + static_cast<long>(r * n), entries.begin() + static_cast<long>((r + 1) * n));
-      body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(row, ", "))));
-    }
-    body.push_back(CppStmt::line("};"));
-    body.push_back(CppStmt::line(fmt::format("double {}_x[{}] = {{{}}};", id, n, fmt::join(rhs, ", "))));
+    body.push_back(CppStmt::array_of(id + "_a", lb.a, n));
+    body.push_back(CppStmt::array_of(id + "_x", lb.b));
+    body.back().with_previous = true;
     if (lb.rank_revealing) {
       // rows the others imply at this configuration: recorded for the run summary
       std::vector<std::string> rows;

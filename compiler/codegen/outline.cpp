@@ -12,7 +12,8 @@
 #include <unordered_set>
 
 #include "codegen/names.hpp"
-#include "codegen/shared_temps.hpp"
+#include "codegen/cse.hpp"
+#include "codegen/render.hpp"
 
 namespace mbgc::codegen {
 namespace {
@@ -419,9 +420,7 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
   if (run.inputs.empty()) f.body.push_back(CppStmt::line("(void)in;  // (reads nothing but its sources: called with nullptr)"));
   Namer inside = names;
   inside.var = [&](int id) { return local.count(id) ? local.at(id) : names.var(id); };
-  SharedTemps shared(known, inside, cse_counter, ops);
-  for (std::size_t i = run.begin; i < run.end; ++i) shared.count(run.results ? results[i].value : list[i]->value);
-  shared.finish_counting();
+  const std::size_t from = f.body.size();
   std::string last;
   if (run.results) {
     for (std::size_t i = run.begin; i < run.end; ++i) {
@@ -429,22 +428,21 @@ CppFunction shape_function(const std::string& name, const Outlining& o, int shap
       std::string origin = !r.loc.valid() ? r.origin : r.origin.empty() ? where(r.loc) : fmt::format("{}  {}", where(r.loc), r.origin);
       if (!origin.empty() && origin != last) f.body.push_back(CppStmt::comment(origin));
       last = std::move(origin);
-      std::string rhs = shared.print(r.value, f.body);
-      f.body.push_back(CppStmt::assign(fmt::format("out[{}]", run.offsets[i - run.begin]), std::move(rhs)));
+      f.body.push_back(CppStmt::assign(fmt::format("out[{}]", run.offsets[i - run.begin]), r.value));
     }
-    return f;
+  } else {
+    for (std::size_t i = run.begin; i < run.end; ++i) {
+      const Assignment& a = *list[i];
+      std::string origin = fmt::format("{}  {}", where(a.loc), a.origin);
+      if (origin != last) f.body.push_back(CppStmt::comment(origin));
+      last = std::move(origin);
+      f.body.push_back(CppStmt::local(local.at(a.var), a.value));
+      f.body.back().may_name = CppStmt::Naming::unnamed;
+    }
+    for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::assign(fmt::format("out[{}]", run.slots[k]), outs[k]));
   }
-  for (std::size_t i = run.begin; i < run.end; ++i) {
-    const Assignment& a = *list[i];
-    std::string origin = fmt::format("{}  {}", where(a.loc), a.origin);
-    if (origin != last) f.body.push_back(CppStmt::comment(origin));
-    last = std::move(origin);
-    const bool whole = shared.take_whole(a.value);
-    std::string rhs = shared.print(a.value, f.body);
-    f.body.push_back(CppStmt::local(local.at(a.var), std::move(rhs)));
-    if (whole) shared.name_whole(a.value, local.at(a.var));
-  }
-  for (std::size_t k = 0; k < outs.size(); ++k) f.body.push_back(CppStmt::assign(fmt::format("out[{}]", run.slots[k]), outs[k]));
+  share_subexpressions(f.body, from, known, cse_counter);
+  render(f.body, from, known, inside, ops);
   return f;
 }
 

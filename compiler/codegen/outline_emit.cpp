@@ -133,7 +133,7 @@ std::vector<std::string> OutlineEmitter::store_outlined(const Outlining& o, cons
 }
 
 void OutlineEmitter::call_shape(std::vector<CppStmt>& body, Outlined& section, int r, const std::vector<const Assignment*>& list,
-                                const std::vector<SectionResult>& results, SharedTemps& shared, CppOps& ops) {
+                                const std::vector<SectionResult>& results, CppOps& ops) {
   const Outlining& o = section.o;
   const OutlinedRun& run = o.runs[static_cast<std::size_t>(r)];
   const OutlineShape& shape = o.shapes[static_cast<std::size_t>(run.shape)];
@@ -168,11 +168,9 @@ void OutlineEmitter::call_shape(std::vector<CppStmt>& body, Outlined& section, i
   if (run.inputs.empty()) {
     args.push_back("nullptr");
   } else {
-    std::vector<std::string> in;
-    for (const Expr& e : run.inputs) in.push_back(shared.print(e, body));
     const std::string in_name =
         mangle_.get(fmt::format("{}:{}:{}:in", run.results ? "results" : "run", method, run.begin), run.body + "_in");
-    body.push_back(CppStmt::line(fmt::format("double {}[{}] = {{{}}};", in_name, in.size(), fmt::join(in, ", "))));
+    body.push_back(CppStmt::array_of(in_name, run.inputs));
     args.push_back(in_name);
   }
   for (int src : run.sources) args.push_back(section.store[static_cast<std::size_t>(src)]);

@@ -18,7 +18,7 @@
 #include "codegen/emit_cpp.hpp"
 #include "codegen/names.hpp"
 #include "codegen/outline.hpp"
-#include "codegen/shared_temps.hpp"
+#include "codegen/cse.hpp"
 #include "ir/expr.hpp"
 #include "ir/reduced.hpp"
 
@@ -72,7 +72,7 @@ class OutlineEmitter {
   /// (a run of results: the caller's array, from its first result's place).
   /// The operations of one call count into `ops`, the caller's.
   void call_shape(std::vector<CppStmt>& body, Outlined& section, int r, const std::vector<const ir::Assignment*>& list,
-                  const std::vector<SectionResult>& results, SharedTemps& shared, ir::CppOps& ops);
+                  const std::vector<SectionResult>& results, ir::CppOps& ops);
 
   /// The section is printed: its outlined outputs are named as variables again.
   void finish_section(const Outlined& section);

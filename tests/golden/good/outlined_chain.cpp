@@ -218,15 +218,15 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
     // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse7 = std::cos(j2_theta_q);
-    const double j2_m4_f2_1 = cse7 * j2_m4_f1_1;
-    const double cse8 = std::sin(j2_theta_q);
-    const double cse9 = cse8 * j2_m4_f1_1;
-    const double j2_m4_f2_2 = -cse9;
+    const double cse31 = std::cos(j2_theta_q);
+    const double j2_m4_f2_1 = cse31 * j2_m4_f1_1;
+    const double cse32 = std::sin(j2_theta_q);
+    const double cse33 = cse32 * j2_m4_f1_1;
+    const double j2_m4_f2_2 = -cse33;
     // outlined_chain.mbg:27:9  signal rod2.pose.R21
-    const double rod2_pose_R21 = rod1_pose_R21 * cse7 + rod1_pose_R22 * cse8;
+    const double rod2_pose_R21 = rod1_pose_R21 * cse31 + rod1_pose_R22 * cse32;
     // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double rod2_pose_R22 = -rod1_pose_R21 * cse8 + rod1_pose_R22 * cse7;
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse32 + rod1_pose_R22 * cse31;
     // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
     const double j2_reaction_f_f_2 = j2_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
@@ -268,16 +268,16 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j5_m4_f1_1 = rod4_kin[6] + j5_m3_f2_1;
     const double j5_m4_f1_2 = rod4_kin[3];
     // outlined_chain.mbg:27:9  MTF j5.m4: f2 = T f1
-    const double cse12 = std::cos(j5_theta_q);
-    const double cse13 = cse12 * j5_m4_f1_1;
-    const double cse14 = std::sin(j5_theta_q);
-    const double cse15 = cse14 * j5_m4_f1_2;
-    const double j5_m4_f2_1 = cse13 + cse15;
-    const double j5_m4_f2_2 = -cse14 * j5_m4_f1_1 + cse12 * j5_m4_f1_2;
+    const double cse34 = std::cos(j5_theta_q);
+    const double cse35 = cse34 * j5_m4_f1_1;
+    const double cse36 = std::sin(j5_theta_q);
+    const double cse37 = cse36 * j5_m4_f1_2;
+    const double j5_m4_f2_1 = cse35 + cse37;
+    const double j5_m4_f2_2 = -cse36 * j5_m4_f1_1 + cse34 * j5_m4_f1_2;
     // outlined_chain.mbg:27:9  signal rod5.pose.R21
-    const double rod5_pose_R21 = rod4_kin[1] * cse12 + rod4_kin[2] * cse14;
+    const double rod5_pose_R21 = rod4_kin[1] * cse34 + rod4_kin[2] * cse36;
     // outlined_chain.mbg:27:9  signal rod5.pose.R22
-    const double rod5_pose_R22 = -rod4_kin[1] * cse14 + rod4_kin[2] * cse12;
+    const double rod5_pose_R22 = -rod4_kin[1] * cse36 + rod4_kin[2] * cse34;
     // outlined_chain.mbg:27:9  0 j5.vsum: flows in = flows out
     const double j5_reaction_f_f_2 = j5_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod5.m: p = I f (derivative causality)
@@ -298,34 +298,34 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod5_weight_e_1 = -rod5_mass * (9.81 * rod5_pose_R21);
     const double rod5_weight_e_2 = -rod5_mass * (9.81 * rod5_pose_R22);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: 1 / pivot of the joint's accelerations
-    const double cse16 = rod5_mass * j5_pb_2;
+    const double cse38 = rod5_mass * j5_pb_2;
     const double rod5_pivot1 = derived1_;
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: joint acceleration as an affine function of the parent's motion
-    const double cse17 = rod5_mass * (-cse12 * j5_pa_2 + j5_pb_2);
-    const double rod5_accel2 = -rod5_pivot1 * (rod5_inertia_3_3 + j5_pb_2 * cse17);
-    const double cse18 = rod5_mass * cse12;
-    const double rod5_accel3 = -rod5_pivot1 * (j5_pb_2 * cse18);
-    const double cse19 = rod5_mass * cse14;
-    const double rod5_accel4 = -rod5_pivot1 * (j5_pb_2 * cse19);
-    const double cse20 = -(rod5_weight_e_1 - rod5_ejs_v_e_1) + rod5_mass * (j5_m4_f2_2 * j5_theta_rate_rate);
-    const double rod5_accel5 = -rod5_pivot1 * (j5_pb_2 * cse20);
+    const double cse39 = rod5_mass * (-cse34 * j5_pa_2 + j5_pb_2);
+    const double rod5_accel2 = -rod5_pivot1 * (rod5_inertia_3_3 + j5_pb_2 * cse39);
+    const double cse40 = rod5_mass * cse34;
+    const double rod5_accel3 = -rod5_pivot1 * (j5_pb_2 * cse40);
+    const double cse41 = rod5_mass * cse36;
+    const double rod5_accel4 = -rod5_pivot1 * (j5_pb_2 * cse41);
+    const double cse42 = -(rod5_weight_e_1 - rod5_ejs_v_e_1) + rod5_mass * (j5_m4_f2_2 * j5_theta_rate_rate);
+    const double rod5_accel5 = -rod5_pivot1 * (j5_pb_2 * cse42);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod5: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse21 = cse12 * cse16;
-    const double cse22 = rod5_mass * (cse14 * j5_pa_2);
-    const double rod5_out6 = cse21 * rod5_accel2 + (cse12 * cse17 - cse14 * cse22);
-    const double cse23 = cse12 * cse18;
-    const double cse24 = cse14 * cse19;
-    const double rod5_out7 = cse21 * rod5_accel3 + (cse23 + cse24);
-    const double cse25 = cse12 * cse19;
-    const double cse26 = cse14 * cse18;
-    const double rod5_out8 = cse21 * rod5_accel4 + (cse25 - cse26);
-    const double cse27 = -(rod5_weight_e_2 - rod5_ejs_v_e_2) + rod5_mass * ((-cse13 - cse15) * j5_theta_rate_rate);
-    const double rod5_out9 = cse12 * cse20 - cse14 * cse27 + cse21 * rod5_accel5;
-    const double cse28 = cse14 * cse16;
-    const double rod5_out10 = cse28 * rod5_accel2 + (cse14 * cse17 + cse12 * cse22);
-    const double rod5_out11 = cse28 * rod5_accel3 + (cse26 - cse25);
-    const double rod5_out12 = cse28 * rod5_accel4 + (cse24 + cse23);
-    const double rod5_out13 = cse14 * cse20 + cse12 * cse27 + cse28 * rod5_accel5;
+    const double cse43 = cse34 * cse38;
+    const double cse44 = rod5_mass * (cse36 * j5_pa_2);
+    const double rod5_out6 = cse43 * rod5_accel2 + (cse34 * cse39 - cse36 * cse44);
+    const double cse45 = cse34 * cse40;
+    const double cse46 = cse36 * cse41;
+    const double rod5_out7 = cse43 * rod5_accel3 + (cse45 + cse46);
+    const double cse47 = cse34 * cse41;
+    const double cse48 = cse36 * cse40;
+    const double rod5_out8 = cse43 * rod5_accel4 + (cse47 - cse48);
+    const double cse49 = -(rod5_weight_e_2 - rod5_ejs_v_e_2) + rod5_mass * ((-cse35 - cse37) * j5_theta_rate_rate);
+    const double rod5_out9 = cse34 * cse42 - cse36 * cse49 + cse43 * rod5_accel5;
+    const double cse50 = cse36 * cse38;
+    const double rod5_out10 = cse50 * rod5_accel2 + (cse36 * cse39 + cse34 * cse44);
+    const double rod5_out11 = cse50 * rod5_accel3 + (cse48 - cse47);
+    const double rod5_out12 = cse50 * rod5_accel4 + (cse46 + cse45);
+    const double rod5_out13 = cse36 * cse42 + cse34 * cse49 + cse50 * rod5_accel5;
     const double rod5_out14 = -j5_pa_2 * rod5_out6;
     const double rod5_out15 = -j5_pa_2 * rod5_out7;
     const double rod5_out16 = -j5_pa_2 * rod5_out8;
@@ -353,24 +353,24 @@ class outlined_chain_model final : public mbgrt::Model {
     double rod3_in_2[7] = {rod3_inertia_3_3, j3_pb_2, rod3_mass * j3_pb_2, rod3_mass, j3_theta_q, j3_pa_2, j3_theta_rate_rate};
     derivative_shape2(rod3_in_2, rod4_elim, rod3_kin, rod3_elim);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: 1 / pivot of the joint's accelerations
-    const double cse49 = rod2_mass * j2_pb_2 + rod3_elim[15] + rod3_elim[16] * j2_pb_2;
-    const double rod2_pivot1 = 1.0 / (rod2_inertia_3_3 + j2_pb_2 * cse49 + rod3_elim[23] + rod3_elim[24] * j2_pb_2);
+    const double cse51 = rod2_mass * j2_pb_2 + rod3_elim[15] + rod3_elim[16] * j2_pb_2;
+    const double rod2_pivot1 = 1.0 / (rod2_inertia_3_3 + j2_pb_2 * cse51 + rod3_elim[23] + rod3_elim[24] * j2_pb_2);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: joint acceleration as an affine function of the parent's motion
-    const double cse50 = -cse7 * j2_pa_2 + j2_pb_2;
-    const double cse51 = cse8 * j2_pa_2;
-    const double cse52 = rod2_mass * cse50 + rod3_elim[15] + rod3_elim[16] * cse50 + rod3_elim[17] * cse51;
-    const double rod2_accel2 = -rod2_pivot1 * (rod2_inertia_3_3 + j2_pb_2 * cse52 + rod3_elim[23] + rod3_elim[24] * cse50 + rod3_elim[25] * cse51);
-    const double cse53 = rod2_mass * cse7 + rod3_elim[16] * cse7 - rod3_elim[17] * cse8;
-    const double rod2_accel3 = -rod2_pivot1 * (j2_pb_2 * cse53 + rod3_elim[24] * cse7 - rod3_elim[25] * cse8);
-    const double cse54 = cse9 * j2_theta_rate_rate;
-    const double cse55 = j2_m4_f2_1 * j2_theta_rate_rate;
-    const double cse56 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod3_elim[18] - rod2_mass * cse54 - rod3_elim[16] * cse54 - rod3_elim[17] * cse55;
-    const double rod2_accel4 = -rod2_pivot1 * (rod3_elim[26] + j2_pb_2 * cse56 - rod3_elim[24] * cse54 - rod3_elim[25] * cse55);
+    const double cse52 = -cse31 * j2_pa_2 + j2_pb_2;
+    const double cse53 = cse32 * j2_pa_2;
+    const double cse54 = rod2_mass * cse52 + rod3_elim[15] + rod3_elim[16] * cse52 + rod3_elim[17] * cse53;
+    const double rod2_accel2 = -rod2_pivot1 * (rod2_inertia_3_3 + j2_pb_2 * cse54 + rod3_elim[23] + rod3_elim[24] * cse52 + rod3_elim[25] * cse53);
+    const double cse55 = rod2_mass * cse31 + rod3_elim[16] * cse31 - rod3_elim[17] * cse32;
+    const double rod2_accel3 = -rod2_pivot1 * (j2_pb_2 * cse55 + rod3_elim[24] * cse31 - rod3_elim[25] * cse32);
+    const double cse56 = cse33 * j2_theta_rate_rate;
+    const double cse57 = j2_m4_f2_1 * j2_theta_rate_rate;
+    const double cse58 = -(rod2_weight_e_1 - rod2_ejs_v_e_1) + rod3_elim[18] - rod2_mass * cse56 - rod3_elim[16] * cse56 - rod3_elim[17] * cse57;
+    const double rod2_accel4 = -rod2_pivot1 * (rod3_elim[26] + j2_pb_2 * cse58 - rod3_elim[24] * cse56 - rod3_elim[25] * cse57);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse57 = cse7 * cse49 - cse8 * (rod3_elim[19] + rod3_elim[20] * j2_pb_2);
-    const double rod2_out5 = cse7 * cse52 - cse8 * (rod2_mass * cse51 + rod3_elim[19] + rod3_elim[20] * cse50 + rod3_elim[21] * cse51) + cse57 * rod2_accel2;
-    const double rod2_out6 = cse57 * rod2_accel3 + (cse7 * cse53 - cse8 * (-rod2_mass * cse8 + rod3_elim[20] * cse7 - rod3_elim[21] * cse8));
-    const double rod2_out7 = cse7 * cse56 - cse8 * (-(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod3_elim[22] - rod2_mass * cse55 - rod3_elim[20] * cse54 - rod3_elim[21] * cse55) + cse57 * rod2_accel4;
+    const double cse59 = cse31 * cse51 - cse32 * (rod3_elim[19] + rod3_elim[20] * j2_pb_2);
+    const double rod2_out5 = cse31 * cse54 - cse32 * (rod2_mass * cse53 + rod3_elim[19] + rod3_elim[20] * cse52 + rod3_elim[21] * cse53) + cse59 * rod2_accel2;
+    const double rod2_out6 = cse59 * rod2_accel3 + (cse31 * cse55 - cse32 * (-rod2_mass * cse32 + rod3_elim[20] * cse31 - rod3_elim[21] * cse32));
+    const double rod2_out7 = cse31 * cse58 - cse32 * (-(rod2_weight_e_2 - rod2_ejs_v_e_2) + rod3_elim[22] - rod2_mass * cse57 - rod3_elim[20] * cse56 - rod3_elim[21] * cse57) + cse59 * rod2_accel4;
     const double rod2_out8 = -j2_pa_2 * rod2_out5;
     const double rod2_out9 = -j2_pa_2 * rod2_out6;
     const double rod2_out10 = -j2_pa_2 * rod2_out7;
@@ -389,7 +389,7 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vpa: flows in = flows out]
     const double der_j2_m4_f1_1 = der_j1_m2_f2_1 + der_j2_m3_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m4: f2 = T f1]
-    const double der_j2_m4_f2_1 = cse7 * der_j2_m4_f1_1 - cse54;
+    const double der_j2_m4_f2_1 = cse31 * der_j2_m4_f1_1 - cse56;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.wsum: flows in = flows out]
     const double der_j2_reaction_t_f_3 = der_j1_theta_rate_rate + der_j2_theta_rate_rate;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m5: f2 = T f1]
@@ -397,7 +397,7 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vsum: flows in = flows out]
     const double der_j2_reaction_f_f_1 = der_j2_m4_f2_1 + der_j2_m5_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j2.m4: f2 = T f1]
-    const double der_j2_m4_f2_2 = -cse8 * der_j2_m4_f1_1 - cse55;
+    const double der_j2_m4_f2_2 = -cse32 * der_j2_m4_f1_1 - cse57;
     // outlined_chain.mbg:27:9  d/dt of [0 j2.vsum: flows in = flows out]
     const double der_j2_reaction_f_f_2 = der_j2_m4_f2_2;
     rod2_acc[28] = der_j2_theta_rate_rate;
@@ -566,10 +566,10 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod1_pose_R11 = std::cos(j1_theta_q);
     // outlined_chain.mbg:25:7  signal rod1.pose.R12
     // (cseN: a subexpression several equations below share)
-    const double cse66 = std::sin(j1_theta_q);
-    const double rod1_pose_R12 = -cse66;
+    const double cse68 = std::sin(j1_theta_q);
+    const double rod1_pose_R12 = -cse68;
     // outlined_chain.mbg:25:7  signal rod1.pose.R21
-    const double rod1_pose_R21 = cse66;
+    const double rod1_pose_R21 = cse68;
     // outlined_chain.mbg:25:7  signal rod1.pose.R22
     const double rod1_pose_R22 = rod1_pose_R11;
     // outlined_chain.mbg:25:7  signal rod1.pose.r1
@@ -725,14 +725,14 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j2_m4_f1_1 = j1_m2_f2_1 + j2_m3_f2_1;
     // outlined_chain.mbg:27:9  MTF j2.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse69 = std::cos(j2_theta_q);
-    const double j2_m4_f2_1 = cse69 * j2_m4_f1_1;
-    const double cse70 = std::sin(j2_theta_q);
-    const double j2_m4_f2_2 = -cse70 * j2_m4_f1_1;
+    const double cse71 = std::cos(j2_theta_q);
+    const double j2_m4_f2_1 = cse71 * j2_m4_f1_1;
+    const double cse72 = std::sin(j2_theta_q);
+    const double j2_m4_f2_2 = -cse72 * j2_m4_f1_1;
     // outlined_chain.mbg:27:9  signal rod2.pose.R21
-    const double rod2_pose_R21 = rod1_pose_R21 * cse69 + rod1_pose_R22 * cse70;
+    const double rod2_pose_R21 = rod1_pose_R21 * cse71 + rod1_pose_R22 * cse72;
     // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double rod2_pose_R22 = -rod1_pose_R21 * cse70 + rod1_pose_R22 * cse69;
+    const double rod2_pose_R22 = -rod1_pose_R21 * cse72 + rod1_pose_R22 * cse71;
     // outlined_chain.mbg:27:9  0 j2.vsum: flows in = flows out
     j2_reaction_f_f_2 = j2_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod2.m: p = I f (derivative causality)
@@ -810,14 +810,14 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j3_m4_f1_2 = s0[3];
     // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse10 = std::cos(in[1]);
-    const double cse11 = std::sin(in[1]);
-    const double j3_m4_f2_1 = cse10 * j3_m4_f1_1 + cse11 * j3_m4_f1_2;
-    const double j3_m4_f2_2 = -cse11 * j3_m4_f1_1 + cse10 * j3_m4_f1_2;
+    const double cse7 = std::cos(in[1]);
+    const double cse8 = std::sin(in[1]);
+    const double j3_m4_f2_1 = cse7 * j3_m4_f1_1 + cse8 * j3_m4_f1_2;
+    const double j3_m4_f2_2 = -cse8 * j3_m4_f1_1 + cse7 * j3_m4_f1_2;
     // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double pose_R21 = s0[1] * cse10 + s0[2] * cse11;
+    const double pose_R21 = s0[1] * cse7 + s0[2] * cse8;
     // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double pose_R22 = -s0[1] * cse11 + s0[2] * cse10;
+    const double pose_R22 = -s0[1] * cse8 + s0[2] * cse7;
     // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
     const double j3_reaction_f_f_2 = j3_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
@@ -853,41 +853,41 @@ class outlined_chain_model final : public mbgrt::Model {
   static void derivative_shape2(const double* in, const double* s0, const double* s1, double* out) {
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: 1 / pivot of the joint's accelerations
     // (cseN: a subexpression several equations below share)
-    const double cse29 = in[2] + s0[15] + s0[16] * in[1];
-    const double pivot1 = 1.0 / (in[0] + in[1] * cse29 + s0[23] + s0[24] * in[1]);
+    const double cse9 = in[2] + s0[15] + s0[16] * in[1];
+    const double pivot1 = 1.0 / (in[0] + in[1] * cse9 + s0[23] + s0[24] * in[1]);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: joint acceleration as an affine function of the parent's motion
-    const double cse30 = std::cos(in[4]);
-    const double cse31 = -cse30 * in[5] + in[1];
-    const double cse32 = std::sin(in[4]);
-    const double cse33 = cse32 * in[5];
-    const double cse34 = in[3] * cse31 + s0[15] + s0[16] * cse31 + s0[17] * cse33;
-    const double accel2 = -pivot1 * (in[0] + in[1] * cse34 + s0[23] + s0[24] * cse31 + s0[25] * cse33);
-    const double cse35 = in[3] * cse30;
-    const double cse36 = cse35 + s0[16] * cse30 - s0[17] * cse32;
-    const double accel3 = -pivot1 * (in[1] * cse36 + s0[24] * cse30 - s0[25] * cse32);
-    const double cse37 = in[3] * cse32;
-    const double cse38 = cse37 + s0[16] * cse32 + s0[17] * cse30;
-    const double accel4 = -pivot1 * (in[1] * cse38 + s0[24] * cse32 + s0[25] * cse30);
-    const double cse39 = (-cse32 * s1[0] + cse30 * s1[10]) * in[6];
-    const double cse40 = (-cse30 * s1[0] - cse32 * s1[10]) * in[6];
-    const double cse41 = -(s1[8] - s1[5]) + s0[18] + in[3] * cse39 + s0[16] * cse39 + s0[17] * cse40;
-    const double accel5 = -pivot1 * (s0[26] + in[1] * cse41 + s0[24] * cse39 + s0[25] * cse40);
+    const double cse10 = std::cos(in[4]);
+    const double cse11 = -cse10 * in[5] + in[1];
+    const double cse12 = std::sin(in[4]);
+    const double cse13 = cse12 * in[5];
+    const double cse14 = in[3] * cse11 + s0[15] + s0[16] * cse11 + s0[17] * cse13;
+    const double accel2 = -pivot1 * (in[0] + in[1] * cse14 + s0[23] + s0[24] * cse11 + s0[25] * cse13);
+    const double cse15 = in[3] * cse10;
+    const double cse16 = cse15 + s0[16] * cse10 - s0[17] * cse12;
+    const double accel3 = -pivot1 * (in[1] * cse16 + s0[24] * cse10 - s0[25] * cse12);
+    const double cse17 = in[3] * cse12;
+    const double cse18 = cse17 + s0[16] * cse12 + s0[17] * cse10;
+    const double accel4 = -pivot1 * (in[1] * cse18 + s0[24] * cse12 + s0[25] * cse10);
+    const double cse19 = (-cse12 * s1[0] + cse10 * s1[10]) * in[6];
+    const double cse20 = (-cse10 * s1[0] - cse12 * s1[10]) * in[6];
+    const double cse21 = -(s1[8] - s1[5]) + s0[18] + in[3] * cse19 + s0[16] * cse19 + s0[17] * cse20;
+    const double accel5 = -pivot1 * (s0[26] + in[1] * cse21 + s0[24] * cse19 + s0[25] * cse20);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse42 = s0[19] + s0[20] * in[1];
-    const double cse43 = cse30 * cse29 - cse32 * cse42;
-    const double cse44 = in[3] * cse33 + s0[19] + s0[20] * cse31 + s0[21] * cse33;
-    const double out6 = cse43 * accel2 + (cse30 * cse34 - cse32 * cse44);
-    const double cse45 = -cse37 + s0[20] * cse30 - s0[21] * cse32;
-    const double out7 = cse43 * accel3 + (cse30 * cse36 - cse32 * cse45);
-    const double cse46 = cse35 + s0[20] * cse32 + s0[21] * cse30;
-    const double out8 = cse43 * accel4 + (cse30 * cse38 - cse32 * cse46);
-    const double cse47 = -(s1[9] - s1[7]) + s0[22] + in[3] * cse40 + s0[20] * cse39 + s0[21] * cse40;
-    const double out9 = cse30 * cse41 - cse32 * cse47 + cse43 * accel5;
-    const double cse48 = cse32 * cse29 + cse30 * cse42;
-    const double out10 = cse48 * accel2 + (cse32 * cse34 + cse30 * cse44);
-    const double out11 = cse48 * accel3 + (cse32 * cse36 + cse30 * cse45);
-    const double out12 = cse48 * accel4 + (cse32 * cse38 + cse30 * cse46);
-    const double out13 = cse32 * cse41 + cse30 * cse47 + cse48 * accel5;
+    const double cse22 = s0[19] + s0[20] * in[1];
+    const double cse23 = cse10 * cse9 - cse12 * cse22;
+    const double cse24 = in[3] * cse13 + s0[19] + s0[20] * cse11 + s0[21] * cse13;
+    const double out6 = cse23 * accel2 + (cse10 * cse14 - cse12 * cse24);
+    const double cse25 = -cse17 + s0[20] * cse10 - s0[21] * cse12;
+    const double out7 = cse23 * accel3 + (cse10 * cse16 - cse12 * cse25);
+    const double cse26 = cse15 + s0[20] * cse12 + s0[21] * cse10;
+    const double out8 = cse23 * accel4 + (cse10 * cse18 - cse12 * cse26);
+    const double cse27 = -(s1[9] - s1[7]) + s0[22] + in[3] * cse20 + s0[20] * cse19 + s0[21] * cse20;
+    const double out9 = cse10 * cse21 - cse12 * cse27 + cse23 * accel5;
+    const double cse28 = cse12 * cse9 + cse10 * cse22;
+    const double out10 = cse28 * accel2 + (cse12 * cse14 + cse10 * cse24);
+    const double out11 = cse28 * accel3 + (cse12 * cse16 + cse10 * cse25);
+    const double out12 = cse28 * accel4 + (cse12 * cse18 + cse10 * cse26);
+    const double out13 = cse12 * cse21 + cse10 * cse27 + cse28 * accel5;
     const double out14 = -in[5] * out6;
     const double out15 = -in[5] * out7;
     const double out16 = -in[5] * out8;
@@ -920,9 +920,9 @@ class outlined_chain_model final : public mbgrt::Model {
     const double der_j3_m4_f1_2 = s1[31];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m4: f2 = T f1]
     // (cseN: a subexpression several equations below share)
-    const double cse58 = std::cos(in[1]);
-    const double cse59 = std::sin(in[1]);
-    const double der_j3_m4_f2_1 = cse58 * der_j3_m4_f1_1 + cse59 * der_j3_m4_f1_2 + (-cse59 * s2[0] + cse58 * s2[10]) * in[2];
+    const double cse29 = std::cos(in[1]);
+    const double cse30 = std::sin(in[1]);
+    const double der_j3_m4_f2_1 = cse29 * der_j3_m4_f1_1 + cse30 * der_j3_m4_f1_2 + (-cse30 * s2[0] + cse29 * s2[10]) * in[2];
     // outlined_chain.mbg:27:9  d/dt of [0 j3.wsum: flows in = flows out]
     const double der_j3_reaction_t_f_3 = s1[29] + der_j3_theta_rate_rate;
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m5: f2 = T f1]
@@ -930,7 +930,7 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  d/dt of [0 j3.vsum: flows in = flows out]
     const double der_j3_reaction_f_f_1 = der_j3_m4_f2_1 + der_j3_m5_f2_1;
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m4: f2 = T f1]
-    const double der_j3_m4_f2_2 = -cse59 * der_j3_m4_f1_1 + cse58 * der_j3_m4_f1_2 + (-cse58 * s2[0] - cse59 * s2[10]) * in[2];
+    const double der_j3_m4_f2_2 = -cse30 * der_j3_m4_f1_1 + cse29 * der_j3_m4_f1_2 + (-cse29 * s2[0] - cse30 * s2[10]) * in[2];
     // outlined_chain.mbg:27:9  d/dt of [0 j3.vsum: flows in = flows out]
     const double der_j3_reaction_f_f_2 = der_j3_m4_f2_2;
     out[28] = der_j3_theta_rate_rate;
@@ -942,15 +942,15 @@ class outlined_chain_model final : public mbgrt::Model {
   static void body_poses_shape1(const double* in, const double* s0, double* out) {
     // outlined_chain.mbg:27:9  signal rod2.pose.R11
     // (cseN: a subexpression several equations below share)
-    const double cse67 = std::cos(in[0]);
-    const double cse68 = std::sin(in[0]);
-    const double pose_R11 = s0[0] * cse67 + s0[1] * cse68;
+    const double cse66 = std::cos(in[0]);
+    const double cse67 = std::sin(in[0]);
+    const double pose_R11 = s0[0] * cse66 + s0[1] * cse67;
     // outlined_chain.mbg:27:9  signal rod2.pose.R12
-    const double pose_R12 = -s0[0] * cse68 + s0[1] * cse67;
+    const double pose_R12 = -s0[0] * cse67 + s0[1] * cse66;
     // outlined_chain.mbg:27:9  signal rod2.pose.R21
-    const double pose_R21 = s0[2] * cse67 + s0[3] * cse68;
+    const double pose_R21 = s0[2] * cse66 + s0[3] * cse67;
     // outlined_chain.mbg:27:9  signal rod2.pose.R22
-    const double pose_R22 = -s0[2] * cse68 + s0[3] * cse67;
+    const double pose_R22 = -s0[2] * cse67 + s0[3] * cse66;
     // outlined_chain.mbg:27:9  signal rod2.pose.r1
     const double pose_r1 = s0[4] + s0[1] * in[1] - pose_R12 * in[2];
     // outlined_chain.mbg:27:9  signal rod2.pose.r2
@@ -971,14 +971,14 @@ class outlined_chain_model final : public mbgrt::Model {
     const double j3_m4_f1_2 = s0[2];
     // outlined_chain.mbg:27:9  MTF j3.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse71 = std::cos(in[1]);
-    const double cse72 = std::sin(in[1]);
-    const double j3_m4_f2_1 = cse71 * j3_m4_f1_1 + cse72 * j3_m4_f1_2;
-    const double j3_m4_f2_2 = -cse72 * j3_m4_f1_1 + cse71 * j3_m4_f1_2;
+    const double cse69 = std::cos(in[1]);
+    const double cse70 = std::sin(in[1]);
+    const double j3_m4_f2_1 = cse69 * j3_m4_f1_1 + cse70 * j3_m4_f1_2;
+    const double j3_m4_f2_2 = -cse70 * j3_m4_f1_1 + cse69 * j3_m4_f1_2;
     // outlined_chain.mbg:27:9  signal rod3.pose.R21
-    const double pose_R21 = s0[0] * cse71 + s0[1] * cse72;
+    const double pose_R21 = s0[0] * cse69 + s0[1] * cse70;
     // outlined_chain.mbg:27:9  signal rod3.pose.R22
-    const double pose_R22 = -s0[0] * cse72 + s0[1] * cse71;
+    const double pose_R22 = -s0[0] * cse70 + s0[1] * cse69;
     // outlined_chain.mbg:27:9  0 j3.vsum: flows in = flows out
     const double j3_reaction_f_f_2 = j3_m4_f2_2;
     // outlined_chain.mbg:17:8  I rod3.m: p = I f (derivative causality)
