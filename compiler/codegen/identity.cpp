@@ -157,12 +157,14 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   for (const Output& o : g.outputs) outs.push_back(cpp_string(o.name));
   c.public_methods.push_back({"", "std::vector<std::string> output_names() const override",
                               {CppStmt::line(fmt::format("return {{{}}};", fmt::join(outs, ", ")))}});
-  // the units outputs are declared in, for the CSV header (`omega [rad/s]`)
+  // each output's unit for the CSV header (`omega [rad/s]`): as declared,
+  // else the SI unit the units pass inferred (none for a plain number)
   std::vector<std::string> units;
   bool any_unit = false;
   for (const Output& o : g.outputs) {
-    units.push_back(cpp_string(o.unit ? o.unit->unit.text : ""));
-    any_unit = any_unit || o.unit;
+    const std::string unit = o.unit ? o.unit->unit.text : o.dimension && !o.dimension->is_none() ? units::format(*o.dimension) : "";
+    units.push_back(cpp_string(unit));
+    any_unit = any_unit || !unit.empty();
   }
   if (any_unit)
     c.public_methods.push_back({"", "std::vector<std::string> output_units() const override",

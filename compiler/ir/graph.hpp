@@ -129,6 +129,10 @@ struct Output {
   SourceLoc loc;
   Expr value;
   std::optional<DeclaredUnit> unit;
+  /// Its dimension as the units pass found it (declared or inferred:
+  /// units::record_dimensions); nullopt where nothing fixes it, or the
+  /// check is off. The CSV header shows it (`omega [rad/s]`).
+  std::optional<units::Dimension> dimension;
 };
 
 /// A drawn body (ir/drawing.hpp): where it is, as expressions over the

@@ -241,8 +241,10 @@ class Checker {
     for (const ir::UnitCheck& c : g_.unit_checks)
       if (c.quantity)
         for (const Expr& item : c.items)
-          if (item->op != Op::Const && item->op != Op::Param && item->op != Op::Time)
+          if (item->op != Op::Const && item->op != Op::Param && item->op != Op::Time) {
             memo_[item.get()] = Form::known(c.dimension);
+            with_angle_.emplace(item.get(), c.dimension);
+          }
     // The junctions first, then the elements' laws in the order written, then
     // the signals: what contradicts the ones before it is the one reported.
     std::unordered_set<long long> signal_locs;
@@ -286,7 +288,7 @@ class Checker {
         agree(f, declared(*o.unit), "its value",
               fmt::format("its unit {{{}}} is {}", o.unit->unit.text, format(o.unit->unit.dimension)));
       Form r = solver_.reduce(f);
-      report.outputs.push_back(r.terms.empty() && !r.wild ? std::optional<Dimension>(r.constant) : std::nullopt);
+      report.outputs.push_back(r.terms.empty() && !r.wild ? std::optional<Dimension>(shown_with_angle(o.value, r.constant)) : std::nullopt);
     }
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       report.params.push_back(g_.params[i].unit     ? std::optional<Dimension>(g_.params[i].unit->unit.dimension)
@@ -490,6 +492,22 @@ class Checker {
   ir::Namer names_;
   Site site_;
   std::unordered_map<const ir::Node*, Form> memo_;
+  /// The quantities the multibody layer states, with their angles (the
+  /// solver counts a radian as 1, as SI does: `hinge.rate` is 1/s to it).
+  std::unordered_map<const ir::Node*, Dimension> with_angle_;
+
+  /// `d`, the inferred dimension of `value`, as a user reads it: with the
+  /// angle of the quantity or parameter it is (`output w = hinge.rate` is
+  /// rad/s); else as inferred (an angular rate of a plain bond graph reads 1/s).
+  Dimension shown_with_angle(const Expr& value, const Dimension& d) const {
+    std::optional<Dimension> stated;
+    if (auto it = with_angle_.find(value.get()); it != with_angle_.end()) stated = it->second;
+    if (value->op == Op::Param) {
+      const ir::Parameter& p = g_.params[static_cast<std::size_t>(value->id)];
+      stated = p.unit ? std::optional<Dimension>(p.unit->unit.dimension) : p.stated;
+    }
+    return stated && stated->without_angle() == d ? *stated : d;
+  }
   std::unordered_set<long long> reported_;
   /// Of the nodes whose equations are not read: those the multibody layer
   /// made, and elements whose modulus is a number (`I m = 1`: the equation
@@ -518,6 +536,7 @@ std::string described(const std::optional<ir::DeclaredUnit>& declared, const std
 
 void record_dimensions(ir::BondGraph& g, const UnitReport& report) {
   for (std::size_t i = 0; i < g.params.size() && i < report.params.size(); ++i) g.params[i].dimension = report.params[i];
+  for (std::size_t i = 0; i < g.outputs.size() && i < report.outputs.size(); ++i) g.outputs[i].dimension = report.outputs[i];
 }
 
 std::string print_report(const ir::BondGraph& g, const UnitReport& report) {

@@ -36,8 +36,8 @@ struct UnitReport {
 /// nor inferred is an error too.
 UnitReport check_units(const ir::EquationSystem& sys, ir::Diagnostics& diags, bool strict = false);
 
-/// Writes each parameter's dimension (`report.params`) into the graph's
-/// parameters, for the passes after this one (Parameter::dimension).
+/// Writes each parameter's and output's dimension (`report`) into the
+/// graph, for the passes after this one (Parameter::dimension, Output::dimension).
 void record_dimensions(ir::BondGraph& g, const UnitReport& report);
 
 /// `mbgc --units report`: every parameter and output with its unit, and

@@ -35,7 +35,7 @@ TEST(Scenes, ThePendulumSceneGivesTheWholeModelsAnglesBitForBit) {
   SimRun scene = run(SCENE_PENDULUM_SIM, "", "scene_pendulum");
   ASSERT_EQ(full.status, 0) << full.log;
   ASSERT_EQ(scene.status, 0) << scene.log;
-  ASSERT_EQ(scene.csv.header, (std::vector<std::string>{"t", "angle_rad", "rate"}));
+  ASSERT_EQ(scene.csv.header, (std::vector<std::string>{"t", "angle_rad [rad]", "rate [rad/s]"}));  // units the compiler found
   EXPECT_EQ(max_diff(full, scene, "angle_rad"), 0.0);
   EXPECT_EQ(max_diff(full, scene, "rate"), 0.0);
   EXPECT_GT(full.csv.max_deviation("angle_rad"), 1.0);  // it swings

@@ -60,6 +60,10 @@ class ball_chain_model final : public mbgrt::Model {
     return {"torque_z", "x"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {};
   }

@@ -78,6 +78,10 @@ class beam_centre_frame_model final : public mbgrt::Model {
     return {"right_end[1]", "right_end[2]", "right_end[3]"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"rod.r0[1]", 0.0, "", "m"},

@@ -76,6 +76,10 @@ class beam_load_model final : public mbgrt::Model {
     return {"tip_z", "tip_y"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"F", 2.0, "", "N"},

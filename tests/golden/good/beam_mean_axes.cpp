@@ -78,6 +78,10 @@ class beam_mean_axes_model final : public mbgrt::Model {
     return {"end_y", "energy"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "N*m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"bar.r0[1]", 0.0, "", "m"},

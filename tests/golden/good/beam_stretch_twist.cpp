@@ -82,6 +82,10 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     return {"tip[1]", "tip[2]", "tip[3]", "twist"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m", ""};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"arm.q0[1]", 1.0, "", "1"},

@@ -51,6 +51,10 @@ class cut_joint_model final : public mbgrt::Model {
     return {"crank_angle", "rocker_angle", "gap"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"rad", "rad", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"J[1,1]", 0.001, "", "kg*m^2"},

@@ -51,6 +51,10 @@ class decay_sine_model final : public mbgrt::Model {
     return {"p", "v"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"kg^(1/2)*m/s", ""};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"k", 0.5, "", "1/s"},

@@ -64,6 +64,10 @@ class drawn_bodies_model final : public mbgrt::Model {
     return {"x", "ball_z", "ball[1]", "ball[2]", "ball[3]", "tetra[1]", "tetra[2]", "tetra[3]"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m", "m", "m", "m", "m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"ball.r0[1]", 1.0, "", "m"},

@@ -64,6 +64,10 @@ class drawn_surfaces_model final : public mbgrt::Model {
     return {"zp", "rig[1]", "rig[2]", "rig[3]"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"e", 0.5, "", "1"},

@@ -64,6 +64,10 @@ class loop_names_model final : public mbgrt::Model {
     return {"y1", "cx1", "y2", "cx2"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"N", 2.0, "", ""},

@@ -80,6 +80,10 @@ class modal_body_model final : public mbgrt::Model {
     return {"tip[1]", "tip[2]", "tip[3]", "tip_deflection[1]", "tip_deflection[2]", "tip_deflection[3]"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m", "", "m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"bar.q0[1]", 0.9999999999999998, "", "1"},

@@ -51,6 +51,10 @@ class nonlinear_dae_model final : public mbgrt::Model {
     return {"vc", "i"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"kg^(3/4)*m^(3/2)/s^(9/4)", "kg^(1/4)*m^(1/2)/s^(3/4)"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {};
   }

@@ -52,6 +52,10 @@ class outlined_chain_model final : public mbgrt::Model {
     return {"tip_y"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"N", 5.0, "", ""},

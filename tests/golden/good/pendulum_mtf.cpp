@@ -51,6 +51,10 @@ class pendulum_mtf_model final : public mbgrt::Model {
     return {"theta", "omega_hub", "x", "y", "E"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"", "1/s", "", "", "N*m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {
         {"m", 1.0, "", ""},

@@ -60,6 +60,10 @@ class planar_below_moving_model final : public mbgrt::Model {
     return {"x", "y", "z", "ux", "uy", "uz"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"m", "m", "m", "m", "m", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {};
   }

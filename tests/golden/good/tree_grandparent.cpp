@@ -61,6 +61,10 @@ class tree_grandparent_model final : public mbgrt::Model {
     return {"arm_angle", "height"};
   }
 
+  std::vector<std::string> output_units() const override {
+    return {"rad", "m"};
+  }
+
   std::vector<mbgrt::ParameterInfo> parameters() const override {
     return {};
   }
