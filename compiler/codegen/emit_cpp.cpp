@@ -27,6 +27,7 @@
 #include "codegen/split.hpp"
 #include "codegen/stats.hpp"
 #include "codegen/template.hpp"
+#include "units/unit.hpp"
 
 namespace mbgc::codegen {
 namespace {
@@ -226,7 +227,9 @@ class Emitter {
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
       const Parameter& p = g_.params[i];
       std::string at = located.head(p.loc);
+      // its unit: as declared (`{kg}`), else the SI unit the units pass found (`[N*s/m]`)
       if (p.unit) at += fmt::format("{}{{{}}}", at.empty() ? "  // " : ", ", p.unit->unit.text);
+      else if (p.dimension && !p.dimension->is_none()) at += fmt::format("{}[{}]", at.empty() ? "  // " : ", ", units::format(*p.dimension));
       f.body.push_back(CppStmt::param(names_.param(static_cast<int>(i)), i, p.value, std::move(at)));
     }
     if (!hoisted_order_.empty()) f.body.push_back(CppStmt::comment("DERIVED CONSTANTS: parameter expressions, computed once per run"));
@@ -349,7 +352,7 @@ class Emitter {
         if (outlined.runs[static_cast<std::size_t>(r)].begin == i) outline_.call_shape(body, outlined_form, r, list, results, *ops());
         continue;
       }
-      body.push_back(CppStmt::assign(fmt::format("{}[{}]", results[i].array, results[i].index), results[i].value));
+      body.push_back(CppStmt::assign(fmt::format("{}[{}]", results[i].array, results[i].index), results[i].value, results[i].note));
     }
     // Common subexpressions: anything non-trivial used twice or more in this section.
     share_subexpressions(body, from, hoisted_, cse_counter_);
@@ -572,9 +575,14 @@ class Emitter {
 
   CppFunction outputs() {
     std::vector<Expr> values;
-    for (const Output& o : g_.outputs) values.push_back(o.value);
+    std::vector<std::string> notes;  // each one's name, unit and line
+    for (const Output& o : g_.outputs) {
+      values.push_back(o.value);
+      const std::string unit = shown_unit(o);
+      notes.push_back(fmt::format("  // {}{} ({})", o.name, unit.empty() ? "" : " [" + unit + "]", where(o.loc)));
+    }
     return values_at("OUTPUT: the declared outputs at (t, y).", "outputs", "out", values, s_.for_outputs,
-                     "outputs, in declaration order");
+                     "outputs, in declaration order", {}, false, notes);
   }
 
   CppFunction body_poses() {
@@ -619,13 +627,15 @@ class Emitter {
   /// With `witness`, it calls witness_values() first (if written).
   CppFunction values_at(const char* doc, const char* name, const char* out, const std::vector<Expr>& values,
                         const std::vector<int>& slice, const char* comment,
-                        const std::vector<std::pair<std::string, SourceLoc>>& owners = {}, bool witness = false) {
+                        const std::vector<std::pair<std::string, SourceLoc>>& owners = {}, bool witness = false,
+                        const std::vector<std::string>& notes = {}) {
     CppFunction f{doc, fmt::format("void {}(double t, const double* {}, const double* yp, double* {}) override", name, s_.dae ? "y" : "x", out),
                   {CppStmt::line("(void)t;"), CppStmt::line(s_.dae ? "(void)y;" : "(void)x;"), CppStmt::line("(void)yp;")}};
     const Counting counting = count_into(f);
     std::vector<SectionResult> results;
     for (std::size_t i = 0; i < values.size(); ++i)
-      results.push_back(i < owners.size() ? SectionResult{out, i, values[i], owners[i].first, owners[i].second, {}} : SectionResult{out, i, values[i], {}, {}, {}});
+      results.push_back(i < owners.size() ? SectionResult{out, i, values[i], owners[i].first, owners[i].second, {}}
+                                          : SectionResult{out, i, values[i], {}, {}, {}, i < notes.size() ? notes[i] : std::string{}});
     if (results.empty()) f.body.push_back(CppStmt::line(fmt::format("(void){};", out)));
     section(f.body, witness ? call_witness_values(f.body, slice) : slice, std::move(results), comment);
     return f;

@@ -162,7 +162,7 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   std::vector<std::string> units;
   bool any_unit = false;
   for (const Output& o : g.outputs) {
-    const std::string unit = o.unit ? o.unit->unit.text : o.dimension && !o.dimension->is_none() ? units::format(*o.dimension) : "";
+    const std::string unit = shown_unit(o);
     units.push_back(cpp_string(unit));
     any_unit = any_unit || !unit.empty();
   }
@@ -266,6 +266,11 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
     set.body.push_back(CppStmt::line("return false;"));
   }
   c.public_methods.push_back(set);
+}
+
+std::string shown_unit(const Output& o) {
+  if (o.unit) return o.unit->unit.text;
+  return o.dimension && !o.dimension->is_none() ? units::format(*o.dimension) : "";
 }
 
 CppFunction residual_sparsity_method(const ir::ReducedSystem& s) {

@@ -4,6 +4,8 @@
 // model's default settings and set_parameter().
 #pragma once
 
+#include <string>
+
 #include "codegen/cpp.hpp"
 #include "codegen/emit_cpp.hpp"
 #include "ir/reduced.hpp"
@@ -17,6 +19,11 @@ void add_identity_methods(CppClass& c, const ir::ReducedSystem& s, const EmitOpt
 /// A DAE's residual_sparsity(): where IDA's matrix dF/dy + c_j dF/dy' can be
 /// nonzero, by column (reduce/sparsity.hpp).
 CppFunction residual_sparsity_method(const ir::ReducedSystem& s);
+
+/// The unit an output is shown in (the CSV header, its line's comment): as
+/// declared, else the SI unit the units pass found; "" for a plain number
+/// or where nothing fixes it.
+std::string shown_unit(const ir::Output& o);
 
 /// Variables and parameters by their names in the model (for comments).
 ir::Namer names_for_dump(const ir::BondGraph& g);

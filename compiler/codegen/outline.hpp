@@ -52,6 +52,7 @@ struct SectionResult {
   std::string owner;     // the body, joint or instance it is about ("": none, written inline)
   ir::SourceLoc loc;     // where it comes from (its comment in a shape's function), if known
   std::string origin;
+  std::string note = {};  // after its line where written inline ("  // omega [rad/s] (model.mbg:9:1)")
 };
 
 struct OutlinedRun {

@@ -117,7 +117,7 @@ class algebraic_loop_model final : public mbgrt::Model {
     // algebraic_loop.mbg:8:3  C cap: q = C e
     const double cap_e = cap_q / 0.5;
     // outputs, in declaration order
-    out[0] = cap_e;
+    out[0] = cap_e;  // vc (algebraic_loop.mbg:12:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

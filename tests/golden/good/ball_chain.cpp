@@ -464,8 +464,8 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:27:7  signal lower.pose.r1
     const double lower_pose_r1 = upper_pose_r1 + upper_pose_r1 + 0.2 * lower_pose_R11;
     // outputs, in declaration order
-    out[0] = elbow_reaction_t_e_3;
-    out[1] = lower_pose_r1;
+    out[0] = elbow_reaction_t_e_3;  // torque_z (ball_chain.mbg:29:8)
+    out[1] = lower_pose_r1;  // x [m] (ball_chain.mbg:30:8)
   }
 
   // DRAWN BODIES (--animate): how many.

@@ -125,19 +125,19 @@ class beam_centre_frame_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    rod_r0_1 = param(0, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_r0_2 = param(1, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_r0_3 = param(2, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_v0_1 = param(3, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_v0_2 = param(4, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_v0_3 = param(5, 0.0);  // beam_centre_frame.mbg:5:6
+    rod_r0_1 = param(0, 0.0);  // beam_centre_frame.mbg:5:6, [m]
+    rod_r0_2 = param(1, 0.0);  // beam_centre_frame.mbg:5:6, [m]
+    rod_r0_3 = param(2, 0.0);  // beam_centre_frame.mbg:5:6, [m]
+    rod_v0_1 = param(3, 0.0);  // beam_centre_frame.mbg:5:6, [m/s]
+    rod_v0_2 = param(4, 0.0);  // beam_centre_frame.mbg:5:6, [m/s]
+    rod_v0_3 = param(5, 0.0);  // beam_centre_frame.mbg:5:6, [m/s]
     rod_q0_1 = param(6, 1.0);  // beam_centre_frame.mbg:5:6
     rod_q0_2 = param(7, 0.0);  // beam_centre_frame.mbg:5:6
     rod_q0_3 = param(8, 0.0);  // beam_centre_frame.mbg:5:6
     rod_q0_4 = param(9, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_w0_1 = param(10, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_w0_2 = param(11, 0.0);  // beam_centre_frame.mbg:5:6
-    rod_w0_3 = param(12, 0.5);  // beam_centre_frame.mbg:5:6
+    rod_w0_1 = param(10, 0.0);  // beam_centre_frame.mbg:5:6, [rad/s]
+    rod_w0_2 = param(11, 0.0);  // beam_centre_frame.mbg:5:6, [rad/s]
+    rod_w0_3 = param(12, 0.5);  // beam_centre_frame.mbg:5:6, [rad/s]
     // INITIAL STATE
     // (cseN: a subexpression several equations below share)
     const double cse1 = rod_q0_1 * rod_q0_1;
@@ -372,9 +372,9 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double cse64 = rod_q_q_2 * rod_q_q_3;
     const double cse65 = rod_q_q_1 * rod_q_q_4;
     const double cse66 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;
-    out[0] = rod_r_q_1 + ((cse59 - cse60 - cse61) / cse62 * cse63 + 2.0 * (cse64 - cse65) / cse62 * cse66);
-    out[1] = rod_r_q_2 + (2.0 * (cse64 + cse65) / cse62 * cse63 + (cse57 + cse60 - cse58 - cse61) / cse62 * cse66);
-    out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse62 * cse63 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse62 * cse66);
+    out[0] = rod_r_q_1 + ((cse59 - cse60 - cse61) / cse62 * cse63 + 2.0 * (cse64 - cse65) / cse62 * cse66);  // right_end[1] [m] (beam_centre_frame.mbg:14:8)
+    out[1] = rod_r_q_2 + (2.0 * (cse64 + cse65) / cse62 * cse63 + (cse57 + cse60 - cse58 - cse61) / cse62 * cse66);  // right_end[2] [m] (beam_centre_frame.mbg:14:8)
+    out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse62 * cse63 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse62 * cse66);  // right_end[3] [m] (beam_centre_frame.mbg:14:8)
   }
 
   // DRAWN BODIES (--animate): how many.

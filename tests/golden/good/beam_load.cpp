@@ -111,7 +111,7 @@ class beam_load_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    F = param(0, 2.0);  // beam_load.mbg:4:7
+    F = param(0, 2.0);  // beam_load.mbg:4:7, [N]
     // INITIAL STATE
     x[0] = 0.0;  // blade.eta_rate.rate[1] (beam_load.mbg:5:6)
     x[1] = 0.0;  // blade.eta_rate.rate[2] (beam_load.mbg:5:6)
@@ -193,8 +193,8 @@ class beam_load_model final : public mbgrt::Model {
     const double blade_eta_q_1 = x[2];
     const double blade_eta_q_2 = x[3];
     // outputs, in declaration order
-    out[0] = 2.0 * blade_eta_q_2;
-    out[1] = 2.0 * blade_eta_q_1;
+    out[0] = 2.0 * blade_eta_q_2;  // tip_z [m] (beam_load.mbg:15:8)
+    out[1] = 2.0 * blade_eta_q_1;  // tip_y [m] (beam_load.mbg:16:8)
   }
 
   // DRAWN BODIES (--animate): how many.

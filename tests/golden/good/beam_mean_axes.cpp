@@ -125,19 +125,19 @@ class beam_mean_axes_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    bar_r0_1 = param(0, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_r0_2 = param(1, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_r0_3 = param(2, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_v0_1 = param(3, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_v0_2 = param(4, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_v0_3 = param(5, 0.0);  // beam_mean_axes.mbg:5:6
+    bar_r0_1 = param(0, 0.0);  // beam_mean_axes.mbg:5:6, [m]
+    bar_r0_2 = param(1, 0.0);  // beam_mean_axes.mbg:5:6, [m]
+    bar_r0_3 = param(2, 0.0);  // beam_mean_axes.mbg:5:6, [m]
+    bar_v0_1 = param(3, 0.0);  // beam_mean_axes.mbg:5:6, [m/s]
+    bar_v0_2 = param(4, 0.0);  // beam_mean_axes.mbg:5:6, [m/s]
+    bar_v0_3 = param(5, 0.0);  // beam_mean_axes.mbg:5:6, [m/s]
     bar_q0_1 = param(6, 1.0);  // beam_mean_axes.mbg:5:6
     bar_q0_2 = param(7, 0.0);  // beam_mean_axes.mbg:5:6
     bar_q0_3 = param(8, 0.0);  // beam_mean_axes.mbg:5:6
     bar_q0_4 = param(9, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_w0_1 = param(10, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_w0_2 = param(11, 0.0);  // beam_mean_axes.mbg:5:6
-    bar_w0_3 = param(12, 2.0);  // beam_mean_axes.mbg:5:6
+    bar_w0_1 = param(10, 0.0);  // beam_mean_axes.mbg:5:6, [rad/s]
+    bar_w0_2 = param(11, 0.0);  // beam_mean_axes.mbg:5:6, [rad/s]
+    bar_w0_3 = param(12, 2.0);  // beam_mean_axes.mbg:5:6, [rad/s]
     // INITIAL STATE
     // (cseN: a subexpression several equations below share)
     const double cse1 = bar_q0_1 * bar_q0_1;
@@ -415,8 +415,8 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
     const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
     // outputs, in declaration order
-    out[0] = 1.9999999999999991 * bar_eta_q_1 - 2.000000000000001 * bar_eta_q_2;
-    out[1] = 0.5 * (bar_M_f_1 * bar_M_p_1 + bar_M_f_2 * bar_M_p_2 + bar_M_f_3 * bar_M_p_3 + bar_M_f_4 * bar_M_p_4 + bar_M_f_5 * bar_M_p_5 + bar_M_f_6 * bar_M_p_6 + bar_M_f_7 * bar_M_p_7 + bar_M_f_8 * bar_M_p_8) + 0.5 * (bar_eta_q_1 * bar_eta_e_1 + bar_eta_q_2 * bar_eta_e_2);
+    out[0] = 1.9999999999999991 * bar_eta_q_1 - 2.000000000000001 * bar_eta_q_2;  // end_y [m] (beam_mean_axes.mbg:13:8)
+    out[1] = 0.5 * (bar_M_f_1 * bar_M_p_1 + bar_M_f_2 * bar_M_p_2 + bar_M_f_3 * bar_M_p_3 + bar_M_f_4 * bar_M_p_4 + bar_M_f_5 * bar_M_p_5 + bar_M_f_6 * bar_M_p_6 + bar_M_f_7 * bar_M_p_7 + bar_M_f_8 * bar_M_p_8) + 0.5 * (bar_eta_q_1 * bar_eta_e_1 + bar_eta_q_2 * bar_eta_e_2);  // energy [N*m] (beam_mean_axes.mbg:14:8)
   }
 
   // DRAWN BODIES (--animate): how many.

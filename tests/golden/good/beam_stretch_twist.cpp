@@ -170,15 +170,15 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     arm_q0_2 = param(1, 0.0);  // beam_stretch_twist.mbg:15:7
     arm_q0_3 = param(2, 0.0);  // beam_stretch_twist.mbg:15:7
     arm_q0_4 = param(3, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_r0_1 = param(4, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_r0_2 = param(5, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_r0_3 = param(6, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_w0_1 = param(7, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_w0_2 = param(8, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_w0_3 = param(9, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_v0_1 = param(10, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_v0_2 = param(11, 0.0);  // beam_stretch_twist.mbg:15:7
-    arm_v0_3 = param(12, 0.0);  // beam_stretch_twist.mbg:15:7
+    arm_r0_1 = param(4, 0.0);  // beam_stretch_twist.mbg:15:7, [m]
+    arm_r0_2 = param(5, 0.0);  // beam_stretch_twist.mbg:15:7, [m]
+    arm_r0_3 = param(6, 0.0);  // beam_stretch_twist.mbg:15:7, [m]
+    arm_w0_1 = param(7, 0.0);  // beam_stretch_twist.mbg:15:7, [rad/s]
+    arm_w0_2 = param(8, 0.0);  // beam_stretch_twist.mbg:15:7, [rad/s]
+    arm_w0_3 = param(9, 0.0);  // beam_stretch_twist.mbg:15:7, [rad/s]
+    arm_v0_1 = param(10, 0.0);  // beam_stretch_twist.mbg:15:7, [m/s]
+    arm_v0_2 = param(11, 0.0);  // beam_stretch_twist.mbg:15:7, [m/s]
+    arm_v0_3 = param(12, 0.0);  // beam_stretch_twist.mbg:15:7, [m/s]
     // INITIAL STATE
     // (cseN: a subexpression several equations below share)
     const double cse1 = arm_q0_1 * arm_q0_1;
@@ -609,10 +609,10 @@ class beam_stretch_twist_model final : public mbgrt::Model {
     const double cse102 = arm_q_q_2 * arm_q_q_3;
     const double cse103 = arm_q_q_1 * arm_q_q_4;
     const double cse104 = 2.0 * arm_eta_q_1;
-    out[0] = arm_r_q_1 + ((cse97 - cse98 - cse99) / cse100 * cse101 + 2.0 * (cse102 - cse103) / cse100 * cse104);
-    out[1] = arm_r_q_2 + (2.0 * (cse102 + cse103) / cse100 * cse101 + (cse95 + cse98 - cse96 - cse99) / cse100 * cse104);
-    out[2] = arm_r_q_3 + (2.0 * (arm_q_q_2 * arm_q_q_4 - arm_q_q_1 * arm_q_q_3) / cse100 * cse101 + 2.0 * (arm_q_q_3 * arm_q_q_4 + arm_q_q_1 * arm_q_q_2) / cse100 * cse104);
-    out[3] = 1.4142135623730951 * arm_eta_q_3;
+    out[0] = arm_r_q_1 + ((cse97 - cse98 - cse99) / cse100 * cse101 + 2.0 * (cse102 - cse103) / cse100 * cse104);  // tip[1] [m] (beam_stretch_twist.mbg:16:8)
+    out[1] = arm_r_q_2 + (2.0 * (cse102 + cse103) / cse100 * cse101 + (cse95 + cse98 - cse96 - cse99) / cse100 * cse104);  // tip[2] [m] (beam_stretch_twist.mbg:16:8)
+    out[2] = arm_r_q_3 + (2.0 * (arm_q_q_2 * arm_q_q_4 - arm_q_q_1 * arm_q_q_3) / cse100 * cse101 + 2.0 * (arm_q_q_3 * arm_q_q_4 + arm_q_q_1 * arm_q_q_2) / cse100 * cse104);  // tip[3] [m] (beam_stretch_twist.mbg:16:8)
+    out[3] = 1.4142135623730951 * arm_eta_q_3;  // twist (beam_stretch_twist.mbg:17:8)
   }
 
   // DRAWN BODIES (--animate): how many.

@@ -148,8 +148,8 @@ class components_model final : public mbgrt::Model {
     // components.mbg:6:5  C u2.c: q = C e
     const double u2_c_e = u2_c_q / u2_Cc;
     // outputs, in declaration order
-    out[0] = u1_c_e;
-    out[1] = u2_c_e;
+    out[0] = u1_c_e;  // v1 (components.mbg:15:8)
+    out[1] = u2_c_e;  // v2 (components.mbg:16:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

@@ -127,51 +127,51 @@ class cut_joint_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    J_1_1 = param(0, 0.001);  // cut_joint.mbg:8:7
-    J_1_2 = param(1, 0.0);  // cut_joint.mbg:8:7
-    J_1_3 = param(2, 0.0);  // cut_joint.mbg:8:7
-    J_2_1 = param(3, 0.0);  // cut_joint.mbg:8:7
-    J_2_2 = param(4, 0.001);  // cut_joint.mbg:8:7
-    J_2_3 = param(5, 0.0);  // cut_joint.mbg:8:7
-    J_3_1 = param(6, 0.0);  // cut_joint.mbg:8:7
-    J_3_2 = param(7, 0.0);  // cut_joint.mbg:8:7
-    J_3_3 = param(8, 0.01);  // cut_joint.mbg:8:7
-    crank_inertia_1_1 = param(9, J_1_1);  // cut_joint.mbg:11:6
-    crank_inertia_1_2 = param(10, J_1_2);  // cut_joint.mbg:11:6
-    crank_inertia_1_3 = param(11, J_1_3);  // cut_joint.mbg:11:6
-    crank_inertia_2_1 = param(12, J_2_1);  // cut_joint.mbg:11:6
-    crank_inertia_2_2 = param(13, J_2_2);  // cut_joint.mbg:11:6
-    crank_inertia_2_3 = param(14, J_2_3);  // cut_joint.mbg:11:6
-    crank_inertia_3_1 = param(15, J_3_1);  // cut_joint.mbg:11:6
-    crank_inertia_3_2 = param(16, J_3_2);  // cut_joint.mbg:11:6
-    crank_inertia_3_3 = param(17, J_3_3);  // cut_joint.mbg:11:6
-    coupler_inertia_1_1 = param(18, J_1_1);  // cut_joint.mbg:12:6
-    coupler_inertia_1_2 = param(19, J_1_2);  // cut_joint.mbg:12:6
-    coupler_inertia_1_3 = param(20, J_1_3);  // cut_joint.mbg:12:6
-    coupler_inertia_2_1 = param(21, J_2_1);  // cut_joint.mbg:12:6
-    coupler_inertia_2_2 = param(22, J_2_2);  // cut_joint.mbg:12:6
-    coupler_inertia_2_3 = param(23, J_2_3);  // cut_joint.mbg:12:6
-    coupler_inertia_3_1 = param(24, J_3_1);  // cut_joint.mbg:12:6
-    coupler_inertia_3_2 = param(25, J_3_2);  // cut_joint.mbg:12:6
-    coupler_inertia_3_3 = param(26, J_3_3);  // cut_joint.mbg:12:6
-    rocker_inertia_1_1 = param(27, J_1_1);  // cut_joint.mbg:13:6
-    rocker_inertia_1_2 = param(28, J_1_2);  // cut_joint.mbg:13:6
-    rocker_inertia_1_3 = param(29, J_1_3);  // cut_joint.mbg:13:6
-    rocker_inertia_2_1 = param(30, J_2_1);  // cut_joint.mbg:13:6
-    rocker_inertia_2_2 = param(31, J_2_2);  // cut_joint.mbg:13:6
-    rocker_inertia_2_3 = param(32, J_2_3);  // cut_joint.mbg:13:6
-    rocker_inertia_3_1 = param(33, J_3_1);  // cut_joint.mbg:13:6
-    rocker_inertia_3_2 = param(34, J_3_2);  // cut_joint.mbg:13:6
-    rocker_inertia_3_3 = param(35, J_3_3);  // cut_joint.mbg:13:6
+    J_1_1 = param(0, 0.001);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_1_2 = param(1, 0.0);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_1_3 = param(2, 0.0);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_2_1 = param(3, 0.0);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_2_2 = param(4, 0.001);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_2_3 = param(5, 0.0);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_3_1 = param(6, 0.0);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_3_2 = param(7, 0.0);  // cut_joint.mbg:8:7, [kg*m^2]
+    J_3_3 = param(8, 0.01);  // cut_joint.mbg:8:7, [kg*m^2]
+    crank_inertia_1_1 = param(9, J_1_1);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_1_2 = param(10, J_1_2);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_1_3 = param(11, J_1_3);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_2_1 = param(12, J_2_1);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_2_2 = param(13, J_2_2);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_2_3 = param(14, J_2_3);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_3_1 = param(15, J_3_1);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_3_2 = param(16, J_3_2);  // cut_joint.mbg:11:6, [kg*m^2]
+    crank_inertia_3_3 = param(17, J_3_3);  // cut_joint.mbg:11:6, [kg*m^2]
+    coupler_inertia_1_1 = param(18, J_1_1);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_1_2 = param(19, J_1_2);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_1_3 = param(20, J_1_3);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_2_1 = param(21, J_2_1);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_2_2 = param(22, J_2_2);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_2_3 = param(23, J_2_3);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_3_1 = param(24, J_3_1);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_3_2 = param(25, J_3_2);  // cut_joint.mbg:12:6, [kg*m^2]
+    coupler_inertia_3_3 = param(26, J_3_3);  // cut_joint.mbg:12:6, [kg*m^2]
+    rocker_inertia_1_1 = param(27, J_1_1);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_1_2 = param(28, J_1_2);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_1_3 = param(29, J_1_3);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_2_1 = param(30, J_2_1);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_2_2 = param(31, J_2_2);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_2_3 = param(32, J_2_3);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_3_1 = param(33, J_3_1);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_3_2 = param(34, J_3_2);  // cut_joint.mbg:13:6, [kg*m^2]
+    rocker_inertia_3_3 = param(35, J_3_3);  // cut_joint.mbg:13:6, [kg*m^2]
     // (cseN: a subexpression several equations below share)
     const double cse1 = std::sqrt((crank_inertia_1_1 + crank_inertia_2_2 + crank_inertia_3_3) / 3.0);
-    j1_scale = param(36, cse1);  // cut_joint.mbg:14:7
+    j1_scale = param(36, cse1);  // cut_joint.mbg:14:7, [m]
     const double cse2 = std::sqrt((coupler_inertia_1_1 + coupler_inertia_2_2 + coupler_inertia_3_3) / 3.0);
-    j2_scale = param(37, std::fmin(cse1, cse2));  // cut_joint.mbg:15:7
+    j2_scale = param(37, std::fmin(cse1, cse2));  // cut_joint.mbg:15:7, [m]
     const double cse3 = std::sqrt((rocker_inertia_1_1 + rocker_inertia_2_2 + rocker_inertia_3_3) / 3.0);
-    j3_scale = param(38, std::fmin(cse2, cse3));  // cut_joint.mbg:16:7
-    j3_stabilisation = param(39, 20.0);  // cut_joint.mbg:16:7
-    j4_scale = param(40, cse3);  // cut_joint.mbg:17:7
+    j3_scale = param(38, std::fmin(cse2, cse3));  // cut_joint.mbg:16:7, [m]
+    j3_stabilisation = param(39, 20.0);  // cut_joint.mbg:16:7, [1/s]
+    j4_scale = param(40, cse3);  // cut_joint.mbg:17:7, [m]
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / (coupler_inertia_3_3 + 0.25);
     derived2_ = 1.0 / (rocker_inertia_3_3 + 0.010000000000000002);
@@ -441,11 +441,11 @@ class cut_joint_model final : public mbgrt::Model {
     // cut_joint.mbg:17:7  signal rocker.pose.r2
     const double rocker_pose_r2 = 0.1 * rocker_pose_R21;
     // outputs, in declaration order
-    out[0] = j1_theta_q;
-    out[1] = j4_theta_q;
+    out[0] = j1_theta_q;  // crank_angle [rad] (cut_joint.mbg:18:8)
+    out[1] = j4_theta_q;  // rocker_angle [rad] (cut_joint.mbg:19:8)
     const double cse27 = coupler_pose_r1 + cse24 - (rocker_pose_r1 + cse25);
     const double cse28 = coupler_pose_r2 + cse26 - (rocker_pose_r2 + rocker_pose_r2);
-    out[2] = std::sqrt(cse27 * cse27 + cse28 * cse28);
+    out[2] = std::sqrt(cse27 * cse27 + cse28 * cse28);  // gap [m] (cut_joint.mbg:20:8)
   }
 
   // DRAWN BODIES (--animate): how many.

@@ -180,8 +180,8 @@ class dc_motor_model final : public mbgrt::Model {
     // dc_motor.mbg:17:4  I rotor: p = I f
     const double rotor_f = rotor_p / J;
     // outputs, in declaration order
-    out[0] = armature_l_f;
-    out[1] = rotor_f;
+    out[0] = armature_l_f;  // current [A] (dc_motor.mbg:23:8)
+    out[1] = rotor_f;  // omega [rad/s] (dc_motor.mbg:24:8)
   }
 
   // EVENTS: the zero-crossing functions, one per event (its step's argument).

@@ -88,8 +88,8 @@ class decay_sine_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    k = param(0, 0.5);  // decay_sine.mbg:6:7
-    a = param(1, 2.0);  // decay_sine.mbg:7:7
+    k = param(0, 0.5);  // decay_sine.mbg:6:7, [1/s]
+    a = param(1, 2.0);  // decay_sine.mbg:7:7, [kg^(1/2)*m/s^2]
     w = param(2, 1.0);  // decay_sine.mbg:8:7, {rad/s}
     // INITIAL STATE
     x[0] = 1.0;  // m.p (decay_sine.mbg:10:3)
@@ -132,8 +132,8 @@ class decay_sine_model final : public mbgrt::Model {
     // states
     const double m_p = x[0];
     // outputs, in declaration order
-    out[0] = m_p;
-    out[1] = 2.0 * m_p;
+    out[0] = m_p;  // p [kg^(1/2)*m/s] (decay_sine.mbg:13:8)
+    out[1] = 2.0 * m_p;  // v (decay_sine.mbg:14:8)
   }
 
   // What the energy balance leaves out, or why there is none.

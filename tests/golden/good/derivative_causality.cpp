@@ -143,8 +143,8 @@ class derivative_causality_model final : public mbgrt::Model {
     // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for mass1.e
     const double mass1_e = -(-force_e + der_mass2_p);
     // outputs, in declaration order
-    out[0] = mass1_f;
-    out[1] = mass1_e;
+    out[0] = mass1_f;  // v1 (derivative_causality.mbg:10:8)
+    out[1] = mass1_e;  // acc (derivative_causality.mbg:11:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

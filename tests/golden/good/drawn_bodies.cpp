@@ -128,38 +128,38 @@ class drawn_bodies_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // CONSTANTS / PARAMETERS
-    ball_r0_1 = param(0, 1.0);  // drawn_bodies.mbg:25:6
-    ball_r0_2 = param(1, 0.0);  // drawn_bodies.mbg:25:6
-    ball_r0_3 = param(2, 2.0);  // drawn_bodies.mbg:25:6
-    ball_v0_1 = param(3, 0.0);  // drawn_bodies.mbg:25:6
-    ball_v0_2 = param(4, 0.0);  // drawn_bodies.mbg:25:6
-    ball_v0_3 = param(5, 0.0);  // drawn_bodies.mbg:25:6
-    tetra_r0_1 = param(6, 0.0);  // drawn_bodies.mbg:26:6
-    tetra_r0_2 = param(7, 1.0);  // drawn_bodies.mbg:26:6
-    tetra_r0_3 = param(8, 2.0);  // drawn_bodies.mbg:26:6
-    tetra_v0_1 = param(9, 0.0);  // drawn_bodies.mbg:26:6
-    tetra_v0_2 = param(10, 0.0);  // drawn_bodies.mbg:26:6
-    tetra_v0_3 = param(11, 0.0);  // drawn_bodies.mbg:26:6
+    ball_r0_1 = param(0, 1.0);  // drawn_bodies.mbg:25:6, [m]
+    ball_r0_2 = param(1, 0.0);  // drawn_bodies.mbg:25:6, [m]
+    ball_r0_3 = param(2, 2.0);  // drawn_bodies.mbg:25:6, [m]
+    ball_v0_1 = param(3, 0.0);  // drawn_bodies.mbg:25:6, [m/s]
+    ball_v0_2 = param(4, 0.0);  // drawn_bodies.mbg:25:6, [m/s]
+    ball_v0_3 = param(5, 0.0);  // drawn_bodies.mbg:25:6, [m/s]
+    tetra_r0_1 = param(6, 0.0);  // drawn_bodies.mbg:26:6, [m]
+    tetra_r0_2 = param(7, 1.0);  // drawn_bodies.mbg:26:6, [m]
+    tetra_r0_3 = param(8, 2.0);  // drawn_bodies.mbg:26:6, [m]
+    tetra_v0_1 = param(9, 0.0);  // drawn_bodies.mbg:26:6, [m/s]
+    tetra_v0_2 = param(10, 0.0);  // drawn_bodies.mbg:26:6, [m/s]
+    tetra_v0_3 = param(11, 0.0);  // drawn_bodies.mbg:26:6, [m/s]
     tetra_q0_1 = param(12, 1.0);  // drawn_bodies.mbg:26:6
     tetra_q0_2 = param(13, 0.0);  // drawn_bodies.mbg:26:6
     tetra_q0_3 = param(14, 0.0);  // drawn_bodies.mbg:26:6
     tetra_q0_4 = param(15, 0.0);  // drawn_bodies.mbg:26:6
-    tetra_w0_1 = param(16, 0.0);  // drawn_bodies.mbg:26:6
-    tetra_w0_2 = param(17, 0.0);  // drawn_bodies.mbg:26:6
-    tetra_w0_3 = param(18, 1.0);  // drawn_bodies.mbg:26:6
-    plain_r0_1 = param(19, 0.0);  // drawn_bodies.mbg:33:6
-    plain_r0_2 = param(20, -1.0);  // drawn_bodies.mbg:33:6
-    plain_r0_3 = param(21, 2.0);  // drawn_bodies.mbg:33:6
-    plain_v0_1 = param(22, 0.0);  // drawn_bodies.mbg:33:6
-    plain_v0_2 = param(23, 0.0);  // drawn_bodies.mbg:33:6
-    plain_v0_3 = param(24, 0.0);  // drawn_bodies.mbg:33:6
+    tetra_w0_1 = param(16, 0.0);  // drawn_bodies.mbg:26:6, [rad/s]
+    tetra_w0_2 = param(17, 0.0);  // drawn_bodies.mbg:26:6, [rad/s]
+    tetra_w0_3 = param(18, 1.0);  // drawn_bodies.mbg:26:6, [rad/s]
+    plain_r0_1 = param(19, 0.0);  // drawn_bodies.mbg:33:6, [m]
+    plain_r0_2 = param(20, -1.0);  // drawn_bodies.mbg:33:6, [m]
+    plain_r0_3 = param(21, 2.0);  // drawn_bodies.mbg:33:6, [m]
+    plain_v0_1 = param(22, 0.0);  // drawn_bodies.mbg:33:6, [m/s]
+    plain_v0_2 = param(23, 0.0);  // drawn_bodies.mbg:33:6, [m/s]
+    plain_v0_3 = param(24, 0.0);  // drawn_bodies.mbg:33:6, [m/s]
     plain_q0_1 = param(25, 1.0);  // drawn_bodies.mbg:33:6
     plain_q0_2 = param(26, 0.0);  // drawn_bodies.mbg:33:6
     plain_q0_3 = param(27, 0.0);  // drawn_bodies.mbg:33:6
     plain_q0_4 = param(28, 0.0);  // drawn_bodies.mbg:33:6
-    plain_w0_1 = param(29, 0.0);  // drawn_bodies.mbg:33:6
-    plain_w0_2 = param(30, 0.0);  // drawn_bodies.mbg:33:6
-    plain_w0_3 = param(31, 0.0);  // drawn_bodies.mbg:33:6
+    plain_w0_1 = param(29, 0.0);  // drawn_bodies.mbg:33:6, [rad/s]
+    plain_w0_2 = param(30, 0.0);  // drawn_bodies.mbg:33:6, [rad/s]
+    plain_w0_3 = param(31, 0.0);  // drawn_bodies.mbg:33:6, [rad/s]
     // INITIAL STATE
     x[0] = 0.1 * ball_v0_1;  // ball.m.p[1] (drawn_bodies.mbg:25:6)
     x[1] = 0.1 * ball_v0_2;  // ball.m.p[2] (drawn_bodies.mbg:25:6)
@@ -421,14 +421,14 @@ class drawn_bodies_model final : public mbgrt::Model {
     // drawn_bodies.mbg:40:7  signal link.pose.r1
     const double link_pose_r1 = 0.25 * link_pose_R11;
     // outputs, in declaration order
-    out[0] = link_pose_r1 + link_pose_r1;
-    out[1] = ball_r_q_3;
-    out[2] = ball_r_q_1;
-    out[3] = ball_r_q_2;
-    out[4] = ball_r_q_3;
-    out[5] = tetra_r_q_1;
-    out[6] = tetra_r_q_2;
-    out[7] = tetra_r_q_3;
+    out[0] = link_pose_r1 + link_pose_r1;  // x [m] (drawn_bodies.mbg:43:8)
+    out[1] = ball_r_q_3;  // ball_z [m] (drawn_bodies.mbg:44:8)
+    out[2] = ball_r_q_1;  // ball[1] [m] (drawn_bodies.mbg:45:8)
+    out[3] = ball_r_q_2;  // ball[2] [m] (drawn_bodies.mbg:45:8)
+    out[4] = ball_r_q_3;  // ball[3] [m] (drawn_bodies.mbg:45:8)
+    out[5] = tetra_r_q_1;  // tetra[1] [m] (drawn_bodies.mbg:46:8)
+    out[6] = tetra_r_q_2;  // tetra[2] [m] (drawn_bodies.mbg:46:8)
+    out[7] = tetra_r_q_3;  // tetra[3] [m] (drawn_bodies.mbg:46:8)
   }
 
   // DRAWN BODIES (--animate): how many.

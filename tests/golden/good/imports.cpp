@@ -156,8 +156,8 @@ class imports_model final : public mbgrt::Model {
     // imports.mbg:7:3  I mass: p = I f
     const double mass_f = mass_p / m;
     // outputs, in declaration order
-    out[0] = sd_spring_q;
-    out[1] = mass_f;
+    out[0] = sd_spring_q;  // x (imports.mbg:11:8)
+    out[1] = mass_f;  // velocity (imports.mbg:12:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

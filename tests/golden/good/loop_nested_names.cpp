@@ -206,12 +206,12 @@ class loop_nested_names_model final : public mbgrt::Model {
     const double spring2_1_q = x[4];
     const double spring2_2_q = x[6];
     // outputs, in declaration order
-    out[0] = spring1_1_q;
-    out[1] = spring1_2_q;
-    out[2] = spring1_2_q;
-    out[3] = spring2_1_q;
-    out[4] = spring2_2_q;
-    out[5] = spring2_2_q;
+    out[0] = spring1_1_q;  // x1_1 (loop_nested_names.mbg:18:12)
+    out[1] = spring1_2_q;  // x1_2 (loop_nested_names.mbg:18:12)
+    out[2] = spring1_2_q;  // last1 (loop_nested_names.mbg:20:10)
+    out[3] = spring2_1_q;  // x2_1 (loop_nested_names.mbg:18:12)
+    out[4] = spring2_2_q;  // x2_2 (loop_nested_names.mbg:18:12)
+    out[5] = spring2_2_q;  // last2 (loop_nested_names.mbg:20:10)
   }
 
   // EVENTS: the zero-crossing functions, one per event (its step's argument).

@@ -118,7 +118,7 @@ class loop_scene_outputs_model final : public mbgrt::Model {
     // loop_scene_outputs.mbg:11:6  C c3: q = C e
     const double c3_e = c3_q / 0.001;
     // outputs, in declaration order
-    out[0] = c3_e;
+    out[0] = c3_e;  // v3 (loop_scene_outputs.mbg:13:10)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

@@ -164,15 +164,15 @@ class modal_body_model final : public mbgrt::Model {
     bar_q0_2 = param(1, 0.0);  // modal_body.mbg:11:7
     bar_q0_3 = param(2, 0.0);  // modal_body.mbg:11:7
     bar_q0_4 = param(3, 0.0);  // modal_body.mbg:11:7
-    bar_r0_1 = param(4, 0.0);  // modal_body.mbg:11:7
-    bar_r0_2 = param(5, 0.0);  // modal_body.mbg:11:7
-    bar_r0_3 = param(6, 0.0);  // modal_body.mbg:11:7
-    bar_w0_1 = param(7, 0.0);  // modal_body.mbg:11:7
-    bar_w0_2 = param(8, 0.0);  // modal_body.mbg:11:7
-    bar_w0_3 = param(9, 0.0);  // modal_body.mbg:11:7
-    bar_v0_1 = param(10, 0.0);  // modal_body.mbg:11:7
-    bar_v0_2 = param(11, 0.0);  // modal_body.mbg:11:7
-    bar_v0_3 = param(12, 0.0);  // modal_body.mbg:11:7
+    bar_r0_1 = param(4, 0.0);  // modal_body.mbg:11:7, [m]
+    bar_r0_2 = param(5, 0.0);  // modal_body.mbg:11:7, [m]
+    bar_r0_3 = param(6, 0.0);  // modal_body.mbg:11:7, [m]
+    bar_w0_1 = param(7, 0.0);  // modal_body.mbg:11:7, [rad/s]
+    bar_w0_2 = param(8, 0.0);  // modal_body.mbg:11:7, [rad/s]
+    bar_w0_3 = param(9, 0.0);  // modal_body.mbg:11:7, [rad/s]
+    bar_v0_1 = param(10, 0.0);  // modal_body.mbg:11:7, [m/s]
+    bar_v0_2 = param(11, 0.0);  // modal_body.mbg:11:7, [m/s]
+    bar_v0_3 = param(12, 0.0);  // modal_body.mbg:11:7, [m/s]
     // INITIAL STATE
     // (cseN: a subexpression several equations below share)
     const double cse1 = bar_q0_1 * bar_q0_1;
@@ -573,14 +573,14 @@ class modal_body_model final : public mbgrt::Model {
     const double cse90 = bar_q_q_1 * bar_q_q_4;
     const double cse91 = bar_q_q_2 * bar_q_q_4;
     const double cse92 = bar_q_q_1 * bar_q_q_3;
-    out[0] = bar_r_q_1 + ((cse85 - cse86 - cse87) / cse88 + 2.0 * (cse89 - cse90) / cse88 * bar_eta_q_1 + 2.0 * (cse91 + cse92) / cse88 * bar_eta_q_2);
+    out[0] = bar_r_q_1 + ((cse85 - cse86 - cse87) / cse88 + 2.0 * (cse89 - cse90) / cse88 * bar_eta_q_1 + 2.0 * (cse91 + cse92) / cse88 * bar_eta_q_2);  // tip[1] [m] (modal_body.mbg:12:8)
     const double cse93 = bar_q_q_3 * bar_q_q_4;
     const double cse94 = bar_q_q_1 * bar_q_q_2;
-    out[1] = bar_r_q_2 + (2.0 * (cse89 + cse90) / cse88 + (cse83 + cse86 - cse84 - cse87) / cse88 * bar_eta_q_1 + 2.0 * (cse93 - cse94) / cse88 * bar_eta_q_2);
-    out[2] = bar_r_q_3 + (2.0 * (cse91 - cse92) / cse88 + 2.0 * (cse93 + cse94) / cse88 * bar_eta_q_1 + (cse83 + cse87 - cse84 - cse86) / cse88 * bar_eta_q_2);
-    out[3] = 0.0;
-    out[4] = bar_eta_q_1;
-    out[5] = bar_eta_q_2;
+    out[1] = bar_r_q_2 + (2.0 * (cse89 + cse90) / cse88 + (cse83 + cse86 - cse84 - cse87) / cse88 * bar_eta_q_1 + 2.0 * (cse93 - cse94) / cse88 * bar_eta_q_2);  // tip[2] [m] (modal_body.mbg:12:8)
+    out[2] = bar_r_q_3 + (2.0 * (cse91 - cse92) / cse88 + 2.0 * (cse93 + cse94) / cse88 * bar_eta_q_1 + (cse83 + cse87 - cse84 - cse86) / cse88 * bar_eta_q_2);  // tip[3] [m] (modal_body.mbg:12:8)
+    out[3] = 0.0;  // tip_deflection[1] (modal_body.mbg:13:8)
+    out[4] = bar_eta_q_1;  // tip_deflection[2] [m] (modal_body.mbg:13:8)
+    out[5] = bar_eta_q_2;  // tip_deflection[3] [m] (modal_body.mbg:13:8)
   }
 
   // DRAWN BODIES (--animate): how many.

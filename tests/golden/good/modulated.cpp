@@ -151,8 +151,8 @@ class modulated_model final : public mbgrt::Model {
     // modulated.mbg:6:3  I m: f = law(p)
     const double m_f = m_p / 2.0;
     // outputs, in declaration order
-    out[0] = m_f;
-    out[1] = c_q;
+    out[0] = m_f;  // v (modulated.mbg:13:8)
+    out[1] = c_q;  // x (modulated.mbg:14:8)
   }
 
   // What the energy balance leaves out, or why there is none.

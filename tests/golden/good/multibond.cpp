@@ -184,9 +184,9 @@ class multibond_model final : public mbgrt::Model {
     // multibond.mbg:8:3  C spring: q = C e
     const double spring_e_1 = spring_q_1 / derived1_;
     // outputs, in declaration order
-    out[0] = mass_f_1;
-    out[1] = mass_f_2;
-    out[2] = spring_e_1;
+    out[0] = mass_f_1;  // vel[1] (multibond.mbg:11:8)
+    out[1] = mass_f_2;  // vel[2] (multibond.mbg:11:8)
+    out[2] = spring_e_1;  // e1 (multibond.mbg:12:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

@@ -134,7 +134,7 @@ class model_model final : public mbgrt::Model {
     // no_energy_witness.mbg:8:3  C c: q = C e
     const double c_e = c_q / C1;
     // outputs, in declaration order
-    out[0] = c_e;
+    out[0] = c_e;  // vc (no_energy_witness.mbg:10:8)
   }
 
   // What the energy balance leaves out, or why there is none.

@@ -140,8 +140,8 @@ class nonlinear_dae_model final : public mbgrt::Model {
     // nonlinear_dae.mbg:7:3  C cap: q = C e
     const double cap_e = cap_q / 0.01;
     // outputs, in declaration order
-    out[0] = cap_e;
-    out[1] = diode_f;
+    out[0] = cap_e;  // vc [kg^(3/4)*m^(3/2)/s^(9/4)] (nonlinear_dae.mbg:10:8)
+    out[1] = diode_f;  // i [kg^(1/4)*m^(1/2)/s^(3/4)] (nonlinear_dae.mbg:11:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

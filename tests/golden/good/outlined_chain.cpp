@@ -130,54 +130,54 @@ class outlined_chain_model final : public mbgrt::Model {
     (void)yp;
     // CONSTANTS / PARAMETERS
     N = param(0, 5.0);  // outlined_chain.mbg:8:7
-    l = param(1, 0.4);  // outlined_chain.mbg:9:7
-    m = param(2, 0.3);  // outlined_chain.mbg:10:7
-    rod1_mass = param(3, m);  // outlined_chain.mbg:17:8
-    rod1_bottom_2 = param(4, -l);  // outlined_chain.mbg:17:8
+    l = param(1, 0.4);  // outlined_chain.mbg:9:7, [m]
+    m = param(2, 0.3);  // outlined_chain.mbg:10:7, [kg]
+    rod1_mass = param(3, m);  // outlined_chain.mbg:17:8, [kg]
+    rod1_bottom_2 = param(4, -l);  // outlined_chain.mbg:17:8, [m]
     // (cseN: a subexpression several equations below share)
     const double cse1 = -l / 2.0;
-    rod1_com_2 = param(5, cse1);  // outlined_chain.mbg:17:8
+    rod1_com_2 = param(5, cse1);  // outlined_chain.mbg:17:8, [m]
     const double cse2 = m * (l*l) / 12.0;
-    rod1_inertia_1_1 = param(6, cse2);  // outlined_chain.mbg:17:8
-    rod1_inertia_3_3 = param(7, cse2);  // outlined_chain.mbg:17:8
-    rod2_mass = param(8, m);  // outlined_chain.mbg:17:8
-    rod2_bottom_2 = param(9, -l);  // outlined_chain.mbg:17:8
-    rod2_com_2 = param(10, cse1);  // outlined_chain.mbg:17:8
-    rod2_inertia_1_1 = param(11, cse2);  // outlined_chain.mbg:17:8
-    rod2_inertia_3_3 = param(12, cse2);  // outlined_chain.mbg:17:8
-    rod3_mass = param(13, m);  // outlined_chain.mbg:17:8
-    rod3_bottom_2 = param(14, -l);  // outlined_chain.mbg:17:8
-    rod3_com_2 = param(15, cse1);  // outlined_chain.mbg:17:8
-    rod3_inertia_1_1 = param(16, cse2);  // outlined_chain.mbg:17:8
-    rod3_inertia_3_3 = param(17, cse2);  // outlined_chain.mbg:17:8
-    rod4_mass = param(18, m);  // outlined_chain.mbg:17:8
-    rod4_bottom_2 = param(19, -l);  // outlined_chain.mbg:17:8
-    rod4_com_2 = param(20, cse1);  // outlined_chain.mbg:17:8
-    rod4_inertia_1_1 = param(21, cse2);  // outlined_chain.mbg:17:8
-    rod4_inertia_3_3 = param(22, cse2);  // outlined_chain.mbg:17:8
-    rod5_mass = param(23, m);  // outlined_chain.mbg:17:8
-    rod5_bottom_2 = param(24, -l);  // outlined_chain.mbg:17:8
-    rod5_com_2 = param(25, cse1);  // outlined_chain.mbg:17:8
-    rod5_inertia_1_1 = param(26, cse2);  // outlined_chain.mbg:17:8
-    rod5_inertia_3_3 = param(27, cse2);  // outlined_chain.mbg:17:8
-    j1_pb_2 = param(28, -rod1_com_2);  // outlined_chain.mbg:25:7
+    rod1_inertia_1_1 = param(6, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod1_inertia_3_3 = param(7, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod2_mass = param(8, m);  // outlined_chain.mbg:17:8, [kg]
+    rod2_bottom_2 = param(9, -l);  // outlined_chain.mbg:17:8, [m]
+    rod2_com_2 = param(10, cse1);  // outlined_chain.mbg:17:8, [m]
+    rod2_inertia_1_1 = param(11, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod2_inertia_3_3 = param(12, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod3_mass = param(13, m);  // outlined_chain.mbg:17:8, [kg]
+    rod3_bottom_2 = param(14, -l);  // outlined_chain.mbg:17:8, [m]
+    rod3_com_2 = param(15, cse1);  // outlined_chain.mbg:17:8, [m]
+    rod3_inertia_1_1 = param(16, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod3_inertia_3_3 = param(17, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod4_mass = param(18, m);  // outlined_chain.mbg:17:8, [kg]
+    rod4_bottom_2 = param(19, -l);  // outlined_chain.mbg:17:8, [m]
+    rod4_com_2 = param(20, cse1);  // outlined_chain.mbg:17:8, [m]
+    rod4_inertia_1_1 = param(21, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod4_inertia_3_3 = param(22, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod5_mass = param(23, m);  // outlined_chain.mbg:17:8, [kg]
+    rod5_bottom_2 = param(24, -l);  // outlined_chain.mbg:17:8, [m]
+    rod5_com_2 = param(25, cse1);  // outlined_chain.mbg:17:8, [m]
+    rod5_inertia_1_1 = param(26, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    rod5_inertia_3_3 = param(27, cse2);  // outlined_chain.mbg:17:8, [kg*m^2]
+    j1_pb_2 = param(28, -rod1_com_2);  // outlined_chain.mbg:25:7, [m]
     const double cse3 = std::sqrt((rod1_inertia_1_1 + 0.0001 + rod1_inertia_3_3) / (3.0 * rod1_mass));
-    j1_scale = param(29, cse3);  // outlined_chain.mbg:25:7
-    j2_pa_2 = param(30, rod1_bottom_2 - rod1_com_2);  // outlined_chain.mbg:27:9
-    j2_pb_2 = param(31, -rod2_com_2);  // outlined_chain.mbg:27:9
+    j1_scale = param(29, cse3);  // outlined_chain.mbg:25:7, [m]
+    j2_pa_2 = param(30, rod1_bottom_2 - rod1_com_2);  // outlined_chain.mbg:27:9, [m]
+    j2_pb_2 = param(31, -rod2_com_2);  // outlined_chain.mbg:27:9, [m]
     const double cse4 = std::sqrt((rod2_inertia_1_1 + 0.0001 + rod2_inertia_3_3) / (3.0 * rod2_mass));
-    j2_scale = param(32, std::fmin(cse3, cse4));  // outlined_chain.mbg:27:9
-    j3_pa_2 = param(33, rod2_bottom_2 - rod2_com_2);  // outlined_chain.mbg:27:9
-    j3_pb_2 = param(34, -rod3_com_2);  // outlined_chain.mbg:27:9
+    j2_scale = param(32, std::fmin(cse3, cse4));  // outlined_chain.mbg:27:9, [m]
+    j3_pa_2 = param(33, rod2_bottom_2 - rod2_com_2);  // outlined_chain.mbg:27:9, [m]
+    j3_pb_2 = param(34, -rod3_com_2);  // outlined_chain.mbg:27:9, [m]
     const double cse5 = std::sqrt((rod3_inertia_1_1 + 0.0001 + rod3_inertia_3_3) / (3.0 * rod3_mass));
-    j3_scale = param(35, std::fmin(cse4, cse5));  // outlined_chain.mbg:27:9
-    j4_pa_2 = param(36, rod3_bottom_2 - rod3_com_2);  // outlined_chain.mbg:27:9
-    j4_pb_2 = param(37, -rod4_com_2);  // outlined_chain.mbg:27:9
+    j3_scale = param(35, std::fmin(cse4, cse5));  // outlined_chain.mbg:27:9, [m]
+    j4_pa_2 = param(36, rod3_bottom_2 - rod3_com_2);  // outlined_chain.mbg:27:9, [m]
+    j4_pb_2 = param(37, -rod4_com_2);  // outlined_chain.mbg:27:9, [m]
     const double cse6 = std::sqrt((rod4_inertia_1_1 + 0.0001 + rod4_inertia_3_3) / (3.0 * rod4_mass));
-    j4_scale = param(38, std::fmin(cse5, cse6));  // outlined_chain.mbg:27:9
-    j5_pa_2 = param(39, rod4_bottom_2 - rod4_com_2);  // outlined_chain.mbg:27:9
-    j5_pb_2 = param(40, -rod5_com_2);  // outlined_chain.mbg:27:9
-    j5_scale = param(41, std::fmin(cse6, std::sqrt((rod5_inertia_1_1 + 0.0001 + rod5_inertia_3_3) / (3.0 * rod5_mass))));  // outlined_chain.mbg:27:9
+    j4_scale = param(38, std::fmin(cse5, cse6));  // outlined_chain.mbg:27:9, [m]
+    j5_pa_2 = param(39, rod4_bottom_2 - rod4_com_2);  // outlined_chain.mbg:27:9, [m]
+    j5_pb_2 = param(40, -rod5_com_2);  // outlined_chain.mbg:27:9, [m]
+    j5_scale = param(41, std::fmin(cse6, std::sqrt((rod5_inertia_1_1 + 0.0001 + rod5_inertia_3_3) / (3.0 * rod5_mass))));  // outlined_chain.mbg:27:9, [m]
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 1.0 / (rod5_inertia_3_3 + j5_pb_2 * (rod5_mass * j5_pb_2));
     // INITIAL STATE
@@ -476,7 +476,7 @@ class outlined_chain_model final : public mbgrt::Model {
     // outlined_chain.mbg:27:9  signal rod5.pose.r2
     const double rod5_pose_r2 = rod4_pose_r2 + rod4_pose_R22 * j5_pa_2 - rod5_pose_R22 * j5_pb_2;
     // outputs, in declaration order
-    out[0] = rod5_pose_r2;
+    out[0] = rod5_pose_r2;  // tip_y [m] (outlined_chain.mbg:29:8)
   }
 
   // DRAWN BODIES (--animate): how many.

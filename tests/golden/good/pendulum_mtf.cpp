@@ -95,7 +95,7 @@ class pendulum_mtf_model final : public mbgrt::Model {
     m = param(0, 1.0);  // pendulum_mtf.mbg:15:7
     L = param(1, 1.0);  // pendulum_mtf.mbg:16:7
     g = param(2, 9.81);  // pendulum_mtf.mbg:17:7
-    J_hub = param(3, 0.01);  // pendulum_mtf.mbg:18:7
+    J_hub = param(3, 0.01);  // pendulum_mtf.mbg:18:7, [kg*m^2]
     theta0 = param(4, 0.5);  // pendulum_mtf.mbg:19:7
     // DERIVED CONSTANTS: parameter expressions, computed once per run
     derived1_ = 0.5 * (J_hub + m * (L*L));
@@ -167,11 +167,11 @@ class pendulum_mtf_model final : public mbgrt::Model {
     const double cse5 = std::cos(angle_q);
     const double energy = derived1_ * (hub_f*hub_f) - m * g * L * cse5;
     // outputs, in declaration order
-    out[0] = angle_q;
-    out[1] = hub_f;
-    out[2] = L * std::sin(angle_q);
-    out[3] = -L * cse5;
-    out[4] = energy;
+    out[0] = angle_q;  // theta (pendulum_mtf.mbg:32:8)
+    out[1] = hub_f;  // omega_hub [1/s] (pendulum_mtf.mbg:33:8)
+    out[2] = L * std::sin(angle_q);  // x (pendulum_mtf.mbg:34:8)
+    out[3] = -L * cse5;  // y (pendulum_mtf.mbg:35:8)
+    out[4] = energy;  // E [N*m] (pendulum_mtf.mbg:36:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

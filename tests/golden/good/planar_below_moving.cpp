@@ -594,12 +594,12 @@ class planar_below_moving_model final : public mbgrt::Model {
     // planar_below_moving.mbg:14:7  signal lower.pose.r3
     const double lower_pose_r3 = -ball_Rpc33 + (ball_Rpc31 * cse180 + ball_Rpc32 * cse181 + ball_Rpc33 * cse182) - (0.2 * lower_pose_R31 + 0.1 * lower_pose_R32);
     // outputs, in declaration order
-    out[0] = lower_pose_r1;
-    out[1] = lower_pose_r2;
-    out[2] = lower_pose_r3;
-    out[3] = -ball_Rpc13;
-    out[4] = -ball_Rpc23;
-    out[5] = -ball_Rpc33;
+    out[0] = lower_pose_r1;  // x [m] (planar_below_moving.mbg:15:8)
+    out[1] = lower_pose_r2;  // y [m] (planar_below_moving.mbg:16:8)
+    out[2] = lower_pose_r3;  // z [m] (planar_below_moving.mbg:17:8)
+    out[3] = -ball_Rpc13;  // ux [m] (planar_below_moving.mbg:18:8)
+    out[4] = -ball_Rpc23;  // uy [m] (planar_below_moving.mbg:19:8)
+    out[5] = -ball_Rpc33;  // uz [m] (planar_below_moving.mbg:20:8)
   }
 
   // DRAWN BODIES (--animate): how many.

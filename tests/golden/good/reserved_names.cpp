@@ -106,7 +106,7 @@ class reserved_names_model final : public mbgrt::Model {
     // reserved_names.mbg:10:4  Se src: e = value
     const double src_e = constexpr_v + M_PI_v + name_v + X + size_v;
     // outputs, in declaration order
-    out[0] = src_e;
+    out[0] = src_e;  // i (reserved_names.mbg:13:8)
   }
 
   // What the energy balance leaves out, or why there is none.

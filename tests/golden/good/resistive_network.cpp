@@ -89,8 +89,8 @@ class resistive_network_model final : public mbgrt::Model {
     // resistive_network.mbg:6:3  algebraic loop (4 unknowns), solved for b3.f
     const double b3_f = 1.090909090909091;
     // outputs, in declaration order
-    out[0] = b3_f;
-    out[1] = b3_f;
+    out[0] = b3_f;  // i3 (resistive_network.mbg:11:8)
+    out[1] = b3_f;  // i3_direct (resistive_network.mbg:12:8)
   }
 
   // What the energy balance leaves out, or why there is none.

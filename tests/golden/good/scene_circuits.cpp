@@ -142,7 +142,7 @@ class scene_circuits_model final : public mbgrt::Model {
     // scene_circuits.mbg:22:4  C c3: q = C e
     const double c3_e = c3_q / 0.0001;
     // outputs, in declaration order
-    out[0] = c3_e;
+    out[0] = c3_e;  // v_c3 (scene_circuits.mbg:27:8)
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

@@ -646,8 +646,8 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double float_z_q = x[5];
     const double hinge_theta_q = x[16];
     // outputs, in declaration order
-    out[0] = hinge_theta_q;
-    out[1] = float_z_q;
+    out[0] = hinge_theta_q;  // arm_angle [rad] (tree_grandparent.mbg:20:8)
+    out[1] = float_z_q;  // height [m] (tree_grandparent.mbg:21:8)
   }
 
   // DRAWN BODIES (--animate): how many.
