@@ -65,7 +65,7 @@ class InternTable {
       if (n->hash != hash || n->op != op || n->args.size() != args.size()) return false;
       switch (op) {
         case Op::Const:
-          if (std::bit_cast<std::uint64_t>(n->value) != std::bit_cast<std::uint64_t>(value)) return false;
+          if (std::bit_cast<std::uint64_t>(n->value) != std::bit_cast<std::uint64_t>(value) || n->id != id) return false;
           break;
         case Op::Param:
         case Op::Var:
@@ -144,7 +144,10 @@ InternTable& intern_table() {
 Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn = Fn::Sin) {
   std::uint64_t h = mix64(static_cast<std::uint64_t>(op) + 0x51afd7ed558ccdULL);
   switch (op) {
-    case Op::Const: h = combine(h, std::bit_cast<std::uint64_t>(value)); break;
+    case Op::Const:
+      h = combine(h, std::bit_cast<std::uint64_t>(value));
+      if (id >= 0) h = combine(h, static_cast<std::uint64_t>(id));  // a literal's unit
+      break;
     case Op::Param:
     case Op::Var: h = combine(h, static_cast<std::uint64_t>(static_cast<std::int64_t>(id))); break;
     case Op::Call: h = combine(h, static_cast<std::uint64_t>(fn)); break;
@@ -159,7 +162,7 @@ Expr make(Op op, std::vector<Expr> args, double value = 0.0, int id = -1, Fn fn 
   n->op = op;
   n->args = Operands(std::move(args));
   switch (op) {
-    case Op::Const: n->value = value; break;
+    case Op::Const: n->value = value, n->id = id; break;
     case Op::Param:
     case Op::Var: n->id = id; break;
     case Op::Call: n->fn = fn; break;
@@ -245,7 +248,7 @@ bool shallow_equal(const Node* a, const Node* b) {
   if (a->hash != b->hash || a->op != b->op || a->args.size() != b->args.size()) return false;
   switch (a->op) {
     case Op::Const:
-      return std::bit_cast<std::uint64_t>(a->value) == std::bit_cast<std::uint64_t>(b->value);
+      return std::bit_cast<std::uint64_t>(a->value) == std::bit_cast<std::uint64_t>(b->value) && a->id == b->id;
     case Op::Param:
     case Op::Var:
       return a->id == b->id;
@@ -485,10 +488,11 @@ Operands::Operands(std::vector<Expr> v) {
 
 // ---- construction ---------------------------------------------------------------
 
-Expr constant(double v) {
+Expr constant(double v, int unit) {
+  if (std::isnan(v)) v = std::numeric_limits<double>::quiet_NaN();
+  if (unit >= 0) return make(Op::Const, {}, v == 0.0 ? 0.0 : v, unit);
   if (v == 0.0) return zero();  // also maps -0.0 to 0.0
   if (v == 1.0) return one();
-  if (std::isnan(v)) v = std::numeric_limits<double>::quiet_NaN();
   return make(Op::Const, {}, v);
 }
 
@@ -502,7 +506,7 @@ Expr time() {
 
 Expr neg(const Expr& a) {
   double x = 0.0;
-  if (cval(a, x)) return constant(-x);
+  if (cval(a, x)) return constant(-x, a->id);  // -2 {m} keeps its unit
   if (a->op == Op::Neg) return a->args[0];
   return make1(Op::Neg, a);
 }

@@ -123,7 +123,7 @@ struct Node {
   unsigned char flags = 0;  // kHas* below
   bool interned = false;    // in the constructors' table of unique nodes
   bool canonical = false;   // interned, and so are its operands, recursively: equal() is pointer equality
-  int id = -1;              // Param, Var
+  int id = -1;              // Param, Var; Const: its literal's unit (units::literal_unit), -1 for none
   double value = 0.0;       // Const
   Operands args;            // operands (1 for Neg/Der, 2 for binary, the arity for Call)
   std::size_t hash = 0;     // structural hash, set by the constructors
@@ -156,7 +156,11 @@ inline Expr::~Expr() {
 // never wraps a Const or a Neg; signs float out of * and / ((-2)*x is -(2*x));
 // constant factors go left and merge (3*(2*x) is 6*x); a + (-b) is a - b.
 // Division by a constant zero is never folded.
-Expr constant(double v);
+/// `unit` >= 0: a literal written with a unit (`2 {mm}`, v in SI), an index
+/// the units layer gives that unit's dimension (units::literal_unit), so that
+/// the check reads it. Folding it with another constant drops it (the
+/// result is a number the check takes as it takes any: a unit of its own).
+Expr constant(double v, int unit = -1);
 Expr param(int id);
 Expr var(int id);
 Expr time();

@@ -5,6 +5,8 @@
 #include <map>
 #include <utility>
 
+#include "units/unit.hpp"
+
 namespace mbgc::ir {
 
 std::string Value::shape() const {
@@ -147,7 +149,8 @@ class Lowerer {
 
   std::optional<Value> run(const AstExpr& e) {
     switch (e.kind) {
-      case AstExpr::Kind::Number: return Value::scalar(constant(e.number));
+      case AstExpr::Kind::Number:  // in SI; its unit, if written, for the units check
+        return Value::scalar(constant(e.number, e.unit ? units::literal_unit(e.unit->unit.dimension) : -1));
       case AstExpr::Kind::Name: return name(e);
       case AstExpr::Kind::Unary: {
         auto a = run(*e.args[0]);

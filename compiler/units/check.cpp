@@ -418,7 +418,7 @@ class Checker {
   Form compute(const Expr& e) {
     const ir::Node* n = e.get();
     switch (n->op) {
-      case Op::Const: return Form::number();
+      case Op::Const: return n->id >= 0 ? Form::known(literal_dimension(n->id)) : Form::number();  // `2 {mm}`: m
       case Op::Param: return param(static_cast<std::size_t>(n->id));
       case Op::Var: return Form::unknown(var_unknown(n->id));
       case Op::Time: return Form::known(dim::time());

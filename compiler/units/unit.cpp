@@ -1,5 +1,6 @@
 #include "units/unit.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <numbers>
@@ -392,5 +393,21 @@ std::string format(const Dimension& d) {
   if (down.empty()) return up;
   return up + "/" + (down.find('*') == std::string::npos ? down : "(" + down + ")");
 }
+
+namespace {
+std::vector<Dimension>& literal_dimensions() {
+  static std::vector<Dimension> all;
+  return all;
+}
+}  // namespace
+
+int literal_unit(const Dimension& d) {
+  std::vector<Dimension>& all = literal_dimensions();
+  auto it = std::find(all.begin(), all.end(), d);
+  if (it == all.end()) it = all.insert(all.end(), d);
+  return static_cast<int>(it - all.begin());
+}
+
+const Dimension& literal_dimension(int index) { return literal_dimensions().at(static_cast<std::size_t>(index)); }
 
 }  // namespace mbgc::units

@@ -89,6 +89,12 @@ Dimension entropy_flow();
 /// `1` for none.
 std::string format(const Dimension& d);
 
+/// The dimensions of the literals written with a unit (`2 {mm}`), by an
+/// index that an expression's constant carries (ir::constant): the same
+/// dimension has the same index for the whole run of the compiler.
+int literal_unit(const Dimension& d);
+const Dimension& literal_dimension(int index);
+
 /// A unit as written, and what it means.
 struct Unit {
   Dimension dimension;

@@ -347,6 +347,20 @@ bool same_value(double u, double v, double rel) {
 
 // ---- folding --------------------------------------------------------------------
 
+TEST(ExprFold, ALiteralsUnitStaysUntilItIsFolded) {
+  const Expr mm = constant(0.002, 3);  // `2 {mm}`: the units layer's index 3
+  EXPECT_NE(mm, constant(0.002));      // not the plain number: the units check reads it
+  EXPECT_FALSE(equal(mm, constant(0.002)));
+  EXPECT_EQ(mm, constant(0.002, 3));   // one node per value and unit
+  EXPECT_EQ(neg(mm)->id, 3);           // `-2 {mm}`
+  EXPECT_EQ(neg(mm)->value, -0.002);
+  EXPECT_EQ(constant(0.0, 3)->id, 3);  // `0 {m}` is not the plain zero
+  EXPECT_TRUE(is_zero(constant(0.0, 3)));
+  EXPECT_EQ(mul(mm, constant(3))->id, -1);  // folded: a number again
+  EXPECT_EQ(mul(mm, constant(3))->value, 0.006);
+  EXPECT_EQ(to_cpp(mul(mm, var(0)), Namer{}), "0.002 * v0");  // printed as any constant
+}
+
 TEST(ExprFold, ArithmeticOfConstants) {
   double v = 0;
   ASSERT_TRUE(is_const(add(k(2), k(3)), &v));
