@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "ir/expr.hpp"
+#include "units/unit.hpp"
 
 namespace mbgc::ir {
 namespace {
@@ -31,7 +32,11 @@ class Printer {
     if (!e) return {"<null>", kAtom, false};
     if (const std::string* name = named(e)) return {*name, kAtom, false};  // like a variable
     switch (e->op) {
-      case Op::Const: return constant_text(e->value);
+      case Op::Const: {
+        Printed p = constant_text(e->value);
+        if (!cpp_ && e->id >= 0) p.s += " {" + units::format(units::literal_dimension(e->id)) + "}";  // `0.002 {m}`, in SI
+        return p;
+      }
       case Op::Param:
         return {names_.param ? names_.param(e->id) : fmt::format("p{}", e->id), kAtom, false};
       case Op::Var:

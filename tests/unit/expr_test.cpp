@@ -2,6 +2,7 @@
 // hashing/equality, differentiation (checked against finite differences),
 // substitution, affine decomposition and both printers.
 #include "ir/expr.hpp"
+#include "units/unit.hpp"
 
 #include "cpp_ops_text.hpp"
 
@@ -348,17 +349,19 @@ bool same_value(double u, double v, double rel) {
 // ---- folding --------------------------------------------------------------------
 
 TEST(ExprFold, ALiteralsUnitStaysUntilItIsFolded) {
-  const Expr mm = constant(0.002, 3);  // `2 {mm}`: the units layer's index 3
+  const int m = mbgc::units::literal_unit(mbgc::units::dim::length());
+  const Expr mm = constant(0.002, m);  // `2 {mm}`
   EXPECT_NE(mm, constant(0.002));      // not the plain number: the units check reads it
   EXPECT_FALSE(equal(mm, constant(0.002)));
-  EXPECT_EQ(mm, constant(0.002, 3));   // one node per value and unit
-  EXPECT_EQ(neg(mm)->id, 3);           // `-2 {mm}`
+  EXPECT_EQ(mm, constant(0.002, m));   // one node per value and unit
+  EXPECT_EQ(neg(mm)->id, m);           // `-2 {mm}`
   EXPECT_EQ(neg(mm)->value, -0.002);
-  EXPECT_EQ(constant(0.0, 3)->id, 3);  // `0 {m}` is not the plain zero
-  EXPECT_TRUE(is_zero(constant(0.0, 3)));
+  EXPECT_EQ(constant(0.0, m)->id, m);  // `0 {m}` is not the plain zero
+  EXPECT_TRUE(is_zero(constant(0.0, m)));
   EXPECT_EQ(mul(mm, constant(3))->id, -1);  // folded: a number again
   EXPECT_EQ(mul(mm, constant(3))->value, 0.006);
-  EXPECT_EQ(to_cpp(mul(mm, var(0)), Namer{}), "0.002 * v0");  // printed as any constant
+  EXPECT_EQ(to_cpp(mul(mm, var(0)), Namer{}), "0.002 * v0");          // C++: as any constant
+  EXPECT_EQ(to_string(mul(mm, var(0)), Namer{}), "0.002 {m}*v0");     // a dump or a diagnostic: with its unit, in SI
 }
 
 TEST(ExprFold, ArithmeticOfConstants) {
