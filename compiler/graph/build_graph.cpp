@@ -743,9 +743,11 @@ class Builder {
         diags_.error(a.value->loc, fmt::format("initial value is {}, but `{}` has dimension {}", v->shape(), n.name, n.dim), "");
         return;
       }
-      bool given_as_state = a.key == "p0" || a.key == "q0" || a.key == "rate0";
+      namespace es = element_setting;
+      const bool given_as_state = a.key == es::p0.key || a.key == es::q0.key || a.key == es::rate0.key;
       if (given_as_state) {
         n.initial.items = v->items;
+        n.initial_is_state = true;
         continue;
       }
       if (n.law != LawForm::Linear) {
@@ -786,14 +788,14 @@ class Builder {
       auto v = lower(*o.expr, lookup_in(o.scope), diags_);
       if (!v) continue;
       if (v->is_scalar()) {
-        g_.outputs.push_back({o.name, o.loc, v->items[0], o.unit});
+        g_.outputs.push_back({o.name, o.loc, v->items[0], o.unit, std::nullopt});
         continue;
       }
       for (int r = 0; r < v->rows; ++r)
         for (int c = 0; c < v->cols; ++c) {
           std::string col = v->cols == 1 ? fmt::format("{}[{}]", o.name, r + 1)
                                          : fmt::format("{}[{},{}]", o.name, r + 1, c + 1);
-          g_.outputs.push_back({col, o.loc, v->at(r, c), o.unit});
+          g_.outputs.push_back({col, o.loc, v->at(r, c), o.unit, std::nullopt});
         }
     }
     for (const ResolvedDrawing& d : m_.drawings) {

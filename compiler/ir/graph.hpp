@@ -65,6 +65,7 @@ struct GraphNode {
   std::vector<Expr> law_rhs;  // nonlinear law right-hand side, one per component
   Value constraint_g;      // CN: the position-level constraint g(states), dim x 1 (f = dg/dt)
   Value initial;           // initial state (storage elements), shaped dim x 1
+  bool initial_is_state = false;  // given as the state itself (q0, p0, rate0), not through e0 or f0
   std::vector<int> state_vars;  // storage: one variable per component
   // A contact CN's discrete variables (VarKind::Discrete): closed, then bias
   // (unilateral) or damping (compliant), then stick, slip[1], slip[2] (friction).

@@ -265,6 +265,18 @@ class Checker {
       site_ = {s.loc, fmt::format("signal {}", s.name), {s.value}};
       agree(Form::unknown(var_unknown(s.var)), form(s.value), "the signal", "its value");
     }
+    // A storage's initial value given as its state (`q0 = 10 {mm}`, `p0`) is
+    // that state: a user's element only (the layer's poses are its own). Not
+    // through e0 or f0: `p0 = I * f0` folds `I * 1` to I, and the 1's unit with it.
+    for (const ir::StateVar& s : sys_.states) {
+      if (s.node < 0 || !s.initial) continue;
+      const ir::GraphNode& n = g_.nodes[static_cast<std::size_t>(s.node)];
+      if (n.generated || !n.initial_is_state) continue;
+      const std::string state = g_.vars[static_cast<std::size_t>(s.var)].name;
+      site_ = {n.loc, fmt::format("the initial value of `{}`", state), {s.initial},
+               fmt::format("`{}` starts at its element's q0 or p0: check the unit written there", state)};
+      agree(Form::unknown(var_unknown(s.var)), form(s.initial), fmt::format("`{}`", state), "its initial value");
+    }
     for (const ir::UnitCheck& c : g_.unit_checks) {
       if (c.quantity) continue;  // taken first
       site_ = {c.loc, c.what, c.items,

@@ -61,7 +61,7 @@ class pendulum_mtf_model final : public mbgrt::Model {
         {"L", 1.0, "", ""},
         {"g", 9.81, "", ""},
         {"J_hub", 0.01, "", "kg*m^2"},
-        {"theta0", 0.5, "", ""},
+        {"theta0", 0.5, "", "1"},
     };
   }
 
