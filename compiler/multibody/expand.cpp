@@ -42,17 +42,17 @@ ir::ExpandedProgram Expander::run(const AstProgram& in) {
 
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const Sym& name, E value) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true, name.dimension()});
 }
 
 void Expander::property(const Build& B, const Sym& name, E value) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true, name.dimension()});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   ir::ExpandedElement el;
   el.kind = kind;
   el.kind_loc = B.loc();
@@ -71,7 +71,7 @@ void Expander::constraint(const Build& B, const Sym& name, ir::ConstraintLaw law
 }
 
 void Expander::junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   ir::ExpandedJunction j;
   j.type = type;
   j.kind_loc = B.loc();
@@ -97,7 +97,7 @@ void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optiona
 }
 
 void Expander::signal(const Build& B, const Sym& name, E value, E rate) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   generated_.push_back(ir::ExpandedSignal{{name.str(), B.loc(), std::move(value), std::nullopt}, std::move(rate), true});
 }
 
@@ -108,7 +108,7 @@ void Expander::junction_(const Build& B, const Sym& name, const std::vector<Sym>
 void Expander::named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to) {
   bond(B, from, to);
   std::get<AstBond>(generated_.back()).name = name.str();
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
 }
 
 }  // namespace detail

@@ -28,6 +28,7 @@
 #include "multibody/joint_kind.hpp"
 #include "multibody/joint_symbols.hpp"
 #include "multibody/model.hpp"
+#include "multibody/quantities.hpp"
 #include "multibody/settings.hpp"
 #include "multibody/shapes.hpp"
 
@@ -141,10 +142,9 @@ class Expander {
   std::map<std::string, E> coordinates_;
   struct CoordinateValues { E angle, rate, displacement, displacement_rate; };
   std::map<std::string, CoordinateValues> coordinate_values_;  // coordinates joints
-  std::map<std::string, E> quantity_;
+  Quantities quantities_;                  // what users may name, and the names the layer wrote
   std::set<std::string> used_quantities_;  // the quantities the user's expressions name (units.cpp)
-  std::set<std::string> generated_names_;          // parameters, elements and junctions expand wrote
-  std::vector<std::size_t> applied_;               // generated_ indices of joint drive loads (user expressions)
+  std::vector<std::size_t> applied_;       // generated_ indices of joint drive loads (user expressions)
   std::vector<ir::ExpandedStmt> generated_;
   // While a body moved by joint coordinates (and its tree joint) is written:
   // the tree body and its parent every element and junction is tagged with.

@@ -124,7 +124,7 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
   // what the user's expressions read of the bodies and joints (`arm.tip.position` is m)
   for (const std::string& name : used_quantities_)
     if (auto d = quantity_dimension(name)) {
-      const E& value = quantity_.at(name);
+      const E& value = quantities_.at(name);
       out.push_back({value, *d, value->loc, fmt::format("`{}`", name), true});
     }
   for (const auto& [name, body] : m_.bodies) {
@@ -161,7 +161,7 @@ void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
     // its quantities are signals it writes (`tyre1.Fz`), which the check does not read: their units are stated
     const TyreSym tyre(t.decl->name);
     for (const auto& [q, d] : quantity_dimensions())
-      if (const Sym s = tyre.signal(q); generated_names_.count(s.str()))
+      if (const Sym s = tyre.signal(q); quantities_.is_generated(s.str()))
         out.push_back({Build(t.decl->loc).ref(s), d, t.decl->loc, fmt::format("`{}`", s.str()), true});
   }
   if (m_.gravity) state_unit(AstAttr{"gravity", m_.gravity_loc, m_.gravity}, units::dim::velocity() / units::dim::time(),
