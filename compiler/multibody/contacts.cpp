@@ -293,7 +293,7 @@ void Expander::emit_contact(const Contact& c) {
       }
     }
     t2 = B.call("cross", {normal, t1});
-    quantity_[cn.tangents().str()] = B.call("hcat", {t1, t2});
+    quantities_.define(cn.tangents(), B.call("hcat", {t1, t2}));
     auto material = [&](const Body& body, const Side& s, E p) -> E {  // the body's point now at `point`
       if (!body.kind.turns()) return B.op('+', p, B.call("frozen", {B.op('-', point, p)}));
       E R = rotation(B, s.body);
@@ -333,11 +333,11 @@ void Expander::emit_contact(const Contact& c) {
   // (power e f into the CN is -push * g'); the friction likewise.
   E effort = B.ref(cn.constraint().effort());
   E push = B.neg(dim == 1 ? effort : B.at(effort, 1));
-  quantity_[cn.gap().str()] = gap;
-  quantity_[cn.normal().str()] = normal;
-  quantity_[cn.normal_force().str()] = push;
-  quantity_[cn.closed().str()] = B.ref(cn.constraint().closed());  // 1 while in contact
-  if (unilateral && friction) quantity_[cn.stuck().str()] = B.ref(cn.constraint().stick());
+  quantities_.define(cn.gap(), gap);
+  quantities_.define(cn.normal(), normal);
+  quantities_.define(cn.normal_force(), push);
+  quantities_.define(cn.closed(), B.ref(cn.constraint().closed()));  // 1 while in contact
+  if (unilateral && friction) quantities_.define(cn.stuck(), B.ref(cn.constraint().stick()));
   auto spin = [&](const Body& body, const Side& s) -> E {  // world angular velocity
     if (!body.kind.turns()) return nullptr;
     return B.op('*', rotation(B, s.body), B.ref(BodySym(s.body).w().flow()));
@@ -345,11 +345,11 @@ void Expander::emit_contact(const Contact& c) {
   auto point_velocity = [&](E v, E w, E arm) { return w ? B.op('+', v, B.call("cross", {w, arm})) : v; };
   E slip = B.op('-', point_velocity(va, spin(a, c.a), B.op('-', point, pa)), point_velocity(vb, spin(b, c.b), B.op('-', point, pb)));
   E tangential = B.op('-', slip, B.op('*', B.dot(normal, slip), normal));
-  quantity_[cn.slip_velocity().str()] = tangential;
+  quantities_.define(cn.slip_velocity(), tangential);
   E friction_force = B.vec(0, 0, 0);
   if (friction && unilateral) {
     // the CN's tangential rows: their efforts (signed like the push) along the tangents
-    E tangents = quantity_.at(cn.tangents().str());
+    E tangents = quantities_.at(cn.tangents().str());
     friction_force = B.neg(B.op('*', tangents, B.list({B.at(effort, 2), B.at(effort, 3)})));
   } else if (friction) {
     // regularised Coulomb: -mu push vt / sqrt(|vt|^2 + eps^2) on A, its opposite on B
@@ -360,8 +360,8 @@ void Expander::emit_contact(const Contact& c) {
     apply_load(B, cn.friction_load(), c.a, friction_force, B.call("cross", {B.op('-', point, pa), friction_force}), 1.0);
     apply_load(B, cn.friction_load(), c.b, friction_force, B.call("cross", {B.op('-', point, pb), friction_force}), -1.0);
   }
-  quantity_[cn.friction_force().str()] = friction_force;
-  quantity_[cn.force().str()] = B.op('+', B.op('*', push, normal), friction_force);
+  quantities_.define(cn.friction_force(), friction_force);
+  quantities_.define(cn.force(), B.op('+', B.op('*', push, normal), friction_force));
 }
 
 }  // namespace mbgc::multibody::detail

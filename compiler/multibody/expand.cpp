@@ -2,7 +2,10 @@
 
 #include "multibody/collect.hpp"
 #include "multibody/expander.hpp"
+#include "multibody/quantities.hpp"
+#include "multibody/rewrite.hpp"
 #include "multibody/spanning_tree.hpp"
+#include "multibody/units.hpp"
 
 #include <tuple>
 
@@ -11,48 +14,39 @@
 namespace mbgc::multibody {
 namespace detail {
 
-ir::ExpandedProgram Expander::run(const AstProgram& in) {
-  m_ = Collector(sources_, diags_, options_).run(in);
-  if (diags_.has_errors()) return {};
-  if (m_.bodies.size() <= 1 && m_.joints.empty() && m_.forces.empty() && m_.contacts.empty() && m_.tyres.empty() && !m_.gravity)
-    return ir::as_expanded(in);  // nothing multibody here
+std::vector<ir::ExpandedStmt> Expander::run() {
   if (m_.gravity) property(Build(m_.gravity_loc), Sym::gravity(), m_.gravity);
   for (const auto& [p, v] : m_.bodies.at("ground").points) property(Build(v->loc), Sym::ground_point(p), v);
-  plan_tree(m_, diags_, options_.strategy_report);
-  if (diags_.has_errors()) return {};
   for (const std::string& name : m_.body_order) emit_body(m_.bodies.at(name));
-  for (Joint& j : m_.joints) emit_joint(j);
+  for (const Joint& j : m_.joints) emit_joint(j);
   place_bodies();
   define_quantities();
   draw_bodies();
+  // a drive load may read the bodies' and joints' quantities, defined now (a force element's laws, rewritten as
+  // it is written, also those of the force elements before it)
   for (std::size_t k : applied_) {
     auto& el = std::get<ir::ExpandedElement>(generated_[k]);
-    el.value = rewrite_expr(el.value);
+    el.value = rewrite_.expr(el.value);
   }
   for (const ForceElement& f : m_.forces) emit_force(f);
   for (const Contact& c : m_.contacts) emit_contact(c);
   for (const Tyre& t : m_.tyres) emit_tyre(t);
-  ir::ExpandedProgram out;
-  for (const AstStmt& s : in.stmts)
-    if (ir::ExpandedStmt e; ir::as_expanded(s, e)) out.stmts.push_back(rewrite_user(e));
-  for (ir::ExpandedStmt& s : generated_) out.stmts.push_back(std::move(s));
-  if (!diags_.has_errors()) state_units(out.unit_checks);
-  return out;
+  return std::move(generated_);
 }
 
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const Sym& name, E value) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true, name.dimension()});
 }
 
 void Expander::property(const Build& B, const Sym& name, E value) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true, name.dimension()});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   ir::ExpandedElement el;
   el.kind = kind;
   el.kind_loc = B.loc();
@@ -71,7 +65,7 @@ void Expander::constraint(const Build& B, const Sym& name, ir::ConstraintLaw law
 }
 
 void Expander::junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   ir::ExpandedJunction j;
   j.type = type;
   j.kind_loc = B.loc();
@@ -97,7 +91,7 @@ void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optiona
 }
 
 void Expander::signal(const Build& B, const Sym& name, E value, E rate) {
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
   generated_.push_back(ir::ExpandedSignal{{name.str(), B.loc(), std::move(value), std::nullopt}, std::move(rate), true});
 }
 
@@ -108,15 +102,28 @@ void Expander::junction_(const Build& B, const Sym& name, const std::vector<Sym>
 void Expander::named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to) {
   bond(B, from, to);
   std::get<AstBond>(generated_.back()).name = name.str();
-  generated_names_.insert(name.str());
+  quantities_.generated(name.str());
 }
 
 }  // namespace detail
 
 ir::ExpandedProgram expand(const ir::AstProgram& program, ir::SourceManager& sources, ir::Diagnostics& diags,
                            const ExpandOptions& options) {
-  detail::Expander x(sources, diags, options);
-  return x.run(program);
+  using namespace detail;
+  Model m = Collector(sources, diags, options).run(program);
+  if (diags.has_errors()) return {};
+  if (m.bodies.size() <= 1 && m.joints.empty() && m.forces.empty() && m.contacts.empty() && m.tyres.empty() && !m.gravity)
+    return ir::as_expanded(program);  // nothing multibody here
+  plan_tree(m, diags, options.strategy_report);
+  if (diags.has_errors()) return {};
+  Quantities quantities;
+  QuantityRewriter rewrite(quantities, m, diags);
+  std::vector<ir::ExpandedStmt> generated = Expander(m, quantities, rewrite, diags).run();
+  ir::ExpandedProgram out;
+  out.stmts = rewrite_user_statements(program, rewrite);  // the user's statements first, then the layer's
+  for (ir::ExpandedStmt& s : generated) out.stmts.push_back(std::move(s));
+  if (!diags.has_errors()) out.unit_checks = state_units(m, quantities, rewrite.used(), diags);
+  return out;
 }
 
 }  // namespace mbgc::multibody

@@ -1,8 +1,10 @@
-// multibody/expander.hpp — the multibody pass's working state (private to
-// compiler/multibody). One Expander runs once per model: it collects bodies,
-// joints and force elements, then writes each as multibond-graph fragments
-// (layer-1 statements). Its member functions live in one file per topic,
-// named in the section comments below; expand.hpp is the pass's interface.
+// multibody/expander.hpp — the multibody layer's third pass (private to
+// compiler/multibody): it writes the bodies, joints, force elements, contacts
+// and tyres of the Model, collected (collect.hpp) and with its spanning tree
+// planned (spanning_tree.hpp), as multibond-graph fragments (layer-1
+// statements), and defines the quantities users may name as it goes
+// (quantities.hpp). Its member functions live in one file per topic, named in
+// the section comments below; expand.cpp runs the passes in order.
 #pragma once
 
 #include <array>
@@ -10,7 +12,6 @@
 #include <functional>
 #include <map>
 #include <optional>
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,8 @@
 #include "multibody/joint_kind.hpp"
 #include "multibody/joint_symbols.hpp"
 #include "multibody/model.hpp"
+#include "multibody/quantities.hpp"
+#include "multibody/rewrite.hpp"
 #include "multibody/settings.hpp"
 #include "multibody/shapes.hpp"
 
@@ -37,10 +40,13 @@ using namespace mbgc::ir;  // the multibody layer builds the AST's statements th
 
 class Expander {
  public:
-  Expander(ir::SourceManager& sources, Diagnostics& diags, const ExpandOptions& options)
-      : sources_(sources), diags_(diags), options_(options) {}
+  /// Writes `m`'s fragments (run), defining its quantities in `quantities` as it goes; the joints' drive
+  /// loads and the force elements' laws it writes are user expressions, which `rewrite` rewrites against them.
+  Expander(const Model& m, Quantities& quantities, QuantityRewriter& rewrite, Diagnostics& diags)
+      : m_(m), quantities_(quantities), rewrite_(rewrite), diags_(diags) {}
 
-  ir::ExpandedProgram run(const AstProgram& in);
+  /// The fragments, in the order they are written.
+  std::vector<ir::ExpandedStmt> run();
 
  private:
   // ---- the pass: run(), and the statements it writes (expand.cpp)
@@ -83,7 +89,7 @@ class Expander {
   std::vector<E> rows(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
   void rates_into(const Build& B, const std::function<Sym(char)>& mtf, E rows_vec, const Frame& f, const Sym& sum,
                   bool towards_sum, bool translational);
-  void emit_joint(Joint& j);
+  void emit_joint(const Joint& j);
   void drive_loads(const Build& B, const Joint& j);
   std::optional<E> joint_coordinate(const Build& B, const Joint& j, const Frame& A, const Frame& Bf);
 
@@ -121,30 +127,19 @@ class Expander {
   void draw_bodies();
   void draw_surfaces();
 
-  // ---- 6. quantities users may name (quantities.cpp)
+  // ---- 6. the quantities of bodies and joints users may name (quantities.cpp)
   void define_quantities();
-  void check_known(const AstExpr& e);
-  E rewrite_expr(const E& e);
-  ir::ExpandedStmt rewrite_user(const ir::ExpandedStmt& s);
 
-  // ---- 7. the units of the values users write in these statements (units.cpp)
-  void state_units(std::vector<ir::ExpandedUnitCheck>& out);
-  void state_unit(const AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what,
-                  std::vector<ir::ExpandedUnitCheck>& out);
-
-  ir::SourceManager& sources_;  // (for the collect pass)
+  const Model& m_;              // what the collect pass read (collect.hpp), its spanning tree planned (spanning_tree.hpp)
+  Quantities& quantities_;      // what users may name, as far as it is written
+  QuantityRewriter& rewrite_;   // user expressions the fragments hold, rewritten against quantities_
   Diagnostics& diags_;
-  ExpandOptions options_;
-  Model m_;                     // what the collect pass read (collect.hpp); the tree pass marks its bodies and joints
   Constants constants_{m_.params};
   std::map<std::string, std::pair<Frame, Frame>> frames_;
   std::map<std::string, E> coordinates_;
   struct CoordinateValues { E angle, rate, displacement, displacement_rate; };
   std::map<std::string, CoordinateValues> coordinate_values_;  // coordinates joints
-  std::map<std::string, E> quantity_;
-  std::set<std::string> used_quantities_;  // the quantities the user's expressions name (units.cpp)
-  std::set<std::string> generated_names_;          // parameters, elements and junctions expand wrote
-  std::vector<std::size_t> applied_;               // generated_ indices of joint drive loads (user expressions)
+  std::vector<std::size_t> applied_;  // generated_ indices of joint drive loads (user expressions)
   std::vector<ir::ExpandedStmt> generated_;
   // While a body moved by joint coordinates (and its tree joint) is written:
   // the tree body and its parent every element and junction is tagged with.

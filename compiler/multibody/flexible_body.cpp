@@ -160,29 +160,30 @@ void Expander::flexible_quantities(const Build& B, const Body& body) {
   E r = position(B, name), v = velocity(B, name), q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
   E p = B.ref(n.M().momentum());
   auto part = [&](E x, int from) { return B.list({B.at(x, from), B.at(x, from + 1), B.at(x, from + 2)}); };
-  quantity_[n.quantity("position").str()] = r;
-  quantity_[n.quantity("velocity").str()] = v;
-  quantity_[n.quantity("momentum").str()] = B.op('*', R, part(p, 1));
-  quantity_[n.quantity("quaternion").str()] = q;
-  quantity_[n.quantity("rotation").str()] = R;
-  quantity_[n.quantity("bryant").str()] = B.call("bryant", {q});
-  quantity_[n.quantity("omega").str()] = w;
-  quantity_[n.quantity("omega_world").str()] = B.op('*', R, w);
-  quantity_[n.quantity("angular_momentum").str()] = B.op('*', R, part(p, 4));  // about the frame origin
-  quantity_[n.modes().str()] = B.ref(n.eta().displacement());
-  quantity_[n.quantity("kinetic_energy").str()] = B.op('*', B.num(0.5), B.dot(B.ref(n.nu().flow()), p));
+  quantities_.define(n.quantity("position"), r);
+  quantities_.define(n.quantity("velocity"), v);
+  quantities_.define(n.quantity("momentum"), B.op('*', R, part(p, 1)));
+  quantities_.define(n.quantity("quaternion"), q);
+  quantities_.define(n.quantity("rotation"), R);
+  quantities_.define(n.quantity("bryant"), B.call("bryant", {q}));
+  quantities_.define(n.quantity("omega"), w);
+  quantities_.define(n.quantity("omega_world"), B.op('*', R, w));
+  quantities_.define(n.quantity("angular_momentum"), B.op('*', R, part(p, 4)));  // about the frame origin
+  quantities_.define(n.modes(), B.ref(n.eta().displacement()));
+  quantities_.define(n.quantity("kinetic_energy"), B.op('*', B.num(0.5), B.dot(B.ref(n.nu().flow()), p)));
   E elastic = B.op('*', B.num(0.5), B.dot(B.ref(n.eta().displacement()), B.ref(n.eta().effort())));
-  quantity_[n.elastic_energy().str()] = elastic;
+  quantities_.define(n.elastic_energy(), elastic);
   E gravity = m_.gravity ? B.neg(B.dot(B.ref(Sym::gravity()), B.op('+', B.op('*', B.ref(n.mass()), r),
                                                                     B.op('*', R, beam.first_moment(B, n, eta)))))
                        : B.num(0);
-  quantity_[n.quantity("potential_energy").str()] = B.op('+', gravity, elastic);
+  quantities_.define(n.quantity("potential_energy"), B.op('+', gravity, elastic));
   for (const auto& [pt, at] : beam.points()) {
     E local = beam.point(B, n, pt, eta);
-    std::tie(quantity_[n.point(pt).quantity("position").str()], quantity_[n.point(pt).quantity("velocity").str()]) =
-        flexible_point_motion(B, name, local);
-    quantity_[n.point(pt).quantity("deflection").str()] = B.op('-', local, B.vec(at[0], at[1], at[2]));  // body axes
-    quantity_[n.point(pt).quantity("rotation_vector").str()] = beam.slope(B, n, pt, eta);  // small, body axes
+    auto [point_position, point_velocity] = flexible_point_motion(B, name, local);
+    quantities_.define(n.point(pt).quantity("position"), point_position);
+    quantities_.define(n.point(pt).quantity("velocity"), point_velocity);
+    quantities_.define(n.point(pt).quantity("deflection"), B.op('-', local, B.vec(at[0], at[1], at[2])));  // body axes
+    quantities_.define(n.point(pt).quantity("rotation_vector"), beam.slope(B, n, pt, eta));  // small, body axes
   }
 }
 

@@ -40,12 +40,12 @@ void Expander::emit_force(const ForceElement& f) {
   Build B(f.decl->loc);
   auto user = [&](const Setting& s) -> E {
     const AstAttr* given = given_in(f.attrs, s);
-    return given ? rewrite_expr(given->value) : nullptr;
+    return given ? rewrite_.expr(given->value) : nullptr;
   };
   auto [pa, va] = world_point(B, f.a);
   auto [pb, vb] = world_point(B, f.b);
   E d = B.op('-', pb, pa);
-  quantity_[fn.quantity("length").str()] = B.call("norm", {d});
+  quantities_.define(fn.quantity("length"), B.call("norm", {d}));
   E force = user(force_setting::force);
   if (E k = user(force_setting::stiffness), c = user(force_setting::damping); k || c) {
     if (k) param(B, fn.stiffness(), k);
@@ -60,8 +60,8 @@ void Expander::emit_force(const ForceElement& f) {
   }
   if (!force) force = B.vec(0, 0, 0);
   E torque = user(force_setting::torque);
-  quantity_[fn.quantity("force").str()] = force;
-  if (torque) quantity_[fn.quantity("torque").str()] = torque;
+  quantities_.define(fn.quantity("force"), force);
+  if (torque) quantities_.define(fn.quantity("torque"), torque);
   apply_load(B, fn, f.a, force, torque, -1.0);
   apply_load(B, fn, f.b, force, torque, 1.0);
 }

@@ -158,7 +158,7 @@ void Expander::drive_loads(const Build& B, const Joint& j) {
   }
 }
 
-void Expander::emit_joint(Joint& j) {
+void Expander::emit_joint(const Joint& j) {
   const AstJoint& d = *j.decl;
   const JointSym jn(d.name);
   Build B(d.loc);

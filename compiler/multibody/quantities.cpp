@@ -1,4 +1,4 @@
-// multibody/quantities.cpp — quantities users may name.
+// multibody/quantities.cpp — the quantities of the bodies and joints users may name (the table: quantities.hpp).
 #include "multibody/expander.hpp"
 
 #include <algorithm>
@@ -22,40 +22,40 @@ void Expander::define_quantities() {
       flexible_quantities(B, body);
       continue;
     }
-    auto quantity = [&](const char* q) -> E& { return quantity_[n.quantity(q).str()]; };
+    auto quantity = [&](const char* q, E value) { quantities_.define(n.quantity(q), std::move(value)); };
     E r = position(B, name), v = velocity(B, name);
-    quantity("position") = r;
-    quantity("velocity") = v;
-    quantity("momentum") =
-        body_frame_velocity(body) ? B.op('*', rotation(B, name), B.ref(n.m().momentum())) : B.ref(n.m().momentum());
+    quantity("position", r);
+    quantity("velocity", v);
+    quantity("momentum",
+             body_frame_velocity(body) ? B.op('*', rotation(B, name), B.ref(n.m().momentum())) : B.ref(n.m().momentum()));
     E ke = B.op('*', B.num(0.5), B.dot(B.ref(n.v().flow()), B.ref(n.m().momentum())));  // in the junction's own axes
     if (!body.kind.particle()) {
       E q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
-      quantity("quaternion") = q;
-      quantity("rotation") = R;
-      quantity("bryant") = B.call("bryant", {q});
-      quantity("omega") = w;
-      quantity("omega_world") = B.op('*', R, w);
-      quantity("angular_momentum") = B.op('*', R, B.ref(n.J().momentum()));
+      quantity("quaternion", q);
+      quantity("rotation", R);
+      quantity("bryant", B.call("bryant", {q}));
+      quantity("omega", w);
+      quantity("omega_world", B.op('*', R, w));
+      quantity("angular_momentum", B.op('*', R, B.ref(n.J().momentum())));
       ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.ref(n.J().momentum()))));
       for (const auto& [p, x] : body.points) {
         const PointSym point = n.point(p);
         E local = B.op('-', B.ref(point), B.ref(n.com()));
-        quantity_[point.quantity("position").str()] = B.op('+', r, B.op('*', R, local));
-        quantity_[point.quantity("velocity").str()] = B.op('+', v, B.op('*', R, B.call("cross", {w, local})));
+        quantities_.define(point.quantity("position"), B.op('+', r, B.op('*', R, local)));
+        quantities_.define(point.quantity("velocity"), B.op('+', v, B.op('*', R, B.call("cross", {w, local}))));
       }
     }
-    quantity("kinetic_energy") = ke;
-    quantity("potential_energy") = m_.gravity ? B.neg(B.op('*', B.ref(n.mass()), B.dot(B.ref(Sym::gravity()), r))) : B.num(0);
+    quantity("kinetic_energy", ke);
+    quantity("potential_energy", m_.gravity ? B.neg(B.op('*', B.ref(n.mass()), B.dot(B.ref(Sym::gravity()), r))) : B.num(0));
   }
   for (const Joint& j : m_.joints) {
     const JointSym jn(j.decl->name);
     Build B(j.decl->loc);
-    auto quantity = [&](const char* q) -> E& { return quantity_[jn.quantity(q).str()]; };
+    auto quantity = [&](const char* q, E value) { quantities_.define(jn.quantity(q), std::move(value)); };
     const auto& [A, Bf] = frames_.at(j.decl->name);
     const Frame& body_side = Bf.kind.ground() ? A : Bf;
     // a joint with no rows (free) constrains nothing: it has no violation
-    if (std::vector<E> r = rows(B, j, A, Bf); !r.empty()) quantity("violation") = B.list(r);
+    if (std::vector<E> r = rows(B, j, A, Bf); !r.empty()) quantity("violation", B.list(r));
     if (auto cv = coordinate_values_.find(j.decl->name); cv != coordinate_values_.end()) {
       // joint coordinates: the reaction is the effort on the bonds into the
       // child's junctions (force world, torque body frame); on b, by Newton's third law
@@ -63,17 +63,17 @@ void Expander::define_quantities() {
       E sign = B.num(j.a_is_parent ? 1 : -1);
       E reaction_f = B.ref(jn.reaction_force().effort());
       if (body_frame_velocity(m_.bodies.at(child))) reaction_f = B.op('*', rotation(B, child), reaction_f);
-      quantity("force") = B.op('*', sign, reaction_f);
+      quantity("force", B.op('*', sign, reaction_f));
       if (!m_.bodies.at(child).kind.particle())
-        quantity("torque") = B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_torque().effort())));
+        quantity("torque", B.op('*', sign, B.op('*', rotation(B, child), B.ref(jn.reaction_torque().effort()))));
       if (j.kind->has_angle()) {
-        quantity("angle") = cv->second.angle;
-        quantity("rate") = cv->second.rate;
+        quantity("angle", cv->second.angle);
+        quantity("rate", cv->second.rate);
       }
       if (j.kind->has_displacement()) {
-        quantity("displacement") = cv->second.displacement;
+        quantity("displacement", cv->second.displacement);
         // its rate (a spring-damper in the joint's `force`): a state here, joint coordinates only
-        if (cv->second.displacement_rate) quantity("displacement_rate") = cv->second.displacement_rate;
+        if (cv->second.displacement_rate) quantity("displacement_rate", cv->second.displacement_rate);
       }
       continue;
     }
@@ -84,85 +84,23 @@ void Expander::define_quantities() {
     // (a cut joint on a body moved by joint coordinates: that junction is in the body's axes)
     if (body_frame_velocity(m_.bodies.at(body_side.body))) force = B.op('*', body_side.R, force);
     if (body_side.kind.particle()) {
-      quantity("force") = force;
+      quantity("force", force);
     } else {
       E torque_body = B.ref(jn.row_rate(side, 'r').effort(1));
       if (!Bf.kind.ground()) torque_body = B.neg(torque_body);
       E lever = B.op('*', body_side.R, body_side.local);
-      quantity("force") = force;
-      quantity("torque") = B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force}));
+      quantity("force", force);
+      quantity("torque", B.op('-', B.op('*', body_side.R, torque_body), B.call("cross", {lever, force})));
     }
     E wrel = B.op('-', !Bf.kind.turns() ? B.vec(0, 0, 0) : B.op('*', Bf.R, B.ref(BodySym(Bf.body).w().flow())),
                   !A.kind.turns() ? B.vec(0, 0, 0) : B.op('*', A.R, B.ref(BodySym(A.body).w().flow())));
     if (j.kind->has_angle()) {
-      quantity("angle") = B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)});
-      quantity("rate") = B.dot(A.Z, wrel);
+      quantity("angle", B.call("atan2", {B.dot(A.Y, Bf.X), B.dot(A.X, Bf.X)}));
+      quantity("rate", B.dot(A.Z, wrel));
     }
     if (j.kind->has_displacement())
-      quantity("displacement") = j.kind->displacement({B, j, A, Bf, B.op('-', Bf.p, A.p), B.ref(jn.scale())});
+      quantity("displacement", j.kind->displacement({B, j, A, Bf, B.op('-', Bf.p, A.p), B.ref(jn.scale())}));
   }
-}
-
-/// `bob.positon`: a name under a body or joint that is none of its quantities,
-/// points or generated parts is a typo; say what the body or joint offers.
-void Expander::check_known(const AstExpr& e) {
-  std::size_t dot = e.name.find('.');
-  if (dot == std::string::npos) return;
-  const std::string owner = e.name.substr(0, dot);
-  const bool is_body = owner != "ground" && m_.bodies.count(owner);
-  const bool is_joint = frames_.count(owner) > 0;
-  if (!is_body && !is_joint) return;
-  if (generated_names_.count(e.name)) return;
-  if (std::size_t last = e.name.rfind('.'); last != dot && generated_names_.count(e.name.substr(0, last))) return;
-  std::vector<std::string> offered;
-  for (const auto& [q, x] : quantity_)
-    if (q.compare(0, owner.size() + 1, owner + ".") == 0) offered.push_back(q.substr(owner.size() + 1));
-  if (is_body)
-    for (const auto& [p, x] : m_.bodies.at(owner).points) offered.push_back(p);
-  std::string rest = e.name.substr(dot + 1);
-  std::string near = closest_name(rest, offered);
-  diags_.error(e.loc, fmt::format("{} `{}` has no quantity `{}`", is_body ? "body" : "joint", owner, rest),
-               near.empty() ? fmt::format("`{}` offers {}", owner, fmt::join(offered, ", "))
-                            : fmt::format("did you mean `{}.{}`?", owner, near));
-}
-
-E Expander::rewrite_expr(const E& e) {
-  if (!e) return e;
-  if (e->kind == AstExpr::Kind::Name) {
-    auto it = quantity_.find(e->name);
-    if (it != quantity_.end()) {
-      used_quantities_.insert(e->name);
-      return it->second;
-    }
-    check_known(*e);
-    return e;
-  }
-  bool changed = false;
-  std::vector<E> args;
-  for (const E& a : e->args) {
-    args.push_back(rewrite_expr(a));
-    changed |= args.back() != a;
-  }
-  if (!changed) return e;
-  auto copy = std::make_shared<AstExpr>(*e);
-  copy->args = std::move(args);
-  return copy;
-}
-
-ir::ExpandedStmt Expander::rewrite_user(const ir::ExpandedStmt& s) {
-  ir::ExpandedStmt out = s;
-  std::visit(
-      [&](auto& st) {
-        using T = std::decay_t<decltype(st)>;
-        if constexpr (std::is_same_v<T, ir::ExpandedSignal> || std::is_same_v<T, ir::ExpandedOutput>) {
-          st.value = rewrite_expr(st.value);
-        } else if constexpr (std::is_same_v<T, ir::ExpandedElement>) {
-          st.value = rewrite_expr(st.value);
-          for (AstAttr& a : st.attrs) a.value = rewrite_expr(a.value);
-        }
-      },
-      out);
-  return out;
 }
 
 }  // namespace mbgc::multibody::detail

@@ -19,7 +19,7 @@ void Expander::place_bodies() {
   for (const Joint* j : m_.tree_order)
     if (j->strategy != Strategy::Coordinates) place(*j, j->a_is_parent);
   for (const std::string& n : m_.body_order) {
-    Body& body = m_.bodies.at(n);
+    const Body& body = m_.bodies.at(n);
     const AstBody& d = *body.decl;
     Build B(d.loc);
     if (body.placed) {

@@ -281,7 +281,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   E kappa = lag("kappa", div(sub(B.neg(vsx), mul(speed, B.ref(tn.lag("kappa").displacement()))), sigma_kappa));
   E tan_alpha = lag("tan_alpha", div(sub(vcy, mul(speed, B.ref(tn.lag("tan_alpha").displacement()))), sigma_alpha));
   E alpha = sig("slip_angle", fn("atan", tan_alpha));
-  quantity_[tn.slip_ratio().str()] = kappa;
+  quantities_.define(tn.slip_ratio(), kappa);
 
   // Magic Formula, pure slip.
   auto magic = [&](E b, E c, E d, E e, E x) {  // D sin(C atan(B x - E (B x - atan(B x))))
@@ -327,9 +327,9 @@ void Expander::emit_tyre(const Tyre& tyre) {
   // On the wheel: the force at the contact point, hc below the centre along -n.
   E force = sig_vector(B, tn.force(), add(add(mul(fx, ex), mul(fy, ey)), mul(fz, n)));
   E torque = B.call("cross", {mul(B.neg(hc), n), force});
-  quantity_[tn.contact_point().str()] = sub(centre, mul(hc, n));
+  quantities_.define(tn.contact_point(), sub(centre, mul(hc, n)));
   // the power of the road's force on the wheel: F . v of the wheel's material point at the contact
-  quantity_[tn.power().str()] = B.dot(force, add(v_centre, B.call("cross", {omega, mul(B.neg(hc), n)})));
+  quantities_.define(tn.power(), B.dot(force, add(v_centre, B.call("cross", {omega, mul(B.neg(hc), n)}))));
   apply_load(B, tn, tyre.wheel, force, torque, 1.0);
 }
 
@@ -342,7 +342,7 @@ E Expander::sig_vector(const Build& B, const VectorSym& name, E value) {
     items.push_back(B.ref(name.component(i)));
   }
   E v = B.list(std::move(items));
-  quantity_[name.str()] = v;
+  quantities_.define(name, v);
   return v;
 }
 

@@ -4,11 +4,15 @@
 // at its braces (`mass = 3 {m}`); a value that reads parameters or
 // quantities goes to units/check (ir::ExpandedUnitCheck), which infers
 // theirs. The dimensions come from the settings' tables (settings.hpp).
+#include "multibody/units.hpp"
+
 #include <fmt/format.h>
 
 #include <map>
 
-#include "multibody/expander.hpp"
+#include "multibody/contact_symbols.hpp"
+#include "multibody/joint_kind.hpp"
+#include "multibody/rewrite.hpp"
 #include "multibody/setting_names.hpp"
 #include "multibody/settings.hpp"
 #include "units/literals.hpp"
@@ -35,14 +39,6 @@ std::optional<units::Dimension> joint_dimension(const Joint& j, const Setting& s
 }
 
 }  // namespace
-
-void Expander::state_unit(const AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what,
-                          std::vector<ir::ExpandedUnitCheck>& out) {
-  if (!dimension || !a.value) return;
-  // the literals' units, each where it is written
-  const bool wrong = !units::check_literal_units(*a.value, *dimension, what, diags_);
-  if (!wrong && units::reads_a_name(*a.value)) out.push_back({rewrite_expr(a.value), *dimension, a.loc, what});
-}
 
 namespace {
 
@@ -120,52 +116,63 @@ std::optional<units::Dimension> quantity_dimension(const std::string& name) {
 
 }  // namespace
 
-void Expander::state_units(std::vector<ir::ExpandedUnitCheck>& out) {
+std::vector<ir::ExpandedUnitCheck> state_units(const Model& m, const Quantities& quantities,
+                                               const std::set<std::string>& used, ir::Diagnostics& diags) {
+  std::vector<ir::ExpandedUnitCheck> out;
+  // the settings' values are rewritten as the user's statements were; what they read is not stated again
+  QuantityRewriter rewrite(quantities, m, diags);
+  // that the value of setting `a` (`what`) has `dimension` (none: nothing is stated)
+  auto state_unit = [&](const ir::AstAttr& a, const std::optional<units::Dimension>& dimension, const std::string& what) {
+    if (!dimension || !a.value) return;
+    // the literals' units, each where it is written
+    const bool wrong = !units::check_literal_units(*a.value, *dimension, what, diags);
+    if (!wrong && units::reads_a_name(*a.value)) out.push_back({rewrite.expr(a.value), *dimension, a.loc, what});
+  };
   // what the user's expressions read of the bodies and joints (`arm.tip.position` is m)
-  for (const std::string& name : used_quantities_)
+  for (const std::string& name : used)
     if (auto d = quantity_dimension(name)) {
-      const E& value = quantity_.at(name);
+      const E& value = quantities.at(name);
       out.push_back({value, *d, value->loc, fmt::format("`{}`", name), true});
     }
-  for (const auto& [name, body] : m_.bodies) {
+  for (const auto& [name, body] : m.bodies) {
     if (!body.decl) continue;
     const std::vector<const Setting*>& table = body.kind.field() ? body.kind.field()->settings() : body_setting::kAll;
-    for (const AstAttr& a : body.decl->attrs) {
+    for (const ir::AstAttr& a : body.decl->attrs) {
       const Setting* s = find_setting(table, a.key);
       if (!s) continue;
       const std::string what = fmt::format("{} of body `{}`", a.key, name);
-      if (s == &beam_setting::section && a.value && a.value->kind == AstExpr::Kind::Call)  // each dimension a length
+      if (s == &beam_setting::section && a.value && a.value->kind == ir::AstExpr::Kind::Call)  // each dimension a length
         for (const auto& x : a.value->args)
-          state_unit(AstAttr{a.key, x->loc, x}, s->dimension, what, out);
-      else state_unit(a, s->dimension, what, out);
+          state_unit(ir::AstAttr{a.key, x->loc, x}, s->dimension, what);
+      else state_unit(a, s->dimension, what);
     }
     for (const ir::AstPoint& p : body.decl->points)
-      state_unit(AstAttr{p.name, p.loc, p.value}, units::dim::length(), fmt::format("point `{}` of `{}`", p.name, name),
-                 out);
+      state_unit(ir::AstAttr{p.name, p.loc, p.value}, units::dim::length(), fmt::format("point `{}` of `{}`", p.name, name));
   }
-  for (const Joint& j : m_.joints)
+  for (const Joint& j : m.joints)
     for (const auto& [key, a] : j.attrs)
       if (const Setting* s = find_setting(joint_setting::kAll, key))
-        state_unit(*a, joint_dimension(j, *s), fmt::format("{} of joint `{}`", key, j.decl->name), out);
-  for (const Contact& c : m_.contacts)
+        state_unit(*a, joint_dimension(j, *s), fmt::format("{} of joint `{}`", key, j.decl->name));
+  for (const Contact& c : m.contacts)
     for (const auto& [key, a] : c.attrs)
       if (const Setting* s = find_setting(contact_setting::kAll, key))
-        state_unit(*a, s->dimension, fmt::format("{} of contact `{}`", key, c.decl->name), out);
-  for (const ForceElement& f : m_.forces)
+        state_unit(*a, s->dimension, fmt::format("{} of contact `{}`", key, c.decl->name));
+  for (const ForceElement& f : m.forces)
     for (const auto& [key, a] : f.attrs)
       if (const Setting* s = find_setting(force_setting::kAll, key))
-        state_unit(*a, s->dimension, fmt::format("{} of force `{}`", key, f.decl->name), out);
-  for (const Tyre& t : m_.tyres) {
+        state_unit(*a, s->dimension, fmt::format("{} of force `{}`", key, f.decl->name));
+  for (const Tyre& t : m.tyres) {
     for (const auto& [key, a] : t.attrs)
-      state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name), out);
+      state_unit(*a, tyre_setting_dimension(key), fmt::format("{} of tyre `{}`", key, t.decl->name));
     // its quantities are signals it writes (`tyre1.Fz`), which the check does not read: their units are stated
     const TyreSym tyre(t.decl->name);
     for (const auto& [q, d] : quantity_dimensions())
-      if (const Sym s = tyre.signal(q); generated_names_.count(s.str()))
+      if (const Sym s = tyre.signal(q); quantities.is_generated(s.str()))
         out.push_back({Build(t.decl->loc).ref(s), d, t.decl->loc, fmt::format("`{}`", s.str()), true});
   }
-  if (m_.gravity) state_unit(AstAttr{"gravity", m_.gravity_loc, m_.gravity}, units::dim::velocity() / units::dim::time(),
-                           "gravity", out);
+  if (m.gravity) state_unit(ir::AstAttr{"gravity", m.gravity_loc, m.gravity}, units::dim::velocity() / units::dim::time(),
+                           "gravity");
+  return out;
 }
 
 }  // namespace mbgc::multibody::detail

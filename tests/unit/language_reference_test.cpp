@@ -2,8 +2,8 @@
 // must appear in it in backticks, so that a new built-in, keyword, setting,
 // joint kind or quantity cannot land undocumented. The lists come from the
 // compiler's own tables; the quantities, which have no table, from the
-// multibody layer's sources (every `quantity_[... ".NAME"]` it defines and
-// every tyre signal), so a new one is found there too.
+// multibody layer's sources (every quantity it defines and every tyre
+// signal), so a new one is found there too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -75,12 +75,13 @@ void expect_documented(const Names& names, const char* what, bool may_be_empty =
 }
 
 /// The quantity names the multibody layer defines, in every source: through
-/// a symbol's `quantity("NAME")` and as `quantity_[x.NAME().str()]`, and the
-/// tyre's signals (`sig("NAME", ...)`, `sig_vector(B, tn.NAME(), ...)`).
+/// a symbol's `quantity("NAME")` (define_quantities' `quantity("NAME", value)`)
+/// and as `quantities_.define(x.NAME(), value)`, and the tyre's signals
+/// (`sig("NAME", ...)`, `sig_vector(B, tn.NAME(), ...)`).
 std::set<std::string> quantity_names() {
   std::set<std::string> names;
-  const std::regex named(R"re(\bquantity\("([A-Za-z_][A-Za-z_0-9]*)"\))re");
-  const std::regex member(R"re(quantity_\[[A-Za-z_0-9.()]*\.([A-Za-z_][A-Za-z_0-9]*)\(\)\.str\(\)\])re");
+  const std::regex named(R"re(\bquantity\("([A-Za-z_][A-Za-z_0-9]*)"[,)])re");
+  const std::regex member(R"re(quantities_\.define\([A-Za-z_0-9.()]*\.([A-Za-z_][A-Za-z_0-9]*)\(\),)re");
   const std::regex tyre_signal(R"re(\bsig\("([A-Za-z_][A-Za-z_0-9]*)")re");
   const std::regex tyre_vector(R"re(\bsig_vector\(B, *tn\.([A-Za-z_][A-Za-z_0-9]*)\(\))re");
   for (const auto& e : fs::directory_iterator(fs::path(MBGC_SOURCE_DIR) / "compiler" / "multibody")) {
