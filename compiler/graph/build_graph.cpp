@@ -439,7 +439,7 @@ class Builder {
   static bool is_free_rate(const ResolvedNode& rn) {
     if (!rn.element || rn.element->kind != "Sf" || rn.element->value) return false;
     for (const AstAttr& a : rn.element->attrs)
-      if (a.key == "rate0") return true;
+      if (a.key == element_setting::rate0.key) return true;
     return false;
   }
 
