@@ -13,16 +13,16 @@ static void put(std::string& out, int indent, const std::string& text) {
   out += '\n';
 }
 
-std::string CppStmt::code() const {
+std::string CppStmt::code(bool with_note) const {
   if (unprinted()) throw std::logic_error("mbgc: a statement of `" + name + "` written before its values were printed (codegen bug)");
   switch (kind) {
     case Kind::Comment:
     case Kind::Line: return text;
     case Kind::Blank: return {};
-    case Kind::Local: return "const double " + name + " = " + text + ";" + note;
+    case Kind::Local: return "const double " + name + " = " + text + ";" + (with_note ? note : "");
     case Kind::Read: return fmt::format("const double {} = {}[{}];", name, array, index);
-    case Kind::Assign: return name + " = " + text + ";" + note;
-    case Kind::Param: return fmt::format("{} = param({}, {});{}", name, index, text, note);
+    case Kind::Assign: return name + " = " + text + ";" + (with_note ? note : "");
+    case Kind::Param: return fmt::format("{} = param({}, {});{}", name, index, text, with_note ? note : "");
     case Kind::Array: break;
   }
   return text;

@@ -92,7 +92,7 @@ struct CppStmt {
   /// The statement as printed, without indentation (a comment without its
   /// `// `). Throws std::logic_error for one with expressions not printed
   /// yet (a codegen bug).
-  std::string code() const;
+  std::string code(bool with_note = true) const;
 
  private:
   static CppStmt make(Kind k, std::string text) {

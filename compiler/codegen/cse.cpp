@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
 #include <unordered_set>
 
 namespace mbgc::codegen {
@@ -99,6 +100,9 @@ void share_subexpressions(std::vector<CppStmt>& body, std::size_t from, const Ex
     group.clear();
   };
   for (std::size_t i = from; i < body.size(); ++i) {
+    // (a statement of a group cannot name its value: a later one's definitions come before it)
+    if (body[i].with_previous && body[i].may_name != CppStmt::Naming::never)
+      throw std::logic_error("mbgc: a statement printed with the one before it may not name its value (codegen bug)");
     if (!body[i].with_previous) flush();
     pass.visit(body[i], defs);
     group.push_back(std::move(body[i]));

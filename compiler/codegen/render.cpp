@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 namespace mbgc::codegen {
 
 using namespace mbgc::ir;
@@ -26,6 +28,7 @@ void render(std::vector<CppStmt>& body, std::size_t from, const ExprNames& known
         out.push_back(CppStmt::line(fmt::format("{}{}}};", head, fmt::join(entries, ", "))));
         continue;
       }
+      if (st.values.size() % st.columns != 0) throw std::logic_error("mbgc: an array of " + st.name + " not in whole rows (codegen bug)");
       out.push_back(CppStmt::line(head));
       for (std::size_t r = 0; r < entries.size(); r += st.columns) {
         std::vector<std::string> row(entries.begin() + static_cast<long>(r), entries.begin() + static_cast<long>(r + st.columns));

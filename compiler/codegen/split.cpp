@@ -139,7 +139,7 @@ std::optional<SplitMethod> split_method(const CppFunction& f, std::size_t max_li
     const CppStmt& st = body[i];
     may_start[i] = depth == 0 && st.kind == CppStmt::Kind::Comment;
     if (st.kind == CppStmt::Kind::Comment || st.kind == CppStmt::Kind::Blank) continue;
-    const std::string code = st.code();
+    const std::string code = st.code(/*with_note=*/false);  // (a note names the model's things, not the method's)
     reads[i] = identifiers(code);
     if (std::string a = defined_block_local(st); !a.empty()) block_span[a] = {i, i};
     for (const std::string& id : reads[i])

@@ -755,7 +755,8 @@ class Builder {
                      fmt::format("give the initial state instead ({})", n.kind == NodeKind::I ? "p0" : "q0"));
         return;
       }
-      // p0 = I f0, q0 = C e0
+      // p0 = I f0, q0 = C e0 (the last one given wins: not the state as given)
+      n.initial_is_state = false;
       for (int r = 0; r < n.dim; ++r) {
         Expr s = constant(0);
         for (int c = 0; c < n.dim; ++c) {

@@ -528,7 +528,7 @@ Expr add(const Expr& a, const Expr& b) {
   if (const Node* u = square_of_call(a, Fn::Cos); u && u == square_of_call(b, Fn::Sin)) return constant(1);
   if (const Node* u = square_of_call(a, Fn::Sin); u && u == square_of_call(b, Fn::Cos)) return constant(1);
   if (b->op == Op::Neg) return sub(a, b->args[0]);
-  if (cb && y < 0.0) return sub(a, constant(-y));
+  if (cb && y < 0.0) return sub(a, constant(-y, b->id));
   return make2(Op::Add, a, b);
 }
 
@@ -540,7 +540,7 @@ Expr sub(const Expr& a, const Expr& b) {
   if (ca && x == 0.0) return neg(b);
   if (equal(a, b)) return zero();
   if (b->op == Op::Neg) return add(a, b->args[0]);
-  if (cb && y < 0.0) return add(a, constant(-y));
+  if (cb && y < 0.0) return add(a, constant(-y, b->id));
   return make2(Op::Sub, a, b);
 }
 
@@ -549,14 +549,15 @@ Expr mul(const Expr& a, const Expr& b) {
   bool ca = cval(a, x), cb = cval(b, y);
   if (ca && cb) return constant(x * y);
   if ((ca && x == 0.0) || (cb && y == 0.0)) return zero();
-  if (ca && x == 1.0) return b;
-  if (cb && y == 1.0) return a;
+  // x * 1 is x, unless the 1 has a unit (`1 {s} * v` is a length)
+  if (ca && x == 1.0 && a->id < 0) return b;
+  if (cb && y == 1.0 && b->id < 0) return a;
   bool na = a->op == Op::Neg, nb = b->op == Op::Neg;
   if (na && nb) return mul(a->args[0], b->args[0]);
   if (na) return neg(mul(a->args[0], b));
   if (nb) return neg(mul(a, b->args[0]));
-  if (ca && x < 0.0) return neg(mul(constant(-x), b));  // also a*(-1) = -a
-  if (cb && y < 0.0) return neg(mul(a, constant(-y)));
+  if (ca && x < 0.0) return neg(mul(constant(-x, a->id), b));  // also a*(-1) = -a
+  if (cb && y < 0.0) return neg(mul(a, constant(-y, b->id)));
   if (cb) return mul(b, a);  // constants to the left
   if (ca && b->op == Op::Mul && b->args[0]->op == Op::Const)
     return mul(constant(x * b->args[0]->value), b->args[1]);
@@ -616,14 +617,14 @@ Expr div(const Expr& a, const Expr& b) {
   const bool by_zero = cb && y == 0.0;  // never folded away (but signs still float)
   if (ca && cb && !by_zero) return constant(x / y);
   if (ca && x == 0.0 && !by_zero) return zero();
-  if (cb && y == 1.0) return a;
+  if (cb && y == 1.0 && b->id < 0) return a;
   if (equal(a, b) && positive(b)) return one();  // a section's R33, (1 + s^2) / (1 + s^2); x / x stays (x may be 0)
   bool na = a->op == Op::Neg, nb = b->op == Op::Neg;
   if (na && nb) return div(a->args[0], b->args[0]);
   if (na) return neg(div(a->args[0], b));
   if (nb) return neg(div(a, b->args[0]));
-  if (ca && x < 0.0) return neg(div(constant(-x), b));
-  if (cb && y < 0.0) return neg(div(a, constant(-y)));
+  if (ca && x < 0.0) return neg(div(constant(-x, a->id), b));
+  if (cb && y < 0.0) return neg(div(a, constant(-y, b->id)));
   return make2(Op::Div, a, b);
 }
 

@@ -330,7 +330,7 @@ class Checker {
   static bool constant_modulus(const ir::GraphNode& n) {
     if (n.law != ir::LawForm::Linear || n.value.items.empty()) return false;
     for (const Expr& item : n.value.items)
-      if (!ir::is_const(item)) return false;
+      if (!ir::is_const(item) || item->id >= 0) return false;  // a literal with a unit is read (`I mass = 2 {kg}`)
     return true;
   }
 

@@ -87,6 +87,25 @@ TEST(UnitsCheck, NumbersInAnElementsValueCarryWhateverUnitTheyNeed) {
   EXPECT_EQ(k.c->diags.error_count(), 0) << k.messages;
 }
 
+TEST(UnitsCheck, ALiteralsUnitIsNotLostByTheIdentitiesOfOne) {
+  // `1 {s} * v` is a length (x * 1 = x holds for a plain 1 only), and so is `-2 {s} * v`
+  for (const char* q0 : {"1 {s} * v", "-2 {s} * v", "v / (1 {1/s})"}) {
+    Checked k = check(std::string("param m = 3 {kg}\nparam k = 50 {N/m}\nparam v = 0.2 {m/s}\nI mass = m\n"
+                                  "C spring = 1/k { q0 = ") + q0 + " }\n1 j : -> mass, spring\n");
+    EXPECT_EQ(k.c->diags.error_count(), 0) << q0 << ": " << k.messages;
+  }
+  Checked bad = check("param m = 3 {kg}\nparam k = 50 {N/m}\nparam v = 0.2 {m/s}\nI mass = m\n"
+                      "C spring = 1/k { q0 = 1 {N} * v }\n1 j : -> mass, spring\n");
+  EXPECT_EQ(bad.c->diags.error_count(), 1) << bad.messages;
+}
+
+TEST(UnitsCheck, AnInitialValueThroughItsEffortIsNotReadAsTheState) {
+  // q0 then e0: the last one wins (q0 = C e0), and C * 1 {N} folds to C: not checked as q
+  Checked k = check("param c = 0.01 {m/N}\nC spring = c { q0 = 0.1 {m}; e0 = 1 {N} }\nI mass = 2 {kg}\n"
+                    "1 j : -> mass, spring\n");
+  EXPECT_EQ(k.c->diags.error_count(), 0) << k.messages;
+}
+
 TEST(UnitsCheck, StrictAsksForEveryParametersUnit) {
   // m is inferred (kg: c and a power fix the flow, the momentum's rate the effort);
   // g is read by an output only, which fixes nothing
