@@ -240,8 +240,13 @@ void Expander::draw_bodies() {
     d->body = n;
     d->colour = palette(index++);
     E R = body.kind.particle() ? B.call("eye", {B.num(3)}) : rotation(B, n);
-    ir::ExpandedOutput out{{BodySym(n).drawing().str(), B.loc(), B.call("hcat", {R, position(B, n)}), std::nullopt}, d,
-                           body.kind.field() ? B.ref(FlexibleSym(n).eta().displacement()) : nullptr};
+    // (member by member: GCC 12 at -O3 took the braced form's shared_ptr for uninitialised, -Wmaybe-uninitialized)
+    ir::ExpandedOutput out;
+    out.name = BodySym(n).drawing().str();
+    out.loc = B.loc();
+    out.value = B.call("hcat", {R, position(B, n)});
+    out.drawing = d;
+    if (body.kind.field()) out.modes = B.ref(FlexibleSym(n).eta().displacement());
     generated_.push_back(std::move(out));
   }
   draw_surfaces();
