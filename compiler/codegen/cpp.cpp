@@ -66,13 +66,21 @@ std::string print(const CppClass& c, int indent) {
   return out;
 }
 
-void static_table(std::vector<CppStmt>& body, const char* type, const char* name, const std::vector<long>& v) {
-  body.push_back(CppStmt::line(fmt::format("static const {} {}[] = {{", type, name)));
-  for (std::size_t i = 0; i < v.size(); i += 20) {
-    std::vector<long> line(v.begin() + static_cast<long>(i), v.begin() + static_cast<long>(std::min(v.size(), i + 20)));
-    body.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
+void initialiser_lines(std::vector<CppStmt>& out, const std::string& head, const std::vector<std::string>& items,
+                       std::size_t per_line, const char* close) {
+  out.push_back(CppStmt::line(head + "{"));
+  for (std::size_t i = 0; i < items.size(); i += per_line) {
+    const auto first = items.begin() + static_cast<long>(i);
+    const auto last = items.begin() + static_cast<long>(std::min(items.size(), i + per_line));
+    out.push_back(CppStmt::line(fmt::format("    {},", fmt::join(first, last, ", "))));
   }
-  body.push_back(CppStmt::line("};"));
+  out.push_back(CppStmt::line(close));
+}
+
+void static_table(std::vector<CppStmt>& body, const char* type, const char* name, const std::vector<long>& v) {
+  std::vector<std::string> items;
+  for (long x : v) items.push_back(std::to_string(x));
+  initialiser_lines(body, fmt::format("static const {} {}[] = ", type, name), items, 20, "};");
 }
 
 }  // namespace mbgc::codegen

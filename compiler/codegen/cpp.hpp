@@ -131,6 +131,11 @@ struct CppClass {
 std::string print(const CppClass& c, int indent = 0);
 std::string print(const CppFunction& f, int indent);
 
+/// `head{`, then `items`, `per_line` to a line (each line ending in a
+/// comma), then `close`: an initialiser written over several lines.
+void initialiser_lines(std::vector<CppStmt>& out, const std::string& head, const std::vector<std::string>& items,
+                       std::size_t per_line, const char* close);
+
 /// `static const TYPE NAME[] = {...};`, 20 entries per line: a generated
 /// method's constant table (sparsity patterns, index and group tables).
 void static_table(std::vector<CppStmt>& body, const char* type, const char* name, const std::vector<long>& v);

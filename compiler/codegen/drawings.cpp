@@ -11,17 +11,13 @@ namespace {
 
 using ir::Drawing;
 
-/// `HEAD{a, b, ...};` over several lines, `per_line` items each (a mesh's
+/// `HEAD{a, b, ...});` over several lines, `per_line` items each (a mesh's
 /// vertices: one section of a beam's tube per line).
 template <class T>
 void braced(std::vector<CppStmt>& out, const std::string& head, const std::vector<T>& items, std::size_t per_line) {
-  out.push_back(CppStmt::line(head + "{"));
-  for (std::size_t i = 0; i < items.size(); i += per_line) {
-    std::vector<std::string> line;
-    for (std::size_t k = i; k < std::min(items.size(), i + per_line); ++k) line.push_back(fmt::format("{}", items[k]));
-    out.push_back(CppStmt::line(fmt::format("    {},", fmt::join(line, ", "))));
-  }
-  out.push_back(CppStmt::line("});"));
+  std::vector<std::string> texts;
+  for (const T& x : items) texts.push_back(fmt::format("{}", x));
+  initialiser_lines(out, head, texts, per_line, "});");
 }
 
 const char* shape_name(Drawing::Shape s) {

@@ -3,8 +3,6 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
-
 namespace mbgc::codegen {
 
 using namespace mbgc::ir;
@@ -16,25 +14,16 @@ void render(std::vector<CppStmt>& body, std::size_t from, const ExprNames& known
     auto it = known.find(x);
     return it == known.end() ? nullptr : &it->second;
   };
-  auto print = [&](const Expr& e) { return known.empty() && named_here.empty() ? to_cpp(e, names, ops) : to_cpp(e, names, named, ops); };
+  auto print = [&](const Expr& e) { return to_cpp(e, names, named, ops); };
   std::vector<CppStmt> out(std::make_move_iterator(body.begin()), std::make_move_iterator(body.begin() + static_cast<long>(from)));
   for (std::size_t i = from; i < body.size(); ++i) {
     CppStmt& st = body[i];
     if (st.kind == CppStmt::Kind::Array) {
       std::vector<std::string> entries;
       for (const Expr& e : st.values) entries.push_back(print(e));
-      const std::string head = fmt::format("double {}[{}] = {{", st.name, entries.size());
-      if (st.columns == 0) {
-        out.push_back(CppStmt::line(fmt::format("{}{}}};", head, fmt::join(entries, ", "))));
-        continue;
-      }
-      if (st.values.size() % st.columns != 0) throw std::logic_error("mbgc: an array of " + st.name + " not in whole rows (codegen bug)");
-      out.push_back(CppStmt::line(head));
-      for (std::size_t r = 0; r < entries.size(); r += st.columns) {
-        std::vector<std::string> row(entries.begin() + static_cast<long>(r), entries.begin() + static_cast<long>(r + st.columns));
-        out.push_back(CppStmt::line(fmt::format("    {},", fmt::join(row, ", "))));
-      }
-      out.push_back(CppStmt::line("};"));
+      const std::string head = fmt::format("double {}[{}] = ", st.name, entries.size());
+      if (st.columns == 0) out.push_back(CppStmt::line(fmt::format("{}{{{}}};", head, fmt::join(entries, ", "))));
+      else initialiser_lines(out, head, entries, st.columns, "};");
       continue;
     }
     if (st.value) {

@@ -303,9 +303,8 @@ class Checker {
       report.outputs.push_back(r.terms.empty() && !r.wild ? std::optional<Dimension>(shown_with_angle(o.value, r.constant)) : std::nullopt);
     }
     for (std::size_t i = 0; i < g_.params.size(); ++i) {
-      report.params.push_back(g_.params[i].unit     ? std::optional<Dimension>(g_.params[i].unit->unit.dimension)
-                              : g_.params[i].stated ? g_.params[i].stated
-                                                    : solver_.value(static_cast<int>(i)));
+      const std::optional<Dimension> given = given_dimension(g_.params[i]);
+      report.params.push_back(given ? given : solver_.value(static_cast<int>(i)));
       if (strict && !report.params.back() && !g_.params[i].generated)
         diags_.error(g_.params[i].loc, fmt::format("the unit of parameter `{}` is neither declared nor inferred", g_.params[i].name),
                      "declare it after the value, e.g. {N/m} (--units strict)");
@@ -508,16 +507,18 @@ class Checker {
   /// solver counts a radian as 1, as SI does: `hinge.rate` is 1/s to it).
   std::unordered_map<const ir::Node*, Dimension> with_angle_;
 
+  /// A parameter's dimension as the model gives it: declared, else stated by the multibody layer.
+  static std::optional<Dimension> given_dimension(const ir::Parameter& p) {
+    return p.unit ? std::optional<Dimension>(p.unit->unit.dimension) : p.stated;
+  }
+
   /// `d`, the inferred dimension of `value`, as a user reads it: with the
   /// angle of the quantity or parameter it is (`output w = hinge.rate` is
   /// rad/s); else as inferred (an angular rate of a plain bond graph reads 1/s).
   Dimension shown_with_angle(const Expr& value, const Dimension& d) const {
     std::optional<Dimension> stated;
     if (auto it = with_angle_.find(value.get()); it != with_angle_.end()) stated = it->second;
-    if (value->op == Op::Param) {
-      const ir::Parameter& p = g_.params[static_cast<std::size_t>(value->id)];
-      stated = p.unit ? std::optional<Dimension>(p.unit->unit.dimension) : p.stated;
-    }
+    if (value->op == Op::Param) stated = given_dimension(g_.params[static_cast<std::size_t>(value->id)]);
     return stated && stated->without_angle() == d ? *stated : d;
   }
   std::unordered_set<long long> reported_;
