@@ -98,19 +98,10 @@ class Builder {
       if (is_two_port(rn.kind)) n.bonds = {-1, -1};
       g_.nodes.push_back(std::move(n));
     }
-    // Unnamed bonds are called b<number>, unless the user took that name.
-    std::set<std::string> taken;
-    for (const ResolvedBond& rb : m_.bonds) taken.insert(rb.name);
-    for (const auto& [name, index] : m_.node_index) taken.insert(name);
     for (const ResolvedBond& rb : m_.bonds) {
       Bond b;
       b.number = static_cast<int>(g_.bonds.size()) + 1;
-      b.name = rb.name;
-      if (b.name.empty()) {
-        b.name = fmt::format("b{}", b.number);
-        for (int k = 2; taken.count(b.name); ++k) b.name = fmt::format("b{}_{}", b.number, k);
-        taken.insert(b.name);
-      }
+      b.name = rb.label;
       b.loc = rb.loc;
       b.from = rb.from.node;
       b.to = rb.to.node;
@@ -199,9 +190,8 @@ class Builder {
   std::optional<Value> probe_shape(const ResolvedNode& rn) {
     if (!rn.element || !rn.element->value) return std::nullopt;
     Diagnostics scratch(sources_);
-    NameLookup lookup = [&](const std::string& name, const SourceLoc& loc) -> std::optional<Value> {
-      if (auto v = find_param(name, rn.scope)) return v;
-      (void)loc;
+    RefLookup lookup = [&](const Ref& ref, const SourceLoc&) -> std::optional<Value> {
+      if (ref.kind == Ref::Kind::Param) return param_value(ref);
       return Value::scalar(constant(0));
     };
     return lower(*rn.element->value, lookup, scratch);
@@ -321,10 +311,7 @@ class Builder {
       for (int k = 0; k < n.dim; ++k)
         n.state_vars.push_back(g_.add_var(component_name(n.name, q, k, n.dim), VarKind::State, n.loc));
     }
-    for (const ResolvedExpr& s : m_.signals) {
-      signal_var_[s.name] = g_.add_var(s.name, VarKind::Signal, s.loc);
-    }
-    for (std::size_t b = 0; b < g_.bonds.size(); ++b) bond_index_.emplace(g_.bonds[b].name, static_cast<int>(b));  // the first of a name
+    for (const ResolvedExpr& s : m_.signals) signal_var_.push_back(g_.add_var(s.name, VarKind::Signal, s.loc));
   }
 
   Value bond_value(int bond, bool effort, int sign) const {
@@ -337,100 +324,60 @@ class Builder {
     return v;
   }
 
-  // ---- name lookup for laws, signals and outputs -----------------------------------
-  std::optional<Value> find_param(const std::string& name, int scope) const {
-    if (scope != 0) {
-      auto it = m_.param_values.find(m_.scopes[static_cast<std::size_t>(scope)].prefix + name);
-      if (it != m_.param_values.end()) return it->second;
-    }
-    auto it = m_.param_values.find(name);
-    if (it != m_.param_values.end()) return it->second;
-    return std::nullopt;
-  }
+  // ---- what a term's refs stand for ----------------------------------------------------
+  const Value& param_value(const Ref& ref) const { return m_.param_values[static_cast<std::size_t>(ref.id)]; }
 
-  /// `X.q` for a node, bond or signal X; nullopt without a report if not found.
-  std::optional<Value> find_quantity(const std::string& full, const SourceLoc& loc, bool* reported) {
-    if (auto it = signal_var_.find(full); it != signal_var_.end()) return Value::scalar(var(it->second));
-    auto dot = full.rfind('.');
-    if (dot == std::string::npos) return std::nullopt;
-    std::string stem = full.substr(0, dot), q = full.substr(dot + 1);
-    auto report = [&](const std::string& message, const std::string& hint) {
-      diags_.error(loc, message, hint);
-      *reported = true;
-      return std::nullopt;
+  /// An element's own quantities, as its law reads them (Ref::Own).
+  struct Own {
+    Value e, f, state;
+  };
+
+  /// A node's quantity; a contact's `closed` and `stick` exist once its law made them.
+  std::optional<Value> node_quantity(const Ref& ref, const SourceLoc& loc) {
+    const GraphNode& n = g_.nodes[static_cast<std::size_t>(ref.id)];
+    auto port = [&](int k, bool effort) {
+      const int b = n.bonds[static_cast<std::size_t>(k)];
+      return bond_value(b, effort, effort ? 1 : flow_sign(g_, ref.id, b));
     };
-    if (auto it = m_.node_index.find(stem); it != m_.node_index.end()) {
-      const GraphNode& n = g_.nodes[static_cast<std::size_t>(it->second)];
-      if (n.bonds.empty()) return report(fmt::format("`{}` has no bonds, so no `{}`", stem, q), "connect it first");
-      if (is_junction(n.kind)) {
-        if (n.kind == NodeKind::Zero && q == "e") return bond_value(n.bonds[0], true, 1);
-        if (n.kind == NodeKind::One && q == "f") return bond_value(n.bonds[0], false, 1);
-        return report(fmt::format("{}-junction `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
-                      n.kind == NodeKind::Zero ? "a 0-junction has one common effort: use `.e`; for a flow, name a bond"
-                                               : "a 1-junction has one common flow: use `.f`; for an effort, name a bond");
-      }
-      if (is_two_port(n.kind)) {
-        if (q.size() == 2 && (q[0] == 'e' || q[0] == 'f') && (q[1] == '1' || q[1] == '2')) {
-          int port = q[1] - '1';
-          int b = n.bonds[static_cast<std::size_t>(port)];
-          if (b < 0) return report("port not connected", "");
-          return bond_value(b, q[0] == 'e', q[0] == 'e' ? 1 : flow_sign(g_, it->second, b));
-        }
-        return report(fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
-                      "two-ports have e1, f1 (port p1) and e2, f2 (port p2)");
-      }
-      int sign = flow_sign(g_, it->second, n.bonds[0]);
-      if (!n.discrete.empty() && q == "closed") return Value::scalar(var(n.discrete[0]));  // a contact: 1 while closed
-      if (n.discrete.size() > 2 && q == "stick") return Value::scalar(var(n.discrete[2]));  // ... 1 while stuck
-      if (q == "e") return bond_value(n.bonds[0], true, 1);
-      if (q == "f") return bond_value(n.bonds[0], false, sign);
-      if ((q == "p" && n.kind == NodeKind::I) || (q == "q" && n.kind == NodeKind::C)) {
+    switch (ref.quantity) {
+      case Quantity::e: return bond_value(n.bonds[0], true, 1);
+      case Quantity::f: return bond_value(n.bonds[0], false, is_junction(n.kind) ? 1 : flow_sign(g_, ref.id, n.bonds[0]));
+      case Quantity::p:
+      case Quantity::q: {
         Value v{n.dim, 1, {}};
         for (int s : n.state_vars) v.items.push_back(var(s));
         return v;
       }
-      return report(fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), stem, q),
-                    n.kind == NodeKind::I   ? "an I element has e, f and its momentum p"
-                    : n.kind == NodeKind::C ? "a C element has e, f and its displacement q"
-                                            : "this element has e and f");
+      case Quantity::e1: return port(0, true);
+      case Quantity::f1: return port(0, false);
+      case Quantity::e2: return port(1, true);
+      case Quantity::f2: return port(1, false);
+      case Quantity::closed:
+        if (!n.discrete.empty()) return Value::scalar(var(n.discrete[0]));
+        break;
+      case Quantity::stick:
+        if (n.discrete.size() > 2) return Value::scalar(var(n.discrete[2]));
+        break;
     }
-    if (auto it = bond_index_.find(stem); it != bond_index_.end()) {
-      if (q == "e") return bond_value(it->second, true, 1);
-      if (q == "f") return bond_value(it->second, false, 1);
-      return report(fmt::format("bond `{}` has no quantity `{}`", stem, q), "a bond has e and f");
-    }
+    diags_.error(loc, fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), n.name,
+                                  ref.quantity == Quantity::closed ? "closed" : "stick"),
+                 element_quantities(n.kind));
     return std::nullopt;
   }
 
-  NameLookup lookup_in(int scope, const std::map<std::string, Value>* locals = nullptr) {
-    return [this, scope, locals](const std::string& name, const SourceLoc& loc) -> std::optional<Value> {
-      if (locals) {
-        if (auto it = locals->find(name); it != locals->end()) return it->second;
+  /// The values of refs, an element's own quantities among them where `own` is given.
+  RefLookup lookup(const Own* own = nullptr) {
+    return [this, own](const Ref& ref, const SourceLoc& loc) -> std::optional<Value> {
+      switch (ref.kind) {
+        case Ref::Kind::Param: return param_value(ref);
+        case Ref::Kind::Signal: return Value::scalar(var(signal_var_[static_cast<std::size_t>(ref.id)]));
+        case Ref::Kind::Node: return node_quantity(ref, loc);
+        case Ref::Kind::Bond: return bond_value(ref.id, ref.quantity == Quantity::e, 1);
+        case Ref::Kind::Own:
+          return ref.quantity == Quantity::e ? own->e : ref.quantity == Quantity::f ? own->f : own->state;
+        case Ref::Kind::Time:
+        case Ref::Kind::Pi: break;  // (lowering knows them)
       }
-      if (auto v = find_param(name, scope)) return v;
-      bool reported = false;
-      std::vector<std::string> tries;
-      if (scope != 0) tries.push_back(m_.scopes[static_cast<std::size_t>(scope)].prefix + name);
-      tries.push_back(name);
-      for (const std::string& full : tries) {
-        auto v = find_quantity(full, loc, &reported);
-        if (v || reported) return v;
-      }
-      std::vector<std::string> names;
-      for (const auto& [n, v] : m_.param_values) names.push_back(n);
-      for (const auto& [n, v] : signal_var_) names.push_back(n);
-      for (const auto& [n, i] : m_.node_index) {
-        const GraphNode& node = g_.nodes[static_cast<std::size_t>(i)];
-        for (const char* q : {"e", "f", "p", "q"}) {
-          if ((*q == 'p' && node.kind != NodeKind::I) || (*q == 'q' && node.kind != NodeKind::C)) continue;
-          names.push_back(n + "." + q);
-        }
-      }
-      std::sort(names.begin(), names.end());  // (from hash maps: the suggestion must not depend on their order)
-      std::string near = closest_name(name, names);
-      diags_.error(loc, fmt::format("unknown name `{}`", name),
-                   near.empty() ? "refer to parameters, signals, t, or quantities like element.e, element.f, inertia.p"
-                                : fmt::format("did you mean `{}`?", near));
       return std::nullopt;
     };
   }
@@ -438,7 +385,7 @@ class Builder {
   /// `Sf name { rate0 = ... }` without a value: a free rate (LawForm::FreeRate).
   static bool is_free_rate(const ResolvedNode& rn) {
     if (!rn.element || rn.element->kind != "Sf" || rn.element->value) return false;
-    for (const AstAttr& a : rn.element->attrs)
+    for (const BoundAttr& a : rn.element->attrs)
       if (a.key == element_setting::rate0.key) return true;
     return false;
   }
@@ -458,21 +405,18 @@ class Builder {
       GraphNode& n = g_.nodes[i];
       const ResolvedNode& rn = m_.nodes[i];
       if (!rn.element || n.bonds.empty() || (is_two_port(n.kind) && (n.bonds[0] < 0 || n.bonds[1] < 0))) continue;
-      const ExpandedElement& el = *rn.element;
+      const BoundElement& el = *rn.element;
       n.state_limits = el.state_limits;
-      std::map<std::string, Value> locals;  // the element's own e, f, p/q inside { } laws
+      Own own;  // the element's own e, f, p/q inside { } laws
       if (!is_two_port(n.kind)) {
         int sign = flow_sign(g_, static_cast<int>(i), n.bonds[0]);
-        locals["e"] = bond_value(n.bonds[0], true, 1);
-        locals["f"] = bond_value(n.bonds[0], false, sign);
-        if (!n.state_vars.empty()) {
-          Value s{n.dim, 1, {}};
-          for (int v : n.state_vars) s.items.push_back(var(v));
-          locals[n.kind == NodeKind::I ? "p" : "q"] = s;
-        }
+        own.e = bond_value(n.bonds[0], true, 1);
+        own.f = bond_value(n.bonds[0], false, sign);
+        own.state = Value{n.dim, 1, {}};
+        for (int v : n.state_vars) own.state.items.push_back(var(v));
       }
-      NameLookup plain = lookup_in(rn.scope);
-      NameLookup with_locals = lookup_in(rn.scope, &locals);
+      RefLookup plain = lookup();
+      RefLookup with_own = lookup(&own);
       if (el.value && n.kind == NodeKind::CN) {
         diags_.error(el.value->loc, fmt::format("CN `{}` takes no value", n.name),
                      fmt::format("a constraintor is defined by its position constraint, not by a modulus: write CN {} {{ g "
@@ -497,10 +441,10 @@ class Builder {
         }
       }
       // a CN's settings, typed: the multibody layer's as written, a user's read from its braces
-      ConstraintLaw law = el.constraint.value_or(ConstraintLaw{});
+      BoundConstraintLaw law = el.constraint.value_or(BoundConstraintLaw{});
       bool has_law = law.g != nullptr;
       bool misspelt = false;  // a setting it has none of: likely the law meant, so not reported missing too
-      for (const AstAttr& a : el.attrs) {
+      for (const BoundAttr& a : el.attrs) {
         const ElementSetting* setting = find_element_setting(n.kind, a.key);
         if (n.kind == NodeKind::CN && setting) {
           const bool is_g = setting->role == ElementSetting::Role::Law;
@@ -510,7 +454,7 @@ class Builder {
             continue;
           }
           has_law = has_law || is_g;
-          for (const ConstraintLaw::Field& f : ConstraintLaw::fields())
+          for (const BoundConstraintLaw::Field& f : BoundConstraintLaw::fields())
             if (a.key == f.key) law.*f.member = a.value;
           continue;
         }
@@ -521,7 +465,7 @@ class Builder {
             continue;
           }
           has_law = true;
-          auto v = lower(*a.value, with_locals, diags_);
+          auto v = lower(*a.value, with_own, diags_);
           if (!v) continue;
           if (!(v->is_scalar() || (v->is_vector() && v->length() == n.dim))) {
             diags_.error(a.value->loc, fmt::format("the law of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
@@ -558,14 +502,14 @@ class Builder {
         continue;
       }
       if (is_storage(n.kind)) lower_initial(n, el, plain);
-      if (n.kind == NodeKind::CN) lower_constraint(n, law, with_locals, plain, locals);
+      if (n.kind == NodeKind::CN) lower_constraint(n, law, with_own, plain, own);
     }
   }
 
   /// A CN: its rows g, then what holds them (lower_penalty).
-  void lower_constraint(GraphNode& n, const ConstraintLaw& law, const NameLookup& with_locals, const NameLookup& plain,
-                        std::map<std::string, Value>& locals) {
-    auto v = lower(*law.g, with_locals, diags_);
+  void lower_constraint(GraphNode& n, const BoundConstraintLaw& law, const RefLookup& with_own, const RefLookup& plain,
+                        const Own& own) {
+    auto v = lower(*law.g, with_own, diags_);
     if (!v) return;
     if (!(v->is_scalar() || (v->is_vector() && v->length() == n.dim))) {
       diags_.error(law.g->loc, fmt::format("the constraint g of `{}` is {}, but its multibond has dimension {}", n.name, v->shape(), n.dim),
@@ -578,7 +522,7 @@ class Builder {
     n.law = LawForm::Constraint;
     // (a cut joint's or a contact's g may read the pose signals of bodies moved by joint coordinates)
     check_constraint_inputs(n, *law.g, /*signals_too=*/law.stabilisation || law.restitution);
-    lower_penalty(n, law, plain, locals);
+    lower_penalty(n, law, plain, own);
   }
 
   /// A CN with `stiffness` (and optionally `damping`) is a penalty constraint:
@@ -587,11 +531,11 @@ class Builder {
   /// A CN with a `restitution` is a contact (a unilateral row g >= 0): with a
   /// `stiffness` (and `exponent`) a compliant Hunt-Crossley force, else a
   /// row held while it pushes (LawForm::Unilateral, Compliant).
-  void lower_penalty(GraphNode& n, const ConstraintLaw& law, const NameLookup& lookup, std::map<std::string, Value>& locals) {
-    using L = ConstraintLaw;
+  void lower_penalty(GraphNode& n, const BoundConstraintLaw& law, const RefLookup& lookup, const Own& own) {
+    using L = BoundConstraintLaw;
     std::optional<Value> k, d, w, e, x, mu;
     for (const L::Field& f : L::fields()) {
-      const AstExprPtr& value = law.*f.member;
+      const TermPtr& value = law.*f.member;
       if (!value || f.member == &L::g) continue;
       auto v = lower(*value, lookup, diags_);
       if (!v) return;
@@ -670,7 +614,7 @@ class Builder {
       return;
     }
     n.law = LawForm::Penalty;
-    const Value& f = locals.at("f");
+    const Value& f = own.f;
     for (int c = 0; c < n.dim; ++c) {
       Expr e = mul(k->items[0], n.constraint_g.items[static_cast<std::size_t>(c)]);
       if (d) e = add(e, mul(d->items[0], f.items[static_cast<std::size_t>(c)]));
@@ -679,7 +623,7 @@ class Builder {
   }
 
   /// g must be a function of states (the positions whose rate the CN's flow is), not of efforts or flows.
-  void check_constraint_inputs(const GraphNode& n, const AstExpr& g, bool signals_too) {
+  void check_constraint_inputs(const GraphNode& n, const Term& g, bool signals_too) {
     for (const Expr& e : n.constraint_g.items) {
       std::unordered_set<int> vars;
       collect_vars(e, vars);
@@ -694,7 +638,7 @@ class Builder {
     }
   }
 
-  bool check_value_shape(const GraphNode& n, const AstElement& el) {
+  bool check_value_shape(const GraphNode& n, const BoundElement& el) {
     const Value& v = n.value;
     if (v.is_scalar()) return true;
     bool ok = true;
@@ -708,7 +652,7 @@ class Builder {
   }
 
   /// A law may read its own input (f for e = phi(f), q for e = phi(q), ...) but not its output.
-  void check_law_inputs(const GraphNode& n, const AstAttr& a) {
+  void check_law_inputs(const GraphNode& n, const BoundAttr& a) {
     std::unordered_set<int> vars;
     for (const Expr& e : n.law_rhs) collect_vars(e, vars);
     const Bond& b = g_.bonds[static_cast<std::size_t>(n.bonds[0])];
@@ -729,9 +673,9 @@ class Builder {
                    "the right-hand side may use the element's input, parameters, time and signals");
   }
 
-  void lower_initial(GraphNode& n, const AstElement& el, const NameLookup& lookup) {
+  void lower_initial(GraphNode& n, const BoundElement& el, const RefLookup& lookup) {
     n.initial = Value{n.dim, 1, std::vector<Expr>(static_cast<std::size_t>(n.dim), constant(0))};
-    for (const AstAttr& a : el.attrs) {
+    for (const BoundAttr& a : el.attrs) {
       if (!is_element_setting(n.kind, a.key, ElementSetting::Role::Initial)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;
@@ -769,8 +713,9 @@ class Builder {
   }
 
   void lower_signals_and_outputs() {
-    for (const ResolvedExpr& s : m_.signals) {
-      auto v = lower(*s.expr, lookup_in(s.scope), diags_);
+    for (std::size_t i = 0; i < m_.signals.size(); ++i) {
+      const ResolvedExpr& s = m_.signals[i];
+      auto v = lower(*s.expr, lookup(), diags_);
       if (!v) continue;
       if (!v->is_scalar()) {
         diags_.error(s.expr->loc, fmt::format("signal `{}` is {}; signals are scalars", s.name, v->shape()),
@@ -779,14 +724,14 @@ class Builder {
       }
       Expr rate;
       if (s.rate) {
-        auto r = lower(*s.rate, lookup_in(s.scope), diags_);
+        auto r = lower(*s.rate, lookup(), diags_);
         if (!r) continue;
         rate = r->items[0];  // (scalar: the multibody layer writes one entry per signal)
       }
-      g_.signals.push_back({s.name, s.loc, signal_var_.at(s.name), v->items[0], rate, s.unit, s.generated});
+      g_.signals.push_back({s.name, s.loc, signal_var_[i], v->items[0], rate, s.unit, s.generated});
     }
     for (const ResolvedExpr& o : m_.outputs) {
-      auto v = lower(*o.expr, lookup_in(o.scope), diags_);
+      auto v = lower(*o.expr, lookup(), diags_);
       if (!v) continue;
       if (v->is_scalar()) {
         g_.outputs.push_back({o.name, o.loc, v->items[0], o.unit, std::nullopt});
@@ -800,14 +745,14 @@ class Builder {
         }
     }
     for (const ResolvedDrawing& d : m_.drawings) {
-      auto pose = lower(*d.pose, lookup_in(d.scope), diags_);  // hcat(R, p): 3 x 4
+      auto pose = lower(*d.pose, lookup(), diags_);  // hcat(R, p): 3 x 4
       if (!pose) continue;
       DrawnBody body{d.drawing, d.loc, {}, {}};
       for (int r = 0; r < 3; ++r) body.pose.push_back(pose->at(r, 3));
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) body.pose.push_back(pose->at(r, c));
       if (d.modes) {
-        auto modes = lower(*d.modes, lookup_in(d.scope), diags_);
+        auto modes = lower(*d.modes, lookup(), diags_);
         if (!modes) continue;
         body.modes = modes->items;
       }
@@ -815,9 +760,10 @@ class Builder {
     }
     // What the multibody layer states of the user's settings: a value that does
     // not lower was reported where the layer read it.
-    for (const ExpandedUnitCheck& c : m_.unit_checks) {
+    for (const BoundUnitCheck& c : m_.unit_checks) {
       Diagnostics scratch(sources_);
-      if (auto v = lower(*c.value, lookup_in(0), scratch))
+      if (!c.value) continue;
+      if (auto v = lower(*c.value, lookup(), scratch))
         g_.unit_checks.push_back({v->items, c.dimension, c.loc, c.what, c.quantity});
     }
   }
@@ -826,8 +772,7 @@ class Builder {
   const SourceManager& sources_;
   Diagnostics& diags_;
   BondGraph g_;
-  std::unordered_map<std::string, int> signal_var_;
-  std::unordered_map<std::string, int> bond_index_;  // bond name -> index (the first bond of that name)
+  std::vector<int> signal_var_;  // per resolved signal, its variable
 };
 
 }  // namespace

@@ -68,6 +68,8 @@ class Diagnostics {
   bool has_errors() const { return errors_ > 0; }
   int error_count() const { return errors_; }
   const std::vector<Diagnostic>& all() const { return list_; }
+  /// The files the locations point into (a scratch Diagnostics over the same files).
+  const SourceManager& sources() const { return *sources_; }
   void render(std::ostream& out) const;
 
  private:

@@ -63,27 +63,31 @@ struct TreeTag {
 /// one's stiffness and exponent, a unilateral one's friction). The
 /// multibody layer writes its joints' and contacts' CNs with it; a user's CN
 /// gives the same settings in braces, read into it by name (fields()).
-struct ConstraintLaw {
-  AstExprPtr g, stiffness, damping, stabilisation, restitution, exponent, friction;
+/// `P` is what holds an expression: the AST's (here) or a bound term's
+/// (ir/resolved.hpp).
+template <class P>
+struct ConstraintLawOf {
+  P g, stiffness, damping, stabilisation, restitution, exponent, friction;
 
   struct Field {
     const char* key;  // as a CN's braces name it
-    AstExprPtr ConstraintLaw::*member;
+    P ConstraintLawOf::*member;
   };
   /// Every setting, `g` first, in the order they are read and printed.
   static const std::vector<Field>& fields() {
     static const std::vector<Field> all = {
-        {"g", &ConstraintLaw::g},
-        {"stiffness", &ConstraintLaw::stiffness},
-        {"damping", &ConstraintLaw::damping},
-        {"stabilisation", &ConstraintLaw::stabilisation},
-        {"restitution", &ConstraintLaw::restitution},
-        {"exponent", &ConstraintLaw::exponent},
-        {"friction", &ConstraintLaw::friction},
+        {"g", &ConstraintLawOf::g},
+        {"stiffness", &ConstraintLawOf::stiffness},
+        {"damping", &ConstraintLawOf::damping},
+        {"stabilisation", &ConstraintLawOf::stabilisation},
+        {"restitution", &ConstraintLawOf::restitution},
+        {"exponent", &ConstraintLawOf::exponent},
+        {"friction", &ConstraintLawOf::friction},
     };
     return all;
   }
 };
+using ConstraintLaw = ConstraintLawOf<AstExprPtr>;
 
 struct ExpandedElement : AstElement {
   /// An I whose matrix depends on the configuration (a flexible body's mass

@@ -1,8 +1,8 @@
 // ir/resolved.hpp — the model after name resolution: components flattened
 // into dotted names ("m1.rotor"), parameters ordered and lowered, bond ends
-// bound to nodes. Expressions that may refer to variables (element laws,
-// signals, outputs) stay as AST with the scope to resolve them in: only the
-// graph pass knows the variables.
+// bound to nodes, and every name in an element law, a signal, an output or
+// a drawing bound to what it stands for (ir/term.hpp). The graph pass makes
+// the variables and lowers the terms over them; it reads no name.
 #pragma once
 
 #include <map>
@@ -15,6 +15,7 @@
 #include "ir/ast.hpp"
 #include "ir/expanded.hpp"
 #include "ir/graph.hpp"
+#include "ir/term.hpp"
 #include "ir/value.hpp"
 
 namespace mbgc::ir {
@@ -25,13 +26,33 @@ struct Scope {
   std::string component;  // component name (empty at top level)
 };
 
+using BoundConstraintLaw = ConstraintLawOf<TermPtr>;
+
+/// The quantities a one-port element has, for a "has no quantity" hint.
+inline const char* element_quantities(NodeKind k) {
+  return k == NodeKind::I   ? "an I element has e, f and its momentum p"
+         : k == NodeKind::C ? "a C element has e, f and its displacement q"
+                            : "this element has e and f";
+}
+
+/// An element's declaration with its expressions bound: its value, the
+/// settings in its braces and, for a CN the multibody layer wrote, its law.
+struct BoundElement {
+  std::string kind;  // as written: Se Sf I C R TF GY MTF MGY CN
+  TermPtr value;     // may be null (a law in the braces instead)
+  /// In the order written; a key the element does not take keeps a null value (the graph pass reports it).
+  std::vector<BoundAttr> attrs;
+  std::optional<BoundConstraintLaw> constraint;
+  bool configuration_dependent = false;                         // ExpandedElement's
+  std::vector<std::pair<double, std::string>> state_limits;     // ExpandedElement's
+};
+
 struct ResolvedNode {
   NodeKind kind = NodeKind::Zero;
   std::string name;      // full path
   SourceLoc loc;
   SourceLoc kind_loc;
-  int scope = 0;
-  std::optional<ExpandedElement> element;  // elements: the declaration
+  std::optional<BoundElement> element;  // elements: the declaration
   std::optional<int> dim;                // junctions: declared [n]
   SourceLoc dim_loc;
   TreeTag tree;                          // the kinematic tree's body it belongs to (ExpandedElement::tree)
@@ -45,7 +66,8 @@ struct ResolvedEnd {
 };
 
 struct ResolvedBond {
-  std::string name;      // may be empty
+  std::string name;      // as declared; may be empty
+  std::string label;     // its name, else b<number> (b<number>_2, ... past a name taken)
   SourceLoc loc;
   ResolvedEnd from, to;
   std::optional<int> dim;
@@ -55,9 +77,8 @@ struct ResolvedBond {
 struct ResolvedExpr {
   std::string name;      // full path of the signal/output
   SourceLoc loc;
-  AstExprPtr expr;
-  int scope = 0;
-  AstExprPtr rate;       // a signal's closed-form time derivative, if the multibody layer gave one
+  TermPtr expr;
+  TermPtr rate;          // a signal's closed-form time derivative, if the multibody layer gave one
   std::optional<DeclaredUnit> unit;  // as declared: `output w = j.rate {rad/s}`
   bool generated = false;            // a signal of the multibody layer's
 };
@@ -66,8 +87,17 @@ struct ResolvedExpr {
 struct ResolvedDrawing {
   std::shared_ptr<const Drawing> drawing;
   SourceLoc loc;
-  AstExprPtr pose, modes;  // hcat(R, p); the modal coordinates (may be null)
-  int scope = 0;
+  TermPtr pose, modes;  // hcat(R, p); the modal coordinates (may be null)
+};
+
+/// ExpandedUnitCheck with its value bound (null where it did not bind: the
+/// value was reported where the multibody layer read it).
+struct BoundUnitCheck {
+  TermPtr value;
+  units::Dimension dimension;
+  SourceLoc loc;
+  std::string what;
+  bool quantity = false;
 };
 
 struct ResolvedModel {
@@ -75,14 +105,15 @@ struct ResolvedModel {
   std::string source_file;
   std::vector<Scope> scopes;               // scopes[0] is the top level
   std::vector<Parameter> params;           // scalar parameters, dependencies first
-  std::unordered_map<std::string, Value> param_values;  // full name -> value over Param leaves
+  std::vector<Value> param_values;         // each declared parameter's value over Param leaves (Ref::Param)
+  std::unordered_map<std::string, int> param_index;  // full name -> param_values index (what names bind to)
   std::vector<ResolvedNode> nodes;
   std::unordered_map<std::string, int> node_index;   // full name -> nodes index
   std::vector<ResolvedBond> bonds;
   std::vector<ResolvedExpr> signals;
   std::vector<ResolvedExpr> outputs;
   std::vector<ResolvedDrawing> drawings;
-  std::vector<ExpandedUnitCheck> unit_checks;  // at the top level
+  std::vector<BoundUnitCheck> unit_checks;  // at the top level
   SimSettings settings;
   std::vector<std::shared_ptr<const AstComponent>> components;  // keeps ASTs alive
 };

@@ -143,42 +143,52 @@ const std::map<std::string, Fn> kScalarFns = {
     {"max", Fn::Max},     {"heaviside", Fn::Step}, {"select", Fn::Select},
 };
 
+/// Lowers an AST expression (names looked up) or a term (refs looked up):
+/// one set of rules for both, only the leaves differ.
+template <class Ex, class Lookup>
 class Lowerer {
  public:
-  Lowerer(const NameLookup& lookup, Diagnostics& diags) : lookup_(lookup), diags_(diags) {}
+  Lowerer(const Lookup& lookup, Diagnostics& diags) : lookup_(lookup), diags_(diags) {}
 
-  std::optional<Value> run(const AstExpr& e) {
+  std::optional<Value> run(const Ex& e) {
     switch (e.kind) {
-      case AstExpr::Kind::Number:  // in SI; its unit, if written, for the units check
+      case Ex::Kind::Number:  // in SI; its unit, if written, for the units check
         return Value::scalar(constant(e.number, e.unit ? units::literal_unit(e.unit->unit.dimension) : -1));
-      case AstExpr::Kind::Name: return name(e);
-      case AstExpr::Kind::Unary: {
+      case Ex::Kind::Unary: {
         auto a = run(*e.args[0]);
         if (!a) return a;
         if (e.op == '-')
           for (Expr& x : a->items) x = neg(x);
         return a;
       }
-      case AstExpr::Kind::Binary: return binary(e);
-      case AstExpr::Kind::Call: return call_fn(e);
-      case AstExpr::Kind::Index: return index(e);
-      case AstExpr::Kind::List: return list(e);
-      case AstExpr::Kind::String:
+      case Ex::Kind::Binary: return binary(e);
+      case Ex::Kind::Call: return call_fn(e);
+      case Ex::Kind::Index: return index(e);
+      case Ex::Kind::List: return list(e);
+      case Ex::Kind::String:
         diags_.error(e.loc, fmt::format("the string \"{}\" is not a value", e.name),
                      "strings name files, as in flexible = modal(\"arm.mbm\")");
         return std::nullopt;
+      default: return leaf(e);
     }
     return std::nullopt;
   }
 
  private:
-  std::optional<Value> name(const AstExpr& e) {
-    if (e.name == "t") return Value::scalar(time());
-    if (e.name == "pi") return Value::scalar(constant(M_PI));
-    return lookup_(e.name, e.loc);
+  /// A name (AST) or a ref (term).
+  std::optional<Value> leaf(const Ex& e) {
+    if constexpr (std::is_same_v<Ex, AstExpr>) {
+      if (e.name == "t") return Value::scalar(time());
+      if (e.name == "pi") return Value::scalar(constant(M_PI));
+      return lookup_(e.name, e.loc);
+    } else {
+      if (e.ref.kind == Ref::Kind::Time) return Value::scalar(time());
+      if (e.ref.kind == Ref::Kind::Pi) return Value::scalar(constant(M_PI));
+      return lookup_(e.ref, e.loc);
+    }
   }
 
-  std::optional<Value> binary(const AstExpr& e) {
+  std::optional<Value> binary(const Ex& e) {
     auto a = run(*e.args[0]);
     auto b = run(*e.args[1]);
     if (!a || !b) return std::nullopt;
@@ -225,7 +235,7 @@ class Lowerer {
     return std::nullopt;
   }
 
-  std::optional<Value> matmul(const AstExpr& e, const Value& a, const Value& b) {
+  std::optional<Value> matmul(const Ex& e, const Value& a, const Value& b) {
     if (a.cols != b.rows) {
       diags_.error(e.loc, fmt::format("matrix product of {} and {}: inner dimensions differ", a.shape(), b.shape()),
                    "an (n x m) matrix multiplies an (m x k) one");
@@ -241,7 +251,7 @@ class Lowerer {
     return r;
   }
 
-  std::optional<Value> call_fn(const AstExpr& e) {
+  std::optional<Value> call_fn(const Ex& e) {
     auto it = kFunctions.find(e.name);
     if (it == kFunctions.end()) {
       std::string near = closest_name(e.name, function_names());
@@ -339,7 +349,7 @@ class Lowerer {
 
   /// The items of argument k of call e if it is a vector (n x 1 or 1 x n) of
   /// length `len` (any length if len < 0); else reports `what` and returns nullopt.
-  std::optional<Vec> vector_arg(const AstExpr& e, const std::vector<Value>& args, std::size_t k, int len,
+  std::optional<Vec> vector_arg(const Ex& e, const std::vector<Value>& args, std::size_t k, int len,
                                 const std::string& what) {
     const Value& v = args[k];
     if (v.is_vector() && (len < 0 || v.length() == len)) return v.items;
@@ -348,12 +358,12 @@ class Lowerer {
                  call_hint(e.name));
     return std::nullopt;
   }
-  std::optional<Vec> quaternion_arg(const AstExpr& e, const std::vector<Value>& args, std::size_t k) {
+  std::optional<Vec> quaternion_arg(const Ex& e, const std::vector<Value>& args, std::size_t k) {
     return vector_arg(e, args, k, 4, "a quaternion (a 4-vector [w, x, y, z])");
   }
 
   /// Argument k as a constant integer in 1..kMaxDimension.
-  std::optional<int> dimension_arg(const AstExpr& e, const std::vector<Value>& args, std::size_t k) {
+  std::optional<int> dimension_arg(const Ex& e, const std::vector<Value>& args, std::size_t k) {
     double c = 0;
     const Value& v = args[k];
     if (v.is_scalar() && is_const(v.items[0], &c) && c == std::floor(c) && c >= 1 && c <= kMaxDimension)
@@ -373,7 +383,7 @@ class Lowerer {
   /// y1 + sum_k s_k (max(0, x - x_k) - max(0, x - x_k+1)): the kinks are
   /// exact, and a table of time is a chain of time events (the max of a
   /// function of time), which the integrators locate.
-  std::optional<Value> table(const AstExpr& e, const std::vector<Value>& args) {
+  std::optional<Value> table(const Ex& e, const std::vector<Value>& args) {
     if (!args[0].is_scalar()) {
       diags_.error(e.args[0]->loc, fmt::format("`table` looks up a scalar, this is {}", args[0].shape()), call_hint("table"));
       return std::nullopt;
@@ -403,7 +413,7 @@ class Lowerer {
     return Value::scalar(y);
   }
 
-  std::optional<Value> shaped_fn(const AstExpr& e, const std::vector<Value>& args) {
+  std::optional<Value> shaped_fn(const Ex& e, const std::vector<Value>& args) {
     const std::string& f = e.name;
     if (f == "eye" || f == "zeros") {
       auto rows = dimension_arg(e, args, 0);
@@ -541,7 +551,7 @@ class Lowerer {
     return std::nullopt;
   }
 
-  std::optional<Value> concatenate(const AstExpr& e, const std::vector<Value>& args, bool side_by_side) {
+  std::optional<Value> concatenate(const Ex& e, const std::vector<Value>& args, bool side_by_side) {
     const Value& first = args[0];
     int rows = first.rows, cols = first.cols;
     for (std::size_t k = 1; k < args.size(); ++k) {
@@ -567,7 +577,7 @@ class Lowerer {
     return r;
   }
 
-  std::optional<Value> index(const AstExpr& e) {
+  std::optional<Value> index(const Ex& e) {
     auto base = run(*e.args[0]);
     if (!base) return base;
     std::vector<int> idx;
@@ -610,7 +620,7 @@ class Lowerer {
     return Value::scalar(base->at(r - 1, c - 1));
   }
 
-  std::optional<Value> list(const AstExpr& e) {
+  std::optional<Value> list(const Ex& e) {
     if (e.args.empty()) {
       diags_.error(e.loc, "empty list", "write a vector as [a, b, c]");
       return std::nullopt;
@@ -645,14 +655,19 @@ class Lowerer {
     return r;
   }
 
-  const NameLookup& lookup_;
+  const Lookup& lookup_;
   Diagnostics& diags_;
 };
 
 }  // namespace
 
 std::optional<Value> lower(const AstExpr& e, const NameLookup& lookup, Diagnostics& diags) {
-  Lowerer l(lookup, diags);
+  Lowerer<AstExpr, NameLookup> l(lookup, diags);
+  return l.run(e);
+}
+
+std::optional<Value> lower(const Term& e, const RefLookup& lookup, Diagnostics& diags) {
+  Lowerer<Term, RefLookup> l(lookup, diags);
   return l.run(e);
 }
 

@@ -1,6 +1,7 @@
 // ir/value.hpp — shaped values (scalar, vector, matrix of expressions) and the
-// lowering of AST expressions into them. Used by resolve (parameters) and by
-// graph (element laws, signals, outputs), each with its own name lookup.
+// lowering of expressions into them: AST expressions by name (resolve's
+// parameters) and bound terms by reference (the graph's element laws,
+// signals and outputs), with one set of rules.
 #pragma once
 
 #include <functional>
@@ -11,6 +12,7 @@
 #include "ir/ast.hpp"
 #include "ir/diagnostics.hpp"
 #include "ir/expr.hpp"
+#include "ir/term.hpp"
 
 namespace mbgc::ir {
 
@@ -32,9 +34,14 @@ struct Value {
 /// reported an error.
 using NameLookup = std::function<std::optional<Value>(const std::string& name, const SourceLoc& loc)>;
 
+/// Resolves a bound reference (not t or pi, which lowering knows) at `loc`.
+using RefLookup = std::function<std::optional<Value>(const Ref& ref, const SourceLoc& loc)>;
+
 /// Lower an AST expression. Reports shape errors, unknown functions and wrong
 /// arity; returns nullopt on error.
 std::optional<Value> lower(const AstExpr& e, const NameLookup& lookup, Diagnostics& diags);
+/// Lower a bound term, as above.
+std::optional<Value> lower(const Term& e, const RefLookup& lookup, Diagnostics& diags);
 
 /// Names of the language's functions (for "did you mean").
 std::vector<std::string> function_names();

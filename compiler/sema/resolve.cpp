@@ -1,5 +1,8 @@
 #include "sema/resolve.hpp"
 
+#include "ir/element_settings.hpp"
+#include "sema/bind.hpp"
+
 #include "mbgrt/integrators.hpp"
 #include "units/literals.hpp"
 
@@ -45,6 +48,19 @@ struct PendingEnd {
   int scope;
 };
 
+/// An expression as written and the scope its names are read in.
+struct PendingExpr {
+  AstExprPtr expr;
+  int scope = 0;
+};
+
+/// An element's declaration as written, the node it became and its scope.
+struct PendingElement {
+  std::size_t node;
+  ExpandedElement element;
+  int scope;
+};
+
 struct PendingBond {
   std::string name;
   SourceLoc loc;
@@ -76,6 +92,8 @@ class Resolver {
     if (too_big_) return;  // the model is not whole: nothing more to say about it
     evaluate_params();
     bind_bonds();
+    label_bonds();
+    bind_names(prog.unit_checks);
   }
 
  private:
@@ -119,16 +137,21 @@ class Resolver {
               AstExprPtr rate;
               bool generated = false;
               if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate, generated = st.generated;
-              if (claim_name(prefix + st.name, st.loc, "signal"))
-                m_.signals.push_back({prefix + st.name, st.loc, st.value, scope, rate, st.unit, generated});
+              if (claim_name(prefix + st.name, st.loc, "signal")) {
+                m_.signals.push_back({prefix + st.name, st.loc, nullptr, nullptr, st.unit, generated});
+                signal_exprs_.push_back({{st.value, scope}, {rate, scope}});
+              }
             } else if constexpr (std::is_base_of_v<AstOutput, T>) {
               if constexpr (std::is_same_v<T, ExpandedOutput>)
                 if (st.drawing) {
-                  m_.drawings.push_back({st.drawing, st.loc, st.value, st.modes, scope});
+                  m_.drawings.push_back({st.drawing, st.loc, nullptr, nullptr});
+                  drawing_exprs_.push_back({{st.value, scope}, {st.modes, scope}});
                   return;
                 }
-              if (claim_name("output " + prefix + st.name, st.loc, "output"))
-                m_.outputs.push_back({prefix + st.name, st.loc, st.value, scope, nullptr, st.unit});
+              if (claim_name("output " + prefix + st.name, st.loc, "output")) {
+                m_.outputs.push_back({prefix + st.name, st.loc, nullptr, nullptr, st.unit, false});
+                output_exprs_.push_back({st.value, scope});
+              }
             } else if constexpr (std::is_base_of_v<AstElement, T>) {
               if (!claim_name(prefix + st.name, st.loc, "element")) return;
               ResolvedNode n;
@@ -136,11 +159,13 @@ class Resolver {
               n.name = prefix + st.name;
               n.loc = st.loc;
               n.kind_loc = st.kind_loc;
-              n.scope = scope;
-              if constexpr (std::is_same_v<T, ExpandedElement>) n.element = st;
-              else n.element = as_expanded(st);
-              n.tree = n.element->tree;
-              n.generated = n.element->generated;
+              ExpandedElement el;
+              if constexpr (std::is_same_v<T, ExpandedElement>) el = st;
+              else el = as_expanded(st);
+              n.tree = el.tree;
+              n.generated = el.generated;
+              n.element = BoundElement{el.kind, nullptr, {}, std::nullopt, el.configuration_dependent, el.state_limits};
+              elements_.push_back({m_.nodes.size(), std::move(el), scope});
               add_node(std::move(n));
             } else if constexpr (std::is_base_of_v<AstJunction, T>) {
               if (!claim_name(prefix + st.name, st.loc, "junction")) return;
@@ -149,7 +174,6 @@ class Resolver {
               n.name = prefix + st.name;
               n.loc = st.loc;
               n.kind_loc = st.kind_loc;
-              n.scope = scope;
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
               if constexpr (std::is_same_v<T, ExpandedJunction>) n.tree = st.tree, n.generated = st.generated;
@@ -318,7 +342,7 @@ class Resolver {
       if (setting->dimension) {  // a literal's unit here; a parameter's, with the model's (units/check)
         const std::string what = fmt::format("{} of the simulate block", a.key);
         if (!units::check_literal_units(*a.value, *setting->dimension, what, diags_)) continue;
-        if (units::reads_a_name(*a.value)) m_.unit_checks.push_back({a.value, *setting->dimension, a.loc, what});
+        if (units::reads_a_name(*a.value)) setting_checks_.push_back({a.value, *setting->dimension, a.loc, what});
       }
       settings_.push_back({&(m_.settings.*(setting->slot)), a});
     }
@@ -328,6 +352,8 @@ class Resolver {
   void evaluate_params() {
     for (std::size_t i = 0; i < pending_params_.size(); ++i) param_by_name_[pending_params_[i].full] = i;
     state_.assign(pending_params_.size(), 0);
+    m_.param_values.assign(pending_params_.size(), Value{});
+    has_value_.assign(pending_params_.size(), 0);
     for (std::size_t i = 0; i < pending_params_.size(); ++i) evaluate(i);
     for (auto& [slot, attr] : settings_) {
       auto v = lower(*attr.value, param_lookup(0), diags_);
@@ -368,7 +394,7 @@ class Resolver {
       auto it = param_by_name_.find(full);
       if (it == param_by_name_.end()) continue;
       if (!evaluate(it->second, &loc)) return std::nullopt;
-      return m_.param_values.at(full);
+      return m_.param_values[it->second];
     }
     std::vector<std::string> names;
     for (const auto& [n, i] : param_by_name_) names.push_back(n);
@@ -386,7 +412,7 @@ class Resolver {
 
   /// Evaluate pending parameter i (depth-first; a cycle is reported once).
   bool evaluate(std::size_t i, const SourceLoc* used_at = nullptr) {
-    if (state_[i] == 2) return m_.param_values.count(pending_params_[i].full) > 0;
+    if (state_[i] == 2) return has_value_[i] != 0;
     if (state_[i] == 1) {
       if (!cycle_reported_) {
         cycle_reported_ = true;
@@ -434,7 +460,8 @@ class Resolver {
       m_.params.push_back(par);
       as_params.items[static_cast<std::size_t>(k)] = param(static_cast<int>(m_.params.size()) - 1);
     }
-    m_.param_values[p.full] = as_params;
+    m_.param_values[i] = as_params;
+    has_value_[i] = 1;
     return true;
   }
 
@@ -494,12 +521,89 @@ class Resolver {
                      "a bond connects two different nodes");
         continue;
       }
-      m_.bonds.push_back({pb.name, pb.loc, *from, *to, pb.dim, pb.dim_loc});
+      m_.bonds.push_back({pb.name, "", pb.loc, *from, *to, pb.dim, pb.dim_loc});
     }
+  }
+
+  // ---- names in expressions -------------------------------------------------------
+  /// Unnamed bonds are called b<number>, unless a node or a bond took that name.
+  void label_bonds() {
+    std::set<std::string> taken;
+    for (const ResolvedBond& rb : m_.bonds) taken.insert(rb.name);
+    for (const auto& [name, index] : m_.node_index) taken.insert(name);
+    for (std::size_t b = 0; b < m_.bonds.size(); ++b) {
+      ResolvedBond& rb = m_.bonds[b];
+      rb.label = rb.name;
+      if (!rb.label.empty()) continue;
+      const int number = static_cast<int>(b) + 1;
+      rb.label = fmt::format("b{}", number);
+      for (int k = 2; taken.count(rb.label); ++k) rb.label = fmt::format("b{}_{}", number, k);
+      taken.insert(rb.label);
+    }
+  }
+
+  /// Every element law, signal, output and drawing, and what the multibody
+  /// layer and the simulate block state of a value's unit, with their names
+  /// bound (sema/bind.hpp), in the order the graph pass lowers them.
+  void bind_names(const std::vector<ExpandedUnitCheck>& layer_checks) {
+    for (std::size_t i = 0; i < pending_params_.size(); ++i)
+      if (has_value_[i]) m_.param_index.emplace(pending_params_[i].full, static_cast<int>(i));
+    if (diags_.has_errors()) return;  // a name may be unknown only because its declaration was in error
+    const Binder binder(m_);
+    auto bind = [&](const AstExprPtr& e, int scope, OwnQuantities own = {}) -> TermPtr {
+      return e ? binder.bind(*e, scope, diags_, own) : nullptr;
+    };
+    for (const PendingElement& pe : elements_) {
+      const ExpandedElement& el = pe.element;
+      BoundElement& out = *m_.nodes[pe.node].element;
+      const NodeKind kind = m_.nodes[pe.node].kind;
+      OwnQuantities own;  // inside a law: the element's own e, f and state
+      if (!is_two_port(kind)) {
+        own.any = true;
+        const bool free_rate = kind == NodeKind::Sf && !el.value &&
+                               std::any_of(el.attrs.begin(), el.attrs.end(),
+                                           [](const AstAttr& a) { return a.key == element_setting::rate0.key; });
+        own.state = kind == NodeKind::I ? 'p' : (kind == NodeKind::C || free_rate) ? 'q' : 0;
+      }
+      out.value = bind(el.value, pe.scope);
+      for (const AstAttr& a : el.attrs) {
+        const ElementSetting* setting = find_element_setting(kind, a.key);
+        const bool law = setting && setting->role == ElementSetting::Role::Law;
+        out.attrs.push_back({a.key, a.loc, setting ? bind(a.value, pe.scope, law ? own : OwnQuantities{}) : nullptr});
+      }
+      if (el.constraint) {
+        BoundConstraintLaw law;
+        for (std::size_t f = 0; f < ConstraintLaw::fields().size(); ++f) {
+          const AstExprPtr& value = (*el.constraint).*ConstraintLaw::fields()[f].member;
+          law.*BoundConstraintLaw::fields()[f].member = bind(value, pe.scope, f == 0 ? own : OwnQuantities{});
+        }
+        out.constraint = law;
+      }
+    }
+    for (std::size_t i = 0; i < m_.signals.size(); ++i) {
+      m_.signals[i].expr = bind(signal_exprs_[i].first.expr, signal_exprs_[i].first.scope);
+      m_.signals[i].rate = bind(signal_exprs_[i].second.expr, signal_exprs_[i].second.scope);
+    }
+    for (std::size_t i = 0; i < m_.outputs.size(); ++i) m_.outputs[i].expr = bind(output_exprs_[i].expr, output_exprs_[i].scope);
+    for (std::size_t i = 0; i < m_.drawings.size(); ++i) {
+      m_.drawings[i].pose = bind(drawing_exprs_[i].first.expr, drawing_exprs_[i].first.scope);
+      m_.drawings[i].modes = bind(drawing_exprs_[i].second.expr, drawing_exprs_[i].second.scope);
+    }
+    // a value that does not bind here was reported where the multibody layer read it
+    Diagnostics scratch(diags_.sources());
+    for (const std::vector<ExpandedUnitCheck>* checks : {&layer_checks, static_cast<const std::vector<ExpandedUnitCheck>*>(&setting_checks_)})
+      for (const ExpandedUnitCheck& c : *checks)
+        m_.unit_checks.push_back({binder.bind(*c.value, 0, scratch), c.dimension, c.loc, c.what, c.quantity});
   }
 
   Diagnostics& diags_;
   ResolvedModel& m_;
+  std::vector<PendingElement> elements_;                                // per element node, in order
+  std::vector<std::pair<PendingExpr, PendingExpr>> signal_exprs_;       // per signal: its value and rate
+  std::vector<PendingExpr> output_exprs_;                               // per output
+  std::vector<std::pair<PendingExpr, PendingExpr>> drawing_exprs_;      // per drawing: its pose and modes
+  std::vector<ExpandedUnitCheck> setting_checks_;                       // the simulate block's, with a name
+  std::vector<char> has_value_;                                         // per pending parameter
   std::map<std::string, std::shared_ptr<const AstComponent>> components_;
   std::unordered_map<std::string, SourceLoc> declared_;  // looked up only
   std::vector<std::map<std::string, PendingEnd>> port_bindings_;  // per scope
@@ -525,7 +629,6 @@ ResolvedModel resolve(const ExpandedProgram& program, const std::string& source_
   m.source_file = source_file;
   Resolver r(diags, m, limits);
   r.run(program);
-  m.unit_checks.insert(m.unit_checks.begin(), program.unit_checks.begin(), program.unit_checks.end());
   if (m.model_name.empty()) m.model_name = "model";
   return m;
 }

@@ -98,12 +98,12 @@ TEST(Resolve, VectorAndMatrixParametersAreFlattenedToScalars) {
   EXPECT_EQ(param_names(c->resolved),
             (std::vector<std::string>{"v[1]", "v[2]", "M[1,1]", "M[1,2]", "M[2,1]", "M[2,2]", "s"}));
   EXPECT_EQ(pvalue(c->resolved, "s"), 5.0);
-  const ir::Value& v = c->resolved.param_values.at("v");
+  const ir::Value& v = c->resolved.param_values.at(static_cast<std::size_t>(c->resolved.param_index.at("v")));
   EXPECT_EQ(v.rows, 2);
   EXPECT_EQ(v.cols, 1);
   EXPECT_EQ(v.items[1]->op, ir::Op::Param);
   EXPECT_EQ(v.items[1]->id, 1);
-  const ir::Value& m = c->resolved.param_values.at("M");
+  const ir::Value& m = c->resolved.param_values.at(static_cast<std::size_t>(c->resolved.param_index.at("M")));
   EXPECT_EQ(m.rows, 2);
   EXPECT_EQ(m.cols, 2);
 }
@@ -158,7 +158,11 @@ TEST(Resolve, ComponentInstancesAreFlattenedIntoDottedNames) {
   ASSERT_EQ(c->resolved.scopes.size(), 3u);
   EXPECT_EQ(c->resolved.scopes[1].prefix, "u1.");
   EXPECT_EQ(c->resolved.scopes[1].component, "rc");
-  EXPECT_EQ(c->resolved.nodes[static_cast<std::size_t>(node(c->resolved, "u2.c"))].scope, 2);
+  // u2's C reads u2's parameter Cc, bound to it
+  const ir::TermPtr& cc = c->resolved.nodes[static_cast<std::size_t>(node(c->resolved, "u2.c"))].element->value;
+  ASSERT_EQ(cc->kind, ir::Term::Kind::Ref);
+  EXPECT_EQ(cc->ref.kind, ir::Ref::Kind::Param);
+  EXPECT_EQ(cc->ref.id, c->resolved.param_index.at("u2.Cc"));
   EXPECT_EQ(c->resolved.model_name, "components");
 }
 
