@@ -190,8 +190,8 @@ class Builder {
   std::optional<Value> probe_shape(const ResolvedNode& rn) {
     if (!rn.element || !rn.element->value) return std::nullopt;
     Diagnostics scratch(sources_);
-    RefLookup lookup = [&](const Ref& ref, const SourceLoc&) -> std::optional<Value> {
-      if (ref.kind == Ref::Kind::Param) return param_value(ref);
+    RefLookup lookup = [&](const Term& leaf) -> std::optional<Value> {
+      if (leaf.ref.kind == Ref::Kind::Param) return param_value(leaf.ref);
       return Value::scalar(constant(0));
     };
     return lower(*rn.element->value, lookup, scratch);
@@ -358,6 +358,7 @@ class Builder {
       case Quantity::stick:
         if (n.discrete.size() > 2) return Value::scalar(var(n.discrete[2]));
         break;
+      case Quantity::value: break;  // (a node has none: resolve binds none)
     }
     diags_.error(loc, fmt::format("{} `{}` has no quantity `{}`", node_kind_name(n.kind), n.name,
                                   ref.quantity == Quantity::closed ? "closed" : "stick"),
@@ -367,16 +368,19 @@ class Builder {
 
   /// The values of refs, an element's own quantities among them where `own` is given.
   RefLookup lookup(const Own* own = nullptr) {
-    return [this, own](const Ref& ref, const SourceLoc& loc) -> std::optional<Value> {
+    return [this, own](const Term& leaf) -> std::optional<Value> {
+      const Ref& ref = leaf.ref;
       switch (ref.kind) {
         case Ref::Kind::Param: return param_value(ref);
         case Ref::Kind::Signal: return Value::scalar(var(signal_var_[static_cast<std::size_t>(ref.id)]));
-        case Ref::Kind::Node: return node_quantity(ref, loc);
+        case Ref::Kind::Node: return node_quantity(ref, leaf.loc);
         case Ref::Kind::Bond: return bond_value(ref.id, ref.quantity == Quantity::e, 1);
         case Ref::Kind::Own:
           return ref.quantity == Quantity::e ? own->e : ref.quantity == Quantity::f ? own->f : own->state;
         case Ref::Kind::Time:
         case Ref::Kind::Pi: break;  // (lowering knows them)
+        case Ref::Kind::Name:
+        case Ref::Kind::Symbol: break;  // (bound by resolve)
       }
       return std::nullopt;
     };
@@ -385,7 +389,7 @@ class Builder {
   /// `Sf name { rate0 = ... }` without a value: a free rate (LawForm::FreeRate).
   static bool is_free_rate(const ResolvedNode& rn) {
     if (!rn.element || rn.element->kind != "Sf" || rn.element->value) return false;
-    for (const BoundAttr& a : rn.element->attrs)
+    for (const TermAttr& a : rn.element->attrs)
       if (a.key == element_setting::rate0.key) return true;
     return false;
   }
@@ -444,7 +448,7 @@ class Builder {
       BoundConstraintLaw law = el.constraint.value_or(BoundConstraintLaw{});
       bool has_law = law.g != nullptr;
       bool misspelt = false;  // a setting it has none of: likely the law meant, so not reported missing too
-      for (const BoundAttr& a : el.attrs) {
+      for (const TermAttr& a : el.attrs) {
         const ElementSetting* setting = find_element_setting(n.kind, a.key);
         if (n.kind == NodeKind::CN && setting) {
           const bool is_g = setting->role == ElementSetting::Role::Law;
@@ -652,7 +656,7 @@ class Builder {
   }
 
   /// A law may read its own input (f for e = phi(f), q for e = phi(q), ...) but not its output.
-  void check_law_inputs(const GraphNode& n, const BoundAttr& a) {
+  void check_law_inputs(const GraphNode& n, const TermAttr& a) {
     std::unordered_set<int> vars;
     for (const Expr& e : n.law_rhs) collect_vars(e, vars);
     const Bond& b = g_.bonds[static_cast<std::size_t>(n.bonds[0])];
@@ -675,7 +679,7 @@ class Builder {
 
   void lower_initial(GraphNode& n, const BoundElement& el, const RefLookup& lookup) {
     n.initial = Value{n.dim, 1, std::vector<Expr>(static_cast<std::size_t>(n.dim), constant(0))};
-    for (const BoundAttr& a : el.attrs) {
+    for (const TermAttr& a : el.attrs) {
       if (!is_element_setting(n.kind, a.key, ElementSetting::Role::Initial)) continue;
       auto v = lower(*a.value, lookup, diags_);
       if (!v) return;

@@ -4,13 +4,27 @@
 
 namespace mbgc::ir {
 
+ExpandedElement as_expanded(const AstElement& e) {
+  ExpandedElement out;
+  out.kind = e.kind;
+  out.kind_loc = e.kind_loc;
+  out.name = e.name;
+  out.loc = e.loc;
+  out.value = to_term(e.value);
+  for (const AstAttr& a : e.attrs) out.attrs.push_back({a.key, a.loc, to_term(a.value)});
+  return out;
+}
+
 bool as_expanded(const AstStmt& s, ExpandedStmt& out) {
   return std::visit(
       [&](const auto& st) {
         using T = std::decay_t<decltype(st)>;
-        if constexpr (std::is_same_v<T, AstParam>) out = ExpandedParam{st, false, false};
-        else if constexpr (std::is_same_v<T, AstSignal>) out = ExpandedSignal{st, nullptr, false};
-        else if constexpr (std::is_same_v<T, AstOutput>) out = ExpandedOutput{st, nullptr, nullptr};
+        if constexpr (std::is_same_v<T, AstParam>)
+          out = ExpandedParam{st.name, st.loc, to_term(st.value), st.unit, false, false, std::nullopt};
+        else if constexpr (std::is_same_v<T, AstSignal>)
+          out = ExpandedSignal{st.name, st.loc, to_term(st.value), st.unit, nullptr, false};
+        else if constexpr (std::is_same_v<T, AstOutput>)
+          out = ExpandedOutput{st.name, st.loc, to_term(st.value), st.unit, nullptr, nullptr};
         else if constexpr (std::is_same_v<T, AstElement>) out = as_expanded(st);
         else if constexpr (std::is_same_v<T, AstJunction>) out = ExpandedJunction{st, {}, false};
         else if constexpr (std::is_constructible_v<ExpandedStmt, T>) out = st;

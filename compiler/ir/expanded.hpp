@@ -3,8 +3,9 @@
 // elements, junctions, bonds), those the user wrote and those the expansion
 // derived from bodies, joints, forces, contacts and tyres, with what only the
 // expansion knows of them. The AST (ir/ast.hpp) keeps what the parser read;
-// each statement here extends its AST form, and a user's statement passes
-// through with none of the extensions set.
+// the statements here hold terms (ir/term.hpp), not AST expressions: a
+// user's statement passes through as its terms, its names unbound, with
+// none of the extensions set.
 #pragma once
 
 #include <memory>
@@ -16,6 +17,7 @@
 
 #include "ir/ast.hpp"
 #include "ir/drawing.hpp"
+#include "ir/term.hpp"
 
 namespace mbgc::ir {
 
@@ -25,7 +27,11 @@ namespace mbgc::ir {
 /// wherever their value depends on literals only (a structural zero then
 /// folds out of every equation), and run-time parameters (`--set`) where it
 /// reads a `param`.
-struct ExpandedParam : AstParam {
+struct ExpandedParam {
+  std::string name;
+  SourceLoc loc;
+  TermPtr value;
+  std::optional<AstUnit> unit;  // after the value, as written
   bool fold = false;
   bool generated = false;  // by the multibody layer (a body's mass, a joint's frame), as ExpandedElement's
   /// What the multibody layer states of a generated one's dimension (a
@@ -36,17 +42,25 @@ struct ExpandedParam : AstParam {
 /// A signal; `rate`, where the expansion knows its time derivative in closed
 /// form (a body's rotation: R skew(omega)), is used for d/dt instead of the
 /// chain rule through `value`.
-struct ExpandedSignal : AstSignal {
-  AstExprPtr rate = nullptr;
+struct ExpandedSignal {
+  std::string name;
+  SourceLoc loc;
+  TermPtr value;
+  std::optional<AstUnit> unit;
+  TermPtr rate = nullptr;
   bool generated = false;  // by the multibody layer, not the user (as below)
 };
 
 /// An output. The expansion writes one per body it draws (`drawing` set):
 /// value is hcat(R, p), the pose of the point the drawing is measured from,
 /// and `modes` a flexible body's modal coordinates.
-struct ExpandedOutput : AstOutput {
+struct ExpandedOutput {
+  std::string name;
+  SourceLoc loc;
+  TermPtr value;
+  std::optional<AstUnit> unit;
   std::shared_ptr<const Drawing> drawing = nullptr;
-  AstExprPtr modes = nullptr;
+  TermPtr modes = nullptr;
 };
 
 /// A body of a kinematic tree in joint coordinates that an element or a
@@ -87,9 +101,15 @@ struct ConstraintLawOf {
     return all;
   }
 };
-using ConstraintLaw = ConstraintLawOf<AstExprPtr>;
+using ConstraintLaw = ConstraintLawOf<TermPtr>;
 
-struct ExpandedElement : AstElement {
+struct ExpandedElement {
+  std::string kind;   // Se Sf I C R TF GY MTF MGY CN
+  SourceLoc kind_loc;
+  std::string name;
+  SourceLoc loc;      // of the name
+  TermPtr value;      // may be null (a law in the braces instead)
+  std::vector<TermAttr> attrs;
   /// An I whose matrix depends on the configuration (a flexible body's mass
   /// matrix M(eta)), written only together with the efforts dT/deta that keep
   /// the field's energy balance; a user's I stays constant.
@@ -120,7 +140,7 @@ using ExpandedStmt = std::variant<AstModel, ExpandedParam, ExpandedSignal, Expan
 /// statements (a joint's `torque` is N*m, a body's `mass` kg): units/check
 /// holds the value, lowered, to it.
 struct ExpandedUnitCheck {
-  AstExprPtr value;           // quantities replaced by their definitions
+  TermPtr value;              // quantities replaced by their definitions
   units::Dimension dimension;
   SourceLoc loc;              // of the setting
   std::string what;           // "the torque of joint `j1`"
@@ -135,7 +155,7 @@ struct ExpandedProgram {
 };
 
 /// A user's element as resolve reads it, none of the extensions set.
-inline ExpandedElement as_expanded(const AstElement& e) { return ExpandedElement{e, false, {}, {}, false, std::nullopt}; }
+ExpandedElement as_expanded(const AstElement& e);
 
 /// A user's statement as resolve reads it, none of the extensions set;
 /// false for the statements the expansion consumes (bodies, joints,

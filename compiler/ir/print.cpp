@@ -18,32 +18,36 @@ static std::string declared(const std::optional<AstUnit>& unit) {
   return unit ? fmt::format(" {{{}}}", unit->unit.text) : std::string();
 }
 
-static std::string ast_expr(const AstExpr& e) {
+/// An AST expression or a term, as the user would write it (a ref as its name).
+template <class X>
+static std::string ast_expr(const X& e) {
+  using K = typename X::Kind;
   switch (e.kind) {
-    case AstExpr::Kind::Number:
+    case K::Number:
       if (e.unit) return fmt::format("{} {{{}}}", e.written, e.unit->unit.text);
       return fmt::format("{}", e.number);
-    case AstExpr::Kind::Name: return e.name;
-    case AstExpr::Kind::String: return fmt::format("\"{}\"", e.name);
-    case AstExpr::Kind::Unary: return fmt::format("({}{})", e.op, ast_expr(*e.args[0]));
-    case AstExpr::Kind::Binary: return fmt::format("({} {} {})", ast_expr(*e.args[0]), e.op, ast_expr(*e.args[1]));
-    case AstExpr::Kind::Call:
-    case AstExpr::Kind::List:
-    case AstExpr::Kind::Index: {
+    case K::String: return fmt::format("\"{}\"", e.name);
+    case K::Unary: return fmt::format("({}{})", e.op, ast_expr(*e.args[0]));
+    case K::Binary: return fmt::format("({} {} {})", ast_expr(*e.args[0]), e.op, ast_expr(*e.args[1]));
+    case K::Call:
+    case K::List:
+    case K::Index: {
       std::vector<std::string> parts;
-      std::size_t first = e.kind == AstExpr::Kind::Index ? 1 : 0;
+      std::size_t first = e.kind == K::Index ? 1 : 0;
       for (std::size_t i = first; i < e.args.size(); ++i) parts.push_back(ast_expr(*e.args[i]));
-      if (e.kind == AstExpr::Kind::Call) return fmt::format("{}({})", e.name, fmt::join(parts, ", "));
-      if (e.kind == AstExpr::Kind::List) return fmt::format("[{}]", fmt::join(parts, ", "));
+      if (e.kind == K::Call) return fmt::format("{}({})", e.name, fmt::join(parts, ", "));
+      if (e.kind == K::List) return fmt::format("[{}]", fmt::join(parts, ", "));
       return fmt::format("{}[{}]", ast_expr(*e.args[0]), fmt::join(parts, ", "));
     }
+    default: return e.name;  // a name (AST) or a ref (a term)
   }
   return "?";
 }
 
-static std::string attrs(const std::vector<AstAttr>& a) {
+template <class Attr>
+static std::string attrs(const std::vector<Attr>& a) {
   std::vector<std::string> parts;
-  for (const AstAttr& x : a) parts.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
+  for (const Attr& x : a) parts.push_back(fmt::format("{} = {}", x.key, ast_expr(*x.value)));
   return fmt::format("{{ {} }}", fmt::join(parts, "; "));
 }
 
@@ -74,27 +78,28 @@ static void ast_stmts(std::string& out, const std::vector<Stmt>& stmts, int inde
           using T = std::decay_t<decltype(st)>;
           if constexpr (std::is_same_v<T, AstModel>) out += fmt::format("{}model {}\n", pad, st.name);
           else if constexpr (std::is_same_v<T, AstImport>) out += fmt::format("{}import \"{}\"\n", pad, st.path);
-          else if constexpr (std::is_base_of_v<AstParam, T>) {
+          else if constexpr (std::is_same_v<T, AstParam> || std::is_same_v<T, ExpandedParam>) {
             bool fold = false;
             if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold;
             out += fmt::format("{}{} {} = {}{}\n", pad, fold ? "const" : "param", st.name, ast_expr(*st.value),
                                declared(st.unit));
-          } else if constexpr (std::is_base_of_v<AstSignal, T>) {
+          } else if constexpr (std::is_same_v<T, AstSignal> || std::is_same_v<T, ExpandedSignal>) {
             out += fmt::format("{}signal {} = {}{}", pad, st.name, ast_expr(*st.value), declared(st.unit));
-            AstExprPtr rate;
-            if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate;
-            out += rate ? fmt::format("  // d/dt = {}\n", ast_expr(*rate)) : "\n";
+            std::string rate;
+            if constexpr (std::is_same_v<T, ExpandedSignal>)
+              if (st.rate) rate = ast_expr(*st.rate);
+            out += rate.empty() ? "\n" : fmt::format("  // d/dt = {}\n", rate);
           }
-          else if constexpr (std::is_base_of_v<AstOutput, T>)
+          else if constexpr (std::is_same_v<T, AstOutput> || std::is_same_v<T, ExpandedOutput>)
             out += fmt::format("{}output {} = {}{}\n", pad, st.name, ast_expr(*st.value), declared(st.unit));
-          else if constexpr (std::is_base_of_v<AstElement, T>) {
+          else if constexpr (std::is_same_v<T, AstElement> || std::is_same_v<T, ExpandedElement>) {
             out += fmt::format("{}{} {}", pad, st.kind, st.name);
             if (st.value) out += " = " + ast_expr(*st.value);
-            std::vector<AstAttr> settings = st.attrs;
+            auto settings = st.attrs;
             if constexpr (std::is_same_v<T, ExpandedElement>)
               if (st.constraint)  // printed as a user would write it
                 for (const ConstraintLaw::Field& f : ConstraintLaw::fields())
-                  if (const AstExprPtr& v = (*st.constraint).*f.member) settings.push_back({f.key, v->loc, v});
+                  if (const TermPtr& v = (*st.constraint).*f.member) settings.push_back({f.key, v->loc, v});
             if (!settings.empty()) out += " " + attrs(settings);
             out += "\n";
           } else if constexpr (std::is_base_of_v<AstJunction, T>) {

@@ -26,7 +26,7 @@ struct Scope {
   std::string component;  // component name (empty at top level)
 };
 
-using BoundConstraintLaw = ConstraintLawOf<TermPtr>;
+using BoundConstraintLaw = ConstraintLaw;  // its terms bound
 
 /// The quantities a one-port element has, for a "has no quantity" hint.
 inline const char* element_quantities(NodeKind k) {
@@ -41,7 +41,7 @@ struct BoundElement {
   std::string kind;  // as written: Se Sf I C R TF GY MTF MGY CN
   TermPtr value;     // may be null (a law in the braces instead)
   /// In the order written; a key the element does not take keeps a null value (the graph pass reports it).
-  std::vector<BoundAttr> attrs;
+  std::vector<TermAttr> attrs;
   std::optional<BoundConstraintLaw> constraint;
   bool configuration_dependent = false;                         // ExpandedElement's
   std::vector<std::pair<double, std::string>> state_limits;     // ExpandedElement's

@@ -1,10 +1,11 @@
-// ir/term.hpp — an expression whose names are bound: what resolve hands the
-// graph pass for element laws, signals, outputs and drawings. It has the
-// AST's shape (numbers with their units, operators, calls, indexing, lists),
-// but where the AST has a name, a term has a Ref: the parameter, signal,
-// node or bond it stands for, by index into the resolved model, and which
-// of its quantities. Resolve binds every name once (sema/bind.hpp); the
-// graph pass reads only Refs, never a name.
+// ir/term.hpp — the expressions of the middle of the compiler. A term has
+// the AST's shape (numbers with their units, operators, calls, indexing,
+// lists), but where the AST has a name, a term has a Ref. In the expanded
+// program (ir/expanded.hpp) a ref is a name the user wrote (Name) or what
+// the multibody layer wrote, by its symbol (Symbol); resolve binds both
+// (sema/bind.hpp) to the parameter, signal, node or bond they stand for, by
+// index into the resolved model, and which of its quantities. The graph
+// pass reads only bound refs, never a name.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +20,7 @@ namespace mbgc::ir {
 
 /// A quantity a node or a bond has, as `name.e`, `tf.f2`, `contact.closed` read it.
 enum class Quantity : std::uint8_t {
+  value,   // a parameter's or a signal's value (not a node's quantity)
   e,       // effort
   f,       // flow
   p,       // an I's momentum
@@ -34,6 +36,8 @@ enum class Quantity : std::uint8_t {
 /// What a bound name stands for.
 struct Ref {
   enum class Kind : std::uint8_t {
+    Name,    // a name as the user wrote it (Term::name), not yet bound
+    Symbol,  // what the multibody layer wrote: ExpandedProgram::symbols[id], and its quantity
     Time,    // t
     Pi,      // pi
     Param,   // a parameter: ResolvedModel::param_values[id]
@@ -44,7 +48,7 @@ struct Ref {
   };
   Kind kind = Kind::Time;
   int id = -1;
-  Quantity quantity = Quantity::e;  // Node, Bond, Own
+  Quantity quantity = Quantity::value;  // Symbol, Node, Bond, Own
 };
 
 struct Term;
@@ -65,17 +69,27 @@ struct Term {
   SourceLoc loc;
   double number = 0.0;
   std::optional<AstUnit> unit;
-  std::string name;  // a call's function, a string's text
+  double written = 0.0;  // a number with a unit, as typed
+  std::string name;  // a call's function, a string's text, a Name ref's name
   char op = 0;
   Ref ref;
   std::vector<TermPtr> args;
 };
 
-/// A setting in an element's braces with its value bound (`e = c * f^2`, `q0 = x0`).
-struct BoundAttr {
+/// A setting in an element's braces (`e = c * f^2`, `q0 = x0`).
+struct TermAttr {
   std::string key;
   SourceLoc loc;
   TermPtr value;
 };
+
+/// The AST expression as a term, its names unbound (Ref::Name); null for null.
+TermPtr to_term(const AstExprPtr& e);
+TermPtr to_term(const AstExpr& e);
+/// The unit a declaration states: the one after its value, else its value's
+/// when that is a literal (as ir::declared_unit over the AST).
+std::optional<AstUnit> declared_unit(const std::optional<AstUnit>& after, const TermPtr& value);
+/// Whether `e` reads a name or a symbol (a term of numbers only does not).
+bool reads_a_ref(const Term& e);
 
 }  // namespace mbgc::ir

@@ -34,8 +34,9 @@ struct Value {
 /// reported an error.
 using NameLookup = std::function<std::optional<Value>(const std::string& name, const SourceLoc& loc)>;
 
-/// Resolves a bound reference (not t or pi, which lowering knows) at `loc`.
-using RefLookup = std::function<std::optional<Value>(const Ref& ref, const SourceLoc& loc)>;
+/// Resolves a term's ref (not t or pi, which lowering knows): `leaf` is the
+/// Ref term, with its location (and, for a name, its text).
+using RefLookup = std::function<std::optional<Value>(const Term& leaf)>;
 
 /// Lower an AST expression. Reports shape errors, unknown functions and wrong
 /// arity; returns nullopt on error.

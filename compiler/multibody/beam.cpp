@@ -22,7 +22,7 @@ namespace {
 /// a rectangle a x b, a >= b: a b^3 (1/3 - 0.21 (b/a) (1 - b^4 / (12 a^4))) (Roark, within 0.5 %).
 E torsion_constant(const Build& B, const AstExpr& section, const BeamSym& n) {
   if (section.name != "rectangle") return B.ref(n.Ip());
-  E a = B.call("max", {section.args[0], section.args[1]}), b = B.call("min", {section.args[0], section.args[1]});
+  E a = B.call("max", {term(section.args[0]), term(section.args[1])}), b = B.call("min", {term(section.args[0]), term(section.args[1])});
   auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
   E bracket = B.op('-', B.num(1.0 / 3.0),
                    B.op('*', B.op('*', B.num(0.21), B.op('/', b, a)), B.op('-', B.num(1), B.op('/', pw(b, 4), B.op('*', B.num(12), pw(a, 4))))));
@@ -180,7 +180,7 @@ void Beam::rod_params(const FieldParams& fp) const {
   const AstBody& d = fp.decl;
   const BeamSym n(d.name);
   const Beam& beam = *this;
-  E damping = attr(d, beam_setting::damping), mu = B.ref(n.mass_per_length()), rho = B.ref(n.density());
+  E damping = body_term(d, beam_setting::damping), mu = B.ref(n.mass_per_length()), rho = B.ref(n.density());
   if (beam.axial) {
     const flex::RodIntegrals I = flex::rod_integrals(*beam.axial);
     const BeamModesSym a = n.group('a');
@@ -195,9 +195,9 @@ void Beam::rod_params(const FieldParams& fp) const {
   if (beam.torsion) {
     const flex::RodIntegrals I = flex::rod_integrals(*beam.torsion);
     const BeamModesSym t = n.group('t');
-    fp.param(n.shear_modulus(), attr(d, beam_setting::G));
+    fp.param(n.shear_modulus(), body_term(d, beam_setting::G));
     fp.param(n.Ip(), B.op('+', B.ref(n.Iy()), B.ref(n.Iz())));  // polar moment of the section
-    if (E J = attr(d, beam_setting::torsion_constant)) fp.param(n.torsion_constant(), J);
+    if (E J = body_term(d, beam_setting::torsion_constant)) fp.param(n.torsion_constant(), J);
     else fp.param(n.torsion_constant(), torsion_constant(B, *attr(d, beam_setting::section), n));
     E rhoIp = B.op('*', rho, B.ref(n.Ip()));
     fp.param(t.mean(), B.op('*', rhoIp, vector_param(B, I.mean)));
@@ -217,9 +217,9 @@ void Beam::params(const FieldParams& fp) const {
   const BeamSym n(d.name);
   const Beam& beam = *this;
   fp.param(n.length(), B.num(beam.length_m));
-  fp.param(n.density(), attr(d, beam_setting::density));
-  fp.param(n.youngs_modulus(), attr(d, beam_setting::E));
-  if (E sec = attr(d, beam_setting::section)) {
+  fp.param(n.density(), body_term(d, beam_setting::density));
+  fp.param(n.youngs_modulus(), body_term(d, beam_setting::E));
+  if (E sec = body_term(d, beam_setting::section)) {
     const std::string& kind = sec->name;
     E a = sec->args[0], b = sec->args.size() > 1 ? sec->args[1] : nullptr;
     auto pw = [&](E x, double k) { return B.op('^', x, B.num(k)); };
@@ -238,9 +238,9 @@ void Beam::params(const FieldParams& fp) const {
       fp.param(n.Iz(), B.ref(n.Iy()));
     }
   } else {
-    fp.param(n.area(), attr(d, beam_setting::area));
-    fp.param(n.Iy(), attr(d, beam_setting::Iy));
-    fp.param(n.Iz(), attr(d, beam_setting::Iz));
+    fp.param(n.area(), body_term(d, beam_setting::area));
+    fp.param(n.Iy(), body_term(d, beam_setting::Iy));
+    fp.param(n.Iz(), body_term(d, beam_setting::Iz));
   }
   E rho = B.ref(n.density()), L = B.ref(n.length()), mu = B.ref(n.mass_per_length());
   fp.param(n.mass_per_length(), B.op('*', rho, B.ref(n.area())));  // kg/m
@@ -256,7 +256,7 @@ void Beam::params(const FieldParams& fp) const {
   // what the joints' code reads of every body: the reference point is the frame origin
   fp.param(n.com(), B.vec(0, 0, 0));
   fp.param(n.inertia(), B.ref(n.J0()));
-  E damping = attr(d, beam_setting::damping);
+  E damping = body_term(d, beam_setting::damping);
   for (const auto& [plane, modes] : {std::pair{'y', &beam.y}, std::pair{'z', &beam.z}}) {
     if (!*modes) continue;
     const flex::ModalIntegrals I = flex::modal_integrals(**modes);

@@ -1,4 +1,4 @@
-// multibody/build.hpp — building AST expressions for the multibond-graph
+// multibody/build.hpp — building the terms (ir/term.hpp) of the multibond-graph
 // fragments the multibody layer writes (every one carries the location of
 // the declaration it came from, so generated code points back at the model).
 #pragma once
@@ -8,38 +8,44 @@
 #include <vector>
 
 #include "ir/ast.hpp"
+#include "ir/term.hpp"
 #include "ir/element_settings.hpp"
 #include "multibody/symbols.hpp"
 
 namespace mbgc::multibody::detail {
 
-using E = ir::AstExprPtr;
+using E = ir::TermPtr;
 
-// ---- building AST expressions (all carry the location of the declaration) ----------
+// ---- building terms (all carry the location of the declaration) --------------------
 class Build {
  public:
   explicit Build(ir::SourceLoc loc) : loc_(loc) {}
-  E num(double v) const { return make(ir::AstExpr::Kind::Number, [&](ir::AstExpr& e) { e.number = v; }); }
+  E num(double v) const { return make(ir::Term::Kind::Number, [&](ir::Term& e) { e.number = v; }); }
   /// What the layer wrote under `s`, or one of its variables (a name is
   /// never built here: symbols.hpp).
-  E ref(const Sym& s) const { return make(ir::AstExpr::Kind::Name, [&](ir::AstExpr& e) { e.name = s.str(); }); }
+  E ref(const Sym& s) const {
+    return make(ir::Term::Kind::Ref, [&](ir::Term& e) {
+      e.name = s.str();
+      e.ref = {ir::Ref::Kind::Name, -1, ir::Quantity::value};
+    });
+  }
   E op(char o, E a, E b) const {
-    return make(ir::AstExpr::Kind::Binary, [&](ir::AstExpr& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });
+    return make(ir::Term::Kind::Binary, [&](ir::Term& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });
   }
-  E neg(E a) const { return make(ir::AstExpr::Kind::Unary, [&](ir::AstExpr& e) { e.op = '-'; e.args = {std::move(a)}; }); }
+  E neg(E a) const { return make(ir::Term::Kind::Unary, [&](ir::Term& e) { e.op = '-'; e.args = {std::move(a)}; }); }
   E call(const std::string& fn, std::vector<E> args) const {
-    return make(ir::AstExpr::Kind::Call, [&](ir::AstExpr& e) { e.name = fn; e.args = std::move(args); });
+    return make(ir::Term::Kind::Call, [&](ir::Term& e) { e.name = fn; e.args = std::move(args); });
   }
-  E list(std::vector<E> items) const { return make(ir::AstExpr::Kind::List, [&](ir::AstExpr& e) { e.args = std::move(items); }); }
+  E list(std::vector<E> items) const { return make(ir::Term::Kind::List, [&](ir::Term& e) { e.args = std::move(items); }); }
   E vec(double x, double y, double z) const { return list({num(x), num(y), num(z)}); }
-  E at(E a, int i) const { return make(ir::AstExpr::Kind::Index, [&](ir::AstExpr& e) { e.args = {std::move(a), num(i)}; }); }
+  E at(E a, int i) const { return make(ir::Term::Kind::Index, [&](ir::Term& e) { e.args = {std::move(a), num(i)}; }); }
   E dot(E a, E b) const { return call("dot", {std::move(a), std::move(b)}); }
   const ir::SourceLoc& loc() const { return loc_; }
 
  private:
   template <class F>
-  E make(ir::AstExpr::Kind k, F fill) const {
-    auto e = std::make_shared<ir::AstExpr>();
+  E make(ir::Term::Kind k, F fill) const {
+    auto e = std::make_shared<ir::Term>();
     e->kind = k;
     e->loc = loc_;
     fill(*e);
@@ -50,14 +56,17 @@ class Build {
 
 /// m[r, c] (1-based), for a matrix-valued expression.
 inline E idx2(const Build& B, E m, int r, int c) {
-  auto e = std::make_shared<ir::AstExpr>();
-  e->kind = ir::AstExpr::Kind::Index;
+  auto e = std::make_shared<ir::Term>();
+  e->kind = ir::Term::Kind::Index;
   e->loc = B.loc();
   e->args = {std::move(m), B.num(r), B.num(c)};
   return e;
 }
 
 /// A setting of a generated element (ir::element_setting: `q0`, `f0`, a law `e`, ...).
-inline ir::AstAttr kv(const ir::ElementSetting& s, E value, const ir::SourceLoc& loc) { return ir::AstAttr{s.key, loc, std::move(value)}; }
+inline ir::TermAttr kv(const ir::ElementSetting& s, E value, const ir::SourceLoc& loc) { return ir::TermAttr{s.key, loc, std::move(value)}; }
+
+/// What the user wrote, as a term (its names bound later, by resolve).
+inline E term(const ir::AstExprPtr& e) { return ir::to_term(e); }
 
 }  // namespace mbgc::multibody::detail

@@ -197,7 +197,7 @@ void Collector::add_body(const AstBody& b) {
                    "link between bodies is a joint (e.g. distance)");
   if (auto in = given.find(body_setting::inertia.name); in != given.end() && in->second->value->kind == AstExpr::Kind::Call &&
                                        in->second->value->name == "diag")
-    for (const E& x : in->second->value->args)
+    for (const auto& x : in->second->value->args)
       if (auto v = constants_.constant_of(*x); v && !(*v > 0))
         diags_.error(x->loc, fmt::format("a principal moment of inertia of body `{}` is {}", b.name, *v),
                      "the inertia tensor is the inertance of the body's rotational I element and must be positive definite");
@@ -333,7 +333,7 @@ void Collector::add_force(const AstJoint& f) {
 void Collector::check_joint_constant(const JointKind& kind, const AstJoint& j, const AstAttr& at) {
   if (at.key == joint_setting::axis.name || at.key == joint_setting::axis_a.name || at.key == joint_setting::axis_b.name) {
     if (at.value->kind != AstExpr::Kind::List || at.value->args.size() != 3) return;
-    for (const E& x : at.value->args) {
+    for (const auto& x : at.value->args) {
       auto v = constants_.constant_of(*x);
       if (!v || *v != 0) return;
     }

@@ -43,13 +43,13 @@ void Collector::check_polygon(const Contact& contact) {
   }
   const AstExpr& v = *it->second->value;
   const bool listed = v.kind == AstExpr::Kind::List && v.args.size() >= 3 &&
-                      std::all_of(v.args.begin(), v.args.end(), [](const E& p) { return p->kind == AstExpr::Kind::List && p->args.size() == 2; });
+                      std::all_of(v.args.begin(), v.args.end(), [](const auto& p) { return p->kind == AstExpr::Kind::List && p->args.size() == 2; });
   if (!listed) {
     diags_.error(v.loc, fmt::format("the vertices of contact `{}` are not a list of three or more [x, z] pairs", c.name), how);
     return;
   }
   std::vector<std::array<double, 2>> corners;
-  for (const E& p : v.args) {
+  for (const auto& p : v.args) {
     auto x = constants_.constant_of(*p->args[0]), z = constants_.constant_of(*p->args[1]);
     if (!x || !z) return;  // (parameters: not checked)
     corners.push_back({*x, *z});
@@ -194,8 +194,8 @@ std::pair<E, E> Expander::polygon_gap(const Build& B, const Contact& c, E d) {
   for (std::size_t i = 0; i < n; ++i) {
     const AstExpr& a = *v.args[i];
     const AstExpr& b = *v.args[(i + 1) % n];
-    E ax = a.args[0], az = a.args[1];
-    E ex = B.op('-', b.args[0], ax), ez = B.op('-', b.args[1], az);
+    E ax = term(a.args[0]), az = term(a.args[1]);
+    E ex = B.op('-', term(b.args[0]), ax), ez = B.op('-', term(b.args[1]), az);
     E len2 = B.op('+', B.op('*', ex, ex), B.op('*', ez, ez)), len = B.call("sqrt", {len2});
     E rx = B.op('-', X, ax), rz = B.op('-', Z, az);
     E along = B.op('/', B.op('+', B.op('*', rx, ex), B.op('*', rz, ez)), len2);
@@ -227,7 +227,7 @@ void Expander::emit_contact(const Contact& c) {
   Build B(c.decl->loc);
   auto setting = [&](const Setting& s, E fallback) -> E {
     const AstAttr* given = given_in(c.attrs, s);
-    return given ? given->value : fallback;
+    return given ? term(given->value) : fallback;
   };
   param(B, cn.radius(), setting(contact_setting::radius, B.num(0)));
   param(B, cn.restitution(), setting(contact_setting::restitution, B.num(0)));

@@ -182,7 +182,7 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
     return d;
   }
   const std::array<double, 3> com = [&] {
-    const E c = attr(*body.decl, body_setting::com);
+    const ir::AstExprPtr c = attr(*body.decl, body_setting::com);
     auto p = c ? constants_.constant_point(*c) : std::optional<std::array<double, 3>>(std::array<double, 3>{});
     return p.value_or(std::array<double, 3>{});
   }();
@@ -196,7 +196,7 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
   std::array<double, 3> edge{};
   for (std::size_t k = 0; k < 3; ++k) edge[k] = hi[k] - lo[k], d.centre[k] = 0.5 * (hi[k] + lo[k]);
   if (!any) {  // the box of the same inertia
-    const E in = attr(*body.decl, body_setting::inertia), m = attr(*body.decl, body_setting::mass);
+    const ir::AstExprPtr in = attr(*body.decl, body_setting::inertia), m = attr(*body.decl, body_setting::mass);
     auto mass = m ? constants_.constant_of(*m) : std::nullopt;
     if (in && mass && *mass > 0 && in->kind == AstExpr::Kind::Call && in->name == "diag" && in->args.size() == 3) {
       std::array<double, 3> J{};
@@ -219,7 +219,7 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
 double Expander::model_scale() const {
   double scale = 0;
   for (const auto& [n, body] : m_.bodies) {
-    if (const E r0 = body.decl ? attr(*body.decl, body_setting::r0) : nullptr)
+    if (const ir::AstExprPtr r0 = body.decl ? attr(*body.decl, body_setting::r0) : nullptr)
       if (auto v = constants_.constant_point(*r0)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
     for (const auto& [p, x] : body.points)
       if (auto v = constants_.constant_point(*x)) scale = std::max({scale, std::abs((*v)[0]), std::abs((*v)[1]), std::abs((*v)[2])});
@@ -272,7 +272,7 @@ void Expander::draw_surfaces() {
       R = !body.kind.turns() ? B.list(rows) : B.op('*', R, B.list(rows));
     }
     d->surface = true;
-    generated_.push_back(ir::ExpandedOutput{{drawn.str(), B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt}, d, nullptr});
+    generated_.push_back(ir::ExpandedOutput{drawn.str(), B.loc(), B.call("hcat", {R, world_point(B, on).first}), std::nullopt, d, nullptr});
   };
   for (const Contact& c : m_.contacts) {
     if (m_.bodies.at(c.b.body).points_unknown) continue;
@@ -308,8 +308,8 @@ void Expander::draw_surfaces() {
     } else if (c.surface == Surface::Polygon) {
       d->shape = Drawing::Shape::Prism;
       const AstExpr& vertices = *given_in(c.attrs, contact_setting::vertices)->value;
-      for (const E& p : vertices.args)
-        for (const E& x : p->args)
+      for (const auto& p : vertices.args)
+        for (const auto& x : p->args)
           if (auto v = constants_.drawn_number(*x)) d->profile.push_back(*v);
       if (d->profile.size() != 2 * vertices.args.size()) continue;
     } else {
@@ -330,8 +330,8 @@ void Expander::draw_surfaces() {
   for (const Tyre& t : m_.tyres) {
     std::vector<double> profile;
     if (const AstAttr* given = given_in(t.attrs, tyre_setting::profile)) {
-      for (const E& p : given->value->args)
-        for (const E& x : p->args)
+      for (const auto& p : given->value->args)
+        for (const auto& x : p->args)
           if (auto v = constants_.drawn_number(*x)) profile.push_back(*v);
       if (profile.size() != 2 * given->value->args.size()) continue;
     }

@@ -15,8 +15,8 @@ namespace mbgc::multibody {
 namespace detail {
 
 std::vector<ir::ExpandedStmt> Expander::run() {
-  if (m_.gravity) property(Build(m_.gravity_loc), Sym::gravity(), m_.gravity);
-  for (const auto& [p, v] : m_.bodies.at("ground").points) property(Build(v->loc), Sym::ground_point(p), v);
+  if (m_.gravity) property(Build(m_.gravity_loc), Sym::gravity(), term(m_.gravity));
+  for (const auto& [p, v] : m_.bodies.at("ground").points) property(Build(v->loc), Sym::ground_point(p), term(v));
   for (const std::string& name : m_.body_order) emit_body(m_.bodies.at(name));
   for (const Joint& j : m_.joints) emit_joint(j);
   place_bodies();
@@ -37,15 +37,15 @@ std::vector<ir::ExpandedStmt> Expander::run() {
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const Sym& name, E value) {
   quantities_.generated(name.str());
-  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/false, true, name.dimension()});
+  generated_.push_back(ir::ExpandedParam{name.str(), B.loc(), std::move(value), std::nullopt, /*fold=*/false, true, name.dimension()});
 }
 
 void Expander::property(const Build& B, const Sym& name, E value) {
   quantities_.generated(name.str());
-  generated_.push_back(ir::ExpandedParam{{name.str(), B.loc(), std::move(value), std::nullopt}, /*fold=*/true, true, name.dimension()});
+  generated_.push_back(ir::ExpandedParam{name.str(), B.loc(), std::move(value), std::nullopt, /*fold=*/true, true, name.dimension()});
 }
 
-void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs) {
+void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<TermAttr> attrs) {
   quantities_.generated(name.str());
   ir::ExpandedElement el;
   el.kind = kind;
@@ -92,7 +92,7 @@ void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optiona
 
 void Expander::signal(const Build& B, const Sym& name, E value, E rate) {
   quantities_.generated(name.str());
-  generated_.push_back(ir::ExpandedSignal{{name.str(), B.loc(), std::move(value), std::nullopt}, std::move(rate), true});
+  generated_.push_back(ir::ExpandedSignal{name.str(), B.loc(), std::move(value), std::nullopt, std::move(rate), true});
 }
 
 void Expander::junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out) {

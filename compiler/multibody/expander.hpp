@@ -36,7 +36,7 @@
 
 namespace mbgc::multibody::detail {
 
-using namespace mbgc::ir;  // the multibody layer builds the AST's statements throughout
+using namespace mbgc::ir;  // the multibody layer builds the expanded program's statements throughout
 
 class Expander {
  public:
@@ -55,7 +55,7 @@ class Expander {
   // integrals, gravity), folded where it depends on literals (ExpandedParam::fold).
   void param(const Build& B, const Sym& name, E value);
   void property(const Build& B, const Sym& name, E value);
-  void element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<AstAttr> attrs = {});
+  void element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<TermAttr> attrs = {});
   /// A CN `name` holding `law.g` as `law` says (ir::ConstraintLaw).
   void constraint(const Build& B, const Sym& name, ir::ConstraintLaw law);
   void junction(const Build& B, char type, const Sym& name, int dim, const std::vector<Sym>& in, const std::vector<Sym>& out);

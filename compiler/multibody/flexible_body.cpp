@@ -25,7 +25,7 @@ void Expander::emit_flexible(const Body& body) {
   const Deformation& beam = *body.kind.field();
   Build B(d.loc);
   beam.params({B, d, [&](const Sym& name, E value) { property(B, name, std::move(value)); }, diags_});
-  for (const auto& [p, v] : body.points) property(B, n.point(p), v);
+  for (const auto& [p, v] : body.points) property(B, n.point(p), term(v));
   const int ne = beam.count(), N = 6 + ne;
   Eta eta = state_eta(B, d.name, beam);
   Eta rest = beam.split([&](int) { return B.num(0); });
@@ -43,7 +43,7 @@ void Expander::emit_flexible(const Body& body) {
   std::vector<Sym> nu_out = {n.M(), n.ejs()};
   if (own_states) nu_out.insert(nu_out.end(), {n.sv().port(1), n.sw().port(1), n.se().port(1)});
   junction(B, '1', n.nu(), N, nu_in, nu_out);
-  std::vector<AstAttr> M_init;
+  std::vector<TermAttr> M_init;
   if (own_states) {
     E R0 = B.call("rotq", {B.ref(n.q0())});
     E nu0 = B.call("vcat", {B.op('*', B.call("transpose", {R0}), B.ref(n.v0())), B.ref(n.w0()), B.call("zeros", {B.num(ne)})});
@@ -104,7 +104,7 @@ void Expander::emit_flexible(const Body& body) {
     bond(B, n.nusum(), n.nu());
   }
   // elasticity and modal damping on eta'
-  if (attr(d, beam_setting::damping)) modal_out.push_back(n.damp());
+  if (body_term(d, beam_setting::damping)) modal_out.push_back(n.damp());
   junction(B, '1', n.etadot(), ne, modal_in, modal_out);
   Rows K(static_cast<std::size_t>(ne), std::vector<E>(static_cast<std::size_t>(ne), B.num(0)));
   Rows D = K;
@@ -113,7 +113,7 @@ void Expander::emit_flexible(const Body& body) {
           {kv(element_setting::c_effort, B.op('*', rows_to_matrix(B, K), B.ref(Sym::own_displacement())), d.loc),
            kv(element_setting::q0, B.call("zeros", {B.num(ne)}), d.loc)});
   std::get<ir::ExpandedElement>(generated_.back()).state_limits = beam.limits(d.name);
-  if (attr(d, beam_setting::damping)) element(B, "R", n.damp(), rows_to_matrix(B, D));
+  if (body_term(d, beam_setting::damping)) element(B, "R", n.damp(), rows_to_matrix(B, D));
 }
 
 /// The load on b (world force F at Q, torque T) and its opposite on a, as

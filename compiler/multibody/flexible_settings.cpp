@@ -18,6 +18,23 @@
 
 namespace mbgc::multibody::detail {
 
+namespace {
+/// A point a modal-data file gives, as the literal [x, y, z] a model would write.
+ir::AstExprPtr literal_point(const ir::SourceLoc& loc, const std::array<double, 3>& x) {
+  auto list = std::make_shared<ir::AstExpr>();
+  list->kind = ir::AstExpr::Kind::List;
+  list->loc = loc;
+  for (double v : x) {
+    auto n = std::make_shared<ir::AstExpr>();
+    n->kind = ir::AstExpr::Kind::Number;
+    n->loc = loc;
+    n->number = v;
+    list->args.push_back(std::move(n));
+  }
+  return list;
+}
+}  // namespace
+
 // ---- 1b. flexible bodies -------------------------------------------------------------
 /// The floating frame (thesis Ch. 5). `joint`: attached to the beam at
 /// x = 0, which the mode set must leave in place (every set but free_free).
@@ -350,14 +367,13 @@ void Collector::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     m_.body_order.push_back(b.name);
     return;
   }
-  Build B(file.loc);
   for (const auto& [name, pt] : data->points) {
     if (ModalSym::parts().count(name)) {
       diags_.error(file.loc, fmt::format("the modal-data file names a point `{}`, which body `{}` uses for itself", name, b.name),
                    "rename the node in the file");
       continue;
     }
-    body.points[name] = B.vec(pt.position[0], pt.position[1], pt.position[2]);
+    body.points[name] = literal_point(file.loc, pt.position);
     point_locs_[BodySym(b.name).point(name).str()] = file.loc;
   }
   auto modal = std::make_shared<ModalBody>(std::make_shared<const flex::ModalData>(std::move(*data)));

@@ -40,7 +40,7 @@ void Expander::emit_force(const ForceElement& f) {
   Build B(f.decl->loc);
   auto user = [&](const Setting& s) -> E {
     const AstAttr* given = given_in(f.attrs, s);
-    return given ? rewrite_.expr(given->value) : nullptr;
+    return given ? rewrite_.expr(term(given->value)) : nullptr;
   };
   auto [pa, va] = world_point(B, f.a);
   auto [pb, vb] = world_point(B, f.b);

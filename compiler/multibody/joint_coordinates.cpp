@@ -43,7 +43,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       const Sym source = sym.rate_source(c);
       Rate k{junction, nullptr, B.ref(source.flow()), nullptr, nullptr, nullptr};
       if (prescribed) {
-        E motion = given_attr(joint, joint_setting::motion)->value;
+        E motion = term(given_attr(joint, joint_setting::motion)->value);
         x_.element(B, "Sf", source, B.call("partial_t", {motion}));
         x_.junction_(B, junction, {source});
         k.value = motion;

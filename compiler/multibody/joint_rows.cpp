@@ -48,7 +48,7 @@ void Expander::joint_params(const Build& B, const Joint& j) {
     else property(B, jn.point(side), B.op('-', point, B.ref(on.com())));
     const AstAttr* ax = given_attr(j, side == 'a' ? joint_setting::axis_a : joint_setting::axis_b);
     if (!ax) ax = given_attr(j, joint_setting::axis);
-    E axis = ax ? ax->value : B.vec(0, 0, 1);
+    E axis = ax ? term(ax->value) : B.vec(0, 0, 1);
     property(B, jn.axis(side), B.op('/', axis, B.call("norm", {axis})));
     property(B, jn.frame_q(side), B.call("quat_arc", {B.ref(jn.axis(side))}));
     property(B, jn.frame_R(side), B.call("rotq", {B.ref(jn.frame_q(side))}));
@@ -75,7 +75,7 @@ std::vector<E> Expander::rows(const Build& B, const Joint& j, const Frame& A, co
   std::vector<E> r;
   j.kind->rows(f, r);
   if (const AstAttr* m = given_attr(j, joint_setting::motion)) {
-    E motion = m->value;
+    E motion = term(m->value);
     if (j.kind->drives_along_axis()) r.push_back(B.op('-', B.dot(A.Z, f.d), motion));
     else r.push_back(B.op('*', f.scale, f.turned_by(motion)));  // scale * sin(theta - f(t)), without atan2
   }
@@ -152,7 +152,7 @@ void Expander::drive_loads(const Build& B, const Joint& j) {
   for (const Setting* drive : {&joint_setting::torque, &joint_setting::force}) {
     const AstAttr* load = given_attr(j, *drive);
     if (!load) continue;
-    element(B, "Se", jn.applied(), load->value);
+    element(B, "Se", jn.applied(), term(load->value));
     applied_.push_back(generated_.size() - 1);  // may read joint quantities (a torsion spring: -k * j.angle)
     bond(B, jn.applied(), jn.drive());
   }

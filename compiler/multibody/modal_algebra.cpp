@@ -30,7 +30,7 @@ E row_dot(const Build& B, const Sym& P, int i, const std::vector<E>& x, bool tra
 
 E sum_of(const Build& B, const std::vector<E>& terms) {
   E sum = nullptr;
-  for (const E& t : terms)
+  for (const auto& t : terms)
     if (t) sum = sum ? B.op('+', sum, t) : t;
   return sum ? sum : B.num(0);
 }

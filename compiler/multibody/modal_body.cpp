@@ -51,9 +51,9 @@ void ModalBody::params(const FieldParams& fp) const {
   fp.param(n.modal_mass(), matrix_param(B, t.modal_mass));
   // stiffness_scale = k: the same body with its Young's modulus times k (the modes and their mass stay)
   E stiffness = matrix_param(B, d.stiffness);
-  if (E k = attr(fp.decl, modal_setting::stiffness_scale)) stiffness = B.op('*', k, stiffness);
+  if (E k = body_term(fp.decl, modal_setting::stiffness_scale)) stiffness = B.op('*', k, stiffness);
   fp.param(n.stiffness(), stiffness);
-  fp.param(n.damping(), modal_damping(B, attr(fp.decl, beam_setting::damping), d.count, n.stiffness(), n.modal_mass()));
+  fp.param(n.damping(), modal_damping(B, body_term(fp.decl, beam_setting::damping), d.count, n.stiffness(), n.modal_mass()));
   for (const auto& [pt, node] : d.points) {
     fp.param(n.shape(pt), matrix_param(B, node.shape));
     fp.param(n.slope(pt), matrix_param(B, node.slope));

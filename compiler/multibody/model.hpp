@@ -28,7 +28,7 @@ class JointKind;
 struct Body {
   const ir::AstBody* decl = nullptr;
   BodyKind kind = Rigid{};               // ground, a particle (no inertia), rigid, or flexible (its field)
-  std::map<std::string, E> points;       // name -> body-frame coordinates (ground: inertial)
+  std::map<std::string, ir::AstExprPtr> points;  // name -> body-frame coordinates, as written (ground: inertial)
   bool placed = false;                   // initial pose known (ground, or from a tree joint)
   std::string placed_by;                 // joint that placed it
   bool by_coordinates = false;           // its pose is a function of joint coordinates (no states of its own)
@@ -84,12 +84,15 @@ struct Tyre {
   std::map<std::string, const ir::AstAttr*> attrs;
 };
 
-/// A body's setting `s` (null: not given).
-inline E attr(const ir::AstBody& b, const Setting& s) {
+/// A body's setting `s` as written (null: not given).
+inline ir::AstExprPtr attr(const ir::AstBody& b, const Setting& s) {
   for (const ir::AstAttr& a : b.attrs)
     if (a.key == s.name) return a.value;
   return nullptr;
 }
+
+/// A body's setting `s` as a term to write (null: not given).
+inline E body_term(const ir::AstBody& b, const Setting& s) { return term(attr(b, s)); }
 
 /// A joint's setting `s` as given (null: not given).
 inline const ir::AstAttr* given_attr(const Joint& j, const Setting& s) { return given_in(j.attrs, s); }
@@ -98,7 +101,7 @@ inline bool given(const Joint& j, const Setting& s) { return given_attr(j, s) !=
 /// A joint's setting `s`, or `fallback`.
 inline E setting_or(const Joint& j, const Setting& s, E fallback) {
   const ir::AstAttr* at = given_attr(j, s);
-  return at ? at->value : fallback;
+  return at ? term(at->value) : fallback;
 }
 
 
@@ -122,8 +125,8 @@ struct Model {
   std::vector<Contact> contacts;
   std::vector<Tyre> tyres;
   std::map<std::string, std::vector<LoadSym>> loads;  // body -> what pushes on it (force elements, friction, tyres)
-  std::map<std::string, E> params;             // the program's top-level parameters
-  E gravity;                                   // `gravity = [...]` (null: none)
+  std::map<std::string, ir::AstExprPtr> params;  // the program's top-level parameters, as written
+  ir::AstExprPtr gravity;                      // `gravity = [...]` as written (null: none)
   ir::SourceLoc gravity_loc;
   std::vector<const Joint*> tree_order;        // the spanning tree's joints, breadth first from ground (spanning_tree.hpp)
 };

@@ -16,7 +16,7 @@ QuantityRewriter::QuantityRewriter(const Quantities& quantities, const Model& m,
 
 /// `bob.positon`: a name under a body or joint that is none of its quantities,
 /// points or generated parts is a typo; say what the body or joint offers.
-void QuantityRewriter::check_known(const ir::AstExpr& e) {
+void QuantityRewriter::check_known(const ir::Term& e) {
   std::size_t dot = e.name.find('.');
   if (dot == std::string::npos) return;
   const std::string owner = e.name.substr(0, dot);
@@ -37,7 +37,7 @@ void QuantityRewriter::check_known(const ir::AstExpr& e) {
 
 E QuantityRewriter::expr(const E& e) {
   if (!e) return e;
-  if (e->kind == ir::AstExpr::Kind::Name) {
+  if (e->kind == ir::Term::Kind::Ref && e->ref.kind == ir::Ref::Kind::Name) {
     if (const E* definition = quantities_.find(e->name)) {
       used_.insert(e->name);
       return *definition;
@@ -47,12 +47,12 @@ E QuantityRewriter::expr(const E& e) {
   }
   bool changed = false;
   std::vector<E> args;
-  for (const E& a : e->args) {
+  for (const auto& a : e->args) {
     args.push_back(expr(a));
     changed |= args.back() != a;
   }
   if (!changed) return e;
-  auto copy = std::make_shared<ir::AstExpr>(*e);
+  auto copy = std::make_shared<ir::Term>(*e);
   copy->args = std::move(args);
   return copy;
 }
@@ -66,7 +66,7 @@ ir::ExpandedStmt QuantityRewriter::statement(const ir::ExpandedStmt& s) {
           st.value = expr(st.value);
         } else if constexpr (std::is_same_v<T, ir::ExpandedElement>) {
           st.value = expr(st.value);
-          for (ir::AstAttr& a : st.attrs) a.value = expr(a.value);
+          for (ir::TermAttr& a : st.attrs) a.value = expr(a.value);
         }
       },
       out);

@@ -36,7 +36,7 @@ class QuantityRewriter {
   const std::set<std::string>& used() const { return used_; }
 
  private:
-  void check_known(const ir::AstExpr& e);
+  void check_known(const ir::Term& e);
 
   const Quantities& quantities_;
   const Model& m_;

@@ -24,8 +24,8 @@ void Expander::emit_rigid(const Body& body) {
   const AstBody& d = *body.decl;
   const BodySym n(d.name);
   Build B(d.loc);
-  property(B, n.mass(), attr(d, body_setting::mass));
-  for (const auto& [p, v] : body.points) property(B, n.point(p), v);
+  property(B, n.mass(), body_term(d, body_setting::mass));
+  for (const auto& [p, v] : body.points) property(B, n.point(p), term(v));
   // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)
   // applied loads (force elements) push into the body's junctions
   std::vector<Sym> forces_in, torques_in;
@@ -47,7 +47,7 @@ void Expander::emit_rigid(const Body& body) {
   if (own_states) v_out.push_back(n.r());
   if (body_axes) v_out.push_back(n.ejs_v());
   junction(B, '1', n.v(), 3, forces_in, v_out);
-  std::vector<AstAttr> m_init, J_init;
+  std::vector<TermAttr> m_init, J_init;
   if (own_states) m_init.push_back(kv(element_setting::f0, B.ref(n.v0()), d.loc)), J_init.push_back(kv(element_setting::f0, B.ref(n.w0()), d.loc));
   element(B, "I", n.m(), B.op('*', B.ref(n.mass()), B.call("eye", {B.num(3)})), m_init);
   if (own_states)
@@ -60,9 +60,9 @@ void Expander::emit_rigid(const Body& body) {
   if (body_axes)
     element(B, "R", n.ejs_v(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
   if (body.kind.particle()) return;
-  E com = attr(d, body_setting::com);
+  E com = body_term(d, body_setting::com);
   property(B, n.com(), com ? com : B.vec(0, 0, 0));
-  property(B, n.inertia(), attr(d, body_setting::inertia));
+  property(B, n.inertia(), body_term(d, body_setting::inertia));
   std::vector<Sym> w_out = {n.J(), n.ejs()};
   if (own_states) w_out.push_back(n.qrate().port(1));
   junction(B, '1', n.w(), 3, torques_in, w_out);

@@ -140,7 +140,7 @@ ir::ConstantRules Constants::rules(bool functions) const {
 
 bool Constants::mentions_time(const AstExpr& e) {
   if (e.kind == AstExpr::Kind::Name && e.name == "t") return true;
-  for (const E& a : e.args)
+  for (const auto& a : e.args)
     if (a && mentions_time(*a)) return true;
   return false;
 }

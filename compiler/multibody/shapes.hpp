@@ -19,7 +19,7 @@ namespace mbgc::multibody::detail {
 class Constants {
  public:
   /// Over `params`, the program's top-level parameters (kept by reference).
-  explicit Constants(const std::map<std::string, E>& params) : params_(params) {}
+  explicit Constants(const std::map<std::string, ir::AstExprPtr>& params) : params_(params) {}
 
   /// The shape of `e` if it follows from numbers, lists, parameters and the
   /// built-in functions; nullopt when it cannot be told here (checked later).
@@ -39,7 +39,7 @@ class Constants {
   /// value); with `functions`, also pi and the scalar functions.
   ir::ConstantRules rules(bool functions) const;
   static constexpr int kMaxDepth = 50;
-  const std::map<std::string, E>& params_;
+  const std::map<std::string, ir::AstExprPtr>& params_;
 };
 
 }  // namespace mbgc::multibody::detail

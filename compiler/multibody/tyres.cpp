@@ -172,13 +172,13 @@ void Collector::check_profile(const Tyre& tyre, const AstExpr& v) {
   const char* how = "write profile = [[x1, h1], [x2, h2], ...]: the road's height h (m) at world x (m), x increasing; "
                     "between the points it is linear, outside them constant";
   const bool listed = v.kind == AstExpr::Kind::List && v.args.size() >= 2 &&
-                      std::all_of(v.args.begin(), v.args.end(), [](const E& p) { return p->kind == AstExpr::Kind::List && p->args.size() == 2; });
+                      std::all_of(v.args.begin(), v.args.end(), [](const auto& p) { return p->kind == AstExpr::Kind::List && p->args.size() == 2; });
   if (!listed) {
     diags_.error(v.loc, fmt::format("the profile of tyre `{}` is not a list of two or more [x, h] pairs", tyre.decl->name), how);
     return;
   }
   std::optional<double> previous;
-  for (const E& p : v.args) {
+  for (const auto& p : v.args) {
     auto x = constants_.constant_of(*p->args[0]);
     if (!x) {
       diags_.error(p->args[0]->loc, fmt::format("the profile of tyre `{}` has an x that is not a number", tyre.decl->name),
@@ -202,7 +202,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   // whole terms), run-time parameters where the model gives a parameter.
   for (const TyreSetting& s : kTyreSettings) {
     auto it = tyre.attrs.find(s.name);
-    property(B, tn.setting(s.name), it == tyre.attrs.end() ? B.num(s.default_value) : it->second->value);
+    property(B, tn.setting(s.name), it == tyre.attrs.end() ? B.num(s.default_value) : term(it->second->value));
   }
   auto sig = [&](const std::string& what, E value) {
     signal(B, tn.signal(what), std::move(value));
@@ -229,7 +229,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   auto [centre, v_centre] = world_point(B, tyre.wheel);
   E R = rotation(B, wheel);
   const AstAttr* axis = given_in(tyre.attrs, tyre_setting::axis);
-  E axis_local = axis ? axis->value : B.vec(0, 1, 0);
+  E axis_local = axis ? term(axis->value) : B.vec(0, 1, 0);
   E axle = mul(R, div(axis_local, B.call("norm", {axis_local})));
   E omega = mul(R, B.ref(BodySym(wheel).w().flow()));
 
@@ -238,10 +238,10 @@ void Expander::emit_tyre(const Tyre& tyre) {
   if (const AstAttr* profile = given_in(tyre.attrs, tyre_setting::profile)) {
     const AstExpr& pts = *profile->value;
     E x = sig("x", B.at(centre, 1));
-    h = sig("road_height", B.call("table", {x, profile->value}));  // the language's table: exact kinks
+    h = sig("road_height", B.call("table", {x, term(profile->value)}));  // the language's table: exact kinks
     // its slope: each segment's between its two points (select: a step that is no event)
     for (std::size_t k = 0; k + 1 < pts.args.size(); ++k) {
-      const E &x0 = pts.args[k]->args[0], &h0 = pts.args[k]->args[1], &x1 = pts.args[k + 1]->args[0], &h1 = pts.args[k + 1]->args[1];
+      const E x0 = term(pts.args[k]->args[0]), h0 = term(pts.args[k]->args[1]), x1 = term(pts.args[k + 1]->args[0]), h1 = term(pts.args[k + 1]->args[1]);
       slope = add(slope, mul(div(sub(h1, h0), sub(x1, x0)), sub(fn("select", sub(x, x0)), fn("select", sub(x, x1)))));
     }
     slope = sig("road_slope", slope);

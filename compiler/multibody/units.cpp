@@ -126,7 +126,7 @@ std::vector<ir::ExpandedUnitCheck> state_units(const Model& m, const Quantities&
     if (!dimension || !a.value) return;
     // the literals' units, each where it is written
     const bool wrong = !units::check_literal_units(*a.value, *dimension, what, diags);
-    if (!wrong && units::reads_a_name(*a.value)) out.push_back({rewrite.expr(a.value), *dimension, a.loc, what});
+    if (!wrong && units::reads_a_name(*a.value)) out.push_back({rewrite.expr(term(a.value)), *dimension, a.loc, what});
   };
   // what the user's expressions read of the bodies and joints (`arm.tip.position` is m)
   for (const std::string& name : used)

@@ -13,38 +13,21 @@ Binder::Binder(const ResolvedModel& model) : m_(model) {
   for (std::size_t b = 0; b < m_.bonds.size(); ++b) bonds_.emplace(m_.bonds[b].label, static_cast<int>(b));
 }
 
-TermPtr Binder::bind(const AstExpr& e, int scope, Diagnostics& diags, OwnQuantities own) const {
-  auto t = std::make_shared<Term>();
-  t->loc = e.loc;
-  t->number = e.number;
-  t->unit = e.unit;
-  t->op = e.op;
+TermPtr Binder::bind(const Term& e, int scope, Diagnostics& diags, OwnQuantities own) const {
+  auto t = std::make_shared<Term>(e);
   bool ok = true;
-  switch (e.kind) {
-    case AstExpr::Kind::Number: t->kind = Term::Kind::Number; break;
-    case AstExpr::Kind::Name:
-      t->kind = Term::Kind::Ref;
-      ok = leaf(e, scope, own, t->ref, diags);
-      break;
-    case AstExpr::Kind::Unary: t->kind = Term::Kind::Unary; break;
-    case AstExpr::Kind::Binary: t->kind = Term::Kind::Binary; break;
-    case AstExpr::Kind::Call: t->kind = Term::Kind::Call, t->name = e.name; break;
-    case AstExpr::Kind::Index: t->kind = Term::Kind::Index; break;
-    case AstExpr::Kind::List: t->kind = Term::Kind::List; break;
-    case AstExpr::Kind::String: t->kind = Term::Kind::String, t->name = e.name; break;
-  }
-  for (const AstExprPtr& a : e.args) {
-    TermPtr b = bind(*a, scope, diags, own);
-    ok = ok && b != nullptr;
-    t->args.push_back(std::move(b));
+  if (e.kind == Term::Kind::Ref && e.ref.kind == Ref::Kind::Name) ok = name(e, scope, own, t->ref, diags);
+  for (TermPtr& a : t->args) {
+    a = bind(*a, scope, diags, own);
+    ok = ok && a != nullptr;
   }
   return ok ? t : nullptr;
 }
 
-bool Binder::leaf(const AstExpr& e, int scope, OwnQuantities own, Ref& out, Diagnostics& diags) const {
+bool Binder::name(const Term& e, int scope, OwnQuantities own, Ref& out, Diagnostics& diags) const {
   const std::string& name = e.name;
-  if (name == "t") return out = {Ref::Kind::Time, -1, Quantity::e}, true;
-  if (name == "pi") return out = {Ref::Kind::Pi, -1, Quantity::e}, true;
+  if (name == "t") return out = {Ref::Kind::Time, -1, Quantity::value}, true;
+  if (name == "pi") return out = {Ref::Kind::Pi, -1, Quantity::value}, true;
   if (own.any) {
     if (name == "e") return out = {Ref::Kind::Own, -1, Quantity::e}, true;
     if (name == "f") return out = {Ref::Kind::Own, -1, Quantity::f}, true;
@@ -56,7 +39,8 @@ bool Binder::leaf(const AstExpr& e, int scope, OwnQuantities own, Ref& out, Diag
   if (scope != 0) tries.push_back(prefix + name);
   tries.push_back(name);
   for (const std::string& full : tries)
-    if (auto it = m_.param_index.find(full); it != m_.param_index.end()) return out = {Ref::Kind::Param, it->second, Quantity::e}, true;
+    if (auto it = m_.param_index.find(full); it != m_.param_index.end())
+      return out = {Ref::Kind::Param, it->second, Quantity::value}, true;
   for (const std::string& full : tries) {
     int found = quantity(full, e.loc, out, diags);
     if (found != 0) return found > 0;
@@ -70,7 +54,7 @@ bool Binder::leaf(const AstExpr& e, int scope, OwnQuantities own, Ref& out, Diag
 }
 
 int Binder::quantity(const std::string& full, const SourceLoc& loc, Ref& out, Diagnostics& diags) const {
-  if (auto it = signals_.find(full); it != signals_.end()) return out = {Ref::Kind::Signal, it->second, Quantity::e}, 1;
+  if (auto it = signals_.find(full); it != signals_.end()) return out = {Ref::Kind::Signal, it->second, Quantity::value}, 1;
   auto dot = full.rfind('.');
   if (dot == std::string::npos) return 0;
   std::string stem = full.substr(0, dot), q = full.substr(dot + 1);

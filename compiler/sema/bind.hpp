@@ -1,5 +1,5 @@
-// sema/bind.hpp — binding the names in an expression: AST expression ->
-// term (ir/term.hpp), each name replaced by what it stands for in its scope.
+// sema/bind.hpp — binding the refs of a term (ir/term.hpp): each name
+// replaced by what it stands for in its scope.
 //
 // Resolve binds every element law, signal, output and drawing with it once
 // the model is flattened, its parameters evaluated and its bonds bound. A
@@ -32,10 +32,10 @@ class Binder {
 
   /// `e` with its names bound in scope `scope` (an index into model.scopes);
   /// null after each unknown name was reported to `diags`.
-  ir::TermPtr bind(const ir::AstExpr& e, int scope, ir::Diagnostics& diags, OwnQuantities own = {}) const;
+  ir::TermPtr bind(const ir::Term& e, int scope, ir::Diagnostics& diags, OwnQuantities own = {}) const;
 
  private:
-  bool leaf(const ir::AstExpr& e, int scope, OwnQuantities own, ir::Ref& out, ir::Diagnostics& diags) const;
+  bool name(const ir::Term& e, int scope, OwnQuantities own, ir::Ref& out, ir::Diagnostics& diags) const;
   /// `X.q` for a signal, node or bond named `full`: 1 bound, 0 not found, -1 reported.
   int quantity(const std::string& full, const ir::SourceLoc& loc, ir::Ref& out, ir::Diagnostics& diags) const;
   std::vector<std::string> known_names() const;

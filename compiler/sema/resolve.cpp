@@ -34,7 +34,7 @@ NodeKind kind_of(const std::string& k) {
 struct PendingParam {
   std::string full;
   SourceLoc loc;
-  AstExprPtr expr;
+  TermPtr expr;
   int scope;  // scope its expression is evaluated in
   bool fold = false;  // ExpandedParam::fold: a constant where its value is one
   std::optional<DeclaredUnit> unit;
@@ -50,7 +50,7 @@ struct PendingEnd {
 
 /// An expression as written and the scope its names are read in.
 struct PendingExpr {
-  AstExprPtr expr;
+  TermPtr expr;
   int scope = 0;
 };
 
@@ -110,12 +110,11 @@ class Resolver {
     return true;
   }
 
-  /// The statements of the top level (ExpandedStmt) or of a component's
-  /// body (AstStmt, as written: none of the expansion's extensions).
-  template <class Stmt>
-  void flatten(const std::vector<Stmt>& stmts, int scope, int depth) {
+  /// The statements of the top level or of a component's body (as
+  /// written: none of the expansion's extensions).
+  void flatten(const std::vector<ExpandedStmt>& stmts, int scope, int depth) {
     const std::string prefix = m_.scopes[static_cast<std::size_t>(scope)].prefix;
-    for (const Stmt& s : stmts) {
+    for (const ExpandedStmt& s : stmts) {
       if (too_big_) return;
       std::visit(
           [&](const auto& st) {
@@ -124,50 +123,39 @@ class Resolver {
               if (depth == 0) top_loc_ = st.loc;
             if constexpr (std::is_same_v<T, AstModel>) {
               if (m_.model_name.empty()) m_.model_name = st.name;
-            } else if constexpr (std::is_same_v<T, AstImport>) {
-              // spliced by parse
-            } else if constexpr (std::is_base_of_v<AstParam, T>) {
-              bool fold = false, generated = false;
-              std::optional<units::Dimension> stated;
-              if constexpr (std::is_same_v<T, ExpandedParam>) fold = st.fold, generated = st.generated, stated = st.dimension;
+            } else if constexpr (std::is_same_v<T, ExpandedParam>) {
               if (claim_name(prefix + st.name, st.loc, "parameter"))
-                pending_params_.push_back(
-                    {prefix + st.name, st.loc, st.value, scope, fold, declared_unit(st.unit, st.value), generated, stated});
-            } else if constexpr (std::is_base_of_v<AstSignal, T>) {
-              AstExprPtr rate;
-              bool generated = false;
-              if constexpr (std::is_same_v<T, ExpandedSignal>) rate = st.rate, generated = st.generated;
+                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, st.fold,
+                                           declared_unit(st.unit, st.value), st.generated, st.dimension});
+            } else if constexpr (std::is_same_v<T, ExpandedSignal>) {
               if (claim_name(prefix + st.name, st.loc, "signal")) {
-                m_.signals.push_back({prefix + st.name, st.loc, nullptr, nullptr, st.unit, generated});
-                signal_exprs_.push_back({{st.value, scope}, {rate, scope}});
+                m_.signals.push_back({prefix + st.name, st.loc, nullptr, nullptr, st.unit, st.generated});
+                signal_exprs_.push_back({{st.value, scope}, {st.rate, scope}});
               }
-            } else if constexpr (std::is_base_of_v<AstOutput, T>) {
-              if constexpr (std::is_same_v<T, ExpandedOutput>)
-                if (st.drawing) {
-                  m_.drawings.push_back({st.drawing, st.loc, nullptr, nullptr});
-                  drawing_exprs_.push_back({{st.value, scope}, {st.modes, scope}});
-                  return;
-                }
+            } else if constexpr (std::is_same_v<T, ExpandedOutput>) {
+              if (st.drawing) {
+                m_.drawings.push_back({st.drawing, st.loc, nullptr, nullptr});
+                drawing_exprs_.push_back({{st.value, scope}, {st.modes, scope}});
+                return;
+              }
               if (claim_name("output " + prefix + st.name, st.loc, "output")) {
                 m_.outputs.push_back({prefix + st.name, st.loc, nullptr, nullptr, st.unit, false});
                 output_exprs_.push_back({st.value, scope});
               }
-            } else if constexpr (std::is_base_of_v<AstElement, T>) {
+            } else if constexpr (std::is_same_v<T, ExpandedElement>) {
               if (!claim_name(prefix + st.name, st.loc, "element")) return;
               ResolvedNode n;
               n.kind = kind_of(st.kind);
               n.name = prefix + st.name;
               n.loc = st.loc;
               n.kind_loc = st.kind_loc;
-              ExpandedElement el;
-              if constexpr (std::is_same_v<T, ExpandedElement>) el = st;
-              else el = as_expanded(st);
+              const ExpandedElement& el = st;
               n.tree = el.tree;
               n.generated = el.generated;
               n.element = BoundElement{el.kind, nullptr, {}, std::nullopt, el.configuration_dependent, el.state_limits};
-              elements_.push_back({m_.nodes.size(), std::move(el), scope});
+              elements_.push_back({m_.nodes.size(), el, scope});
               add_node(std::move(n));
-            } else if constexpr (std::is_base_of_v<AstJunction, T>) {
+            } else if constexpr (std::is_same_v<T, ExpandedJunction>) {
               if (!claim_name(prefix + st.name, st.loc, "junction")) return;
               ResolvedNode n;
               n.kind = st.type == '0' ? NodeKind::Zero : NodeKind::One;
@@ -176,7 +164,7 @@ class Resolver {
               n.kind_loc = st.kind_loc;
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
-              if constexpr (std::is_same_v<T, ExpandedJunction>) n.tree = st.tree, n.generated = st.generated;
+              n.tree = st.tree, n.generated = st.generated;
               add_node(std::move(n));
               AstEndpoint self{st.name, st.loc};
               for (const AstEndpoint& in : st.inputs)
@@ -279,7 +267,7 @@ class Resolver {
         std::optional<DeclaredUnit> unit = declared_unit(std::nullopt, a.value);
         for (const AstParam& p : comp.params)
           if (p.name == a.key && !unit) unit = declared_unit(p.unit, p.value);
-        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, a.value, scope, false, unit, false, std::nullopt});
+        pending_params_.push_back({m_.scopes.back().prefix + a.key, a.loc, to_term(a.value), scope, false, unit, false, std::nullopt});
         declared_[m_.scopes.back().prefix + a.key] = a.loc;
       } else {
         std::vector<std::string> names;
@@ -305,11 +293,14 @@ class Resolver {
         continue;
       }
       pending_params_.push_back(
-          {m_.scopes.back().prefix + p.name, p.loc, p.value, child, false, declared_unit(p.unit, p.value), false, std::nullopt});
+          {m_.scopes.back().prefix + p.name, p.loc, to_term(p.value), child, false, declared_unit(p.unit, p.value), false, std::nullopt});
       declared_[m_.scopes.back().prefix + p.name] = p.loc;
     }
     stack_.push_back(comp.name);
-    flatten(comp.body, child, depth + 1);
+    std::vector<ExpandedStmt> body;  // as written: none of the expansion's extensions
+    for (const AstStmt& st : comp.body)
+      if (ExpandedStmt e; as_expanded(st, e)) body.push_back(std::move(e));
+    flatten(body, child, depth + 1);
     stack_.pop_back();
   }
 
@@ -342,7 +333,7 @@ class Resolver {
       if (setting->dimension) {  // a literal's unit here; a parameter's, with the model's (units/check)
         const std::string what = fmt::format("{} of the simulate block", a.key);
         if (!units::check_literal_units(*a.value, *setting->dimension, what, diags_)) continue;
-        if (units::reads_a_name(*a.value)) setting_checks_.push_back({a.value, *setting->dimension, a.loc, what});
+        if (units::reads_a_name(*a.value)) setting_checks_.push_back({to_term(a.value), *setting->dimension, a.loc, what});
       }
       settings_.push_back({&(m_.settings.*(setting->slot)), a});
     }
@@ -384,6 +375,10 @@ class Resolver {
     return [this, scope](const std::string& name, const SourceLoc& loc) -> std::optional<Value> {
       return lookup_param(name, scope, loc);
     };
+  }
+  /// As param_lookup, for a parameter's value (a term whose refs are names).
+  RefLookup param_ref_lookup(int scope) {
+    return [this, scope](const Term& leaf) -> std::optional<Value> { return lookup_param(leaf.name, scope, leaf.loc); };
   }
 
   std::optional<Value> lookup_param(const std::string& name, int scope, const SourceLoc& loc) {
@@ -432,7 +427,7 @@ class Resolver {
     state_[i] = 1;
     eval_stack_.push_back(i);
     const PendingParam& p = pending_params_[i];
-    auto v = lower(*p.expr, param_lookup(p.scope), diags_);
+    auto v = lower(*p.expr, param_ref_lookup(p.scope), diags_);
     eval_stack_.pop_back();
     state_[i] = 2;
     if (!v) return false;
@@ -550,7 +545,7 @@ class Resolver {
       if (has_value_[i]) m_.param_index.emplace(pending_params_[i].full, static_cast<int>(i));
     if (diags_.has_errors()) return;  // a name may be unknown only because its declaration was in error
     const Binder binder(m_);
-    auto bind = [&](const AstExprPtr& e, int scope, OwnQuantities own = {}) -> TermPtr {
+    auto bind = [&](const TermPtr& e, int scope, OwnQuantities own = {}) -> TermPtr {
       return e ? binder.bind(*e, scope, diags_, own) : nullptr;
     };
     for (const PendingElement& pe : elements_) {
@@ -562,11 +557,11 @@ class Resolver {
         own.any = true;
         const bool free_rate = kind == NodeKind::Sf && !el.value &&
                                std::any_of(el.attrs.begin(), el.attrs.end(),
-                                           [](const AstAttr& a) { return a.key == element_setting::rate0.key; });
+                                           [](const TermAttr& a) { return a.key == element_setting::rate0.key; });
         own.state = kind == NodeKind::I ? 'p' : (kind == NodeKind::C || free_rate) ? 'q' : 0;
       }
       out.value = bind(el.value, pe.scope);
-      for (const AstAttr& a : el.attrs) {
+      for (const TermAttr& a : el.attrs) {
         const ElementSetting* setting = find_element_setting(kind, a.key);
         const bool law = setting && setting->role == ElementSetting::Role::Law;
         out.attrs.push_back({a.key, a.loc, setting ? bind(a.value, pe.scope, law ? own : OwnQuantities{}) : nullptr});
@@ -574,7 +569,7 @@ class Resolver {
       if (el.constraint) {
         BoundConstraintLaw law;
         for (std::size_t f = 0; f < ConstraintLaw::fields().size(); ++f) {
-          const AstExprPtr& value = (*el.constraint).*ConstraintLaw::fields()[f].member;
+          const TermPtr& value = (*el.constraint).*ConstraintLaw::fields()[f].member;
           law.*BoundConstraintLaw::fields()[f].member = bind(value, pe.scope, f == 0 ? own : OwnQuantities{});
         }
         out.constraint = law;

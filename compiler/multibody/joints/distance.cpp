@@ -22,7 +22,7 @@ class Distance final : public JointKind {
                   "spherical joint: write joint " + j.name + " spherical(...)");
   }
   void params(const Joint& j, const std::function<void(const Sym&, E)>& param) const override {
-    param(JointSym(j.decl->name).length(), given_attr(j, joint_setting::length)->value);
+    param(JointSym(j.decl->name).length(), term(given_attr(j, joint_setting::length)->value));
   }
   /// (|d|^2 - L^2) / (2 L): one row, in metres.
   void rows(const JointFrames& f, std::vector<E>& r) const override {

@@ -21,7 +21,7 @@ class Screw final : public JointKind {
                       j.name + " revolute(...)");
   }
   void params(const Joint& j, const std::function<void(const Sym&, E)>& param) const override {
-    param(JointSym(j.decl->name).pitch(), given_attr(j, joint_setting::pitch)->value);
+    param(JointSym(j.decl->name).pitch(), term(given_attr(j, joint_setting::pitch)->value));
   }
   /// On the axis, aligned, and the slide s = pitch * theta, written without
   /// atan2 (no wrap): pitch * sin(theta - s / pitch) = 0. 5 rows.
