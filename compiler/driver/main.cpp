@@ -133,5 +133,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   opt.exit_when_done = true;
-  return mbgc::driver::compile(opt, std::cout, std::cerr);
+  try {
+    return mbgc::driver::compile(opt, std::cout, std::cerr);
+  } catch (const mbgc::ir::InternalError& e) {
+    std::cerr << "mbgc: internal error: " << e.what() << "\n(a bug in mbgc, not in the model: please report it with the model)\n";
+    return 70;
+  }
 }

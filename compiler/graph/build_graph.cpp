@@ -376,6 +376,7 @@ class Builder {
         case Ref::Kind::Node: return node_quantity(ref, leaf.loc);
         case Ref::Kind::Bond: return bond_value(ref.id, ref.quantity == Quantity::e, 1);
         case Ref::Kind::Own:
+          if (!own) throw InternalError(fmt::format("`{}` reads an element's own quantity outside its law", leaf.name));
           return ref.quantity == Quantity::e ? own->e : ref.quantity == Quantity::f ? own->f : own->state;
         case Ref::Kind::Time:
         case Ref::Kind::Pi: break;  // (lowering knows them)

@@ -9,6 +9,7 @@
 //      hint: did you mean `rotor`?
 #pragma once
 
+#include <stdexcept>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -78,6 +79,12 @@ class Diagnostics {
   const SourceManager* sources_;
   std::vector<Diagnostic> list_;
   int errors_ = 0;
+};
+
+/// A mistake of the compiler's own (a pass wrote what the next cannot read),
+/// never the user's: the driver reports it as an internal error.
+struct InternalError : std::logic_error {
+  using std::logic_error::logic_error;
 };
 
 /// Closest candidate by edit distance (for "did you mean"); empty if none is close.

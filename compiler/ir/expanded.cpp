@@ -26,7 +26,8 @@ bool as_expanded(const AstStmt& s, ExpandedStmt& out) {
         else if constexpr (std::is_same_v<T, AstOutput>)
           out = ExpandedOutput{st.name, st.loc, to_term(st.value), st.unit, nullptr, nullptr};
         else if constexpr (std::is_same_v<T, AstElement>) out = as_expanded(st);
-        else if constexpr (std::is_same_v<T, AstJunction>) out = ExpandedJunction{st, {}, false};
+        else if constexpr (std::is_same_v<T, AstJunction>) out = ExpandedJunction{st, {}, false, -1};
+        else if constexpr (std::is_same_v<T, AstBond>) out = ExpandedBond{st, -1};
         else if constexpr (std::is_constructible_v<ExpandedStmt, T>) out = st;
         else return false;
         return true;

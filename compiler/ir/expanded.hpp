@@ -37,6 +37,7 @@ struct ExpandedParam {
   /// What the multibody layer states of a generated one's dimension (a
   /// body's mass is kg), where it knows it: its value is not read for units.
   std::optional<units::Dimension> dimension = std::nullopt;
+  int symbol = -1;  // the multibody layer's: its ExpandedProgram::symbols id (what refers to it)
 };
 
 /// A signal; `rate`, where the expansion knows its time derivative in closed
@@ -49,6 +50,7 @@ struct ExpandedSignal {
   std::optional<AstUnit> unit;
   TermPtr rate = nullptr;
   bool generated = false;  // by the multibody layer, not the user (as below)
+  int symbol = -1;         // as ExpandedParam's
 };
 
 /// An output. The expansion writes one per body it draws (`drawing` set):
@@ -126,15 +128,22 @@ struct ExpandedElement {
   /// A CN the multibody layer writes: its settings (a user's CN has them in
   /// `attrs`, by name).
   std::optional<ConstraintLaw> constraint = std::nullopt;
+  int symbol = -1;  // as ExpandedParam's
 };
 
 struct ExpandedJunction : AstJunction {
   TreeTag tree;
   bool generated = false;  // as ExpandedElement's
+  int symbol = -1;         // as ExpandedParam's
+};
+
+/// A bond; the multibody layer's named ones have a symbol, as ExpandedParam's.
+struct ExpandedBond : AstBond {
+  int symbol = -1;
 };
 
 using ExpandedStmt = std::variant<AstModel, ExpandedParam, ExpandedSignal, ExpandedOutput, ExpandedElement,
-                                  ExpandedJunction, AstBond, AstSimulate, AstInstance, std::shared_ptr<AstComponent>>;
+                                  ExpandedJunction, ExpandedBond, AstSimulate, AstInstance, std::shared_ptr<AstComponent>>;
 
 /// What the multibody layer states of a value the user wrote in one of its
 /// statements (a joint's `torque` is N*m, a body's `mass` kg): units/check
@@ -151,6 +160,9 @@ struct ExpandedUnitCheck {
 
 struct ExpandedProgram {
   std::vector<ExpandedStmt> stmts;
+  /// What the multibody layer's terms refer to (Ref::Symbol's id): each
+  /// symbol's name, which one of the statements above declares (its `symbol`).
+  std::vector<std::string> symbols;
   std::vector<ExpandedUnitCheck> unit_checks;
 };
 

@@ -108,7 +108,7 @@ static void ast_stmts(std::string& out, const std::vector<Stmt>& stmts, int inde
             for (const auto& e : st.outputs) o.push_back(e.path);
             out += fmt::format("{}{} {}{} : {} -> {}\n", pad, st.type, st.name, st.dim ? fmt::format(" [{}]", *st.dim) : "",
                                fmt::join(in, ", "), fmt::join(o, ", "));
-          } else if constexpr (std::is_same_v<T, AstBond>) {
+          } else if constexpr (std::is_base_of_v<AstBond, T>) {
             out += fmt::format("{}bond {}{} -> {}{}\n", pad, st.name.empty() ? "" : st.name + ": ", st.from.path, st.to.path,
                                st.dim ? fmt::format(" [{}]", *st.dim) : "");
           } else if constexpr (std::is_same_v<T, AstSimulate>) {

@@ -19,16 +19,24 @@ using E = ir::TermPtr;
 // ---- building terms (all carry the location of the declaration) --------------------
 class Build {
  public:
-  explicit Build(ir::SourceLoc loc) : loc_(loc) {}
+  /// Terms at `loc`, their references given ids by `symbols`.
+  Build(ir::SourceLoc loc, SymbolIds& symbols) : loc_(loc), symbols_(&symbols) {}
   E num(double v) const { return make(ir::Term::Kind::Number, [&](ir::Term& e) { e.number = v; }); }
   /// What the layer wrote under `s`, or one of its variables (a name is
   /// never built here: symbols.hpp).
   E ref(const Sym& s) const {
     return make(ir::Term::Kind::Ref, [&](ir::Term& e) {
-      e.name = s.str();
-      e.ref = {ir::Ref::Kind::Name, -1, ir::Quantity::value};
+      e.name = s.str();  // (shown in dumps)
+      switch (s.kind()) {
+        case Sym::Kind::Own: e.ref = {ir::Ref::Kind::Own, -1, s.quantity()}; break;
+        case Sym::Kind::Pi: e.ref = {ir::Ref::Kind::Pi, -1, ir::Quantity::value}; break;
+        case Sym::Kind::Entity: e.ref = {ir::Ref::Kind::Symbol, symbols_->id(s.owner()), s.quantity()}; break;
+      }
     });
   }
+  /// The id of the entity `s` (what its declaration carries).
+  int id(const Sym& s) const { return symbols_->id(s.owner()); }
+  SymbolIds& symbols() const { return *symbols_; }
   E op(char o, E a, E b) const {
     return make(ir::Term::Kind::Binary, [&](ir::Term& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });
   }
@@ -52,6 +60,7 @@ class Build {
     return e;
   }
   ir::SourceLoc loc_;
+  SymbolIds* symbols_;
 };
 
 /// m[r, c] (1-based), for a matrix-valued expression.

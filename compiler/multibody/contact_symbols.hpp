@@ -20,8 +20,8 @@ namespace mbgc::multibody::detail {
 class ConstraintSym : public Sym {
  public:
   explicit ConstraintSym(const Sym& cn) : Sym(cn) {}
-  Sym closed() const { return part("closed"); }  // 1 while the contact is closed
-  Sym stick() const { return part("stick"); }    // 1 while its friction sticks
+  Sym closed() const { return variable("closed", ir::Quantity::closed); }  // 1 while the contact is closed
+  Sym stick() const { return variable("stick", ir::Quantity::stick); }    // 1 while its friction sticks
 };
 
 /// A 3-vector written as three signals `v_1`, `v_2`, `v_3` (a signal is a

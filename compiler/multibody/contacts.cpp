@@ -224,7 +224,7 @@ std::pair<E, E> Expander::polygon_gap(const Build& B, const Contact& c, E d) {
 
 void Expander::emit_contact(const Contact& c) {
   const ContactSym cn(c.decl->name);
-  Build B(c.decl->loc);
+  Build B(c.decl->loc, symbols_);
   auto setting = [&](const Setting& s, E fallback) -> E {
     const AstAttr* given = given_in(c.attrs, s);
     return given ? term(given->value) : fallback;

@@ -235,7 +235,7 @@ void Expander::draw_bodies() {
   for (const std::string& n : m_.body_order) {
     const Body& body = m_.bodies.at(n);
     if (body.kind.ground() || body.points_unknown) continue;
-    Build B(body.decl->loc);
+    Build B(body.decl->loc, symbols_);
     auto d = std::make_shared<Drawing>(body.kind.field() ? body.kind.field()->drawing(scale) : body.shape ? *body.shape : default_drawing(body, scale));
     d->body = n;
     d->colour = palette(index++);
@@ -263,7 +263,7 @@ void Expander::draw_surfaces() {
   // (`drawn`: the name of the output posing it)
   auto add = [&](std::shared_ptr<Drawing> d, const Sym& drawn, const Side& on, const std::array<std::array<double, 3>, 3>* turn,
                  const SourceLoc& loc) {
-    Build B(loc);
+    Build B(loc, symbols_);
     const Body& body = m_.bodies.at(on.body);
     E R = rotation(B, on.body);
     if (turn) {

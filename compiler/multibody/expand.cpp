@@ -15,8 +15,8 @@ namespace mbgc::multibody {
 namespace detail {
 
 std::vector<ir::ExpandedStmt> Expander::run() {
-  if (m_.gravity) property(Build(m_.gravity_loc), Sym::gravity(), term(m_.gravity));
-  for (const auto& [p, v] : m_.bodies.at("ground").points) property(Build(v->loc), Sym::ground_point(p), term(v));
+  if (m_.gravity) property(Build(m_.gravity_loc, symbols_), Sym::gravity(), term(m_.gravity));
+  for (const auto& [p, v] : m_.bodies.at("ground").points) property(Build(v->loc, symbols_), Sym::ground_point(p), term(v));
   for (const std::string& name : m_.body_order) emit_body(m_.bodies.at(name));
   for (const Joint& j : m_.joints) emit_joint(j);
   place_bodies();
@@ -37,12 +37,12 @@ std::vector<ir::ExpandedStmt> Expander::run() {
 // ---- 2. bodies -------------------------------------------------------------------------
 void Expander::param(const Build& B, const Sym& name, E value) {
   quantities_.generated(name.str());
-  generated_.push_back(ir::ExpandedParam{name.str(), B.loc(), std::move(value), std::nullopt, /*fold=*/false, true, name.dimension()});
+  generated_.push_back(ir::ExpandedParam{name.str(), B.loc(), std::move(value), std::nullopt, /*fold=*/false, true, name.dimension(), B.id(name)});
 }
 
 void Expander::property(const Build& B, const Sym& name, E value) {
   quantities_.generated(name.str());
-  generated_.push_back(ir::ExpandedParam{name.str(), B.loc(), std::move(value), std::nullopt, /*fold=*/true, true, name.dimension()});
+  generated_.push_back(ir::ExpandedParam{name.str(), B.loc(), std::move(value), std::nullopt, /*fold=*/true, true, name.dimension(), B.id(name)});
 }
 
 void Expander::element(const Build& B, const std::string& kind, const Sym& name, E value, std::vector<TermAttr> attrs) {
@@ -56,6 +56,7 @@ void Expander::element(const Build& B, const std::string& kind, const Sym& name,
   el.attrs = std::move(attrs);
   el.tree = tree_tag_;
   el.generated = true;
+  el.symbol = B.id(name);
   generated_.push_back(std::move(el));
 }
 
@@ -77,11 +78,12 @@ void Expander::junction(const Build& B, char type, const Sym& name, int dim, con
   for (const Sym& s : out) j.outputs.push_back({s.str(), B.loc()});
   j.tree = tree_tag_;
   j.generated = true;
+  j.symbol = B.id(name);
   generated_.push_back(std::move(j));
 }
 
 void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optional<int> dim) {
-  AstBond b;
+  ir::ExpandedBond b;
   b.loc = B.loc();
   b.dim = dim;
   b.dim_loc = B.loc();
@@ -92,7 +94,7 @@ void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optiona
 
 void Expander::signal(const Build& B, const Sym& name, E value, E rate) {
   quantities_.generated(name.str());
-  generated_.push_back(ir::ExpandedSignal{name.str(), B.loc(), std::move(value), std::nullopt, std::move(rate), true});
+  generated_.push_back(ir::ExpandedSignal{name.str(), B.loc(), std::move(value), std::nullopt, std::move(rate), true, B.id(name)});
 }
 
 void Expander::junction_(const Build& B, const Sym& name, const std::vector<Sym>& in, const std::vector<Sym>& out) {
@@ -101,7 +103,9 @@ void Expander::junction_(const Build& B, const Sym& name, const std::vector<Sym>
 
 void Expander::named_bond(const Build& B, const Sym& name, const Sym& from, const Sym& to) {
   bond(B, from, to);
-  std::get<AstBond>(generated_.back()).name = name.str();
+  auto& b = std::get<ir::ExpandedBond>(generated_.back());
+  b.name = name.str();
+  b.symbol = B.id(name);
   quantities_.generated(name.str());
 }
 
@@ -118,11 +122,13 @@ ir::ExpandedProgram expand(const ir::AstProgram& program, ir::SourceManager& sou
   if (diags.has_errors()) return {};
   Quantities quantities;
   QuantityRewriter rewrite(quantities, m, diags);
-  std::vector<ir::ExpandedStmt> generated = Expander(m, quantities, rewrite, diags).run();
+  SymbolIds symbols;
+  std::vector<ir::ExpandedStmt> generated = Expander(m, quantities, rewrite, symbols, diags).run();
   ir::ExpandedProgram out;
   out.stmts = rewrite_user_statements(program, rewrite);  // the user's statements first, then the layer's
   for (ir::ExpandedStmt& s : generated) out.stmts.push_back(std::move(s));
-  if (!diags.has_errors()) out.unit_checks = state_units(m, quantities, rewrite.used(), diags);
+  if (!diags.has_errors()) out.unit_checks = state_units(m, quantities, rewrite.used(), symbols, diags);
+  out.symbols = symbols.take();
   return out;
 }
 

@@ -42,8 +42,9 @@ class Expander {
  public:
   /// Writes `m`'s fragments (run), defining its quantities in `quantities` as it goes; the joints' drive
   /// loads and the force elements' laws it writes are user expressions, which `rewrite` rewrites against them.
-  Expander(const Model& m, Quantities& quantities, QuantityRewriter& rewrite, Diagnostics& diags)
-      : m_(m), quantities_(quantities), rewrite_(rewrite), diags_(diags) {}
+  /// Its references and declarations take their symbols' ids from `symbols`.
+  Expander(const Model& m, Quantities& quantities, QuantityRewriter& rewrite, SymbolIds& symbols, Diagnostics& diags)
+      : m_(m), quantities_(quantities), rewrite_(rewrite), symbols_(symbols), diags_(diags) {}
 
   /// The fragments, in the order they are written.
   std::vector<ir::ExpandedStmt> run();
@@ -133,6 +134,7 @@ class Expander {
   const Model& m_;              // what the collect pass read (collect.hpp), its spanning tree planned (spanning_tree.hpp)
   Quantities& quantities_;      // what users may name, as far as it is written
   QuantityRewriter& rewrite_;   // user expressions the fragments hold, rewritten against quantities_
+  SymbolIds& symbols_;
   Diagnostics& diags_;
   Constants constants_{m_.params};
   std::map<std::string, std::pair<Frame, Frame>> frames_;

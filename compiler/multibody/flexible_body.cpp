@@ -23,7 +23,7 @@ void Expander::emit_flexible(const Body& body) {
   const AstBody& d = *body.decl;
   const FlexibleSym n(d.name);
   const Deformation& beam = *body.kind.field();
-  Build B(d.loc);
+  Build B(d.loc, symbols_);
   beam.params({B, d, [&](const Sym& name, E value) { property(B, name, std::move(value)); }, diags_});
   for (const auto& [p, v] : body.points) property(B, n.point(p), term(v));
   const int ne = beam.count(), N = 6 + ne;

@@ -37,7 +37,7 @@ std::pair<E, E> Expander::world_point(const Build& B, const Side& s) {
 
 void Expander::emit_force(const ForceElement& f) {
   const ForceSym fn(f.decl->name);
-  Build B(f.decl->loc);
+  Build B(f.decl->loc, symbols_);
   auto user = [&](const Setting& s) -> E {
     const AstAttr* given = given_in(f.attrs, s);
     return given ? rewrite_.expr(term(given->value)) : nullptr;

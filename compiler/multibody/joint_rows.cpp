@@ -161,7 +161,7 @@ void Expander::drive_loads(const Build& B, const Joint& j) {
 void Expander::emit_joint(const Joint& j) {
   const AstJoint& d = *j.decl;
   const JointSym jn(d.name);
-  Build B(d.loc);
+  Build B(d.loc, symbols_);
   joint_params(B, j);
   j.kind->params(j, [&](const Sym& name, E value) { property(B, name, std::move(value)); });
   Frame A = frame(B, j, j.a, 'a');

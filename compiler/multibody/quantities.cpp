@@ -17,7 +17,7 @@ void Expander::define_quantities() {
   for (const std::string& name : m_.body_order) {
     const Body& body = m_.bodies.at(name);
     const BodySym n(name);
-    Build B(body.decl->loc);
+    Build B(body.decl->loc, symbols_);
     if (body.kind.field()) {
       flexible_quantities(B, body);
       continue;
@@ -50,7 +50,7 @@ void Expander::define_quantities() {
   }
   for (const Joint& j : m_.joints) {
     const JointSym jn(j.decl->name);
-    Build B(j.decl->loc);
+    Build B(j.decl->loc, symbols_);
     auto quantity = [&](const char* q, E value) { quantities_.define(jn.quantity(q), std::move(value)); };
     const auto& [A, Bf] = frames_.at(j.decl->name);
     const Frame& body_side = Bf.kind.ground() ? A : Bf;

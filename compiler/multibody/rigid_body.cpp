@@ -23,7 +23,7 @@ void Expander::emit_body(const Body& body) {
 void Expander::emit_rigid(const Body& body) {
   const AstBody& d = *body.decl;
   const BodySym n(d.name);
-  Build B(d.loc);
+  Build B(d.loc, symbols_);
   property(B, n.mass(), body_term(d, body_setting::mass));
   for (const auto& [p, v] : body.points) property(B, n.point(p), term(v));
   // initial pose and velocity (overwritten by place_bodies for joint-placed bodies)

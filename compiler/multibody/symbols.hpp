@@ -12,10 +12,13 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "ir/term.hpp"
 #include "multibody/settings.hpp"
 #include "units/unit.hpp"
 
@@ -27,25 +30,34 @@ namespace mbgc::multibody::detail {
 /// report read it: ExpandedParam::dimension).
 class Sym {
  public:
+  /// Its name as the generated program shows it (`arm.v.f`).
   const std::string& str() const { return name_; }
   const std::optional<units::Dimension>& dimension() const { return dimension_; }
+  /// What a reference to it is: a declared entity's symbol (the owner's, for
+  /// one of its variables), an element's own quantity inside its law, or pi.
+  enum class Kind { Entity, Own, Pi };
+  Kind kind() const { return kind_; }
+  /// The entity a reference reads: itself, or the element or junction whose variable it is.
+  const std::string& owner() const { return owner_.empty() ? name_ : owner_; }
+  /// Which variable of its owner it is (ir::Quantity::value: the entity itself).
+  ir::Quantity quantity() const { return quantity_; }
 
   // The variables the graph gives an element or a junction.
-  Sym effort() const { return part("e"); }
-  Sym flow() const { return part("f"); }
-  Sym momentum() const { return part("p"); }      // an I's state
-  Sym displacement() const { return part("q"); }  // a C's state
+  Sym effort() const { return variable("e", ir::Quantity::e); }
+  Sym flow() const { return variable("f", ir::Quantity::f); }
+  Sym momentum() const { return variable("p", ir::Quantity::p); }      // an I's state
+  Sym displacement() const { return variable("q", ir::Quantity::q); }  // a C's state
   /// End k (1 or 2) of a two-port (MTF, TF, GY), as a bond names it.
   Sym port(int k) const { return part(fmt::format("p{}", k)); }
   /// The effort and flow of a two-port's bond at end k (`m.e1`, `m.f1`).
-  Sym effort(int k) const { return part(fmt::format("e{}", k)); }
-  Sym flow(int k) const { return part(fmt::format("f{}", k)); }
+  Sym effort(int k) const { return variable(fmt::format("e{}", k), k == 1 ? ir::Quantity::e1 : ir::Quantity::e2); }
+  Sym flow(int k) const { return variable(fmt::format("f{}", k), k == 1 ? ir::Quantity::f1 : ir::Quantity::f2); }
 
   /// Inside an element's own law: its flow and its displacement.
-  static Sym own_flow() { return Sym("f"); }
-  static Sym own_displacement() { return Sym("q"); }
+  static Sym own_flow() { return special("f", Kind::Own, ir::Quantity::f); }
+  static Sym own_displacement() { return special("q", Kind::Own, ir::Quantity::q); }
   /// The built-in constant.
-  static Sym pi() { return Sym("pi"); }
+  static Sym pi() { return special("pi", Kind::Pi, ir::Quantity::value); }
   /// The gravity vector (`gravity = [...]`, world frame).
   static Sym gravity() { return Sym("gravity", units::dim::velocity() / units::dim::time()); }
   /// A point the user declared on ground.
@@ -61,10 +73,43 @@ class Sym {
   }
   /// A parameter that holds setting `s`'s value: its name and its dimension.
   Sym part(const Setting& s) const { return part(s.name, s.dimension); }
+  /// Variable `q` of this element or junction, shown as `entity.what`.
+  Sym variable(const std::string& what, ir::Quantity q) const {
+    Sym v = part(what);
+    v.owner_ = name_;
+    v.quantity_ = q;
+    return v;
+  }
 
  private:
+  static Sym special(const std::string& name, Kind kind, ir::Quantity q) {
+    Sym s(name);
+    s.kind_ = kind;
+    s.quantity_ = q;
+    return s;
+  }
   std::string name_;
   std::optional<units::Dimension> dimension_;
+  Kind kind_ = Kind::Entity;
+  std::string owner_;                         // a variable's element or junction
+  ir::Quantity quantity_ = ir::Quantity::value;
+};
+
+/// The ids of the symbols the layer writes and reads, in the order first
+/// named (ir::ExpandedProgram::symbols): a reference and the declaration it
+/// reads share one.
+class SymbolIds {
+ public:
+  int id(const std::string& name) {
+    auto [it, fresh] = ids_.emplace(name, static_cast<int>(names_.size()));
+    if (fresh) names_.push_back(name);
+    return it->second;
+  }
+  std::vector<std::string> take() { return std::move(names_); }
+
+ private:
+  std::unordered_map<std::string, int> ids_;
+  std::vector<std::string> names_;
 };
 
 /// What pushes on a body: a force element, a contact's friction, a tyre.

@@ -21,7 +21,7 @@ void Expander::place_bodies() {
   for (const std::string& n : m_.body_order) {
     const Body& body = m_.bodies.at(n);
     const AstBody& d = *body.decl;
-    Build B(d.loc);
+    Build B(d.loc, symbols_);
     if (body.placed) {
       for (const Setting* initial : {&body_setting::r0, &body_setting::quat0, &body_setting::v0, &body_setting::w0})
         for (const AstAttr& a : d.attrs)
@@ -63,7 +63,7 @@ Pose Expander::pose(const Build& B, const std::string& body) {
 /// Initial pose of the child of a tree joint from its parent and the joint coordinates.
 void Expander::place(const Joint& j, bool a_is_parent) {
   const JointSym jn(j.decl->name);
-  Build B(j.decl->loc);
+  Build B(j.decl->loc, symbols_);
   const auto [angle, angle_rate, axial, axial_rate, qrel, w_rel, v_rel] = j.kind->initial(B, j);
   E axis_a = B.ref(jn.axis('a'));
   E pa = B.op('+', B.ref(jn.point('a')), B.op('*', axis_a, axial));  // A's point, moved along the axis

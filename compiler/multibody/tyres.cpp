@@ -196,7 +196,7 @@ void Collector::check_profile(const Tyre& tyre, const AstExpr& v) {
 void Expander::emit_tyre(const Tyre& tyre) {
   const TyreSym tn(tyre.decl->name);
   const std::string& wheel = tyre.wheel.body;
-  Build B(tyre.decl->loc);
+  Build B(tyre.decl->loc, symbols_);
   auto p = [&](const std::string& key) { return B.ref(tn.setting(key)); };
   // Properties: folded where they are numbers (the defaults' zeros remove
   // whole terms), run-time parameters where the model gives a parameter.

@@ -117,7 +117,8 @@ std::optional<units::Dimension> quantity_dimension(const std::string& name) {
 }  // namespace
 
 std::vector<ir::ExpandedUnitCheck> state_units(const Model& m, const Quantities& quantities,
-                                               const std::set<std::string>& used, ir::Diagnostics& diags) {
+                                               const std::set<std::string>& used, SymbolIds& symbols,
+                                               ir::Diagnostics& diags) {
   std::vector<ir::ExpandedUnitCheck> out;
   // the settings' values are rewritten as the user's statements were; what they read is not stated again
   QuantityRewriter rewrite(quantities, m, diags);
@@ -168,7 +169,7 @@ std::vector<ir::ExpandedUnitCheck> state_units(const Model& m, const Quantities&
     const TyreSym tyre(t.decl->name);
     for (const auto& [q, d] : quantity_dimensions())
       if (const Sym s = tyre.signal(q); quantities.is_generated(s.str()))
-        out.push_back({Build(t.decl->loc).ref(s), d, t.decl->loc, fmt::format("`{}`", s.str()), true});
+        out.push_back({Build(t.decl->loc, symbols).ref(s), d, t.decl->loc, fmt::format("`{}`", s.str()), true});
   }
   if (m.gravity) state_unit(ir::AstAttr{"gravity", m.gravity_loc, m.gravity}, units::dim::velocity() / units::dim::time(),
                            "gravity");

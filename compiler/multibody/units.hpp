@@ -18,6 +18,7 @@
 namespace mbgc::multibody::detail {
 
 std::vector<ir::ExpandedUnitCheck> state_units(const Model& m, const Quantities& quantities,
-                                               const std::set<std::string>& used, ir::Diagnostics& diags);
+                                               const std::set<std::string>& used, SymbolIds& symbols,
+                                               ir::Diagnostics& diags);
 
 }  // namespace mbgc::multibody::detail

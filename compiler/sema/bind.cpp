@@ -8,7 +8,54 @@ namespace mbgc::sema {
 
 using namespace mbgc::ir;
 
-Binder::Binder(const ResolvedModel& model) : m_(model) {
+bool has_quantity(NodeKind k, Quantity q) {
+  if (k == NodeKind::Zero) return q == Quantity::e;
+  if (k == NodeKind::One) return q == Quantity::f;
+  if (is_two_port(k)) return q == Quantity::e1 || q == Quantity::f1 || q == Quantity::e2 || q == Quantity::f2;
+  switch (q) {
+    case Quantity::e:
+    case Quantity::f: return true;
+    case Quantity::p: return k == NodeKind::I;
+    case Quantity::q: return k == NodeKind::C;
+    case Quantity::closed:
+    case Quantity::stick: return k == NodeKind::CN;
+    default: return false;
+  }
+}
+
+std::size_t SymbolTable::param(const Ref& ref) const {
+  const SymbolTarget& t = targets.at(static_cast<std::size_t>(ref.id));
+  if (t.kind != SymbolTarget::Kind::Param)
+    throw InternalError(fmt::format("the multibody layer reads `{}` as a parameter, which it did not declare as one",
+                                    names.at(static_cast<std::size_t>(ref.id))));
+  return t.index;
+}
+
+Ref SymbolTable::bind(const Ref& ref, const ResolvedModel& m) const {
+  const SymbolTarget& t = targets.at(static_cast<std::size_t>(ref.id));
+  const std::string& name = names.at(static_cast<std::size_t>(ref.id));
+  const bool variable = ref.quantity != Quantity::value;
+  switch (t.kind) {
+    case SymbolTarget::Kind::Param:
+      if (!variable) return {Ref::Kind::Param, static_cast<int>(t.index), Quantity::value};
+      break;
+    case SymbolTarget::Kind::Signal:
+      if (!variable) return {Ref::Kind::Signal, static_cast<int>(t.index), Quantity::value};
+      break;
+    case SymbolTarget::Kind::Node:
+      if (has_quantity(m.nodes[t.index].kind, ref.quantity)) return {Ref::Kind::Node, static_cast<int>(t.index), ref.quantity};
+      break;
+    case SymbolTarget::Kind::Bond:
+      if (ref.quantity == Quantity::e || ref.quantity == Quantity::f)
+        return {Ref::Kind::Bond, static_cast<int>(t.index), ref.quantity};
+      break;
+    case SymbolTarget::Kind::None:
+      throw InternalError(fmt::format("the multibody layer refers to `{}`, which it did not declare", name));
+  }
+  throw InternalError(fmt::format("the multibody layer reads a quantity of `{}` that it does not have", name));
+}
+
+Binder::Binder(const ResolvedModel& model, const SymbolTable& symbols) : m_(model), symbols_(symbols) {
   for (std::size_t i = 0; i < m_.signals.size(); ++i) signals_.emplace(m_.signals[i].name, static_cast<int>(i));
   for (std::size_t b = 0; b < m_.bonds.size(); ++b) bonds_.emplace(m_.bonds[b].label, static_cast<int>(b));
 }
@@ -17,6 +64,7 @@ TermPtr Binder::bind(const Term& e, int scope, Diagnostics& diags, OwnQuantities
   auto t = std::make_shared<Term>(e);
   bool ok = true;
   if (e.kind == Term::Kind::Ref && e.ref.kind == Ref::Kind::Name) ok = name(e, scope, own, t->ref, diags);
+  if (e.kind == Term::Kind::Ref && e.ref.kind == Ref::Kind::Symbol) t->ref = symbols_.bind(e.ref, m_);
   for (TermPtr& a : t->args) {
     a = bind(*a, scope, diags, own);
     ok = ok && a != nullptr;

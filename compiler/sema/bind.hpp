@@ -19,6 +19,29 @@
 
 namespace mbgc::sema {
 
+/// What a symbol of the multibody layer's (ir::Ref::Symbol) declares, once
+/// resolve has flattened the program.
+struct SymbolTarget {
+  enum class Kind { None, Param, Signal, Node, Bond };
+  Kind kind = Kind::None;
+  std::size_t index = 0;  // into the parameters (param_values), signals, nodes or bonds
+};
+
+/// The layer's symbols and what declares each. A ref to a symbol no
+/// statement declares, or to a quantity its node has not, is the layer's
+/// mistake, not the user's: an internal error (ir::InternalError).
+struct SymbolTable {
+  std::vector<std::string> names;  // ir::ExpandedProgram::symbols
+  std::vector<SymbolTarget> targets;
+  /// The parameter `ref` is.
+  std::size_t param(const ir::Ref& ref) const;
+  /// `ref` bound to what its symbol declares, in `model`.
+  ir::Ref bind(const ir::Ref& ref, const ir::ResolvedModel& model) const;
+};
+
+/// Whether a node of kind `k` has quantity `q`.
+bool has_quantity(ir::NodeKind k, ir::Quantity q);
+
 /// The names an element's own law may use for its quantities.
 struct OwnQuantities {
   bool any = false;   // e and f (a one-port's law)
@@ -27,8 +50,9 @@ struct OwnQuantities {
 
 class Binder {
  public:
-  /// Over `model`: flattened, its parameters evaluated (param_index), its bonds labelled.
-  explicit Binder(const ir::ResolvedModel& model);
+  /// Over `model`: flattened, its parameters evaluated (param_index), its
+  /// bonds labelled; `symbols`: what the multibody layer's symbols declare.
+  Binder(const ir::ResolvedModel& model, const SymbolTable& symbols);
 
   /// `e` with its names bound in scope `scope` (an index into model.scopes);
   /// null after each unknown name was reported to `diags`.
@@ -41,6 +65,7 @@ class Binder {
   std::vector<std::string> known_names() const;
 
   const ir::ResolvedModel& m_;
+  const SymbolTable& symbols_;
   std::unordered_map<std::string, int> signals_;  // full name -> signals index
   std::unordered_map<std::string, int> bonds_;    // label -> the first bond of that label
 };

@@ -76,6 +76,8 @@ class Resolver {
   void run(const ExpandedProgram& prog) {
     m_.scopes.push_back({"", ""});
     port_bindings_.emplace_back();
+    symbols_.names = prog.symbols;
+    symbols_.targets.assign(prog.symbols.size(), {});
     for (const ExpandedStmt& s : prog.stmts) {
       if (auto* c = std::get_if<std::shared_ptr<AstComponent>>(&s)) {
         const AstComponent& comp = **c;
@@ -124,11 +126,13 @@ class Resolver {
             if constexpr (std::is_same_v<T, AstModel>) {
               if (m_.model_name.empty()) m_.model_name = st.name;
             } else if constexpr (std::is_same_v<T, ExpandedParam>) {
-              if (claim_name(prefix + st.name, st.loc, "parameter"))
-                pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, st.fold,
-                                           declared_unit(st.unit, st.value), st.generated, st.dimension});
+              if (!claim_name(prefix + st.name, st.loc, "parameter")) return;
+              declares(st.symbol, SymbolTarget::Kind::Param, pending_params_.size());
+              pending_params_.push_back({prefix + st.name, st.loc, st.value, scope, st.fold,
+                                         declared_unit(st.unit, st.value), st.generated, st.dimension});
             } else if constexpr (std::is_same_v<T, ExpandedSignal>) {
               if (claim_name(prefix + st.name, st.loc, "signal")) {
+                declares(st.symbol, SymbolTarget::Kind::Signal, m_.signals.size());
                 m_.signals.push_back({prefix + st.name, st.loc, nullptr, nullptr, st.unit, st.generated});
                 signal_exprs_.push_back({{st.value, scope}, {st.rate, scope}});
               }
@@ -154,6 +158,7 @@ class Resolver {
               n.generated = el.generated;
               n.element = BoundElement{el.kind, nullptr, {}, std::nullopt, el.configuration_dependent, el.state_limits};
               elements_.push_back({m_.nodes.size(), el, scope});
+              declares(st.symbol, SymbolTarget::Kind::Node, m_.nodes.size());
               add_node(std::move(n));
             } else if constexpr (std::is_same_v<T, ExpandedJunction>) {
               if (!claim_name(prefix + st.name, st.loc, "junction")) return;
@@ -165,15 +170,17 @@ class Resolver {
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
               n.tree = st.tree, n.generated = st.generated;
+              declares(st.symbol, SymbolTarget::Kind::Node, m_.nodes.size());
               add_node(std::move(n));
               AstEndpoint self{st.name, st.loc};
               for (const AstEndpoint& in : st.inputs)
                 bonds_.push_back({"", in.loc, {in, scope}, {self, scope}, std::nullopt, {}});
               for (const AstEndpoint& out : st.outputs)
                 bonds_.push_back({"", out.loc, {self, scope}, {out, scope}, std::nullopt, {}});
-            } else if constexpr (std::is_same_v<T, AstBond>) {
+            } else if constexpr (std::is_same_v<T, ExpandedBond>) {
               std::string name = st.name.empty() ? "" : prefix + st.name;
               if (!name.empty() && !claim_name(name, st.loc, "bond")) return;
+              declares(st.symbol, SymbolTarget::Kind::Bond, bonds_.size());  // (pending: its index in m_.bonds once bound)
               bonds_.push_back({name, st.loc, {st.from, scope}, {st.to, scope}, st.dim, st.dim_loc});
             } else if constexpr (std::is_same_v<T, AstSimulate>) {
               if (scope != 0) {
@@ -376,9 +383,15 @@ class Resolver {
       return lookup_param(name, scope, loc);
     };
   }
-  /// As param_lookup, for a parameter's value (a term whose refs are names).
+  /// As param_lookup, for a parameter's value (a term whose refs are names,
+  /// or the multibody layer's symbols).
   RefLookup param_ref_lookup(int scope) {
-    return [this, scope](const Term& leaf) -> std::optional<Value> { return lookup_param(leaf.name, scope, leaf.loc); };
+    return [this, scope](const Term& leaf) -> std::optional<Value> {
+      if (leaf.ref.kind != Ref::Kind::Symbol) return lookup_param(leaf.name, scope, leaf.loc);
+      const std::size_t i = symbols_.param(leaf.ref);
+      if (!evaluate(i, &leaf.loc)) return std::nullopt;
+      return m_.param_values[i];
+    };
   }
 
   std::optional<Value> lookup_param(const std::string& name, int scope, const SourceLoc& loc) {
@@ -507,7 +520,9 @@ class Resolver {
   }
 
   void bind_bonds() {
-    for (const PendingBond& pb : bonds_) {
+    std::vector<int> bound(bonds_.size(), -1);  // pending bond -> its index in m_.bonds
+    for (std::size_t i = 0; i < bonds_.size(); ++i) {
+      const PendingBond& pb = bonds_[i];
       auto from = bind_end(pb.from);
       auto to = bind_end(pb.to);
       if (!from || !to) continue;
@@ -516,8 +531,16 @@ class Resolver {
                      "a bond connects two different nodes");
         continue;
       }
+      bound[i] = static_cast<int>(m_.bonds.size());
       m_.bonds.push_back({pb.name, "", pb.loc, *from, *to, pb.dim, pb.dim_loc});
     }
+    for (SymbolTarget& t : symbols_.targets)
+      if (t.kind == SymbolTarget::Kind::Bond) t.index = static_cast<std::size_t>(bound[t.index]);
+  }
+
+  /// Statement `symbol` of the multibody layer's (none: -1) is `index` of `kind`.
+  void declares(int symbol, SymbolTarget::Kind kind, std::size_t index) {
+    if (symbol >= 0) symbols_.targets[static_cast<std::size_t>(symbol)] = {kind, index};
   }
 
   // ---- names in expressions -------------------------------------------------------
@@ -544,7 +567,7 @@ class Resolver {
     for (std::size_t i = 0; i < pending_params_.size(); ++i)
       if (has_value_[i]) m_.param_index.emplace(pending_params_[i].full, static_cast<int>(i));
     if (diags_.has_errors()) return;  // a name may be unknown only because its declaration was in error
-    const Binder binder(m_);
+    const Binder binder(m_, symbols_);
     auto bind = [&](const TermPtr& e, int scope, OwnQuantities own = {}) -> TermPtr {
       return e ? binder.bind(*e, scope, diags_, own) : nullptr;
     };
@@ -593,6 +616,7 @@ class Resolver {
 
   Diagnostics& diags_;
   ResolvedModel& m_;
+  SymbolTable symbols_;                                                 // what the layer's symbols declare
   std::vector<PendingElement> elements_;                                // per element node, in order
   std::vector<std::pair<PendingExpr, PendingExpr>> signal_exprs_;       // per signal: its value and rate
   std::vector<PendingExpr> output_exprs_;                               // per output
