@@ -131,14 +131,37 @@ struct ExpandedElement {
   int symbol = -1;  // as ExpandedParam's
 };
 
-struct ExpandedJunction : AstJunction {
+/// An end of a bond: a path the user wrote (`name` or `name.port`), or
+/// what the multibody layer wrote, by its symbol (and, at a two-port, which
+/// port: 1 or 2); `path` then only shows it.
+struct ExpandedEnd : AstEndpoint {
+  int symbol = -1;
+  int port = 0;
+};
+
+/// A junction and the bonds into and out of it (AstJunction's form).
+struct ExpandedJunction {
+  char type = '0';
+  SourceLoc kind_loc;
+  std::string name;
+  SourceLoc loc;
+  std::optional<int> dim;
+  SourceLoc dim_loc;
+  std::vector<ExpandedEnd> inputs;
+  std::vector<ExpandedEnd> outputs;
   TreeTag tree;
   bool generated = false;  // as ExpandedElement's
   int symbol = -1;         // as ExpandedParam's
 };
 
-/// A bond; the multibody layer's named ones have a symbol, as ExpandedParam's.
-struct ExpandedBond : AstBond {
+/// A bond (AstBond's form); the multibody layer's named ones have a symbol, as ExpandedParam's.
+struct ExpandedBond {
+  std::string name;  // may be empty
+  SourceLoc loc;
+  ExpandedEnd from;
+  ExpandedEnd to;
+  std::optional<int> dim;
+  SourceLoc dim_loc;
   int symbol = -1;
 };
 

@@ -102,13 +102,13 @@ static void ast_stmts(std::string& out, const std::vector<Stmt>& stmts, int inde
                   if (const TermPtr& v = (*st.constraint).*f.member) settings.push_back({f.key, v->loc, v});
             if (!settings.empty()) out += " " + attrs(settings);
             out += "\n";
-          } else if constexpr (std::is_base_of_v<AstJunction, T>) {
+          } else if constexpr (std::is_same_v<T, AstJunction> || std::is_same_v<T, ExpandedJunction>) {
             std::vector<std::string> in, o;
             for (const auto& e : st.inputs) in.push_back(e.path);
             for (const auto& e : st.outputs) o.push_back(e.path);
             out += fmt::format("{}{} {}{} : {} -> {}\n", pad, st.type, st.name, st.dim ? fmt::format(" [{}]", *st.dim) : "",
                                fmt::join(in, ", "), fmt::join(o, ", "));
-          } else if constexpr (std::is_base_of_v<AstBond, T>) {
+          } else if constexpr (std::is_same_v<T, AstBond> || std::is_same_v<T, ExpandedBond>) {
             out += fmt::format("{}bond {}{} -> {}{}\n", pad, st.name.empty() ? "" : st.name + ": ", st.from.path, st.to.path,
                                st.dim ? fmt::format(" [{}]", *st.dim) : "");
           } else if constexpr (std::is_same_v<T, AstSimulate>) {

@@ -10,6 +10,7 @@
 #include "ir/ast.hpp"
 #include "ir/term.hpp"
 #include "ir/element_settings.hpp"
+#include "ir/expanded.hpp"
 #include "multibody/symbols.hpp"
 
 namespace mbgc::multibody::detail {
@@ -36,6 +37,8 @@ class Build {
   }
   /// The id of the entity `s` (what its declaration carries).
   int id(const Sym& s) const { return symbols_->id(s.owner()); }
+  /// A bond's end at what `s` is (an element, a junction, a two-port's port).
+  ir::ExpandedEnd end(const Sym& s) const { return ir::ExpandedEnd{{s.str(), loc_}, id(s), s.end_port()}; }
   SymbolIds& symbols() const { return *symbols_; }
   E op(char o, E a, E b) const {
     return make(ir::Term::Kind::Binary, [&](ir::Term& e) { e.op = o; e.args = {std::move(a), std::move(b)}; });

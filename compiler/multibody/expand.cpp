@@ -74,8 +74,8 @@ void Expander::junction(const Build& B, char type, const Sym& name, int dim, con
   j.loc = B.loc();
   j.dim = dim;
   j.dim_loc = B.loc();
-  for (const Sym& s : in) j.inputs.push_back({s.str(), B.loc()});
-  for (const Sym& s : out) j.outputs.push_back({s.str(), B.loc()});
+  for (const Sym& s : in) j.inputs.push_back(B.end(s));
+  for (const Sym& s : out) j.outputs.push_back(B.end(s));
   j.tree = tree_tag_;
   j.generated = true;
   j.symbol = B.id(name);
@@ -87,8 +87,8 @@ void Expander::bond(const Build& B, const Sym& from, const Sym& to, std::optiona
   b.loc = B.loc();
   b.dim = dim;
   b.dim_loc = B.loc();
-  b.from = {from.str(), B.loc()};
-  b.to = {to.str(), B.loc()};
+  b.from = B.end(from);
+  b.to = B.end(to);
   generated_.push_back(std::move(b));
 }
 

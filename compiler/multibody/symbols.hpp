@@ -48,7 +48,13 @@ class Sym {
   Sym momentum() const { return variable("p", ir::Quantity::p); }      // an I's state
   Sym displacement() const { return variable("q", ir::Quantity::q); }  // a C's state
   /// End k (1 or 2) of a two-port (MTF, TF, GY), as a bond names it.
-  Sym port(int k) const { return part(fmt::format("p{}", k)); }
+  Sym port(int k) const {
+    Sym p = variable(fmt::format("p{}", k), ir::Quantity::value);
+    p.port_ = k;
+    return p;
+  }
+  /// The two-port end it is (port(k)), or 0.
+  int end_port() const { return port_; }
   /// The effort and flow of a two-port's bond at end k (`m.e1`, `m.f1`).
   Sym effort(int k) const { return variable(fmt::format("e{}", k), k == 1 ? ir::Quantity::e1 : ir::Quantity::e2); }
   Sym flow(int k) const { return variable(fmt::format("f{}", k), k == 1 ? ir::Quantity::f1 : ir::Quantity::f2); }
@@ -92,6 +98,7 @@ class Sym {
   std::optional<units::Dimension> dimension_;
   Kind kind_ = Kind::Entity;
   std::string owner_;                         // a variable's element or junction
+  int port_ = 0;                              // a two-port's end: 1 or 2
   ir::Quantity quantity_ = ir::Quantity::value;
 };
 

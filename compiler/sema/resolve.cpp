@@ -42,10 +42,12 @@ struct PendingParam {
   std::optional<units::Dimension> stated;  // ExpandedParam::dimension
 };
 
-/// A bond end as written, with the scope and port bindings it is read in.
+/// A bond end as written, with the scope and port bindings it is read in;
+/// or a junction's own end, its node known.
 struct PendingEnd {
-  AstEndpoint ep;
+  ExpandedEnd ep;
   int scope;
+  int node = -1;
 };
 
 /// An expression as written and the scope its names are read in.
@@ -170,13 +172,13 @@ class Resolver {
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
               n.tree = st.tree, n.generated = st.generated;
+              const PendingEnd self{{{st.name, st.loc}, -1, 0}, scope, static_cast<int>(m_.nodes.size())};
               declares(st.symbol, SymbolTarget::Kind::Node, m_.nodes.size());
               add_node(std::move(n));
-              AstEndpoint self{st.name, st.loc};
-              for (const AstEndpoint& in : st.inputs)
-                bonds_.push_back({"", in.loc, {in, scope}, {self, scope}, std::nullopt, {}});
-              for (const AstEndpoint& out : st.outputs)
-                bonds_.push_back({"", out.loc, {self, scope}, {out, scope}, std::nullopt, {}});
+              for (const ExpandedEnd& in : st.inputs)
+                bonds_.push_back({"", in.loc, {in, scope}, self, std::nullopt, {}});
+              for (const ExpandedEnd& out : st.outputs)
+                bonds_.push_back({"", out.loc, self, {out, scope}, std::nullopt, {}});
             } else if constexpr (std::is_same_v<T, ExpandedBond>) {
               std::string name = st.name.empty() ? "" : prefix + st.name;
               if (!name.empty() && !claim_name(name, st.loc, "bond")) return;
@@ -268,7 +270,7 @@ class Resolver {
                        fmt::format("write {} = node_name", a.key));
           continue;
         }
-        port_bindings_[static_cast<std::size_t>(child)][a.key] = {{a.value->name, a.value->loc}, scope};
+        port_bindings_[static_cast<std::size_t>(child)][a.key] = {{{a.value->name, a.value->loc}, -1, 0}, scope};
       } else if (is_param) {
         // the value's own unit, else the interface's: `param V = 12 {V}`
         std::optional<DeclaredUnit> unit = declared_unit(std::nullopt, a.value);
@@ -475,6 +477,8 @@ class Resolver {
 
   // ---- bonds --------------------------------------------------------------------------
   std::optional<ResolvedEnd> bind_end(const PendingEnd& end, int depth = 0) {
+    if (end.node >= 0) return ResolvedEnd{end.node, 0, end.ep.loc};
+    if (end.ep.symbol >= 0) return layer_end(end.ep);
     const Scope& sc = m_.scopes[static_cast<std::size_t>(end.scope)];
     const std::string& path = end.ep.path;
     std::string head = path.substr(0, path.find('.'));
@@ -536,6 +540,17 @@ class Resolver {
     }
     for (SymbolTarget& t : symbols_.targets)
       if (t.kind == SymbolTarget::Kind::Bond) t.index = static_cast<std::size_t>(bound[t.index]);
+  }
+
+  /// An end the multibody layer wrote: its symbol's node (at a two-port, the port it names).
+  ResolvedEnd layer_end(const ExpandedEnd& ep) const {
+    const SymbolTarget& t = symbols_.targets.at(static_cast<std::size_t>(ep.symbol));
+    const std::string& name = symbols_.names.at(static_cast<std::size_t>(ep.symbol));
+    if (t.kind != SymbolTarget::Kind::Node)
+      throw InternalError(fmt::format("the multibody layer bonds `{}`, which it did not declare as an element or a junction", name));
+    if (ep.port != 0 && !is_two_port(m_.nodes[t.index].kind))
+      throw InternalError(fmt::format("the multibody layer bonds `{}` at a port it has not", name));
+    return ResolvedEnd{static_cast<int>(t.index), ep.port, ep.loc};
   }
 
   /// Statement `symbol` of the multibody layer's (none: -1) is `index` of `kind`.
