@@ -45,7 +45,7 @@ class Beam final : public Deformation {
   std::optional<flex::BeamModes> y, z;   // mode sets per bending plane
   std::optional<flex::RodModes> axial;   // stretch along x (modes_axial)
   std::optional<flex::RodModes> torsion; // twist about x (modes_torsion)
-  bool geometric_stiffness = true;
+  bool geometric_stiffness = false;     // on: as given, or its default in the settings table
   bool mean_axes = false;                // frame = buckens or tisserand: the couplings int phi dm, int x phi dm are left out
   bool tisserand = false;                // frame = tisserand: origin at the mass centre, the foreshortening moves no mass
   double origin_m = 0;                   // where along the beam the frame's origin is (frame = centre: L / 2)

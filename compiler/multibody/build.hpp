@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,15 @@ class Build {
   E vec(double x, double y, double z) const { return list({num(x), num(y), num(z)}); }
   E at(E a, int i) const { return make(ir::Term::Kind::Index, [&](ir::Term& e) { e.args = {std::move(a), num(i)}; }); }
   E dot(E a, E b) const { return call("dot", {std::move(a), std::move(b)}); }
+  /// Setting `s`'s default value (settings.hpp), a number or a list of them.
+  E default_of(const Setting& s) const {
+    const std::vector<double> x = s.by_default.numbers();
+    if (x.empty()) throw std::logic_error(fmt::format("setting `{}` has no numeric default", s.name));
+    if (s.by_default.value[0] != '[') return num(x[0]);
+    std::vector<E> items;
+    for (double v : x) items.push_back(num(v));
+    return list(std::move(items));
+  }
   const ir::SourceLoc& loc() const { return loc_; }
 
  private:

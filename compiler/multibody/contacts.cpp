@@ -24,6 +24,9 @@ namespace mbgc::multibody::detail {
 namespace {
 
 const std::vector<std::string> kContactSettings = setting_names(contact_setting::kAll);
+/// The words of `surface` and `strategy`, in the order of Surface and ContactStrategy.
+const std::vector<std::string> kSurfaces = {"plane", "sphere", "cylinder", "polygon"};
+const std::vector<std::string> kStrategies = {"unilateral", "compliant"};
 
 }  // namespace
 
@@ -78,14 +81,14 @@ void Collector::add_contact(const AstJoint& c) {
                  "a contact is between two different bodies (or a body and ground)");
     return;
   }
-  Contact contact{&c, *a, *b, Surface::Plane, contact_strategy_, {}};
+  const auto default_surface = std::find(kSurfaces.begin(), kSurfaces.end(), contact_setting::surface.by_default.value);
+  Contact contact{&c, *a, *b, static_cast<Surface>(default_surface - kSurfaces.begin()), contact_strategy_, {}};
   bool ok = collect_settings(c, kContactSettings, contact.attrs, fmt::format("it takes {}", fmt::join(kContactSettings, ", ")));
   for (const AstAttr& at : c.attrs) {  // in the text's order, each collected setting once
     if (auto it = contact.attrs.find(at.key); it == contact.attrs.end() || it->second != &at) continue;
     if (at.key == contact_setting::surface.name || at.key == contact_setting::strategy.name) {
       const bool surface = at.key == contact_setting::surface.name;
-      const std::vector<std::string> choices = surface ? std::vector<std::string>{"plane", "sphere", "cylinder", "polygon"}
-                                                       : std::vector<std::string>{"unilateral", "compliant"};
+      const std::vector<std::string>& choices = surface ? kSurfaces : kStrategies;
       const std::string word = at.value->kind == AstExpr::Kind::Name ? at.value->name : "";
       auto it = std::find(choices.begin(), choices.end(), word);
       if (it == choices.end()) {
@@ -229,8 +232,9 @@ void Expander::emit_contact(const Contact& c) {
     const AstAttr* given = given_in(c.attrs, s);
     return given ? term(given->value) : fallback;
   };
-  param(B, cn.radius(), setting(contact_setting::radius, B.num(0)));
-  param(B, cn.restitution(), setting(contact_setting::restitution, B.num(0)));
+  auto setting_or_default = [&](const Setting& s) { return setting(s, B.default_of(s)); };
+  param(B, cn.radius(), setting_or_default(contact_setting::radius));
+  param(B, cn.restitution(), setting_or_default(contact_setting::restitution));
   const Body& a = m_.bodies.at(c.a.body);
   const Body& b = m_.bodies.at(c.b.body);
   auto [pa, va] = world_point(B, c.a);
@@ -320,11 +324,11 @@ void Expander::emit_contact(const Contact& c) {
   law.restitution = B.ref(cn.restitution());
   if (c.strategy == ContactStrategy::Compliant) {
     param(B, cn.stiffness(), setting(contact_setting::stiffness, nullptr));
-    param(B, cn.exponent(), setting(contact_setting::exponent, B.num(1.5)));
+    param(B, cn.exponent(), setting_or_default(contact_setting::exponent));
     law.stiffness = B.ref(cn.stiffness());
     law.exponent = B.ref(cn.exponent());
   } else {
-    param(B, cn.stabilisation(), setting(contact_setting::stabilisation, B.num(20)));
+    param(B, cn.stabilisation(), setting_or_default(contact_setting::stabilisation));
     law.stabilisation = B.ref(cn.stabilisation());
     if (friction) law.friction = B.ref(cn.friction());
   }
@@ -353,7 +357,7 @@ void Expander::emit_contact(const Contact& c) {
     friction_force = B.neg(B.op('*', tangents, B.list({B.at(effort, 2), B.at(effort, 3)})));
   } else if (friction) {
     // regularised Coulomb: -mu push vt / sqrt(|vt|^2 + eps^2) on A, its opposite on B
-    param(B, cn.slip_speed(), setting(contact_setting::slip_speed, B.num(1e-4)));
+    param(B, cn.slip_speed(), setting_or_default(contact_setting::slip_speed));
     E eps = B.ref(cn.slip_speed());
     E scale = B.call("sqrt", {B.op('+', B.dot(tangential, tangential), B.op('*', eps, eps))});
     friction_force = B.op('*', B.op('/', B.neg(B.op('*', B.ref(cn.friction()), push)), scale), tangential);

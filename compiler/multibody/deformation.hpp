@@ -84,8 +84,8 @@ class Deformation {
   /// The file a modal-data body's points come from (empty for other kinds).
   virtual std::string point_file() const { return {}; }
 
-  static constexpr double kDefaultSlopeLimit = 0.3;
-  double slope_limit_rad = kDefaultSlopeLimit;  // the run stops where one mode alone tilts the body further
+  /// The run stops where one mode alone tilts the body further.
+  double slope_limit_rad = beam_setting::slope_limit.by_default.number();
 };
 
 }  // namespace mbgc::multibody::detail

@@ -183,7 +183,9 @@ Drawing Expander::default_drawing(const Body& body, double scale) const {
   }
   const std::array<double, 3> com = [&] {
     const ir::AstExprPtr c = attr(*body.decl, body_setting::com);
-    auto p = c ? constants_.constant_point(*c) : std::optional<std::array<double, 3>>(std::array<double, 3>{});
+    const std::vector<double> fallback = body_setting::com.by_default.numbers();
+    auto p = c ? constants_.constant_point(*c)
+               : std::optional<std::array<double, 3>>(std::array<double, 3>{fallback.at(0), fallback.at(1), fallback.at(2)});
     return p.value_or(std::array<double, 3>{});
   }();
   std::array<double, 3> lo{}, hi{};  // around the centre of mass

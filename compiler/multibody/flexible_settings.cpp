@@ -250,6 +250,7 @@ void Collector::add_flexible_body(Body& body, const AstBody& b, const AstAttr& k
     diags_.error(b.loc, fmt::format("beam `{}` has no modes", b.name),
                  "give the assumed modes of at least one bending plane, e.g. modes_xy = clamped_free(3), or of "
                  "stretch or twist (modes_axial, modes_torsion)");
+  beam->geometric_stiffness = std::string_view(beam_setting::geometric_stiffness.by_default.value) == "on";
   if (auto g = given.find(beam_setting::geometric_stiffness.name); g != given.end()) {
     const AstExpr& v = *g->second->value;
     auto flag = constants_.constant_of(v);  // 1 or 0: a parameter, so that `mbgc --set` can switch it
@@ -308,8 +309,9 @@ void Collector::read_slope_limit(double& limit_rad, const AstBody& b, const AstA
   auto v = constants_.constant_of(*a.value);
   if (!v || !(*v > 0) || *v > 1.5)
     diags_.error(a.value->loc, fmt::format("the slope limit of flexible body `{}` must be a constant in (0, 1.5] rad", b.name),
-                 "the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by more "
-                 "than 14 %; the default is 0.3");
+                 fmt::format("the modal model keeps slopes to second order: beyond about 0.3 rad its curvature is off by "
+                             "more than 14 %; the default is {}",
+                             beam_setting::slope_limit.by_default.value));
   else limit_rad = *v;
 }
 
@@ -325,7 +327,7 @@ void Collector::add_modal_body(Body& body, const AstBody& b, const AstExpr& v) {
     return;
   }
   static const std::vector<std::string> keys = setting_names(modal_setting::kAll);
-  double slope_limit_rad = Deformation::kDefaultSlopeLimit;
+  double slope_limit_rad = beam_setting::slope_limit.by_default.number();
   std::map<std::string, const AstAttr*> given;
   for (const AstAttr& a : b.attrs) {
     if (std::find(keys.begin(), keys.end(), a.key) == keys.end()) {

@@ -58,7 +58,7 @@ void Expander::emit_force(const ForceElement& f) {
     E spring = B.neg(B.op('*', tension, u));
     force = force ? B.op('+', force, spring) : spring;
   }
-  if (!force) force = B.vec(0, 0, 0);
+  if (!force) force = B.default_of(force_setting::force);
   E torque = user(force_setting::torque);
   quantities_.define(fn.quantity("force"), force);
   if (torque) quantities_.define(fn.quantity("torque"), torque);

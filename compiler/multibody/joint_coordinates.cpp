@@ -61,10 +61,10 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     /// relative quaternion as a body's orientation is.
     void ball() override {
       const SourceLoc& at = joint.decl->loc;
-      x_.element(B, "Sf", sym.spin_rate(), nullptr, {kv(element_setting::rate0, setting_or(joint_setting::w0, B.vec(0, 0, 0)), at)});
+      x_.element(B, "Sf", sym.spin_rate(), nullptr, {kv(element_setting::rate0, setting_or_default(joint_setting::w0), at)});
       x_.element(B, "C", sym.rot(), nullptr,
                  {kv(element_setting::c_effort, B.list({zero, zero, zero, zero}), at),
-                  kv(element_setting::q0, setting_or(joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)})), at)});
+                  kv(element_setting::q0, setting_or_default(joint_setting::rot0), at)});
       x_.element(B, "MTF", sym.rot_rate(), B.call("quat_rate", {B.ref(sym.rot().displacement())}));
       x_.junction(B, '1', sym.spin(), 3, {sym.spin_rate()}, {sym.rot_rate().port(1)});
       x_.bond(B, sym.rot_rate().port(2), sym.rot(), 4);

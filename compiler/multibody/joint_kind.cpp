@@ -71,13 +71,14 @@ Mobilizer::Mobilizer(const Build& b, const Joint& j, bool child_particle)
       angle_rate(zero), axial(zero), axial_rate(zero) {}
 
 E Mobilizer::setting_or(const Setting& s, E fallback) const { return detail::setting_or(joint, s, std::move(fallback)); }
+E Mobilizer::setting_or_default(const Setting& s) const { return detail::setting_or_default(joint, s, B); }
 
 bool Mobilizer::prescribed() const { return given(joint, joint_setting::motion); }
 
 Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   const Build& B = m.B;
-  Mobilizer::Rate& r = m.rate(m.sym.drive(), "theta", m.setting_or(joint_setting::q0, m.zero),
-                              m.setting_or(joint_setting::rate0, m.zero), m.prescribed());
+  Mobilizer::Rate& r = m.rate(m.sym.drive(), "theta", m.setting_or_default(joint_setting::q0),
+                              m.setting_or_default(joint_setting::rate0), m.prescribed());
   r.W = m.ez;
   r.Wb = m.ez;  // a turn about z leaves z where it is
   m.angle = r.value, m.angle_rate = r.rate;
@@ -88,7 +89,7 @@ Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
 
 Mobilizer::Rate& slide_along_axis(Mobilizer& m, const Sym& junction, const Setting& q0, const Setting& rate0,
                                   bool prescribed) {
-  Mobilizer::Rate& s = m.rate(junction, "s", m.setting_or(q0, m.zero), m.setting_or(rate0, m.zero), prescribed);
+  Mobilizer::Rate& s = m.rate(junction, "s", m.setting_or_default(q0), m.setting_or_default(rate0), prescribed);
   s.V = m.ez;
   m.axial = s.value, m.axial_rate = s.rate;
   m.disp = m.B.op('*', m.ez, m.axial);
@@ -99,8 +100,8 @@ Mobilizer::Rate& slide_along_axis(Mobilizer& m, const Sym& junction, const Setti
 InitialMotion JointKind::initial(const Build& B, const Joint& j) const {
   E zero = B.num(0);
   InitialMotion m;
-  m.angle = has_angle() ? setting_or(j, joint_setting::q0, zero) : zero;
-  m.angle_rate = has_angle() ? setting_or(j, joint_setting::rate0, zero) : zero;
+  m.angle = has_angle() ? setting_or_default(j, joint_setting::q0, B) : zero;
+  m.angle_rate = has_angle() ? setting_or_default(j, joint_setting::rate0, B) : zero;
   m.axial = zero, m.axial_rate = zero;
   m.qrel = B.call("quat_axis_angle", {B.vec(0, 0, 1), m.angle});
   return m;

@@ -89,6 +89,8 @@ class Mobilizer {
 
   /// The joint's setting `key`, or `fallback`.
   E setting_or(const Setting& s, E fallback) const;
+  /// The joint's setting `s`, or its default.
+  E setting_or_default(const Setting& s) const;
   bool prescribed() const;  // the joint has motion = f(t)
 
   const Build& B;

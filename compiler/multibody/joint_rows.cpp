@@ -47,8 +47,7 @@ void Expander::joint_params(const Build& B, const Joint& j) {
     if (!body.kind.turns()) property(B, jn.point(side), point);
     else property(B, jn.point(side), B.op('-', point, B.ref(on.com())));
     const AstAttr* ax = given_attr(j, side == 'a' ? joint_setting::axis_a : joint_setting::axis_b);
-    if (!ax) ax = given_attr(j, joint_setting::axis);
-    E axis = ax ? term(ax->value) : B.vec(0, 0, 1);
+    E axis = ax ? term(ax->value) : setting_or_default(j, joint_setting::axis, B);
     property(B, jn.axis(side), B.op('/', axis, B.call("norm", {axis})));
     property(B, jn.frame_q(side), B.call("quat_arc", {B.ref(jn.axis(side))}));
     property(B, jn.frame_R(side), B.call("rotq", {B.ref(jn.frame_q(side))}));
@@ -193,7 +192,7 @@ void Expander::emit_joint(const Joint& j) {
     // A cut joint on a tree in joint coordinates: its rows' multipliers keep
     // g'' + 2 w g' + w^2 g = 0 (Baumgarte, critically damped at w rad/s), an
     // acceleration-level condition solved with the tree's accelerations.
-    param(B, jn.stabilisation(), setting_or(j, joint_setting::stabilisation, B.num(20)));
+    param(B, jn.stabilisation(), setting_or_default(j, joint_setting::stabilisation, B));
     law.stabilisation = B.ref(jn.stabilisation());
   }
   if (j.strategy == Strategy::Penalty) {

@@ -103,6 +103,11 @@ inline E setting_or(const Joint& j, const Setting& s, E fallback) {
   const ir::AstAttr* at = given_attr(j, s);
   return at ? term(at->value) : fallback;
 }
+/// A joint's setting `s`, or its default.
+inline E setting_or_default(const Joint& j, const Setting& s, const Build& B) {
+  const ir::AstAttr* at = given_attr(j, s);
+  return at ? term(at->value) : B.default_of(s);
+}
 
 
 /// World-frame expressions of one side of a joint.

@@ -61,7 +61,7 @@ void Expander::emit_rigid(const Body& body) {
     element(B, "R", n.ejs_v(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
   if (body.kind.particle()) return;
   E com = body_term(d, body_setting::com);
-  property(B, n.com(), com ? com : B.vec(0, 0, 0));
+  property(B, n.com(), com ? com : B.default_of(body_setting::com));
   property(B, n.inertia(), body_term(d, body_setting::inertia));
   std::vector<Sym> w_out = {n.J(), n.ejs()};
   if (own_states) w_out.push_back(n.qrate().port(1));

@@ -15,5 +15,7 @@ std::vector<std::string> contact_setting_names();
 std::vector<std::string> tyre_setting_names();
 /// The dimension of a tyre's setting (none: a coefficient; nullopt: no such setting).
 std::optional<units::Dimension> tyre_setting_dimension(const std::string& name);
+/// The default of a Magic Formula coefficient (nullopt: not one).
+std::optional<double> tyre_coefficient_default(const std::string& name);
 
 }  // namespace mbgc::multibody::detail

@@ -32,12 +32,12 @@ void Expander::place_bodies() {
     }
     const BodySym at(n);
     E r0 = body_term(d, body_setting::r0), v0 = body_term(d, body_setting::v0);
-    param(B, at.r0(), r0 ? r0 : B.vec(0, 0, 0));
-    param(B, at.v0(), v0 ? v0 : B.vec(0, 0, 0));
+    param(B, at.r0(), r0 ? r0 : B.default_of(body_setting::r0));
+    param(B, at.v0(), v0 ? v0 : B.default_of(body_setting::v0));
     if (body.kind.particle()) continue;
     E q0 = body_term(d, body_setting::quat0), w0 = body_term(d, body_setting::w0);
-    param(B, at.q0(), q0 ? q0 : B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
-    param(B, at.w0(), w0 ? w0 : B.vec(0, 0, 0));
+    param(B, at.q0(), q0 ? q0 : B.default_of(body_setting::quat0));
+    param(B, at.w0(), w0 ? w0 : B.default_of(body_setting::w0));
   }
 }
 

@@ -105,6 +105,12 @@ const std::vector<TyreSetting> kTyreSettings = {
 
 }  // namespace
 
+std::optional<double> tyre_coefficient_default(const std::string& name) {
+  for (const TyreSetting& s : kTyreSettings)
+    if (name == s.name) return s.default_value;
+  return std::nullopt;
+}
+
 std::optional<units::Dimension> tyre_setting_dimension(const std::string& name) {
   if (const Setting* s = find_setting(tyre_setting::kAll, name)) return s->dimension;
   for (const TyreSetting& s : kTyreSettings)
@@ -229,7 +235,7 @@ void Expander::emit_tyre(const Tyre& tyre) {
   auto [centre, v_centre] = world_point(B, tyre.wheel);
   E R = rotation(B, wheel);
   const AstAttr* axis = given_in(tyre.attrs, tyre_setting::axis);
-  E axis_local = axis ? term(axis->value) : B.vec(0, 1, 0);
+  E axis_local = axis ? term(axis->value) : B.default_of(tyre_setting::axis);
   E axle = mul(R, div(axis_local, B.call("norm", {axis_local})));
   E omega = mul(R, B.ref(BodySym(wheel).w().flow()));
 

@@ -23,7 +23,7 @@ class Cylindrical final : public JointKind {
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.axial = setting_or(j, joint_setting::d0, m.axial), m.axial_rate = setting_or(j, joint_setting::ddot0, m.axial_rate);
+    m.axial = setting_or_default(j, joint_setting::d0, B), m.axial_rate = setting_or_default(j, joint_setting::ddot0, B);
     return m;
   }
 };

@@ -19,7 +19,7 @@ class Free final : public JointKind {
   }
   void rows(const JointFrames& /*f*/, std::vector<E>& /*r*/) const override {}
   void mobilize(Mobilizer& m) const override {
-    const E r0 = m.setting_or(joint_setting::r0, m.B.vec(0, 0, 0)), v0 = m.setting_or(joint_setting::v0, m.B.vec(0, 0, 0));
+    const E r0 = m.setting_or_default(joint_setting::r0), v0 = m.setting_or_default(joint_setting::v0);
     const char* names[3] = {"x", "y", "z"};
     const E axes[3] = {m.ex, m.ey, m.ez};
     std::vector<E> disp;
@@ -33,7 +33,7 @@ class Free final : public JointKind {
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.qrel = setting_or(j, joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
+    m.qrel = setting_or_default(j, joint_setting::rot0, B);
     return m;
   }
 };

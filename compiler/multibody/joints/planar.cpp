@@ -18,8 +18,8 @@ class Planar final : public JointKind {
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.w_rel = setting_or(j, joint_setting::w0, B.vec(0, 0, 0));
-    m.v_rel = setting_or(j, joint_setting::v0, B.vec(0, 0, 0));
+    m.w_rel = setting_or_default(j, joint_setting::w0, B);
+    m.v_rel = setting_or_default(j, joint_setting::v0, B);
     return m;
   }
   /// B's point stays in A's x-y plane and the axes stay aligned: 3 rows.
@@ -28,7 +28,7 @@ class Planar final : public JointKind {
     f.aligned(r);
   }
   void mobilize(Mobilizer& m) const override {
-    const E v0 = m.setting_or(joint_setting::v0, m.B.vec(0, 0, 0)), w0 = m.setting_or(joint_setting::w0, m.B.vec(0, 0, 0));
+    const E v0 = m.setting_or_default(joint_setting::v0), w0 = m.setting_or_default(joint_setting::w0);
     Mobilizer::Rate& x = m.rate(m.sym.rate_junction("x"), "x", m.zero, m.B.at(v0, 1), false);
     x.V = m.ex;
     Mobilizer::Rate& y = m.rate(m.sym.rate_junction("y"), "y", m.zero, m.B.at(v0, 2), false);

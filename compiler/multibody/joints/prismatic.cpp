@@ -21,7 +21,7 @@ class Prismatic final : public JointKind {
   }
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.axial = setting_or(j, joint_setting::q0, m.axial), m.axial_rate = setting_or(j, joint_setting::rate0, m.axial_rate);
+    m.axial = setting_or_default(j, joint_setting::q0, B), m.axial_rate = setting_or_default(j, joint_setting::rate0, B);
     return m;
   }
 };

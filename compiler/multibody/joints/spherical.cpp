@@ -17,8 +17,8 @@ class Spherical final : public JointKind {
   /// The relative rotation rot0 and angular velocity w0 (default: none).
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.qrel = setting_or(j, joint_setting::rot0, B.list({B.num(1), B.num(0), B.num(0), B.num(0)}));
-    m.w_rel = setting_or(j, joint_setting::w0, B.vec(0, 0, 0));
+    m.qrel = setting_or_default(j, joint_setting::rot0, B);
+    m.w_rel = setting_or_default(j, joint_setting::w0, B);
     return m;
   }
 };

@@ -18,7 +18,7 @@ class Universal final : public JointKind {
   /// Starting aligned, the arms are the joint frames' x and y: w0's first two.
   InitialMotion initial(const Build& B, const Joint& j) const override {
     InitialMotion m = JointKind::initial(B, j);
-    m.w_rel = setting_or(j, joint_setting::w0, B.vec(0, 0, 0));
+    m.w_rel = setting_or_default(j, joint_setting::w0, B);
     return m;
   }
   /// The points coincide and the arms stay perpendicular: 4 rows. The
@@ -32,7 +32,7 @@ class Universal final : public JointKind {
   /// About A's x (the cross's first arm), then about the turned y (B's y).
   void mobilize(Mobilizer& m) const override {
     const Build& B = m.B;
-    const E w0 = m.setting_or(joint_setting::w0, B.vec(0, 0, 0));
+    const E w0 = m.setting_or_default(joint_setting::w0);
     Mobilizer::Rate& a = m.rate(m.sym.rate_junction("alpha"), "alpha", m.zero, B.at(w0, 1), false);
     a.W = m.ex;
     Mobilizer::Rate& b = m.rate(m.sym.rate_junction("beta"), "beta", m.zero, B.at(w0, 2), false);
