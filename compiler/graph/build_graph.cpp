@@ -591,10 +591,10 @@ class Builder {
       }
       if (k) {
         n.law = LawForm::Compliant;
-        n.law_rhs = {k->items[0], x ? x->items[0] : constant(1.5), e->items[0]};
+        n.law_rhs = {k->items[0], x ? x->items[0] : constant(*L::field(&L::exponent).default_value), e->items[0]};
       } else {
         n.law = LawForm::Unilateral;
-        n.law_rhs = {w ? w->items[0] : constant(20), e->items[0]};
+        n.law_rhs = {w ? w->items[0] : constant(*L::field(&L::stabilisation).default_value), e->items[0]};
         if (mu) n.law_rhs.push_back(mu->items[0]);
       }
       std::vector<std::string> names = {"closed", k ? "damping" : "bias"};

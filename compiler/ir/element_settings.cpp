@@ -16,7 +16,7 @@ const std::vector<ElementSetting>& element_settings(NodeKind k) {
     std::vector<ElementSetting> out;
     for (const ConstraintLaw::Field& f : ConstraintLaw::fields())
       out.push_back(f.member == &ConstraintLaw::g ? ElementSetting{f.key, Role::Law, LawForm::Constraint}
-                                                  : ElementSetting{f.key, Role::Constraint});
+                                                  : ElementSetting{f.key, Role::Constraint, LawForm::Linear, f.default_value});
     return out;
   }();
   static const std::vector<ElementSetting> sf = {rate0};

@@ -5,6 +5,7 @@
 // graph builder looks each one up here, and its diagnostics list the table.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct ElementSetting {
   Role role;
   /// Role::Law: the form a law under this key gives the element.
   LawForm law = LawForm::Linear;
+  /// Its value where the element needs one that is not given (a CN's: ConstraintLaw::Field).
+  std::optional<double> default_value = std::nullopt;
 };
 
 /// The entries, by the element kind that takes them (a CN's: ConstraintLaw::fields()).

@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
@@ -88,6 +89,9 @@ struct ConstraintLawOf {
   struct Field {
     const char* key;  // as a CN's braces name it
     P ConstraintLawOf::*member;
+    /// Its value where the law needs one and the CN does not give it (a
+    /// unilateral contact's stabilisation, a compliant one's exponent).
+    std::optional<double> default_value = std::nullopt;
   };
   /// Every setting, `g` first, in the order they are read and printed.
   static const std::vector<Field>& fields() {
@@ -95,12 +99,18 @@ struct ConstraintLawOf {
         {"g", &ConstraintLawOf::g},
         {"stiffness", &ConstraintLawOf::stiffness},
         {"damping", &ConstraintLawOf::damping},
-        {"stabilisation", &ConstraintLawOf::stabilisation},
+        {"stabilisation", &ConstraintLawOf::stabilisation, 20},
         {"restitution", &ConstraintLawOf::restitution},
-        {"exponent", &ConstraintLawOf::exponent},
+        {"exponent", &ConstraintLawOf::exponent, 1.5},
         {"friction", &ConstraintLawOf::friction},
     };
     return all;
+  }
+  /// The field of `member`.
+  static const Field& field(P ConstraintLawOf::*member) {
+    for (const Field& f : fields())
+      if (f.member == member) return f;
+    throw std::logic_error("ConstraintLaw::field: not a field");
   }
 };
 using ConstraintLaw = ConstraintLawOf<TermPtr>;
