@@ -51,10 +51,12 @@ struct Default {
   /// for a word or where there is no value.
   std::vector<double> numbers() const {
     std::vector<double> out;
-    if (!value) return out;
-    const std::string_view text(value);
-    std::size_t i = text.front() == '[' ? 1 : 0;
-    const std::size_t end = text.front() == '[' ? text.find(']') : text.size();
+    const std::string_view text(value ? value : "");
+    if (text.empty()) return out;
+    const bool list = text.front() == '[';
+    std::size_t i = list ? 1 : 0;
+    const std::size_t end = list ? text.find(']') : text.size();
+    if (end == std::string_view::npos) return out;
     while (i < end) {
       while (i < end && (text[i] == ' ' || text[i] == ',')) ++i;
       if (i == end) break;
