@@ -161,7 +161,9 @@ void Collector::add_contact(const AstJoint& c) {
   if (contact.strategy == ContactStrategy::Compliant) {
     if (!given(stiffness))
       diags_.error(c.loc, fmt::format("compliant contact `{}` has no stiffness", c.name),
-                   "the Hunt-Crossley force is k d^n (1 + damping): give stiffness = k (N/m^1.5 for the default exponent 1.5)");
+                   fmt::format("the Hunt-Crossley force is k d^n (1 + damping): give stiffness = k (N/m^{0} for the default "
+                               "exponent {0})",
+                               contact_setting::exponent.by_default.value));
     if (!given(restitution))
       diags_.error(c.loc, fmt::format("compliant contact `{}` has no restitution", c.name),
                    "its damping follows from the restitution e (0 < e <= 1): give restitution = e");

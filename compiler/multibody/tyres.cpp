@@ -5,8 +5,8 @@
 //
 // Geometry (docs/notes/tyre.md): the road is the plane z = h(x) of the world
 // (h = 0, or a height profile `profile = [[x1, h1], ...]` along world x,
-// piecewise linear), with normal n. The wheel turns about `axis` (its frame,
-// default [0, 1, 0]). The tyre's directions: e_x = unit(axis x n) (forward),
+// piecewise linear), with normal n. The wheel turns about `axis` (its
+// frame). The tyre's directions: e_x = unit(axis x n) (forward),
 // e_y = n x e_x (left). The centre is hc above the road (along n); the
 // tyre is deflected by rho = R0 - hc and pushes Fz = max(0, kz rho + cz rho').
 // Slip: the centre's velocity V_cx, V_cy along e_x, e_y, the spin Omega about

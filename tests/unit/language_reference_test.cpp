@@ -196,6 +196,8 @@ TEST(LanguageReference, EveryJointKindAndSetting) {
       EXPECT_NE(std::find(mb::joint_setting::kAll.begin(), mb::joint_setting::kAll.end(), s),
                 mb::joint_setting::kAll.end())
           << kind << ": " << s->name;
+    for (const mb::Setting* s : k->required())  // and a required one has no default value
+      EXPECT_EQ(s->by_default.value, nullptr) << kind << " requires `" << s->name << "`, which has a default";
   }
 }
 
