@@ -1,4 +1,6 @@
-// multibody/joint_rows.cpp — joints as constraint rows: lagrange and penalty.
+// multibody/joint_rows.cpp — joints as constraint rows, held as their strategy says
+// (constraint_strategy.hpp): multipliers, a penalty, or a cut joint's stabilised multipliers.
+#include "multibody/constraint_strategy.hpp"
 #include "multibody/expander.hpp"
 
 #include <algorithm>
@@ -166,18 +168,15 @@ void Expander::emit_joint(const Joint& j) {
   Frame A = frame(B, j, j.a, 'a');
   Frame Bf = frame(B, j, j.b, 'b');
   frames_[d.name] = {A, Bf};
-  if (j.strategy == Strategy::Coordinates && j.tree) {
+  const ConstraintStrategy& strategy = constraint_strategy(j.strategy);
+  if (strategy.tree_coordinates() && j.tree) {
     emit_coordinate_joint(B, j);
     return;
   }
   std::vector<E> g = rows(B, j, A, Bf);
   if (g.empty()) {
-    diags_.error(d.loc, fmt::format("free joint `{}` constrains nothing, so it has no rows for {}", d.name,
-                                    j.strategy == Strategy::Coordinates ? "closing a loop" : "multipliers"),
-                 j.strategy == Strategy::Coordinates
-                     ? "a free joint belongs on a tree from ground: attach its body to nothing else that reaches ground"
-                     : "give it joint coordinates (constraints = coordinates), or remove it: with multipliers a floating body "
-                       "needs no joint (body settings r0, v0, q0, w0)");
+    diags_.error(d.loc, fmt::format("free joint `{}` constrains nothing, so it has no rows for {}", d.name, strategy.rows_are_for()),
+                 strategy.free_joint_hint());
     return;
   }
   int k = static_cast<int>(g.size());
@@ -188,24 +187,7 @@ void Expander::emit_joint(const Joint& j) {
   rates_into(B, [&](char flow) { return jn.row_rate('b', flow); }, gvec, Bf, jn.rows(), true, true);
   ir::ConstraintLaw law;
   law.g = gvec;
-  if (j.strategy == Strategy::Coordinates) {
-    // A cut joint on a tree in joint coordinates: its rows' multipliers keep
-    // g'' + 2 w g' + w^2 g = 0 (Baumgarte, critically damped at w rad/s), an
-    // acceleration-level condition solved with the tree's accelerations.
-    param(B, jn.stabilisation(), setting_or_default(j, joint_setting::stabilisation, B));
-    law.stabilisation = B.ref(jn.stabilisation());
-  }
-  if (j.strategy == Strategy::Penalty) {
-    // Stiffness and damping from the lighter body: natural frequency 1000 rad/s, critically damped.
-    std::vector<E> masses;
-    for (const Frame* f : {&A, &Bf})
-      if (!f->kind.ground()) masses.push_back(B.ref(BodySym(f->body).mass()));
-    E m = masses.size() == 1 ? masses[0] : B.call("min", {masses[0], masses[1]});
-    param(B, jn.stiffness(), setting_or(j, joint_setting::stiffness, B.op('*', m, B.num(1e6))));
-    param(B, jn.damping(), setting_or(j, joint_setting::damping, B.op('*', B.num(2), B.call("sqrt", {B.op('*', m, B.ref(jn.stiffness()))}))));
-    law.stiffness = B.ref(jn.stiffness());
-    law.damping = B.ref(jn.damping());
-  }
+  strategy.hold({B, j, jn, A, Bf, [&](const Sym& name, E value) { param(B, name, std::move(value)); }}, law);
   constraint(B, jn.constraint(), std::move(law));
   if (given(j, joint_setting::motion)) {
     // the prescribed motion's explicit time dependence enters the rate as a flow source

@@ -2,6 +2,8 @@
 // constraint strategy of the joints left to `auto`.
 #include "multibody/spanning_tree.hpp"
 
+#include "multibody/constraint_strategy.hpp"
+
 #include <deque>
 #include <string>
 #include <vector>
@@ -41,6 +43,11 @@ class TreePlanner {
   std::string* strategy_report_;  // ExpandOptions::strategy_report
 };
 
+/// Whether joint coordinates hold `j` (not yet while its strategy is still `auto`).
+bool in_coordinates(const Joint& j) {
+  return j.strategy != Strategy::Auto && constraint_strategy(j.strategy).tree_coordinates();
+}
+
 /// A spanning tree from ground, breadth first: each body is placed by the
 /// first joint that reaches it; the other joints close loops.
 void TreePlanner::find_tree() {
@@ -71,7 +78,7 @@ void TreePlanner::mark_coordinate_bodies() {
   for (const Joint* j : m_.tree_order) {
     Body& c = m_.bodies.at(j->a_is_parent ? j->b.body : j->a.body);
     const std::string& parent = j->a_is_parent ? j->a.body : j->b.body;
-    c.by_coordinates = j->strategy == Strategy::Coordinates;
+    c.by_coordinates = in_coordinates(*j);
     c.tree_parent = c.by_coordinates && parent != "ground" ? parent : "";
   }
 }
@@ -113,7 +120,7 @@ std::vector<TreePlanner::Problem> TreePlanner::coordinate_problems() const {
   std::vector<Problem> out;
   for (const Joint& j : m_.joints) {
     const ir::AstJoint& d = *j.decl;
-    if (j.strategy == Strategy::Coordinates) {
+    if (in_coordinates(j)) {
       for (const Side* s : {&j.a, &j.b})
         if (m_.bodies.at(s->body).kind.field() && s->point.empty() && !m_.bodies.at(s->body).kind.field()->origin_fixed()) {
           out.push_back({d.loc, fmt::format("joint `{}` holds the flexible body `{}` at its frame's origin, which moves with "
@@ -125,7 +132,7 @@ std::vector<TreePlanner::Problem> TreePlanner::coordinate_problems() const {
           break;
         }
     }
-    if (j.strategy == Strategy::Coordinates && j.tree && !j.kind->moves_particles())
+    if (in_coordinates(j) && j.tree && !j.kind->moves_particles())
       for (const Side* s : {&j.a, &j.b})
         if (m_.bodies.at(s->body).kind.particle()) {
           const bool parent = (s == &j.a) == j.a_is_parent;
@@ -143,7 +150,7 @@ std::vector<TreePlanner::Problem> TreePlanner::coordinate_problems() const {
                                        s->body)});
           break;
         }
-    if (j.strategy != Strategy::Coordinates)
+    if (!in_coordinates(j))
       for (const Side* s : {&j.a, &j.b})
         if (m_.bodies.at(s->body).by_coordinates) {
           out.push_back({d.loc, fmt::format("joint `{}` uses constraint rows, but `{}` moves by joint coordinates", d.name, s->body),

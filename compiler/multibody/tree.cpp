@@ -1,4 +1,5 @@
 // multibody/tree.cpp — the initial conditions along the spanning tree (spanning_tree.hpp).
+#include "multibody/constraint_strategy.hpp"
 #include "multibody/expander.hpp"
 
 #include <algorithm>
@@ -17,7 +18,7 @@ void Expander::place_bodies() {
   // A body moved by joint coordinates has its pose as signals of them
   // (emit_coordinate_joint): no initial-pose parameters to compute.
   for (const Joint* j : m_.tree_order)
-    if (j->strategy != Strategy::Coordinates) place(*j, j->a_is_parent);
+    if (!constraint_strategy(j->strategy).tree_coordinates()) place(*j, j->a_is_parent);
   for (const std::string& n : m_.body_order) {
     const Body& body = m_.bodies.at(n);
     const AstBody& d = *body.decl;
