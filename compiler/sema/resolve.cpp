@@ -46,7 +46,7 @@ struct PendingParam {
 /// or a junction's own end, its node known.
 struct PendingEnd {
   ExpandedEnd ep;
-  int scope;
+  int scope = 0;
   int node = -1;
 };
 
@@ -172,18 +172,20 @@ class Resolver {
               n.dim = st.dim;
               n.dim_loc = st.dim_loc;
               n.tree = st.tree, n.generated = st.generated;
-              const PendingEnd self{{{st.name, st.loc}, -1, 0}, scope, static_cast<int>(m_.nodes.size())};
+              PendingEnd self;  // (its node known)
+              self.ep.path = st.name;
+              self.ep.loc = st.loc;
+              self.scope = scope;
+              self.node = static_cast<int>(m_.nodes.size());
               declares(st.symbol, SymbolTarget::Kind::Node, m_.nodes.size());
               add_node(std::move(n));
-              for (const ExpandedEnd& in : st.inputs)
-                bonds_.push_back({"", in.loc, {in, scope}, self, std::nullopt, {}});
-              for (const ExpandedEnd& out : st.outputs)
-                bonds_.push_back({"", out.loc, self, {out, scope}, std::nullopt, {}});
+              for (const ExpandedEnd& in : st.inputs) add_bond("", in.loc, written(in, scope), self, std::nullopt, {});
+              for (const ExpandedEnd& out : st.outputs) add_bond("", out.loc, self, written(out, scope), std::nullopt, {});
             } else if constexpr (std::is_same_v<T, ExpandedBond>) {
               std::string name = st.name.empty() ? "" : prefix + st.name;
               if (!name.empty() && !claim_name(name, st.loc, "bond")) return;
               declares(st.symbol, SymbolTarget::Kind::Bond, bonds_.size());  // (pending: its index in m_.bonds once bound)
-              bonds_.push_back({name, st.loc, {st.from, scope}, {st.to, scope}, st.dim, st.dim_loc});
+              add_bond(name, st.loc, written(st.from, scope), written(st.to, scope), st.dim, st.dim_loc);
             } else if constexpr (std::is_same_v<T, AstSimulate>) {
               if (scope != 0) {
                 diags_.error(st.loc, "`simulate` belongs at the top level, not inside a component",
@@ -220,6 +222,27 @@ class Resolver {
                  fmt::format("the model grows past {} elements, junctions and bonds here", limits_.model_size),
                  "mbgc writes each of them into the generated C++ (the 2000-rod chain has 80000 and makes 115 MB "
                  "of it): make the loops shorter or the components' instances fewer");
+  }
+
+  /// A bond end as written in `scope`.
+  static PendingEnd written(const ExpandedEnd& ep, int scope) {
+    PendingEnd end;
+    end.ep = ep;
+    end.scope = scope;
+    return end;
+  }
+
+  /// (Built member by member: GCC 12 at -O3 takes a braced PendingBond's strings for uninitialised.)
+  void add_bond(const std::string& name, const SourceLoc& loc, const PendingEnd& from, const PendingEnd& to,
+                std::optional<int> dim, const SourceLoc& dim_loc) {
+    PendingBond b;
+    b.name = name;
+    b.loc = loc;
+    b.from = from;
+    b.to = to;
+    b.dim = dim;
+    b.dim_loc = dim_loc;
+    bonds_.push_back(std::move(b));
   }
 
   void add_node(ResolvedNode n) {
@@ -270,7 +293,11 @@ class Resolver {
                        fmt::format("write {} = node_name", a.key));
           continue;
         }
-        port_bindings_[static_cast<std::size_t>(child)][a.key] = {{{a.value->name, a.value->loc}, -1, 0}, scope};
+        PendingEnd bound;
+        bound.ep.path = a.value->name;
+        bound.ep.loc = a.value->loc;
+        bound.scope = scope;
+        port_bindings_[static_cast<std::size_t>(child)][a.key] = bound;
       } else if (is_param) {
         // the value's own unit, else the interface's: `param V = 12 {V}`
         std::optional<DeclaredUnit> unit = declared_unit(std::nullopt, a.value);
