@@ -1,5 +1,6 @@
 // sema/bind.hpp — binding the refs of a term (ir/term.hpp): each name
-// replaced by what it stands for in its scope.
+// replaced by what it stands for in its scope, each symbol of the multibody
+// layer's by what declares it (SymbolTable: no name is looked up for it).
 //
 // Resolve binds every element law, signal, output and drawing with it once
 // the model is flattened, its parameters evaluated and its bonds bound. A
