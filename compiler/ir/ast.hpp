@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <optional>
+#include <type_traits>
 #include <string>
 #include <variant>
 #include <vector>
@@ -82,11 +83,14 @@ struct AstOutput {
 
 /// The unit a declaration states: the one after its value, else its value's
 /// when that is a literal (`param m = 1400 {kg}`, `param x0 = -3 {mm}`).
-inline std::optional<AstUnit> declared_unit(const std::optional<AstUnit>& after, const AstExprPtr& value) {
+/// `Ptr`: an AST expression's or a term's (ir/term.hpp), which share these kinds.
+template <class Ptr>
+std::optional<AstUnit> declared_unit(const std::optional<AstUnit>& after, const Ptr& value) {
   if (after) return after;
-  const AstExpr* e = value.get();
-  while (e && e->kind == AstExpr::Kind::Unary && !e->args.empty()) e = e->args[0].get();
-  if (e && e->kind == AstExpr::Kind::Number && e->unit) return e->unit;
+  const auto* e = value.get();
+  using Kind = typename std::remove_cvref_t<decltype(*e)>::Kind;
+  while (e && e->kind == Kind::Unary && !e->args.empty()) e = e->args[0].get();
+  if (e && e->kind == Kind::Number && e->unit) return e->unit;
   return std::nullopt;
 }
 
@@ -101,27 +105,32 @@ struct AstElement {
 };
 
 /// `1 loop [n] : a, b -> c, d` — a junction and, optionally, the bonds into
-/// (left of ->) and out of (right of ->) it.
-struct AstJunction {
+/// (left of ->) and out of (right of ->) it; their ends are `End`s (the
+/// expanded program's have their own: ir/expanded.hpp).
+template <class End>
+struct JunctionForm {
   char type = '0';
   SourceLoc kind_loc;
   std::string name;
   SourceLoc loc;
   std::optional<int> dim;
   SourceLoc dim_loc;
-  std::vector<AstEndpoint> inputs;
-  std::vector<AstEndpoint> outputs;
+  std::vector<End> inputs;
+  std::vector<End> outputs;
 };
+using AstJunction = JunctionForm<AstEndpoint>;
 
 /// `bond [name :] from -> to [n]`: power flows from `from` to `to`.
-struct AstBond {
+template <class End>
+struct BondForm {
   std::string name;  // may be empty
   SourceLoc loc;     // of the `bond` keyword
-  AstEndpoint from;
-  AstEndpoint to;
+  End from;
+  End to;
   std::optional<int> dim;
   SourceLoc dim_loc;
 };
+using AstBond = BondForm<AstEndpoint>;
 
 struct AstSimulate { SourceLoc loc; std::vector<AstAttr> settings; };
 /// `scene name { outputs = [a, b]; modes = 2 }`: the outputs a run needs and

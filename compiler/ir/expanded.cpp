@@ -27,12 +27,12 @@ bool as_expanded(const AstStmt& s, ExpandedStmt& out) {
           out = ExpandedOutput{st.name, st.loc, to_term(st.value), st.unit, nullptr, nullptr};
         else if constexpr (std::is_same_v<T, AstElement>) out = as_expanded(st);
         else if constexpr (std::is_same_v<T, AstJunction>) {
-          ExpandedJunction j{st.type, st.kind_loc, st.name, st.loc, st.dim, st.dim_loc, {}, {}, {}, false, -1};
+          ExpandedJunction j{{st.type, st.kind_loc, st.name, st.loc, st.dim, st.dim_loc, {}, {}}, {}, false, -1};
           for (const AstEndpoint& e : st.inputs) j.inputs.push_back({e, -1, 0});
           for (const AstEndpoint& e : st.outputs) j.outputs.push_back({e, -1, 0});
           out = std::move(j);
         } else if constexpr (std::is_same_v<T, AstBond>)
-          out = ExpandedBond{st.name, st.loc, {st.from, -1, 0}, {st.to, -1, 0}, st.dim, st.dim_loc, -1};
+          out = ExpandedBond{{st.name, st.loc, {st.from, -1, 0}, {st.to, -1, 0}, st.dim, st.dim_loc}, -1};
         else if constexpr (std::is_constructible_v<ExpandedStmt, T>) out = st;
         else return false;
         return true;

@@ -149,29 +149,15 @@ struct ExpandedEnd : AstEndpoint {
   int port = 0;
 };
 
-/// A junction and the bonds into and out of it (AstJunction's form).
-struct ExpandedJunction {
-  char type = '0';
-  SourceLoc kind_loc;
-  std::string name;
-  SourceLoc loc;
-  std::optional<int> dim;
-  SourceLoc dim_loc;
-  std::vector<ExpandedEnd> inputs;
-  std::vector<ExpandedEnd> outputs;
+/// A junction and the bonds into and out of it.
+struct ExpandedJunction : JunctionForm<ExpandedEnd> {
   TreeTag tree;
   bool generated = false;  // as ExpandedElement's
   int symbol = -1;         // as ExpandedParam's
 };
 
-/// A bond (AstBond's form); the multibody layer's named ones have a symbol, as ExpandedParam's.
-struct ExpandedBond {
-  std::string name;  // may be empty
-  SourceLoc loc;
-  ExpandedEnd from;
-  ExpandedEnd to;
-  std::optional<int> dim;
-  SourceLoc dim_loc;
+/// A bond; the multibody layer's named ones have a symbol, as ExpandedParam's.
+struct ExpandedBond : BondForm<ExpandedEnd> {
   int symbol = -1;
 };
 

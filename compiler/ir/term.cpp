@@ -14,7 +14,10 @@ TermPtr to_term(const AstExpr& e) {
   t->name = e.name;
   switch (e.kind) {
     case AstExpr::Kind::Number: t->kind = Term::Kind::Number; break;
-    case AstExpr::Kind::Name: t->kind = Term::Kind::Ref, t->ref = {Ref::Kind::Name, -1, Quantity::value}; break;
+    case AstExpr::Kind::Name:  // t and pi are the built-ins wherever they are written
+      t->kind = Term::Kind::Ref;
+      t->ref = {e.name == "t" ? Ref::Kind::Time : e.name == "pi" ? Ref::Kind::Pi : Ref::Kind::Name, -1, Quantity::value};
+      break;
     case AstExpr::Kind::Unary: t->kind = Term::Kind::Unary; break;
     case AstExpr::Kind::Binary: t->kind = Term::Kind::Binary; break;
     case AstExpr::Kind::Call: t->kind = Term::Kind::Call; break;
@@ -26,19 +29,5 @@ TermPtr to_term(const AstExpr& e) {
   return t;
 }
 
-std::optional<AstUnit> declared_unit(const std::optional<AstUnit>& after, const TermPtr& value) {
-  if (after) return after;
-  const Term* e = value.get();
-  while (e && e->kind == Term::Kind::Unary && !e->args.empty()) e = e->args[0].get();
-  if (e && e->kind == Term::Kind::Number && e->unit) return e->unit;
-  return std::nullopt;
-}
-
-bool reads_a_ref(const Term& e) {
-  if (e.kind == Term::Kind::Ref) return true;
-  for (const TermPtr& a : e.args)
-    if (reads_a_ref(*a)) return true;
-  return false;
-}
 
 }  // namespace mbgc::ir

@@ -83,13 +83,9 @@ struct TermAttr {
   TermPtr value;
 };
 
-/// The AST expression as a term, its names unbound (Ref::Name); null for null.
+/// The AST expression as a term, its names unbound (Ref::Name; `t` and `pi`
+/// the built-ins); null for null.
 TermPtr to_term(const AstExprPtr& e);
 TermPtr to_term(const AstExpr& e);
-/// The unit a declaration states: the one after its value, else its value's
-/// when that is a literal (as ir::declared_unit over the AST).
-std::optional<AstUnit> declared_unit(const std::optional<AstUnit>& after, const TermPtr& value);
-/// Whether `e` reads a name or a symbol (a term of numbers only does not).
-bool reads_a_ref(const Term& e);
 
 }  // namespace mbgc::ir

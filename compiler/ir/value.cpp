@@ -182,9 +182,8 @@ class Lowerer {
       if (e.name == "pi") return Value::scalar(constant(M_PI));
       return lookup_(e.name, e.loc);
     } else {
-      const bool named = e.ref.kind == Ref::Kind::Name;  // (a parameter's value: its names unbound)
-      if (e.ref.kind == Ref::Kind::Time || (named && e.name == "t")) return Value::scalar(time());
-      if (e.ref.kind == Ref::Kind::Pi || (named && e.name == "pi")) return Value::scalar(constant(M_PI));
+      if (e.ref.kind == Ref::Kind::Time) return Value::scalar(time());
+      if (e.ref.kind == Ref::Kind::Pi) return Value::scalar(constant(M_PI));
       return lookup_(e);
     }
   }

@@ -74,8 +74,6 @@ TermPtr Binder::bind(const Term& e, int scope, Diagnostics& diags, OwnQuantities
 
 bool Binder::name(const Term& e, int scope, OwnQuantities own, Ref& out, Diagnostics& diags) const {
   const std::string& name = e.name;
-  if (name == "t") return out = {Ref::Kind::Time, -1, Quantity::value}, true;
-  if (name == "pi") return out = {Ref::Kind::Pi, -1, Quantity::value}, true;
   if (own.any) {
     if (name == "e") return out = {Ref::Kind::Own, -1, Quantity::e}, true;
     if (name == "f") return out = {Ref::Kind::Own, -1, Quantity::f}, true;
