@@ -209,6 +209,11 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   auto* step = app.add_option("--step", s.step_s,
                               fmt::format("Fixed step for {} [s] (default: interval/10)", fixed_step_names()))
                    ->type_name("SECONDS");
+  auto* rho = app.add_option("--rho-inf", s.rho_inf,
+                             "generalized_alpha: the spectral radius at an infinite step, from 0 (modes far above "
+                             "1/step damped out in one step) to 1 (none damped)")
+                  ->type_name("X")
+                  ->capture_default_str();
   app.add_option("--set", sets, "Override a parameter (repeatable)")
       ->type_name("NAME=VALUE")
       ->allow_extra_args(false);
@@ -291,6 +296,10 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
       }
     }
     validate(o, step->count() > 0);
+    require(rho->count() == 0 || s.solver == Solver::generalized_alpha,
+            fmt::format("--rho-inf applies to --solver generalized_alpha only, not to {}", solver_name(s.solver)));
+    require(std::isfinite(s.rho_inf) && s.rho_inf >= 0 && s.rho_inf <= 1,
+            fmt::format("--rho-inf must be from 0 to 1 (got {})", s.rho_inf));
     // (like --step: a linear solver asked for and silently not used would
     // make a comparison measure something else than its author meant)
     if (linear->count() > 0 && s.linear_solver != LinearSolver::automatic)

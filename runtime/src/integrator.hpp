@@ -88,12 +88,21 @@ bool chatter_failure(const Events& events, double t, SolverFailure& failure);
 void add_counts(SolverStats& st, const SolverStats& before);
 
 /// Settings::t_end_s is used as the stop time the integrator never steps past.
+std::unique_ptr<Integrator> make_euler(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_heun(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_symplectic_euler(GuardedModel& model, const Settings& s);
 std::unique_ptr<Integrator> make_rk4(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_linearly_implicit_euler(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_ros2(GuardedModel& model, const Settings& s);
+std::unique_ptr<Integrator> make_generalized_alpha(GuardedModel& model, const Settings& s);
 std::unique_ptr<Integrator> make_dopri5(GuardedModel& model, const Settings& s);
 std::unique_ptr<Integrator> make_cvode(GuardedModel& model, const Settings& s);
 std::unique_ptr<Integrator> make_ida(GuardedModel& model, const Settings& s);
 std::unique_ptr<Integrator> make_integrator(GuardedModel& model, const Settings& s);
 
 const char* solver_name(Solver s);
+/// Why integrator i cannot run `model` (a DAE for an ODE method, a model
+/// without the position/velocity layout for symplectic_euler); empty if it can.
+std::string why_integrator_does_not_fit(const IntegratorInfo& i, const Model& model);
 
 }  // namespace mbgrt::detail

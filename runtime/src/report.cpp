@@ -21,7 +21,7 @@ std::string hint_for(const SolverFailure& f, std::string_view solver) {
   std::string implicit;
   for (ModelForm form : {ModelForm::ode, ModelForm::dae})
     for (const IntegratorInfo& i : kIntegrators)
-      if (i.implicit && i.form == form) implicit += implicit.empty() ? i.name : fmt::format(" (or {})", i.name);
+      if (i.implicit && i.adaptive && i.form == form) implicit += implicit.empty() ? i.name : fmt::format(" (or {})", i.name);
   if (flag_is(flag, "TOO_MUCH_WORK"))
     return explicit_method
                ? fmt::format("the model is probably stiff here; try --solver {}", implicit)
@@ -33,7 +33,7 @@ std::string hint_for(const SolverFailure& f, std::string_view solver) {
     return "the solution probably has a singularity or a discontinuity near this time (an "
            "impact, a lock-up, a joint passing through a singular configuration); the CSV shows "
            "the approach to it";
-  if (flag == "RK4_NONFINITE")
+  if (flag_is(flag, "_NONFINITE"))
     return "try a smaller --step, or an adaptive solver (--solver dopri5 or cvode)";
   if (flag_is(flag, "LINESEARCH_FAIL") || flag_is(flag, "NO_RECOVERY"))
     return "check the initial values of the algebraic variables";

@@ -118,7 +118,7 @@ std::string implicit_near_change_points(const Model& model, Solver solver,
   const RankLossLog* rl = model.rank_loss();
   // (a row implied by the others throughout is a redundant loop, not a change point)
   const bool rank_changed = rl && rl->cut_joint_count() > 0 && rl->cut_joint_rank_changed();
-  if (!rl || !integrator_info(solver).implicit || (!rank_changed && !(rl->closest() < kNearChangePoint)) ||
+  if (!rl || !integrator_info(solver).multistep || (!rank_changed && !(rl->closest() < kNearChangePoint)) ||
       stepped_across_all(*rl, spans))
     return {};
   const std::string where =
@@ -172,11 +172,15 @@ bool apply_overrides(Model& model, const Options& o) {
 
 /// Rejects solver/model combinations that cannot work, before any output is written.
 bool check_model_fits(const Model& model, const Options& o) {
-  if (!model.is_dae() || integrator_info(o.settings.solver).takes(ModelForm::dae)) return true;
-  print_error(fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has algebraic unknowns); use "
-                          "--solver {}",
-                          solver_name(o.settings.solver), model.name(), solver_name(kDefaultDaeSolver)));
-  return false;
+  if (model.is_dae() && !integrator_info(o.settings.solver).takes(ModelForm::dae)) {
+    print_error(fmt::format("solver {} cannot integrate model '{}': it is a DAE (it has algebraic unknowns); use "
+                            "--solver {}",
+                            solver_name(o.settings.solver), model.name(), solver_name(kDefaultDaeSolver)));
+    return false;
+  }
+  const std::string why = why_integrator_does_not_fit(integrator_info(o.settings.solver), model);
+  if (!why.empty()) print_error(fmt::format("solver {} cannot integrate this model: {}", solver_name(o.settings.solver), why));
+  return why.empty();
 }
 
 int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constraint_out, OutputFile* event_out,

@@ -120,7 +120,7 @@ std::vector<Trial> sweep_for(const Model& model, const Settings& base) {
   // ones at halved steps, adaptive ones over the tolerances.
   const ModelForm form = model.is_dae() ? ModelForm::dae : ModelForm::ode;
   for (const IntegratorInfo& i : kIntegrators) {
-    if (i.form != form) continue;
+    if (i.form != form || !why_integrator_does_not_fit(i, model).empty()) continue;
     if (!i.adaptive) {
       for (int k = 0; k < kStepHalvings; ++k) trials.push_back({i.solver, 0, 0, base.interval_s / std::pow(2.0, k)});
       continue;

@@ -35,7 +35,7 @@ TEST(Cli, BadValuesExit2WithMessage) {
       {"--interval", "-1"},
       {"--interval", "0"},
       {"--rtol", "-1e-6"},
-      {"--solver", "euler"},
+      {"--solver", "leapfrog"},
       {"--t-end", "-5"},
       {"--step", "0.01"},  // --step with an adaptive solver
       {"--solver", "rk4", "--step", "0"},
@@ -79,9 +79,9 @@ TEST(Cli, RealtimeReportsOverruns) {
 
 TEST(Cli, UnknownSolverIsNamedInTheMessage) {
   Decay m;
-  RunResult r = run(m, {"--solver", "euler"});
+  RunResult r = run(m, {"--solver", "leapfrog"});
   EXPECT_EQ(r.status, 2);
-  EXPECT_TRUE(Contains(r.err, "euler"));
+  EXPECT_TRUE(Contains(r.err, "leapfrog"));
 }
 
 TEST(Cli, EveryIntegratorInTheRegistryIsOfferedWithWhatItCanDo) {
@@ -93,7 +93,9 @@ TEST(Cli, EveryIntegratorInTheRegistryIsOfferedWithWhatItCanDo) {
     EXPECT_TRUE(Contains(help.out, std::string(i.name) + " (" + i.method + ")")) << i.name;
     Decay ode;
     RunResult plain = run(ode, {"--solver", i.name, "--t-end", "0.1"});
-    EXPECT_EQ(plain.status, 0) << i.name << ": " << plain.err;  // every integrator takes an ODE
+    // every integrator takes an ODE, if it says which unknowns are positions where the method needs that
+    EXPECT_EQ(plain.status, i.needs_layout ? 2 : 0) << i.name << ": " << plain.err;
+    if (i.needs_layout) continue;
     Decay stepped;
     RunResult step = run(stepped, {"--solver", i.name, "--step", "0.001", "--t-end", "0.1"});
     EXPECT_EQ(step.status, i.adaptive ? 2 : 0) << i.name << ": " << step.err;
@@ -105,7 +107,7 @@ TEST(Cli, EveryIntegratorInTheRegistryIsOfferedWithWhatItCanDo) {
     EXPECT_EQ(d.status, i.takes(ModelForm::dae) ? 0 : 2) << i.name << ": " << d.err;
   }
   Decay m;
-  RunResult unknown = run(m, {"--solver", "euler"});
+  RunResult unknown = run(m, {"--solver", "leapfrog"});
   EXPECT_TRUE(Contains(unknown.err, "(use " + integrator_names() + ")")) << unknown.err;
 }
 

@@ -60,7 +60,11 @@ TEST(WorkPrecision, EverySolverOfAnOdeIsSweptAndItsErrorFallsAsItsOrderSays) {
   ASSERT_EQ(rk4.size(), 8u);
   ASSERT_EQ(dopri5.size(), 8u);
   ASSERT_EQ(cvode.size(), 8u);
-  EXPECT_EQ(rows.size(), 25u) << "the reference and 24 trials; no ida rows for an ODE";
+  // every fixed-step method at 8 steps but the symplectic Euler (the
+  // oscillator does not say which unknown is a position), dopri5 and cvode at 8 tolerances
+  for (const IntegratorInfo& i : kIntegrators)
+    if (!i.adaptive) EXPECT_EQ(of(rows, i.name).size(), i.needs_layout ? 0u : 8u) << i.name;
+  EXPECT_EQ(rows.size(), 65u) << "the reference and 64 trials; no ida rows for an ODE";
   ASSERT_EQ(rows.front().solver, "reference");
   EXPECT_LT(rows.front().error, 1e-10) << "the reference's own error (dopri5 at rtol 1e-13 against 1e-12)";
   for (const Row& row : rows) {
@@ -140,12 +144,18 @@ class DecayAndItsError : public Decay {
 
 TEST(WorkPrecision, AnOutputThatStaysNearZeroIsMeasuredAtTheModelsAbsoluteScale) {
   // `error` is ~1e-13 in the reference; scaled by that, every trial would be
-  // off by 1e5 and more. Scaled by atol / rtol (1e-2 here) every trial stays below 1.
+  // off by 1e5 and more. Scaled by atol / rtol (1e-2 here) every trial whose
+  // x is within 1e-2 stays below 1: all but the first-order methods at the
+  // longest step, 0.1 s, whose x misses by 1.8e-2 (h k^2 t x(t) / 2).
   DecayAndItsError m;
   RunResult r = run(m, {"--work-precision", "--quiet"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::string header;
-  for (const Row& row : parse_sweep(r.csv, &header)) EXPECT_LT(row.error, 1.0) << row.solver << " " << row.rtol << " " << row.step_s;
+  for (const Row& row : parse_sweep(r.csv, &header)) {
+    const IntegratorInfo* i = find_integrator(row.solver);
+    if (i && i->order == 1 && row.step_s == 0.1) continue;
+    EXPECT_LT(row.error, 1.0) << row.solver << " " << row.rtol << " " << row.step_s;
+  }
 }
 
 TEST(WorkPrecision, CannotBeCombinedWithLinearisation) {

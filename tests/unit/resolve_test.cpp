@@ -339,7 +339,7 @@ TEST(Resolve, SimulateSettingsAreFoldedToNumbers) {
 }
 
 TEST(ResolveErrors, BadSimulateSettings) {
-  auto c = resolve("simulate { t_end = -1; solver = euler; tolerance = 1e-6 }\n");
+  auto c = resolve("simulate { t_end = -1; solver = leapfrog; tolerance = 1e-6 }\n");
   ASSERT_EQ(c->diags.error_count(), 3) << c->messages();
   std::vector<std::string> msgs;
   for (const ir::Diagnostic& d : c->diags.all()) msgs.push_back(d.message);

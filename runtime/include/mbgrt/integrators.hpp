@@ -16,7 +16,18 @@
 namespace mbgrt {
 
 /// Integrators the runtime offers (names as used by --solver).
-enum class Solver { rk4, dopri5, cvode, ida };
+enum class Solver {
+  euler,
+  heun,
+  symplectic_euler,
+  rk4,
+  dopri5,
+  linearly_implicit_euler,
+  ros2,
+  generalized_alpha,
+  cvode,
+  ida
+};
 
 /// The form of model an integrator works on natively: x' = f(t, x), or
 /// F(t, y, y') = 0. One that takes a DAE also takes an ODE (as F = y' - f),
@@ -27,10 +38,12 @@ struct IntegratorInfo {
   Solver solver;
   const char* name;       ///< --solver NAME, simulate { solver = NAME }
   const char* method;     ///< what it is, one line (--help)
-  bool implicit;          ///< solves a nonlinear system each step: for stiff models
+  int order;              ///< its order of accuracy (the highest, for a variable-order method)
+  bool implicit;          ///< solves a linear or nonlinear system each step: for stiff models
   bool adaptive;          ///< error-controlled steps (--rtol, --atol); else a fixed --step
+  bool multistep;         ///< carries past steps (BDF), whose corrector solves for the end of each step
   ModelForm form;         ///< what it integrates natively (a DAE integrator also takes ODEs)
-  bool locates_events;    ///< finds the zero crossings of the model's event functions
+  bool needs_layout;      ///< needs the unknowns' split into positions and velocities (Model::unknown_role)
   bool linear_solver;     ///< takes --linear-solver (dense LU or KLU on the model's pattern)
   /// An explicit method is stable while h |lambda| stays below this on the
   /// negative real axis (lambda: the fastest decaying mode); 0 for methods
@@ -40,15 +53,32 @@ struct IntegratorInfo {
   bool takes(ModelForm f) const { return f == ModelForm::ode || form == ModelForm::dae; }
 };
 
-inline constexpr std::array<IntegratorInfo, 4> kIntegrators = {{
-    {Solver::rk4, "rk4", "classical Runge-Kutta of order 4, fixed step", false, false, ModelForm::ode, true, false,
-     2.78},
-    {Solver::dopri5, "dopri5", "Dormand-Prince 5(4), explicit, adaptive (SUNDIALS ARKODE)", false, true, ModelForm::ode,
-     true, false, 3.3},
-    {Solver::cvode, "cvode", "BDF of orders 1 to 5, implicit, adaptive (SUNDIALS CVODE)", true, true, ModelForm::ode,
-     true, false, 0.0},
-    {Solver::ida, "ida", "BDF for DAEs, orders 1 to 5, implicit, adaptive (SUNDIALS IDA)", true, true, ModelForm::dae,
-     true, true, 0.0},
+// (every integrator locates the model's events: at its own order, by its
+// own steps to the crossing or by its interpolant)
+inline constexpr std::array<IntegratorInfo, 10> kIntegrators = {{
+    {Solver::euler, "euler", "explicit Euler, order 1, fixed step, one derivative per step", 1, false, false, false,
+     ModelForm::ode, false, false, 2.0},
+    {Solver::heun, "heun", "Heun (explicit trapezoidal, RK2), order 2, fixed step", 2, false, false, false,
+     ModelForm::ode, false, false, 2.0},
+    {Solver::symplectic_euler, "symplectic_euler",
+     "semi-implicit (symplectic) Euler, order 1, fixed step: velocities, then positions from the new velocities", 1,
+     false, false, false, ModelForm::ode, true, false, 2.0},
+    {Solver::rk4, "rk4", "classical Runge-Kutta of order 4, fixed step", 4, false, false, false, ModelForm::ode, false,
+     false, 2.78},
+    {Solver::dopri5, "dopri5", "Dormand-Prince 5(4), explicit, adaptive (SUNDIALS ARKODE)", 5, false, true, false,
+     ModelForm::ode, false, false, 3.3},
+    {Solver::linearly_implicit_euler, "linearly_implicit_euler",
+     "linearly implicit Euler, order 1, fixed step: one Jacobian and one LU per step, no Newton loop", 1, true, false,
+     false, ModelForm::ode, false, false, 0.0},
+    {Solver::ros2, "ros2", "Rosenbrock-W ROS2, order 2, L-stable, fixed step: one Jacobian and one LU per step", 2, true,
+     false, false, ModelForm::ode, false, false, 0.0},
+    {Solver::generalized_alpha, "generalized_alpha",
+     "generalized-alpha, order 2, fixed step, high-frequency damping set by --rho-inf (Newton, Jacobian kept)", 2,
+     true, false, false, ModelForm::ode, false, false, 0.0},
+    {Solver::cvode, "cvode", "BDF of orders 1 to 5, implicit, adaptive (SUNDIALS CVODE)", 5, true, true, true,
+     ModelForm::ode, false, false, 0.0},
+    {Solver::ida, "ida", "BDF for DAEs, orders 1 to 5, implicit, adaptive (SUNDIALS IDA)", 5, true, true, true,
+     ModelForm::dae, false, true, 0.0},
 }};
 
 /// The default integrator for a model of each form (a model's `simulate`
@@ -85,7 +115,7 @@ std::string integrator_names_where(Has has, std::string_view last = "or") {
   return s;
 }
 
-/// "rk4, dopri5, cvode or ida".
+/// "euler, heun, ..., cvode or ida".
 inline std::string integrator_names(std::string_view last = "or") {
   return integrator_names_where([](const IntegratorInfo&) { return true; }, last);
 }

@@ -184,7 +184,8 @@ struct Settings {
   Solver solver = kDefaultOdeSolver;
   double rtol = 1e-6;
   double atol = 1e-8;
-  double step_s = 0.0;        ///< fixed step for rk4 (0: use interval/10)
+  double step_s = 0.0;        ///< fixed step of the fixed-step methods (0: use interval/10)
+  double rho_inf = 0.8;       ///< generalized_alpha: the spectral radius at an infinite step, in [0, 1]
   LinearSolver linear_solver = LinearSolver::automatic;  ///< IDA only
 };
 
