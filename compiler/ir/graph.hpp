@@ -167,7 +167,7 @@ struct UnitCheck {
 };
 
 struct SimSettings {
-  std::optional<double> t_end, interval, rtol, atol, step;
+  std::optional<double> t_end, interval, rtol, atol, step, rho_inf;
   std::optional<std::string> solver;
   SourceLoc solver_loc;  // of the solver's name, when given
   // The command-line option that chose the model's form (`--constraints
@@ -178,11 +178,13 @@ struct SimSettings {
 
 /// The `simulate { ... }` block's settings, declared once, in the order the
 /// language reference lists them: a number's (where its value goes, its
-/// dimension), or the solver's, a word (no slot).
+/// dimension, its range), or the solver's, a word (no slot).
 struct SimSetting {
   const char* name;
   std::optional<double> SimSettings::*slot;
   std::optional<units::Dimension> dimension;
+  bool fraction = false;         ///< from 0 to 1 (else positive)
+  const char* meaning = nullptr;  ///< what the number is, for a value out of its range
 };
 inline const std::vector<SimSetting>& sim_settings() {
   static const std::vector<SimSetting> all = {
@@ -192,6 +194,9 @@ inline const std::vector<SimSetting>& sim_settings() {
       {"rtol", &SimSettings::rtol, units::Dimension::none()},
       {"atol", &SimSettings::atol, std::nullopt},  // in each state's own unit
       {"step", &SimSettings::step, units::dim::time()},
+      {"rho_inf", &SimSettings::rho_inf, units::Dimension::none(), true,
+       "generalized_alpha's spectral radius at an infinite step: 0 damps the modes far above 1/step out at once, 1 "
+       "damps none"},
   };
   return all;
 }

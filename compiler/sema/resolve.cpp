@@ -371,7 +371,7 @@ class Resolver {
         if (!units::check_literal_units(*a.value, *setting->dimension, what, diags_)) continue;
         if (units::reads_a_name(*a.value)) setting_checks_.push_back({to_term(a.value), *setting->dimension, a.loc, what});
       }
-      settings_.push_back({&(m_.settings.*(setting->slot)), a});
+      settings_.push_back({&(m_.settings.*(setting->slot)), a, setting});
     }
   }
 
@@ -382,7 +382,7 @@ class Resolver {
     m_.param_values.assign(pending_params_.size(), Value{});
     has_value_.assign(pending_params_.size(), 0);
     for (std::size_t i = 0; i < pending_params_.size(); ++i) evaluate(i);
-    for (auto& [slot, attr] : settings_) {
+    for (auto& [slot, attr, setting] : settings_) {
       auto v = lower(*attr.value, param_lookup(0), diags_);
       if (!v) continue;
       double c = 0;
@@ -391,7 +391,12 @@ class Resolver {
                      "simulation settings may use numbers and parameters, not time or states");
         continue;
       }
-      if (!(c > 0)) {
+      if (setting->fraction && !(c >= 0 && c <= 1)) {
+        diags_.error(attr.value->loc, fmt::format("`{}` must be from 0 to 1", attr.key),
+                     setting->meaning ? setting->meaning : "");
+        continue;
+      }
+      if (!setting->fraction && !(c > 0)) {
         diags_.error(attr.value->loc, fmt::format("`{}` must be positive", attr.key), "");
         continue;
       }
@@ -679,7 +684,12 @@ class Resolver {
   const Limits& limits_;
   SourceLoc top_loc_;     ///< the top-level statement being flattened
   bool too_big_ = false;  ///< past limits_.model_size: reported, flattening stopped
-  std::vector<std::pair<std::optional<double>*, AstAttr>> settings_;
+  struct PendingSetting {
+    std::optional<double>* slot;
+    AstAttr attr;
+    const SimSetting* setting;
+  };
+  std::vector<PendingSetting> settings_;
 };
 
 }  // namespace

@@ -86,10 +86,13 @@ TEST(EnergyWitness, TheSameMechanismInJointCoordinatesHasABalance) {
 }
 
 TEST(EnergyWitness, EveryIntegratorCarriesTheBalance) {
-  // rk4 and dopri5 integrate the powers in their own stages (dopri5 with
-  // the witness's entries outside its error norm), cvode and ida as
-  // quadratures: each run's residual is near its own error in E
-  for (const char* options : {"--solver rk4 --step 1e-3", "--solver dopri5 --rtol 1e-8 --atol 1e-10",
+  // the fixed-step methods and dopri5 integrate the powers in their own
+  // stages (dopri5 with the witness's entries outside its error norm), cvode
+  // and ida as quadratures: each run's residual is near its own error in E
+  for (const char* options : {"--solver euler --step 1e-3", "--solver heun --step 1e-3",
+                              "--solver symplectic_euler --step 1e-3", "--solver rk4 --step 1e-3",
+                              "--solver linearly_implicit_euler --step 1e-3", "--solver ros2 --step 1e-3",
+                              "--solver generalized_alpha --step 1e-3", "--solver dopri5 --rtol 1e-8 --atol 1e-10",
                               "--solver cvode --rtol 1e-8 --atol 1e-10", "--solver ida --rtol 1e-8 --atol 1e-10"}) {
     SCOPED_TRACE(options);
     SimRun r = run(MB_PENDULUM_COORDINATES_SIM, std::string(options) + " --t-end 2", "energy_coords_each");

@@ -201,6 +201,19 @@ TEST(Emit, SimulateBlockBecomesDefaultSettings) {
                                             "s.solver = mbgrt::Solver::dopri5;", "s.rtol = 1e-08;", "return s;"}));
 }
 
+TEST(Emit, GeneralizedAlphasRhoInfIsADefaultSettingToo) {
+  std::string text = kSeriesRlc;
+  const std::size_t at = text.find("solver = dopri5");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("solver = dopri5").size(), "solver = generalized_alpha; step = 1e-3; rho_inf = 0.6");
+  auto c = compile(text);
+  ASSERT_TRUE(c->ok()) << c->messages();
+  auto body = method(emit(*c), "mbgrt::Settings default_settings() const override");
+  EXPECT_EQ(body, (std::vector<std::string>{"mbgrt::Settings s;", "s.t_end_s = 2.0;", "s.interval_s = 0.01;",
+                                            "s.solver = mbgrt::Solver::generalized_alpha;", "s.rtol = 1e-08;",
+                                            "s.step_s = 0.001;", "s.rho_inf = 0.6;", "return s;"}));
+}
+
 // ---- library form -----------------------------------------------------------------------------
 
 TEST(Emit, LibraryFormHasNoMainAndANamedNamespace) {

@@ -15,7 +15,8 @@
 // a stiff model driven by time (a stiff spring on a prescribed motion) loses
 // an order. f_t is a forward difference in t, one derivative more per step.
 // The witness integrates the power by the rectangle rule (Euler) and the
-// trapezoidal rule over the step's two points (ROS2), each at the method's order.
+// trapezoidal rule over the step (ROS2), each at the method's order; the
+// power at a step's end is the next one's start.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -34,10 +35,15 @@ class LinearlyImplicit {
   // (a trial always starts from the accepted state: the event search's
   // trials of shorter steps reuse its derivative and Jacobian)
   bool start(double, const double*) {
-    linearized_ = false;
+    linearized_ = start_power_known_ = false;
     return true;
   }
-  void accept() { linearized_ = false; }
+  void accept() {
+    linearized_ = false;
+    // (the trapezoidal rule's end is the next step's start)
+    start_power_known_ = end_power_known_;
+    std::copy(power_[1], power_[1] + 2, power_[0]);
+  }
   const std::optional<StepFailure>& failure() const { return failure_; }
   void add_stats(SolverStats& st) const {
     st.jac_evals = matrix_.jacobians();
@@ -52,7 +58,8 @@ class LinearlyImplicit {
     failure_.reset();
     if (!linearized_) {
       if (!s_.derivative(t, y, f0_.data())) return false;
-      if (s_.witness()) s_.power(t, y, power_[0]);
+      if (s_.witness() && !start_power_known_) s_.power(t, y, power_[0]);
+      end_power_known_ = false;
       if (!matrix_.jacobian(t, y, f0_.data())) return false;
       const double dt = std::sqrt(DBL_EPSILON) * std::max(std::abs(t), 1.0);
       const double t1 = t + dt;
@@ -76,9 +83,10 @@ class LinearlyImplicit {
   IterationMatrix matrix_;
   std::vector<double> f0_, ft_, tmp_;
   long time_differences_ = 0;
-  double power_[2][2] = {};
+  double power_[2][2] = {};  ///< the witness's rates at the step's start and (ROS2) end
   std::optional<StepFailure> failure_;
-  bool linearized_ = false;  ///< f0_, power_[0] and the Jacobian are the accepted state's
+  bool linearized_ = false;  ///< f0_, ft_ and the Jacobian are the accepted state's
+  bool start_power_known_ = false, end_power_known_ = false;
   double factored_ = 0.0;    ///< the c of the factored I - c J (0: none)
 };
 
@@ -117,11 +125,14 @@ class Ros2 : LinearlyImplicit {
     matrix_.solve(k1_.data());
     for (std::size_t i = 0; i < n_; ++i) tmp_[i] = y[i] + h * k1_[i];
     if (!s_.derivative(t + h, tmp_.data(), k2_.data())) return false;
-    if (s_.witness()) s_.power(t + h, tmp_.data(), power_[1]);
     for (std::size_t i = 0; i < n_; ++i) k2_[i] -= 2 * k1_[i] + g * h * ft_[i];
     matrix_.solve(k2_.data());
     for (std::size_t i = 0; i < n_; ++i) out[i] = y[i] + h * (1.5 * k1_[i] + 0.5 * k2_[i]);
-    for (int k = 0; k < 2; ++k) energy[k] = h / 2 * (power_[0][k] + power_[1][k]);
+    if (s_.witness()) {
+      s_.power(t + h, out, power_[1]);
+      end_power_known_ = true;
+      for (int k = 0; k < 2; ++k) energy[k] = h / 2 * (power_[0][k] + power_[1][k]);
+    }
     return true;
   }
 
