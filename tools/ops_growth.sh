@@ -7,7 +7,7 @@
 #
 #   model,constraints,n,method,ops,expr_ops,solve_ops,solve_sizes,lines,file_bytes,ops_ratio,lines_ratio,bytes_ratio
 #
-# method is derivative (an ODE) or residual (a DAE); ops = expr_ops (its
+# method is derivative_and_power or derivative (an ODE) or residual (a DAE); ops = expr_ops (its
 # expressions, as written) + solve_ops (mbgrt::solve_linear's arithmetic,
 # (4n^3 + 9n^2 - 7n)/6 per n x n solve; solve_sizes lists the n); lines are the
 # method's, file_bytes the whole generated file's. The ratios are to the
@@ -39,7 +39,8 @@ series() {  # model-file label strategy sizes...
     [ "$strategy" = coordinates ] && form=(--outline always)
     csv=$("$mbgc" "$file" --set N="$n" --constraints "$strategy" "${form[@]}" --stats --stats-format csv)
     # function,lines,bytes,ops,add,mul,div,neg,call,compare,solve_sizes,solve_ops
-    row=$(grep -E '^(derivative|residual),' <<<"$csv")
+    # (derivative_and_power where the model has an energy balance: derivative() calls it)
+    row=$(grep -E '^derivative_and_power,' <<<"$csv" || grep -E '^(derivative|residual),' <<<"$csv")
     IFS=, read -r method lines _ ops _ _ _ _ _ _ sizes solve_ops <<<"$row"
     bytes=$(grep '^file,' <<<"$csv" | cut -d, -f3)
     expr=$((ops - solve_ops))

@@ -69,7 +69,17 @@ class Emitter {
       c.public_methods.push_back({"NOMINAL: unknown i's absolute tolerance is atol x nominal(i) (set in initial()).",
                                   "double nominal(std::size_t i) const override",
                                   {CppStmt::line(fmt::format("return i < {} ? nominal_[i] : 1.0;", unknown_count()))}});
-    add_long_method(c, s_.dae ? residual() : derivative());
+    if (s_.dae) {
+      add_long_method(c, residual());
+    } else if (s_.energy.available) {  // the powers read what the derivative computes: one pass gives both
+      add_long_method(c, derivative_and_power());
+      c.public_methods.push_back(
+          {"DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).",
+           "void derivative(double t, const double* x, double* xdot) override",
+           {CppStmt::line("double rate[2];"), CppStmt::line("derivative_and_power(t, x, xdot, rate);")}});
+    } else {
+      add_long_method(c, derivative());
+    }
     if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity_method(s_));
     if (!s_.jacobian.empty()) {
       c.public_methods.push_back({"", "bool has_jacobian() const override", {CppStmt::line("return true;")}});
@@ -479,6 +489,29 @@ class Emitter {
       results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
     if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
     section(f.body, s_.for_derivative, std::move(results), "state derivatives");
+    return f;
+  }
+
+  /// The derivative's equations and the powers' in one section: the powers
+  /// read the kinematics and forces the derivative computes (for the
+  /// 14-DOF two-track car, all but 2 of the 887 assignments they need), so
+  /// the witness's explicit methods pay almost nothing for them.
+  CppFunction derivative_and_power() {
+    CppFunction f{"DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: "
+                  "rate[0] what the sources deliver, rate[1] what the rest absorbs (W).",
+                  "void derivative_and_power(double t, const double* x, double* xdot, double* rate) override",
+                  {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
+    const Counting counting = count_into(f);
+    std::vector<SectionResult> results;
+    for (std::size_t i = 0; i < s_.states.size(); ++i)
+      results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
+    if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
+    const std::vector<Expr> powers = power_values(s_);
+    for (std::size_t k = 0; k < powers.size(); ++k) results.push_back({"rate", k, powers[k], {}, {}, {}});
+    std::vector<int> slice;
+    std::set_union(s_.for_derivative.begin(), s_.for_derivative.end(), s_.for_power.begin(), s_.for_power.end(),
+                   std::back_inserter(slice));
+    section(f.body, slice, std::move(results), "state derivatives, then the powers");
     return f;
   }
 

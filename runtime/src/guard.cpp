@@ -41,18 +41,22 @@ int GuardedModel::record(double t, BlameSite site, std::size_t index, double val
   return -1;
 }
 
-int GuardedModel::derivative(double t, const double* y, double* ydot, InputCheck check) {
+int GuardedModel::derivative(double t, const double* y, double* ydot, InputCheck check, double* rate) {
   // A non-finite input means an earlier step already went wrong; blaming the
   // state itself points the user at the real culprit, not at its consumers.
   if (check == InputCheck::before)
     if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
   try {
-    model_.derivative(t, y, ydot);
+    if (rate)
+      model_.derivative_and_power(t, y, ydot, rate);
+    else
+      model_.derivative(t, y, ydot);
   } catch (const std::exception& e) {
     return record(t, BlameSite::exception, 0, 0.0, e.what());
   } catch (...) {
     return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
   }
+  if (rate) keep_finite(t, rate);
   if (std::size_t i = first_non_finite(ydot); i < n_) {
     if (std::size_t j = first_non_finite(y); j < n_) return record(t, BlameSite::state, j, y[j]);
     return record(t, BlameSite::derivative, i, ydot[i]);
@@ -66,12 +70,16 @@ int GuardedModel::power(double t, const double* y, const double* yp, double* rat
   } catch (...) {  // (the same exception will stop the run at its next derivative)
     rate[0] = rate[1] = std::nan("");
   }
+  keep_finite(t, rate);
+  return 0;
+}
+
+void GuardedModel::keep_finite(double t, double* rate) {
   for (int k = 0; k < 2; ++k)
     if (!std::isfinite(rate[k])) {
       if (std::isnan(witness_broken_at_)) witness_broken_at_ = t;
       rate[k] = 0.0;
     }
-  return 0;
 }
 
 int GuardedModel::jacobian(double t, const double* y, double* J) {

@@ -53,7 +53,10 @@ class GuardedModel {
   enum class InputCheck { before, on_failure };
 
   /// SUNDIALS convention: 0 on success, -1 (unrecoverable) after recording a blame.
-  int derivative(double t, const double* y, double* ydot, InputCheck check = InputCheck::before);
+  /// With `rate` (the witness on), also the model's powers there, as power()
+  /// gives them, from the same evaluation (Model::derivative_and_power).
+  int derivative(double t, const double* y, double* ydot, InputCheck check = InputCheck::before,
+                 double* rate = nullptr);
   int residual(double t, const double* y, const double* yp, double* r);
   /// The energy witness (Model::has_energy_balance), for the runs that
   /// report it: the integrators made after this call carry the integrals of
@@ -70,6 +73,8 @@ class GuardedModel {
   /// supplied, then absorbed (W). A power that is not finite counts as 0:
   /// the witness fails, never the run (witness_broken_at says when). Returns 0.
   int power(double t, const double* y, const double* yp, double* rate);
+  /// A power that is not finite counts as 0 from t on (witness_broken_at).
+  void keep_finite(double t, double* rate);
   /// The first time the power was not finite; NaN if it always was.
   double witness_broken_at() const { return witness_broken_at_; }
 

@@ -136,7 +136,7 @@ std::string header(const std::string& target) {
   return ss.str();
 }
 
-void expect_outlined(const std::string& name, const char* method = "derivative") {
+void expect_outlined(const std::string& name, const char* method = "derivative_and_power") {
   const std::string outlined = header("outline_" + name), plain = header("inline_" + name);
   ASSERT_FALSE(outlined.empty());
   EXPECT_NE(outlined.find(std::string(method) + "_shape1("), std::string::npos) << name << ": nothing outlined";

@@ -5,7 +5,7 @@
 #   [-DSMALLEST=<N>] [-DEXTRA=<more mbgc arguments, ;-separated>]
 #
 # Compiles MODEL with --set N=SMALL and --set N=LARGE and reads the ops of the
-# method that computes the dynamics (derivative, or residual for a DAE: its
+# method that computes the dynamics (derivative_and_power, derivative, or residual for a DAE: its
 # expressions plus mbgrt::solve_linear's arithmetic). Fails unless
 # ops(LARGE) / ops(SMALL) <= MAX_RATIO (a decimal such as 2.1). With
 # SMALLEST, also unless the operations per added body are the same, to 1 %,
@@ -19,7 +19,11 @@ function(dynamics_ops n out_ops out_lines)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "mbgc --stats failed on ${MODEL} with N = ${n}:\n${err}")
   endif()
-  string(REGEX MATCH "\n(derivative|residual),([0-9]+),[0-9]+,([0-9]+)," row "${csv}")
+  # (derivative_and_power where the model has an energy balance: derivative() calls it)
+  string(REGEX MATCH "\n(derivative_and_power),([0-9]+),[0-9]+,([0-9]+)," row "${csv}")
+  if(NOT row)
+    string(REGEX MATCH "\n(derivative|residual),([0-9]+),[0-9]+,([0-9]+)," row "${csv}")
+  endif()
   if(NOT row)
     message(FATAL_ERROR "no derivative or residual row in mbgc --stats for N = ${n}:\n${csv}")
   endif()

@@ -241,10 +241,14 @@ TEST(Emit, OdeHasDerivativeAndNoResidual) {
   auto c = compile(kSeriesRlc);
   ASSERT_TRUE(c->ok()) << c->messages();
   std::string code = emit(*c);
-  auto body = method(code, "void derivative(double t, const double* x, double* xdot) override");
+  // (the circuit has an energy balance: one pass gives the derivative and the witness's powers)
+  auto body = method(code, "void derivative_and_power(double t, const double* x, double* xdot, double* rate) override");
   ASSERT_FALSE(body.empty());
   EXPECT_NE(std::find(body.begin(), body.end(), "xdot[0] = l_e;"), body.end());
   EXPECT_NE(std::find(body.begin(), body.end(), "xdot[1] = l_f;"), body.end());
+  EXPECT_TRUE(std::any_of(body.begin(), body.end(), [](const std::string& s) { return s.starts_with("rate[1] = "); }));
+  EXPECT_EQ(method(code, "void derivative(double t, const double* x, double* xdot) override"),
+            (std::vector<std::string>{"double rate[2];", "derivative_and_power(t, x, xdot, rate);"}));
   EXPECT_EQ(code.find("residual("), std::string::npos);
   EXPECT_EQ(code.find("is_dae"), std::string::npos);
 }
@@ -310,7 +314,7 @@ TEST(EmitNames, LocalsNeverRepeatOrShadowParameters) {
   EXPECT_EQ(mem_set.size(), 3u);
   EXPECT_FALSE(mem_set.count("x"));
   EXPECT_FALSE(mem_set.count("cse1"));  // cseN is kept for shared temporaries
-  for (const char* sig : {"void derivative(double t, const double* x, double* xdot) override",
+  for (const char* sig : {"void derivative_and_power(double t, const double* x, double* xdot, double* rate) override",
                           "void outputs(double t, const double* x, const double* yp, double* out) override"}) {
     auto names = locals(method(code, sig));
     ASSERT_FALSE(names.empty()) << sig;

@@ -435,6 +435,14 @@ class Model {
   virtual void power(double t, const double* y, const double* yp, double* out) {
     (void)t; (void)y; (void)yp; out[0] = out[1] = 0.0;
   }
+  /// DERIVATIVE AND POWER (ODE): derivative() and power() at (t, y) in one
+  /// call, for the methods that integrate the witness in their own stages.
+  /// The powers read the kinematics and forces the derivative computes, so a
+  /// generated model gives both from one pass; this default calls the two.
+  virtual void derivative_and_power(double t, const double* y, double* ydot, double* rate) {
+    derivative(t, y, ydot);
+    power(t, y, nullptr, rate);
+  }
   /// What the balance leaves out (storages counted by their power), or why
   /// the model has none; empty if neither.
   virtual std::string energy_note() const { return {}; }

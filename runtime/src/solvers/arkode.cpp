@@ -25,8 +25,7 @@ int erk_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* m = static_cast<CallbackData*>(user_data)->model;
   const double* yv = N_VGetArrayPointer(y);
   double* ydotv = N_VGetArrayPointer(ydot);
-  if (int flag = m->derivative(t, yv, ydotv); flag != 0) return flag;
-  return witnesses(*m) ? m->power(t, yv, nullptr, ydotv + m->size()) : 0;
+  return m->derivative(t, yv, ydotv, GuardedModel::InputCheck::before, witnesses(*m) ? ydotv + m->size() : nullptr);
 }
 
 /// The model's weights (error_weights.hpp), and none for the witness's

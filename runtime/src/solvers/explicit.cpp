@@ -27,9 +27,7 @@ class Explicit {
  protected:
   /// k_[stage] = f(t, y), and power_[stage] the witness's rates there.
   bool eval(double t, const double* y, std::size_t stage) {
-    if (!s_.derivative(t, y, k_[stage].data())) return false;
-    if (s_.witness()) s_.power(t, y, power_[stage]);
-    return true;
+    return s_.derivative(t, y, k_[stage].data(), s_.witness() ? power_[stage] : nullptr);
   }
   /// tmp_ = y + a k_[stage]
   const double* axpy(const double* y, double a, std::size_t stage) {

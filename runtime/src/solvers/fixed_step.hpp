@@ -36,9 +36,10 @@ class Stages {
   /// y is an accepted state plus finite multiples of checked derivatives or
   /// solutions of a linear system: finite unless it overflowed, which the
   /// derivative then shows and the guard blames on the state.
-  bool derivative(double t, const double* y, double* ydot) {
+  /// With `rate`, the witness's rates there too, from the same evaluation.
+  bool derivative(double t, const double* y, double* ydot, double* rate = nullptr) {
     ++evaluations_;
-    return m_.derivative(t, y, ydot, GuardedModel::InputCheck::on_failure) == 0;
+    return m_.derivative(t, y, ydot, GuardedModel::InputCheck::on_failure, rate) == 0;
   }
   /// rate[0..2): the power supplied and absorbed at (t, y), for the witness.
   void power(double t, const double* y, double* rate) { m_.power(t, y, nullptr, rate); }

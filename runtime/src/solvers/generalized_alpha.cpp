@@ -60,9 +60,7 @@ class GeneralizedAlpha {
   /// The algorithmic rate starts as the model's derivative (at the run's
   /// start and after every event, whose jump or switch changed it).
   bool start(double t, const double* y) {
-    if (!s_.derivative(t, y, v_.data())) return false;
-    if (s_.witness()) s_.power(t, y, power_);
-    return true;
+    return s_.derivative(t, y, v_.data(), s_.witness() ? power_ : nullptr);
   }
 
   bool trial(double t, const double* y, double h, double* out, double* energy) {

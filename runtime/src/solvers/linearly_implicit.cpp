@@ -57,8 +57,7 @@ class LinearlyImplicit {
   bool linearize(const char* method, double t, const double* y, double c) {
     failure_.reset();
     if (!linearized_) {
-      if (!s_.derivative(t, y, f0_.data())) return false;
-      if (s_.witness() && !start_power_known_) s_.power(t, y, power_[0]);
+      if (!s_.derivative(t, y, f0_.data(), s_.witness() && !start_power_known_ ? power_[0] : nullptr)) return false;
       end_power_known_ = false;
       if (!matrix_.jacobian(t, y, f0_.data())) return false;
       const double dt = std::sqrt(DBL_EPSILON) * std::max(std::abs(t), 1.0);

@@ -78,8 +78,8 @@ class algebraic_loop_model final : public mbgrt::Model {
     x[0] = 0.0;  // cap.q (algebraic_loop.mbg:8:3)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -88,10 +88,24 @@ class algebraic_loop_model final : public mbgrt::Model {
     const double cap_e = cap_q / 0.5;
     // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r3.e
     const double r3_e = -(cap_e - 10.0 + 3.333333333333333) / 1.2222222222222223;
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for b3.f
+    const double b3_f = (5.0 + 0.3333333333333333 * r3_e) / 1.5;
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for b3.e
+    const double b3_e = -(-10.0 + b3_f);
     // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r3.f
     const double r3_f = r3_e / 3.0;
-    // state derivatives
+    // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r2.f
+    const double r2_f = b3_e / 2.0;
+    // state derivatives, then the powers
     xdot[0] = r3_f;
+    rate[0] = 10.0 * b3_f;
+    rate[1] = b3_f * b3_f + b3_e * r2_f + r3_e * r3_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

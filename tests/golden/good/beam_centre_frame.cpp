@@ -189,8 +189,8 @@ class beam_centre_frame_model final : public mbgrt::Model {
     return i < 17 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -282,50 +282,55 @@ class beam_centre_frame_model final : public mbgrt::Model {
     // beam_centre_frame.mbg:5:6  1 rod.nu: efforts in = efforts out
     const double rod_M_e_6 = -rod_ejs_e_6;
     // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
-    const double cse34 = 0.5 * (cse16 + cse16 - cse18 - cse18);
-    const double cse35 = cse21 + cse21 - cse23 - cse23;
-    const double cse36 = cse27 + cse27 - cse29 - cse29;
-    const double cse37 = 42.200327390662835 * rod_M_f_1;
-    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - 4.243863994952002e-15 * rod_M_f_7 + 42.200327390662835 * rod_M_f_8) - rod_M_f_2 * (cse34 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse34 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse35 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse34 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse36 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse34 * rod_M_f_2 + (cse35 - cse36) * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse37);
+    const double cse34 = 4.243863994952002e-15 * rod_M_f_7;
+    const double cse35 = 42.200327390662835 * rod_M_f_8;
+    const double cse36 = 0.5 * (cse16 + cse16 - cse18 - cse18);
+    const double cse37 = cse21 + cse21 - cse23 - cse23;
+    const double cse38 = cse27 + cse27 - cse29 - cse29;
+    const double cse39 = cse37 - cse38;
+    const double cse40 = 42.200327390662835 * rod_M_f_1;
+    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - cse34 + cse35) - rod_M_f_2 * (cse36 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse36 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse37 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse36 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse38 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse36 * rod_M_f_2 + cse39 * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse40);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_1 = 103199.76688612405 * rod_eta_q_1 - 1.0603392723672647e-10 * rod_eta_q_2;
     // beam_centre_frame.mbg:5:6  1 rod.nu: efforts in = efforts out
     const double rod_M_e_7 = -(rod_ejs_e_7 + rod_eta_e_1);
     // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
-    const double cse38 = 0.5 * (cse33 - cse17);
-    const double cse39 = -cse22 - cse22 + (cse24 + cse24);
-    const double cse40 = -cse28 - cse28 + (cse30 + cse30);
-    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + 42.200327390662835 * rod_M_f_7) - rod_M_f_2 * (cse38 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse38 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse39 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse38 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse40 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse38 * rod_M_f_2 + (cse39 - cse40) * rod_M_f_6) + rod_M_f_7 * cse37);
+    const double cse41 = 42.200327390662835 * rod_M_f_7;
+    const double cse42 = 0.5 * (cse33 - cse17);
+    const double cse43 = -cse22 - cse22 + (cse24 + cse24);
+    const double cse44 = -cse28 - cse28 + (cse30 + cse30);
+    const double cse45 = cse43 - cse44;
+    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + cse41) - rod_M_f_2 * (cse42 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse42 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse43 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse42 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse44 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse42 * rod_M_f_2 + cse45 * rod_M_f_6) + rod_M_f_7 * cse40);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_2 = -1.0603392723672647e-10 * rod_eta_q_1 + 784163.8973272434 * rod_eta_q_2;
     // beam_centre_frame.mbg:5:6  1 rod.nu: efforts in = efforts out
     const double rod_M_e_8 = -(rod_ejs_e_8 + rod_eta_e_2);
     // beam_centre_frame.mbg:5:6  MTF rod.sv: f2 = T f1
-    const double cse41 = rod_q_q_1 * rod_q_q_1;
-    const double cse42 = rod_q_q_2 * rod_q_q_2;
-    const double cse43 = cse41 + cse42;
-    const double cse44 = rod_q_q_3 * rod_q_q_3;
-    const double cse45 = rod_q_q_4 * rod_q_q_4;
-    const double cse46 = cse43 + cse44 + cse45;
-    const double cse47 = rod_q_q_2 * rod_q_q_3;
-    const double cse48 = rod_q_q_1 * rod_q_q_4;
-    const double cse49 = rod_q_q_2 * rod_q_q_4;
-    const double cse50 = rod_q_q_1 * rod_q_q_3;
-    const double rod_sv_f2_1 = (cse43 - cse44 - cse45) / cse46 * rod_M_f_1 + 2.0 * (cse47 - cse48) / cse46 * rod_M_f_2 + 2.0 * (cse49 + cse50) / cse46 * rod_M_f_3;
-    const double cse51 = rod_q_q_3 * rod_q_q_4;
-    const double cse52 = rod_q_q_1 * rod_q_q_2;
-    const double rod_sv_f2_2 = 2.0 * (cse47 + cse48) / cse46 * rod_M_f_1 + (cse41 + cse44 - cse42 - cse45) / cse46 * rod_M_f_2 + 2.0 * (cse51 - cse52) / cse46 * rod_M_f_3;
-    const double rod_sv_f2_3 = 2.0 * (cse49 - cse50) / cse46 * rod_M_f_1 + 2.0 * (cse51 + cse52) / cse46 * rod_M_f_2 + (cse41 + cse45 - cse42 - cse44) / cse46 * rod_M_f_3;
+    const double cse46 = rod_q_q_1 * rod_q_q_1;
+    const double cse47 = rod_q_q_2 * rod_q_q_2;
+    const double cse48 = cse46 + cse47;
+    const double cse49 = rod_q_q_3 * rod_q_q_3;
+    const double cse50 = rod_q_q_4 * rod_q_q_4;
+    const double cse51 = cse48 + cse49 + cse50;
+    const double cse52 = rod_q_q_2 * rod_q_q_3;
+    const double cse53 = rod_q_q_1 * rod_q_q_4;
+    const double cse54 = rod_q_q_2 * rod_q_q_4;
+    const double cse55 = rod_q_q_1 * rod_q_q_3;
+    const double rod_sv_f2_1 = (cse48 - cse49 - cse50) / cse51 * rod_M_f_1 + 2.0 * (cse52 - cse53) / cse51 * rod_M_f_2 + 2.0 * (cse54 + cse55) / cse51 * rod_M_f_3;
+    const double cse56 = rod_q_q_3 * rod_q_q_4;
+    const double cse57 = rod_q_q_1 * rod_q_q_2;
+    const double rod_sv_f2_2 = 2.0 * (cse52 + cse53) / cse51 * rod_M_f_1 + (cse46 + cse49 - cse47 - cse50) / cse51 * rod_M_f_2 + 2.0 * (cse56 - cse57) / cse51 * rod_M_f_3;
+    const double rod_sv_f2_3 = 2.0 * (cse54 - cse55) / cse51 * rod_M_f_1 + 2.0 * (cse56 + cse57) / cse51 * rod_M_f_2 + (cse46 + cse50 - cse47 - cse49) / cse51 * rod_M_f_3;
     // beam_centre_frame.mbg:5:6  MTF rod.qrate: f2 = T f1
-    const double cse53 = 0.5 * rod_q_q_2;
-    const double cse54 = 0.5 * rod_q_q_3;
-    const double cse55 = 0.5 * rod_q_q_4;
-    const double rod_q_f2_1 = -cse53 * rod_M_f_4 - cse54 * rod_M_f_5 - cse55 * rod_M_f_6;
-    const double cse56 = 0.5 * rod_q_q_1;
-    const double rod_q_f2_2 = cse56 * rod_M_f_4 - cse55 * rod_M_f_5 + cse54 * rod_M_f_6;
-    const double rod_q_f2_3 = cse55 * rod_M_f_4 + cse56 * rod_M_f_5 - cse53 * rod_M_f_6;
-    const double rod_q_f2_4 = -cse54 * rod_M_f_4 + cse53 * rod_M_f_5 + cse56 * rod_M_f_6;
-    // state derivatives
+    const double cse58 = 0.5 * rod_q_q_2;
+    const double cse59 = 0.5 * rod_q_q_3;
+    const double cse60 = 0.5 * rod_q_q_4;
+    const double rod_q_f2_1 = -cse58 * rod_M_f_4 - cse59 * rod_M_f_5 - cse60 * rod_M_f_6;
+    const double cse61 = 0.5 * rod_q_q_1;
+    const double rod_q_f2_2 = cse61 * rod_M_f_4 - cse60 * rod_M_f_5 + cse59 * rod_M_f_6;
+    const double rod_q_f2_3 = cse60 * rod_M_f_4 + cse61 * rod_M_f_5 - cse58 * rod_M_f_6;
+    const double rod_q_f2_4 = -cse59 * rod_M_f_4 + cse58 * rod_M_f_5 + cse61 * rod_M_f_6;
+    // state derivatives, then the powers
     xdot[0] = rod_M_e_1;
     xdot[1] = rod_M_e_2;
     xdot[2] = rod_M_e_3;
@@ -343,6 +348,24 @@ class beam_centre_frame_model final : public mbgrt::Model {
     xdot[14] = rod_q_f2_4;
     xdot[15] = rod_M_f_7;
     xdot[16] = rod_M_f_8;
+    rate[0] = 0.0;
+    const double cse62 = 5.995923730955276 * rod_M_f_7;
+    const double cse63 = 2.1903814167494206e-15 * rod_M_f_8;
+    const double cse64 = -cse62 + cse63;
+    const double cse65 = -cse34 + cse35;
+    const double cse66 = cse42 * rod_M_f_8;
+    const double cse67 = cse36 * rod_M_f_7;
+    const double cse68 = -cse66 - cse67;
+    const double cse69 = cse62 - cse63;
+    const double cse70 = cse66 + cse67;
+    const double cse71 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
+    rate[1] = 0.5 * (cse64 * (rod_M_f_1 * rod_M_f_6) + cse65 * (rod_M_f_1 * rod_M_f_7) + cse41 * (rod_M_f_1 * rod_M_f_8) + cse68 * (rod_M_f_2 * rod_M_f_6) + cse69 * (rod_M_f_3 * rod_M_f_4) + cse70 * (rod_M_f_3 * rod_M_f_5) + cse69 * (rod_M_f_4 * rod_M_f_3) + (cse37 * rod_M_f_7 + cse43 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse71 * (rod_M_f_4 * rod_M_f_5) + cse70 * (rod_M_f_5 * rod_M_f_3) + cse71 * (rod_M_f_5 * rod_M_f_4) + (-cse38 * rod_M_f_7 - cse44 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse64 * (rod_M_f_6 * rod_M_f_1) + cse68 * (rod_M_f_6 * rod_M_f_2) + (cse39 * rod_M_f_7 + cse45 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse65 * (rod_M_f_7 * rod_M_f_1) + cse41 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -362,19 +385,19 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_eta_q_2 = x[16];
     // outputs, in declaration order
     // (cseN: a subexpression several equations below share)
-    const double cse57 = rod_q_q_1 * rod_q_q_1;
-    const double cse58 = rod_q_q_2 * rod_q_q_2;
-    const double cse59 = cse57 + cse58;
-    const double cse60 = rod_q_q_3 * rod_q_q_3;
-    const double cse61 = rod_q_q_4 * rod_q_q_4;
-    const double cse62 = cse59 + cse60 + cse61;
-    const double cse63 = 1.0 - 0.5 * (12.370205669468392 * rod_eta_q_1 * rod_eta_q_1 - 30.46989029379667 * rod_eta_q_1 * rod_eta_q_2 - 30.46989029379667 * rod_eta_q_2 * rod_eta_q_1 + 77.99650448625702 * rod_eta_q_2 * rod_eta_q_2);
-    const double cse64 = rod_q_q_2 * rod_q_q_3;
-    const double cse65 = rod_q_q_1 * rod_q_q_4;
-    const double cse66 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;
-    out[0] = rod_r_q_1 + ((cse59 - cse60 - cse61) / cse62 * cse63 + 2.0 * (cse64 - cse65) / cse62 * cse66);  // right_end[1] [m] (beam_centre_frame.mbg:14:8)
-    out[1] = rod_r_q_2 + (2.0 * (cse64 + cse65) / cse62 * cse63 + (cse57 + cse60 - cse58 - cse61) / cse62 * cse66);  // right_end[2] [m] (beam_centre_frame.mbg:14:8)
-    out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse62 * cse63 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse62 * cse66);  // right_end[3] [m] (beam_centre_frame.mbg:14:8)
+    const double cse72 = rod_q_q_1 * rod_q_q_1;
+    const double cse73 = rod_q_q_2 * rod_q_q_2;
+    const double cse74 = cse72 + cse73;
+    const double cse75 = rod_q_q_3 * rod_q_q_3;
+    const double cse76 = rod_q_q_4 * rod_q_q_4;
+    const double cse77 = cse74 + cse75 + cse76;
+    const double cse78 = 1.0 - 0.5 * (12.370205669468392 * rod_eta_q_1 * rod_eta_q_1 - 30.46989029379667 * rod_eta_q_1 * rod_eta_q_2 - 30.46989029379667 * rod_eta_q_2 * rod_eta_q_1 + 77.99650448625702 * rod_eta_q_2 * rod_eta_q_2);
+    const double cse79 = rod_q_q_2 * rod_q_q_3;
+    const double cse80 = rod_q_q_1 * rod_q_q_4;
+    const double cse81 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;
+    out[0] = rod_r_q_1 + ((cse74 - cse75 - cse76) / cse77 * cse78 + 2.0 * (cse79 - cse80) / cse77 * cse81);  // right_end[1] [m] (beam_centre_frame.mbg:14:8)
+    out[1] = rod_r_q_2 + (2.0 * (cse79 + cse80) / cse77 * cse78 + (cse72 + cse75 - cse73 - cse76) / cse77 * cse81);  // right_end[2] [m] (beam_centre_frame.mbg:14:8)
+    out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse77 * cse78 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse77 * cse81);  // right_end[3] [m] (beam_centre_frame.mbg:14:8)
   }
 
   // DRAWN BODIES (--animate): how many.
@@ -531,27 +554,27 @@ class beam_centre_frame_model final : public mbgrt::Model {
     out[1] = rod_r_q_2;
     out[2] = rod_r_q_3;
     // (cseN: a subexpression several equations below share)
-    const double cse67 = rod_q_q_1 * rod_q_q_1;
-    const double cse68 = rod_q_q_2 * rod_q_q_2;
-    const double cse69 = cse67 + cse68;
-    const double cse70 = rod_q_q_3 * rod_q_q_3;
-    const double cse71 = rod_q_q_4 * rod_q_q_4;
-    const double cse72 = cse69 + cse70 + cse71;
-    out[3] = (cse69 - cse70 - cse71) / cse72;
-    const double cse73 = rod_q_q_2 * rod_q_q_3;
-    const double cse74 = rod_q_q_1 * rod_q_q_4;
-    out[4] = 2.0 * (cse73 - cse74) / cse72;
-    const double cse75 = rod_q_q_2 * rod_q_q_4;
-    const double cse76 = rod_q_q_1 * rod_q_q_3;
-    out[5] = 2.0 * (cse75 + cse76) / cse72;
-    out[6] = 2.0 * (cse73 + cse74) / cse72;
-    out[7] = (cse67 + cse70 - cse68 - cse71) / cse72;
-    const double cse77 = rod_q_q_3 * rod_q_q_4;
-    const double cse78 = rod_q_q_1 * rod_q_q_2;
-    out[8] = 2.0 * (cse77 - cse78) / cse72;
-    out[9] = 2.0 * (cse75 - cse76) / cse72;
-    out[10] = 2.0 * (cse77 + cse78) / cse72;
-    out[11] = (cse67 + cse71 - cse68 - cse70) / cse72;
+    const double cse82 = rod_q_q_1 * rod_q_q_1;
+    const double cse83 = rod_q_q_2 * rod_q_q_2;
+    const double cse84 = cse82 + cse83;
+    const double cse85 = rod_q_q_3 * rod_q_q_3;
+    const double cse86 = rod_q_q_4 * rod_q_q_4;
+    const double cse87 = cse84 + cse85 + cse86;
+    out[3] = (cse84 - cse85 - cse86) / cse87;
+    const double cse88 = rod_q_q_2 * rod_q_q_3;
+    const double cse89 = rod_q_q_1 * rod_q_q_4;
+    out[4] = 2.0 * (cse88 - cse89) / cse87;
+    const double cse90 = rod_q_q_2 * rod_q_q_4;
+    const double cse91 = rod_q_q_1 * rod_q_q_3;
+    out[5] = 2.0 * (cse90 + cse91) / cse87;
+    out[6] = 2.0 * (cse88 + cse89) / cse87;
+    out[7] = (cse82 + cse85 - cse83 - cse86) / cse87;
+    const double cse92 = rod_q_q_3 * rod_q_q_4;
+    const double cse93 = rod_q_q_1 * rod_q_q_2;
+    out[8] = 2.0 * (cse92 - cse93) / cse87;
+    out[9] = 2.0 * (cse90 - cse91) / cse87;
+    out[10] = 2.0 * (cse92 + cse93) / cse87;
+    out[11] = (cse82 + cse86 - cse83 - cse85) / cse87;
     out[12] = rod_eta_q_1;
     out[13] = rod_eta_q_2;
   }
@@ -586,20 +609,20 @@ class beam_centre_frame_model final : public mbgrt::Model {
     // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse79 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
-    const double cse80 = -cse79;
-    const double cse81 = 4.243863994952002e-15 * rod_eta_q_1;
-    const double cse82 = 42.200327390662835 * rod_eta_q_1;
-    const double cse83 = 42.200327390662835 * rod_eta_q_2;
-    const double cse84 = 0.5 * (cse81 * rod_eta_q_1 - cse82 * rod_eta_q_2 - cse83 * rod_eta_q_1);
-    const double cse85 = -cse84;
-    const double cse86 = 12.221211925254192 * rod_eta_q_1 * rod_eta_q_1 - 7.666334958622971e-15 * rod_eta_q_1 * rod_eta_q_2 - 7.666334958622971e-15 * rod_eta_q_2 * rod_eta_q_1 + 52.8806874173523 * rod_eta_q_2 * rod_eta_q_2;
-    const double cse87 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
-    const double cse88 = 15.042353071526472 * rod_eta_q_1 * rod_eta_q_1 - 8.898424505544521e-15 * rod_eta_q_1 * rod_eta_q_2 - 8.898424505544521e-15 * rod_eta_q_2 * rod_eta_q_1 + 79.50226053985593 * rod_eta_q_2 * rod_eta_q_2;
+    const double cse94 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse95 = -cse94;
+    const double cse96 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse97 = 42.200327390662835 * rod_eta_q_1;
+    const double cse98 = 42.200327390662835 * rod_eta_q_2;
+    const double cse99 = 0.5 * (cse96 * rod_eta_q_1 - cse97 * rod_eta_q_2 - cse98 * rod_eta_q_1);
+    const double cse100 = -cse99;
+    const double cse101 = 12.221211925254192 * rod_eta_q_1 * rod_eta_q_1 - 7.666334958622971e-15 * rod_eta_q_1 * rod_eta_q_2 - 7.666334958622971e-15 * rod_eta_q_2 * rod_eta_q_1 + 52.8806874173523 * rod_eta_q_2 * rod_eta_q_2;
+    const double cse102 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse103 = 15.042353071526472 * rod_eta_q_1 * rod_eta_q_1 - 8.898424505544521e-15 * rod_eta_q_1 * rod_eta_q_2 - 8.898424505544521e-15 * rod_eta_q_2 * rod_eta_q_1 + 79.50226053985593 * rod_eta_q_2 * rod_eta_q_2;
     double blk1_a[9] = {
-        -4.932300466135975, cse80, cse85,
-        cse80, -(0.00024661502330679876 + cse86), cse87,
-        cse85, cse87, -(1.6442234628903116 - cse88),
+        -4.932300466135975, cse95, cse100,
+        cse95, -(0.00024661502330679876 + cse101), cse102,
+        cse100, cse102, -(1.6442234628903116 - cse103),
     };
     double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
     mbgrt::solve_linear(3, blk1_a, blk1_x);
@@ -608,14 +631,14 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_M_f_5 = blk1_x[2];
     // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
-    const double cse89 = cse81 - cse83;
-    const double cse90 = -cse82;
+    const double cse104 = cse96 - cse98;
+    const double cse105 = -cse97;
     double blk2_a[25] = {
-        -4.932300466135975, 0.0, cse79, cse89, cse90,
-        0.0, -4.932300466135975, cse84, -5.995923730955276, 2.1903814167494206e-15,
-        cse79, cse84, -(1.6442234628903116 + (cse86 - cse88)), -9.582918698278714e-16, 8.87873585802905,
-        cse89, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
-        cse90, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+        -4.932300466135975, 0.0, cse94, cse104, cse105,
+        0.0, -4.932300466135975, cse99, -5.995923730955276, 2.1903814167494206e-15,
+        cse94, cse99, -(1.6442234628903116 + (cse101 - cse103)), -9.582918698278714e-16, 8.87873585802905,
+        cse104, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse105, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
     };
     double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
     mbgrt::solve_linear(5, blk2_a, blk2_x);
@@ -648,28 +671,28 @@ class beam_centre_frame_model final : public mbgrt::Model {
     // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse91 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
-    const double cse92 = -cse91;
-    const double cse93 = 4.243863994952002e-15 * rod_eta_q_1;
-    const double cse94 = 42.200327390662835 * rod_eta_q_1;
-    const double cse95 = 42.200327390662835 * rod_eta_q_2;
-    const double cse96 = 0.5 * (cse93 * rod_eta_q_1 - cse94 * rod_eta_q_2 - cse95 * rod_eta_q_1);
-    const double cse97 = -cse96;
-    const double cse98 = 12.221211925254192 * rod_eta_q_1;
-    const double cse99 = 7.666334958622971e-15 * rod_eta_q_1;
-    const double cse100 = 7.666334958622971e-15 * rod_eta_q_2;
-    const double cse101 = 52.8806874173523 * rod_eta_q_2;
-    const double cse102 = cse98 * rod_eta_q_1 - cse99 * rod_eta_q_2 - cse100 * rod_eta_q_1 + cse101 * rod_eta_q_2;
-    const double cse103 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
-    const double cse104 = 15.042353071526472 * rod_eta_q_1;
-    const double cse105 = 8.898424505544521e-15 * rod_eta_q_1;
-    const double cse106 = 8.898424505544521e-15 * rod_eta_q_2;
-    const double cse107 = 79.50226053985593 * rod_eta_q_2;
-    const double cse108 = cse104 * rod_eta_q_1 - cse105 * rod_eta_q_2 - cse106 * rod_eta_q_1 + cse107 * rod_eta_q_2;
+    const double cse106 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse107 = -cse106;
+    const double cse108 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse109 = 42.200327390662835 * rod_eta_q_1;
+    const double cse110 = 42.200327390662835 * rod_eta_q_2;
+    const double cse111 = 0.5 * (cse108 * rod_eta_q_1 - cse109 * rod_eta_q_2 - cse110 * rod_eta_q_1);
+    const double cse112 = -cse111;
+    const double cse113 = 12.221211925254192 * rod_eta_q_1;
+    const double cse114 = 7.666334958622971e-15 * rod_eta_q_1;
+    const double cse115 = 7.666334958622971e-15 * rod_eta_q_2;
+    const double cse116 = 52.8806874173523 * rod_eta_q_2;
+    const double cse117 = cse113 * rod_eta_q_1 - cse114 * rod_eta_q_2 - cse115 * rod_eta_q_1 + cse116 * rod_eta_q_2;
+    const double cse118 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse119 = 15.042353071526472 * rod_eta_q_1;
+    const double cse120 = 8.898424505544521e-15 * rod_eta_q_1;
+    const double cse121 = 8.898424505544521e-15 * rod_eta_q_2;
+    const double cse122 = 79.50226053985593 * rod_eta_q_2;
+    const double cse123 = cse119 * rod_eta_q_1 - cse120 * rod_eta_q_2 - cse121 * rod_eta_q_1 + cse122 * rod_eta_q_2;
     double blk1_a[9] = {
-        -4.932300466135975, cse92, cse97,
-        cse92, -(0.00024661502330679876 + cse102), cse103,
-        cse97, cse103, -(1.6442234628903116 - cse108),
+        -4.932300466135975, cse107, cse112,
+        cse107, -(0.00024661502330679876 + cse117), cse118,
+        cse112, cse118, -(1.6442234628903116 - cse123),
     };
     double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
     mbgrt::solve_linear(3, blk1_a, blk1_x);
@@ -678,14 +701,14 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_M_f_5 = blk1_x[2];
     // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
-    const double cse109 = cse93 - cse95;
-    const double cse110 = -cse94;
+    const double cse124 = cse108 - cse110;
+    const double cse125 = -cse109;
     double blk2_a[25] = {
-        -4.932300466135975, 0.0, cse91, cse109, cse110,
-        0.0, -4.932300466135975, cse96, -5.995923730955276, 2.1903814167494206e-15,
-        cse91, cse96, -(1.6442234628903116 + (cse102 - cse108)), -9.582918698278714e-16, 8.87873585802905,
-        cse109, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
-        cse110, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+        -4.932300466135975, 0.0, cse106, cse124, cse125,
+        0.0, -4.932300466135975, cse111, -5.995923730955276, 2.1903814167494206e-15,
+        cse106, cse111, -(1.6442234628903116 + (cse117 - cse123)), -9.582918698278714e-16, 8.87873585802905,
+        cse124, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse125, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
     };
     double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
     mbgrt::solve_linear(5, blk2_a, blk2_x);
@@ -701,38 +724,38 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_ejs_e_4 = rod_M_f_5 * rod_M_p_6 - rod_M_f_6 * rod_M_p_5 + (rod_M_f_2 * rod_M_p_3 - rod_M_f_3 * rod_M_p_2);
     const double rod_ejs_e_5 = rod_M_f_6 * rod_M_p_4 - rod_M_f_4 * rod_M_p_6 + (rod_M_f_3 * rod_M_p_1 - rod_M_f_1 * rod_M_p_3);
     const double rod_ejs_e_6 = rod_M_f_4 * rod_M_p_5 - rod_M_f_5 * rod_M_p_4 + (rod_M_f_1 * rod_M_p_2 - rod_M_f_2 * rod_M_p_1);
-    const double cse111 = 4.243863994952002e-15 * rod_M_f_7;
-    const double cse112 = 42.200327390662835 * rod_M_f_8;
-    const double cse113 = 0.5 * (cse93 + cse93 - cse95 - cse95);
-    const double cse114 = cse98 + cse98 - cse100 - cse100;
-    const double cse115 = cse104 + cse104 - cse106 - cse106;
-    const double cse116 = cse114 - cse115;
-    const double cse117 = 42.200327390662835 * rod_M_f_1;
-    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - cse111 + cse112) - rod_M_f_2 * (cse113 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse113 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse114 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse113 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse115 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse113 * rod_M_f_2 + cse116 * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse117);
+    const double cse126 = 4.243863994952002e-15 * rod_M_f_7;
+    const double cse127 = 42.200327390662835 * rod_M_f_8;
+    const double cse128 = 0.5 * (cse108 + cse108 - cse110 - cse110);
+    const double cse129 = cse113 + cse113 - cse115 - cse115;
+    const double cse130 = cse119 + cse119 - cse121 - cse121;
+    const double cse131 = cse129 - cse130;
+    const double cse132 = 42.200327390662835 * rod_M_f_1;
+    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - cse126 + cse127) - rod_M_f_2 * (cse128 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse128 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse129 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse128 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse130 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse128 * rod_M_f_2 + cse131 * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse132);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_1 = 103199.76688612405 * rod_eta_q_1 - 1.0603392723672647e-10 * rod_eta_q_2;
     // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
-    const double cse118 = 42.200327390662835 * rod_M_f_7;
-    const double cse119 = 0.5 * (cse110 - cse94);
-    const double cse120 = -cse99 - cse99 + (cse101 + cse101);
-    const double cse121 = -cse105 - cse105 + (cse107 + cse107);
-    const double cse122 = cse120 - cse121;
-    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + cse118) - rod_M_f_2 * (cse119 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse119 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse120 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse119 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse121 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse119 * rod_M_f_2 + cse122 * rod_M_f_6) + rod_M_f_7 * cse117);
+    const double cse133 = 42.200327390662835 * rod_M_f_7;
+    const double cse134 = 0.5 * (cse125 - cse109);
+    const double cse135 = -cse114 - cse114 + (cse116 + cse116);
+    const double cse136 = -cse120 - cse120 + (cse122 + cse122);
+    const double cse137 = cse135 - cse136;
+    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + cse133) - rod_M_f_2 * (cse134 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse134 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse135 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse134 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse136 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse134 * rod_M_f_2 + cse137 * rod_M_f_6) + rod_M_f_7 * cse132);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_2 = -1.0603392723672647e-10 * rod_eta_q_1 + 784163.8973272434 * rod_eta_q_2;
     // the powers
     out[0] = 0.0;
-    const double cse123 = 5.995923730955276 * rod_M_f_7;
-    const double cse124 = 2.1903814167494206e-15 * rod_M_f_8;
-    const double cse125 = -cse123 + cse124;
-    const double cse126 = -cse111 + cse112;
-    const double cse127 = cse119 * rod_M_f_8;
-    const double cse128 = cse113 * rod_M_f_7;
-    const double cse129 = -cse127 - cse128;
-    const double cse130 = cse123 - cse124;
-    const double cse131 = cse127 + cse128;
-    const double cse132 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
-    out[1] = 0.5 * (cse125 * (rod_M_f_1 * rod_M_f_6) + cse126 * (rod_M_f_1 * rod_M_f_7) + cse118 * (rod_M_f_1 * rod_M_f_8) + cse129 * (rod_M_f_2 * rod_M_f_6) + cse130 * (rod_M_f_3 * rod_M_f_4) + cse131 * (rod_M_f_3 * rod_M_f_5) + cse130 * (rod_M_f_4 * rod_M_f_3) + (cse114 * rod_M_f_7 + cse120 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse132 * (rod_M_f_4 * rod_M_f_5) + cse131 * (rod_M_f_5 * rod_M_f_3) + cse132 * (rod_M_f_5 * rod_M_f_4) + (-cse115 * rod_M_f_7 - cse121 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse125 * (rod_M_f_6 * rod_M_f_1) + cse129 * (rod_M_f_6 * rod_M_f_2) + (cse116 * rod_M_f_7 + cse122 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse126 * (rod_M_f_7 * rod_M_f_1) + cse118 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
+    const double cse138 = 5.995923730955276 * rod_M_f_7;
+    const double cse139 = 2.1903814167494206e-15 * rod_M_f_8;
+    const double cse140 = -cse138 + cse139;
+    const double cse141 = -cse126 + cse127;
+    const double cse142 = cse134 * rod_M_f_8;
+    const double cse143 = cse128 * rod_M_f_7;
+    const double cse144 = -cse142 - cse143;
+    const double cse145 = cse138 - cse139;
+    const double cse146 = cse142 + cse143;
+    const double cse147 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
+    out[1] = 0.5 * (cse140 * (rod_M_f_1 * rod_M_f_6) + cse141 * (rod_M_f_1 * rod_M_f_7) + cse133 * (rod_M_f_1 * rod_M_f_8) + cse144 * (rod_M_f_2 * rod_M_f_6) + cse145 * (rod_M_f_3 * rod_M_f_4) + cse146 * (rod_M_f_3 * rod_M_f_5) + cse145 * (rod_M_f_4 * rod_M_f_3) + (cse129 * rod_M_f_7 + cse135 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse147 * (rod_M_f_4 * rod_M_f_5) + cse146 * (rod_M_f_5 * rod_M_f_3) + cse147 * (rod_M_f_5 * rod_M_f_4) + (-cse130 * rod_M_f_7 - cse136 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse140 * (rod_M_f_6 * rod_M_f_1) + cse144 * (rod_M_f_6 * rod_M_f_2) + (cse131 * rod_M_f_7 + cse137 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse141 * (rod_M_f_7 * rod_M_f_1) + cse133 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -128,8 +128,8 @@ class beam_load_model final : public mbgrt::Model {
     return i < 4 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -137,6 +137,9 @@ class beam_load_model final : public mbgrt::Model {
     const double blade_eta_rate_rate_2 = x[1];
     const double blade_eta_q_1 = x[2];
     const double blade_eta_q_2 = x[3];
+    // beam_load.mbg:5:6  0 blade.nusum: flows in = flows out
+    const double b9_f_7 = blade_eta_rate_rate_1;
+    const double b9_f_8 = blade_eta_rate_rate_2;
     // beam_load.mbg:5:6  C blade.eta: e = law(q)
     const double blade_eta_e_1 = 19593.220346149414 * blade_eta_q_1;
     // beam_load.mbg:5:6  R blade.damp: e = R f
@@ -159,11 +162,19 @@ class beam_load_model final : public mbgrt::Model {
     const double der_b9_f_8 = der_blade_M_p_8 / 3.8170350741116;
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(blade.eta_rate.rate[2])
     const double der_blade_eta_rate_rate_2 = der_b9_f_8;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = der_blade_eta_rate_rate_1;
     xdot[1] = der_blade_eta_rate_rate_2;
     xdot[2] = blade_eta_rate_rate_1;
     xdot[3] = blade_eta_rate_rate_2;
+    rate[0] = 0.6882527423362675 * b9_f_7 + push_on_blade_e_8 * b9_f_8;
+    rate[1] = blade_eta_e_1 * blade_eta_rate_rate_1 + blade_eta_e_2 * blade_eta_rate_rate_2 + (blade_damp_e_1 * blade_eta_rate_rate_1 + blade_damp_e_2 * blade_eta_rate_rate_2);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

@@ -190,8 +190,8 @@ class beam_mean_axes_model final : public mbgrt::Model {
     return i < 17 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -287,50 +287,54 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  1 bar.nu: efforts in = efforts out
     const double bar_M_e_6 = -bar_ejs_e_6;
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
-    const double cse33 = 0.5 * (cse15 + cse15 + cse17 + cse17);
-    const double cse34 = cse26 + cse26 - cse28 - cse28;
-    const double cse35 = cse20 + cse20 + cse22 + cse22;
-    const double cse36 = 13.70347789009205 * bar_M_f_1;
-    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * (-15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8) - bar_M_f_2 * (cse33 * bar_M_f_6) + bar_M_f_3 * (cse33 * bar_M_f_5) + bar_M_f_4 * (cse34 * bar_M_f_4) + bar_M_f_5 * (cse33 * bar_M_f_3 - cse35 * bar_M_f_5) + bar_M_f_6 * (-cse33 * bar_M_f_2 + (cse34 - cse35) * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse36);
+    const double cse33 = -15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8;
+    const double cse34 = 0.5 * (cse15 + cse15 + cse17 + cse17);
+    const double cse35 = cse26 + cse26 - cse28 - cse28;
+    const double cse36 = cse20 + cse20 + cse22 + cse22;
+    const double cse37 = cse35 - cse36;
+    const double cse38 = 13.70347789009205 * bar_M_f_1;
+    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * cse33 - bar_M_f_2 * (cse34 * bar_M_f_6) + bar_M_f_3 * (cse34 * bar_M_f_5) + bar_M_f_4 * (cse35 * bar_M_f_4) + bar_M_f_5 * (cse34 * bar_M_f_3 - cse36 * bar_M_f_5) + bar_M_f_6 * (-cse34 * bar_M_f_2 + cse37 * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse38);
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
     // beam_mean_axes.mbg:5:6  1 bar.nu: efforts in = efforts out
     const double bar_M_e_7 = -(bar_ejs_e_7 + bar_eta_e_1);
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
-    const double cse37 = 0.5 * (cse16 + cse16 + (cse18 + cse18));
-    const double cse38 = -cse27 - cse27 + (cse29 + cse29);
-    const double cse39 = cse21 + cse21 + (cse23 + cse23);
-    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * (-13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8) - bar_M_f_2 * (cse37 * bar_M_f_6) + bar_M_f_3 * (cse37 * bar_M_f_5) + bar_M_f_4 * (cse38 * bar_M_f_4) + bar_M_f_5 * (cse37 * bar_M_f_3 - cse39 * bar_M_f_5) + bar_M_f_6 * (-cse37 * bar_M_f_2 + (cse38 - cse39) * bar_M_f_6) - bar_M_f_7 * cse36 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
+    const double cse39 = -13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8;
+    const double cse40 = 0.5 * (cse16 + cse16 + (cse18 + cse18));
+    const double cse41 = -cse27 - cse27 + (cse29 + cse29);
+    const double cse42 = cse21 + cse21 + (cse23 + cse23);
+    const double cse43 = cse41 - cse42;
+    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * cse39 - bar_M_f_2 * (cse40 * bar_M_f_6) + bar_M_f_3 * (cse40 * bar_M_f_5) + bar_M_f_4 * (cse41 * bar_M_f_4) + bar_M_f_5 * (cse40 * bar_M_f_3 - cse42 * bar_M_f_5) + bar_M_f_6 * (-cse40 * bar_M_f_2 + cse43 * bar_M_f_6) - bar_M_f_7 * cse38 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
     // beam_mean_axes.mbg:5:6  1 bar.nu: efforts in = efforts out
     const double bar_M_e_8 = -(bar_ejs_e_8 + bar_eta_e_2);
     // beam_mean_axes.mbg:5:6  MTF bar.sv: f2 = T f1
-    const double cse40 = bar_q_q_1 * bar_q_q_1;
-    const double cse41 = bar_q_q_2 * bar_q_q_2;
-    const double cse42 = cse40 + cse41;
-    const double cse43 = bar_q_q_3 * bar_q_q_3;
-    const double cse44 = bar_q_q_4 * bar_q_q_4;
-    const double cse45 = cse42 + cse43 + cse44;
-    const double cse46 = bar_q_q_2 * bar_q_q_3;
-    const double cse47 = bar_q_q_1 * bar_q_q_4;
-    const double cse48 = bar_q_q_2 * bar_q_q_4;
-    const double cse49 = bar_q_q_1 * bar_q_q_3;
-    const double bar_sv_f2_1 = (cse42 - cse43 - cse44) / cse45 * bar_M_f_1 + 2.0 * (cse46 - cse47) / cse45 * bar_M_f_2 + 2.0 * (cse48 + cse49) / cse45 * bar_M_f_3;
-    const double cse50 = bar_q_q_3 * bar_q_q_4;
-    const double cse51 = bar_q_q_1 * bar_q_q_2;
-    const double bar_sv_f2_2 = 2.0 * (cse46 + cse47) / cse45 * bar_M_f_1 + (cse40 + cse43 - cse41 - cse44) / cse45 * bar_M_f_2 + 2.0 * (cse50 - cse51) / cse45 * bar_M_f_3;
-    const double bar_sv_f2_3 = 2.0 * (cse48 - cse49) / cse45 * bar_M_f_1 + 2.0 * (cse50 + cse51) / cse45 * bar_M_f_2 + (cse40 + cse44 - cse41 - cse43) / cse45 * bar_M_f_3;
+    const double cse44 = bar_q_q_1 * bar_q_q_1;
+    const double cse45 = bar_q_q_2 * bar_q_q_2;
+    const double cse46 = cse44 + cse45;
+    const double cse47 = bar_q_q_3 * bar_q_q_3;
+    const double cse48 = bar_q_q_4 * bar_q_q_4;
+    const double cse49 = cse46 + cse47 + cse48;
+    const double cse50 = bar_q_q_2 * bar_q_q_3;
+    const double cse51 = bar_q_q_1 * bar_q_q_4;
+    const double cse52 = bar_q_q_2 * bar_q_q_4;
+    const double cse53 = bar_q_q_1 * bar_q_q_3;
+    const double bar_sv_f2_1 = (cse46 - cse47 - cse48) / cse49 * bar_M_f_1 + 2.0 * (cse50 - cse51) / cse49 * bar_M_f_2 + 2.0 * (cse52 + cse53) / cse49 * bar_M_f_3;
+    const double cse54 = bar_q_q_3 * bar_q_q_4;
+    const double cse55 = bar_q_q_1 * bar_q_q_2;
+    const double bar_sv_f2_2 = 2.0 * (cse50 + cse51) / cse49 * bar_M_f_1 + (cse44 + cse47 - cse45 - cse48) / cse49 * bar_M_f_2 + 2.0 * (cse54 - cse55) / cse49 * bar_M_f_3;
+    const double bar_sv_f2_3 = 2.0 * (cse52 - cse53) / cse49 * bar_M_f_1 + 2.0 * (cse54 + cse55) / cse49 * bar_M_f_2 + (cse44 + cse48 - cse45 - cse47) / cse49 * bar_M_f_3;
     // beam_mean_axes.mbg:5:6  MTF bar.qrate: f2 = T f1
-    const double cse52 = 0.5 * bar_q_q_2;
-    const double cse53 = 0.5 * bar_q_q_3;
-    const double cse54 = 0.5 * bar_q_q_4;
-    const double bar_q_f2_1 = -cse52 * bar_M_f_4 - cse53 * bar_M_f_5 - cse54 * bar_M_f_6;
-    const double cse55 = 0.5 * bar_q_q_1;
-    const double bar_q_f2_2 = cse55 * bar_M_f_4 - cse54 * bar_M_f_5 + cse53 * bar_M_f_6;
-    const double bar_q_f2_3 = cse54 * bar_M_f_4 + cse55 * bar_M_f_5 - cse52 * bar_M_f_6;
-    const double bar_q_f2_4 = -cse53 * bar_M_f_4 + cse52 * bar_M_f_5 + cse55 * bar_M_f_6;
-    // state derivatives
+    const double cse56 = 0.5 * bar_q_q_2;
+    const double cse57 = 0.5 * bar_q_q_3;
+    const double cse58 = 0.5 * bar_q_q_4;
+    const double bar_q_f2_1 = -cse56 * bar_M_f_4 - cse57 * bar_M_f_5 - cse58 * bar_M_f_6;
+    const double cse59 = 0.5 * bar_q_q_1;
+    const double bar_q_f2_2 = cse59 * bar_M_f_4 - cse58 * bar_M_f_5 + cse57 * bar_M_f_6;
+    const double bar_q_f2_3 = cse58 * bar_M_f_4 + cse59 * bar_M_f_5 - cse56 * bar_M_f_6;
+    const double bar_q_f2_4 = -cse57 * bar_M_f_4 + cse56 * bar_M_f_5 + cse59 * bar_M_f_6;
+    // state derivatives, then the powers
     xdot[0] = bar_M_e_1;
     xdot[1] = bar_M_e_2;
     xdot[2] = bar_M_e_3;
@@ -348,6 +352,18 @@ class beam_mean_axes_model final : public mbgrt::Model {
     xdot[14] = bar_q_f2_4;
     xdot[15] = bar_M_f_7;
     xdot[16] = bar_M_f_8;
+    rate[0] = 0.0;
+    const double cse60 = cse34 * bar_M_f_7;
+    const double cse61 = cse40 * bar_M_f_8;
+    const double cse62 = -cse60 - cse61;
+    const double cse63 = cse60 + cse61;
+    rate[1] = 0.5 * (cse33 * (bar_M_f_1 * bar_M_f_7) + cse39 * (bar_M_f_1 * bar_M_f_8) + cse62 * (bar_M_f_2 * bar_M_f_6) + cse63 * (bar_M_f_3 * bar_M_f_5) + (cse35 * bar_M_f_7 + cse41 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse63 * (bar_M_f_5 * bar_M_f_3) + (-cse36 * bar_M_f_7 - cse42 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse62 * (bar_M_f_6 * bar_M_f_2) + (cse37 * bar_M_f_7 + cse43 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse33 * (bar_M_f_7 * bar_M_f_1) + cse39 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -369,15 +385,15 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse56 = 15.253392797429207 * bar_eta_q_1;
-    const double cse57 = 13.70347789009205 * bar_eta_q_1;
-    const double cse58 = 13.70347789009205 * bar_eta_q_2;
-    const double cse59 = 33.578051071136144 * bar_eta_q_2;
-    const double cse60 = 0.3082687791334984 - 0.5 * (cse56 * bar_eta_q_1 + cse57 * bar_eta_q_2 + cse58 * bar_eta_q_1 + cse59 * bar_eta_q_2);
-    const double cse61 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse64 = 15.253392797429207 * bar_eta_q_1;
+    const double cse65 = 13.70347789009205 * bar_eta_q_1;
+    const double cse66 = 13.70347789009205 * bar_eta_q_2;
+    const double cse67 = 33.578051071136144 * bar_eta_q_2;
+    const double cse68 = 0.3082687791334984 - 0.5 * (cse64 * bar_eta_q_1 + cse65 * bar_eta_q_2 + cse66 * bar_eta_q_1 + cse67 * bar_eta_q_2);
+    const double cse69 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
     double blk1_a[4] = {
-        -0.6165375582669969, cse60,
-        cse60, -(0.20551637278207147 - cse61),
+        -0.6165375582669969, cse68,
+        cse68, -(0.20551637278207147 - cse69),
     };
     double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
     mbgrt::solve_linear(2, blk1_a, blk1_x);
@@ -385,26 +401,26 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse62 = -cse60;
-    const double cse63 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse70 = -cse68;
+    const double cse71 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
     double blk2_a[4] = {
-        -0.6165375582669969, cse62,
-        cse62, -(0.20551637278207147 + (cse63 - cse61)),
+        -0.6165375582669969, cse70,
+        cse70, -(0.20551637278207147 + (cse71 - cse69)),
     };
     double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
     mbgrt::solve_linear(2, blk2_a, blk2_x);
     const double bar_M_f_2 = blk2_x[0];
     const double bar_M_f_6 = blk2_x[1];
     // beam_mean_axes.mbg:5:6  I bar.M: p = I f
-    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse63);
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse71);
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse64 = cse56 + cse58;
-    const double cse65 = cse57 + cse59;
+    const double cse72 = cse64 + cse66;
+    const double cse73 = cse65 + cse67;
     double blk3_a[9] = {
-        -0.6165375582669969, cse64, cse65,
-        cse64, -0.6165375582669969, 1.1978648372848393e-16,
-        cse65, 1.1978648372848393e-16, -0.6165375582669967,
+        -0.6165375582669969, cse72, cse73,
+        cse72, -0.6165375582669969, 1.1978648372848393e-16,
+        cse73, 1.1978648372848393e-16, -0.6165375582669967,
     };
     double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
     mbgrt::solve_linear(3, blk3_a, blk3_x);
@@ -573,27 +589,27 @@ class beam_mean_axes_model final : public mbgrt::Model {
     out[1] = bar_r_q_2;
     out[2] = bar_r_q_3;
     // (cseN: a subexpression several equations below share)
-    const double cse66 = bar_q_q_1 * bar_q_q_1;
-    const double cse67 = bar_q_q_2 * bar_q_q_2;
-    const double cse68 = cse66 + cse67;
-    const double cse69 = bar_q_q_3 * bar_q_q_3;
-    const double cse70 = bar_q_q_4 * bar_q_q_4;
-    const double cse71 = cse68 + cse69 + cse70;
-    out[3] = (cse68 - cse69 - cse70) / cse71;
-    const double cse72 = bar_q_q_2 * bar_q_q_3;
-    const double cse73 = bar_q_q_1 * bar_q_q_4;
-    out[4] = 2.0 * (cse72 - cse73) / cse71;
-    const double cse74 = bar_q_q_2 * bar_q_q_4;
-    const double cse75 = bar_q_q_1 * bar_q_q_3;
-    out[5] = 2.0 * (cse74 + cse75) / cse71;
-    out[6] = 2.0 * (cse72 + cse73) / cse71;
-    out[7] = (cse66 + cse69 - cse67 - cse70) / cse71;
-    const double cse76 = bar_q_q_3 * bar_q_q_4;
-    const double cse77 = bar_q_q_1 * bar_q_q_2;
-    out[8] = 2.0 * (cse76 - cse77) / cse71;
-    out[9] = 2.0 * (cse74 - cse75) / cse71;
-    out[10] = 2.0 * (cse76 + cse77) / cse71;
-    out[11] = (cse66 + cse70 - cse67 - cse69) / cse71;
+    const double cse74 = bar_q_q_1 * bar_q_q_1;
+    const double cse75 = bar_q_q_2 * bar_q_q_2;
+    const double cse76 = cse74 + cse75;
+    const double cse77 = bar_q_q_3 * bar_q_q_3;
+    const double cse78 = bar_q_q_4 * bar_q_q_4;
+    const double cse79 = cse76 + cse77 + cse78;
+    out[3] = (cse76 - cse77 - cse78) / cse79;
+    const double cse80 = bar_q_q_2 * bar_q_q_3;
+    const double cse81 = bar_q_q_1 * bar_q_q_4;
+    out[4] = 2.0 * (cse80 - cse81) / cse79;
+    const double cse82 = bar_q_q_2 * bar_q_q_4;
+    const double cse83 = bar_q_q_1 * bar_q_q_3;
+    out[5] = 2.0 * (cse82 + cse83) / cse79;
+    out[6] = 2.0 * (cse80 + cse81) / cse79;
+    out[7] = (cse74 + cse77 - cse75 - cse78) / cse79;
+    const double cse84 = bar_q_q_3 * bar_q_q_4;
+    const double cse85 = bar_q_q_1 * bar_q_q_2;
+    out[8] = 2.0 * (cse84 - cse85) / cse79;
+    out[9] = 2.0 * (cse82 - cse83) / cse79;
+    out[10] = 2.0 * (cse84 + cse85) / cse79;
+    out[11] = (cse74 + cse78 - cse75 - cse77) / cse79;
     out[12] = bar_eta_q_1;
     out[13] = bar_eta_q_2;
   }
@@ -628,15 +644,15 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse78 = 15.253392797429207 * bar_eta_q_1;
-    const double cse79 = 13.70347789009205 * bar_eta_q_1;
-    const double cse80 = 13.70347789009205 * bar_eta_q_2;
-    const double cse81 = 33.578051071136144 * bar_eta_q_2;
-    const double cse82 = 0.3082687791334984 - 0.5 * (cse78 * bar_eta_q_1 + cse79 * bar_eta_q_2 + cse80 * bar_eta_q_1 + cse81 * bar_eta_q_2);
-    const double cse83 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse86 = 15.253392797429207 * bar_eta_q_1;
+    const double cse87 = 13.70347789009205 * bar_eta_q_1;
+    const double cse88 = 13.70347789009205 * bar_eta_q_2;
+    const double cse89 = 33.578051071136144 * bar_eta_q_2;
+    const double cse90 = 0.3082687791334984 - 0.5 * (cse86 * bar_eta_q_1 + cse87 * bar_eta_q_2 + cse88 * bar_eta_q_1 + cse89 * bar_eta_q_2);
+    const double cse91 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
     double blk1_a[4] = {
-        -0.6165375582669969, cse82,
-        cse82, -(0.20551637278207147 - cse83),
+        -0.6165375582669969, cse90,
+        cse90, -(0.20551637278207147 - cse91),
     };
     double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
     mbgrt::solve_linear(2, blk1_a, blk1_x);
@@ -644,26 +660,26 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse84 = -cse82;
-    const double cse85 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse92 = -cse90;
+    const double cse93 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
     double blk2_a[4] = {
-        -0.6165375582669969, cse84,
-        cse84, -(0.20551637278207147 + (cse85 - cse83)),
+        -0.6165375582669969, cse92,
+        cse92, -(0.20551637278207147 + (cse93 - cse91)),
     };
     double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
     mbgrt::solve_linear(2, blk2_a, blk2_x);
     const double bar_M_f_2 = blk2_x[0];
     const double bar_M_f_6 = blk2_x[1];
     // beam_mean_axes.mbg:5:6  I bar.M: p = I f
-    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse85);
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse93);
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse86 = cse78 + cse80;
-    const double cse87 = cse79 + cse81;
+    const double cse94 = cse86 + cse88;
+    const double cse95 = cse87 + cse89;
     double blk3_a[9] = {
-        -0.6165375582669969, cse86, cse87,
-        cse86, -0.6165375582669969, 1.1978648372848393e-16,
-        cse87, 1.1978648372848393e-16, -0.6165375582669967,
+        -0.6165375582669969, cse94, cse95,
+        cse94, -0.6165375582669969, 1.1978648372848393e-16,
+        cse95, 1.1978648372848393e-16, -0.6165375582669967,
     };
     double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
     mbgrt::solve_linear(3, blk3_a, blk3_x);
@@ -694,19 +710,19 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse88 = 15.253392797429207 * bar_eta_q_1;
-    const double cse89 = 13.70347789009205 * bar_eta_q_1;
-    const double cse90 = 13.70347789009205 * bar_eta_q_2;
-    const double cse91 = 33.578051071136144 * bar_eta_q_2;
-    const double cse92 = 0.3082687791334984 - 0.5 * (cse88 * bar_eta_q_1 + cse89 * bar_eta_q_2 + cse90 * bar_eta_q_1 + cse91 * bar_eta_q_2);
-    const double cse93 = 9.506990532655411 * bar_eta_q_1;
-    const double cse94 = 6.851738945046023 * bar_eta_q_1;
-    const double cse95 = 6.851738945046023 * bar_eta_q_2;
-    const double cse96 = 20.73325973414802 * bar_eta_q_2;
-    const double cse97 = cse93 * bar_eta_q_1 + cse94 * bar_eta_q_2 + cse95 * bar_eta_q_1 + cse96 * bar_eta_q_2;
+    const double cse96 = 15.253392797429207 * bar_eta_q_1;
+    const double cse97 = 13.70347789009205 * bar_eta_q_1;
+    const double cse98 = 13.70347789009205 * bar_eta_q_2;
+    const double cse99 = 33.578051071136144 * bar_eta_q_2;
+    const double cse100 = 0.3082687791334984 - 0.5 * (cse96 * bar_eta_q_1 + cse97 * bar_eta_q_2 + cse98 * bar_eta_q_1 + cse99 * bar_eta_q_2);
+    const double cse101 = 9.506990532655411 * bar_eta_q_1;
+    const double cse102 = 6.851738945046023 * bar_eta_q_1;
+    const double cse103 = 6.851738945046023 * bar_eta_q_2;
+    const double cse104 = 20.73325973414802 * bar_eta_q_2;
+    const double cse105 = cse101 * bar_eta_q_1 + cse102 * bar_eta_q_2 + cse103 * bar_eta_q_1 + cse104 * bar_eta_q_2;
     double blk1_a[4] = {
-        -0.6165375582669969, cse92,
-        cse92, -(0.20551637278207147 - cse97),
+        -0.6165375582669969, cse100,
+        cse100, -(0.20551637278207147 - cse105),
     };
     double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
     mbgrt::solve_linear(2, blk1_a, blk1_x);
@@ -714,15 +730,15 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse98 = -cse92;
-    const double cse99 = 0.6165375582669969 * bar_eta_q_1;
-    const double cse100 = 1.1978648372848393e-16 * bar_eta_q_1;
-    const double cse101 = 1.1978648372848393e-16 * bar_eta_q_2;
-    const double cse102 = 0.6165375582669967 * bar_eta_q_2;
-    const double cse103 = cse99 * bar_eta_q_1 - cse100 * bar_eta_q_2 - cse101 * bar_eta_q_1 + cse102 * bar_eta_q_2;
+    const double cse106 = -cse100;
+    const double cse107 = 0.6165375582669969 * bar_eta_q_1;
+    const double cse108 = 1.1978648372848393e-16 * bar_eta_q_1;
+    const double cse109 = 1.1978648372848393e-16 * bar_eta_q_2;
+    const double cse110 = 0.6165375582669967 * bar_eta_q_2;
+    const double cse111 = cse107 * bar_eta_q_1 - cse108 * bar_eta_q_2 - cse109 * bar_eta_q_1 + cse110 * bar_eta_q_2;
     double blk2_a[4] = {
-        -0.6165375582669969, cse98,
-        cse98, -(0.20551637278207147 + (cse103 - cse97)),
+        -0.6165375582669969, cse106,
+        cse106, -(0.20551637278207147 + (cse111 - cse105)),
     };
     double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
     mbgrt::solve_linear(2, blk2_a, blk2_x);
@@ -731,19 +747,19 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
     const double bar_ejs_e_1 = bar_M_f_5 * bar_M_p_3 - bar_M_f_6 * bar_M_p_2;
     // beam_mean_axes.mbg:5:6  I bar.M: p = I f
-    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse103);
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse111);
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
     const double bar_ejs_e_2 = bar_M_f_6 * bar_M_p_1 - bar_M_f_4 * bar_M_p_3;
     const double bar_ejs_e_3 = bar_M_f_4 * bar_M_p_2 - bar_M_f_5 * bar_M_p_1;
     const double bar_ejs_e_4 = bar_M_f_5 * bar_M_p_6 - bar_M_f_6 * bar_M_p_5 + (bar_M_f_2 * bar_M_p_3 - bar_M_f_3 * bar_M_p_2);
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse104 = cse88 + cse90;
-    const double cse105 = cse89 + cse91;
+    const double cse112 = cse96 + cse98;
+    const double cse113 = cse97 + cse99;
     double blk3_a[9] = {
-        -0.6165375582669969, cse104, cse105,
-        cse104, -0.6165375582669969, 1.1978648372848393e-16,
-        cse105, 1.1978648372848393e-16, -0.6165375582669967,
+        -0.6165375582669969, cse112, cse113,
+        cse112, -0.6165375582669969, 1.1978648372848393e-16,
+        cse113, 1.1978648372848393e-16, -0.6165375582669967,
     };
     double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
     mbgrt::solve_linear(3, blk3_a, blk3_x);
@@ -752,31 +768,31 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_8 = blk3_x[2];
     const double bar_ejs_e_5 = bar_M_f_6 * bar_M_p_4 - bar_M_f_4 * bar_M_p_6 + (bar_M_f_3 * bar_M_p_1 - bar_M_f_1 * bar_M_p_3);
     const double bar_ejs_e_6 = bar_M_f_4 * bar_M_p_5 - bar_M_f_5 * bar_M_p_4 + (bar_M_f_1 * bar_M_p_2 - bar_M_f_2 * bar_M_p_1);
-    const double cse106 = -15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8;
-    const double cse107 = 0.5 * (cse88 + cse88 + cse90 + cse90);
-    const double cse108 = cse99 + cse99 - cse101 - cse101;
-    const double cse109 = cse93 + cse93 + cse95 + cse95;
-    const double cse110 = cse108 - cse109;
-    const double cse111 = 13.70347789009205 * bar_M_f_1;
-    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * cse106 - bar_M_f_2 * (cse107 * bar_M_f_6) + bar_M_f_3 * (cse107 * bar_M_f_5) + bar_M_f_4 * (cse108 * bar_M_f_4) + bar_M_f_5 * (cse107 * bar_M_f_3 - cse109 * bar_M_f_5) + bar_M_f_6 * (-cse107 * bar_M_f_2 + cse110 * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse111);
+    const double cse114 = -15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8;
+    const double cse115 = 0.5 * (cse96 + cse96 + cse98 + cse98);
+    const double cse116 = cse107 + cse107 - cse109 - cse109;
+    const double cse117 = cse101 + cse101 + cse103 + cse103;
+    const double cse118 = cse116 - cse117;
+    const double cse119 = 13.70347789009205 * bar_M_f_1;
+    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * cse114 - bar_M_f_2 * (cse115 * bar_M_f_6) + bar_M_f_3 * (cse115 * bar_M_f_5) + bar_M_f_4 * (cse116 * bar_M_f_4) + bar_M_f_5 * (cse115 * bar_M_f_3 - cse117 * bar_M_f_5) + bar_M_f_6 * (-cse115 * bar_M_f_2 + cse118 * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse119);
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
-    const double cse112 = -13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8;
-    const double cse113 = 0.5 * (cse89 + cse89 + (cse91 + cse91));
-    const double cse114 = -cse100 - cse100 + (cse102 + cse102);
-    const double cse115 = cse94 + cse94 + (cse96 + cse96);
-    const double cse116 = cse114 - cse115;
-    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * cse112 - bar_M_f_2 * (cse113 * bar_M_f_6) + bar_M_f_3 * (cse113 * bar_M_f_5) + bar_M_f_4 * (cse114 * bar_M_f_4) + bar_M_f_5 * (cse113 * bar_M_f_3 - cse115 * bar_M_f_5) + bar_M_f_6 * (-cse113 * bar_M_f_2 + cse116 * bar_M_f_6) - bar_M_f_7 * cse111 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
+    const double cse120 = -13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8;
+    const double cse121 = 0.5 * (cse97 + cse97 + (cse99 + cse99));
+    const double cse122 = -cse108 - cse108 + (cse110 + cse110);
+    const double cse123 = cse102 + cse102 + (cse104 + cse104);
+    const double cse124 = cse122 - cse123;
+    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * cse120 - bar_M_f_2 * (cse121 * bar_M_f_6) + bar_M_f_3 * (cse121 * bar_M_f_5) + bar_M_f_4 * (cse122 * bar_M_f_4) + bar_M_f_5 * (cse121 * bar_M_f_3 - cse123 * bar_M_f_5) + bar_M_f_6 * (-cse121 * bar_M_f_2 + cse124 * bar_M_f_6) - bar_M_f_7 * cse119 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
     // the powers
     out[0] = 0.0;
-    const double cse117 = cse107 * bar_M_f_7;
-    const double cse118 = cse113 * bar_M_f_8;
-    const double cse119 = -cse117 - cse118;
-    const double cse120 = cse117 + cse118;
-    out[1] = 0.5 * (cse106 * (bar_M_f_1 * bar_M_f_7) + cse112 * (bar_M_f_1 * bar_M_f_8) + cse119 * (bar_M_f_2 * bar_M_f_6) + cse120 * (bar_M_f_3 * bar_M_f_5) + (cse108 * bar_M_f_7 + cse114 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse120 * (bar_M_f_5 * bar_M_f_3) + (-cse109 * bar_M_f_7 - cse115 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse119 * (bar_M_f_6 * bar_M_f_2) + (cse110 * bar_M_f_7 + cse116 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse106 * (bar_M_f_7 * bar_M_f_1) + cse112 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+    const double cse125 = cse115 * bar_M_f_7;
+    const double cse126 = cse121 * bar_M_f_8;
+    const double cse127 = -cse125 - cse126;
+    const double cse128 = cse125 + cse126;
+    out[1] = 0.5 * (cse114 * (bar_M_f_1 * bar_M_f_7) + cse120 * (bar_M_f_1 * bar_M_f_8) + cse127 * (bar_M_f_2 * bar_M_f_6) + cse128 * (bar_M_f_3 * bar_M_f_5) + (cse116 * bar_M_f_7 + cse122 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse128 * (bar_M_f_5 * bar_M_f_3) + (-cse117 * bar_M_f_7 - cse123 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse127 * (bar_M_f_6 * bar_M_f_2) + (cse118 * bar_M_f_7 + cse124 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse114 * (bar_M_f_7 * bar_M_f_1) + cse120 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -97,8 +97,8 @@ class components_model final : public mbgrt::Model {
     x[1] = 0.0;  // u2.c.q (components.mbg:6:5)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -116,9 +116,19 @@ class components_model final : public mbgrt::Model {
     const double u2_r_e = 1.0 - u2_c_e;
     // components.mbg:5:5  R u2.r: f = e / R
     const double u2_r_f = u2_r_e / u2_R;
-    // state derivatives
+    // components.mbg:10:3  0 bus: flows in = flows out
+    const double src_f = u1_r_f + u2_r_f;
+    // state derivatives, then the powers
     xdot[0] = u1_r_f;
     xdot[1] = u2_r_f;
+    rate[0] = src_f;
+    rate[1] = u1_r_e * u1_r_f + u2_r_e * u2_r_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

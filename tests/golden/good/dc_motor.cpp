@@ -121,8 +121,8 @@ class dc_motor_model final : public mbgrt::Model {
     return i < 2 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -146,9 +146,17 @@ class dc_motor_model final : public mbgrt::Model {
     const double armature_l_e = supply_e - (armature_r_e + emf_e1);
     // dc_motor.mbg:21:3  1 shaft: efforts in = efforts out
     const double rotor_e = emf_e2 - friction_e;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = armature_l_e;
     xdot[1] = rotor_e;
+    rate[0] = supply_e * armature_l_f;
+    rate[1] = armature_r_e * armature_l_f + friction_e * rotor_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

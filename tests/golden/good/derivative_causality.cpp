@@ -102,18 +102,30 @@ class derivative_causality_model final : public mbgrt::Model {
     return i < 1 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
+    // states
+    const double mass1_p = x[0];
     // derivative_causality.mbg:6:4  Se force: e = value
     const double force_e = F;
+    // derivative_causality.mbg:7:3  I mass1: p = I f
+    const double mass1_f = mass1_p / m1;
     // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for der(mass2.p)
     const double der_mass2_p = m2 * (derived1_ * force_e) / derived2_;
     // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for mass1.e
     const double mass1_e = -(-force_e + der_mass2_p);
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = mass1_e;
+    rate[0] = force_e * mass1_f;
+    rate[1] = 0.0;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

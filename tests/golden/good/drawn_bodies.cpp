@@ -221,8 +221,8 @@ class drawn_bodies_model final : public mbgrt::Model {
     return i < 36 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -253,6 +253,14 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double shoulder_theta_q = x[33];
     const double axle_theta_rate_rate = x[34];
     const double axle_theta_q = x[35];
+    // drawn_bodies.mbg:40:7  MTF shoulder.m2: f2 = T f1
+    const double shoulder_m2_f2_3 = -0.25 * shoulder_theta_rate_rate;
+    // drawn_bodies.mbg:41:7  MTF axle.m3: f2 = T f1
+    const double axle_m3_f2_3 = shoulder_m2_f2_3;
+    // drawn_bodies.mbg:41:7  0 axle.vpa: flows in = flows out
+    const double axle_m4_f1_3 = shoulder_m2_f2_3 + axle_m3_f2_3;
+    // drawn_bodies.mbg:41:7  0 axle.vsum: flows in = flows out
+    const double axle_reaction_f_f_3 = axle_m4_f1_3;
     // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
     // (cseN: a subexpression several equations below share)
     const double cse1 = std::cos(axle_theta_q);
@@ -364,7 +372,7 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_q_f2_2 = cse10 * plain_J_f_1 - cse9 * plain_J_f_2 + cse8 * plain_J_f_3;
     const double plain_q_f2_3 = cse9 * plain_J_f_1 + cse10 * plain_J_f_2 - cse7 * plain_J_f_3;
     const double plain_q_f2_4 = -cse8 * plain_J_f_1 + cse7 * plain_J_f_2 + cse10 * plain_J_f_3;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = 0.0;
     xdot[1] = 0.0;
     xdot[2] = -0.9810000000000001;
@@ -401,6 +409,14 @@ class drawn_bodies_model final : public mbgrt::Model {
     xdot[33] = shoulder_theta_rate_rate;
     xdot[34] = der_axle_theta_rate_rate;
     xdot[35] = axle_theta_rate_rate;
+    rate[0] = link_weight_e_3 * shoulder_m2_f2_3 + wheel_weight_e_3 * axle_reaction_f_f_3 - 0.9810000000000001 * ball_m_f_3 - 1.9620000000000002 * tetra_m_f_3 - 2.943 * plain_m_f_3;
+    rate[1] = wheel_ejs_e_1 * axle_reaction_t_f_1 + wheel_ejs_e_2 * axle_reaction_t_f_2 + wheel_ejs_e_3 * axle_reaction_t_f_3 + (tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3) + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).

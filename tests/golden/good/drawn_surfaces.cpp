@@ -269,8 +269,8 @@ class drawn_surfaces_model final : public mbgrt::Model {
     x[33] = 0.0;  // tyre.tan_alpha.q (drawn_surfaces.mbg:56:6)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -315,6 +315,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const int blk1_rank = mbgrt::solve_rank_revealing<2>(blk1_a, blk1_x, 1e-10, blk1_dependent, &blk1_closest);
     rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double ball_p_m_e_3 = blk1_x[0];
+    const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
     const double cse4 = ball_s_r_q_1 - 1.5;
@@ -356,6 +357,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double ball_s_m_e_1 = blk2_x[0];
     const double ball_s_m_e_2 = blk2_x[1];
     const double ball_s_m_e_3 = blk2_x[2];
+    const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
     const double cse21 = ball_c_r_q_1 - 3.0;
     const double cse22 = cse21 + cse21;
@@ -389,6 +391,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double ball_c_m_e_1 = blk3_x[0];
     const double ball_c_m_e_3 = blk3_x[1];
+    const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
     const double cse34 = -ball_r_r_q_3 * derived1_ / derived2_;
     const double cse35 = ball_r_r_q_1 - 4.5;
@@ -510,6 +513,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk4_rank, 6, blk4_dependent, blk4_rows, blk4_closest, false);
     const double ball_r_m_e_1 = blk4_x[0];
     const double ball_r_m_e_3 = blk4_x[1];
+    const double on_ridge_cn_e = blk4_x[4];
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
     const double on_platform_cat_f2 = ball_m_m_p_3;
     // drawn_surfaces.mbg:36:7  Sf rise.s_rate: f = value
@@ -544,14 +548,29 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const int blk5_rank = mbgrt::solve_rank_revealing<5>(blk5_a, blk5_x, 1e-10, blk5_dependent, &blk5_closest);
     rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double ball_m_m_e_3 = blk5_x[0];
+    const double on_platform_cn_e = blk5_x[2];
+    // drawn_surfaces.mbg:35:6  d/dt of [I platform.m: p = I f (derivative causality)]
+    const double der_platform_m_p_3 = 5.0 * der_rise_reaction_f_f_3;
+    // drawn_surfaces.mbg:35:6  I platform.m: e = der(p) (derivative causality)
+    const double platform_m_e_3 = der_platform_m_p_3;
+    // drawn_surfaces.mbg:47:9  MTF on_platform.cbt: e1 = T' e2
+    const double on_platform_cbt_e1_3 = -on_platform_cn_e;
+    // drawn_surfaces.mbg:35:6  1 platform.v: efforts in = efforts out
+    const double rise_reaction_f_e_3 = -(-49.050000000000004 - (platform_m_e_3 + on_platform_cbt_e1_3));
     // drawn_surfaces.mbg:53:7  d/dt of [Sf pull.s_rate: f = value]
     const double der_pull_s_rate_f = 0.0;
     // drawn_surfaces.mbg:53:7  d/dt of [0 pull.vsum: flows in = flows out]
     const double der_pull_reaction_f_f_1 = der_pull_s_rate_f;
+    // drawn_surfaces.mbg:50:6  I sled.m: e = der(p) (derivative causality)
+    const double sled_m_e_1 = der_pull_reaction_f_f_1;
     // drawn_surfaces.mbg:54:7  d/dt of [0 lift.vpa: flows in = flows out]
     const double der_lift_m3_f1_1 = der_pull_reaction_f_f_1;
     // drawn_surfaces.mbg:54:7  d/dt of [0 lift.vsum: flows in = flows out]
     const double der_lift_reaction_f_f_1 = der_lift_m3_f1_1;
+    // drawn_surfaces.mbg:51:6  d/dt of [I hub.m: p = I f (derivative causality)]
+    const double der_hub_m_p_1 = 200.0 * der_lift_reaction_f_f_1;
+    // drawn_surfaces.mbg:51:6  I hub.m: e = der(p) (derivative causality)
+    const double hub_m_e_1 = der_hub_m_p_1;
     // drawn_surfaces.mbg:53:7  Sf pull.s_rate: f = value
     const double pull_s_rate_f = v_v;
     // drawn_surfaces.mbg:53:7  0 pull.vsum: flows in = flows out
@@ -657,15 +676,61 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double tyre_on_wheel_f_e_1 = wheel_pose_R11 * tyre_force_1 + wheel_pose_R31 * tyre_force_3;
     // drawn_surfaces.mbg:55:7  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
     const double wheel_out1 = cse136 * (10.0 * cse136) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
-    const double cse148 = cse136 * derived13_;
-    const double cse149 = wheel_pose_R33 * derived13_;
-    const double wheel_out2 = -cse136 * (-(wheel_weight_e_1 + tyre_on_wheel_f_e_1 - wheel_ejs_v_e_1) + 10.0 * (-cse148 * spin_m4_f1_1 - cse149 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1)) + wheel_pose_R33 * (-(wheel_weight_e_3 + tyre_on_wheel_f_e_3 - wheel_ejs_v_e_3) + 10.0 * (cse149 * spin_m4_f1_1 - cse148 * spin_m4_f1_3 + cse136 * der_spin_m4_f1_1));
+    const double cse148 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
+    const double cse149 = cse136 * derived13_;
+    const double cse150 = wheel_pose_R33 * derived13_;
+    const double cse151 = -cse149 * spin_m4_f1_1 - cse150 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
+    const double cse152 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
+    const double cse153 = cse150 * spin_m4_f1_1 - cse149 * spin_m4_f1_3 + cse136 * der_spin_m4_f1_1;
+    const double wheel_out2 = -cse136 * (-(cse148 - wheel_ejs_v_e_1) + 10.0 * cse151) + wheel_pose_R33 * (-(cse152 - wheel_ejs_v_e_3) + 10.0 * cse153);
     // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: 1 / pivot of the joint's accelerations
     const double hub_pivot1 = 1.0 / (200.0 + wheel_out1);
     // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: joint acceleration as an affine function of the parent's motion
     const double hub_accel2 = -hub_pivot1 * (1962.0 + wheel_out2);
     // drawn_surfaces.mbg:54:7  joint acceleration of body hub from its parent's motion (articulated-body form)
     const double der_lift_s_rate_rate = hub_accel2;
+    // drawn_surfaces.mbg:54:7  d/dt of [0 lift.vsum: flows in = flows out]
+    const double der_lift_reaction_f_f_3 = der_lift_s_rate_rate;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
+    const double der_spin_m4_f1_3 = der_lift_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
+    const double der_spin_m4_f2_1 = cse151 - cse136 * der_spin_m4_f1_3;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
+    const double der_spin_reaction_f_f_1 = der_spin_m4_f2_1;
+    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
+    const double der_wheel_m_p_1 = 10.0 * der_spin_reaction_f_f_1;
+    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
+    const double wheel_m_e_1 = der_wheel_m_p_1;
+    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
+    const double spin_reaction_f_e_1 = -(cse148 - (wheel_m_e_1 + wheel_ejs_v_e_1));
+    // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
+    const double der_spin_m4_f2_3 = cse153 + wheel_pose_R33 * der_spin_m4_f1_3;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
+    const double der_spin_reaction_f_f_3 = der_spin_m4_f2_3;
+    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
+    const double der_wheel_m_p_3 = 10.0 * der_spin_reaction_f_f_3;
+    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
+    const double wheel_m_e_3 = der_wheel_m_p_3;
+    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
+    const double spin_reaction_f_e_3 = -(cse152 - (wheel_m_e_3 + wheel_ejs_v_e_3));
+    // drawn_surfaces.mbg:55:7  MTF spin.m4: e1 = T' e2
+    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse136 * spin_reaction_f_e_3;
+    // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
+    const double lift_reaction_f_e_1 = hub_m_e_1 + spin_m4_e1_1;
+    // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out
+    const double pull_reaction_f_e_1 = sled_m_e_1 + lift_reaction_f_e_1;
+    // drawn_surfaces.mbg:55:7  d/dt of [Sf spin.theta_rate: f = value]
+    const double der_spin_theta_rate_f = 0.0;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.wsum: flows in = flows out]
+    const double der_spin_reaction_t_f_2 = der_spin_theta_rate_f;
+    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.J: p = I f (derivative causality)]
+    const double der_wheel_J_p_2 = 0.8 * der_spin_reaction_t_f_2;
+    // drawn_surfaces.mbg:52:6  I wheel.J: e = der(p) (derivative causality)
+    const double wheel_J_e_2 = der_wheel_J_p_2;
+    // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_t: e = value
+    const double tyre_on_wheel_t_e_2 = -tyre_centre_height * tyre_normal_3 * tyre_force_1 + tyre_centre_height * tyre_normal_1 * tyre_force_3;
+    // drawn_surfaces.mbg:52:6  1 wheel.w: efforts in = efforts out
+    const double spin_reaction_t_e_2 = -(tyre_on_wheel_t_e_2 - wheel_J_e_2);
     // drawn_surfaces.mbg:56:6  signal tyre.Vcx
     const double tyre_Vcx = tyre_forward_1 * cse143 + tyre_forward_3 * cse144;
     // drawn_surfaces.mbg:56:6  signal tyre.spin
@@ -675,14 +740,14 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  signal tyre.sigma_kappa
     const double tyre_sigma_kappa = std::fmax(0.003, 5.9999999999999995e-05 * tyre_Fz);
     // drawn_surfaces.mbg:56:6  Sf tyre.kappa_rate: f = value
-    const double cse150 = std::fabs(tyre_Vcx);
-    const double tyre_kappa_rate_f = (-tyre_Vsx - cse150 * tyre_kappa_q) / tyre_sigma_kappa;
+    const double cse154 = std::fabs(tyre_Vcx);
+    const double tyre_kappa_rate_f = (-tyre_Vsx - cse154 * tyre_kappa_q) / tyre_sigma_kappa;
     // drawn_surfaces.mbg:56:6  signal tyre.sigma_alpha
-    const double cse151 = tyre_Fz / 6800.0;
-    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse151 / (1.0 + cse151 * cse151)));
+    const double cse155 = tyre_Fz / 6800.0;
+    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse155 / (1.0 + cse155 * cse155)));
     // drawn_surfaces.mbg:56:6  Sf tyre.tan_alpha_rate: f = value
-    const double tyre_tan_alpha_rate_f = -cse150 * tyre_tan_alpha_q / tyre_sigma_alpha;
-    // state derivatives
+    const double tyre_tan_alpha_rate_f = -cse154 * tyre_tan_alpha_q / tyre_sigma_alpha;
+    // state derivatives, then the powers
     xdot[0] = 0.0;
     xdot[1] = 0.0;
     xdot[2] = ball_p_m_e_3;
@@ -717,6 +782,14 @@ class drawn_surfaces_model final : public mbgrt::Model {
     xdot[31] = lift_s_rate_rate;
     xdot[32] = tyre_kappa_rate_f;
     xdot[33] = tyre_tan_alpha_rate_f;
+    rate[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 + (wheel_weight_e_1 * spin_reaction_f_f_1 + wheel_weight_e_3 * spin_reaction_f_f_3) + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
+    rate[1] = wheel_ejs_v_e_1 * spin_reaction_f_f_1 + wheel_ejs_v_e_3 * spin_reaction_f_f_3 + on_floor_cn_e * ball_p_m_p_3 + on_dome_cn_e * on_dome_cat_f2 + on_drum_cn_e * on_drum_cat_f2 + on_ridge_cn_e * on_ridge_cat_f2 + on_platform_cn_e * on_platform_cn_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -990,10 +1063,10 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double platform_pose_r3 = V * t;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
     // (cseN: a subexpression several equations below share)
-    const double cse152 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse152);
+    const double cse156 = derived13_ * t;
+    const double wheel_pose_R33 = std::cos(cse156);
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = std::sin(cse152);
+    const double wheel_pose_R13 = std::sin(cse156);
     // drawn_surfaces.mbg:53:7  signal sled.pose.r1
     const double sled_pose_r1 = v_v * t;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r1
@@ -1214,13 +1287,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:30:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_p.m.e[3], on_floor.cn.e)
     // (cseN: a subexpression several equations below share)
-    const double cse153 = 1.0 - mode_[0];
-    const double cse154 = ball_p_r_q_3 - on_floor_radius;
+    const double cse157 = 1.0 - mode_[0];
+    const double cse158 = ball_p_r_q_3 - on_floor_radius;
     double blk1_a[4] = {
         -1.0, -1.0,
-        mode_[0], cse153,
+        mode_[0], cse157,
     };
-    double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse154 - contact_bias_[0])};
+    double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse158 - contact_bias_[0])};
     static const char* const blk1_rows[] = {"ball_p.m.e[3]", "on_floor.cn.e"};
     int blk1_dependent[2];
     double blk1_closest;
@@ -1228,39 +1301,39 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
-    const double cse155 = ball_s_r_q_1 - 1.5;
-    const double cse156 = cse155 + cse155;
-    const double cse157 = std::sqrt(cse155 * cse155 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double cse158 = 2.0 * cse157;
-    const double cse159 = cse156 / cse158;
-    const double cse160 = ball_s_r_q_2 + ball_s_r_q_2;
-    const double cse161 = cse160 / cse158;
-    const double cse162 = ball_s_r_q_3 + ball_s_r_q_3;
-    const double cse163 = cse162 / cse158;
-    const double on_dome_cat_f2 = cse159 * ball_s_m_p_1 + cse161 * ball_s_m_p_2 + cse163 * ball_s_m_p_3;
+    const double cse159 = ball_s_r_q_1 - 1.5;
+    const double cse160 = cse159 + cse159;
+    const double cse161 = std::sqrt(cse159 * cse159 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double cse162 = 2.0 * cse161;
+    const double cse163 = cse160 / cse162;
+    const double cse164 = ball_s_r_q_2 + ball_s_r_q_2;
+    const double cse165 = cse164 / cse162;
+    const double cse166 = ball_s_r_q_3 + ball_s_r_q_3;
+    const double cse167 = cse166 / cse162;
+    const double on_dome_cat_f2 = cse163 * ball_s_m_p_1 + cse165 * ball_s_m_p_2 + cse167 * ball_s_m_p_3;
     // drawn_surfaces.mbg:31:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_s.m.e[1], ball_s.m.e[2], ball_s.m.e[3], on_dome.cat.e1[1], on_dome.cat.e1[2], on_dome.cat.e1[3], on_dome.cn.e, der(on_dome.cat.f2))
-    const double cse164 = -cse159;
-    const double cse165 = -cse161;
-    const double cse166 = -cse163;
-    const double cse167 = 1.0 - mode_[1];
-    const double cse168 = cse157 - on_dome_surface_radius - on_dome_radius;
-    const double cse169 = 4.0 * cse157;
-    const double cse170 = 2.0 * cse159;
-    const double cse171 = (cse158*cse158);
-    const double cse172 = 2.0 * cse161;
-    const double cse173 = 2.0 * cse163;
+    const double cse168 = -cse163;
+    const double cse169 = -cse165;
+    const double cse170 = -cse167;
+    const double cse171 = 1.0 - mode_[1];
+    const double cse172 = cse161 - on_dome_surface_radius - on_dome_radius;
+    const double cse173 = 4.0 * cse161;
+    const double cse174 = 2.0 * cse163;
+    const double cse175 = (cse162*cse162);
+    const double cse176 = 2.0 * cse165;
+    const double cse177 = 2.0 * cse167;
     double blk2_a[64] = {
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse164, 0.0,
-        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse165, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse166, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse167, mode_[1],
-        cse164, cse165, cse166, 0.0, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse168, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse169, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse170, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse171, mode_[1],
+        cse168, cse169, cse170, 0.0, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse168 - contact_bias_[1]), ((cse169 - cse156 * cse170) / cse171 * ball_s_m_p_1 - cse160 * cse170 / cse171 * ball_s_m_p_2 - cse162 * cse170 / cse171 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse156 * cse172 / cse171 * ball_s_m_p_1 + (cse169 - cse160 * cse172) / cse171 * ball_s_m_p_2 - cse162 * cse172 / cse171 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse156 * cse173 / cse171 * ball_s_m_p_1 - cse160 * cse173 / cse171 * ball_s_m_p_2 + (cse169 - cse162 * cse173) / cse171 * ball_s_m_p_3) * ball_s_m_p_3};
+    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse172 - contact_bias_[1]), ((cse173 - cse160 * cse174) / cse175 * ball_s_m_p_1 - cse164 * cse174 / cse175 * ball_s_m_p_2 - cse166 * cse174 / cse175 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse160 * cse176 / cse175 * ball_s_m_p_1 + (cse173 - cse164 * cse176) / cse175 * ball_s_m_p_2 - cse166 * cse176 / cse175 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse160 * cse177 / cse175 * ball_s_m_p_1 - cse164 * cse177 / cse175 * ball_s_m_p_2 + (cse173 - cse166 * cse177) / cse175 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
     double blk2_closest;
@@ -1268,33 +1341,33 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse174 = ball_c_r_q_1 - 3.0;
-    const double cse175 = cse174 + cse174;
-    const double cse176 = std::sqrt(cse174 * cse174 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double cse177 = 2.0 * cse176;
-    const double cse178 = cse175 / cse177;
-    const double cse179 = ball_c_r_q_3 + ball_c_r_q_3;
-    const double cse180 = cse179 / cse177;
-    const double on_drum_cat_f2 = cse178 * ball_c_m_p_1 + cse180 * ball_c_m_p_3;
+    const double cse178 = ball_c_r_q_1 - 3.0;
+    const double cse179 = cse178 + cse178;
+    const double cse180 = std::sqrt(cse178 * cse178 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double cse181 = 2.0 * cse180;
+    const double cse182 = cse179 / cse181;
+    const double cse183 = ball_c_r_q_3 + ball_c_r_q_3;
+    const double cse184 = cse183 / cse181;
+    const double on_drum_cat_f2 = cse182 * ball_c_m_p_1 + cse184 * ball_c_m_p_3;
     // drawn_surfaces.mbg:32:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_c.m.e[1], ball_c.m.e[3], on_drum.cat.e1[1], on_drum.cat.e1[3], on_drum.cn.e, der(on_drum.cat.f2))
-    const double cse181 = -cse178;
-    const double cse182 = -cse180;
-    const double cse183 = 1.0 - mode_[2];
-    const double cse184 = cse176 - on_drum_surface_radius - on_drum_radius;
-    const double cse185 = 4.0 * cse176;
-    const double cse186 = 2.0 * cse178;
-    const double cse187 = (cse177*cse177);
-    const double cse188 = 2.0 * cse180;
+    const double cse185 = -cse182;
+    const double cse186 = -cse184;
+    const double cse187 = 1.0 - mode_[2];
+    const double cse188 = cse180 - on_drum_surface_radius - on_drum_radius;
+    const double cse189 = 4.0 * cse180;
+    const double cse190 = 2.0 * cse182;
+    const double cse191 = (cse181*cse181);
+    const double cse192 = 2.0 * cse184;
     double blk3_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse181, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse182, 0.0,
-        0.0, 0.0, 0.0, 0.0, cse183, mode_[2],
-        cse181, cse182, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 1.0, 0.0, cse185, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse186, 0.0,
+        0.0, 0.0, 0.0, 0.0, cse187, mode_[2],
+        cse185, cse186, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse184 - contact_bias_[2]), ((cse185 - cse175 * cse186) / cse187 * ball_c_m_p_1 - cse179 * cse186 / cse187 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse175 * cse188 / cse187 * ball_c_m_p_1 + (cse185 - cse179 * cse188) / cse187 * ball_c_m_p_3) * ball_c_m_p_3};
+    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse188 - contact_bias_[2]), ((cse189 - cse179 * cse190) / cse191 * ball_c_m_p_1 - cse183 * cse190 / cse191 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse179 * cse192 / cse191 * ball_c_m_p_1 + (cse189 - cse183 * cse192) / cse191 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
     double blk3_closest;
@@ -1302,121 +1375,121 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse189 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse190 = ball_r_r_q_1 - 4.5;
-    const double cse191 = cse190 - 0.3;
-    const double cse192 = 0.2 * cse191 / 0.2;
-    const double cse193 = std::fmax(cse189, cse192);
-    const double cse194 = ball_r_r_q_3 - 0.2;
-    const double cse195 = 0.3 * cse194 / 0.3;
-    const double cse196 = std::fmax(cse193, cse195);
-    const double cse197 = (-0.2 * cse190 + cse194 * derived3_) / derived4_;
-    const double cse198 = std::fmax(cse196, cse197);
-    const double cse199 = ((cse198) >= 0.0 ? 1.0 : 0.0);
-    const double cse200 = (-cse190 * derived3_ - 0.2 * cse194) / derived5_;
-    const double cse201 = std::fmax(0.0, cse200);
-    const double cse202 = std::fmin(1.0, cse201);
-    const double cse203 = cse190 + cse202 * derived3_;
-    const double cse204 = cse194 + 0.2 * cse202;
-    const double cse205 = std::sqrt(cse203 * cse203 + cse204 * cse204);
-    const double cse206 = cse190 + derived3_;
-    const double cse207 = cse206 * derived1_ / derived6_;
-    const double cse208 = std::fmax(0.0, cse207);
-    const double cse209 = cse206 - std::fmin(1.0, cse208) * derived1_;
-    const double cse210 = std::sqrt(cse209 * cse209 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse211 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse193 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse194 = ball_r_r_q_1 - 4.5;
+    const double cse195 = cse194 - 0.3;
+    const double cse196 = 0.2 * cse195 / 0.2;
+    const double cse197 = std::fmax(cse193, cse196);
+    const double cse198 = ball_r_r_q_3 - 0.2;
+    const double cse199 = 0.3 * cse198 / 0.3;
+    const double cse200 = std::fmax(cse197, cse199);
+    const double cse201 = (-0.2 * cse194 + cse198 * derived3_) / derived4_;
+    const double cse202 = std::fmax(cse200, cse201);
+    const double cse203 = ((cse202) >= 0.0 ? 1.0 : 0.0);
+    const double cse204 = (-cse194 * derived3_ - 0.2 * cse198) / derived5_;
+    const double cse205 = std::fmax(0.0, cse204);
+    const double cse206 = std::fmin(1.0, cse205);
+    const double cse207 = cse194 + cse206 * derived3_;
+    const double cse208 = cse198 + 0.2 * cse206;
+    const double cse209 = std::sqrt(cse207 * cse207 + cse208 * cse208);
+    const double cse210 = cse194 + derived3_;
+    const double cse211 = cse210 * derived1_ / derived6_;
     const double cse212 = std::fmax(0.0, cse211);
-    const double cse213 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse212);
-    const double cse214 = std::sqrt(cse191 * cse191 + cse213 * cse213);
-    const double cse215 = std::fmin(cse210, cse214);
-    const double cse216 = 0.3 * cse191 / 0.09;
-    const double cse217 = std::fmax(0.0, -cse216);
-    const double cse218 = cse191 + 0.3 * std::fmin(1.0, cse217);
-    const double cse219 = std::sqrt(cse218 * cse218 + cse194 * cse194);
-    const double cse220 = std::fmin(cse215, cse219);
-    const double cse221 = ((cse205 - cse220) >= 0.0 ? 1.0 : 0.0);
-    const double cse222 = ((cse219 - cse215) >= 0.0 ? 1.0 : 0.0);
-    const double cse223 = ((cse214 - cse210) >= 0.0 ? 1.0 : 0.0);
-    const double cse224 = 1.0 - (1.0 - ((cse208 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse207) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse225 = cse224 * cse209 + cse209 * cse224;
-    const double cse226 = 2.0 * cse210;
-    const double cse227 = cse225 / cse226;
-    const double cse228 = 1.0 - cse223;
-    const double cse229 = cse191 + cse191;
+    const double cse213 = cse210 - std::fmin(1.0, cse212) * derived1_;
+    const double cse214 = std::sqrt(cse213 * cse213 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse215 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse216 = std::fmax(0.0, cse215);
+    const double cse217 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse216);
+    const double cse218 = std::sqrt(cse195 * cse195 + cse217 * cse217);
+    const double cse219 = std::fmin(cse214, cse218);
+    const double cse220 = 0.3 * cse195 / 0.09;
+    const double cse221 = std::fmax(0.0, -cse220);
+    const double cse222 = cse195 + 0.3 * std::fmin(1.0, cse221);
+    const double cse223 = std::sqrt(cse222 * cse222 + cse198 * cse198);
+    const double cse224 = std::fmin(cse219, cse223);
+    const double cse225 = ((cse209 - cse224) >= 0.0 ? 1.0 : 0.0);
+    const double cse226 = ((cse223 - cse219) >= 0.0 ? 1.0 : 0.0);
+    const double cse227 = ((cse218 - cse214) >= 0.0 ? 1.0 : 0.0);
+    const double cse228 = 1.0 - (1.0 - ((cse212 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse211) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse229 = cse228 * cse213 + cse213 * cse228;
     const double cse230 = 2.0 * cse214;
     const double cse231 = cse229 / cse230;
-    const double cse232 = 1.0 - cse222;
-    const double cse233 = 1.0 - 0.3 * ((1.0 - ((cse217 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse216) >= 0.0 ? 1.0 : 0.0))));
-    const double cse234 = cse233 * cse218 + cse218 * cse233;
-    const double cse235 = 2.0 * cse219;
-    const double cse236 = cse234 / cse235;
-    const double cse237 = 1.0 - cse221;
-    const double cse238 = 1.0 - ((cse201 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse239 = 1.0 - ((-cse200) >= 0.0 ? 1.0 : 0.0);
-    const double cse240 = cse238 * (cse239 * derived8_);
-    const double cse241 = 1.0 - cse240 * derived3_;
-    const double cse242 = 0.2 * cse240;
-    const double cse243 = cse241 * cse203 + cse203 * cse241 + (-cse242 * cse204 - cse204 * cse242);
-    const double cse244 = 2.0 * cse205;
-    const double cse245 = cse243 / cse244;
-    const double cse246 = 1.0 - cse199;
-    const double cse247 = ((cse196 - cse197) >= 0.0 ? 1.0 : 0.0);
-    const double cse248 = ((cse193 - cse195) >= 0.0 ? 1.0 : 0.0);
-    const double cse249 = ((cse189 - cse192) >= 0.0 ? 1.0 : 0.0);
-    const double cse250 = 1.0 - cse247;
-    const double cse251 = cse199 * (cse221 * (cse222 * (cse223 * cse227 + cse228 * cse231) + cse232 * cse236) + cse237 * cse245) + cse246 * (cse247 * (cse248 * (1.0 - cse249)) - cse250 * derived9_);
-    const double cse252 = ball_r_r_q_3 + ball_r_r_q_3;
-    const double cse253 = cse252 / cse226;
-    const double cse254 = 1.0 - 0.2 * ((1.0 - ((cse212 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse211) >= 0.0 ? 1.0 : 0.0))));
-    const double cse255 = cse254 * cse213 + cse213 * cse254;
-    const double cse256 = cse255 / cse230;
-    const double cse257 = cse194 + cse194;
-    const double cse258 = cse257 / cse235;
-    const double cse259 = cse238 * (cse239 * derived10_);
-    const double cse260 = cse259 * derived3_;
-    const double cse261 = 1.0 - 0.2 * cse259;
-    const double cse262 = -cse260 * cse203 - cse203 * cse260 + (cse261 * cse204 + cse204 * cse261);
-    const double cse263 = cse262 / cse244;
-    const double cse264 = cse199 * (cse221 * (cse222 * (cse223 * cse253 + cse228 * cse256) + cse232 * cse258) + cse237 * cse263) + cse246 * (cse247 * (-cse248 * (cse249 * derived11_) + (1.0 - cse248)) + cse250 * derived12_);
-    const double on_ridge_cat_f2 = cse251 * ball_r_m_p_1 + cse264 * ball_r_m_p_3;
+    const double cse232 = 1.0 - cse227;
+    const double cse233 = cse195 + cse195;
+    const double cse234 = 2.0 * cse218;
+    const double cse235 = cse233 / cse234;
+    const double cse236 = 1.0 - cse226;
+    const double cse237 = 1.0 - 0.3 * ((1.0 - ((cse221 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse220) >= 0.0 ? 1.0 : 0.0))));
+    const double cse238 = cse237 * cse222 + cse222 * cse237;
+    const double cse239 = 2.0 * cse223;
+    const double cse240 = cse238 / cse239;
+    const double cse241 = 1.0 - cse225;
+    const double cse242 = 1.0 - ((cse205 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse243 = 1.0 - ((-cse204) >= 0.0 ? 1.0 : 0.0);
+    const double cse244 = cse242 * (cse243 * derived8_);
+    const double cse245 = 1.0 - cse244 * derived3_;
+    const double cse246 = 0.2 * cse244;
+    const double cse247 = cse245 * cse207 + cse207 * cse245 + (-cse246 * cse208 - cse208 * cse246);
+    const double cse248 = 2.0 * cse209;
+    const double cse249 = cse247 / cse248;
+    const double cse250 = 1.0 - cse203;
+    const double cse251 = ((cse200 - cse201) >= 0.0 ? 1.0 : 0.0);
+    const double cse252 = ((cse197 - cse199) >= 0.0 ? 1.0 : 0.0);
+    const double cse253 = ((cse193 - cse196) >= 0.0 ? 1.0 : 0.0);
+    const double cse254 = 1.0 - cse251;
+    const double cse255 = cse203 * (cse225 * (cse226 * (cse227 * cse231 + cse232 * cse235) + cse236 * cse240) + cse241 * cse249) + cse250 * (cse251 * (cse252 * (1.0 - cse253)) - cse254 * derived9_);
+    const double cse256 = ball_r_r_q_3 + ball_r_r_q_3;
+    const double cse257 = cse256 / cse230;
+    const double cse258 = 1.0 - 0.2 * ((1.0 - ((cse216 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse215) >= 0.0 ? 1.0 : 0.0))));
+    const double cse259 = cse258 * cse217 + cse217 * cse258;
+    const double cse260 = cse259 / cse234;
+    const double cse261 = cse198 + cse198;
+    const double cse262 = cse261 / cse239;
+    const double cse263 = cse242 * (cse243 * derived10_);
+    const double cse264 = cse263 * derived3_;
+    const double cse265 = 1.0 - 0.2 * cse263;
+    const double cse266 = -cse264 * cse207 - cse207 * cse264 + (cse265 * cse208 + cse208 * cse265);
+    const double cse267 = cse266 / cse248;
+    const double cse268 = cse203 * (cse225 * (cse226 * (cse227 * cse257 + cse232 * cse260) + cse236 * cse262) + cse241 * cse267) + cse250 * (cse251 * (-cse252 * (cse253 * derived11_) + (1.0 - cse252)) + cse254 * derived12_);
+    const double on_ridge_cat_f2 = cse255 * ball_r_m_p_1 + cse268 * ball_r_m_p_3;
     // drawn_surfaces.mbg:33:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_r.m.e[1], ball_r.m.e[3], on_ridge.cat.e1[1], on_ridge.cat.e1[3], on_ridge.cn.e, der(on_ridge.cat.f2))
-    const double cse265 = -cse251;
-    const double cse266 = -cse264;
-    const double cse267 = 1.0 - mode_[3];
-    const double cse268 = cse199 * std::fmin(cse220, cse205) + cse246 * cse198 - on_ridge_radius;
-    const double cse269 = cse224 * cse224;
-    const double cse270 = 2.0 * cse227;
-    const double cse271 = (cse226*cse226);
-    const double cse272 = 2.0 * cse231;
-    const double cse273 = (cse230*cse230);
-    const double cse274 = cse233 * cse233;
-    const double cse275 = 2.0 * cse236;
-    const double cse276 = (cse235*cse235);
-    const double cse277 = cse241 * cse241;
-    const double cse278 = cse242 * cse242;
-    const double cse279 = 2.0 * cse245;
-    const double cse280 = (cse244*cse244);
-    const double cse281 = cse260 * cse241;
-    const double cse282 = cse241 * cse260;
-    const double cse283 = cse261 * cse242;
-    const double cse284 = cse242 * cse261;
-    const double cse285 = 2.0 * cse253;
-    const double cse286 = 2.0 * cse256;
-    const double cse287 = 2.0 * cse258;
-    const double cse288 = 2.0 * cse263;
-    const double cse289 = cse254 * cse254;
-    const double cse290 = cse260 * cse260;
-    const double cse291 = cse261 * cse261;
+    const double cse269 = -cse255;
+    const double cse270 = -cse268;
+    const double cse271 = 1.0 - mode_[3];
+    const double cse272 = cse203 * std::fmin(cse224, cse209) + cse250 * cse202 - on_ridge_radius;
+    const double cse273 = cse228 * cse228;
+    const double cse274 = 2.0 * cse231;
+    const double cse275 = (cse230*cse230);
+    const double cse276 = 2.0 * cse235;
+    const double cse277 = (cse234*cse234);
+    const double cse278 = cse237 * cse237;
+    const double cse279 = 2.0 * cse240;
+    const double cse280 = (cse239*cse239);
+    const double cse281 = cse245 * cse245;
+    const double cse282 = cse246 * cse246;
+    const double cse283 = 2.0 * cse249;
+    const double cse284 = (cse248*cse248);
+    const double cse285 = cse264 * cse245;
+    const double cse286 = cse245 * cse264;
+    const double cse287 = cse265 * cse246;
+    const double cse288 = cse246 * cse265;
+    const double cse289 = 2.0 * cse257;
+    const double cse290 = 2.0 * cse260;
+    const double cse291 = 2.0 * cse262;
+    const double cse292 = 2.0 * cse267;
+    const double cse293 = cse258 * cse258;
+    const double cse294 = cse264 * cse264;
+    const double cse295 = cse265 * cse265;
     double blk4_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse265, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse266, 0.0,
-        0.0, 0.0, 0.0, 0.0, cse267, mode_[3],
-        cse265, cse266, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 1.0, 0.0, cse269, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse270, 0.0,
+        0.0, 0.0, 0.0, 0.0, cse271, mode_[3],
+        cse269, cse270, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse268 - contact_bias_[3]), (cse199 * (cse221 * (cse222 * (cse223 * (((cse269 + cse269) * cse226 - cse225 * cse270) / cse271) + cse228 * ((4.0 * cse214 - cse229 * cse272) / cse273)) + cse232 * (((cse274 + cse274) * cse235 - cse234 * cse275) / cse276)) + cse237 * (((cse277 + cse277 + (cse278 + cse278)) * cse244 - cse243 * cse279) / cse280)) * ball_r_m_p_1 + cse199 * (cse221 * (cse222 * (-cse223 * (cse252 * cse270 / cse271) - cse228 * (cse255 * cse272 / cse273)) - cse232 * (cse257 * cse275 / cse276)) + cse237 * (((-cse281 - cse282 + (-cse283 - cse284)) * cse244 - cse262 * cse279) / cse280)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse199 * (cse221 * (cse222 * (-cse223 * (cse225 * cse285 / cse271) - cse228 * (cse229 * cse286 / cse273)) - cse232 * (cse234 * cse287 / cse276)) + cse237 * (((-cse282 - cse281 + (-cse284 - cse283)) * cse244 - cse243 * cse288) / cse280)) * ball_r_m_p_1 + cse199 * (cse221 * (cse222 * (cse223 * ((4.0 * cse210 - cse252 * cse285) / cse271) + cse228 * (((cse289 + cse289) * cse230 - cse255 * cse286) / cse273)) + cse232 * ((4.0 * cse219 - cse257 * cse287) / cse276)) + cse237 * (((cse290 + cse290 + (cse291 + cse291)) * cse244 - cse262 * cse288) / cse280)) * ball_r_m_p_3) * ball_r_m_p_3};
+    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse272 - contact_bias_[3]), (cse203 * (cse225 * (cse226 * (cse227 * (((cse273 + cse273) * cse230 - cse229 * cse274) / cse275) + cse232 * ((4.0 * cse218 - cse233 * cse276) / cse277)) + cse236 * (((cse278 + cse278) * cse239 - cse238 * cse279) / cse280)) + cse241 * (((cse281 + cse281 + (cse282 + cse282)) * cse248 - cse247 * cse283) / cse284)) * ball_r_m_p_1 + cse203 * (cse225 * (cse226 * (-cse227 * (cse256 * cse274 / cse275) - cse232 * (cse259 * cse276 / cse277)) - cse236 * (cse261 * cse279 / cse280)) + cse241 * (((-cse285 - cse286 + (-cse287 - cse288)) * cse248 - cse266 * cse283) / cse284)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse203 * (cse225 * (cse226 * (-cse227 * (cse229 * cse289 / cse275) - cse232 * (cse233 * cse290 / cse277)) - cse236 * (cse238 * cse291 / cse280)) + cse241 * (((-cse286 - cse285 + (-cse288 - cse287)) * cse248 - cse247 * cse292) / cse284)) * ball_r_m_p_1 + cse203 * (cse225 * (cse226 * (cse227 * ((4.0 * cse214 - cse256 * cse289) / cse275) + cse232 * (((cse293 + cse293) * cse234 - cse259 * cse290) / cse277)) + cse236 * ((4.0 * cse223 - cse261 * cse291) / cse280)) + cse241 * (((cse294 + cse294 + (cse295 + cse295)) * cse248 - cse266 * cse292) / cse284)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
     double blk4_closest;
@@ -1443,16 +1516,16 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double der_on_platform_cbt_f2 = -der_rise_reaction_f_f_3;
     // drawn_surfaces.mbg:34:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_m.m.e[3], on_platform.cat.e1[3], on_platform.cn.e, der(on_platform.cat.f2), der(on_platform.cn.f))
-    const double cse292 = 1.0 - mode_[4];
-    const double cse293 = ball_m_r_q_3 - platform_pose_r3 - on_platform_radius;
+    const double cse296 = 1.0 - mode_[4];
+    const double cse297 = ball_m_r_q_3 - platform_pose_r3 - on_platform_radius;
     double blk5_a[25] = {
         -1.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 1.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, cse292, 0.0, mode_[4],
+        0.0, 0.0, cse296, 0.0, mode_[4],
         -1.0, 0.0, 0.0, 1.0, 0.0,
         0.0, 0.0, 0.0, -1.0, 1.0,
     };
-    double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse293 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
+    double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse297 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
     static const char* const blk5_rows[] = {"ball_m.m.e[3]", "on_platform.cat.e1[3]", "on_platform.cn.e", "der(on_platform.cat.f2)", "der(on_platform.cn.f)"};
     int blk5_dependent[5];
     double blk5_closest;
@@ -1460,11 +1533,11 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double on_platform_cn_e = blk5_x[2];
     // zero-crossing functions, in event order
-    g[0] = -mode_[0] * on_floor_cn_e + cse153 * cse154;
-    g[1] = -mode_[1] * on_dome_cn_e + cse167 * cse168;
-    g[2] = -mode_[2] * on_drum_cn_e + cse183 * cse184;
-    g[3] = -mode_[3] * on_ridge_cn_e + cse267 * cse268;
-    g[4] = -mode_[4] * on_platform_cn_e + cse292 * cse293;
+    g[0] = -mode_[0] * on_floor_cn_e + cse157 * cse158;
+    g[1] = -mode_[1] * on_dome_cn_e + cse171 * cse172;
+    g[2] = -mode_[2] * on_drum_cn_e + cse187 * cse188;
+    g[3] = -mode_[3] * on_ridge_cn_e + cse271 * cse272;
+    g[4] = -mode_[4] * on_platform_cn_e + cse296 * cse297;
   }
 
   // EVENTS: the model's discontinuities, each a step held as a mode between the zero crossings of its argument.
@@ -1531,71 +1604,71 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double ball_m_m_p_3 = x[26];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse294 = ball_s_r_q_1 - 1.5;
-    const double cse295 = 2.0 * std::sqrt(cse294 * cse294 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double on_dome_cat_f2 = (cse294 + cse294) / cse295 * ball_s_m_p_1 + (ball_s_r_q_2 + ball_s_r_q_2) / cse295 * ball_s_m_p_2 + (ball_s_r_q_3 + ball_s_r_q_3) / cse295 * ball_s_m_p_3;
+    const double cse298 = ball_s_r_q_1 - 1.5;
+    const double cse299 = 2.0 * std::sqrt(cse298 * cse298 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double on_dome_cat_f2 = (cse298 + cse298) / cse299 * ball_s_m_p_1 + (ball_s_r_q_2 + ball_s_r_q_2) / cse299 * ball_s_m_p_2 + (ball_s_r_q_3 + ball_s_r_q_3) / cse299 * ball_s_m_p_3;
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse296 = ball_c_r_q_1 - 3.0;
-    const double cse297 = 2.0 * std::sqrt(cse296 * cse296 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double on_drum_cat_f2 = (cse296 + cse296) / cse297 * ball_c_m_p_1 + (ball_c_r_q_3 + ball_c_r_q_3) / cse297 * ball_c_m_p_3;
+    const double cse300 = ball_c_r_q_1 - 3.0;
+    const double cse301 = 2.0 * std::sqrt(cse300 * cse300 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double on_drum_cat_f2 = (cse300 + cse300) / cse301 * ball_c_m_p_1 + (ball_c_r_q_3 + ball_c_r_q_3) / cse301 * ball_c_m_p_3;
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse298 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse299 = ball_r_r_q_1 - 4.5;
-    const double cse300 = cse299 - 0.3;
-    const double cse301 = 0.2 * cse300 / 0.2;
-    const double cse302 = std::fmax(cse298, cse301);
-    const double cse303 = ball_r_r_q_3 - 0.2;
-    const double cse304 = 0.3 * cse303 / 0.3;
-    const double cse305 = std::fmax(cse302, cse304);
-    const double cse306 = (-0.2 * cse299 + cse303 * derived3_) / derived4_;
-    const double cse307 = ((std::fmax(cse305, cse306)) >= 0.0 ? 1.0 : 0.0);
-    const double cse308 = (-cse299 * derived3_ - 0.2 * cse303) / derived5_;
-    const double cse309 = std::fmax(0.0, cse308);
-    const double cse310 = std::fmin(1.0, cse309);
-    const double cse311 = cse299 + cse310 * derived3_;
-    const double cse312 = cse303 + 0.2 * cse310;
-    const double cse313 = std::sqrt(cse311 * cse311 + cse312 * cse312);
-    const double cse314 = cse299 + derived3_;
-    const double cse315 = cse314 * derived1_ / derived6_;
-    const double cse316 = std::fmax(0.0, cse315);
-    const double cse317 = cse314 - std::fmin(1.0, cse316) * derived1_;
-    const double cse318 = std::sqrt(cse317 * cse317 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse319 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse302 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse303 = ball_r_r_q_1 - 4.5;
+    const double cse304 = cse303 - 0.3;
+    const double cse305 = 0.2 * cse304 / 0.2;
+    const double cse306 = std::fmax(cse302, cse305);
+    const double cse307 = ball_r_r_q_3 - 0.2;
+    const double cse308 = 0.3 * cse307 / 0.3;
+    const double cse309 = std::fmax(cse306, cse308);
+    const double cse310 = (-0.2 * cse303 + cse307 * derived3_) / derived4_;
+    const double cse311 = ((std::fmax(cse309, cse310)) >= 0.0 ? 1.0 : 0.0);
+    const double cse312 = (-cse303 * derived3_ - 0.2 * cse307) / derived5_;
+    const double cse313 = std::fmax(0.0, cse312);
+    const double cse314 = std::fmin(1.0, cse313);
+    const double cse315 = cse303 + cse314 * derived3_;
+    const double cse316 = cse307 + 0.2 * cse314;
+    const double cse317 = std::sqrt(cse315 * cse315 + cse316 * cse316);
+    const double cse318 = cse303 + derived3_;
+    const double cse319 = cse318 * derived1_ / derived6_;
     const double cse320 = std::fmax(0.0, cse319);
-    const double cse321 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse320);
-    const double cse322 = std::sqrt(cse300 * cse300 + cse321 * cse321);
-    const double cse323 = std::fmin(cse318, cse322);
-    const double cse324 = 0.3 * cse300 / 0.09;
-    const double cse325 = std::fmax(0.0, -cse324);
-    const double cse326 = cse300 + 0.3 * std::fmin(1.0, cse325);
-    const double cse327 = std::sqrt(cse326 * cse326 + cse303 * cse303);
-    const double cse328 = ((cse313 - std::fmin(cse323, cse327)) >= 0.0 ? 1.0 : 0.0);
-    const double cse329 = ((cse327 - cse323) >= 0.0 ? 1.0 : 0.0);
-    const double cse330 = ((cse322 - cse318) >= 0.0 ? 1.0 : 0.0);
-    const double cse331 = 1.0 - (1.0 - ((cse316 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse315) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse332 = 2.0 * cse318;
-    const double cse333 = 1.0 - cse330;
-    const double cse334 = 2.0 * cse322;
-    const double cse335 = 1.0 - cse329;
-    const double cse336 = 1.0 - 0.3 * ((1.0 - ((cse325 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse324) >= 0.0 ? 1.0 : 0.0))));
-    const double cse337 = 2.0 * cse327;
-    const double cse338 = 1.0 - cse328;
-    const double cse339 = 1.0 - ((cse309 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse340 = 1.0 - ((-cse308) >= 0.0 ? 1.0 : 0.0);
-    const double cse341 = cse339 * (cse340 * derived8_);
-    const double cse342 = 1.0 - cse341 * derived3_;
-    const double cse343 = 0.2 * cse341;
-    const double cse344 = 2.0 * cse313;
-    const double cse345 = 1.0 - cse307;
-    const double cse346 = ((cse305 - cse306) >= 0.0 ? 1.0 : 0.0);
-    const double cse347 = ((cse302 - cse304) >= 0.0 ? 1.0 : 0.0);
-    const double cse348 = ((cse298 - cse301) >= 0.0 ? 1.0 : 0.0);
-    const double cse349 = 1.0 - cse346;
-    const double cse350 = 1.0 - 0.2 * ((1.0 - ((cse320 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse319) >= 0.0 ? 1.0 : 0.0))));
-    const double cse351 = cse339 * (cse340 * derived10_);
-    const double cse352 = cse351 * derived3_;
-    const double cse353 = 1.0 - 0.2 * cse351;
-    const double on_ridge_cat_f2 = (cse307 * (cse328 * (cse329 * (cse330 * ((cse331 * cse317 + cse317 * cse331) / cse332) + cse333 * ((cse300 + cse300) / cse334)) + cse335 * ((cse336 * cse326 + cse326 * cse336) / cse337)) + cse338 * ((cse342 * cse311 + cse311 * cse342 + (-cse343 * cse312 - cse312 * cse343)) / cse344)) + cse345 * (cse346 * (cse347 * (1.0 - cse348)) - cse349 * derived9_)) * ball_r_m_p_1 + (cse307 * (cse328 * (cse329 * (cse330 * ((ball_r_r_q_3 + ball_r_r_q_3) / cse332) + cse333 * ((cse350 * cse321 + cse321 * cse350) / cse334)) + cse335 * ((cse303 + cse303) / cse337)) + cse338 * ((-cse352 * cse311 - cse311 * cse352 + (cse353 * cse312 + cse312 * cse353)) / cse344)) + cse345 * (cse346 * (-cse347 * (cse348 * derived11_) + (1.0 - cse347)) + cse349 * derived12_)) * ball_r_m_p_3;
+    const double cse321 = cse318 - std::fmin(1.0, cse320) * derived1_;
+    const double cse322 = std::sqrt(cse321 * cse321 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse323 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse324 = std::fmax(0.0, cse323);
+    const double cse325 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse324);
+    const double cse326 = std::sqrt(cse304 * cse304 + cse325 * cse325);
+    const double cse327 = std::fmin(cse322, cse326);
+    const double cse328 = 0.3 * cse304 / 0.09;
+    const double cse329 = std::fmax(0.0, -cse328);
+    const double cse330 = cse304 + 0.3 * std::fmin(1.0, cse329);
+    const double cse331 = std::sqrt(cse330 * cse330 + cse307 * cse307);
+    const double cse332 = ((cse317 - std::fmin(cse327, cse331)) >= 0.0 ? 1.0 : 0.0);
+    const double cse333 = ((cse331 - cse327) >= 0.0 ? 1.0 : 0.0);
+    const double cse334 = ((cse326 - cse322) >= 0.0 ? 1.0 : 0.0);
+    const double cse335 = 1.0 - (1.0 - ((cse320 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse319) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse336 = 2.0 * cse322;
+    const double cse337 = 1.0 - cse334;
+    const double cse338 = 2.0 * cse326;
+    const double cse339 = 1.0 - cse333;
+    const double cse340 = 1.0 - 0.3 * ((1.0 - ((cse329 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse328) >= 0.0 ? 1.0 : 0.0))));
+    const double cse341 = 2.0 * cse331;
+    const double cse342 = 1.0 - cse332;
+    const double cse343 = 1.0 - ((cse313 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse344 = 1.0 - ((-cse312) >= 0.0 ? 1.0 : 0.0);
+    const double cse345 = cse343 * (cse344 * derived8_);
+    const double cse346 = 1.0 - cse345 * derived3_;
+    const double cse347 = 0.2 * cse345;
+    const double cse348 = 2.0 * cse317;
+    const double cse349 = 1.0 - cse311;
+    const double cse350 = ((cse309 - cse310) >= 0.0 ? 1.0 : 0.0);
+    const double cse351 = ((cse306 - cse308) >= 0.0 ? 1.0 : 0.0);
+    const double cse352 = ((cse302 - cse305) >= 0.0 ? 1.0 : 0.0);
+    const double cse353 = 1.0 - cse350;
+    const double cse354 = 1.0 - 0.2 * ((1.0 - ((cse324 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse323) >= 0.0 ? 1.0 : 0.0))));
+    const double cse355 = cse343 * (cse344 * derived10_);
+    const double cse356 = cse355 * derived3_;
+    const double cse357 = 1.0 - 0.2 * cse355;
+    const double on_ridge_cat_f2 = (cse311 * (cse332 * (cse333 * (cse334 * ((cse335 * cse321 + cse321 * cse335) / cse336) + cse337 * ((cse304 + cse304) / cse338)) + cse339 * ((cse340 * cse330 + cse330 * cse340) / cse341)) + cse342 * ((cse346 * cse315 + cse315 * cse346 + (-cse347 * cse316 - cse316 * cse347)) / cse348)) + cse349 * (cse350 * (cse351 * (1.0 - cse352)) - cse353 * derived9_)) * ball_r_m_p_1 + (cse311 * (cse332 * (cse333 * (cse334 * ((ball_r_r_q_3 + ball_r_r_q_3) / cse336) + cse337 * ((cse354 * cse325 + cse325 * cse354) / cse338)) + cse339 * ((cse307 + cse307) / cse341)) + cse342 * ((-cse356 * cse315 - cse315 * cse356 + (cse357 * cse316 + cse316 * cse357)) / cse348)) + cse349 * (cse350 * (-cse351 * (cse352 * derived11_) + (1.0 - cse351)) + cse353 * derived12_)) * ball_r_m_p_3;
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
     const double on_platform_cat_f2 = ball_m_m_p_3;
     // drawn_surfaces.mbg:36:7  Sf rise.s_rate: f = value
@@ -1670,10 +1743,10 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double spin_m4_f1_3 = lift_reaction_f_f_3;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse354 = derived13_ * t;
-    const double cse355 = std::cos(cse354);
-    const double cse356 = std::sin(cse354);
-    const double spin_m4_f2_1 = cse355 * spin_m4_f1_1 - cse356 * spin_m4_f1_3;
+    const double cse358 = derived13_ * t;
+    const double cse359 = std::cos(cse358);
+    const double cse360 = std::sin(cse358);
+    const double spin_m4_f2_1 = cse359 * spin_m4_f1_1 - cse360 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_1 = spin_m4_f2_1;
     // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
@@ -1681,7 +1754,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
     const double spin_reaction_t_f_2 = spin_theta_rate_f;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse356 * spin_m4_f1_1 + cse355 * spin_m4_f1_3;
+    const double spin_m4_f2_3 = cse360 * spin_m4_f1_1 + cse359 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_3 = spin_m4_f2_3;
     // the stored energy
@@ -1732,37 +1805,37 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse357 = ball_s_r_q_1 - 1.5;
-    const double cse358 = cse357 + cse357;
-    const double cse359 = std::sqrt(cse357 * cse357 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double cse360 = 2.0 * cse359;
-    const double cse361 = cse358 / cse360;
-    const double cse362 = ball_s_r_q_2 + ball_s_r_q_2;
-    const double cse363 = cse362 / cse360;
-    const double cse364 = ball_s_r_q_3 + ball_s_r_q_3;
-    const double cse365 = cse364 / cse360;
-    const double on_dome_cat_f2 = cse361 * ball_s_m_p_1 + cse363 * ball_s_m_p_2 + cse365 * ball_s_m_p_3;
+    const double cse361 = ball_s_r_q_1 - 1.5;
+    const double cse362 = cse361 + cse361;
+    const double cse363 = std::sqrt(cse361 * cse361 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double cse364 = 2.0 * cse363;
+    const double cse365 = cse362 / cse364;
+    const double cse366 = ball_s_r_q_2 + ball_s_r_q_2;
+    const double cse367 = cse366 / cse364;
+    const double cse368 = ball_s_r_q_3 + ball_s_r_q_3;
+    const double cse369 = cse368 / cse364;
+    const double on_dome_cat_f2 = cse365 * ball_s_m_p_1 + cse367 * ball_s_m_p_2 + cse369 * ball_s_m_p_3;
     // drawn_surfaces.mbg:31:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_s.m.e[1], ball_s.m.e[2], ball_s.m.e[3], on_dome.cat.e1[1], on_dome.cat.e1[2], on_dome.cat.e1[3], on_dome.cn.e, der(on_dome.cat.f2))
-    const double cse366 = -cse361;
-    const double cse367 = -cse363;
-    const double cse368 = -cse365;
-    const double cse369 = 4.0 * cse359;
-    const double cse370 = 2.0 * cse361;
-    const double cse371 = (cse360*cse360);
-    const double cse372 = 2.0 * cse363;
-    const double cse373 = 2.0 * cse365;
+    const double cse370 = -cse365;
+    const double cse371 = -cse367;
+    const double cse372 = -cse369;
+    const double cse373 = 4.0 * cse363;
+    const double cse374 = 2.0 * cse365;
+    const double cse375 = (cse364*cse364);
+    const double cse376 = 2.0 * cse367;
+    const double cse377 = 2.0 * cse369;
     double blk2_a[64] = {
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse366, 0.0,
-        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse367, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse368, 0.0,
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse370, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse371, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse372, 0.0,
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 - mode_[1], mode_[1],
-        cse366, cse367, cse368, 0.0, 0.0, 0.0, 0.0, 1.0,
+        cse370, cse371, cse372, 0.0, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse359 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse369 - cse358 * cse370) / cse371 * ball_s_m_p_1 - cse362 * cse370 / cse371 * ball_s_m_p_2 - cse364 * cse370 / cse371 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse358 * cse372 / cse371 * ball_s_m_p_1 + (cse369 - cse362 * cse372) / cse371 * ball_s_m_p_2 - cse364 * cse372 / cse371 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse358 * cse373 / cse371 * ball_s_m_p_1 - cse362 * cse373 / cse371 * ball_s_m_p_2 + (cse369 - cse364 * cse373) / cse371 * ball_s_m_p_3) * ball_s_m_p_3};
+    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse363 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse373 - cse362 * cse374) / cse375 * ball_s_m_p_1 - cse366 * cse374 / cse375 * ball_s_m_p_2 - cse368 * cse374 / cse375 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse362 * cse376 / cse375 * ball_s_m_p_1 + (cse373 - cse366 * cse376) / cse375 * ball_s_m_p_2 - cse368 * cse376 / cse375 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse362 * cse377 / cse375 * ball_s_m_p_1 - cse366 * cse377 / cse375 * ball_s_m_p_2 + (cse373 - cse368 * cse377) / cse375 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
     double blk2_closest;
@@ -1770,31 +1843,31 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse374 = ball_c_r_q_1 - 3.0;
-    const double cse375 = cse374 + cse374;
-    const double cse376 = std::sqrt(cse374 * cse374 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double cse377 = 2.0 * cse376;
-    const double cse378 = cse375 / cse377;
-    const double cse379 = ball_c_r_q_3 + ball_c_r_q_3;
-    const double cse380 = cse379 / cse377;
-    const double on_drum_cat_f2 = cse378 * ball_c_m_p_1 + cse380 * ball_c_m_p_3;
+    const double cse378 = ball_c_r_q_1 - 3.0;
+    const double cse379 = cse378 + cse378;
+    const double cse380 = std::sqrt(cse378 * cse378 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double cse381 = 2.0 * cse380;
+    const double cse382 = cse379 / cse381;
+    const double cse383 = ball_c_r_q_3 + ball_c_r_q_3;
+    const double cse384 = cse383 / cse381;
+    const double on_drum_cat_f2 = cse382 * ball_c_m_p_1 + cse384 * ball_c_m_p_3;
     // drawn_surfaces.mbg:32:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_c.m.e[1], ball_c.m.e[3], on_drum.cat.e1[1], on_drum.cat.e1[3], on_drum.cn.e, der(on_drum.cat.f2))
-    const double cse381 = -cse378;
-    const double cse382 = -cse380;
-    const double cse383 = 4.0 * cse376;
-    const double cse384 = 2.0 * cse378;
-    const double cse385 = (cse377*cse377);
-    const double cse386 = 2.0 * cse380;
+    const double cse385 = -cse382;
+    const double cse386 = -cse384;
+    const double cse387 = 4.0 * cse380;
+    const double cse388 = 2.0 * cse382;
+    const double cse389 = (cse381*cse381);
+    const double cse390 = 2.0 * cse384;
     double blk3_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse381, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse382, 0.0,
+        0.0, 0.0, 1.0, 0.0, cse385, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse386, 0.0,
         0.0, 0.0, 0.0, 0.0, 1.0 - mode_[2], mode_[2],
-        cse381, cse382, 0.0, 0.0, 0.0, 1.0,
+        cse385, cse386, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse376 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse383 - cse375 * cse384) / cse385 * ball_c_m_p_1 - cse379 * cse384 / cse385 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse375 * cse386 / cse385 * ball_c_m_p_1 + (cse383 - cse379 * cse386) / cse385 * ball_c_m_p_3) * ball_c_m_p_3};
+    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse380 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse387 - cse379 * cse388) / cse389 * ball_c_m_p_1 - cse383 * cse388 / cse389 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse379 * cse390 / cse389 * ball_c_m_p_1 + (cse387 - cse383 * cse390) / cse389 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
     double blk3_closest;
@@ -1802,119 +1875,119 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse387 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse388 = ball_r_r_q_1 - 4.5;
-    const double cse389 = cse388 - 0.3;
-    const double cse390 = 0.2 * cse389 / 0.2;
-    const double cse391 = std::fmax(cse387, cse390);
-    const double cse392 = ball_r_r_q_3 - 0.2;
-    const double cse393 = 0.3 * cse392 / 0.3;
-    const double cse394 = std::fmax(cse391, cse393);
-    const double cse395 = (-0.2 * cse388 + cse392 * derived3_) / derived4_;
-    const double cse396 = std::fmax(cse394, cse395);
-    const double cse397 = ((cse396) >= 0.0 ? 1.0 : 0.0);
-    const double cse398 = (-cse388 * derived3_ - 0.2 * cse392) / derived5_;
-    const double cse399 = std::fmax(0.0, cse398);
-    const double cse400 = std::fmin(1.0, cse399);
-    const double cse401 = cse388 + cse400 * derived3_;
-    const double cse402 = cse392 + 0.2 * cse400;
-    const double cse403 = std::sqrt(cse401 * cse401 + cse402 * cse402);
-    const double cse404 = cse388 + derived3_;
-    const double cse405 = cse404 * derived1_ / derived6_;
-    const double cse406 = std::fmax(0.0, cse405);
-    const double cse407 = cse404 - std::fmin(1.0, cse406) * derived1_;
-    const double cse408 = std::sqrt(cse407 * cse407 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse409 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse391 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse392 = ball_r_r_q_1 - 4.5;
+    const double cse393 = cse392 - 0.3;
+    const double cse394 = 0.2 * cse393 / 0.2;
+    const double cse395 = std::fmax(cse391, cse394);
+    const double cse396 = ball_r_r_q_3 - 0.2;
+    const double cse397 = 0.3 * cse396 / 0.3;
+    const double cse398 = std::fmax(cse395, cse397);
+    const double cse399 = (-0.2 * cse392 + cse396 * derived3_) / derived4_;
+    const double cse400 = std::fmax(cse398, cse399);
+    const double cse401 = ((cse400) >= 0.0 ? 1.0 : 0.0);
+    const double cse402 = (-cse392 * derived3_ - 0.2 * cse396) / derived5_;
+    const double cse403 = std::fmax(0.0, cse402);
+    const double cse404 = std::fmin(1.0, cse403);
+    const double cse405 = cse392 + cse404 * derived3_;
+    const double cse406 = cse396 + 0.2 * cse404;
+    const double cse407 = std::sqrt(cse405 * cse405 + cse406 * cse406);
+    const double cse408 = cse392 + derived3_;
+    const double cse409 = cse408 * derived1_ / derived6_;
     const double cse410 = std::fmax(0.0, cse409);
-    const double cse411 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse410);
-    const double cse412 = std::sqrt(cse389 * cse389 + cse411 * cse411);
-    const double cse413 = std::fmin(cse408, cse412);
-    const double cse414 = 0.3 * cse389 / 0.09;
-    const double cse415 = std::fmax(0.0, -cse414);
-    const double cse416 = cse389 + 0.3 * std::fmin(1.0, cse415);
-    const double cse417 = std::sqrt(cse416 * cse416 + cse392 * cse392);
-    const double cse418 = std::fmin(cse413, cse417);
-    const double cse419 = ((cse403 - cse418) >= 0.0 ? 1.0 : 0.0);
-    const double cse420 = ((cse417 - cse413) >= 0.0 ? 1.0 : 0.0);
-    const double cse421 = ((cse412 - cse408) >= 0.0 ? 1.0 : 0.0);
-    const double cse422 = 1.0 - (1.0 - ((cse406 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse405) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse423 = cse422 * cse407 + cse407 * cse422;
-    const double cse424 = 2.0 * cse408;
-    const double cse425 = cse423 / cse424;
-    const double cse426 = 1.0 - cse421;
-    const double cse427 = cse389 + cse389;
+    const double cse411 = cse408 - std::fmin(1.0, cse410) * derived1_;
+    const double cse412 = std::sqrt(cse411 * cse411 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse413 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse414 = std::fmax(0.0, cse413);
+    const double cse415 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse414);
+    const double cse416 = std::sqrt(cse393 * cse393 + cse415 * cse415);
+    const double cse417 = std::fmin(cse412, cse416);
+    const double cse418 = 0.3 * cse393 / 0.09;
+    const double cse419 = std::fmax(0.0, -cse418);
+    const double cse420 = cse393 + 0.3 * std::fmin(1.0, cse419);
+    const double cse421 = std::sqrt(cse420 * cse420 + cse396 * cse396);
+    const double cse422 = std::fmin(cse417, cse421);
+    const double cse423 = ((cse407 - cse422) >= 0.0 ? 1.0 : 0.0);
+    const double cse424 = ((cse421 - cse417) >= 0.0 ? 1.0 : 0.0);
+    const double cse425 = ((cse416 - cse412) >= 0.0 ? 1.0 : 0.0);
+    const double cse426 = 1.0 - (1.0 - ((cse410 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse409) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse427 = cse426 * cse411 + cse411 * cse426;
     const double cse428 = 2.0 * cse412;
     const double cse429 = cse427 / cse428;
-    const double cse430 = 1.0 - cse420;
-    const double cse431 = 1.0 - 0.3 * ((1.0 - ((cse415 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse414) >= 0.0 ? 1.0 : 0.0))));
-    const double cse432 = cse431 * cse416 + cse416 * cse431;
-    const double cse433 = 2.0 * cse417;
-    const double cse434 = cse432 / cse433;
-    const double cse435 = 1.0 - cse419;
-    const double cse436 = 1.0 - ((cse399 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse437 = 1.0 - ((-cse398) >= 0.0 ? 1.0 : 0.0);
-    const double cse438 = cse436 * (cse437 * derived8_);
-    const double cse439 = 1.0 - cse438 * derived3_;
-    const double cse440 = 0.2 * cse438;
-    const double cse441 = cse439 * cse401 + cse401 * cse439 + (-cse440 * cse402 - cse402 * cse440);
-    const double cse442 = 2.0 * cse403;
-    const double cse443 = cse441 / cse442;
-    const double cse444 = 1.0 - cse397;
-    const double cse445 = ((cse394 - cse395) >= 0.0 ? 1.0 : 0.0);
-    const double cse446 = ((cse391 - cse393) >= 0.0 ? 1.0 : 0.0);
-    const double cse447 = ((cse387 - cse390) >= 0.0 ? 1.0 : 0.0);
-    const double cse448 = 1.0 - cse445;
-    const double cse449 = cse397 * (cse419 * (cse420 * (cse421 * cse425 + cse426 * cse429) + cse430 * cse434) + cse435 * cse443) + cse444 * (cse445 * (cse446 * (1.0 - cse447)) - cse448 * derived9_);
-    const double cse450 = ball_r_r_q_3 + ball_r_r_q_3;
-    const double cse451 = cse450 / cse424;
-    const double cse452 = 1.0 - 0.2 * ((1.0 - ((cse410 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse409) >= 0.0 ? 1.0 : 0.0))));
-    const double cse453 = cse452 * cse411 + cse411 * cse452;
-    const double cse454 = cse453 / cse428;
-    const double cse455 = cse392 + cse392;
-    const double cse456 = cse455 / cse433;
-    const double cse457 = cse436 * (cse437 * derived10_);
-    const double cse458 = cse457 * derived3_;
-    const double cse459 = 1.0 - 0.2 * cse457;
-    const double cse460 = -cse458 * cse401 - cse401 * cse458 + (cse459 * cse402 + cse402 * cse459);
-    const double cse461 = cse460 / cse442;
-    const double cse462 = cse397 * (cse419 * (cse420 * (cse421 * cse451 + cse426 * cse454) + cse430 * cse456) + cse435 * cse461) + cse444 * (cse445 * (-cse446 * (cse447 * derived11_) + (1.0 - cse446)) + cse448 * derived12_);
-    const double on_ridge_cat_f2 = cse449 * ball_r_m_p_1 + cse462 * ball_r_m_p_3;
+    const double cse430 = 1.0 - cse425;
+    const double cse431 = cse393 + cse393;
+    const double cse432 = 2.0 * cse416;
+    const double cse433 = cse431 / cse432;
+    const double cse434 = 1.0 - cse424;
+    const double cse435 = 1.0 - 0.3 * ((1.0 - ((cse419 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse418) >= 0.0 ? 1.0 : 0.0))));
+    const double cse436 = cse435 * cse420 + cse420 * cse435;
+    const double cse437 = 2.0 * cse421;
+    const double cse438 = cse436 / cse437;
+    const double cse439 = 1.0 - cse423;
+    const double cse440 = 1.0 - ((cse403 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse441 = 1.0 - ((-cse402) >= 0.0 ? 1.0 : 0.0);
+    const double cse442 = cse440 * (cse441 * derived8_);
+    const double cse443 = 1.0 - cse442 * derived3_;
+    const double cse444 = 0.2 * cse442;
+    const double cse445 = cse443 * cse405 + cse405 * cse443 + (-cse444 * cse406 - cse406 * cse444);
+    const double cse446 = 2.0 * cse407;
+    const double cse447 = cse445 / cse446;
+    const double cse448 = 1.0 - cse401;
+    const double cse449 = ((cse398 - cse399) >= 0.0 ? 1.0 : 0.0);
+    const double cse450 = ((cse395 - cse397) >= 0.0 ? 1.0 : 0.0);
+    const double cse451 = ((cse391 - cse394) >= 0.0 ? 1.0 : 0.0);
+    const double cse452 = 1.0 - cse449;
+    const double cse453 = cse401 * (cse423 * (cse424 * (cse425 * cse429 + cse430 * cse433) + cse434 * cse438) + cse439 * cse447) + cse448 * (cse449 * (cse450 * (1.0 - cse451)) - cse452 * derived9_);
+    const double cse454 = ball_r_r_q_3 + ball_r_r_q_3;
+    const double cse455 = cse454 / cse428;
+    const double cse456 = 1.0 - 0.2 * ((1.0 - ((cse414 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse413) >= 0.0 ? 1.0 : 0.0))));
+    const double cse457 = cse456 * cse415 + cse415 * cse456;
+    const double cse458 = cse457 / cse432;
+    const double cse459 = cse396 + cse396;
+    const double cse460 = cse459 / cse437;
+    const double cse461 = cse440 * (cse441 * derived10_);
+    const double cse462 = cse461 * derived3_;
+    const double cse463 = 1.0 - 0.2 * cse461;
+    const double cse464 = -cse462 * cse405 - cse405 * cse462 + (cse463 * cse406 + cse406 * cse463);
+    const double cse465 = cse464 / cse446;
+    const double cse466 = cse401 * (cse423 * (cse424 * (cse425 * cse455 + cse430 * cse458) + cse434 * cse460) + cse439 * cse465) + cse448 * (cse449 * (-cse450 * (cse451 * derived11_) + (1.0 - cse450)) + cse452 * derived12_);
+    const double on_ridge_cat_f2 = cse453 * ball_r_m_p_1 + cse466 * ball_r_m_p_3;
     // drawn_surfaces.mbg:33:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_r.m.e[1], ball_r.m.e[3], on_ridge.cat.e1[1], on_ridge.cat.e1[3], on_ridge.cn.e, der(on_ridge.cat.f2))
-    const double cse463 = -cse449;
-    const double cse464 = -cse462;
-    const double cse465 = cse422 * cse422;
-    const double cse466 = 2.0 * cse425;
-    const double cse467 = (cse424*cse424);
-    const double cse468 = 2.0 * cse429;
-    const double cse469 = (cse428*cse428);
-    const double cse470 = cse431 * cse431;
-    const double cse471 = 2.0 * cse434;
-    const double cse472 = (cse433*cse433);
-    const double cse473 = cse439 * cse439;
-    const double cse474 = cse440 * cse440;
-    const double cse475 = 2.0 * cse443;
-    const double cse476 = (cse442*cse442);
-    const double cse477 = cse458 * cse439;
-    const double cse478 = cse439 * cse458;
-    const double cse479 = cse459 * cse440;
-    const double cse480 = cse440 * cse459;
-    const double cse481 = 2.0 * cse451;
-    const double cse482 = 2.0 * cse454;
-    const double cse483 = 2.0 * cse456;
-    const double cse484 = 2.0 * cse461;
-    const double cse485 = cse452 * cse452;
-    const double cse486 = cse458 * cse458;
-    const double cse487 = cse459 * cse459;
+    const double cse467 = -cse453;
+    const double cse468 = -cse466;
+    const double cse469 = cse426 * cse426;
+    const double cse470 = 2.0 * cse429;
+    const double cse471 = (cse428*cse428);
+    const double cse472 = 2.0 * cse433;
+    const double cse473 = (cse432*cse432);
+    const double cse474 = cse435 * cse435;
+    const double cse475 = 2.0 * cse438;
+    const double cse476 = (cse437*cse437);
+    const double cse477 = cse443 * cse443;
+    const double cse478 = cse444 * cse444;
+    const double cse479 = 2.0 * cse447;
+    const double cse480 = (cse446*cse446);
+    const double cse481 = cse462 * cse443;
+    const double cse482 = cse443 * cse462;
+    const double cse483 = cse463 * cse444;
+    const double cse484 = cse444 * cse463;
+    const double cse485 = 2.0 * cse455;
+    const double cse486 = 2.0 * cse458;
+    const double cse487 = 2.0 * cse460;
+    const double cse488 = 2.0 * cse465;
+    const double cse489 = cse456 * cse456;
+    const double cse490 = cse462 * cse462;
+    const double cse491 = cse463 * cse463;
     double blk4_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse463, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse464, 0.0,
+        0.0, 0.0, 1.0, 0.0, cse467, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse468, 0.0,
         0.0, 0.0, 0.0, 0.0, 1.0 - mode_[3], mode_[3],
-        cse463, cse464, 0.0, 0.0, 0.0, 1.0,
+        cse467, cse468, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse397 * std::fmin(cse418, cse403) + cse444 * cse396 - on_ridge_radius) - contact_bias_[3]), (cse397 * (cse419 * (cse420 * (cse421 * (((cse465 + cse465) * cse424 - cse423 * cse466) / cse467) + cse426 * ((4.0 * cse412 - cse427 * cse468) / cse469)) + cse430 * (((cse470 + cse470) * cse433 - cse432 * cse471) / cse472)) + cse435 * (((cse473 + cse473 + (cse474 + cse474)) * cse442 - cse441 * cse475) / cse476)) * ball_r_m_p_1 + cse397 * (cse419 * (cse420 * (-cse421 * (cse450 * cse466 / cse467) - cse426 * (cse453 * cse468 / cse469)) - cse430 * (cse455 * cse471 / cse472)) + cse435 * (((-cse477 - cse478 + (-cse479 - cse480)) * cse442 - cse460 * cse475) / cse476)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse397 * (cse419 * (cse420 * (-cse421 * (cse423 * cse481 / cse467) - cse426 * (cse427 * cse482 / cse469)) - cse430 * (cse432 * cse483 / cse472)) + cse435 * (((-cse478 - cse477 + (-cse480 - cse479)) * cse442 - cse441 * cse484) / cse476)) * ball_r_m_p_1 + cse397 * (cse419 * (cse420 * (cse421 * ((4.0 * cse408 - cse450 * cse481) / cse467) + cse426 * (((cse485 + cse485) * cse428 - cse453 * cse482) / cse469)) + cse430 * ((4.0 * cse417 - cse455 * cse483) / cse472)) + cse435 * (((cse486 + cse486 + (cse487 + cse487)) * cse442 - cse460 * cse484) / cse476)) * ball_r_m_p_3) * ball_r_m_p_3};
+    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse401 * std::fmin(cse422, cse407) + cse448 * cse400 - on_ridge_radius) - contact_bias_[3]), (cse401 * (cse423 * (cse424 * (cse425 * (((cse469 + cse469) * cse428 - cse427 * cse470) / cse471) + cse430 * ((4.0 * cse416 - cse431 * cse472) / cse473)) + cse434 * (((cse474 + cse474) * cse437 - cse436 * cse475) / cse476)) + cse439 * (((cse477 + cse477 + (cse478 + cse478)) * cse446 - cse445 * cse479) / cse480)) * ball_r_m_p_1 + cse401 * (cse423 * (cse424 * (-cse425 * (cse454 * cse470 / cse471) - cse430 * (cse457 * cse472 / cse473)) - cse434 * (cse459 * cse475 / cse476)) + cse439 * (((-cse481 - cse482 + (-cse483 - cse484)) * cse446 - cse464 * cse479) / cse480)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse401 * (cse423 * (cse424 * (-cse425 * (cse427 * cse485 / cse471) - cse430 * (cse431 * cse486 / cse473)) - cse434 * (cse436 * cse487 / cse476)) + cse439 * (((-cse482 - cse481 + (-cse484 - cse483)) * cse446 - cse445 * cse488) / cse480)) * ball_r_m_p_1 + cse401 * (cse423 * (cse424 * (cse425 * ((4.0 * cse412 - cse454 * cse485) / cse471) + cse430 * (((cse489 + cse489) * cse432 - cse457 * cse486) / cse473)) + cse434 * ((4.0 * cse421 - cse459 * cse487) / cse476)) + cse439 * (((cse490 + cse490 + (cse491 + cse491)) * cse446 - cse464 * cse488) / cse480)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
     double blk4_closest;
@@ -1994,13 +2067,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
     const double der_spin_m4_f1_1 = der_lift_reaction_f_f_1;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
-    const double cse488 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse488);
+    const double cse492 = derived13_ * t;
+    const double wheel_pose_R33 = std::cos(cse492);
     // drawn_surfaces.mbg:52:6  Se wheel.weight: e = value
     const double wheel_weight_e_3 = -98.10000000000001 * wheel_pose_R33;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double cse489 = std::sin(cse488);
-    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse489 * spin_m4_f1_3;
+    const double cse493 = std::sin(cse492);
+    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse493 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_1 = spin_m4_f2_1;
     // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
@@ -2012,39 +2085,39 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
     const double wheel_ejs_v_e_3 = -spin_reaction_t_f_2 * wheel_m_p_1;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = cse489;
+    const double wheel_pose_R13 = cse493;
     // drawn_surfaces.mbg:53:7  signal sled.pose.r1
     const double sled_pose_r1 = v_v * t;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r1
     const double hub_pose_r1 = sled_pose_r1;
     // drawn_surfaces.mbg:56:6  signal tyre.road_slope
-    const double cse490 = hub_pose_r1 - 1.0;
-    const double cse491 = hub_pose_r1 - 1.2;
-    const double cse492 = hub_pose_r1 - 1.5;
-    const double cse493 = hub_pose_r1 - 1.7;
-    const double tyre_road_slope = derived14_ * (((cse490) >= 0.0 ? 1.0 : 0.0) - ((cse491) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse492) >= 0.0 ? 1.0 : 0.0) - ((cse493) >= 0.0 ? 1.0 : 0.0));
+    const double cse494 = hub_pose_r1 - 1.0;
+    const double cse495 = hub_pose_r1 - 1.2;
+    const double cse496 = hub_pose_r1 - 1.5;
+    const double cse497 = hub_pose_r1 - 1.7;
+    const double tyre_road_slope = derived14_ * (((cse494) >= 0.0 ? 1.0 : 0.0) - ((cse495) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse496) >= 0.0 ? 1.0 : 0.0) - ((cse497) >= 0.0 ? 1.0 : 0.0));
     // drawn_surfaces.mbg:56:6  signal tyre.normal_1
-    const double cse494 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
-    const double tyre_normal_1 = -tyre_road_slope / cse494;
+    const double cse498 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
+    const double tyre_normal_1 = -tyre_road_slope / cse498;
     // drawn_surfaces.mbg:56:6  signal tyre.normal_3
-    const double tyre_normal_3 = 1.0 / cse494;
+    const double tyre_normal_3 = 1.0 / cse498;
     // drawn_surfaces.mbg:56:6  signal tyre.forward_1
-    const double cse495 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
-    const double tyre_forward_1 = tyre_normal_3 / cse495;
+    const double cse499 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
+    const double tyre_forward_1 = tyre_normal_3 / cse499;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse489 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
+    const double spin_m4_f2_3 = cse493 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_3 = spin_m4_f2_3;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
     const double wheel_pose_R11 = wheel_pose_R33;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
-    const double wheel_pose_R31 = -cse489;
+    const double wheel_pose_R31 = -cse493;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r3
     const double hub_pose_r3 = lift_s_q;
     // drawn_surfaces.mbg:56:6  signal tyre.road_height
-    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse490) - std::fmax(0.0, cse491)) - derived14_ * (std::fmax(0.0, cse492) - std::fmax(0.0, cse493));
+    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse494) - std::fmax(0.0, cse495)) - derived14_ * (std::fmax(0.0, cse496) - std::fmax(0.0, cse497));
     // drawn_surfaces.mbg:56:6  signal tyre.centre_height
-    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse494;
+    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse498;
     // drawn_surfaces.mbg:56:6  signal tyre.deflection
     const double tyre_deflection = 0.3 - tyre_centre_height;
     // drawn_surfaces.mbg:56:6  signal tyre.Fz
@@ -2052,20 +2125,20 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  signal tyre.Kx
     const double tyre_Kx = 20.0 * tyre_Fz;
     // drawn_surfaces.mbg:56:6  signal tyre.Fx0
-    const double cse496 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
-    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse496 + 0.5 * (cse496 - std::atan(cse496))));
+    const double cse500 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
+    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse500 + 0.5 * (cse500 - std::atan(cse500))));
     // drawn_surfaces.mbg:56:6  signal tyre.slip_angle
     const double tyre_slip_angle = std::atan(tyre_tan_alpha_q);
     // drawn_surfaces.mbg:56:6  signal tyre.Gx
-    const double cse497 = 10.0 * tyre_kappa_q;
-    const double cse498 = 12.0 * (1.0 / std::sqrt(1.0 + cse497 * cse497)) * tyre_slip_angle;
-    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse498 * cse498);
+    const double cse501 = 10.0 * tyre_kappa_q;
+    const double cse502 = 12.0 * (1.0 / std::sqrt(1.0 + cse501 * cse501)) * tyre_slip_angle;
+    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse502 * cse502);
     // drawn_surfaces.mbg:56:6  signal tyre.Fx
     const double tyre_Fx = tyre_Gx * tyre_Fx0;
     // drawn_surfaces.mbg:56:6  signal tyre.force_1
     const double tyre_force_1 = tyre_Fx * tyre_forward_1 + tyre_Fz * tyre_normal_1;
     // drawn_surfaces.mbg:56:6  signal tyre.forward_3
-    const double tyre_forward_3 = -tyre_normal_1 / cse495;
+    const double tyre_forward_3 = -tyre_normal_1 / cse499;
     // drawn_surfaces.mbg:56:6  signal tyre.force_3
     const double tyre_force_3 = tyre_Fx * tyre_forward_3 + tyre_Fz * tyre_normal_3;
     // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
@@ -2079,14 +2152,14 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
     const double tyre_on_wheel_f_e_1 = wheel_pose_R11 * tyre_force_1 + wheel_pose_R31 * tyre_force_3;
     // drawn_surfaces.mbg:55:7  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double wheel_out1 = cse489 * (10.0 * cse489) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
-    const double cse499 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
-    const double cse500 = cse489 * derived13_;
-    const double cse501 = wheel_pose_R33 * derived13_;
-    const double cse502 = -cse500 * spin_m4_f1_1 - cse501 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
-    const double cse503 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
-    const double cse504 = cse501 * spin_m4_f1_1 - cse500 * spin_m4_f1_3 + cse489 * der_spin_m4_f1_1;
-    const double wheel_out2 = -cse489 * (-(cse499 - wheel_ejs_v_e_1) + 10.0 * cse502) + wheel_pose_R33 * (-(cse503 - wheel_ejs_v_e_3) + 10.0 * cse504);
+    const double wheel_out1 = cse493 * (10.0 * cse493) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
+    const double cse503 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
+    const double cse504 = cse493 * derived13_;
+    const double cse505 = wheel_pose_R33 * derived13_;
+    const double cse506 = -cse504 * spin_m4_f1_1 - cse505 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
+    const double cse507 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
+    const double cse508 = cse505 * spin_m4_f1_1 - cse504 * spin_m4_f1_3 + cse493 * der_spin_m4_f1_1;
+    const double wheel_out2 = -cse493 * (-(cse503 - wheel_ejs_v_e_1) + 10.0 * cse506) + wheel_pose_R33 * (-(cse507 - wheel_ejs_v_e_3) + 10.0 * cse508);
     // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: 1 / pivot of the joint's accelerations
     const double hub_pivot1 = 1.0 / (200.0 + wheel_out1);
     // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: joint acceleration as an affine function of the parent's motion
@@ -2098,7 +2171,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
     const double der_spin_m4_f1_3 = der_lift_reaction_f_f_3;
     // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_1 = cse502 - cse489 * der_spin_m4_f1_3;
+    const double der_spin_m4_f2_1 = cse506 - cse493 * der_spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
     const double der_spin_reaction_f_f_1 = der_spin_m4_f2_1;
     // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
@@ -2106,9 +2179,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
     const double wheel_m_e_1 = der_wheel_m_p_1;
     // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_1 = -(cse499 - (wheel_m_e_1 + wheel_ejs_v_e_1));
+    const double spin_reaction_f_e_1 = -(cse503 - (wheel_m_e_1 + wheel_ejs_v_e_1));
     // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_3 = cse504 + wheel_pose_R33 * der_spin_m4_f1_3;
+    const double der_spin_m4_f2_3 = cse508 + wheel_pose_R33 * der_spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
     const double der_spin_reaction_f_f_3 = der_spin_m4_f2_3;
     // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
@@ -2116,9 +2189,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
     const double wheel_m_e_3 = der_wheel_m_p_3;
     // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_3 = -(cse503 - (wheel_m_e_3 + wheel_ejs_v_e_3));
+    const double spin_reaction_f_e_3 = -(cse507 - (wheel_m_e_3 + wheel_ejs_v_e_3));
     // drawn_surfaces.mbg:55:7  MTF spin.m4: e1 = T' e2
-    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse489 * spin_reaction_f_e_3;
+    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse493 * spin_reaction_f_e_3;
     // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
     const double lift_reaction_f_e_1 = hub_m_e_1 + spin_m4_e1_1;
     // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out

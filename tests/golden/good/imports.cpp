@@ -108,8 +108,8 @@ class imports_model final : public mbgrt::Model {
     return i < 2 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -125,9 +125,17 @@ class imports_model final : public mbgrt::Model {
     const double b3_e = sd_spring_e + sd_damper_e;
     // imports.mbg:8:3  1 v: efforts in = efforts out
     const double mass_e = -b3_e;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = mass_e;
     xdot[1] = mass_f;
+    rate[0] = 0.0;
+    rate[1] = sd_damper_e * mass_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

@@ -115,8 +115,8 @@ class loop_nested_names_model final : public mbgrt::Model {
     x[7] = 0.0;  // mass2_2.p (loop_nested_names.mbg:14:8)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -160,7 +160,7 @@ class loop_nested_names_model final : public mbgrt::Model {
     const double damper2_2_e = 0.2 * mass2_2_p;
     // loop_nested_names.mbg:16:8  1 node2_2: efforts in = efforts out
     const double mass2_2_e = force2_2_e - (spring2_2_e + damper2_2_e);
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = mass1_1_p;
     xdot[1] = mass1_1_e;
     xdot[2] = mass1_2_p;
@@ -169,6 +169,14 @@ class loop_nested_names_model final : public mbgrt::Model {
     xdot[5] = mass2_1_e;
     xdot[6] = mass2_2_p;
     xdot[7] = mass2_2_e;
+    rate[0] = force1_1_e * mass1_1_p + force1_2_e * mass1_2_p + force2_1_e * mass2_1_p + force2_2_e * mass2_2_p;
+    rate[1] = damper1_1_e * mass1_1_p + damper1_2_e * mass1_2_p + damper2_1_e * mass2_1_p + damper2_2_e * mass2_2_p;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

@@ -79,8 +79,8 @@ class loop_scene_outputs_model final : public mbgrt::Model {
     x[0] = 0.0;  // c3.q (loop_scene_outputs.mbg:11:6)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -91,8 +91,16 @@ class loop_scene_outputs_model final : public mbgrt::Model {
     const double r3_e = 3.0 - c3_e;
     // loop_scene_outputs.mbg:10:6  R r3: f = e / R
     const double r3_f = r3_e / 300.0;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = r3_f;
+    rate[0] = 3.0 * r3_f;
+    rate[1] = r3_e * r3_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

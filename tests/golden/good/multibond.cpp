@@ -119,8 +119,8 @@ class multibond_model final : public mbgrt::Model {
     return i < 4 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -142,11 +142,19 @@ class multibond_model final : public mbgrt::Model {
     // multibond.mbg:10:3  1 v: efforts in = efforts out
     const double mass_e_1 = -(spring_e_1 + damper_e_1);
     const double mass_e_2 = gravity_e_2 - (spring_e_2 + damper_e_2);
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = mass_e_1;
     xdot[1] = mass_e_2;
     xdot[2] = mass_f_1;
     xdot[3] = mass_f_2;
+    rate[0] = gravity_e_2 * mass_f_2;
+    rate[1] = damper_e_1 * mass_f_1 + damper_e_2 * mass_f_2;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

@@ -193,8 +193,8 @@ class outlined_chain_model final : public mbgrt::Model {
     x[9] = 0.3;  // j5.theta.q (outlined_chain.mbg:27:9)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -260,12 +260,12 @@ class outlined_chain_model final : public mbgrt::Model {
     rod2_kin[7] = rod2_ejs_v_e_2;
     rod2_kin[8] = rod2_weight_e_1;
     rod2_kin[9] = rod2_weight_e_2;
-    // outlined_chain.mbg:27:9  body rod3: derivative_shape1() (the same equations as 2 bodies)
+    // outlined_chain.mbg:27:9  body rod3: derivative_and_power_shape1() (the same equations as 2 bodies)
     double rod3_in[5] = {j3_pa_2, j3_theta_q, rod3_mass, j3_theta_rate_rate, j3_pb_2};
-    derivative_shape1(rod3_in, rod2_kin, rod3_kin);
-    // outlined_chain.mbg:27:9  body rod4: derivative_shape1() (the same equations as 2 bodies)
+    derivative_and_power_shape1(rod3_in, rod2_kin, rod3_kin);
+    // outlined_chain.mbg:27:9  body rod4: derivative_and_power_shape1() (the same equations as 2 bodies)
     double rod4_in[5] = {j4_pa_2, j4_theta_q, rod4_mass, j4_theta_rate_rate, j4_pb_2};
-    derivative_shape1(rod4_in, rod3_kin, rod4_kin);
+    derivative_and_power_shape1(rod4_in, rod3_kin, rod4_kin);
     // outlined_chain.mbg:27:9  MTF j5.m3: f2 = T f1
     const double j5_m3_f2_1 = -j5_pa_2 * rod4_kin[4];
     // outlined_chain.mbg:27:9  0 j5.vpa: flows in = flows out
@@ -334,6 +334,12 @@ class outlined_chain_model final : public mbgrt::Model {
     const double rod5_out15 = -j5_pa_2 * rod5_out7;
     const double rod5_out16 = -j5_pa_2 * rod5_out8;
     const double rod5_out17 = -j5_pa_2 * rod5_out9;
+    rod5_kin[3] = j5_reaction_f_f_2;
+    rod5_kin[5] = rod5_ejs_v_e_1;
+    rod5_kin[6] = j5_reaction_f_f_1;
+    rod5_kin[7] = rod5_ejs_v_e_2;
+    rod5_kin[8] = rod5_weight_e_1;
+    rod5_kin[9] = rod5_weight_e_2;
     rod5_kin[11] = rod5_accel2;
     rod5_kin[12] = rod5_accel3;
     rod5_kin[13] = rod5_accel4;
@@ -350,12 +356,12 @@ class outlined_chain_model final : public mbgrt::Model {
     rod5_kin[24] = rod5_out15;
     rod5_kin[25] = rod5_out16;
     rod5_kin[26] = rod5_out17;
-    // outlined_chain.mbg:27:9  body rod4: derivative_shape2() (the same equations as 2 bodies)
+    // outlined_chain.mbg:27:9  body rod4: derivative_and_power_shape2() (the same equations as 2 bodies)
     double rod4_in_2[7] = {rod4_inertia_3_3, j4_pb_2, rod4_mass * j4_pb_2, rod4_mass, j4_theta_q, j4_pa_2, j4_theta_rate_rate};
-    derivative_shape2(rod4_in_2, rod5_kin, rod4_kin, rod4_elim);
-    // outlined_chain.mbg:27:9  body rod3: derivative_shape2() (the same equations as 2 bodies)
+    derivative_and_power_shape2(rod4_in_2, rod5_kin, rod4_kin, rod4_elim);
+    // outlined_chain.mbg:27:9  body rod3: derivative_and_power_shape2() (the same equations as 2 bodies)
     double rod3_in_2[7] = {rod3_inertia_3_3, j3_pb_2, rod3_mass * j3_pb_2, rod3_mass, j3_theta_q, j3_pa_2, j3_theta_rate_rate};
-    derivative_shape2(rod3_in_2, rod4_elim, rod3_kin, rod3_elim);
+    derivative_and_power_shape2(rod3_in_2, rod4_elim, rod3_kin, rod3_elim);
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod2: 1 / pivot of the joint's accelerations
     const double cse51 = rod2_mass * j2_pb_2 + rod3_elim[15] + rod3_elim[16] * j2_pb_2;
     const double rod2_pivot1 = 1.0 / (rod2_inertia_3_3 + j2_pb_2 * cse51 + rod3_elim[23] + rod3_elim[24] * j2_pb_2);
@@ -408,15 +414,15 @@ class outlined_chain_model final : public mbgrt::Model {
     rod2_acc[29] = der_j2_reaction_t_f_3;
     rod2_acc[30] = der_j2_reaction_f_f_1;
     rod2_acc[31] = der_j2_reaction_f_f_2;
-    // outlined_chain.mbg:27:9  body rod3: derivative_shape3() (the same equations as 2 bodies)
+    // outlined_chain.mbg:27:9  body rod3: derivative_and_power_shape3() (the same equations as 2 bodies)
     double rod3_in_3[4] = {j3_pa_2, j3_theta_q, j3_theta_rate_rate, j3_pb_2};
-    derivative_shape3(rod3_in_3, rod3_elim, rod2_acc, rod3_kin, rod3_acc);
-    // outlined_chain.mbg:27:9  body rod4: derivative_shape3() (the same equations as 2 bodies)
+    derivative_and_power_shape3(rod3_in_3, rod3_elim, rod2_acc, rod3_kin, rod3_acc);
+    // outlined_chain.mbg:27:9  body rod4: derivative_and_power_shape3() (the same equations as 2 bodies)
     double rod4_in_3[4] = {j4_pa_2, j4_theta_q, j4_theta_rate_rate, j4_pb_2};
-    derivative_shape3(rod4_in_3, rod4_elim, rod3_acc, rod4_kin, rod4_acc);
+    derivative_and_power_shape3(rod4_in_3, rod4_elim, rod3_acc, rod4_kin, rod4_acc);
     // outlined_chain.mbg:27:9  joint acceleration of body rod5 from its parent's motion (articulated-body form)
     const double der_j5_theta_rate_rate = rod5_accel5 + rod5_accel2 * rod4_acc[29] + rod5_accel3 * rod4_acc[30] + rod5_accel4 * rod4_acc[31];
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = der_j1_theta_rate_rate;
     xdot[1] = j1_theta_rate_rate;
     xdot[2] = der_j2_theta_rate_rate;
@@ -427,6 +433,14 @@ class outlined_chain_model final : public mbgrt::Model {
     xdot[7] = j4_theta_rate_rate;
     xdot[8] = der_j5_theta_rate_rate;
     xdot[9] = j5_theta_rate_rate;
+    rate[0] = rod1_weight_e_1 * j1_m2_f2_1 + (rod2_weight_e_1 * j2_reaction_f_f_1 + rod2_weight_e_2 * j2_reaction_f_f_2) + (rod3_kin[8] * rod3_kin[6] + rod3_kin[9] * rod3_kin[3]) + (rod4_kin[8] * rod4_kin[6] + rod4_kin[9] * rod4_kin[3]) + (rod5_weight_e_1 * j5_reaction_f_f_1 + rod5_weight_e_2 * j5_reaction_f_f_2);
+    rate[1] = rod2_ejs_v_e_1 * j2_reaction_f_f_1 + rod2_ejs_v_e_2 * j2_reaction_f_f_2 + (rod3_kin[5] * rod3_kin[6] + rod3_kin[7] * rod3_kin[3]) + (rod4_kin[5] * rod4_kin[6] + rod4_kin[7] * rod4_kin[3]) + (rod5_ejs_v_e_1 * j5_reaction_f_f_1 + rod5_ejs_v_e_2 * j5_reaction_f_f_2);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -806,7 +820,7 @@ class outlined_chain_model final : public mbgrt::Model {
     rod5_weight_e_2 = -rod5_mass * (9.81 * rod5_pose_R22);
   }
   // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: j3_m4_f1_1, j3_m4_f1_2, pose_R21, pose_R22, j3_reaction_f_f_2, j3_reaction_t_f_3, ejs_v_e_1, j3_reaction_f_f_1, ejs_v_e_2, weight_e_1, weight_e_2.
-  static void derivative_shape1(const double* in, const double* s0, double* out) {
+  static void derivative_and_power_shape1(const double* in, const double* s0, double* out) {
     // outlined_chain.mbg:27:9  MTF j3.m3: f2 = T f1
     const double j3_m3_f2_1 = -in[0] * s0[4];
     // outlined_chain.mbg:27:9  0 j3.vpa: flows in = flows out
@@ -854,7 +868,7 @@ class outlined_chain_model final : public mbgrt::Model {
     out[9] = weight_e_2;
   }
   // Equations of bodies rod4, rod3, the same up to their names (written with rod4's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: accel2, accel3, accel4, accel5, out6, out7, out8, out9, out10, out11, out12, out13, out14, out15, out16, out17.
-  static void derivative_shape2(const double* in, const double* s0, const double* s1, double* out) {
+  static void derivative_and_power_shape2(const double* in, const double* s0, const double* s1, double* out) {
     // outlined_chain.mbg:27:9  articulated-body elimination, body rod4: 1 / pivot of the joint's accelerations
     // (cseN: a subexpression several equations below share)
     const double cse9 = in[2] + s0[15] + s0[16] * in[1];
@@ -914,7 +928,7 @@ class outlined_chain_model final : public mbgrt::Model {
     out[26] = out17;
   }
   // Equations of bodies rod3, rod4, the same up to their names (written with rod3's): in[] what they read, sK[] the outputs of the runs they read, out[] what the rest of the model reads of them: der_j3_theta_rate_rate, der_j3_reaction_t_f_3, der_j3_reaction_f_f_1, der_j3_reaction_f_f_2.
-  static void derivative_shape3(const double* in, const double* s0, const double* s1, const double* s2, double* out) {
+  static void derivative_and_power_shape3(const double* in, const double* s0, const double* s1, const double* s2, double* out) {
     // outlined_chain.mbg:27:9  joint acceleration of body rod3 from its parent's motion (articulated-body form)
     const double der_j3_theta_rate_rate = s0[14] + s0[11] * s1[29] + s0[12] * s1[30] + s0[13] * s1[31];
     // outlined_chain.mbg:27:9  d/dt of [MTF j3.m3: f2 = T f1]
@@ -1017,7 +1031,7 @@ class outlined_chain_model final : public mbgrt::Model {
   }
 
   // equations computed by one function per shape (bodies, joints): what the rest reads of them
-  // derivative(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) and accelerations (_acc)
+  // derivative_and_power(): what the rest of it reads of each body's kinematics (_kin), elimination (_elim) and accelerations (_acc)
   double rod2_kin[10] = {};
   double rod3_kin[11] = {};
   double rod4_kin[11] = {};

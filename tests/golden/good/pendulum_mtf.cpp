@@ -113,8 +113,8 @@ class pendulum_mtf_model final : public mbgrt::Model {
     return i < 2 ? nominal_[i] : 1.0;
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -122,34 +122,44 @@ class pendulum_mtf_model final : public mbgrt::Model {
     const double angle_q = x[1];
     // pendulum_mtf.mbg:21:3  I hub: p = I f
     const double hub_f = hub_p / J_hub;
+    // pendulum_mtf.mbg:23:5  MTF arm: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = L * std::sin(angle_q);
+    const double arm_f2_2 = cse1 * hub_f;
     // pendulum_mtf.mbg:25:4  Se gravity: e = value
     const double gravity_e_2 = -m * g;
     // pendulum_mtf.mbg:23:5  algebraic loop (11 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (arm.e1, bob.e[1], bob.e[2], hub.e, arm.e2[1], arm.e2[2], der(hub.f), der(arm.f2[1]), der(bob.p[1]), der(arm.f2[2]), der(bob.p[2]))
-    // (cseN: a subexpression several equations below share)
-    const double cse1 = L * std::cos(angle_q);
-    const double cse2 = -cse1;
-    const double cse3 = L * std::sin(angle_q);
-    const double cse4 = -cse3;
+    const double cse2 = L * std::cos(angle_q);
+    const double cse3 = -cse2;
+    const double cse4 = -cse1;
     double blk1_a[121] = {
-        1.0, 0.0, 0.0, 0.0, cse2, cse4, 0.0, 0.0, 0.0, 0.0, 0.0,
+        1.0, 0.0, 0.0, 0.0, cse3, cse4, 0.0, 0.0, 0.0, 0.0, 0.0,
         0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0,
         0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0,
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0,
         0.0, 0.0, 0.0, derived2_, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse2, 1.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse3, 1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -m, 1.0, 0.0, 0.0,
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse4, 0.0, 0.0, 1.0, 0.0,
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -m, 1.0,
     };
-    double blk1_x[11] = {0.0, 0.0, 0.0, 0.0, 0.0, -gravity_e_2, 0.0, -cse3 * hub_f * hub_f, 0.0, cse1 * hub_f * hub_f, 0.0};
+    double blk1_x[11] = {0.0, 0.0, 0.0, 0.0, 0.0, -gravity_e_2, 0.0, -arm_f2_2 * hub_f, 0.0, cse2 * hub_f * hub_f, 0.0};
     mbgrt::solve_linear(11, blk1_a, blk1_x);
     const double hub_e = blk1_x[3];
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = hub_e;
     xdot[1] = hub_f;
+    rate[0] = gravity_e_2 * arm_f2_2;
+    rate[1] = 0.0;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).

@@ -105,8 +105,8 @@ class planar_below_moving_model final : public mbgrt::Model {
     x[12] = 0.0;  // table.theta.q (planar_below_moving.mbg:14:7)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -496,7 +496,7 @@ class planar_below_moving_model final : public mbgrt::Model {
     const double ball_rotrate_f2_2 = cse151 * ball_spin_rate_rate_1 - cse150 * ball_spin_rate_rate_2 + cse149 * ball_spin_rate_rate_3;
     const double ball_rotrate_f2_3 = cse150 * ball_spin_rate_rate_1 + cse151 * ball_spin_rate_rate_2 - cse148 * ball_spin_rate_rate_3;
     const double ball_rotrate_f2_4 = -cse149 * ball_spin_rate_rate_1 + cse148 * ball_spin_rate_rate_2 + cse151 * ball_spin_rate_rate_3;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = der_ball_spin_rate_rate_1;
     xdot[1] = der_ball_spin_rate_rate_2;
     xdot[2] = der_ball_spin_rate_rate_3;
@@ -510,6 +510,14 @@ class planar_below_moving_model final : public mbgrt::Model {
     xdot[10] = table_y_rate_rate;
     xdot[11] = der_table_theta_rate_rate;
     xdot[12] = table_theta_rate_rate;
+    rate[0] = -upper_weight_e_1 * ball_spin_rate_rate_2 + upper_weight_e_2 * ball_spin_rate_rate_1 + (lower_weight_e_1 * table_reaction_f_f_1 + lower_weight_e_2 * table_reaction_f_f_2 + lower_weight_e_3 * table_reaction_f_f_3);
+    rate[1] = -upper_ejs_v_e_1 * ball_spin_rate_rate_2 + upper_ejs_v_e_2 * ball_spin_rate_rate_1 + (upper_ejs_e_1 * ball_spin_rate_rate_1 + upper_ejs_e_2 * ball_spin_rate_rate_2 + upper_ejs_e_3 * ball_spin_rate_rate_3) + (lower_ejs_v_e_1 * table_reaction_f_f_1 + lower_ejs_v_e_2 * table_reaction_f_f_2 + lower_ejs_v_e_3 * table_reaction_f_f_3) + (lower_ejs_e_1 * table_reaction_t_f_1 + lower_ejs_e_2 * table_reaction_t_f_2 + lower_ejs_e_3 * table_reaction_t_f_3);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).

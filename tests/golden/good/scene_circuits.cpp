@@ -91,8 +91,8 @@ class scene_circuits_model final : public mbgrt::Model {
     x[1] = 0.0;  // c3.q (scene_circuits.mbg:22:4)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -112,9 +112,17 @@ class scene_circuits_model final : public mbgrt::Model {
     const double r3_e = c1_e - c3_e;
     // scene_circuits.mbg:21:4  R r3: f = e / R
     const double r3_f = r3_e / 100.0;
-    // state derivatives
+    // state derivatives, then the powers
     xdot[0] = r1_f;
     xdot[1] = r3_f;
+    rate[0] = source_e * r1_f + c1_e * r3_f;
+    rate[1] = r1_e * r1_f + r3_e * r3_f;
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   bool has_jacobian() const override {

@@ -108,8 +108,8 @@ class tree_grandparent_model final : public mbgrt::Model {
     x[16] = 0.0;  // hinge.theta.q (tree_grandparent.mbg:18:7)
   }
 
-  // DERIVATIVE: the state derivatives, in causal order.
-  void derivative(double t, const double* x, double* xdot) override {
+  // DERIVATIVE AND POWER: the state derivatives, in causal order, and the energy witness's powers: rate[0] what the sources deliver, rate[1] what the rest absorbs (W).
+  void derivative_and_power(double t, const double* x, double* xdot, double* rate) override {
     (void)t;
     (void)x;
     // states
@@ -191,7 +191,8 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
     // tree_grandparent.mbg:17:7  Se slide.applied: e = value
-    const double slide_applied_e = -1000.0 * slide_s_q - 10.0 * slide_s_rate_rate;
+    const double cse13 = 1000.0 * slide_s_q;
+    const double slide_applied_e = -cse13 - 10.0 * slide_s_rate_rate;
     // tree_grandparent.mbg:13:6  Se slider.weight: e = value
     const double slider_weight_e_3 = -19.62 * float_Rpc33;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
@@ -238,17 +239,17 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
     const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse13 = std::cos(hinge_theta_q);
-    const double cse14 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse13 * float_spin_rate_rate_1 - cse14 * float_spin_rate_rate_3;
+    const double cse14 = std::cos(hinge_theta_q);
+    const double cse15 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse14 * float_spin_rate_rate_1 - cse15 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
     const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse15 = cse14 * float_spin_rate_rate_1;
-    const double cse16 = cse13 * float_spin_rate_rate_3;
-    const double hinge_m1_f2_3 = cse15 + cse16;
+    const double cse16 = cse15 * float_spin_rate_rate_1;
+    const double cse17 = cse14 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse16 + cse17;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
@@ -256,13 +257,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
     const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
     // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double arm_pose_R33 = float_Rpc31 * cse14 + float_Rpc33 * cse13;
+    const double arm_pose_R33 = float_Rpc31 * cse15 + float_Rpc33 * cse14;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_3 = -9.81 * arm_pose_R33;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse13 * hinge_m4_f1_1 - cse14 * hinge_m4_f1_3;
+    const double hinge_m4_f2_1 = cse14 * hinge_m4_f1_1 - cse15 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
@@ -280,13 +281,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse13 - float_Rpc33 * cse14;
+    const double arm_pose_R31 = float_Rpc31 * cse14 - float_Rpc33 * cse15;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_1 = -9.81 * arm_pose_R31;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double cse17 = cse14 * hinge_m4_f1_1;
-    const double cse18 = cse13 * hinge_m4_f1_3;
-    const double hinge_m4_f2_3 = cse17 + cse18;
+    const double cse18 = cse15 * hinge_m4_f1_1;
+    const double cse19 = cse14 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse18 + cse19;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
@@ -340,150 +341,150 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
     // tree_grandparent.mbg:18:7  articulated-body elimination, body arm: joint acceleration as an affine function of the parent's motion
-    const double arm_accel1 = 2.222222222222222 * cse14;
-    const double arm_accel2 = 2.222222222222222 * cse13;
-    const double cse19 = -(arm_weight_e_3 - arm_ejs_v_e_3) + hinge_m4_f2_1 * hinge_theta_rate_rate;
-    const double arm_accel3 = -11.111111111111109 * (arm_ejs_e_2 - 0.2 * cse19);
+    const double arm_accel1 = 2.222222222222222 * cse15;
+    const double arm_accel2 = 2.222222222222222 * cse14;
+    const double cse20 = -(arm_weight_e_3 - arm_ejs_v_e_3) + hinge_m4_f2_1 * hinge_theta_rate_rate;
+    const double arm_accel3 = -11.111111111111109 * (arm_ejs_e_2 - 0.2 * cse20);
     // tree_grandparent.mbg:18:7  articulated-body elimination, body arm: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse20 = 0.01 * cse13;
-    const double cse21 = 0.05 * cse14 + 0.04000000000000001 * cse14;
-    const double arm_out4 = cse13 * cse20 + cse14 * cse21;
-    const double cse22 = 0.01 * cse14;
-    const double cse23 = 0.05 * cse13 + 0.04000000000000001 * cse13;
-    const double arm_out5 = -cse13 * cse22 + cse14 * cse23;
-    const double arm_out6 = 0.2 * cse14;
-    const double cse24 = arm_ejs_e_1 + 0.01 * ((-cse15 - cse16) * hinge_theta_rate_rate);
-    const double cse25 = hinge_m1_f2_1 * hinge_theta_rate_rate;
-    const double cse26 = -(arm_weight_e_2 - arm_ejs_v_e_2) + 0.2 * cse25;
-    const double cse27 = arm_ejs_e_3 + 0.05 * cse25 + 0.2 * cse26;
-    const double arm_out7 = cse13 * cse24 + cse14 * cse27;
-    const double arm_out8 = -cse14 * cse20 + cse13 * cse21;
-    const double arm_out9 = cse14 * cse22 + cse13 * cse23;
-    const double arm_out10 = 0.2 * cse13;
-    const double arm_out11 = -cse14 * cse24 + cse13 * cse27;
-    const double arm_out12 = -arm_out6 + 0.19999999999999998 * cse14;
+    const double cse21 = 0.01 * cse14;
+    const double cse22 = 0.05 * cse15 + 0.04000000000000001 * cse15;
+    const double arm_out4 = cse14 * cse21 + cse15 * cse22;
+    const double cse23 = 0.01 * cse15;
+    const double cse24 = 0.05 * cse14 + 0.04000000000000001 * cse14;
+    const double arm_out5 = -cse14 * cse23 + cse15 * cse24;
+    const double arm_out6 = 0.2 * cse15;
+    const double cse25 = arm_ejs_e_1 + 0.01 * ((-cse16 - cse17) * hinge_theta_rate_rate);
+    const double cse26 = hinge_m1_f2_1 * hinge_theta_rate_rate;
+    const double cse27 = -(arm_weight_e_2 - arm_ejs_v_e_2) + 0.2 * cse26;
+    const double cse28 = arm_ejs_e_3 + 0.05 * cse26 + 0.2 * cse27;
+    const double arm_out7 = cse14 * cse25 + cse15 * cse28;
+    const double arm_out8 = -cse15 * cse21 + cse14 * cse22;
+    const double arm_out9 = cse15 * cse23 + cse14 * cse24;
+    const double arm_out10 = 0.2 * cse14;
+    const double arm_out11 = -cse15 * cse25 + cse14 * cse28;
+    const double arm_out12 = -arm_out6 + 0.19999999999999998 * cse15;
     const double arm_out13 = -arm_out6 * arm_accel1 + 1.0;
-    const double cse28 = cse13 * cse14;
-    const double cse29 = cse14 * cse13;
-    const double arm_out14 = -arm_out6 * arm_accel2 + (-cse28 + cse29);
-    const double cse30 = -(arm_weight_e_1 - arm_ejs_v_e_1) + (-cse17 - cse18) * hinge_theta_rate_rate;
-    const double arm_out15 = cse13 * cse30 + cse14 * cse19 - arm_out6 * arm_accel3;
-    const double arm_out16 = -arm_out10 + 0.19999999999999998 * cse13;
-    const double arm_out17 = -arm_out10 * arm_accel1 + (-cse29 + cse28);
+    const double cse29 = cse14 * cse15;
+    const double cse30 = cse15 * cse14;
+    const double arm_out14 = -arm_out6 * arm_accel2 + (-cse29 + cse30);
+    const double cse31 = -(arm_weight_e_1 - arm_ejs_v_e_1) + (-cse18 - cse19) * hinge_theta_rate_rate;
+    const double arm_out15 = cse14 * cse31 + cse15 * cse20 - arm_out6 * arm_accel3;
+    const double arm_out16 = -arm_out10 + 0.19999999999999998 * cse14;
+    const double arm_out17 = -arm_out10 * arm_accel1 + (-cse30 + cse29);
     const double arm_out18 = -arm_out10 * arm_accel2 + 1.0;
-    const double arm_out19 = -cse14 * cse30 + cse13 * cse19 - arm_out10 * arm_accel3;
+    const double arm_out19 = -cse15 * cse31 + cse14 * cse20 - arm_out10 * arm_accel3;
     const double arm_out20 = arm_out6;
     const double arm_out21 = arm_out10;
-    const double arm_out22 = cse26;
+    const double arm_out22 = cse27;
     // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: 1 / pivot of the joint's accelerations
-    const double cse31 = 2.0 + arm_out18;
-    const double slider_pivot1 = 1.0 / cse31;
+    const double cse32 = 2.0 + arm_out18;
+    const double slider_pivot1 = 1.0 / cse32;
     // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: joint acceleration as an affine function of the parent's motion
-    const double cse32 = arm_out16 + arm_out17 * slide_s_q;
-    const double slider_accel2 = -slider_pivot1 * cse32;
+    const double cse33 = arm_out16 + arm_out17 * slide_s_q;
+    const double slider_accel2 = -slider_pivot1 * cse33;
     const double slider_accel3 = -slider_pivot1 * arm_out17;
-    const double slider_accel4 = -slider_pivot1 * cse31;
-    const double cse33 = float_spin_rate_rate_2 * slide_s_rate_rate;
-    const double cse34 = -(slider_weight_e_3 - slider_ejs_v_e_3) + arm_out19 + arm_out17 * cse33;
-    const double slider_accel5 = -slider_pivot1 * (-slide_applied_e + cse34);
+    const double slider_accel4 = -slider_pivot1 * cse32;
+    const double cse34 = float_spin_rate_rate_2 * slide_s_rate_rate;
+    const double cse35 = -(slider_weight_e_3 - slider_ejs_v_e_3) + arm_out19 + arm_out17 * cse34;
+    const double slider_accel5 = -slider_pivot1 * (-slide_applied_e + cse35);
     // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
     const double slider_out6 = arm_out8 - arm_out10 * slide_s_q;
     const double slider_out7 = 0.1 + arm_out9;
-    const double cse35 = float_spin_rate_rate_1 * slide_s_rate_rate;
-    const double slider_out8 = slider_ejs_e_3 + arm_out11 - arm_out10 * cse35;
-    const double cse36 = 2.0 * slide_s_q;
-    const double slider_out9 = cse36 + arm_out12 + arm_out13 * slide_s_q + arm_out14 * slider_accel2;
+    const double cse36 = float_spin_rate_rate_1 * slide_s_rate_rate;
+    const double slider_out8 = slider_ejs_e_3 + arm_out11 - arm_out10 * cse36;
+    const double cse37 = 2.0 * slide_s_q;
+    const double slider_out9 = cse37 + arm_out12 + arm_out13 * slide_s_q + arm_out14 * slider_accel2;
     const double slider_out10 = arm_out14 * slider_accel3 + (2.0 + arm_out13);
     const double slider_out11 = arm_out14 * slider_accel4 + arm_out14;
-    const double slider_out12 = -(slider_weight_e_1 - slider_ejs_v_e_1) + arm_out15 + 2.0 * cse33 + arm_out13 * cse33 + arm_out14 * slider_accel5;
-    const double slider_out13 = -cse36 + arm_out20 - slide_s_q;
-    const double slider_out14 = -(slider_weight_e_2 - slider_ejs_v_e_2) + arm_out22 - 2.0 * cse35 - cse35;
-    const double slider_out15 = cse32 + cse31 * slider_accel2;
-    const double slider_out16 = cse31 * slider_accel3 + arm_out17;
-    const double slider_out17 = cse31 * slider_accel4 + cse31;
-    const double slider_out18 = cse34 + cse31 * slider_accel5;
+    const double slider_out12 = -(slider_weight_e_1 - slider_ejs_v_e_1) + arm_out15 + 2.0 * cse34 + arm_out13 * cse34 + arm_out14 * slider_accel5;
+    const double slider_out13 = -cse37 + arm_out20 - slide_s_q;
+    const double slider_out14 = -(slider_weight_e_2 - slider_ejs_v_e_2) + arm_out22 - 2.0 * cse36 - cse36;
+    const double slider_out15 = cse33 + cse32 * slider_accel2;
+    const double slider_out16 = cse32 * slider_accel3 + arm_out17;
+    const double slider_out17 = cse32 * slider_accel4 + cse32;
+    const double slider_out18 = cse35 + cse32 * slider_accel5;
     const double slider_out19 = 0.1 + arm_out4 - arm_out6 * slide_s_q - slide_s_q * slider_out13;
     const double slider_out20 = arm_out5 - slide_s_q * arm_out21;
     const double slider_out21 = arm_out6 - 3.0 * slide_s_q;
-    const double slider_out22 = slider_ejs_e_1 + arm_out7 - arm_out6 * cse35 - slide_s_q * slider_out14;
+    const double slider_out22 = slider_ejs_e_1 + arm_out7 - arm_out6 * cse36 - slide_s_q * slider_out14;
     const double slider_out23 = 0.1 + slide_s_q * slider_out9;
     const double slider_out24 = slide_s_q * slider_out10;
     const double slider_out25 = slide_s_q * slider_out11;
     const double slider_out26 = slider_ejs_e_2 + slide_s_q * slider_out12;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double cse37 = 10.0 * float_Rpc11 + slider_out10 * float_Rpc11 + slider_out11 * float_Rpc13;
-    const double cse38 = 10.0 * float_Rpc12 + 3.0 * float_Rpc12;
-    const double cse39 = 10.0 * float_Rpc13 + slider_out16 * float_Rpc11 + slider_out17 * float_Rpc13;
-    const double base_pivot1 = 1.0 / (float_Rpc11 * cse37 + float_Rpc12 * cse38 + float_Rpc13 * cse39);
+    const double cse38 = 10.0 * float_Rpc11 + slider_out10 * float_Rpc11 + slider_out11 * float_Rpc13;
+    const double cse39 = 10.0 * float_Rpc12 + 3.0 * float_Rpc12;
+    const double cse40 = 10.0 * float_Rpc13 + slider_out16 * float_Rpc11 + slider_out17 * float_Rpc13;
+    const double base_pivot1 = 1.0 / (float_Rpc11 * cse38 + float_Rpc12 * cse39 + float_Rpc13 * cse40);
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor2 = (float_Rpc21 * cse37 + float_Rpc22 * cse38 + float_Rpc23 * cse39) * base_pivot1;
+    const double base_factor2 = (float_Rpc21 * cse38 + float_Rpc22 * cse39 + float_Rpc23 * cse40) * base_pivot1;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double cse40 = 10.0 * float_Rpc21 + slider_out10 * float_Rpc21 + slider_out11 * float_Rpc23;
-    const double cse41 = 10.0 * float_Rpc22 + 3.0 * float_Rpc22;
-    const double cse42 = 10.0 * float_Rpc23 + slider_out16 * float_Rpc21 + slider_out17 * float_Rpc23;
-    const double cse43 = float_Rpc11 * cse40 + float_Rpc12 * cse41 + float_Rpc13 * cse42;
-    const double base_row3 = float_Rpc21 * cse40 + float_Rpc22 * cse41 + float_Rpc23 * cse42 - base_factor2 * cse43;
-    const double cse44 = 10.0 * float_Rpc31 + slider_out10 * float_Rpc31 + slider_out11 * float_Rpc33;
-    const double cse45 = 10.0 * float_Rpc32 + 3.0 * float_Rpc32;
-    const double cse46 = 10.0 * float_Rpc33 + slider_out16 * float_Rpc31 + slider_out17 * float_Rpc33;
-    const double cse47 = float_Rpc11 * cse44 + float_Rpc12 * cse45 + float_Rpc13 * cse46;
-    const double base_row4 = float_Rpc21 * cse44 + float_Rpc22 * cse45 + float_Rpc23 * cse46 - base_factor2 * cse47;
-    const double cse48 = float_Rpc12 * slider_out13;
-    const double base_row5 = float_Rpc22 * slider_out13 - base_factor2 * cse48;
-    const double cse49 = float_Rpc11 * slider_out9 + float_Rpc13 * slider_out15;
-    const double base_row6 = float_Rpc21 * slider_out9 + float_Rpc23 * slider_out15 - base_factor2 * cse49;
-    const double cse50 = float_Rpc12 * arm_out21;
-    const double base_row7 = float_Rpc22 * arm_out21 - base_factor2 * cse50;
-    const double cse51 = float_x_rate_rate * der_float_Rpc11;
-    const double cse52 = float_y_rate_rate * der_float_Rpc21;
-    const double cse53 = float_z_rate_rate * der_float_Rpc31;
-    const double cse54 = cse51 + cse52 + cse53;
-    const double cse55 = float_x_rate_rate * der_float_Rpc13;
-    const double cse56 = float_y_rate_rate * der_float_Rpc23;
-    const double cse57 = float_z_rate_rate * der_float_Rpc33;
-    const double cse58 = cse55 + cse56 + cse57;
-    const double cse59 = -(base_weight_e_1 - base_ejs_v_e_1) + slider_out12 + 10.0 * cse54 + slider_out10 * cse54 + slider_out11 * cse58;
-    const double cse60 = float_x_rate_rate * der_float_Rpc12 + float_y_rate_rate * der_float_Rpc22 + float_z_rate_rate * der_float_Rpc32;
-    const double cse61 = -(base_weight_e_2 - base_ejs_v_e_2) + slider_out14 + 10.0 * cse60 + 3.0 * cse60;
-    const double cse62 = -(base_weight_e_3 - base_ejs_v_e_3) + slider_out18 + 10.0 * cse58 + slider_out16 * cse54 + slider_out17 * cse58;
-    const double cse63 = float_Rpc11 * cse59 + float_Rpc12 * cse61 + float_Rpc13 * cse62;
-    const double base_row8 = float_Rpc21 * cse59 + float_Rpc22 * cse61 + float_Rpc23 * cse62 - base_factor2 * cse63;
+    const double cse41 = 10.0 * float_Rpc21 + slider_out10 * float_Rpc21 + slider_out11 * float_Rpc23;
+    const double cse42 = 10.0 * float_Rpc22 + 3.0 * float_Rpc22;
+    const double cse43 = 10.0 * float_Rpc23 + slider_out16 * float_Rpc21 + slider_out17 * float_Rpc23;
+    const double cse44 = float_Rpc11 * cse41 + float_Rpc12 * cse42 + float_Rpc13 * cse43;
+    const double base_row3 = float_Rpc21 * cse41 + float_Rpc22 * cse42 + float_Rpc23 * cse43 - base_factor2 * cse44;
+    const double cse45 = 10.0 * float_Rpc31 + slider_out10 * float_Rpc31 + slider_out11 * float_Rpc33;
+    const double cse46 = 10.0 * float_Rpc32 + 3.0 * float_Rpc32;
+    const double cse47 = 10.0 * float_Rpc33 + slider_out16 * float_Rpc31 + slider_out17 * float_Rpc33;
+    const double cse48 = float_Rpc11 * cse45 + float_Rpc12 * cse46 + float_Rpc13 * cse47;
+    const double base_row4 = float_Rpc21 * cse45 + float_Rpc22 * cse46 + float_Rpc23 * cse47 - base_factor2 * cse48;
+    const double cse49 = float_Rpc12 * slider_out13;
+    const double base_row5 = float_Rpc22 * slider_out13 - base_factor2 * cse49;
+    const double cse50 = float_Rpc11 * slider_out9 + float_Rpc13 * slider_out15;
+    const double base_row6 = float_Rpc21 * slider_out9 + float_Rpc23 * slider_out15 - base_factor2 * cse50;
+    const double cse51 = float_Rpc12 * arm_out21;
+    const double base_row7 = float_Rpc22 * arm_out21 - base_factor2 * cse51;
+    const double cse52 = float_x_rate_rate * der_float_Rpc11;
+    const double cse53 = float_y_rate_rate * der_float_Rpc21;
+    const double cse54 = float_z_rate_rate * der_float_Rpc31;
+    const double cse55 = cse52 + cse53 + cse54;
+    const double cse56 = float_x_rate_rate * der_float_Rpc13;
+    const double cse57 = float_y_rate_rate * der_float_Rpc23;
+    const double cse58 = float_z_rate_rate * der_float_Rpc33;
+    const double cse59 = cse56 + cse57 + cse58;
+    const double cse60 = -(base_weight_e_1 - base_ejs_v_e_1) + slider_out12 + 10.0 * cse55 + slider_out10 * cse55 + slider_out11 * cse59;
+    const double cse61 = float_x_rate_rate * der_float_Rpc12 + float_y_rate_rate * der_float_Rpc22 + float_z_rate_rate * der_float_Rpc32;
+    const double cse62 = -(base_weight_e_2 - base_ejs_v_e_2) + slider_out14 + 10.0 * cse61 + 3.0 * cse61;
+    const double cse63 = -(base_weight_e_3 - base_ejs_v_e_3) + slider_out18 + 10.0 * cse59 + slider_out16 * cse55 + slider_out17 * cse59;
+    const double cse64 = float_Rpc11 * cse60 + float_Rpc12 * cse62 + float_Rpc13 * cse63;
+    const double base_row8 = float_Rpc21 * cse60 + float_Rpc22 * cse62 + float_Rpc23 * cse63 - base_factor2 * cse64;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor9 = (float_Rpc31 * cse37 + float_Rpc32 * cse38 + float_Rpc33 * cse39) * base_pivot1;
+    const double base_factor9 = (float_Rpc31 * cse38 + float_Rpc32 * cse39 + float_Rpc33 * cse40) * base_pivot1;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row10 = float_Rpc31 * cse40 + float_Rpc32 * cse41 + float_Rpc33 * cse42 - base_factor9 * cse43;
-    const double base_row11 = float_Rpc31 * cse44 + float_Rpc32 * cse45 + float_Rpc33 * cse46 - base_factor9 * cse47;
-    const double base_row12 = float_Rpc32 * slider_out13 - base_factor9 * cse48;
-    const double base_row13 = float_Rpc31 * slider_out9 + float_Rpc33 * slider_out15 - base_factor9 * cse49;
-    const double base_row14 = float_Rpc32 * arm_out21 - base_factor9 * cse50;
-    const double base_row15 = float_Rpc31 * cse59 + float_Rpc32 * cse61 + float_Rpc33 * cse62 - base_factor9 * cse63;
+    const double base_row10 = float_Rpc31 * cse41 + float_Rpc32 * cse42 + float_Rpc33 * cse43 - base_factor9 * cse44;
+    const double base_row11 = float_Rpc31 * cse45 + float_Rpc32 * cse46 + float_Rpc33 * cse47 - base_factor9 * cse48;
+    const double base_row12 = float_Rpc32 * slider_out13 - base_factor9 * cse49;
+    const double base_row13 = float_Rpc31 * slider_out9 + float_Rpc33 * slider_out15 - base_factor9 * cse50;
+    const double base_row14 = float_Rpc32 * arm_out21 - base_factor9 * cse51;
+    const double base_row15 = float_Rpc31 * cse60 + float_Rpc32 * cse62 + float_Rpc33 * cse63 - base_factor9 * cse64;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
     const double base_factor16 = slider_out21 * float_Rpc12 * base_pivot1;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row17 = slider_out21 * float_Rpc22 - base_factor16 * cse43;
-    const double base_row18 = slider_out21 * float_Rpc32 - base_factor16 * cse47;
-    const double base_row19 = 1.0 + slider_out19 - base_factor16 * cse48;
-    const double base_row20 = -base_factor16 * cse49;
-    const double base_row21 = slider_out20 - base_factor16 * cse50;
-    const double base_row22 = base_ejs_e_1 + slider_out22 + slider_out21 * cse60 - base_factor16 * cse63;
+    const double base_row17 = slider_out21 * float_Rpc22 - base_factor16 * cse44;
+    const double base_row18 = slider_out21 * float_Rpc32 - base_factor16 * cse48;
+    const double base_row19 = 1.0 + slider_out19 - base_factor16 * cse49;
+    const double base_row20 = -base_factor16 * cse50;
+    const double base_row21 = slider_out20 - base_factor16 * cse51;
+    const double base_row22 = base_ejs_e_1 + slider_out22 + slider_out21 * cse61 - base_factor16 * cse64;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
     const double base_factor23 = (slider_out24 * float_Rpc11 + slider_out25 * float_Rpc13) * base_pivot1;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row24 = slider_out24 * float_Rpc21 + slider_out25 * float_Rpc23 - base_factor23 * cse43;
-    const double base_row25 = slider_out24 * float_Rpc31 + slider_out25 * float_Rpc33 - base_factor23 * cse47;
-    const double base_row26 = -base_factor23 * cse48;
-    const double base_row27 = 2.0 + slider_out23 - base_factor23 * cse49;
-    const double base_row28 = -base_factor23 * cse50;
-    const double base_row29 = base_ejs_e_2 + slider_out26 + slider_out24 * cse54 + slider_out25 * cse58 - base_factor23 * cse63;
+    const double base_row24 = slider_out24 * float_Rpc21 + slider_out25 * float_Rpc23 - base_factor23 * cse44;
+    const double base_row25 = slider_out24 * float_Rpc31 + slider_out25 * float_Rpc33 - base_factor23 * cse48;
+    const double base_row26 = -base_factor23 * cse49;
+    const double base_row27 = 2.0 + slider_out23 - base_factor23 * cse50;
+    const double base_row28 = -base_factor23 * cse51;
+    const double base_row29 = base_ejs_e_2 + slider_out26 + slider_out24 * cse55 + slider_out25 * cse59 - base_factor23 * cse64;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
     const double base_factor30 = arm_out10 * float_Rpc12 * base_pivot1;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row31 = arm_out10 * float_Rpc22 - base_factor30 * cse43;
-    const double base_row32 = arm_out10 * float_Rpc32 - base_factor30 * cse47;
-    const double base_row33 = slider_out6 - base_factor30 * cse48;
-    const double base_row34 = -base_factor30 * cse49;
-    const double base_row35 = 3.0 + slider_out7 - base_factor30 * cse50;
-    const double base_row36 = base_ejs_e_3 + slider_out8 + arm_out10 * cse60 - base_factor30 * cse63;
+    const double base_row31 = arm_out10 * float_Rpc22 - base_factor30 * cse44;
+    const double base_row32 = arm_out10 * float_Rpc32 - base_factor30 * cse48;
+    const double base_row33 = slider_out6 - base_factor30 * cse49;
+    const double base_row34 = -base_factor30 * cse50;
+    const double base_row35 = 3.0 + slider_out7 - base_factor30 * cse51;
+    const double base_row36 = base_ejs_e_3 + slider_out8 + arm_out10 * cse61 - base_factor30 * cse64;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
     const double base_pivot37 = 1.0 / base_row3;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
@@ -570,7 +571,7 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double base_accel94 = -base_pivot78 * (base_row67 + base_row65 * base_accel93 + base_row66 * base_accel92);
     const double base_accel95 = -base_pivot62 * (base_row43 + base_row40 * base_accel94 + base_row41 * base_accel93 + base_row42 * base_accel92);
     const double base_accel96 = -base_pivot37 * (base_row8 + base_row4 * base_accel95 + base_row5 * base_accel94 + base_row6 * base_accel93 + base_row7 * base_accel92);
-    const double base_accel97 = -base_pivot1 * (cse63 + cse43 * base_accel96 + cse47 * base_accel95 + cse48 * base_accel94 + cse49 * base_accel93 + cse50 * base_accel92);
+    const double base_accel97 = -base_pivot1 * (cse64 + cse44 * base_accel96 + cse48 * base_accel95 + cse49 * base_accel94 + cse50 * base_accel93 + cse51 * base_accel92);
     // tree_grandparent.mbg:16:7  joint acceleration of body base from its parent's motion (articulated-body form)
     const double der_float_x_rate_rate = base_accel97;
     const double der_float_y_rate_rate = base_accel96;
@@ -579,25 +580,25 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double der_float_spin_rate_rate_2 = base_accel93;
     const double der_float_spin_rate_rate_3 = base_accel92;
     // tree_grandparent.mbg:16:7  d/dt of [MTF float.m2: f2 = T f1]
-    const double der_float_m2_f2_1 = float_Rpc11 * der_float_x_rate_rate + cse51;
+    const double der_float_m2_f2_1 = float_Rpc11 * der_float_x_rate_rate + cse52;
     // tree_grandparent.mbg:16:7  d/dt of [MTF float.m3: f2 = T f1]
-    const double der_float_m3_f2_1 = float_Rpc21 * der_float_y_rate_rate + cse52;
+    const double der_float_m3_f2_1 = float_Rpc21 * der_float_y_rate_rate + cse53;
     // tree_grandparent.mbg:16:7  d/dt of [MTF float.m4: f2 = T f1]
-    const double der_float_m4_f2_1 = float_Rpc31 * der_float_z_rate_rate + cse53;
+    const double der_float_m4_f2_1 = float_Rpc31 * der_float_z_rate_rate + cse54;
     // tree_grandparent.mbg:16:7  d/dt of [0 float.vsum: flows in = flows out]
     const double der_float_reaction_f_f_1 = der_float_m2_f2_1 + der_float_m3_f2_1 + der_float_m4_f2_1;
     // tree_grandparent.mbg:16:7  d/dt of [MTF float.m2: f2 = T f1]
-    const double der_float_m2_f2_3 = float_Rpc13 * der_float_x_rate_rate + cse55;
+    const double der_float_m2_f2_3 = float_Rpc13 * der_float_x_rate_rate + cse56;
     // tree_grandparent.mbg:16:7  d/dt of [MTF float.m3: f2 = T f1]
-    const double der_float_m3_f2_3 = float_Rpc23 * der_float_y_rate_rate + cse56;
+    const double der_float_m3_f2_3 = float_Rpc23 * der_float_y_rate_rate + cse57;
     // tree_grandparent.mbg:16:7  d/dt of [MTF float.m4: f2 = T f1]
-    const double der_float_m4_f2_3 = float_Rpc33 * der_float_z_rate_rate + cse57;
+    const double der_float_m4_f2_3 = float_Rpc33 * der_float_z_rate_rate + cse58;
     // tree_grandparent.mbg:16:7  d/dt of [0 float.vsum: flows in = flows out]
     const double der_float_reaction_f_f_3 = der_float_m2_f2_3 + der_float_m3_f2_3 + der_float_m4_f2_3;
     // tree_grandparent.mbg:17:7  joint acceleration of body slider from its parent's motion (articulated-body form)
     const double der_slide_s_rate_rate = slider_accel5 + slider_accel2 * der_float_spin_rate_rate_2 + slider_accel3 * der_float_reaction_f_f_1 + slider_accel4 * der_float_reaction_f_f_3;
     // tree_grandparent.mbg:17:7  d/dt of [MTF slide.m2: f2 = T f1]
-    const double der_slide_m2_f2_1 = slide_s_q * der_float_spin_rate_rate_2 + cse33;
+    const double der_slide_m2_f2_1 = slide_s_q * der_float_spin_rate_rate_2 + cse34;
     // tree_grandparent.mbg:17:7  d/dt of [0 slide.vpa: flows in = flows out]
     const double der_slide_m3_f1_1 = der_float_reaction_f_f_1 + der_slide_m2_f2_1;
     // tree_grandparent.mbg:17:7  d/dt of [0 slide.vsum: flows in = flows out]
@@ -609,15 +610,15 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  joint acceleration of body arm from its parent's motion (articulated-body form)
     const double der_hinge_theta_rate_rate = arm_accel3 - 0.9999999999999999 * der_float_spin_rate_rate_2 + arm_accel1 * der_slide_reaction_f_f_1 + arm_accel2 * der_slide_reaction_f_f_3;
     // tree_grandparent.mbg:16:7  MTF float.rotrate: f2 = T f1
-    const double cse64 = 0.5 * float_rot_q_2;
-    const double cse65 = 0.5 * float_rot_q_3;
-    const double cse66 = 0.5 * float_rot_q_4;
-    const double float_rotrate_f2_1 = -cse64 * float_spin_rate_rate_1 - cse65 * float_spin_rate_rate_2 - cse66 * float_spin_rate_rate_3;
-    const double cse67 = 0.5 * float_rot_q_1;
-    const double float_rotrate_f2_2 = cse67 * float_spin_rate_rate_1 - cse66 * float_spin_rate_rate_2 + cse65 * float_spin_rate_rate_3;
-    const double float_rotrate_f2_3 = cse66 * float_spin_rate_rate_1 + cse67 * float_spin_rate_rate_2 - cse64 * float_spin_rate_rate_3;
-    const double float_rotrate_f2_4 = -cse65 * float_spin_rate_rate_1 + cse64 * float_spin_rate_rate_2 + cse67 * float_spin_rate_rate_3;
-    // state derivatives
+    const double cse65 = 0.5 * float_rot_q_2;
+    const double cse66 = 0.5 * float_rot_q_3;
+    const double cse67 = 0.5 * float_rot_q_4;
+    const double float_rotrate_f2_1 = -cse65 * float_spin_rate_rate_1 - cse66 * float_spin_rate_rate_2 - cse67 * float_spin_rate_rate_3;
+    const double cse68 = 0.5 * float_rot_q_1;
+    const double float_rotrate_f2_2 = cse68 * float_spin_rate_rate_1 - cse67 * float_spin_rate_rate_2 + cse66 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_3 = cse67 * float_spin_rate_rate_1 + cse68 * float_spin_rate_rate_2 - cse65 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_4 = -cse66 * float_spin_rate_rate_1 + cse65 * float_spin_rate_rate_2 + cse68 * float_spin_rate_rate_3;
+    // state derivatives, then the powers
     xdot[0] = der_float_x_rate_rate;
     xdot[1] = float_x_rate_rate;
     xdot[2] = der_float_y_rate_rate;
@@ -635,6 +636,15 @@ class tree_grandparent_model final : public mbgrt::Model {
     xdot[14] = slide_s_rate_rate;
     xdot[15] = der_hinge_theta_rate_rate;
     xdot[16] = hinge_theta_rate_rate;
+    const double cse69 = (slide_applied_e + cse13) * slide_s_rate_rate;
+    rate[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse13 * slide_s_rate_rate + std::fmax(cse69, 0.0));
+    rate[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse69, 0.0);
+  }
+
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  void derivative(double t, const double* x, double* xdot) override {
+    double rate[2];
+    derivative_and_power(t, x, xdot, rate);
   }
 
   // OUTPUT: the declared outputs at (t, y).
@@ -717,41 +727,41 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double hinge_theta_q = x[16];
     // tree_grandparent.mbg:16:7  signal float.Rpc12
     // (cseN: a subexpression several equations below share)
-    const double cse68 = float_rot_q_2 * float_rot_q_3;
-    const double cse69 = float_rot_q_1 * float_rot_q_4;
-    const double cse70 = float_rot_q_1 * float_rot_q_1;
-    const double cse71 = float_rot_q_2 * float_rot_q_2;
-    const double cse72 = cse70 + cse71;
-    const double cse73 = float_rot_q_3 * float_rot_q_3;
-    const double cse74 = float_rot_q_4 * float_rot_q_4;
-    const double cse75 = cse72 + cse73 + cse74;
-    const double float_Rpc12 = 2.0 * (cse68 - cse69) / cse75;
+    const double cse70 = float_rot_q_2 * float_rot_q_3;
+    const double cse71 = float_rot_q_1 * float_rot_q_4;
+    const double cse72 = float_rot_q_1 * float_rot_q_1;
+    const double cse73 = float_rot_q_2 * float_rot_q_2;
+    const double cse74 = cse72 + cse73;
+    const double cse75 = float_rot_q_3 * float_rot_q_3;
+    const double cse76 = float_rot_q_4 * float_rot_q_4;
+    const double cse77 = cse74 + cse75 + cse76;
+    const double float_Rpc12 = 2.0 * (cse70 - cse71) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse72 - cse73 - cse74) / cse75;
+    const double float_Rpc11 = (cse74 - cse75 - cse76) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse76 = float_rot_q_2 * float_rot_q_4;
-    const double cse77 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse76 + cse77) / cse75;
+    const double cse78 = float_rot_q_2 * float_rot_q_4;
+    const double cse79 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse78 + cse79) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse78 = float_rot_q_3 * float_rot_q_4;
-    const double cse79 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse78 - cse79) / cse75;
+    const double cse80 = float_rot_q_3 * float_rot_q_4;
+    const double cse81 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse80 - cse81) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse68 + cse69) / cse75;
+    const double float_Rpc21 = 2.0 * (cse70 + cse71) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse70 + cse73 - cse71 - cse74) / cse75;
+    const double float_Rpc22 = (cse72 + cse75 - cse73 - cse76) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse76 - cse77) / cse75;
+    const double float_Rpc31 = 2.0 * (cse78 - cse79) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse78 + cse79) / cse75;
+    const double float_Rpc32 = 2.0 * (cse80 + cse81) / cse77;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse70 + cse74 - cse71 - cse73) / cse75;
+    const double float_Rpc33 = (cse72 + cse76 - cse73 - cse75) / cse77;
     // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double cse80 = std::sin(hinge_theta_q);
-    const double cse81 = std::cos(hinge_theta_q);
-    const double arm_pose_R33 = float_Rpc31 * cse80 + float_Rpc33 * cse81;
+    const double cse82 = std::sin(hinge_theta_q);
+    const double cse83 = std::cos(hinge_theta_q);
+    const double arm_pose_R33 = float_Rpc31 * cse82 + float_Rpc33 * cse83;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse81 - float_Rpc33 * cse80;
+    const double arm_pose_R31 = float_Rpc31 * cse83 - float_Rpc33 * cse82;
     // tree_grandparent.mbg:17:7  signal slider.pose.r1
     const double slider_pose_r1 = float_x_q + float_Rpc13 * slide_s_q;
     // tree_grandparent.mbg:17:7  signal slider.pose.r2
@@ -759,13 +769,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:17:7  signal slider.pose.r3
     const double slider_pose_r3 = float_z_q + float_Rpc33 * slide_s_q;
     // tree_grandparent.mbg:18:7  signal arm.pose.R11
-    const double arm_pose_R11 = float_Rpc11 * cse81 - float_Rpc13 * cse80;
+    const double arm_pose_R11 = float_Rpc11 * cse83 - float_Rpc13 * cse82;
     // tree_grandparent.mbg:18:7  signal arm.pose.R13
-    const double arm_pose_R13 = float_Rpc11 * cse80 + float_Rpc13 * cse81;
+    const double arm_pose_R13 = float_Rpc11 * cse82 + float_Rpc13 * cse83;
     // tree_grandparent.mbg:18:7  signal arm.pose.R21
-    const double arm_pose_R21 = float_Rpc21 * cse81 - float_Rpc23 * cse80;
+    const double arm_pose_R21 = float_Rpc21 * cse83 - float_Rpc23 * cse82;
     // tree_grandparent.mbg:18:7  signal arm.pose.R23
-    const double arm_pose_R23 = float_Rpc21 * cse80 + float_Rpc23 * cse81;
+    const double arm_pose_R23 = float_Rpc21 * cse82 + float_Rpc23 * cse83;
     // tree_grandparent.mbg:18:7  signal arm.pose.r1
     const double arm_pose_r1 = slider_pose_r1 + 0.2 * arm_pose_R11;
     // tree_grandparent.mbg:18:7  signal arm.pose.r2
@@ -839,35 +849,35 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double hinge_theta_q = x[16];
     // tree_grandparent.mbg:16:7  signal float.Rpc12
     // (cseN: a subexpression several equations below share)
-    const double cse82 = float_rot_q_2 * float_rot_q_3;
-    const double cse83 = float_rot_q_1 * float_rot_q_4;
-    const double cse84 = float_rot_q_1 * float_rot_q_1;
-    const double cse85 = float_rot_q_2 * float_rot_q_2;
-    const double cse86 = cse84 + cse85;
-    const double cse87 = float_rot_q_3 * float_rot_q_3;
-    const double cse88 = float_rot_q_4 * float_rot_q_4;
-    const double cse89 = cse86 + cse87 + cse88;
-    const double float_Rpc12 = 2.0 * (cse82 - cse83) / cse89;
+    const double cse84 = float_rot_q_2 * float_rot_q_3;
+    const double cse85 = float_rot_q_1 * float_rot_q_4;
+    const double cse86 = float_rot_q_1 * float_rot_q_1;
+    const double cse87 = float_rot_q_2 * float_rot_q_2;
+    const double cse88 = cse86 + cse87;
+    const double cse89 = float_rot_q_3 * float_rot_q_3;
+    const double cse90 = float_rot_q_4 * float_rot_q_4;
+    const double cse91 = cse88 + cse89 + cse90;
+    const double float_Rpc12 = 2.0 * (cse84 - cse85) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse86 - cse87 - cse88) / cse89;
+    const double float_Rpc11 = (cse88 - cse89 - cse90) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse90 = float_rot_q_2 * float_rot_q_4;
-    const double cse91 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse90 + cse91) / cse89;
+    const double cse92 = float_rot_q_2 * float_rot_q_4;
+    const double cse93 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse92 + cse93) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse92 = float_rot_q_3 * float_rot_q_4;
-    const double cse93 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse92 - cse93) / cse89;
+    const double cse94 = float_rot_q_3 * float_rot_q_4;
+    const double cse95 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse94 - cse95) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse82 + cse83) / cse89;
+    const double float_Rpc21 = 2.0 * (cse84 + cse85) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse84 + cse87 - cse85 - cse88) / cse89;
+    const double float_Rpc22 = (cse86 + cse89 - cse87 - cse90) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse90 - cse91) / cse89;
+    const double float_Rpc31 = 2.0 * (cse92 - cse93) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse92 + cse93) / cse89;
+    const double float_Rpc32 = 2.0 * (cse94 + cse95) / cse91;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse84 + cse88 - cse85 - cse87) / cse89;
+    const double float_Rpc33 = (cse86 + cse90 - cse87 - cse89) / cse91;
     // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
     const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
     // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
@@ -913,18 +923,18 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_3 = slide_reaction_f_f_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse94 = std::cos(hinge_theta_q);
-    const double cse95 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse94 * float_spin_rate_rate_1 - cse95 * float_spin_rate_rate_3;
+    const double cse96 = std::cos(hinge_theta_q);
+    const double cse97 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse96 * float_spin_rate_rate_1 - cse97 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse95 * float_spin_rate_rate_1 + cse94 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse97 * float_spin_rate_rate_1 + cse96 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse94 * hinge_m4_f1_1 - cse95 * hinge_m4_f1_3;
+    const double hinge_m4_f2_1 = cse96 * hinge_m4_f1_1 - cse97 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
@@ -934,16 +944,16 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse95 * hinge_m4_f1_1 + cse94 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse97 * hinge_m4_f1_1 + cse96 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
     // the stored energy
-    const double cse96 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
-    const double cse97 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
-    const double cse98 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
-    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse96 + 2.0 * cse97 + 3.0 * cse98) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse96 + 0.1 * cse97 + 0.1 * cse98) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
+    const double cse98 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
+    const double cse99 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
+    const double cse100 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
+    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse98 + 2.0 * cse99 + 3.0 * cse100) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse98 + 0.1 * cse99 + 0.1 * cse100) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -969,35 +979,35 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double hinge_theta_q = x[16];
     // tree_grandparent.mbg:16:7  signal float.Rpc12
     // (cseN: a subexpression several equations below share)
-    const double cse99 = float_rot_q_2 * float_rot_q_3;
-    const double cse100 = float_rot_q_1 * float_rot_q_4;
-    const double cse101 = float_rot_q_1 * float_rot_q_1;
-    const double cse102 = float_rot_q_2 * float_rot_q_2;
-    const double cse103 = cse101 + cse102;
-    const double cse104 = float_rot_q_3 * float_rot_q_3;
-    const double cse105 = float_rot_q_4 * float_rot_q_4;
-    const double cse106 = cse103 + cse104 + cse105;
-    const double float_Rpc12 = 2.0 * (cse99 - cse100) / cse106;
+    const double cse101 = float_rot_q_2 * float_rot_q_3;
+    const double cse102 = float_rot_q_1 * float_rot_q_4;
+    const double cse103 = float_rot_q_1 * float_rot_q_1;
+    const double cse104 = float_rot_q_2 * float_rot_q_2;
+    const double cse105 = cse103 + cse104;
+    const double cse106 = float_rot_q_3 * float_rot_q_3;
+    const double cse107 = float_rot_q_4 * float_rot_q_4;
+    const double cse108 = cse105 + cse106 + cse107;
+    const double float_Rpc12 = 2.0 * (cse101 - cse102) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse103 - cse104 - cse105) / cse106;
+    const double float_Rpc11 = (cse105 - cse106 - cse107) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse107 = float_rot_q_2 * float_rot_q_4;
-    const double cse108 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse107 + cse108) / cse106;
+    const double cse109 = float_rot_q_2 * float_rot_q_4;
+    const double cse110 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse109 + cse110) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse109 = float_rot_q_3 * float_rot_q_4;
-    const double cse110 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse109 - cse110) / cse106;
+    const double cse111 = float_rot_q_3 * float_rot_q_4;
+    const double cse112 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse111 - cse112) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse99 + cse100) / cse106;
+    const double float_Rpc21 = 2.0 * (cse101 + cse102) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse101 + cse104 - cse102 - cse105) / cse106;
+    const double float_Rpc22 = (cse103 + cse106 - cse104 - cse107) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse107 - cse108) / cse106;
+    const double float_Rpc31 = 2.0 * (cse109 - cse110) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse109 + cse110) / cse106;
+    const double float_Rpc32 = 2.0 * (cse111 + cse112) / cse108;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse101 + cse105 - cse102 - cse104) / cse106;
+    const double float_Rpc33 = (cse103 + cse107 - cse104 - cse106) / cse108;
     // tree_grandparent.mbg:12:6  Se base.weight: e = value
     const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
     // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
@@ -1023,8 +1033,8 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
     // tree_grandparent.mbg:17:7  Se slide.applied: e = value
-    const double cse111 = 1000.0 * slide_s_q;
-    const double slide_applied_e = -cse111 - 10.0 * slide_s_rate_rate;
+    const double cse113 = 1000.0 * slide_s_q;
+    const double slide_applied_e = -cse113 - 10.0 * slide_s_rate_rate;
     // tree_grandparent.mbg:13:6  Se slider.weight: e = value
     const double slider_weight_e_3 = -19.62 * float_Rpc33;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
@@ -1071,15 +1081,15 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
     const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse112 = std::cos(hinge_theta_q);
-    const double cse113 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse112 * float_spin_rate_rate_1 - cse113 * float_spin_rate_rate_3;
+    const double cse114 = std::cos(hinge_theta_q);
+    const double cse115 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse114 * float_spin_rate_rate_1 - cse115 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
     const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse113 * float_spin_rate_rate_1 + cse112 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse115 * float_spin_rate_rate_1 + cse114 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
@@ -1087,13 +1097,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
     const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
     // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double arm_pose_R33 = float_Rpc31 * cse113 + float_Rpc33 * cse112;
+    const double arm_pose_R33 = float_Rpc31 * cse115 + float_Rpc33 * cse114;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_3 = -9.81 * arm_pose_R33;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse112 * hinge_m4_f1_1 - cse113 * hinge_m4_f1_3;
+    const double hinge_m4_f2_1 = cse114 * hinge_m4_f1_1 - cse115 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
@@ -1111,11 +1121,11 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse112 - float_Rpc33 * cse113;
+    const double arm_pose_R31 = float_Rpc31 * cse114 - float_Rpc33 * cse115;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_1 = -9.81 * arm_pose_R31;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse113 * hinge_m4_f1_1 + cse112 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse115 * hinge_m4_f1_1 + cse114 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
@@ -1159,9 +1169,9 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
     // the powers
-    const double cse114 = (slide_applied_e + cse111) * slide_s_rate_rate;
-    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse111 * slide_s_rate_rate + std::fmax(cse114, 0.0));
-    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse114, 0.0);
+    const double cse116 = (slide_applied_e + cse113) * slide_s_rate_rate;
+    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse113 * slide_s_rate_rate + std::fmax(cse116, 0.0));
+    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse116, 0.0);
   }
 
   // TERMINAL: nothing to do at the end of a run.
