@@ -80,6 +80,10 @@ class Emitter {
     } else {
       add_long_method(c, derivative());
     }
+    if (!s_.dae && has_velocity_state()) {
+      c.public_methods.push_back({"", "bool has_position_rates() const override", {CppStmt::line("return true;")}});
+      add_long_method(c, position_rates());
+    }
     if (s_.dae && !s_.residual_pattern.empty()) c.public_methods.push_back(residual_sparsity_method(s_));
     if (!s_.jacobian.empty()) {
       c.public_methods.push_back({"", "bool has_jacobian() const override", {CppStmt::line("return true;")}});
@@ -512,6 +516,30 @@ class Emitter {
     std::set_union(s_.for_derivative.begin(), s_.for_derivative.end(), s_.for_power.begin(), s_.for_power.end(),
                    std::back_inserter(slice));
     section(f.body, slice, std::move(results), "state derivatives, then the powers");
+    return f;
+  }
+
+  bool has_velocity_state() const {
+    for (std::size_t i = 0; i < s_.states.size(); ++i)
+      if (!is_position_state(s_, i)) return true;
+    return false;
+  }
+
+  /// The position states' derivatives alone (what they read of the
+  /// kinematics), for the symplectic Euler: it takes them at the new
+  /// velocities, after the derivative gave the velocities' rates.
+  CppFunction position_rates() {
+    CppFunction f{"POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are "
+                  "left as they are).",
+                  "void position_rates(double t, const double* x, double* xdot) override",
+                  {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
+    const Counting counting = count_into(f);
+    std::vector<SectionResult> results;
+    for (std::size_t i = 0; i < s_.states.size(); ++i)
+      if (is_position_state(s_, i))
+        results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
+    if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
+    section(f.body, s_.for_position_rates, std::move(results), "position derivatives");
     return f;
   }
 

@@ -71,8 +71,7 @@ std::string computed_doc(const Parameter& p, const BondGraph& g) {
 /// puts them.
 void unknown_roles(CppClass& c, const ReducedSystem& s) {
   std::vector<std::string> roles;
-  for (const StateVar& st : s.states)
-    roles.push_back(s.graph.nodes[static_cast<std::size_t>(st.node)].kind == NodeKind::C ? "position" : "velocity");
+  for (std::size_t i = 0; i < s.states.size(); ++i) roles.push_back(is_position_state(s, i) ? "position" : "velocity");
   for (int a : s.algebraic) {
     const char* role = "algebraic";
     for (const ConstraintRow& r : s.constraints) {

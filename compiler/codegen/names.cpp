@@ -40,7 +40,7 @@ const std::set<std::string> kReserved = {
     "multiplier_index", "stabiliser_index", "kIndex", "row", "unknown_role", "kRoles", "R",
     "constraint_jacobian", "constraint_jacobian_pattern", "row_starts", "columns", "kColumns", "values",
     "nominal", "nominal_", "v", "unknown_group", "kGroups", "has_energy_balance", "energy_note", "stored_energy",
-    "power", "witness_values", "derivative_and_power", "rate", "computed", "Row", "all"};
+    "power", "witness_values", "derivative_and_power", "rate", "position_rates", "has_position_rates", "computed", "Row", "all"};
 
 }  // namespace
 

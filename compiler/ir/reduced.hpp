@@ -113,6 +113,7 @@ struct ReducedSystem {
   std::vector<Assignment> assignments;    // everything derivative/residual/outputs need, sorted
   std::vector<LinearBlock> linear_blocks; // loops solved numerically (see Assignment::block)
   std::vector<int> for_derivative;        // indices into assignments, in order
+  std::vector<int> for_position_rates;    // ... what the position states' derivatives need (an ODE's; the symplectic Euler's)
   std::vector<int> for_outputs;           // indices into assignments, in order
   std::vector<int> for_drawings;          // ... what the drawn bodies' poses need
   // d(state derivative i)/d(state j), row-major n x n, for ODEs whose loops are
@@ -156,5 +157,12 @@ struct ReducedSystem {
   std::vector<std::string> derivative_causality;  // how each derivative-causal storage was handled
   std::vector<std::string> log;           // what reduction did, one line per step
 };
+
+/// Whether state i is a position (the q of a C: a displacement, an angle, a
+/// modal coordinate, a charge), else a velocity (the p of an I, an
+/// independent joint rate): the layout the runtime is told (Model::unknown_role).
+inline bool is_position_state(const ReducedSystem& s, std::size_t i) {
+  return s.graph.nodes[static_cast<std::size_t>(s.states[i].node)].kind == NodeKind::C;
+}
 
 }  // namespace mbgc::ir

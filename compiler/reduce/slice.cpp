@@ -84,6 +84,10 @@ void slice(ReducedSystem& s) {
       if (x) tangent_roots.push_back(x);
   }
   s.for_derivative = needed_by(deriv_roots);
+  std::vector<Expr> position_roots;  // (the q of a C: UnknownRole::position, codegen/identity.cpp)
+  for (std::size_t i = 0; i < s.states.size() && !s.dae; ++i)
+    if (is_position_state(s, i)) position_roots.push_back(s.state_derivative[i]);
+  s.for_position_rates = needed_by(position_roots);
   s.for_outputs = needed_by(output_roots);
   s.for_drawings = needed_by(drawing_roots);
   s.for_jacobian = needed_by(s.jacobian);
@@ -94,7 +98,7 @@ void slice(ReducedSystem& s) {
   s.for_tangents = needed_by(tangent_roots);
   s.for_energy = needed_by(energy_roots);
   s.for_power = needed_by(power_roots);
-  const std::vector<std::vector<int>*> slices = {&s.for_derivative,  &s.for_outputs,  &s.for_jacobian,
+  const std::vector<std::vector<int>*> slices = {&s.for_derivative,  &s.for_position_rates, &s.for_outputs,  &s.for_jacobian,
                                                  &s.for_constraints, &s.for_constraint_jacobian,
                                                  &s.for_events,      &s.for_contacts, &s.for_tangents, &s.for_drawings,
                                                  &s.for_energy,      &s.for_power};

@@ -144,6 +144,7 @@ void add_counts(SolverStats& st, const SolverStats& before) {
   add(st.steps, before.steps);
   add(st.rhs_evals, before.rhs_evals);
   add(st.fd_jac_evals, before.fd_jac_evals);
+  add(st.position_evals, before.position_evals);
   add(st.jac_evals, before.jac_evals);
   add(st.nonlin_iters, before.nonlin_iters);
   add(st.nonlin_conv_fails, before.nonlin_conv_fails);

@@ -64,6 +64,22 @@ int GuardedModel::derivative(double t, const double* y, double* ydot, InputCheck
   return 0;
 }
 
+int GuardedModel::position_rates(double t, const double* y, double* ydot) {
+  if (!model_.has_position_rates()) return derivative(t, y, ydot, InputCheck::on_failure);
+  try {
+    model_.position_rates(t, y, ydot);
+  } catch (const std::exception& e) {
+    return record(t, BlameSite::exception, 0, 0.0, e.what());
+  } catch (...) {
+    return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
+  }
+  if (std::size_t i = first_non_finite(ydot); i < n_) {
+    if (std::size_t j = first_non_finite(y); j < n_) return record(t, BlameSite::state, j, y[j]);
+    return record(t, BlameSite::derivative, i, ydot[i]);
+  }
+  return 0;
+}
+
 int GuardedModel::power(double t, const double* y, const double* yp, double* rate) {
   try {
     model_.power(t, y, yp, rate);

@@ -78,6 +78,12 @@ class GuardedModel {
   /// The first time the power was not finite; NaN if it always was.
   double witness_broken_at() const { return witness_broken_at_; }
 
+  /// ydot's position entries (Model::position_rates, where the model gives
+  /// them; else the whole derivative); -1 after recording a blame. As
+  /// derivative() with InputCheck::on_failure: y is checked only to place
+  /// the blame.
+  int position_rates(double t, const double* y, double* ydot);
+
   /// The model's own Jacobian (row-major n x n); -1 after recording a blame.
   int jacobian(double t, const double* y, double* J);
   bool has_jacobian() const { return model_.has_jacobian() && !dae_ && !finite_differences_; }

@@ -25,6 +25,7 @@ struct SolverStats {
   double last_step = 0.0;
   long warnings = 0;  ///< solver warnings (e.g. "t + h = t"), kept out of stderr
   std::string first_warning;
+  long position_evals = -1;  ///< evaluations of the position rates alone (Model::position_rates)
 };
 
 /// Why an integrator gave up.

@@ -108,6 +108,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   std::string evals = fmt::format("{} {}", st.rhs_evals, residual ? "residual" : "RHS");
   if (st.fd_jac_evals >= 0)
     evals += fmt::format(" (+ {} for finite-difference Jacobians)", st.fd_jac_evals);
+  if (st.position_evals >= 0) evals += fmt::format(", {} of the position rates alone", st.position_evals);
   if (st.jac_evals >= 0) evals += fmt::format(", {} Jacobian evaluations", st.jac_evals);
   fmt::print(err, "  evaluations  {}\n", evals);
 

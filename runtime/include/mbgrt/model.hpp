@@ -345,6 +345,14 @@ class Model {
   /// model has no such solve.
   virtual const RankLossLog* rank_loss() const { return nullptr; }
 
+  /// POSITION RATES (ODE, optional): ydot[i] = f_i(t, y) for the unknowns
+  /// whose role is a position (unknown_role), the other entries of ydot left
+  /// as they are: what the symplectic Euler evaluates at the new velocities.
+  /// A model that provides it returns true from has_position_rates(); the
+  /// runtime otherwise evaluates the whole derivative.
+  virtual bool has_position_rates() const { return false; }
+  virtual void position_rates(double t, const double* y, double* ydot) { derivative(t, y, ydot); }
+
   virtual bool has_jacobian() const { return false; }
   virtual void jacobian(double t, const double* y, double* J) { (void)t; (void)y; (void)J; }
 

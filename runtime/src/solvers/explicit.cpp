@@ -109,17 +109,19 @@ class SymplecticEuler : Explicit {
     for (std::size_t i = 0; i < n_; ++i)
       (stages.model().model().unknown_role(i) == UnknownRole::velocity ? velocities_ : positions_).push_back(i);
   }
-  using Explicit::accept, Explicit::add_stats, Explicit::failure, Explicit::start;
+  using Explicit::accept, Explicit::failure, Explicit::start;
   std::string description(double h) const {
-    return fmt::format("semi-implicit (symplectic) Euler, fixed step {:g} s: {} velocities, then {} positions", h,
-                       velocities_.size(), positions_.size());
+    return fmt::format("semi-implicit (symplectic) Euler, fixed step {:g} s: {} velocities, then {} positions{}", h,
+                       velocities_.size(), positions_.size(),
+                       s_.model().model().has_position_rates() ? " from the model's position rates" : "");
   }
+  void add_stats(SolverStats& st) const { st.position_evals = s_.position_evaluations(); }
 
   bool trial(double t, const double* y, double h, double* out, double* energy) {
     if (!eval(t, y, 0)) return false;
     std::copy_n(y, n_, tmp_.begin());
     for (std::size_t i : velocities_) tmp_[i] += h * k_[0][i];
-    if (!s_.derivative(t + h, tmp_.data(), k_[1].data())) return false;
+    if (!s_.position_rates(t + h, tmp_.data(), k_[1].data())) return false;
     for (std::size_t i : velocities_) out[i] = tmp_[i];
     for (std::size_t i : positions_) out[i] = y[i] + h * k_[1][i];
     for (int k = 0; k < 2; ++k) energy[k] = h * power_[0][k];

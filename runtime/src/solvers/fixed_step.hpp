@@ -41,14 +41,23 @@ class Stages {
     ++evaluations_;
     return m_.derivative(t, y, ydot, GuardedModel::InputCheck::on_failure, rate) == 0;
   }
+  /// ydot's position entries at (t, y) (GuardedModel::position_rates), the
+  /// others left as they are; one derivative evaluation where the model has
+  /// no position rates of its own.
+  bool position_rates(double t, const double* y, double* ydot) {
+    if (!m_.model().has_position_rates()) ++evaluations_;
+    else ++position_evaluations_;
+    return m_.position_rates(t, y, ydot) == 0;
+  }
   /// rate[0..2): the power supplied and absorbed at (t, y), for the witness.
   void power(double t, const double* y, double* rate) { m_.power(t, y, nullptr, rate); }
 
   long evaluations() const { return evaluations_; }
+  long position_evaluations() const { return position_evaluations_; }
 
  private:
   GuardedModel& m_;
-  long evaluations_ = 0;
+  long evaluations_ = 0, position_evaluations_ = 0;
 };
 
 /// A failure's flag for the run report: "ROS2_SINGULAR" for ("ros2", "SINGULAR").

@@ -428,6 +428,59 @@ class ball_chain_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double shoulder_spin_rate_rate_1 = x[0];
+    const double shoulder_spin_rate_rate_2 = x[1];
+    const double shoulder_spin_rate_rate_3 = x[2];
+    const double shoulder_rot_q_1 = x[3];
+    const double shoulder_rot_q_2 = x[4];
+    const double shoulder_rot_q_3 = x[5];
+    const double shoulder_rot_q_4 = x[6];
+    const double elbow_spin_rate_rate_1 = x[7];
+    const double elbow_spin_rate_rate_2 = x[8];
+    const double elbow_spin_rate_rate_3 = x[9];
+    const double elbow_rot_q_1 = x[10];
+    const double elbow_rot_q_2 = x[11];
+    const double elbow_rot_q_3 = x[12];
+    const double elbow_rot_q_4 = x[13];
+    // ball_chain.mbg:26:7  MTF shoulder.rotrate: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse55 = 0.5 * shoulder_rot_q_2;
+    const double cse56 = 0.5 * shoulder_rot_q_3;
+    const double cse57 = 0.5 * shoulder_rot_q_4;
+    const double shoulder_rotrate_f2_1 = -cse55 * shoulder_spin_rate_rate_1 - cse56 * shoulder_spin_rate_rate_2 - cse57 * shoulder_spin_rate_rate_3;
+    const double cse58 = 0.5 * shoulder_rot_q_1;
+    const double shoulder_rotrate_f2_2 = cse58 * shoulder_spin_rate_rate_1 - cse57 * shoulder_spin_rate_rate_2 + cse56 * shoulder_spin_rate_rate_3;
+    const double shoulder_rotrate_f2_3 = cse57 * shoulder_spin_rate_rate_1 + cse58 * shoulder_spin_rate_rate_2 - cse55 * shoulder_spin_rate_rate_3;
+    const double shoulder_rotrate_f2_4 = -cse56 * shoulder_spin_rate_rate_1 + cse55 * shoulder_spin_rate_rate_2 + cse58 * shoulder_spin_rate_rate_3;
+    // ball_chain.mbg:27:7  MTF elbow.rotrate: f2 = T f1
+    const double cse59 = 0.5 * elbow_rot_q_2;
+    const double cse60 = 0.5 * elbow_rot_q_3;
+    const double cse61 = 0.5 * elbow_rot_q_4;
+    const double elbow_rotrate_f2_1 = -cse59 * elbow_spin_rate_rate_1 - cse60 * elbow_spin_rate_rate_2 - cse61 * elbow_spin_rate_rate_3;
+    const double cse62 = 0.5 * elbow_rot_q_1;
+    const double elbow_rotrate_f2_2 = cse62 * elbow_spin_rate_rate_1 - cse61 * elbow_spin_rate_rate_2 + cse60 * elbow_spin_rate_rate_3;
+    const double elbow_rotrate_f2_3 = cse61 * elbow_spin_rate_rate_1 + cse62 * elbow_spin_rate_rate_2 - cse59 * elbow_spin_rate_rate_3;
+    const double elbow_rotrate_f2_4 = -cse60 * elbow_spin_rate_rate_1 + cse59 * elbow_spin_rate_rate_2 + cse62 * elbow_spin_rate_rate_3;
+    // position derivatives
+    xdot[3] = shoulder_rotrate_f2_1;
+    xdot[4] = shoulder_rotrate_f2_2;
+    xdot[5] = shoulder_rotrate_f2_3;
+    xdot[6] = shoulder_rotrate_f2_4;
+    xdot[10] = elbow_rotrate_f2_1;
+    xdot[11] = elbow_rotrate_f2_2;
+    xdot[12] = elbow_rotrate_f2_3;
+    xdot[13] = elbow_rotrate_f2_4;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -444,27 +497,27 @@ class ball_chain_model final : public mbgrt::Model {
     const double elbow_rot_q_4 = x[13];
     // ball_chain.mbg:27:7  signal elbow.Rpc21
     // (cseN: a subexpression several equations below share)
-    const double cse55 = elbow_rot_q_1 * elbow_rot_q_1 + elbow_rot_q_2 * elbow_rot_q_2;
-    const double cse56 = elbow_rot_q_3 * elbow_rot_q_3;
-    const double cse57 = elbow_rot_q_4 * elbow_rot_q_4;
-    const double cse58 = cse55 + cse56 + cse57;
-    const double elbow_Rpc21 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_3 + elbow_rot_q_1 * elbow_rot_q_4) / cse58;
+    const double cse63 = elbow_rot_q_1 * elbow_rot_q_1 + elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse64 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse65 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse66 = cse63 + cse64 + cse65;
+    const double elbow_Rpc21 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_3 + elbow_rot_q_1 * elbow_rot_q_4) / cse66;
     // ball_chain.mbg:27:7  signal elbow.Rpc31
-    const double elbow_Rpc31 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_4 - elbow_rot_q_1 * elbow_rot_q_3) / cse58;
+    const double elbow_Rpc31 = 2.0 * (elbow_rot_q_2 * elbow_rot_q_4 - elbow_rot_q_1 * elbow_rot_q_3) / cse66;
     // ball_chain.mbg:27:7  signal elbow.Rpc11
-    const double elbow_Rpc11 = (cse55 - cse56 - cse57) / cse58;
+    const double elbow_Rpc11 = (cse63 - cse64 - cse65) / cse66;
     // ball_chain.mbg:20:6  1 lower.w: efforts in = efforts out [zero: a free joint direction's effort]
     const double elbow_reaction_t_e_3 = 0.0;
     // ball_chain.mbg:26:7  signal shoulder.Rpc11
-    const double cse59 = shoulder_rot_q_1 * shoulder_rot_q_1 + shoulder_rot_q_2 * shoulder_rot_q_2;
-    const double cse60 = shoulder_rot_q_3 * shoulder_rot_q_3;
-    const double cse61 = shoulder_rot_q_4 * shoulder_rot_q_4;
-    const double cse62 = cse59 + cse60 + cse61;
-    const double shoulder_Rpc11 = (cse59 - cse60 - cse61) / cse62;
+    const double cse67 = shoulder_rot_q_1 * shoulder_rot_q_1 + shoulder_rot_q_2 * shoulder_rot_q_2;
+    const double cse68 = shoulder_rot_q_3 * shoulder_rot_q_3;
+    const double cse69 = shoulder_rot_q_4 * shoulder_rot_q_4;
+    const double cse70 = cse67 + cse68 + cse69;
+    const double shoulder_Rpc11 = (cse67 - cse68 - cse69) / cse70;
     // ball_chain.mbg:26:7  signal shoulder.Rpc12
-    const double shoulder_Rpc12 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_3 - shoulder_rot_q_1 * shoulder_rot_q_4) / cse62;
+    const double shoulder_Rpc12 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_3 - shoulder_rot_q_1 * shoulder_rot_q_4) / cse70;
     // ball_chain.mbg:26:7  signal shoulder.Rpc13
-    const double shoulder_Rpc13 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_3) / cse62;
+    const double shoulder_Rpc13 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_3) / cse70;
     // ball_chain.mbg:26:7  signal upper.pose.r1
     const double upper_pose_r1 = 0.25 * shoulder_Rpc11;
     // ball_chain.mbg:27:7  signal lower.pose.R11
@@ -529,51 +582,51 @@ class ball_chain_model final : public mbgrt::Model {
     const double elbow_rot_q_4 = x[13];
     // ball_chain.mbg:26:7  signal shoulder.Rpc31
     // (cseN: a subexpression several equations below share)
-    const double cse63 = shoulder_rot_q_2 * shoulder_rot_q_4;
-    const double cse64 = shoulder_rot_q_1 * shoulder_rot_q_3;
-    const double cse65 = shoulder_rot_q_1 * shoulder_rot_q_1;
-    const double cse66 = shoulder_rot_q_2 * shoulder_rot_q_2;
-    const double cse67 = cse65 + cse66;
-    const double cse68 = shoulder_rot_q_3 * shoulder_rot_q_3;
-    const double cse69 = shoulder_rot_q_4 * shoulder_rot_q_4;
-    const double cse70 = cse67 + cse68 + cse69;
-    const double shoulder_Rpc31 = 2.0 * (cse63 - cse64) / cse70;
-    // ball_chain.mbg:27:7  signal elbow.Rpc21
-    const double cse71 = elbow_rot_q_2 * elbow_rot_q_3;
-    const double cse72 = elbow_rot_q_1 * elbow_rot_q_4;
-    const double cse73 = elbow_rot_q_1 * elbow_rot_q_1;
-    const double cse74 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse71 = shoulder_rot_q_2 * shoulder_rot_q_4;
+    const double cse72 = shoulder_rot_q_1 * shoulder_rot_q_3;
+    const double cse73 = shoulder_rot_q_1 * shoulder_rot_q_1;
+    const double cse74 = shoulder_rot_q_2 * shoulder_rot_q_2;
     const double cse75 = cse73 + cse74;
-    const double cse76 = elbow_rot_q_3 * elbow_rot_q_3;
-    const double cse77 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse76 = shoulder_rot_q_3 * shoulder_rot_q_3;
+    const double cse77 = shoulder_rot_q_4 * shoulder_rot_q_4;
     const double cse78 = cse75 + cse76 + cse77;
-    const double elbow_Rpc21 = 2.0 * (cse71 + cse72) / cse78;
+    const double shoulder_Rpc31 = 2.0 * (cse71 - cse72) / cse78;
+    // ball_chain.mbg:27:7  signal elbow.Rpc21
+    const double cse79 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse80 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse81 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse82 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse83 = cse81 + cse82;
+    const double cse84 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse85 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse86 = cse83 + cse84 + cse85;
+    const double elbow_Rpc21 = 2.0 * (cse79 + cse80) / cse86;
     // ball_chain.mbg:27:7  signal elbow.Rpc31
-    const double cse79 = elbow_rot_q_2 * elbow_rot_q_4;
-    const double cse80 = elbow_rot_q_1 * elbow_rot_q_3;
-    const double elbow_Rpc31 = 2.0 * (cse79 - cse80) / cse78;
+    const double cse87 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse88 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse87 - cse88) / cse86;
     // ball_chain.mbg:26:7  signal shoulder.Rpc32
-    const double cse81 = shoulder_rot_q_3 * shoulder_rot_q_4;
-    const double cse82 = shoulder_rot_q_1 * shoulder_rot_q_2;
-    const double shoulder_Rpc32 = 2.0 * (cse81 + cse82) / cse70;
+    const double cse89 = shoulder_rot_q_3 * shoulder_rot_q_4;
+    const double cse90 = shoulder_rot_q_1 * shoulder_rot_q_2;
+    const double shoulder_Rpc32 = 2.0 * (cse89 + cse90) / cse78;
     // ball_chain.mbg:27:7  signal elbow.Rpc22
-    const double elbow_Rpc22 = (cse73 + cse76 - cse74 - cse77) / cse78;
+    const double elbow_Rpc22 = (cse81 + cse84 - cse82 - cse85) / cse86;
     // ball_chain.mbg:27:7  signal elbow.Rpc32
-    const double cse83 = elbow_rot_q_3 * elbow_rot_q_4;
-    const double cse84 = elbow_rot_q_1 * elbow_rot_q_2;
-    const double elbow_Rpc32 = 2.0 * (cse83 + cse84) / cse78;
+    const double cse91 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse92 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse91 + cse92) / cse86;
     // ball_chain.mbg:26:7  signal shoulder.Rpc33
-    const double shoulder_Rpc33 = (cse65 + cse69 - cse66 - cse68) / cse70;
+    const double shoulder_Rpc33 = (cse73 + cse77 - cse74 - cse76) / cse78;
     // ball_chain.mbg:27:7  signal elbow.Rpc23
-    const double elbow_Rpc23 = 2.0 * (cse83 - cse84) / cse78;
+    const double elbow_Rpc23 = 2.0 * (cse91 - cse92) / cse86;
     // ball_chain.mbg:27:7  signal elbow.Rpc33
-    const double elbow_Rpc33 = (cse73 + cse77 - cse74 - cse76) / cse78;
+    const double elbow_Rpc33 = (cse81 + cse85 - cse82 - cse84) / cse86;
     // ball_chain.mbg:27:7  signal elbow.Rpc11
-    const double elbow_Rpc11 = (cse75 - cse76 - cse77) / cse78;
+    const double elbow_Rpc11 = (cse83 - cse84 - cse85) / cse86;
     // ball_chain.mbg:27:7  signal elbow.Rpc13
-    const double elbow_Rpc13 = 2.0 * (cse79 + cse80) / cse78;
+    const double elbow_Rpc13 = 2.0 * (cse87 + cse88) / cse86;
     // ball_chain.mbg:27:7  signal elbow.Rpc12
-    const double elbow_Rpc12 = 2.0 * (cse71 - cse72) / cse78;
+    const double elbow_Rpc12 = 2.0 * (cse79 - cse80) / cse86;
     // ball_chain.mbg:27:7  signal lower.pose.R33
     const double lower_pose_R33 = shoulder_Rpc31 * elbow_Rpc13 + shoulder_Rpc32 * elbow_Rpc23 + shoulder_Rpc33 * elbow_Rpc33;
     // ball_chain.mbg:27:7  signal lower.pose.R32
@@ -581,19 +634,19 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:27:7  signal lower.pose.R31
     const double lower_pose_R31 = shoulder_Rpc31 * elbow_Rpc11 + shoulder_Rpc32 * elbow_Rpc21 + shoulder_Rpc33 * elbow_Rpc31;
     // ball_chain.mbg:26:7  signal shoulder.Rpc11
-    const double shoulder_Rpc11 = (cse67 - cse68 - cse69) / cse70;
+    const double shoulder_Rpc11 = (cse75 - cse76 - cse77) / cse78;
     // ball_chain.mbg:26:7  signal shoulder.Rpc12
-    const double cse85 = shoulder_rot_q_2 * shoulder_rot_q_3;
-    const double cse86 = shoulder_rot_q_1 * shoulder_rot_q_4;
-    const double shoulder_Rpc12 = 2.0 * (cse85 - cse86) / cse70;
+    const double cse93 = shoulder_rot_q_2 * shoulder_rot_q_3;
+    const double cse94 = shoulder_rot_q_1 * shoulder_rot_q_4;
+    const double shoulder_Rpc12 = 2.0 * (cse93 - cse94) / cse78;
     // ball_chain.mbg:26:7  signal shoulder.Rpc13
-    const double shoulder_Rpc13 = 2.0 * (cse63 + cse64) / cse70;
+    const double shoulder_Rpc13 = 2.0 * (cse71 + cse72) / cse78;
     // ball_chain.mbg:26:7  signal shoulder.Rpc21
-    const double shoulder_Rpc21 = 2.0 * (cse85 + cse86) / cse70;
+    const double shoulder_Rpc21 = 2.0 * (cse93 + cse94) / cse78;
     // ball_chain.mbg:26:7  signal shoulder.Rpc22
-    const double shoulder_Rpc22 = (cse65 + cse68 - cse66 - cse69) / cse70;
+    const double shoulder_Rpc22 = (cse73 + cse76 - cse74 - cse77) / cse78;
     // ball_chain.mbg:26:7  signal shoulder.Rpc23
-    const double shoulder_Rpc23 = 2.0 * (cse81 - cse82) / cse70;
+    const double shoulder_Rpc23 = 2.0 * (cse89 - cse90) / cse78;
     // ball_chain.mbg:26:7  signal upper.pose.r1
     const double upper_pose_r1 = 0.25 * shoulder_Rpc11;
     // ball_chain.mbg:26:7  signal upper.pose.r2
@@ -680,43 +733,43 @@ class ball_chain_model final : public mbgrt::Model {
     const double elbow_m4_f1_3 = shoulder_m2_f2_3 + elbow_m3_f2_3;
     // ball_chain.mbg:27:7  signal elbow.Rpc21
     // (cseN: a subexpression several equations below share)
-    const double cse87 = elbow_rot_q_2 * elbow_rot_q_3;
-    const double cse88 = elbow_rot_q_1 * elbow_rot_q_4;
-    const double cse89 = elbow_rot_q_1 * elbow_rot_q_1;
-    const double cse90 = elbow_rot_q_2 * elbow_rot_q_2;
-    const double cse91 = cse89 + cse90;
-    const double cse92 = elbow_rot_q_3 * elbow_rot_q_3;
-    const double cse93 = elbow_rot_q_4 * elbow_rot_q_4;
-    const double cse94 = cse91 + cse92 + cse93;
-    const double elbow_Rpc21 = 2.0 * (cse87 + cse88) / cse94;
+    const double cse95 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse96 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse97 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse98 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse99 = cse97 + cse98;
+    const double cse100 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse101 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse102 = cse99 + cse100 + cse101;
+    const double elbow_Rpc21 = 2.0 * (cse95 + cse96) / cse102;
     // ball_chain.mbg:27:7  signal elbow.Rpc31
-    const double cse95 = elbow_rot_q_2 * elbow_rot_q_4;
-    const double cse96 = elbow_rot_q_1 * elbow_rot_q_3;
-    const double elbow_Rpc31 = 2.0 * (cse95 - cse96) / cse94;
+    const double cse103 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse104 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse103 - cse104) / cse102;
     // ball_chain.mbg:27:7  signal elbow.Rpc22
-    const double elbow_Rpc22 = (cse89 + cse92 - cse90 - cse93) / cse94;
+    const double elbow_Rpc22 = (cse97 + cse100 - cse98 - cse101) / cse102;
     // ball_chain.mbg:27:7  signal elbow.Rpc32
-    const double cse97 = elbow_rot_q_3 * elbow_rot_q_4;
-    const double cse98 = elbow_rot_q_1 * elbow_rot_q_2;
-    const double elbow_Rpc32 = 2.0 * (cse97 + cse98) / cse94;
+    const double cse105 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse106 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse105 + cse106) / cse102;
     // ball_chain.mbg:27:7  signal elbow.Rpc23
-    const double elbow_Rpc23 = 2.0 * (cse97 - cse98) / cse94;
+    const double elbow_Rpc23 = 2.0 * (cse105 - cse106) / cse102;
     // ball_chain.mbg:27:7  signal elbow.Rpc33
-    const double elbow_Rpc33 = (cse89 + cse93 - cse90 - cse92) / cse94;
+    const double elbow_Rpc33 = (cse97 + cse101 - cse98 - cse100) / cse102;
     // ball_chain.mbg:27:7  signal elbow.Rpc11
-    const double elbow_Rpc11 = (cse91 - cse92 - cse93) / cse94;
+    const double elbow_Rpc11 = (cse99 - cse100 - cse101) / cse102;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_1 = elbow_Rpc11 * shoulder_spin_rate_rate_1 + elbow_Rpc21 * shoulder_spin_rate_rate_2 + elbow_Rpc31 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
     const double elbow_reaction_t_f_1 = elbow_m1_f2_1 + elbow_spin_rate_rate_1;
     // ball_chain.mbg:27:7  signal elbow.Rpc13
-    const double elbow_Rpc13 = 2.0 * (cse95 + cse96) / cse94;
+    const double elbow_Rpc13 = 2.0 * (cse103 + cse104) / cse102;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_3 = elbow_Rpc13 * shoulder_spin_rate_rate_1 + elbow_Rpc23 * shoulder_spin_rate_rate_2 + elbow_Rpc33 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
     const double elbow_reaction_t_f_3 = elbow_m1_f2_3 + elbow_spin_rate_rate_3;
     // ball_chain.mbg:27:7  signal elbow.Rpc12
-    const double elbow_Rpc12 = 2.0 * (cse87 - cse88) / cse94;
+    const double elbow_Rpc12 = 2.0 * (cse95 - cse96) / cse102;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_2 = elbow_Rpc12 * shoulder_spin_rate_rate_1 + elbow_Rpc22 * shoulder_spin_rate_rate_2 + elbow_Rpc32 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
@@ -764,12 +817,12 @@ class ball_chain_model final : public mbgrt::Model {
     const double elbow_rot_q_4 = x[13];
     // ball_chain.mbg:26:7  signal shoulder.Rpc31
     // (cseN: a subexpression several equations below share)
-    const double cse99 = shoulder_rot_q_1 * shoulder_rot_q_1;
-    const double cse100 = shoulder_rot_q_2 * shoulder_rot_q_2;
-    const double cse101 = shoulder_rot_q_3 * shoulder_rot_q_3;
-    const double cse102 = shoulder_rot_q_4 * shoulder_rot_q_4;
-    const double cse103 = cse99 + cse100 + cse101 + cse102;
-    const double shoulder_Rpc31 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 - shoulder_rot_q_1 * shoulder_rot_q_3) / cse103;
+    const double cse107 = shoulder_rot_q_1 * shoulder_rot_q_1;
+    const double cse108 = shoulder_rot_q_2 * shoulder_rot_q_2;
+    const double cse109 = shoulder_rot_q_3 * shoulder_rot_q_3;
+    const double cse110 = shoulder_rot_q_4 * shoulder_rot_q_4;
+    const double cse111 = cse107 + cse108 + cse109 + cse110;
+    const double shoulder_Rpc31 = 2.0 * (shoulder_rot_q_2 * shoulder_rot_q_4 - shoulder_rot_q_1 * shoulder_rot_q_3) / cse111;
     // ball_chain.mbg:26:7  MTF shoulder.m2: f2 = T f1
     const double shoulder_m2_f2_2 = 0.25 * shoulder_spin_rate_rate_3;
     const double shoulder_m2_f2_3 = -0.25 * shoulder_spin_rate_rate_2;
@@ -782,52 +835,52 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:27:7  0 elbow.vpa: flows in = flows out
     const double elbow_m4_f1_3 = shoulder_m2_f2_3 + elbow_m3_f2_3;
     // ball_chain.mbg:27:7  signal elbow.Rpc21
-    const double cse104 = elbow_rot_q_2 * elbow_rot_q_3;
-    const double cse105 = elbow_rot_q_1 * elbow_rot_q_4;
-    const double cse106 = elbow_rot_q_1 * elbow_rot_q_1;
-    const double cse107 = elbow_rot_q_2 * elbow_rot_q_2;
-    const double cse108 = cse106 + cse107;
-    const double cse109 = elbow_rot_q_3 * elbow_rot_q_3;
-    const double cse110 = elbow_rot_q_4 * elbow_rot_q_4;
-    const double cse111 = cse108 + cse109 + cse110;
-    const double elbow_Rpc21 = 2.0 * (cse104 + cse105) / cse111;
+    const double cse112 = elbow_rot_q_2 * elbow_rot_q_3;
+    const double cse113 = elbow_rot_q_1 * elbow_rot_q_4;
+    const double cse114 = elbow_rot_q_1 * elbow_rot_q_1;
+    const double cse115 = elbow_rot_q_2 * elbow_rot_q_2;
+    const double cse116 = cse114 + cse115;
+    const double cse117 = elbow_rot_q_3 * elbow_rot_q_3;
+    const double cse118 = elbow_rot_q_4 * elbow_rot_q_4;
+    const double cse119 = cse116 + cse117 + cse118;
+    const double elbow_Rpc21 = 2.0 * (cse112 + cse113) / cse119;
     // ball_chain.mbg:27:7  signal elbow.Rpc31
-    const double cse112 = elbow_rot_q_2 * elbow_rot_q_4;
-    const double cse113 = elbow_rot_q_1 * elbow_rot_q_3;
-    const double elbow_Rpc31 = 2.0 * (cse112 - cse113) / cse111;
+    const double cse120 = elbow_rot_q_2 * elbow_rot_q_4;
+    const double cse121 = elbow_rot_q_1 * elbow_rot_q_3;
+    const double elbow_Rpc31 = 2.0 * (cse120 - cse121) / cse119;
     // ball_chain.mbg:13:6  I upper.J: p = I f (derivative causality)
     const double upper_J_p_1 = 0.0001 * shoulder_spin_rate_rate_1;
     const double upper_J_p_2 = 0.02 * shoulder_spin_rate_rate_2;
     // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
     const double upper_ejs_e_3 = shoulder_spin_rate_rate_1 * upper_J_p_2 - shoulder_spin_rate_rate_2 * upper_J_p_1;
     // ball_chain.mbg:26:7  signal shoulder.Rpc32
-    const double shoulder_Rpc32 = 2.0 * (shoulder_rot_q_3 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_2) / cse103;
+    const double shoulder_Rpc32 = 2.0 * (shoulder_rot_q_3 * shoulder_rot_q_4 + shoulder_rot_q_1 * shoulder_rot_q_2) / cse111;
     // ball_chain.mbg:13:6  Se upper.weight: e = value
     const double upper_weight_e_2 = -9.81 * shoulder_Rpc32;
     // ball_chain.mbg:13:6  R upper.ejs_v: e = law(f)
     const double upper_ejs_v_e_2 = -shoulder_spin_rate_rate_1 * shoulder_m2_f2_3;
     // ball_chain.mbg:27:7  signal elbow.Rpc22
-    const double elbow_Rpc22 = (cse106 + cse109 - cse107 - cse110) / cse111;
+    const double elbow_Rpc22 = (cse114 + cse117 - cse115 - cse118) / cse119;
     // ball_chain.mbg:27:7  signal elbow.Rpc32
-    const double cse114 = elbow_rot_q_3 * elbow_rot_q_4;
-    const double cse115 = elbow_rot_q_1 * elbow_rot_q_2;
-    const double elbow_Rpc32 = 2.0 * (cse114 + cse115) / cse111;
+    const double cse122 = elbow_rot_q_3 * elbow_rot_q_4;
+    const double cse123 = elbow_rot_q_1 * elbow_rot_q_2;
+    const double elbow_Rpc32 = 2.0 * (cse122 + cse123) / cse119;
     // ball_chain.mbg:13:6  I upper.J: p = I f (derivative causality)
     const double upper_J_p_3 = 0.02 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
     const double upper_ejs_e_2 = shoulder_spin_rate_rate_3 * upper_J_p_1 - shoulder_spin_rate_rate_1 * upper_J_p_3;
     // ball_chain.mbg:26:7  signal shoulder.Rpc33
-    const double shoulder_Rpc33 = (cse99 + cse102 - cse100 - cse101) / cse103;
+    const double shoulder_Rpc33 = (cse107 + cse110 - cse108 - cse109) / cse111;
     // ball_chain.mbg:13:6  Se upper.weight: e = value
     const double upper_weight_e_3 = -9.81 * shoulder_Rpc33;
     // ball_chain.mbg:13:6  R upper.ejs_v: e = law(f)
     const double upper_ejs_v_e_3 = shoulder_spin_rate_rate_1 * shoulder_m2_f2_2;
     // ball_chain.mbg:27:7  signal elbow.Rpc23
-    const double elbow_Rpc23 = 2.0 * (cse114 - cse115) / cse111;
+    const double elbow_Rpc23 = 2.0 * (cse122 - cse123) / cse119;
     // ball_chain.mbg:27:7  signal elbow.Rpc33
-    const double elbow_Rpc33 = (cse106 + cse110 - cse107 - cse109) / cse111;
+    const double elbow_Rpc33 = (cse114 + cse118 - cse115 - cse117) / cse119;
     // ball_chain.mbg:27:7  signal elbow.Rpc11
-    const double elbow_Rpc11 = (cse108 - cse109 - cse110) / cse111;
+    const double elbow_Rpc11 = (cse116 - cse117 - cse118) / cse119;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_1 = elbow_Rpc11 * shoulder_spin_rate_rate_1 + elbow_Rpc21 * shoulder_spin_rate_rate_2 + elbow_Rpc31 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
@@ -835,7 +888,7 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:20:6  I lower.J: p = I f (derivative causality)
     const double lower_J_p_1 = 0.0001 * elbow_reaction_t_f_1;
     // ball_chain.mbg:27:7  signal elbow.Rpc13
-    const double elbow_Rpc13 = 2.0 * (cse112 + cse113) / cse111;
+    const double elbow_Rpc13 = 2.0 * (cse120 + cse121) / cse119;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_3 = elbow_Rpc13 * shoulder_spin_rate_rate_1 + elbow_Rpc23 * shoulder_spin_rate_rate_2 + elbow_Rpc33 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out
@@ -847,7 +900,7 @@ class ball_chain_model final : public mbgrt::Model {
     // ball_chain.mbg:13:6  R upper.ejs: e = law(f)
     const double upper_ejs_e_1 = shoulder_spin_rate_rate_2 * upper_J_p_3 - shoulder_spin_rate_rate_3 * upper_J_p_2;
     // ball_chain.mbg:27:7  signal elbow.Rpc12
-    const double elbow_Rpc12 = 2.0 * (cse104 - cse105) / cse111;
+    const double elbow_Rpc12 = 2.0 * (cse112 - cse113) / cse119;
     // ball_chain.mbg:27:7  MTF elbow.m1: f2 = T f1
     const double elbow_m1_f2_2 = elbow_Rpc12 * shoulder_spin_rate_rate_1 + elbow_Rpc22 * shoulder_spin_rate_rate_2 + elbow_Rpc32 * shoulder_spin_rate_rate_3;
     // ball_chain.mbg:27:7  0 elbow.wsum: flows in = flows out

@@ -368,6 +368,107 @@ class beam_centre_frame_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double rod_M_p_1 = x[0];
+    const double rod_M_p_2 = x[1];
+    const double rod_M_p_3 = x[2];
+    const double rod_M_p_4 = x[3];
+    const double rod_M_p_5 = x[4];
+    const double rod_M_p_6 = x[5];
+    const double rod_M_p_7 = x[6];
+    const double rod_M_p_8 = x[7];
+    const double rod_q_q_1 = x[11];
+    const double rod_q_q_2 = x[12];
+    const double rod_q_q_3 = x[13];
+    const double rod_q_q_4 = x[14];
+    const double rod_eta_q_1 = x[15];
+    const double rod_eta_q_2 = x[16];
+    // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
+    // (cseN: a subexpression several equations below share)
+    const double cse72 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse73 = -cse72;
+    const double cse74 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse75 = 42.200327390662835 * rod_eta_q_1;
+    const double cse76 = 42.200327390662835 * rod_eta_q_2;
+    const double cse77 = 0.5 * (cse74 * rod_eta_q_1 - cse75 * rod_eta_q_2 - cse76 * rod_eta_q_1);
+    const double cse78 = -cse77;
+    const double cse79 = 12.221211925254192 * rod_eta_q_1 * rod_eta_q_1 - 7.666334958622971e-15 * rod_eta_q_1 * rod_eta_q_2 - 7.666334958622971e-15 * rod_eta_q_2 * rod_eta_q_1 + 52.8806874173523 * rod_eta_q_2 * rod_eta_q_2;
+    const double cse80 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse81 = 15.042353071526472 * rod_eta_q_1 * rod_eta_q_1 - 8.898424505544521e-15 * rod_eta_q_1 * rod_eta_q_2 - 8.898424505544521e-15 * rod_eta_q_2 * rod_eta_q_1 + 79.50226053985593 * rod_eta_q_2 * rod_eta_q_2;
+    double blk1_a[9] = {
+        -4.932300466135975, cse73, cse78,
+        cse73, -(0.00024661502330679876 + cse79), cse80,
+        cse78, cse80, -(1.6442234628903116 - cse81),
+    };
+    double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
+    mbgrt::solve_linear(3, blk1_a, blk1_x);
+    const double rod_M_f_3 = blk1_x[0];
+    const double rod_M_f_4 = blk1_x[1];
+    const double rod_M_f_5 = blk1_x[2];
+    // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
+    const double cse82 = cse74 - cse76;
+    const double cse83 = -cse75;
+    double blk2_a[25] = {
+        -4.932300466135975, 0.0, cse72, cse82, cse83,
+        0.0, -4.932300466135975, cse77, -5.995923730955276, 2.1903814167494206e-15,
+        cse72, cse77, -(1.6442234628903116 + (cse79 - cse81)), -9.582918698278714e-16, 8.87873585802905,
+        cse82, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse83, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+    };
+    double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
+    mbgrt::solve_linear(5, blk2_a, blk2_x);
+    const double rod_M_f_1 = blk2_x[0];
+    const double rod_M_f_2 = blk2_x[1];
+    const double rod_M_f_6 = blk2_x[2];
+    const double rod_M_f_7 = blk2_x[3];
+    const double rod_M_f_8 = blk2_x[4];
+    // beam_centre_frame.mbg:5:6  MTF rod.sv: f2 = T f1
+    const double cse84 = rod_q_q_1 * rod_q_q_1;
+    const double cse85 = rod_q_q_2 * rod_q_q_2;
+    const double cse86 = cse84 + cse85;
+    const double cse87 = rod_q_q_3 * rod_q_q_3;
+    const double cse88 = rod_q_q_4 * rod_q_q_4;
+    const double cse89 = cse86 + cse87 + cse88;
+    const double cse90 = rod_q_q_2 * rod_q_q_3;
+    const double cse91 = rod_q_q_1 * rod_q_q_4;
+    const double cse92 = rod_q_q_2 * rod_q_q_4;
+    const double cse93 = rod_q_q_1 * rod_q_q_3;
+    const double rod_sv_f2_1 = (cse86 - cse87 - cse88) / cse89 * rod_M_f_1 + 2.0 * (cse90 - cse91) / cse89 * rod_M_f_2 + 2.0 * (cse92 + cse93) / cse89 * rod_M_f_3;
+    const double cse94 = rod_q_q_3 * rod_q_q_4;
+    const double cse95 = rod_q_q_1 * rod_q_q_2;
+    const double rod_sv_f2_2 = 2.0 * (cse90 + cse91) / cse89 * rod_M_f_1 + (cse84 + cse87 - cse85 - cse88) / cse89 * rod_M_f_2 + 2.0 * (cse94 - cse95) / cse89 * rod_M_f_3;
+    const double rod_sv_f2_3 = 2.0 * (cse92 - cse93) / cse89 * rod_M_f_1 + 2.0 * (cse94 + cse95) / cse89 * rod_M_f_2 + (cse84 + cse88 - cse85 - cse87) / cse89 * rod_M_f_3;
+    // beam_centre_frame.mbg:5:6  MTF rod.qrate: f2 = T f1
+    const double cse96 = 0.5 * rod_q_q_2;
+    const double cse97 = 0.5 * rod_q_q_3;
+    const double cse98 = 0.5 * rod_q_q_4;
+    const double rod_q_f2_1 = -cse96 * rod_M_f_4 - cse97 * rod_M_f_5 - cse98 * rod_M_f_6;
+    const double cse99 = 0.5 * rod_q_q_1;
+    const double rod_q_f2_2 = cse99 * rod_M_f_4 - cse98 * rod_M_f_5 + cse97 * rod_M_f_6;
+    const double rod_q_f2_3 = cse98 * rod_M_f_4 + cse99 * rod_M_f_5 - cse96 * rod_M_f_6;
+    const double rod_q_f2_4 = -cse97 * rod_M_f_4 + cse96 * rod_M_f_5 + cse99 * rod_M_f_6;
+    // position derivatives
+    xdot[8] = rod_sv_f2_1;
+    xdot[9] = rod_sv_f2_2;
+    xdot[10] = rod_sv_f2_3;
+    xdot[11] = rod_q_f2_1;
+    xdot[12] = rod_q_f2_2;
+    xdot[13] = rod_q_f2_3;
+    xdot[14] = rod_q_f2_4;
+    xdot[15] = rod_M_f_7;
+    xdot[16] = rod_M_f_8;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -385,19 +486,19 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_eta_q_2 = x[16];
     // outputs, in declaration order
     // (cseN: a subexpression several equations below share)
-    const double cse72 = rod_q_q_1 * rod_q_q_1;
-    const double cse73 = rod_q_q_2 * rod_q_q_2;
-    const double cse74 = cse72 + cse73;
-    const double cse75 = rod_q_q_3 * rod_q_q_3;
-    const double cse76 = rod_q_q_4 * rod_q_q_4;
-    const double cse77 = cse74 + cse75 + cse76;
-    const double cse78 = 1.0 - 0.5 * (12.370205669468392 * rod_eta_q_1 * rod_eta_q_1 - 30.46989029379667 * rod_eta_q_1 * rod_eta_q_2 - 30.46989029379667 * rod_eta_q_2 * rod_eta_q_1 + 77.99650448625702 * rod_eta_q_2 * rod_eta_q_2);
-    const double cse79 = rod_q_q_2 * rod_q_q_3;
-    const double cse80 = rod_q_q_1 * rod_q_q_4;
-    const double cse81 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;
-    out[0] = rod_r_q_1 + ((cse74 - cse75 - cse76) / cse77 * cse78 + 2.0 * (cse79 - cse80) / cse77 * cse81);  // right_end[1] [m] (beam_centre_frame.mbg:14:8)
-    out[1] = rod_r_q_2 + (2.0 * (cse79 + cse80) / cse77 * cse78 + (cse72 + cse75 - cse73 - cse76) / cse77 * cse81);  // right_end[2] [m] (beam_centre_frame.mbg:14:8)
-    out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse77 * cse78 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse77 * cse81);  // right_end[3] [m] (beam_centre_frame.mbg:14:8)
+    const double cse100 = rod_q_q_1 * rod_q_q_1;
+    const double cse101 = rod_q_q_2 * rod_q_q_2;
+    const double cse102 = cse100 + cse101;
+    const double cse103 = rod_q_q_3 * rod_q_q_3;
+    const double cse104 = rod_q_q_4 * rod_q_q_4;
+    const double cse105 = cse102 + cse103 + cse104;
+    const double cse106 = 1.0 - 0.5 * (12.370205669468392 * rod_eta_q_1 * rod_eta_q_1 - 30.46989029379667 * rod_eta_q_1 * rod_eta_q_2 - 30.46989029379667 * rod_eta_q_2 * rod_eta_q_1 + 77.99650448625702 * rod_eta_q_2 * rod_eta_q_2);
+    const double cse107 = rod_q_q_2 * rod_q_q_3;
+    const double cse108 = rod_q_q_1 * rod_q_q_4;
+    const double cse109 = 3.215644458832525 * rod_eta_q_1 - 7.400361911640448 * rod_eta_q_2;
+    out[0] = rod_r_q_1 + ((cse102 - cse103 - cse104) / cse105 * cse106 + 2.0 * (cse107 - cse108) / cse105 * cse109);  // right_end[1] [m] (beam_centre_frame.mbg:14:8)
+    out[1] = rod_r_q_2 + (2.0 * (cse107 + cse108) / cse105 * cse106 + (cse100 + cse103 - cse101 - cse104) / cse105 * cse109);  // right_end[2] [m] (beam_centre_frame.mbg:14:8)
+    out[2] = rod_r_q_3 + (2.0 * (rod_q_q_2 * rod_q_q_4 - rod_q_q_1 * rod_q_q_3) / cse105 * cse106 + 2.0 * (rod_q_q_3 * rod_q_q_4 + rod_q_q_1 * rod_q_q_2) / cse105 * cse109);  // right_end[3] [m] (beam_centre_frame.mbg:14:8)
   }
 
   // DRAWN BODIES (--animate): how many.
@@ -554,27 +655,27 @@ class beam_centre_frame_model final : public mbgrt::Model {
     out[1] = rod_r_q_2;
     out[2] = rod_r_q_3;
     // (cseN: a subexpression several equations below share)
-    const double cse82 = rod_q_q_1 * rod_q_q_1;
-    const double cse83 = rod_q_q_2 * rod_q_q_2;
-    const double cse84 = cse82 + cse83;
-    const double cse85 = rod_q_q_3 * rod_q_q_3;
-    const double cse86 = rod_q_q_4 * rod_q_q_4;
-    const double cse87 = cse84 + cse85 + cse86;
-    out[3] = (cse84 - cse85 - cse86) / cse87;
-    const double cse88 = rod_q_q_2 * rod_q_q_3;
-    const double cse89 = rod_q_q_1 * rod_q_q_4;
-    out[4] = 2.0 * (cse88 - cse89) / cse87;
-    const double cse90 = rod_q_q_2 * rod_q_q_4;
-    const double cse91 = rod_q_q_1 * rod_q_q_3;
-    out[5] = 2.0 * (cse90 + cse91) / cse87;
-    out[6] = 2.0 * (cse88 + cse89) / cse87;
-    out[7] = (cse82 + cse85 - cse83 - cse86) / cse87;
-    const double cse92 = rod_q_q_3 * rod_q_q_4;
-    const double cse93 = rod_q_q_1 * rod_q_q_2;
-    out[8] = 2.0 * (cse92 - cse93) / cse87;
-    out[9] = 2.0 * (cse90 - cse91) / cse87;
-    out[10] = 2.0 * (cse92 + cse93) / cse87;
-    out[11] = (cse82 + cse86 - cse83 - cse85) / cse87;
+    const double cse110 = rod_q_q_1 * rod_q_q_1;
+    const double cse111 = rod_q_q_2 * rod_q_q_2;
+    const double cse112 = cse110 + cse111;
+    const double cse113 = rod_q_q_3 * rod_q_q_3;
+    const double cse114 = rod_q_q_4 * rod_q_q_4;
+    const double cse115 = cse112 + cse113 + cse114;
+    out[3] = (cse112 - cse113 - cse114) / cse115;
+    const double cse116 = rod_q_q_2 * rod_q_q_3;
+    const double cse117 = rod_q_q_1 * rod_q_q_4;
+    out[4] = 2.0 * (cse116 - cse117) / cse115;
+    const double cse118 = rod_q_q_2 * rod_q_q_4;
+    const double cse119 = rod_q_q_1 * rod_q_q_3;
+    out[5] = 2.0 * (cse118 + cse119) / cse115;
+    out[6] = 2.0 * (cse116 + cse117) / cse115;
+    out[7] = (cse110 + cse113 - cse111 - cse114) / cse115;
+    const double cse120 = rod_q_q_3 * rod_q_q_4;
+    const double cse121 = rod_q_q_1 * rod_q_q_2;
+    out[8] = 2.0 * (cse120 - cse121) / cse115;
+    out[9] = 2.0 * (cse118 - cse119) / cse115;
+    out[10] = 2.0 * (cse120 + cse121) / cse115;
+    out[11] = (cse110 + cse114 - cse111 - cse113) / cse115;
     out[12] = rod_eta_q_1;
     out[13] = rod_eta_q_2;
   }
@@ -609,20 +710,20 @@ class beam_centre_frame_model final : public mbgrt::Model {
     // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse94 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
-    const double cse95 = -cse94;
-    const double cse96 = 4.243863994952002e-15 * rod_eta_q_1;
-    const double cse97 = 42.200327390662835 * rod_eta_q_1;
-    const double cse98 = 42.200327390662835 * rod_eta_q_2;
-    const double cse99 = 0.5 * (cse96 * rod_eta_q_1 - cse97 * rod_eta_q_2 - cse98 * rod_eta_q_1);
-    const double cse100 = -cse99;
-    const double cse101 = 12.221211925254192 * rod_eta_q_1 * rod_eta_q_1 - 7.666334958622971e-15 * rod_eta_q_1 * rod_eta_q_2 - 7.666334958622971e-15 * rod_eta_q_2 * rod_eta_q_1 + 52.8806874173523 * rod_eta_q_2 * rod_eta_q_2;
-    const double cse102 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
-    const double cse103 = 15.042353071526472 * rod_eta_q_1 * rod_eta_q_1 - 8.898424505544521e-15 * rod_eta_q_1 * rod_eta_q_2 - 8.898424505544521e-15 * rod_eta_q_2 * rod_eta_q_1 + 79.50226053985593 * rod_eta_q_2 * rod_eta_q_2;
+    const double cse122 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse123 = -cse122;
+    const double cse124 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse125 = 42.200327390662835 * rod_eta_q_1;
+    const double cse126 = 42.200327390662835 * rod_eta_q_2;
+    const double cse127 = 0.5 * (cse124 * rod_eta_q_1 - cse125 * rod_eta_q_2 - cse126 * rod_eta_q_1);
+    const double cse128 = -cse127;
+    const double cse129 = 12.221211925254192 * rod_eta_q_1 * rod_eta_q_1 - 7.666334958622971e-15 * rod_eta_q_1 * rod_eta_q_2 - 7.666334958622971e-15 * rod_eta_q_2 * rod_eta_q_1 + 52.8806874173523 * rod_eta_q_2 * rod_eta_q_2;
+    const double cse130 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse131 = 15.042353071526472 * rod_eta_q_1 * rod_eta_q_1 - 8.898424505544521e-15 * rod_eta_q_1 * rod_eta_q_2 - 8.898424505544521e-15 * rod_eta_q_2 * rod_eta_q_1 + 79.50226053985593 * rod_eta_q_2 * rod_eta_q_2;
     double blk1_a[9] = {
-        -4.932300466135975, cse95, cse100,
-        cse95, -(0.00024661502330679876 + cse101), cse102,
-        cse100, cse102, -(1.6442234628903116 - cse103),
+        -4.932300466135975, cse123, cse128,
+        cse123, -(0.00024661502330679876 + cse129), cse130,
+        cse128, cse130, -(1.6442234628903116 - cse131),
     };
     double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
     mbgrt::solve_linear(3, blk1_a, blk1_x);
@@ -631,14 +732,14 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_M_f_5 = blk1_x[2];
     // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
-    const double cse104 = cse96 - cse98;
-    const double cse105 = -cse97;
+    const double cse132 = cse124 - cse126;
+    const double cse133 = -cse125;
     double blk2_a[25] = {
-        -4.932300466135975, 0.0, cse94, cse104, cse105,
-        0.0, -4.932300466135975, cse99, -5.995923730955276, 2.1903814167494206e-15,
-        cse94, cse99, -(1.6442234628903116 + (cse101 - cse103)), -9.582918698278714e-16, 8.87873585802905,
-        cse104, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
-        cse105, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+        -4.932300466135975, 0.0, cse122, cse132, cse133,
+        0.0, -4.932300466135975, cse127, -5.995923730955276, 2.1903814167494206e-15,
+        cse122, cse127, -(1.6442234628903116 + (cse129 - cse131)), -9.582918698278714e-16, 8.87873585802905,
+        cse132, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse133, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
     };
     double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
     mbgrt::solve_linear(5, blk2_a, blk2_x);
@@ -671,28 +772,28 @@ class beam_centre_frame_model final : public mbgrt::Model {
     // beam_centre_frame.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[3], rod.M.f[4], rod.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse106 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
-    const double cse107 = -cse106;
-    const double cse108 = 4.243863994952002e-15 * rod_eta_q_1;
-    const double cse109 = 42.200327390662835 * rod_eta_q_1;
-    const double cse110 = 42.200327390662835 * rod_eta_q_2;
-    const double cse111 = 0.5 * (cse108 * rod_eta_q_1 - cse109 * rod_eta_q_2 - cse110 * rod_eta_q_1);
-    const double cse112 = -cse111;
-    const double cse113 = 12.221211925254192 * rod_eta_q_1;
-    const double cse114 = 7.666334958622971e-15 * rod_eta_q_1;
-    const double cse115 = 7.666334958622971e-15 * rod_eta_q_2;
-    const double cse116 = 52.8806874173523 * rod_eta_q_2;
-    const double cse117 = cse113 * rod_eta_q_1 - cse114 * rod_eta_q_2 - cse115 * rod_eta_q_1 + cse116 * rod_eta_q_2;
-    const double cse118 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
-    const double cse119 = 15.042353071526472 * rod_eta_q_1;
-    const double cse120 = 8.898424505544521e-15 * rod_eta_q_1;
-    const double cse121 = 8.898424505544521e-15 * rod_eta_q_2;
-    const double cse122 = 79.50226053985593 * rod_eta_q_2;
-    const double cse123 = cse119 * rod_eta_q_1 - cse120 * rod_eta_q_2 - cse121 * rod_eta_q_1 + cse122 * rod_eta_q_2;
+    const double cse134 = 5.995923730955276 * rod_eta_q_1 - 2.1903814167494206e-15 * rod_eta_q_2;
+    const double cse135 = -cse134;
+    const double cse136 = 4.243863994952002e-15 * rod_eta_q_1;
+    const double cse137 = 42.200327390662835 * rod_eta_q_1;
+    const double cse138 = 42.200327390662835 * rod_eta_q_2;
+    const double cse139 = 0.5 * (cse136 * rod_eta_q_1 - cse137 * rod_eta_q_2 - cse138 * rod_eta_q_1);
+    const double cse140 = -cse139;
+    const double cse141 = 12.221211925254192 * rod_eta_q_1;
+    const double cse142 = 7.666334958622971e-15 * rod_eta_q_1;
+    const double cse143 = 7.666334958622971e-15 * rod_eta_q_2;
+    const double cse144 = 52.8806874173523 * rod_eta_q_2;
+    const double cse145 = cse141 * rod_eta_q_1 - cse142 * rod_eta_q_2 - cse143 * rod_eta_q_1 + cse144 * rod_eta_q_2;
+    const double cse146 = 9.582918698278714e-16 * rod_eta_q_1 - 8.87873585802905 * rod_eta_q_2;
+    const double cse147 = 15.042353071526472 * rod_eta_q_1;
+    const double cse148 = 8.898424505544521e-15 * rod_eta_q_1;
+    const double cse149 = 8.898424505544521e-15 * rod_eta_q_2;
+    const double cse150 = 79.50226053985593 * rod_eta_q_2;
+    const double cse151 = cse147 * rod_eta_q_1 - cse148 * rod_eta_q_2 - cse149 * rod_eta_q_1 + cse150 * rod_eta_q_2;
     double blk1_a[9] = {
-        -4.932300466135975, cse107, cse112,
-        cse107, -(0.00024661502330679876 + cse117), cse118,
-        cse112, cse118, -(1.6442234628903116 - cse123),
+        -4.932300466135975, cse135, cse140,
+        cse135, -(0.00024661502330679876 + cse145), cse146,
+        cse140, cse146, -(1.6442234628903116 - cse151),
     };
     double blk1_x[3] = {-rod_M_p_3, -rod_M_p_4, -rod_M_p_5};
     mbgrt::solve_linear(3, blk1_a, blk1_x);
@@ -701,14 +802,14 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_M_f_5 = blk1_x[2];
     // beam_centre_frame.mbg:5:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (rod.M.f[1], rod.M.f[2], rod.M.f[6], rod.M.f[7], rod.M.f[8])
-    const double cse124 = cse108 - cse110;
-    const double cse125 = -cse109;
+    const double cse152 = cse136 - cse138;
+    const double cse153 = -cse137;
     double blk2_a[25] = {
-        -4.932300466135975, 0.0, cse106, cse124, cse125,
-        0.0, -4.932300466135975, cse111, -5.995923730955276, 2.1903814167494206e-15,
-        cse106, cse111, -(1.6442234628903116 + (cse117 - cse123)), -9.582918698278714e-16, 8.87873585802905,
-        cse124, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
-        cse125, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
+        -4.932300466135975, 0.0, cse134, cse152, cse153,
+        0.0, -4.932300466135975, cse139, -5.995923730955276, 2.1903814167494206e-15,
+        cse134, cse139, -(1.6442234628903116 + (cse145 - cse151)), -9.582918698278714e-16, 8.87873585802905,
+        cse152, -5.995923730955276, -9.582918698278714e-16, -12.221211925254192, 7.666334958622971e-15,
+        cse153, 2.1903814167494206e-15, 8.87873585802905, 7.666334958622971e-15, -52.8806874173523,
     };
     double blk2_x[5] = {-rod_M_p_1, -rod_M_p_2, -rod_M_p_6, -rod_M_p_7, -rod_M_p_8};
     mbgrt::solve_linear(5, blk2_a, blk2_x);
@@ -724,38 +825,38 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_ejs_e_4 = rod_M_f_5 * rod_M_p_6 - rod_M_f_6 * rod_M_p_5 + (rod_M_f_2 * rod_M_p_3 - rod_M_f_3 * rod_M_p_2);
     const double rod_ejs_e_5 = rod_M_f_6 * rod_M_p_4 - rod_M_f_4 * rod_M_p_6 + (rod_M_f_3 * rod_M_p_1 - rod_M_f_1 * rod_M_p_3);
     const double rod_ejs_e_6 = rod_M_f_4 * rod_M_p_5 - rod_M_f_5 * rod_M_p_4 + (rod_M_f_1 * rod_M_p_2 - rod_M_f_2 * rod_M_p_1);
-    const double cse126 = 4.243863994952002e-15 * rod_M_f_7;
-    const double cse127 = 42.200327390662835 * rod_M_f_8;
-    const double cse128 = 0.5 * (cse108 + cse108 - cse110 - cse110);
-    const double cse129 = cse113 + cse113 - cse115 - cse115;
-    const double cse130 = cse119 + cse119 - cse121 - cse121;
-    const double cse131 = cse129 - cse130;
-    const double cse132 = 42.200327390662835 * rod_M_f_1;
-    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - cse126 + cse127) - rod_M_f_2 * (cse128 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse128 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse129 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse128 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse130 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse128 * rod_M_f_2 + cse131 * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse132);
+    const double cse154 = 4.243863994952002e-15 * rod_M_f_7;
+    const double cse155 = 42.200327390662835 * rod_M_f_8;
+    const double cse156 = 0.5 * (cse136 + cse136 - cse138 - cse138);
+    const double cse157 = cse141 + cse141 - cse143 - cse143;
+    const double cse158 = cse147 + cse147 - cse149 - cse149;
+    const double cse159 = cse157 - cse158;
+    const double cse160 = 42.200327390662835 * rod_M_f_1;
+    const double rod_ejs_e_7 = -0.5 * (rod_M_f_1 * (-5.995923730955276 * rod_M_f_6 - cse154 + cse155) - rod_M_f_2 * (cse156 * rod_M_f_6) + rod_M_f_3 * (5.995923730955276 * rod_M_f_4 + cse156 * rod_M_f_5) + rod_M_f_4 * (5.995923730955276 * rod_M_f_3 + cse157 * rod_M_f_4 - 9.582918698278714e-16 * rod_M_f_5) + rod_M_f_5 * (cse156 * rod_M_f_3 - 9.582918698278714e-16 * rod_M_f_4 - cse158 * rod_M_f_5) + rod_M_f_6 * (-5.995923730955276 * rod_M_f_1 - cse156 * rod_M_f_2 + cse159 * rod_M_f_6) - rod_M_f_7 * (4.243863994952002e-15 * rod_M_f_1) + rod_M_f_8 * cse160);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_1 = 103199.76688612405 * rod_eta_q_1 - 1.0603392723672647e-10 * rod_eta_q_2;
     // beam_centre_frame.mbg:5:6  R rod.ejs: e = law(f)
-    const double cse133 = 42.200327390662835 * rod_M_f_7;
-    const double cse134 = 0.5 * (cse125 - cse109);
-    const double cse135 = -cse114 - cse114 + (cse116 + cse116);
-    const double cse136 = -cse120 - cse120 + (cse122 + cse122);
-    const double cse137 = cse135 - cse136;
-    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + cse133) - rod_M_f_2 * (cse134 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse134 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse135 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse134 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse136 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse134 * rod_M_f_2 + cse137 * rod_M_f_6) + rod_M_f_7 * cse132);
+    const double cse161 = 42.200327390662835 * rod_M_f_7;
+    const double cse162 = 0.5 * (cse153 - cse137);
+    const double cse163 = -cse142 - cse142 + (cse144 + cse144);
+    const double cse164 = -cse148 - cse148 + (cse150 + cse150);
+    const double cse165 = cse163 - cse164;
+    const double rod_ejs_e_8 = -0.5 * (rod_M_f_1 * (2.1903814167494206e-15 * rod_M_f_6 + cse161) - rod_M_f_2 * (cse162 * rod_M_f_6) + rod_M_f_3 * (-2.1903814167494206e-15 * rod_M_f_4 + cse162 * rod_M_f_5) + rod_M_f_4 * (-2.1903814167494206e-15 * rod_M_f_3 + cse163 * rod_M_f_4 + 8.87873585802905 * rod_M_f_5) + rod_M_f_5 * (cse162 * rod_M_f_3 + 8.87873585802905 * rod_M_f_4 - cse164 * rod_M_f_5) + rod_M_f_6 * (2.1903814167494206e-15 * rod_M_f_1 - cse162 * rod_M_f_2 + cse165 * rod_M_f_6) + rod_M_f_7 * cse160);
     // beam_centre_frame.mbg:5:6  C rod.eta: e = law(q)
     const double rod_eta_e_2 = -1.0603392723672647e-10 * rod_eta_q_1 + 784163.8973272434 * rod_eta_q_2;
     // the powers
     out[0] = 0.0;
-    const double cse138 = 5.995923730955276 * rod_M_f_7;
-    const double cse139 = 2.1903814167494206e-15 * rod_M_f_8;
-    const double cse140 = -cse138 + cse139;
-    const double cse141 = -cse126 + cse127;
-    const double cse142 = cse134 * rod_M_f_8;
-    const double cse143 = cse128 * rod_M_f_7;
-    const double cse144 = -cse142 - cse143;
-    const double cse145 = cse138 - cse139;
-    const double cse146 = cse142 + cse143;
-    const double cse147 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
-    out[1] = 0.5 * (cse140 * (rod_M_f_1 * rod_M_f_6) + cse141 * (rod_M_f_1 * rod_M_f_7) + cse133 * (rod_M_f_1 * rod_M_f_8) + cse144 * (rod_M_f_2 * rod_M_f_6) + cse145 * (rod_M_f_3 * rod_M_f_4) + cse146 * (rod_M_f_3 * rod_M_f_5) + cse145 * (rod_M_f_4 * rod_M_f_3) + (cse129 * rod_M_f_7 + cse135 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse147 * (rod_M_f_4 * rod_M_f_5) + cse146 * (rod_M_f_5 * rod_M_f_3) + cse147 * (rod_M_f_5 * rod_M_f_4) + (-cse130 * rod_M_f_7 - cse136 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse140 * (rod_M_f_6 * rod_M_f_1) + cse144 * (rod_M_f_6 * rod_M_f_2) + (cse131 * rod_M_f_7 + cse137 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse141 * (rod_M_f_7 * rod_M_f_1) + cse133 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
+    const double cse166 = 5.995923730955276 * rod_M_f_7;
+    const double cse167 = 2.1903814167494206e-15 * rod_M_f_8;
+    const double cse168 = -cse166 + cse167;
+    const double cse169 = -cse154 + cse155;
+    const double cse170 = cse162 * rod_M_f_8;
+    const double cse171 = cse156 * rod_M_f_7;
+    const double cse172 = -cse170 - cse171;
+    const double cse173 = cse166 - cse167;
+    const double cse174 = cse170 + cse171;
+    const double cse175 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
+    out[1] = 0.5 * (cse168 * (rod_M_f_1 * rod_M_f_6) + cse169 * (rod_M_f_1 * rod_M_f_7) + cse161 * (rod_M_f_1 * rod_M_f_8) + cse172 * (rod_M_f_2 * rod_M_f_6) + cse173 * (rod_M_f_3 * rod_M_f_4) + cse174 * (rod_M_f_3 * rod_M_f_5) + cse173 * (rod_M_f_4 * rod_M_f_3) + (cse157 * rod_M_f_7 + cse163 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse175 * (rod_M_f_4 * rod_M_f_5) + cse174 * (rod_M_f_5 * rod_M_f_3) + cse175 * (rod_M_f_5 * rod_M_f_4) + (-cse158 * rod_M_f_7 - cse164 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse168 * (rod_M_f_6 * rod_M_f_1) + cse172 * (rod_M_f_6 * rod_M_f_2) + (cse159 * rod_M_f_7 + cse165 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse169 * (rod_M_f_7 * rod_M_f_1) + cse161 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -177,6 +177,22 @@ class beam_load_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double blade_eta_rate_rate_1 = x[0];
+    const double blade_eta_rate_rate_2 = x[1];
+    // position derivatives
+    xdot[2] = blade_eta_rate_rate_1;
+    xdot[3] = blade_eta_rate_rate_2;
+  }
+
   bool has_jacobian() const override {
     return true;
   }

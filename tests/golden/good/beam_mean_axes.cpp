@@ -366,11 +366,14 @@ class beam_mean_axes_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
-  // OUTPUT: the declared outputs at (t, y).
-  void outputs(double t, const double* x, const double* yp, double* out) override {
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
     (void)t;
     (void)x;
-    (void)yp;
     // states
     const double bar_M_p_1 = x[0];
     const double bar_M_p_2 = x[1];
@@ -380,6 +383,10 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_p_6 = x[5];
     const double bar_M_p_7 = x[6];
     const double bar_M_p_8 = x[7];
+    const double bar_q_q_1 = x[11];
+    const double bar_q_q_2 = x[12];
+    const double bar_q_q_3 = x[13];
+    const double bar_q_q_4 = x[14];
     const double bar_eta_q_1 = x[15];
     const double bar_eta_q_2 = x[16];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
@@ -421,6 +428,104 @@ class beam_mean_axes_model final : public mbgrt::Model {
         -0.6165375582669969, cse72, cse73,
         cse72, -0.6165375582669969, 1.1978648372848393e-16,
         cse73, 1.1978648372848393e-16, -0.6165375582669967,
+    };
+    double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
+    mbgrt::solve_linear(3, blk3_a, blk3_x);
+    const double bar_M_f_1 = blk3_x[0];
+    const double bar_M_f_7 = blk3_x[1];
+    const double bar_M_f_8 = blk3_x[2];
+    // beam_mean_axes.mbg:5:6  MTF bar.sv: f2 = T f1
+    const double cse74 = bar_q_q_1 * bar_q_q_1;
+    const double cse75 = bar_q_q_2 * bar_q_q_2;
+    const double cse76 = cse74 + cse75;
+    const double cse77 = bar_q_q_3 * bar_q_q_3;
+    const double cse78 = bar_q_q_4 * bar_q_q_4;
+    const double cse79 = cse76 + cse77 + cse78;
+    const double cse80 = bar_q_q_2 * bar_q_q_3;
+    const double cse81 = bar_q_q_1 * bar_q_q_4;
+    const double cse82 = bar_q_q_2 * bar_q_q_4;
+    const double cse83 = bar_q_q_1 * bar_q_q_3;
+    const double bar_sv_f2_1 = (cse76 - cse77 - cse78) / cse79 * bar_M_f_1 + 2.0 * (cse80 - cse81) / cse79 * bar_M_f_2 + 2.0 * (cse82 + cse83) / cse79 * bar_M_f_3;
+    const double cse84 = bar_q_q_3 * bar_q_q_4;
+    const double cse85 = bar_q_q_1 * bar_q_q_2;
+    const double bar_sv_f2_2 = 2.0 * (cse80 + cse81) / cse79 * bar_M_f_1 + (cse74 + cse77 - cse75 - cse78) / cse79 * bar_M_f_2 + 2.0 * (cse84 - cse85) / cse79 * bar_M_f_3;
+    const double bar_sv_f2_3 = 2.0 * (cse82 - cse83) / cse79 * bar_M_f_1 + 2.0 * (cse84 + cse85) / cse79 * bar_M_f_2 + (cse74 + cse78 - cse75 - cse77) / cse79 * bar_M_f_3;
+    // beam_mean_axes.mbg:5:6  MTF bar.qrate: f2 = T f1
+    const double cse86 = 0.5 * bar_q_q_2;
+    const double cse87 = 0.5 * bar_q_q_3;
+    const double cse88 = 0.5 * bar_q_q_4;
+    const double bar_q_f2_1 = -cse86 * bar_M_f_4 - cse87 * bar_M_f_5 - cse88 * bar_M_f_6;
+    const double cse89 = 0.5 * bar_q_q_1;
+    const double bar_q_f2_2 = cse89 * bar_M_f_4 - cse88 * bar_M_f_5 + cse87 * bar_M_f_6;
+    const double bar_q_f2_3 = cse88 * bar_M_f_4 + cse89 * bar_M_f_5 - cse86 * bar_M_f_6;
+    const double bar_q_f2_4 = -cse87 * bar_M_f_4 + cse86 * bar_M_f_5 + cse89 * bar_M_f_6;
+    // position derivatives
+    xdot[8] = bar_sv_f2_1;
+    xdot[9] = bar_sv_f2_2;
+    xdot[10] = bar_sv_f2_3;
+    xdot[11] = bar_q_f2_1;
+    xdot[12] = bar_q_f2_2;
+    xdot[13] = bar_q_f2_3;
+    xdot[14] = bar_q_f2_4;
+    xdot[15] = bar_M_f_7;
+    xdot[16] = bar_M_f_8;
+  }
+
+  // OUTPUT: the declared outputs at (t, y).
+  void outputs(double t, const double* x, const double* yp, double* out) override {
+    (void)t;
+    (void)x;
+    (void)yp;
+    // states
+    const double bar_M_p_1 = x[0];
+    const double bar_M_p_2 = x[1];
+    const double bar_M_p_3 = x[2];
+    const double bar_M_p_4 = x[3];
+    const double bar_M_p_5 = x[4];
+    const double bar_M_p_6 = x[5];
+    const double bar_M_p_7 = x[6];
+    const double bar_M_p_8 = x[7];
+    const double bar_eta_q_1 = x[15];
+    const double bar_eta_q_2 = x[16];
+    // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[3], bar.M.f[5])
+    // (cseN: a subexpression several equations below share)
+    const double cse90 = 15.253392797429207 * bar_eta_q_1;
+    const double cse91 = 13.70347789009205 * bar_eta_q_1;
+    const double cse92 = 13.70347789009205 * bar_eta_q_2;
+    const double cse93 = 33.578051071136144 * bar_eta_q_2;
+    const double cse94 = 0.3082687791334984 - 0.5 * (cse90 * bar_eta_q_1 + cse91 * bar_eta_q_2 + cse92 * bar_eta_q_1 + cse93 * bar_eta_q_2);
+    const double cse95 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
+    double blk1_a[4] = {
+        -0.6165375582669969, cse94,
+        cse94, -(0.20551637278207147 - cse95),
+    };
+    double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
+    mbgrt::solve_linear(2, blk1_a, blk1_x);
+    const double bar_M_f_3 = blk1_x[0];
+    const double bar_M_f_5 = blk1_x[1];
+    // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[2], bar.M.f[6])
+    const double cse96 = -cse94;
+    const double cse97 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
+    double blk2_a[4] = {
+        -0.6165375582669969, cse96,
+        cse96, -(0.20551637278207147 + (cse97 - cse95)),
+    };
+    double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
+    mbgrt::solve_linear(2, blk2_a, blk2_x);
+    const double bar_M_f_2 = blk2_x[0];
+    const double bar_M_f_6 = blk2_x[1];
+    // beam_mean_axes.mbg:5:6  I bar.M: p = I f
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse97);
+    // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
+    // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
+    const double cse98 = cse90 + cse92;
+    const double cse99 = cse91 + cse93;
+    double blk3_a[9] = {
+        -0.6165375582669969, cse98, cse99,
+        cse98, -0.6165375582669969, 1.1978648372848393e-16,
+        cse99, 1.1978648372848393e-16, -0.6165375582669967,
     };
     double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
     mbgrt::solve_linear(3, blk3_a, blk3_x);
@@ -589,27 +694,27 @@ class beam_mean_axes_model final : public mbgrt::Model {
     out[1] = bar_r_q_2;
     out[2] = bar_r_q_3;
     // (cseN: a subexpression several equations below share)
-    const double cse74 = bar_q_q_1 * bar_q_q_1;
-    const double cse75 = bar_q_q_2 * bar_q_q_2;
-    const double cse76 = cse74 + cse75;
-    const double cse77 = bar_q_q_3 * bar_q_q_3;
-    const double cse78 = bar_q_q_4 * bar_q_q_4;
-    const double cse79 = cse76 + cse77 + cse78;
-    out[3] = (cse76 - cse77 - cse78) / cse79;
-    const double cse80 = bar_q_q_2 * bar_q_q_3;
-    const double cse81 = bar_q_q_1 * bar_q_q_4;
-    out[4] = 2.0 * (cse80 - cse81) / cse79;
-    const double cse82 = bar_q_q_2 * bar_q_q_4;
-    const double cse83 = bar_q_q_1 * bar_q_q_3;
-    out[5] = 2.0 * (cse82 + cse83) / cse79;
-    out[6] = 2.0 * (cse80 + cse81) / cse79;
-    out[7] = (cse74 + cse77 - cse75 - cse78) / cse79;
-    const double cse84 = bar_q_q_3 * bar_q_q_4;
-    const double cse85 = bar_q_q_1 * bar_q_q_2;
-    out[8] = 2.0 * (cse84 - cse85) / cse79;
-    out[9] = 2.0 * (cse82 - cse83) / cse79;
-    out[10] = 2.0 * (cse84 + cse85) / cse79;
-    out[11] = (cse74 + cse78 - cse75 - cse77) / cse79;
+    const double cse100 = bar_q_q_1 * bar_q_q_1;
+    const double cse101 = bar_q_q_2 * bar_q_q_2;
+    const double cse102 = cse100 + cse101;
+    const double cse103 = bar_q_q_3 * bar_q_q_3;
+    const double cse104 = bar_q_q_4 * bar_q_q_4;
+    const double cse105 = cse102 + cse103 + cse104;
+    out[3] = (cse102 - cse103 - cse104) / cse105;
+    const double cse106 = bar_q_q_2 * bar_q_q_3;
+    const double cse107 = bar_q_q_1 * bar_q_q_4;
+    out[4] = 2.0 * (cse106 - cse107) / cse105;
+    const double cse108 = bar_q_q_2 * bar_q_q_4;
+    const double cse109 = bar_q_q_1 * bar_q_q_3;
+    out[5] = 2.0 * (cse108 + cse109) / cse105;
+    out[6] = 2.0 * (cse106 + cse107) / cse105;
+    out[7] = (cse100 + cse103 - cse101 - cse104) / cse105;
+    const double cse110 = bar_q_q_3 * bar_q_q_4;
+    const double cse111 = bar_q_q_1 * bar_q_q_2;
+    out[8] = 2.0 * (cse110 - cse111) / cse105;
+    out[9] = 2.0 * (cse108 - cse109) / cse105;
+    out[10] = 2.0 * (cse110 + cse111) / cse105;
+    out[11] = (cse100 + cse104 - cse101 - cse103) / cse105;
     out[12] = bar_eta_q_1;
     out[13] = bar_eta_q_2;
   }
@@ -644,15 +749,15 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse86 = 15.253392797429207 * bar_eta_q_1;
-    const double cse87 = 13.70347789009205 * bar_eta_q_1;
-    const double cse88 = 13.70347789009205 * bar_eta_q_2;
-    const double cse89 = 33.578051071136144 * bar_eta_q_2;
-    const double cse90 = 0.3082687791334984 - 0.5 * (cse86 * bar_eta_q_1 + cse87 * bar_eta_q_2 + cse88 * bar_eta_q_1 + cse89 * bar_eta_q_2);
-    const double cse91 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse112 = 15.253392797429207 * bar_eta_q_1;
+    const double cse113 = 13.70347789009205 * bar_eta_q_1;
+    const double cse114 = 13.70347789009205 * bar_eta_q_2;
+    const double cse115 = 33.578051071136144 * bar_eta_q_2;
+    const double cse116 = 0.3082687791334984 - 0.5 * (cse112 * bar_eta_q_1 + cse113 * bar_eta_q_2 + cse114 * bar_eta_q_1 + cse115 * bar_eta_q_2);
+    const double cse117 = 9.506990532655411 * bar_eta_q_1 * bar_eta_q_1 + 6.851738945046023 * bar_eta_q_1 * bar_eta_q_2 + 6.851738945046023 * bar_eta_q_2 * bar_eta_q_1 + 20.73325973414802 * bar_eta_q_2 * bar_eta_q_2;
     double blk1_a[4] = {
-        -0.6165375582669969, cse90,
-        cse90, -(0.20551637278207147 - cse91),
+        -0.6165375582669969, cse116,
+        cse116, -(0.20551637278207147 - cse117),
     };
     double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
     mbgrt::solve_linear(2, blk1_a, blk1_x);
@@ -660,26 +765,26 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse92 = -cse90;
-    const double cse93 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
+    const double cse118 = -cse116;
+    const double cse119 = 0.6165375582669969 * bar_eta_q_1 * bar_eta_q_1 - 1.1978648372848393e-16 * bar_eta_q_1 * bar_eta_q_2 - 1.1978648372848393e-16 * bar_eta_q_2 * bar_eta_q_1 + 0.6165375582669967 * bar_eta_q_2 * bar_eta_q_2;
     double blk2_a[4] = {
-        -0.6165375582669969, cse92,
-        cse92, -(0.20551637278207147 + (cse93 - cse91)),
+        -0.6165375582669969, cse118,
+        cse118, -(0.20551637278207147 + (cse119 - cse117)),
     };
     double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
     mbgrt::solve_linear(2, blk2_a, blk2_x);
     const double bar_M_f_2 = blk2_x[0];
     const double bar_M_f_6 = blk2_x[1];
     // beam_mean_axes.mbg:5:6  I bar.M: p = I f
-    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse93);
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse119);
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse94 = cse86 + cse88;
-    const double cse95 = cse87 + cse89;
+    const double cse120 = cse112 + cse114;
+    const double cse121 = cse113 + cse115;
     double blk3_a[9] = {
-        -0.6165375582669969, cse94, cse95,
-        cse94, -0.6165375582669969, 1.1978648372848393e-16,
-        cse95, 1.1978648372848393e-16, -0.6165375582669967,
+        -0.6165375582669969, cse120, cse121,
+        cse120, -0.6165375582669969, 1.1978648372848393e-16,
+        cse121, 1.1978648372848393e-16, -0.6165375582669967,
     };
     double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
     mbgrt::solve_linear(3, blk3_a, blk3_x);
@@ -710,19 +815,19 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[3], bar.M.f[5])
     // (cseN: a subexpression several equations below share)
-    const double cse96 = 15.253392797429207 * bar_eta_q_1;
-    const double cse97 = 13.70347789009205 * bar_eta_q_1;
-    const double cse98 = 13.70347789009205 * bar_eta_q_2;
-    const double cse99 = 33.578051071136144 * bar_eta_q_2;
-    const double cse100 = 0.3082687791334984 - 0.5 * (cse96 * bar_eta_q_1 + cse97 * bar_eta_q_2 + cse98 * bar_eta_q_1 + cse99 * bar_eta_q_2);
-    const double cse101 = 9.506990532655411 * bar_eta_q_1;
-    const double cse102 = 6.851738945046023 * bar_eta_q_1;
-    const double cse103 = 6.851738945046023 * bar_eta_q_2;
-    const double cse104 = 20.73325973414802 * bar_eta_q_2;
-    const double cse105 = cse101 * bar_eta_q_1 + cse102 * bar_eta_q_2 + cse103 * bar_eta_q_1 + cse104 * bar_eta_q_2;
+    const double cse122 = 15.253392797429207 * bar_eta_q_1;
+    const double cse123 = 13.70347789009205 * bar_eta_q_1;
+    const double cse124 = 13.70347789009205 * bar_eta_q_2;
+    const double cse125 = 33.578051071136144 * bar_eta_q_2;
+    const double cse126 = 0.3082687791334984 - 0.5 * (cse122 * bar_eta_q_1 + cse123 * bar_eta_q_2 + cse124 * bar_eta_q_1 + cse125 * bar_eta_q_2);
+    const double cse127 = 9.506990532655411 * bar_eta_q_1;
+    const double cse128 = 6.851738945046023 * bar_eta_q_1;
+    const double cse129 = 6.851738945046023 * bar_eta_q_2;
+    const double cse130 = 20.73325973414802 * bar_eta_q_2;
+    const double cse131 = cse127 * bar_eta_q_1 + cse128 * bar_eta_q_2 + cse129 * bar_eta_q_1 + cse130 * bar_eta_q_2;
     double blk1_a[4] = {
-        -0.6165375582669969, cse100,
-        cse100, -(0.20551637278207147 - cse105),
+        -0.6165375582669969, cse126,
+        cse126, -(0.20551637278207147 - cse131),
     };
     double blk1_x[2] = {-bar_M_p_3, -bar_M_p_5};
     mbgrt::solve_linear(2, blk1_a, blk1_x);
@@ -730,15 +835,15 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_5 = blk1_x[1];
     // beam_mean_axes.mbg:5:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[2], bar.M.f[6])
-    const double cse106 = -cse100;
-    const double cse107 = 0.6165375582669969 * bar_eta_q_1;
-    const double cse108 = 1.1978648372848393e-16 * bar_eta_q_1;
-    const double cse109 = 1.1978648372848393e-16 * bar_eta_q_2;
-    const double cse110 = 0.6165375582669967 * bar_eta_q_2;
-    const double cse111 = cse107 * bar_eta_q_1 - cse108 * bar_eta_q_2 - cse109 * bar_eta_q_1 + cse110 * bar_eta_q_2;
+    const double cse132 = -cse126;
+    const double cse133 = 0.6165375582669969 * bar_eta_q_1;
+    const double cse134 = 1.1978648372848393e-16 * bar_eta_q_1;
+    const double cse135 = 1.1978648372848393e-16 * bar_eta_q_2;
+    const double cse136 = 0.6165375582669967 * bar_eta_q_2;
+    const double cse137 = cse133 * bar_eta_q_1 - cse134 * bar_eta_q_2 - cse135 * bar_eta_q_1 + cse136 * bar_eta_q_2;
     double blk2_a[4] = {
-        -0.6165375582669969, cse106,
-        cse106, -(0.20551637278207147 + (cse111 - cse105)),
+        -0.6165375582669969, cse132,
+        cse132, -(0.20551637278207147 + (cse137 - cse131)),
     };
     double blk2_x[2] = {-bar_M_p_2, -bar_M_p_6};
     mbgrt::solve_linear(2, blk2_a, blk2_x);
@@ -747,19 +852,19 @@ class beam_mean_axes_model final : public mbgrt::Model {
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
     const double bar_ejs_e_1 = bar_M_f_5 * bar_M_p_3 - bar_M_f_6 * bar_M_p_2;
     // beam_mean_axes.mbg:5:6  I bar.M: p = I f
-    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse111);
+    const double bar_M_f_4 = bar_M_p_4 / (7.706719478337461e-06 + cse137);
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
     const double bar_ejs_e_2 = bar_M_f_6 * bar_M_p_1 - bar_M_f_4 * bar_M_p_3;
     const double bar_ejs_e_3 = bar_M_f_4 * bar_M_p_2 - bar_M_f_5 * bar_M_p_1;
     const double bar_ejs_e_4 = bar_M_f_5 * bar_M_p_6 - bar_M_f_6 * bar_M_p_5 + (bar_M_f_2 * bar_M_p_3 - bar_M_f_3 * bar_M_p_2);
     // beam_mean_axes.mbg:5:6  algebraic loop (3 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (bar.M.f[1], bar.M.f[7], bar.M.f[8])
-    const double cse112 = cse96 + cse98;
-    const double cse113 = cse97 + cse99;
+    const double cse138 = cse122 + cse124;
+    const double cse139 = cse123 + cse125;
     double blk3_a[9] = {
-        -0.6165375582669969, cse112, cse113,
-        cse112, -0.6165375582669969, 1.1978648372848393e-16,
-        cse113, 1.1978648372848393e-16, -0.6165375582669967,
+        -0.6165375582669969, cse138, cse139,
+        cse138, -0.6165375582669969, 1.1978648372848393e-16,
+        cse139, 1.1978648372848393e-16, -0.6165375582669967,
     };
     double blk3_x[3] = {-bar_M_p_1, -bar_M_p_7, -bar_M_p_8};
     mbgrt::solve_linear(3, blk3_a, blk3_x);
@@ -768,31 +873,31 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_M_f_8 = blk3_x[2];
     const double bar_ejs_e_5 = bar_M_f_6 * bar_M_p_4 - bar_M_f_4 * bar_M_p_6 + (bar_M_f_3 * bar_M_p_1 - bar_M_f_1 * bar_M_p_3);
     const double bar_ejs_e_6 = bar_M_f_4 * bar_M_p_5 - bar_M_f_5 * bar_M_p_4 + (bar_M_f_1 * bar_M_p_2 - bar_M_f_2 * bar_M_p_1);
-    const double cse114 = -15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8;
-    const double cse115 = 0.5 * (cse96 + cse96 + cse98 + cse98);
-    const double cse116 = cse107 + cse107 - cse109 - cse109;
-    const double cse117 = cse101 + cse101 + cse103 + cse103;
-    const double cse118 = cse116 - cse117;
-    const double cse119 = 13.70347789009205 * bar_M_f_1;
-    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * cse114 - bar_M_f_2 * (cse115 * bar_M_f_6) + bar_M_f_3 * (cse115 * bar_M_f_5) + bar_M_f_4 * (cse116 * bar_M_f_4) + bar_M_f_5 * (cse115 * bar_M_f_3 - cse117 * bar_M_f_5) + bar_M_f_6 * (-cse115 * bar_M_f_2 + cse118 * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse119);
+    const double cse140 = -15.253392797429207 * bar_M_f_7 - 13.70347789009205 * bar_M_f_8;
+    const double cse141 = 0.5 * (cse122 + cse122 + cse124 + cse124);
+    const double cse142 = cse133 + cse133 - cse135 - cse135;
+    const double cse143 = cse127 + cse127 + cse129 + cse129;
+    const double cse144 = cse142 - cse143;
+    const double cse145 = 13.70347789009205 * bar_M_f_1;
+    const double bar_ejs_e_7 = -0.5 * (bar_M_f_1 * cse140 - bar_M_f_2 * (cse141 * bar_M_f_6) + bar_M_f_3 * (cse141 * bar_M_f_5) + bar_M_f_4 * (cse142 * bar_M_f_4) + bar_M_f_5 * (cse141 * bar_M_f_3 - cse143 * bar_M_f_5) + bar_M_f_6 * (-cse141 * bar_M_f_2 + cse144 * bar_M_f_6) - bar_M_f_7 * (15.253392797429207 * bar_M_f_1) - bar_M_f_8 * cse145);
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_1 = 51599.883443062026 * bar_eta_q_1 - 5.3016963618363235e-11 * bar_eta_q_2;
     // beam_mean_axes.mbg:5:6  R bar.ejs: e = law(f)
-    const double cse120 = -13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8;
-    const double cse121 = 0.5 * (cse97 + cse97 + (cse99 + cse99));
-    const double cse122 = -cse108 - cse108 + (cse110 + cse110);
-    const double cse123 = cse102 + cse102 + (cse104 + cse104);
-    const double cse124 = cse122 - cse123;
-    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * cse120 - bar_M_f_2 * (cse121 * bar_M_f_6) + bar_M_f_3 * (cse121 * bar_M_f_5) + bar_M_f_4 * (cse122 * bar_M_f_4) + bar_M_f_5 * (cse121 * bar_M_f_3 - cse123 * bar_M_f_5) + bar_M_f_6 * (-cse121 * bar_M_f_2 + cse124 * bar_M_f_6) - bar_M_f_7 * cse119 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
+    const double cse146 = -13.70347789009205 * bar_M_f_7 - 33.578051071136144 * bar_M_f_8;
+    const double cse147 = 0.5 * (cse123 + cse123 + (cse125 + cse125));
+    const double cse148 = -cse134 - cse134 + (cse136 + cse136);
+    const double cse149 = cse128 + cse128 + (cse130 + cse130);
+    const double cse150 = cse148 - cse149;
+    const double bar_ejs_e_8 = -0.5 * (bar_M_f_1 * cse146 - bar_M_f_2 * (cse147 * bar_M_f_6) + bar_M_f_3 * (cse147 * bar_M_f_5) + bar_M_f_4 * (cse148 * bar_M_f_4) + bar_M_f_5 * (cse147 * bar_M_f_3 - cse149 * bar_M_f_5) + bar_M_f_6 * (-cse147 * bar_M_f_2 + cse150 * bar_M_f_6) - bar_M_f_7 * cse145 - bar_M_f_8 * (33.578051071136144 * bar_M_f_1));
     // beam_mean_axes.mbg:5:6  C bar.eta: e = law(q)
     const double bar_eta_e_2 = -5.3016963618363235e-11 * bar_eta_q_1 + 392081.9486636217 * bar_eta_q_2;
     // the powers
     out[0] = 0.0;
-    const double cse125 = cse115 * bar_M_f_7;
-    const double cse126 = cse121 * bar_M_f_8;
-    const double cse127 = -cse125 - cse126;
-    const double cse128 = cse125 + cse126;
-    out[1] = 0.5 * (cse114 * (bar_M_f_1 * bar_M_f_7) + cse120 * (bar_M_f_1 * bar_M_f_8) + cse127 * (bar_M_f_2 * bar_M_f_6) + cse128 * (bar_M_f_3 * bar_M_f_5) + (cse116 * bar_M_f_7 + cse122 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse128 * (bar_M_f_5 * bar_M_f_3) + (-cse117 * bar_M_f_7 - cse123 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse127 * (bar_M_f_6 * bar_M_f_2) + (cse118 * bar_M_f_7 + cse124 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse114 * (bar_M_f_7 * bar_M_f_1) + cse120 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+    const double cse151 = cse141 * bar_M_f_7;
+    const double cse152 = cse147 * bar_M_f_8;
+    const double cse153 = -cse151 - cse152;
+    const double cse154 = cse151 + cse152;
+    out[1] = 0.5 * (cse140 * (bar_M_f_1 * bar_M_f_7) + cse146 * (bar_M_f_1 * bar_M_f_8) + cse153 * (bar_M_f_2 * bar_M_f_6) + cse154 * (bar_M_f_3 * bar_M_f_5) + (cse142 * bar_M_f_7 + cse148 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse154 * (bar_M_f_5 * bar_M_f_3) + (-cse143 * bar_M_f_7 - cse149 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse153 * (bar_M_f_6 * bar_M_f_2) + (cse144 * bar_M_f_7 + cse150 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse140 * (bar_M_f_7 * bar_M_f_1) + cse146 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
   }
 
   // TERMINAL: nothing to do at the end of a run.

@@ -111,6 +111,17 @@ class decay_sine_model final : public mbgrt::Model {
     xdot[0] = m_e;
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    (void)xdot;
+  }
+
   bool has_jacobian() const override {
     return true;
   }

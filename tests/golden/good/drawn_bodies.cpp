@@ -419,6 +419,101 @@ class drawn_bodies_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double ball_m_p_1 = x[0];
+    const double ball_m_p_2 = x[1];
+    const double ball_m_p_3 = x[2];
+    const double tetra_m_p_1 = x[6];
+    const double tetra_m_p_2 = x[7];
+    const double tetra_m_p_3 = x[8];
+    const double tetra_J_p_1 = x[12];
+    const double tetra_J_p_2 = x[13];
+    const double tetra_J_p_3 = x[14];
+    const double tetra_q_q_1 = x[15];
+    const double tetra_q_q_2 = x[16];
+    const double tetra_q_q_3 = x[17];
+    const double tetra_q_q_4 = x[18];
+    const double plain_m_p_1 = x[19];
+    const double plain_m_p_2 = x[20];
+    const double plain_m_p_3 = x[21];
+    const double plain_J_p_1 = x[25];
+    const double plain_J_p_2 = x[26];
+    const double plain_J_p_3 = x[27];
+    const double plain_q_q_1 = x[28];
+    const double plain_q_q_2 = x[29];
+    const double plain_q_q_3 = x[30];
+    const double plain_q_q_4 = x[31];
+    const double shoulder_theta_rate_rate = x[32];
+    const double axle_theta_rate_rate = x[34];
+    // drawn_bodies.mbg:25:6  I ball.m: p = I f
+    const double ball_m_f_1 = ball_m_p_1 / 0.1;
+    const double ball_m_f_2 = ball_m_p_2 / 0.1;
+    const double ball_m_f_3 = ball_m_p_3 / 0.1;
+    // drawn_bodies.mbg:26:6  I tetra.m: p = I f
+    const double tetra_m_f_1 = tetra_m_p_1 / 0.2;
+    const double tetra_m_f_2 = tetra_m_p_2 / 0.2;
+    const double tetra_m_f_3 = tetra_m_p_3 / 0.2;
+    // drawn_bodies.mbg:26:6  I tetra.J: p = I f
+    const double tetra_J_f_2 = tetra_J_p_2 / 0.001;
+    const double tetra_J_f_3 = tetra_J_p_3 / 0.001;
+    const double tetra_J_f_1 = tetra_J_p_1 / 0.001;
+    // drawn_bodies.mbg:26:6  MTF tetra.qrate: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse11 = 0.5 * tetra_q_q_2;
+    const double cse12 = 0.5 * tetra_q_q_3;
+    const double cse13 = 0.5 * tetra_q_q_4;
+    const double tetra_q_f2_1 = -cse11 * tetra_J_f_1 - cse12 * tetra_J_f_2 - cse13 * tetra_J_f_3;
+    const double cse14 = 0.5 * tetra_q_q_1;
+    const double tetra_q_f2_2 = cse14 * tetra_J_f_1 - cse13 * tetra_J_f_2 + cse12 * tetra_J_f_3;
+    const double tetra_q_f2_3 = cse13 * tetra_J_f_1 + cse14 * tetra_J_f_2 - cse11 * tetra_J_f_3;
+    const double tetra_q_f2_4 = -cse12 * tetra_J_f_1 + cse11 * tetra_J_f_2 + cse14 * tetra_J_f_3;
+    // drawn_bodies.mbg:33:6  I plain.m: p = I f
+    const double plain_m_f_1 = plain_m_p_1 / 0.3;
+    const double plain_m_f_2 = plain_m_p_2 / 0.3;
+    const double plain_m_f_3 = plain_m_p_3 / 0.3;
+    // drawn_bodies.mbg:33:6  I plain.J: p = I f
+    const double plain_J_f_2 = plain_J_p_2 / 0.002;
+    const double plain_J_f_3 = plain_J_p_3 / 0.002;
+    const double plain_J_f_1 = plain_J_p_1 / 0.001;
+    // drawn_bodies.mbg:33:6  MTF plain.qrate: f2 = T f1
+    const double cse15 = 0.5 * plain_q_q_2;
+    const double cse16 = 0.5 * plain_q_q_3;
+    const double cse17 = 0.5 * plain_q_q_4;
+    const double plain_q_f2_1 = -cse15 * plain_J_f_1 - cse16 * plain_J_f_2 - cse17 * plain_J_f_3;
+    const double cse18 = 0.5 * plain_q_q_1;
+    const double plain_q_f2_2 = cse18 * plain_J_f_1 - cse17 * plain_J_f_2 + cse16 * plain_J_f_3;
+    const double plain_q_f2_3 = cse17 * plain_J_f_1 + cse18 * plain_J_f_2 - cse15 * plain_J_f_3;
+    const double plain_q_f2_4 = -cse16 * plain_J_f_1 + cse15 * plain_J_f_2 + cse18 * plain_J_f_3;
+    // position derivatives
+    xdot[3] = ball_m_f_1;
+    xdot[4] = ball_m_f_2;
+    xdot[5] = ball_m_f_3;
+    xdot[9] = tetra_m_f_1;
+    xdot[10] = tetra_m_f_2;
+    xdot[11] = tetra_m_f_3;
+    xdot[15] = tetra_q_f2_1;
+    xdot[16] = tetra_q_f2_2;
+    xdot[17] = tetra_q_f2_3;
+    xdot[18] = tetra_q_f2_4;
+    xdot[22] = plain_m_f_1;
+    xdot[23] = plain_m_f_2;
+    xdot[24] = plain_m_f_3;
+    xdot[28] = plain_q_f2_1;
+    xdot[29] = plain_q_f2_2;
+    xdot[30] = plain_q_f2_3;
+    xdot[31] = plain_q_f2_4;
+    xdot[33] = shoulder_theta_rate_rate;
+    xdot[35] = axle_theta_rate_rate;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -556,32 +651,32 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double axle_theta_q = x[35];
     // drawn_bodies.mbg:40:7  signal link.pose.R31
     // (cseN: a subexpression several equations below share)
-    const double cse11 = std::sin(shoulder_theta_q);
-    const double link_pose_R31 = -cse11;
+    const double cse19 = std::sin(shoulder_theta_q);
+    const double link_pose_R31 = -cse19;
     // drawn_bodies.mbg:41:7  signal wheel.pose.R31
-    const double cse12 = std::cos(axle_theta_q);
-    const double wheel_pose_R31 = link_pose_R31 * cse12;
+    const double cse20 = std::cos(axle_theta_q);
+    const double wheel_pose_R31 = link_pose_R31 * cse20;
     // drawn_bodies.mbg:41:7  signal wheel.pose.R32
-    const double cse13 = std::sin(axle_theta_q);
-    const double wheel_pose_R32 = -link_pose_R31 * cse13;
+    const double cse21 = std::sin(axle_theta_q);
+    const double wheel_pose_R32 = -link_pose_R31 * cse21;
     // drawn_bodies.mbg:40:7  signal link.pose.R33
     const double link_pose_R33 = std::cos(shoulder_theta_q);
     // drawn_bodies.mbg:40:7  signal link.pose.R11
     const double link_pose_R11 = link_pose_R33;
     // drawn_bodies.mbg:40:7  signal link.pose.R13
-    const double link_pose_R13 = cse11;
+    const double link_pose_R13 = cse19;
     // drawn_bodies.mbg:40:7  signal link.pose.r1
     const double link_pose_r1 = 0.25 * link_pose_R11;
     // drawn_bodies.mbg:40:7  signal link.pose.r3
     const double link_pose_r3 = 0.25 * link_pose_R31;
     // drawn_bodies.mbg:41:7  signal wheel.pose.R11
-    const double wheel_pose_R11 = link_pose_R11 * cse12;
+    const double wheel_pose_R11 = link_pose_R11 * cse20;
     // drawn_bodies.mbg:41:7  signal wheel.pose.R12
-    const double wheel_pose_R12 = -link_pose_R11 * cse13;
+    const double wheel_pose_R12 = -link_pose_R11 * cse21;
     // drawn_bodies.mbg:41:7  signal wheel.pose.R21
-    const double wheel_pose_R21 = cse13;
+    const double wheel_pose_R21 = cse21;
     // drawn_bodies.mbg:41:7  signal wheel.pose.R22
-    const double wheel_pose_R22 = cse12;
+    const double wheel_pose_R22 = cse20;
     // drawn_bodies.mbg:41:7  signal wheel.pose.r1
     const double wheel_pose_r1 = link_pose_r1 + link_pose_r1;
     // drawn_bodies.mbg:41:7  signal wheel.pose.r3
@@ -626,51 +721,51 @@ class drawn_bodies_model final : public mbgrt::Model {
     out[36] = tetra_r_q_1;
     out[37] = tetra_r_q_2;
     out[38] = tetra_r_q_3;
-    const double cse14 = tetra_q_q_1 * tetra_q_q_1;
-    const double cse15 = tetra_q_q_2 * tetra_q_q_2;
-    const double cse16 = cse14 + cse15;
-    const double cse17 = tetra_q_q_3 * tetra_q_q_3;
-    const double cse18 = tetra_q_q_4 * tetra_q_q_4;
-    const double cse19 = cse16 + cse17 + cse18;
-    out[39] = (cse16 - cse17 - cse18) / cse19;
-    const double cse20 = tetra_q_q_2 * tetra_q_q_3;
-    const double cse21 = tetra_q_q_1 * tetra_q_q_4;
-    out[40] = 2.0 * (cse20 - cse21) / cse19;
-    const double cse22 = tetra_q_q_2 * tetra_q_q_4;
-    const double cse23 = tetra_q_q_1 * tetra_q_q_3;
-    out[41] = 2.0 * (cse22 + cse23) / cse19;
-    out[42] = 2.0 * (cse20 + cse21) / cse19;
-    out[43] = (cse14 + cse17 - cse15 - cse18) / cse19;
-    const double cse24 = tetra_q_q_3 * tetra_q_q_4;
-    const double cse25 = tetra_q_q_1 * tetra_q_q_2;
-    out[44] = 2.0 * (cse24 - cse25) / cse19;
-    out[45] = 2.0 * (cse22 - cse23) / cse19;
-    out[46] = 2.0 * (cse24 + cse25) / cse19;
-    out[47] = (cse14 + cse18 - cse15 - cse17) / cse19;
+    const double cse22 = tetra_q_q_1 * tetra_q_q_1;
+    const double cse23 = tetra_q_q_2 * tetra_q_q_2;
+    const double cse24 = cse22 + cse23;
+    const double cse25 = tetra_q_q_3 * tetra_q_q_3;
+    const double cse26 = tetra_q_q_4 * tetra_q_q_4;
+    const double cse27 = cse24 + cse25 + cse26;
+    out[39] = (cse24 - cse25 - cse26) / cse27;
+    const double cse28 = tetra_q_q_2 * tetra_q_q_3;
+    const double cse29 = tetra_q_q_1 * tetra_q_q_4;
+    out[40] = 2.0 * (cse28 - cse29) / cse27;
+    const double cse30 = tetra_q_q_2 * tetra_q_q_4;
+    const double cse31 = tetra_q_q_1 * tetra_q_q_3;
+    out[41] = 2.0 * (cse30 + cse31) / cse27;
+    out[42] = 2.0 * (cse28 + cse29) / cse27;
+    out[43] = (cse22 + cse25 - cse23 - cse26) / cse27;
+    const double cse32 = tetra_q_q_3 * tetra_q_q_4;
+    const double cse33 = tetra_q_q_1 * tetra_q_q_2;
+    out[44] = 2.0 * (cse32 - cse33) / cse27;
+    out[45] = 2.0 * (cse30 - cse31) / cse27;
+    out[46] = 2.0 * (cse32 + cse33) / cse27;
+    out[47] = (cse22 + cse26 - cse23 - cse25) / cse27;
     out[48] = plain_r_q_1;
     out[49] = plain_r_q_2;
     out[50] = plain_r_q_3;
-    const double cse26 = plain_q_q_1 * plain_q_q_1;
-    const double cse27 = plain_q_q_2 * plain_q_q_2;
-    const double cse28 = cse26 + cse27;
-    const double cse29 = plain_q_q_3 * plain_q_q_3;
-    const double cse30 = plain_q_q_4 * plain_q_q_4;
-    const double cse31 = cse28 + cse29 + cse30;
-    out[51] = (cse28 - cse29 - cse30) / cse31;
-    const double cse32 = plain_q_q_2 * plain_q_q_3;
-    const double cse33 = plain_q_q_1 * plain_q_q_4;
-    out[52] = 2.0 * (cse32 - cse33) / cse31;
-    const double cse34 = plain_q_q_2 * plain_q_q_4;
-    const double cse35 = plain_q_q_1 * plain_q_q_3;
-    out[53] = 2.0 * (cse34 + cse35) / cse31;
-    out[54] = 2.0 * (cse32 + cse33) / cse31;
-    out[55] = (cse26 + cse29 - cse27 - cse30) / cse31;
-    const double cse36 = plain_q_q_3 * plain_q_q_4;
-    const double cse37 = plain_q_q_1 * plain_q_q_2;
-    out[56] = 2.0 * (cse36 - cse37) / cse31;
-    out[57] = 2.0 * (cse34 - cse35) / cse31;
-    out[58] = 2.0 * (cse36 + cse37) / cse31;
-    out[59] = (cse26 + cse30 - cse27 - cse29) / cse31;
+    const double cse34 = plain_q_q_1 * plain_q_q_1;
+    const double cse35 = plain_q_q_2 * plain_q_q_2;
+    const double cse36 = cse34 + cse35;
+    const double cse37 = plain_q_q_3 * plain_q_q_3;
+    const double cse38 = plain_q_q_4 * plain_q_q_4;
+    const double cse39 = cse36 + cse37 + cse38;
+    out[51] = (cse36 - cse37 - cse38) / cse39;
+    const double cse40 = plain_q_q_2 * plain_q_q_3;
+    const double cse41 = plain_q_q_1 * plain_q_q_4;
+    out[52] = 2.0 * (cse40 - cse41) / cse39;
+    const double cse42 = plain_q_q_2 * plain_q_q_4;
+    const double cse43 = plain_q_q_1 * plain_q_q_3;
+    out[53] = 2.0 * (cse42 + cse43) / cse39;
+    out[54] = 2.0 * (cse40 + cse41) / cse39;
+    out[55] = (cse34 + cse37 - cse35 - cse38) / cse39;
+    const double cse44 = plain_q_q_3 * plain_q_q_4;
+    const double cse45 = plain_q_q_1 * plain_q_q_2;
+    out[56] = 2.0 * (cse44 - cse45) / cse39;
+    out[57] = 2.0 * (cse42 - cse43) / cse39;
+    out[58] = 2.0 * (cse44 + cse45) / cse39;
+    out[59] = (cse34 + cse38 - cse35 - cse37) / cse39;
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).

@@ -792,6 +792,140 @@ class drawn_surfaces_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double ball_p_m_p_1 = x[0];
+    const double ball_p_m_p_2 = x[1];
+    const double ball_p_m_p_3 = x[2];
+    const double ball_s_m_p_1 = x[6];
+    const double ball_s_m_p_2 = x[7];
+    const double ball_s_m_p_3 = x[8];
+    const double ball_c_m_p_1 = x[12];
+    const double ball_c_m_p_2 = x[13];
+    const double ball_c_m_p_3 = x[14];
+    const double ball_r_m_p_1 = x[18];
+    const double ball_r_m_p_2 = x[19];
+    const double ball_r_m_p_3 = x[20];
+    const double ball_m_m_p_1 = x[24];
+    const double ball_m_m_p_2 = x[25];
+    const double ball_m_m_p_3 = x[26];
+    const double lift_s_rate_rate = x[30];
+    const double lift_s_q = x[31];
+    const double tyre_kappa_q = x[32];
+    const double tyre_tan_alpha_q = x[33];
+    // drawn_surfaces.mbg:53:7  Sf pull.s_rate: f = value
+    const double pull_s_rate_f = v_v;
+    // drawn_surfaces.mbg:53:7  0 pull.vsum: flows in = flows out
+    const double pull_reaction_f_f_1 = pull_s_rate_f;
+    // drawn_surfaces.mbg:54:7  0 lift.vpa: flows in = flows out
+    const double lift_m3_f1_1 = pull_reaction_f_f_1;
+    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
+    const double lift_reaction_f_f_1 = lift_m3_f1_1;
+    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
+    const double spin_m4_f1_1 = lift_reaction_f_f_1;
+    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
+    const double lift_reaction_f_f_3 = lift_s_rate_rate;
+    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
+    const double spin_m4_f1_3 = lift_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
+    // (cseN: a subexpression several equations below share)
+    const double cse156 = derived13_ * t;
+    const double wheel_pose_R33 = std::cos(cse156);
+    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
+    const double cse157 = std::sin(cse156);
+    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse157 * spin_m4_f1_3;
+    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
+    const double spin_reaction_f_f_1 = spin_m4_f2_1;
+    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
+    const double spin_theta_rate_f = derived13_;
+    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
+    const double spin_reaction_t_f_2 = spin_theta_rate_f;
+    // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
+    const double wheel_pose_R13 = cse157;
+    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
+    const double sled_pose_r1 = v_v * t;
+    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
+    const double hub_pose_r1 = sled_pose_r1;
+    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
+    const double cse158 = hub_pose_r1 - 1.0;
+    const double cse159 = hub_pose_r1 - 1.2;
+    const double cse160 = hub_pose_r1 - 1.5;
+    const double cse161 = hub_pose_r1 - 1.7;
+    const double tyre_road_slope = derived14_ * (((cse158) >= 0.0 ? 1.0 : 0.0) - ((cse159) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse160) >= 0.0 ? 1.0 : 0.0) - ((cse161) >= 0.0 ? 1.0 : 0.0));
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
+    const double cse162 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
+    const double tyre_normal_1 = -tyre_road_slope / cse162;
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
+    const double tyre_normal_3 = 1.0 / cse162;
+    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
+    const double cse163 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
+    const double tyre_forward_1 = tyre_normal_3 / cse163;
+    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
+    const double spin_m4_f2_3 = cse157 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
+    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
+    const double spin_reaction_f_f_3 = spin_m4_f2_3;
+    // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
+    const double wheel_pose_R11 = wheel_pose_R33;
+    // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
+    const double wheel_pose_R31 = -cse157;
+    // drawn_surfaces.mbg:54:7  signal hub.pose.r3
+    const double hub_pose_r3 = lift_s_q;
+    // drawn_surfaces.mbg:56:6  signal tyre.road_height
+    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse158) - std::fmax(0.0, cse159)) - derived14_ * (std::fmax(0.0, cse160) - std::fmax(0.0, cse161));
+    // drawn_surfaces.mbg:56:6  signal tyre.centre_height
+    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse162;
+    // drawn_surfaces.mbg:56:6  signal tyre.deflection
+    const double tyre_deflection = 0.3 - tyre_centre_height;
+    // drawn_surfaces.mbg:56:6  signal tyre.Fz
+    const double cse164 = wheel_pose_R11 * spin_reaction_f_f_1 + wheel_pose_R13 * spin_reaction_f_f_3;
+    const double cse165 = wheel_pose_R31 * spin_reaction_f_f_1 + wheel_pose_R33 * spin_reaction_f_f_3;
+    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * cse164 + tyre_normal_3 * cse165));
+    // drawn_surfaces.mbg:56:6  signal tyre.forward_3
+    const double tyre_forward_3 = -tyre_normal_1 / cse163;
+    // drawn_surfaces.mbg:56:6  signal tyre.Vcx
+    const double tyre_Vcx = tyre_forward_1 * cse164 + tyre_forward_3 * cse165;
+    // drawn_surfaces.mbg:56:6  signal tyre.spin
+    const double tyre_spin = spin_reaction_t_f_2;
+    // drawn_surfaces.mbg:56:6  signal tyre.Vsx
+    const double tyre_Vsx = tyre_Vcx - (0.3 - tyre_deflection) * tyre_spin;
+    // drawn_surfaces.mbg:56:6  signal tyre.sigma_kappa
+    const double tyre_sigma_kappa = std::fmax(0.003, 5.9999999999999995e-05 * tyre_Fz);
+    // drawn_surfaces.mbg:56:6  Sf tyre.kappa_rate: f = value
+    const double cse166 = std::fabs(tyre_Vcx);
+    const double tyre_kappa_rate_f = (-tyre_Vsx - cse166 * tyre_kappa_q) / tyre_sigma_kappa;
+    // drawn_surfaces.mbg:56:6  signal tyre.sigma_alpha
+    const double cse167 = tyre_Fz / 6800.0;
+    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse167 / (1.0 + cse167 * cse167)));
+    // drawn_surfaces.mbg:56:6  Sf tyre.tan_alpha_rate: f = value
+    const double tyre_tan_alpha_rate_f = -cse166 * tyre_tan_alpha_q / tyre_sigma_alpha;
+    // position derivatives
+    xdot[3] = ball_p_m_p_1;
+    xdot[4] = ball_p_m_p_2;
+    xdot[5] = ball_p_m_p_3;
+    xdot[9] = ball_s_m_p_1;
+    xdot[10] = ball_s_m_p_2;
+    xdot[11] = ball_s_m_p_3;
+    xdot[15] = ball_c_m_p_1;
+    xdot[16] = ball_c_m_p_2;
+    xdot[17] = ball_c_m_p_3;
+    xdot[21] = ball_r_m_p_1;
+    xdot[22] = ball_r_m_p_2;
+    xdot[23] = ball_r_m_p_3;
+    xdot[27] = ball_m_m_p_1;
+    xdot[28] = ball_m_m_p_2;
+    xdot[29] = ball_m_m_p_3;
+    xdot[31] = lift_s_rate_rate;
+    xdot[32] = tyre_kappa_rate_f;
+    xdot[33] = tyre_tan_alpha_rate_f;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -1063,10 +1197,10 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double platform_pose_r3 = V * t;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
     // (cseN: a subexpression several equations below share)
-    const double cse156 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse156);
+    const double cse168 = derived13_ * t;
+    const double wheel_pose_R33 = std::cos(cse168);
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = std::sin(cse156);
+    const double wheel_pose_R13 = std::sin(cse168);
     // drawn_surfaces.mbg:53:7  signal sled.pose.r1
     const double sled_pose_r1 = v_v * t;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r1
@@ -1287,13 +1421,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:30:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_p.m.e[3], on_floor.cn.e)
     // (cseN: a subexpression several equations below share)
-    const double cse157 = 1.0 - mode_[0];
-    const double cse158 = ball_p_r_q_3 - on_floor_radius;
+    const double cse169 = 1.0 - mode_[0];
+    const double cse170 = ball_p_r_q_3 - on_floor_radius;
     double blk1_a[4] = {
         -1.0, -1.0,
-        mode_[0], cse157,
+        mode_[0], cse169,
     };
-    double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse158 - contact_bias_[0])};
+    double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse170 - contact_bias_[0])};
     static const char* const blk1_rows[] = {"ball_p.m.e[3]", "on_floor.cn.e"};
     int blk1_dependent[2];
     double blk1_closest;
@@ -1301,39 +1435,39 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
-    const double cse159 = ball_s_r_q_1 - 1.5;
-    const double cse160 = cse159 + cse159;
-    const double cse161 = std::sqrt(cse159 * cse159 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double cse162 = 2.0 * cse161;
-    const double cse163 = cse160 / cse162;
-    const double cse164 = ball_s_r_q_2 + ball_s_r_q_2;
-    const double cse165 = cse164 / cse162;
-    const double cse166 = ball_s_r_q_3 + ball_s_r_q_3;
-    const double cse167 = cse166 / cse162;
-    const double on_dome_cat_f2 = cse163 * ball_s_m_p_1 + cse165 * ball_s_m_p_2 + cse167 * ball_s_m_p_3;
+    const double cse171 = ball_s_r_q_1 - 1.5;
+    const double cse172 = cse171 + cse171;
+    const double cse173 = std::sqrt(cse171 * cse171 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double cse174 = 2.0 * cse173;
+    const double cse175 = cse172 / cse174;
+    const double cse176 = ball_s_r_q_2 + ball_s_r_q_2;
+    const double cse177 = cse176 / cse174;
+    const double cse178 = ball_s_r_q_3 + ball_s_r_q_3;
+    const double cse179 = cse178 / cse174;
+    const double on_dome_cat_f2 = cse175 * ball_s_m_p_1 + cse177 * ball_s_m_p_2 + cse179 * ball_s_m_p_3;
     // drawn_surfaces.mbg:31:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_s.m.e[1], ball_s.m.e[2], ball_s.m.e[3], on_dome.cat.e1[1], on_dome.cat.e1[2], on_dome.cat.e1[3], on_dome.cn.e, der(on_dome.cat.f2))
-    const double cse168 = -cse163;
-    const double cse169 = -cse165;
-    const double cse170 = -cse167;
-    const double cse171 = 1.0 - mode_[1];
-    const double cse172 = cse161 - on_dome_surface_radius - on_dome_radius;
-    const double cse173 = 4.0 * cse161;
-    const double cse174 = 2.0 * cse163;
-    const double cse175 = (cse162*cse162);
-    const double cse176 = 2.0 * cse165;
-    const double cse177 = 2.0 * cse167;
+    const double cse180 = -cse175;
+    const double cse181 = -cse177;
+    const double cse182 = -cse179;
+    const double cse183 = 1.0 - mode_[1];
+    const double cse184 = cse173 - on_dome_surface_radius - on_dome_radius;
+    const double cse185 = 4.0 * cse173;
+    const double cse186 = 2.0 * cse175;
+    const double cse187 = (cse174*cse174);
+    const double cse188 = 2.0 * cse177;
+    const double cse189 = 2.0 * cse179;
     double blk2_a[64] = {
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse168, 0.0,
-        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse169, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse170, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse171, mode_[1],
-        cse168, cse169, cse170, 0.0, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse180, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse181, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse182, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse183, mode_[1],
+        cse180, cse181, cse182, 0.0, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse172 - contact_bias_[1]), ((cse173 - cse160 * cse174) / cse175 * ball_s_m_p_1 - cse164 * cse174 / cse175 * ball_s_m_p_2 - cse166 * cse174 / cse175 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse160 * cse176 / cse175 * ball_s_m_p_1 + (cse173 - cse164 * cse176) / cse175 * ball_s_m_p_2 - cse166 * cse176 / cse175 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse160 * cse177 / cse175 * ball_s_m_p_1 - cse164 * cse177 / cse175 * ball_s_m_p_2 + (cse173 - cse166 * cse177) / cse175 * ball_s_m_p_3) * ball_s_m_p_3};
+    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse184 - contact_bias_[1]), ((cse185 - cse172 * cse186) / cse187 * ball_s_m_p_1 - cse176 * cse186 / cse187 * ball_s_m_p_2 - cse178 * cse186 / cse187 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse172 * cse188 / cse187 * ball_s_m_p_1 + (cse185 - cse176 * cse188) / cse187 * ball_s_m_p_2 - cse178 * cse188 / cse187 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse172 * cse189 / cse187 * ball_s_m_p_1 - cse176 * cse189 / cse187 * ball_s_m_p_2 + (cse185 - cse178 * cse189) / cse187 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
     double blk2_closest;
@@ -1341,33 +1475,33 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse178 = ball_c_r_q_1 - 3.0;
-    const double cse179 = cse178 + cse178;
-    const double cse180 = std::sqrt(cse178 * cse178 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double cse181 = 2.0 * cse180;
-    const double cse182 = cse179 / cse181;
-    const double cse183 = ball_c_r_q_3 + ball_c_r_q_3;
-    const double cse184 = cse183 / cse181;
-    const double on_drum_cat_f2 = cse182 * ball_c_m_p_1 + cse184 * ball_c_m_p_3;
+    const double cse190 = ball_c_r_q_1 - 3.0;
+    const double cse191 = cse190 + cse190;
+    const double cse192 = std::sqrt(cse190 * cse190 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double cse193 = 2.0 * cse192;
+    const double cse194 = cse191 / cse193;
+    const double cse195 = ball_c_r_q_3 + ball_c_r_q_3;
+    const double cse196 = cse195 / cse193;
+    const double on_drum_cat_f2 = cse194 * ball_c_m_p_1 + cse196 * ball_c_m_p_3;
     // drawn_surfaces.mbg:32:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_c.m.e[1], ball_c.m.e[3], on_drum.cat.e1[1], on_drum.cat.e1[3], on_drum.cn.e, der(on_drum.cat.f2))
-    const double cse185 = -cse182;
-    const double cse186 = -cse184;
-    const double cse187 = 1.0 - mode_[2];
-    const double cse188 = cse180 - on_drum_surface_radius - on_drum_radius;
-    const double cse189 = 4.0 * cse180;
-    const double cse190 = 2.0 * cse182;
-    const double cse191 = (cse181*cse181);
-    const double cse192 = 2.0 * cse184;
+    const double cse197 = -cse194;
+    const double cse198 = -cse196;
+    const double cse199 = 1.0 - mode_[2];
+    const double cse200 = cse192 - on_drum_surface_radius - on_drum_radius;
+    const double cse201 = 4.0 * cse192;
+    const double cse202 = 2.0 * cse194;
+    const double cse203 = (cse193*cse193);
+    const double cse204 = 2.0 * cse196;
     double blk3_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse185, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse186, 0.0,
-        0.0, 0.0, 0.0, 0.0, cse187, mode_[2],
-        cse185, cse186, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 1.0, 0.0, cse197, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse198, 0.0,
+        0.0, 0.0, 0.0, 0.0, cse199, mode_[2],
+        cse197, cse198, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse188 - contact_bias_[2]), ((cse189 - cse179 * cse190) / cse191 * ball_c_m_p_1 - cse183 * cse190 / cse191 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse179 * cse192 / cse191 * ball_c_m_p_1 + (cse189 - cse183 * cse192) / cse191 * ball_c_m_p_3) * ball_c_m_p_3};
+    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse200 - contact_bias_[2]), ((cse201 - cse191 * cse202) / cse203 * ball_c_m_p_1 - cse195 * cse202 / cse203 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse191 * cse204 / cse203 * ball_c_m_p_1 + (cse201 - cse195 * cse204) / cse203 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
     double blk3_closest;
@@ -1375,121 +1509,121 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse193 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse194 = ball_r_r_q_1 - 4.5;
-    const double cse195 = cse194 - 0.3;
-    const double cse196 = 0.2 * cse195 / 0.2;
-    const double cse197 = std::fmax(cse193, cse196);
-    const double cse198 = ball_r_r_q_3 - 0.2;
-    const double cse199 = 0.3 * cse198 / 0.3;
-    const double cse200 = std::fmax(cse197, cse199);
-    const double cse201 = (-0.2 * cse194 + cse198 * derived3_) / derived4_;
-    const double cse202 = std::fmax(cse200, cse201);
-    const double cse203 = ((cse202) >= 0.0 ? 1.0 : 0.0);
-    const double cse204 = (-cse194 * derived3_ - 0.2 * cse198) / derived5_;
-    const double cse205 = std::fmax(0.0, cse204);
-    const double cse206 = std::fmin(1.0, cse205);
-    const double cse207 = cse194 + cse206 * derived3_;
-    const double cse208 = cse198 + 0.2 * cse206;
-    const double cse209 = std::sqrt(cse207 * cse207 + cse208 * cse208);
-    const double cse210 = cse194 + derived3_;
-    const double cse211 = cse210 * derived1_ / derived6_;
-    const double cse212 = std::fmax(0.0, cse211);
-    const double cse213 = cse210 - std::fmin(1.0, cse212) * derived1_;
-    const double cse214 = std::sqrt(cse213 * cse213 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse215 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
-    const double cse216 = std::fmax(0.0, cse215);
-    const double cse217 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse216);
-    const double cse218 = std::sqrt(cse195 * cse195 + cse217 * cse217);
-    const double cse219 = std::fmin(cse214, cse218);
-    const double cse220 = 0.3 * cse195 / 0.09;
-    const double cse221 = std::fmax(0.0, -cse220);
-    const double cse222 = cse195 + 0.3 * std::fmin(1.0, cse221);
-    const double cse223 = std::sqrt(cse222 * cse222 + cse198 * cse198);
-    const double cse224 = std::fmin(cse219, cse223);
-    const double cse225 = ((cse209 - cse224) >= 0.0 ? 1.0 : 0.0);
-    const double cse226 = ((cse223 - cse219) >= 0.0 ? 1.0 : 0.0);
-    const double cse227 = ((cse218 - cse214) >= 0.0 ? 1.0 : 0.0);
-    const double cse228 = 1.0 - (1.0 - ((cse212 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse211) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse229 = cse228 * cse213 + cse213 * cse228;
-    const double cse230 = 2.0 * cse214;
-    const double cse231 = cse229 / cse230;
-    const double cse232 = 1.0 - cse227;
-    const double cse233 = cse195 + cse195;
-    const double cse234 = 2.0 * cse218;
-    const double cse235 = cse233 / cse234;
-    const double cse236 = 1.0 - cse226;
-    const double cse237 = 1.0 - 0.3 * ((1.0 - ((cse221 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse220) >= 0.0 ? 1.0 : 0.0))));
-    const double cse238 = cse237 * cse222 + cse222 * cse237;
-    const double cse239 = 2.0 * cse223;
-    const double cse240 = cse238 / cse239;
-    const double cse241 = 1.0 - cse225;
-    const double cse242 = 1.0 - ((cse205 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse243 = 1.0 - ((-cse204) >= 0.0 ? 1.0 : 0.0);
-    const double cse244 = cse242 * (cse243 * derived8_);
-    const double cse245 = 1.0 - cse244 * derived3_;
-    const double cse246 = 0.2 * cse244;
-    const double cse247 = cse245 * cse207 + cse207 * cse245 + (-cse246 * cse208 - cse208 * cse246);
-    const double cse248 = 2.0 * cse209;
-    const double cse249 = cse247 / cse248;
-    const double cse250 = 1.0 - cse203;
-    const double cse251 = ((cse200 - cse201) >= 0.0 ? 1.0 : 0.0);
-    const double cse252 = ((cse197 - cse199) >= 0.0 ? 1.0 : 0.0);
-    const double cse253 = ((cse193 - cse196) >= 0.0 ? 1.0 : 0.0);
-    const double cse254 = 1.0 - cse251;
-    const double cse255 = cse203 * (cse225 * (cse226 * (cse227 * cse231 + cse232 * cse235) + cse236 * cse240) + cse241 * cse249) + cse250 * (cse251 * (cse252 * (1.0 - cse253)) - cse254 * derived9_);
-    const double cse256 = ball_r_r_q_3 + ball_r_r_q_3;
-    const double cse257 = cse256 / cse230;
-    const double cse258 = 1.0 - 0.2 * ((1.0 - ((cse216 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse215) >= 0.0 ? 1.0 : 0.0))));
-    const double cse259 = cse258 * cse217 + cse217 * cse258;
-    const double cse260 = cse259 / cse234;
-    const double cse261 = cse198 + cse198;
-    const double cse262 = cse261 / cse239;
-    const double cse263 = cse242 * (cse243 * derived10_);
-    const double cse264 = cse263 * derived3_;
-    const double cse265 = 1.0 - 0.2 * cse263;
-    const double cse266 = -cse264 * cse207 - cse207 * cse264 + (cse265 * cse208 + cse208 * cse265);
-    const double cse267 = cse266 / cse248;
-    const double cse268 = cse203 * (cse225 * (cse226 * (cse227 * cse257 + cse232 * cse260) + cse236 * cse262) + cse241 * cse267) + cse250 * (cse251 * (-cse252 * (cse253 * derived11_) + (1.0 - cse252)) + cse254 * derived12_);
-    const double on_ridge_cat_f2 = cse255 * ball_r_m_p_1 + cse268 * ball_r_m_p_3;
+    const double cse205 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse206 = ball_r_r_q_1 - 4.5;
+    const double cse207 = cse206 - 0.3;
+    const double cse208 = 0.2 * cse207 / 0.2;
+    const double cse209 = std::fmax(cse205, cse208);
+    const double cse210 = ball_r_r_q_3 - 0.2;
+    const double cse211 = 0.3 * cse210 / 0.3;
+    const double cse212 = std::fmax(cse209, cse211);
+    const double cse213 = (-0.2 * cse206 + cse210 * derived3_) / derived4_;
+    const double cse214 = std::fmax(cse212, cse213);
+    const double cse215 = ((cse214) >= 0.0 ? 1.0 : 0.0);
+    const double cse216 = (-cse206 * derived3_ - 0.2 * cse210) / derived5_;
+    const double cse217 = std::fmax(0.0, cse216);
+    const double cse218 = std::fmin(1.0, cse217);
+    const double cse219 = cse206 + cse218 * derived3_;
+    const double cse220 = cse210 + 0.2 * cse218;
+    const double cse221 = std::sqrt(cse219 * cse219 + cse220 * cse220);
+    const double cse222 = cse206 + derived3_;
+    const double cse223 = cse222 * derived1_ / derived6_;
+    const double cse224 = std::fmax(0.0, cse223);
+    const double cse225 = cse222 - std::fmin(1.0, cse224) * derived1_;
+    const double cse226 = std::sqrt(cse225 * cse225 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse227 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse228 = std::fmax(0.0, cse227);
+    const double cse229 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse228);
+    const double cse230 = std::sqrt(cse207 * cse207 + cse229 * cse229);
+    const double cse231 = std::fmin(cse226, cse230);
+    const double cse232 = 0.3 * cse207 / 0.09;
+    const double cse233 = std::fmax(0.0, -cse232);
+    const double cse234 = cse207 + 0.3 * std::fmin(1.0, cse233);
+    const double cse235 = std::sqrt(cse234 * cse234 + cse210 * cse210);
+    const double cse236 = std::fmin(cse231, cse235);
+    const double cse237 = ((cse221 - cse236) >= 0.0 ? 1.0 : 0.0);
+    const double cse238 = ((cse235 - cse231) >= 0.0 ? 1.0 : 0.0);
+    const double cse239 = ((cse230 - cse226) >= 0.0 ? 1.0 : 0.0);
+    const double cse240 = 1.0 - (1.0 - ((cse224 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse223) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse241 = cse240 * cse225 + cse225 * cse240;
+    const double cse242 = 2.0 * cse226;
+    const double cse243 = cse241 / cse242;
+    const double cse244 = 1.0 - cse239;
+    const double cse245 = cse207 + cse207;
+    const double cse246 = 2.0 * cse230;
+    const double cse247 = cse245 / cse246;
+    const double cse248 = 1.0 - cse238;
+    const double cse249 = 1.0 - 0.3 * ((1.0 - ((cse233 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse232) >= 0.0 ? 1.0 : 0.0))));
+    const double cse250 = cse249 * cse234 + cse234 * cse249;
+    const double cse251 = 2.0 * cse235;
+    const double cse252 = cse250 / cse251;
+    const double cse253 = 1.0 - cse237;
+    const double cse254 = 1.0 - ((cse217 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse255 = 1.0 - ((-cse216) >= 0.0 ? 1.0 : 0.0);
+    const double cse256 = cse254 * (cse255 * derived8_);
+    const double cse257 = 1.0 - cse256 * derived3_;
+    const double cse258 = 0.2 * cse256;
+    const double cse259 = cse257 * cse219 + cse219 * cse257 + (-cse258 * cse220 - cse220 * cse258);
+    const double cse260 = 2.0 * cse221;
+    const double cse261 = cse259 / cse260;
+    const double cse262 = 1.0 - cse215;
+    const double cse263 = ((cse212 - cse213) >= 0.0 ? 1.0 : 0.0);
+    const double cse264 = ((cse209 - cse211) >= 0.0 ? 1.0 : 0.0);
+    const double cse265 = ((cse205 - cse208) >= 0.0 ? 1.0 : 0.0);
+    const double cse266 = 1.0 - cse263;
+    const double cse267 = cse215 * (cse237 * (cse238 * (cse239 * cse243 + cse244 * cse247) + cse248 * cse252) + cse253 * cse261) + cse262 * (cse263 * (cse264 * (1.0 - cse265)) - cse266 * derived9_);
+    const double cse268 = ball_r_r_q_3 + ball_r_r_q_3;
+    const double cse269 = cse268 / cse242;
+    const double cse270 = 1.0 - 0.2 * ((1.0 - ((cse228 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse227) >= 0.0 ? 1.0 : 0.0))));
+    const double cse271 = cse270 * cse229 + cse229 * cse270;
+    const double cse272 = cse271 / cse246;
+    const double cse273 = cse210 + cse210;
+    const double cse274 = cse273 / cse251;
+    const double cse275 = cse254 * (cse255 * derived10_);
+    const double cse276 = cse275 * derived3_;
+    const double cse277 = 1.0 - 0.2 * cse275;
+    const double cse278 = -cse276 * cse219 - cse219 * cse276 + (cse277 * cse220 + cse220 * cse277);
+    const double cse279 = cse278 / cse260;
+    const double cse280 = cse215 * (cse237 * (cse238 * (cse239 * cse269 + cse244 * cse272) + cse248 * cse274) + cse253 * cse279) + cse262 * (cse263 * (-cse264 * (cse265 * derived11_) + (1.0 - cse264)) + cse266 * derived12_);
+    const double on_ridge_cat_f2 = cse267 * ball_r_m_p_1 + cse280 * ball_r_m_p_3;
     // drawn_surfaces.mbg:33:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_r.m.e[1], ball_r.m.e[3], on_ridge.cat.e1[1], on_ridge.cat.e1[3], on_ridge.cn.e, der(on_ridge.cat.f2))
-    const double cse269 = -cse255;
-    const double cse270 = -cse268;
-    const double cse271 = 1.0 - mode_[3];
-    const double cse272 = cse203 * std::fmin(cse224, cse209) + cse250 * cse202 - on_ridge_radius;
-    const double cse273 = cse228 * cse228;
-    const double cse274 = 2.0 * cse231;
-    const double cse275 = (cse230*cse230);
-    const double cse276 = 2.0 * cse235;
-    const double cse277 = (cse234*cse234);
-    const double cse278 = cse237 * cse237;
-    const double cse279 = 2.0 * cse240;
-    const double cse280 = (cse239*cse239);
-    const double cse281 = cse245 * cse245;
-    const double cse282 = cse246 * cse246;
-    const double cse283 = 2.0 * cse249;
-    const double cse284 = (cse248*cse248);
-    const double cse285 = cse264 * cse245;
-    const double cse286 = cse245 * cse264;
-    const double cse287 = cse265 * cse246;
-    const double cse288 = cse246 * cse265;
-    const double cse289 = 2.0 * cse257;
-    const double cse290 = 2.0 * cse260;
-    const double cse291 = 2.0 * cse262;
-    const double cse292 = 2.0 * cse267;
-    const double cse293 = cse258 * cse258;
-    const double cse294 = cse264 * cse264;
-    const double cse295 = cse265 * cse265;
+    const double cse281 = -cse267;
+    const double cse282 = -cse280;
+    const double cse283 = 1.0 - mode_[3];
+    const double cse284 = cse215 * std::fmin(cse236, cse221) + cse262 * cse214 - on_ridge_radius;
+    const double cse285 = cse240 * cse240;
+    const double cse286 = 2.0 * cse243;
+    const double cse287 = (cse242*cse242);
+    const double cse288 = 2.0 * cse247;
+    const double cse289 = (cse246*cse246);
+    const double cse290 = cse249 * cse249;
+    const double cse291 = 2.0 * cse252;
+    const double cse292 = (cse251*cse251);
+    const double cse293 = cse257 * cse257;
+    const double cse294 = cse258 * cse258;
+    const double cse295 = 2.0 * cse261;
+    const double cse296 = (cse260*cse260);
+    const double cse297 = cse276 * cse257;
+    const double cse298 = cse257 * cse276;
+    const double cse299 = cse277 * cse258;
+    const double cse300 = cse258 * cse277;
+    const double cse301 = 2.0 * cse269;
+    const double cse302 = 2.0 * cse272;
+    const double cse303 = 2.0 * cse274;
+    const double cse304 = 2.0 * cse279;
+    const double cse305 = cse270 * cse270;
+    const double cse306 = cse276 * cse276;
+    const double cse307 = cse277 * cse277;
     double blk4_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse269, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse270, 0.0,
-        0.0, 0.0, 0.0, 0.0, cse271, mode_[3],
-        cse269, cse270, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 1.0, 0.0, cse281, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse282, 0.0,
+        0.0, 0.0, 0.0, 0.0, cse283, mode_[3],
+        cse281, cse282, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse272 - contact_bias_[3]), (cse203 * (cse225 * (cse226 * (cse227 * (((cse273 + cse273) * cse230 - cse229 * cse274) / cse275) + cse232 * ((4.0 * cse218 - cse233 * cse276) / cse277)) + cse236 * (((cse278 + cse278) * cse239 - cse238 * cse279) / cse280)) + cse241 * (((cse281 + cse281 + (cse282 + cse282)) * cse248 - cse247 * cse283) / cse284)) * ball_r_m_p_1 + cse203 * (cse225 * (cse226 * (-cse227 * (cse256 * cse274 / cse275) - cse232 * (cse259 * cse276 / cse277)) - cse236 * (cse261 * cse279 / cse280)) + cse241 * (((-cse285 - cse286 + (-cse287 - cse288)) * cse248 - cse266 * cse283) / cse284)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse203 * (cse225 * (cse226 * (-cse227 * (cse229 * cse289 / cse275) - cse232 * (cse233 * cse290 / cse277)) - cse236 * (cse238 * cse291 / cse280)) + cse241 * (((-cse286 - cse285 + (-cse288 - cse287)) * cse248 - cse247 * cse292) / cse284)) * ball_r_m_p_1 + cse203 * (cse225 * (cse226 * (cse227 * ((4.0 * cse214 - cse256 * cse289) / cse275) + cse232 * (((cse293 + cse293) * cse234 - cse259 * cse290) / cse277)) + cse236 * ((4.0 * cse223 - cse261 * cse291) / cse280)) + cse241 * (((cse294 + cse294 + (cse295 + cse295)) * cse248 - cse266 * cse292) / cse284)) * ball_r_m_p_3) * ball_r_m_p_3};
+    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse284 - contact_bias_[3]), (cse215 * (cse237 * (cse238 * (cse239 * (((cse285 + cse285) * cse242 - cse241 * cse286) / cse287) + cse244 * ((4.0 * cse230 - cse245 * cse288) / cse289)) + cse248 * (((cse290 + cse290) * cse251 - cse250 * cse291) / cse292)) + cse253 * (((cse293 + cse293 + (cse294 + cse294)) * cse260 - cse259 * cse295) / cse296)) * ball_r_m_p_1 + cse215 * (cse237 * (cse238 * (-cse239 * (cse268 * cse286 / cse287) - cse244 * (cse271 * cse288 / cse289)) - cse248 * (cse273 * cse291 / cse292)) + cse253 * (((-cse297 - cse298 + (-cse299 - cse300)) * cse260 - cse278 * cse295) / cse296)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse215 * (cse237 * (cse238 * (-cse239 * (cse241 * cse301 / cse287) - cse244 * (cse245 * cse302 / cse289)) - cse248 * (cse250 * cse303 / cse292)) + cse253 * (((-cse298 - cse297 + (-cse300 - cse299)) * cse260 - cse259 * cse304) / cse296)) * ball_r_m_p_1 + cse215 * (cse237 * (cse238 * (cse239 * ((4.0 * cse226 - cse268 * cse301) / cse287) + cse244 * (((cse305 + cse305) * cse246 - cse271 * cse302) / cse289)) + cse248 * ((4.0 * cse235 - cse273 * cse303) / cse292)) + cse253 * (((cse306 + cse306 + (cse307 + cse307)) * cse260 - cse278 * cse304) / cse296)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
     double blk4_closest;
@@ -1516,16 +1650,16 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double der_on_platform_cbt_f2 = -der_rise_reaction_f_f_3;
     // drawn_surfaces.mbg:34:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_m.m.e[3], on_platform.cat.e1[3], on_platform.cn.e, der(on_platform.cat.f2), der(on_platform.cn.f))
-    const double cse296 = 1.0 - mode_[4];
-    const double cse297 = ball_m_r_q_3 - platform_pose_r3 - on_platform_radius;
+    const double cse308 = 1.0 - mode_[4];
+    const double cse309 = ball_m_r_q_3 - platform_pose_r3 - on_platform_radius;
     double blk5_a[25] = {
         -1.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 1.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, cse296, 0.0, mode_[4],
+        0.0, 0.0, cse308, 0.0, mode_[4],
         -1.0, 0.0, 0.0, 1.0, 0.0,
         0.0, 0.0, 0.0, -1.0, 1.0,
     };
-    double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse297 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
+    double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse309 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
     static const char* const blk5_rows[] = {"ball_m.m.e[3]", "on_platform.cat.e1[3]", "on_platform.cn.e", "der(on_platform.cat.f2)", "der(on_platform.cn.f)"};
     int blk5_dependent[5];
     double blk5_closest;
@@ -1533,11 +1667,11 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double on_platform_cn_e = blk5_x[2];
     // zero-crossing functions, in event order
-    g[0] = -mode_[0] * on_floor_cn_e + cse157 * cse158;
-    g[1] = -mode_[1] * on_dome_cn_e + cse171 * cse172;
-    g[2] = -mode_[2] * on_drum_cn_e + cse187 * cse188;
-    g[3] = -mode_[3] * on_ridge_cn_e + cse271 * cse272;
-    g[4] = -mode_[4] * on_platform_cn_e + cse296 * cse297;
+    g[0] = -mode_[0] * on_floor_cn_e + cse169 * cse170;
+    g[1] = -mode_[1] * on_dome_cn_e + cse183 * cse184;
+    g[2] = -mode_[2] * on_drum_cn_e + cse199 * cse200;
+    g[3] = -mode_[3] * on_ridge_cn_e + cse283 * cse284;
+    g[4] = -mode_[4] * on_platform_cn_e + cse308 * cse309;
   }
 
   // EVENTS: the model's discontinuities, each a step held as a mode between the zero crossings of its argument.
@@ -1604,71 +1738,71 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double ball_m_m_p_3 = x[26];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse298 = ball_s_r_q_1 - 1.5;
-    const double cse299 = 2.0 * std::sqrt(cse298 * cse298 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double on_dome_cat_f2 = (cse298 + cse298) / cse299 * ball_s_m_p_1 + (ball_s_r_q_2 + ball_s_r_q_2) / cse299 * ball_s_m_p_2 + (ball_s_r_q_3 + ball_s_r_q_3) / cse299 * ball_s_m_p_3;
+    const double cse310 = ball_s_r_q_1 - 1.5;
+    const double cse311 = 2.0 * std::sqrt(cse310 * cse310 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double on_dome_cat_f2 = (cse310 + cse310) / cse311 * ball_s_m_p_1 + (ball_s_r_q_2 + ball_s_r_q_2) / cse311 * ball_s_m_p_2 + (ball_s_r_q_3 + ball_s_r_q_3) / cse311 * ball_s_m_p_3;
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse300 = ball_c_r_q_1 - 3.0;
-    const double cse301 = 2.0 * std::sqrt(cse300 * cse300 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double on_drum_cat_f2 = (cse300 + cse300) / cse301 * ball_c_m_p_1 + (ball_c_r_q_3 + ball_c_r_q_3) / cse301 * ball_c_m_p_3;
+    const double cse312 = ball_c_r_q_1 - 3.0;
+    const double cse313 = 2.0 * std::sqrt(cse312 * cse312 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double on_drum_cat_f2 = (cse312 + cse312) / cse313 * ball_c_m_p_1 + (ball_c_r_q_3 + ball_c_r_q_3) / cse313 * ball_c_m_p_3;
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse302 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse303 = ball_r_r_q_1 - 4.5;
-    const double cse304 = cse303 - 0.3;
-    const double cse305 = 0.2 * cse304 / 0.2;
-    const double cse306 = std::fmax(cse302, cse305);
-    const double cse307 = ball_r_r_q_3 - 0.2;
-    const double cse308 = 0.3 * cse307 / 0.3;
-    const double cse309 = std::fmax(cse306, cse308);
-    const double cse310 = (-0.2 * cse303 + cse307 * derived3_) / derived4_;
-    const double cse311 = ((std::fmax(cse309, cse310)) >= 0.0 ? 1.0 : 0.0);
-    const double cse312 = (-cse303 * derived3_ - 0.2 * cse307) / derived5_;
-    const double cse313 = std::fmax(0.0, cse312);
-    const double cse314 = std::fmin(1.0, cse313);
-    const double cse315 = cse303 + cse314 * derived3_;
-    const double cse316 = cse307 + 0.2 * cse314;
-    const double cse317 = std::sqrt(cse315 * cse315 + cse316 * cse316);
-    const double cse318 = cse303 + derived3_;
-    const double cse319 = cse318 * derived1_ / derived6_;
-    const double cse320 = std::fmax(0.0, cse319);
-    const double cse321 = cse318 - std::fmin(1.0, cse320) * derived1_;
-    const double cse322 = std::sqrt(cse321 * cse321 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse323 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
-    const double cse324 = std::fmax(0.0, cse323);
-    const double cse325 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse324);
-    const double cse326 = std::sqrt(cse304 * cse304 + cse325 * cse325);
-    const double cse327 = std::fmin(cse322, cse326);
-    const double cse328 = 0.3 * cse304 / 0.09;
-    const double cse329 = std::fmax(0.0, -cse328);
-    const double cse330 = cse304 + 0.3 * std::fmin(1.0, cse329);
-    const double cse331 = std::sqrt(cse330 * cse330 + cse307 * cse307);
-    const double cse332 = ((cse317 - std::fmin(cse327, cse331)) >= 0.0 ? 1.0 : 0.0);
-    const double cse333 = ((cse331 - cse327) >= 0.0 ? 1.0 : 0.0);
-    const double cse334 = ((cse326 - cse322) >= 0.0 ? 1.0 : 0.0);
-    const double cse335 = 1.0 - (1.0 - ((cse320 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse319) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse336 = 2.0 * cse322;
-    const double cse337 = 1.0 - cse334;
-    const double cse338 = 2.0 * cse326;
-    const double cse339 = 1.0 - cse333;
-    const double cse340 = 1.0 - 0.3 * ((1.0 - ((cse329 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse328) >= 0.0 ? 1.0 : 0.0))));
-    const double cse341 = 2.0 * cse331;
-    const double cse342 = 1.0 - cse332;
-    const double cse343 = 1.0 - ((cse313 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse344 = 1.0 - ((-cse312) >= 0.0 ? 1.0 : 0.0);
-    const double cse345 = cse343 * (cse344 * derived8_);
-    const double cse346 = 1.0 - cse345 * derived3_;
-    const double cse347 = 0.2 * cse345;
-    const double cse348 = 2.0 * cse317;
-    const double cse349 = 1.0 - cse311;
-    const double cse350 = ((cse309 - cse310) >= 0.0 ? 1.0 : 0.0);
-    const double cse351 = ((cse306 - cse308) >= 0.0 ? 1.0 : 0.0);
-    const double cse352 = ((cse302 - cse305) >= 0.0 ? 1.0 : 0.0);
-    const double cse353 = 1.0 - cse350;
-    const double cse354 = 1.0 - 0.2 * ((1.0 - ((cse324 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse323) >= 0.0 ? 1.0 : 0.0))));
-    const double cse355 = cse343 * (cse344 * derived10_);
-    const double cse356 = cse355 * derived3_;
-    const double cse357 = 1.0 - 0.2 * cse355;
-    const double on_ridge_cat_f2 = (cse311 * (cse332 * (cse333 * (cse334 * ((cse335 * cse321 + cse321 * cse335) / cse336) + cse337 * ((cse304 + cse304) / cse338)) + cse339 * ((cse340 * cse330 + cse330 * cse340) / cse341)) + cse342 * ((cse346 * cse315 + cse315 * cse346 + (-cse347 * cse316 - cse316 * cse347)) / cse348)) + cse349 * (cse350 * (cse351 * (1.0 - cse352)) - cse353 * derived9_)) * ball_r_m_p_1 + (cse311 * (cse332 * (cse333 * (cse334 * ((ball_r_r_q_3 + ball_r_r_q_3) / cse336) + cse337 * ((cse354 * cse325 + cse325 * cse354) / cse338)) + cse339 * ((cse307 + cse307) / cse341)) + cse342 * ((-cse356 * cse315 - cse315 * cse356 + (cse357 * cse316 + cse316 * cse357)) / cse348)) + cse349 * (cse350 * (-cse351 * (cse352 * derived11_) + (1.0 - cse351)) + cse353 * derived12_)) * ball_r_m_p_3;
+    const double cse314 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse315 = ball_r_r_q_1 - 4.5;
+    const double cse316 = cse315 - 0.3;
+    const double cse317 = 0.2 * cse316 / 0.2;
+    const double cse318 = std::fmax(cse314, cse317);
+    const double cse319 = ball_r_r_q_3 - 0.2;
+    const double cse320 = 0.3 * cse319 / 0.3;
+    const double cse321 = std::fmax(cse318, cse320);
+    const double cse322 = (-0.2 * cse315 + cse319 * derived3_) / derived4_;
+    const double cse323 = ((std::fmax(cse321, cse322)) >= 0.0 ? 1.0 : 0.0);
+    const double cse324 = (-cse315 * derived3_ - 0.2 * cse319) / derived5_;
+    const double cse325 = std::fmax(0.0, cse324);
+    const double cse326 = std::fmin(1.0, cse325);
+    const double cse327 = cse315 + cse326 * derived3_;
+    const double cse328 = cse319 + 0.2 * cse326;
+    const double cse329 = std::sqrt(cse327 * cse327 + cse328 * cse328);
+    const double cse330 = cse315 + derived3_;
+    const double cse331 = cse330 * derived1_ / derived6_;
+    const double cse332 = std::fmax(0.0, cse331);
+    const double cse333 = cse330 - std::fmin(1.0, cse332) * derived1_;
+    const double cse334 = std::sqrt(cse333 * cse333 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse335 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse336 = std::fmax(0.0, cse335);
+    const double cse337 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse336);
+    const double cse338 = std::sqrt(cse316 * cse316 + cse337 * cse337);
+    const double cse339 = std::fmin(cse334, cse338);
+    const double cse340 = 0.3 * cse316 / 0.09;
+    const double cse341 = std::fmax(0.0, -cse340);
+    const double cse342 = cse316 + 0.3 * std::fmin(1.0, cse341);
+    const double cse343 = std::sqrt(cse342 * cse342 + cse319 * cse319);
+    const double cse344 = ((cse329 - std::fmin(cse339, cse343)) >= 0.0 ? 1.0 : 0.0);
+    const double cse345 = ((cse343 - cse339) >= 0.0 ? 1.0 : 0.0);
+    const double cse346 = ((cse338 - cse334) >= 0.0 ? 1.0 : 0.0);
+    const double cse347 = 1.0 - (1.0 - ((cse332 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse331) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse348 = 2.0 * cse334;
+    const double cse349 = 1.0 - cse346;
+    const double cse350 = 2.0 * cse338;
+    const double cse351 = 1.0 - cse345;
+    const double cse352 = 1.0 - 0.3 * ((1.0 - ((cse341 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse340) >= 0.0 ? 1.0 : 0.0))));
+    const double cse353 = 2.0 * cse343;
+    const double cse354 = 1.0 - cse344;
+    const double cse355 = 1.0 - ((cse325 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse356 = 1.0 - ((-cse324) >= 0.0 ? 1.0 : 0.0);
+    const double cse357 = cse355 * (cse356 * derived8_);
+    const double cse358 = 1.0 - cse357 * derived3_;
+    const double cse359 = 0.2 * cse357;
+    const double cse360 = 2.0 * cse329;
+    const double cse361 = 1.0 - cse323;
+    const double cse362 = ((cse321 - cse322) >= 0.0 ? 1.0 : 0.0);
+    const double cse363 = ((cse318 - cse320) >= 0.0 ? 1.0 : 0.0);
+    const double cse364 = ((cse314 - cse317) >= 0.0 ? 1.0 : 0.0);
+    const double cse365 = 1.0 - cse362;
+    const double cse366 = 1.0 - 0.2 * ((1.0 - ((cse336 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse335) >= 0.0 ? 1.0 : 0.0))));
+    const double cse367 = cse355 * (cse356 * derived10_);
+    const double cse368 = cse367 * derived3_;
+    const double cse369 = 1.0 - 0.2 * cse367;
+    const double on_ridge_cat_f2 = (cse323 * (cse344 * (cse345 * (cse346 * ((cse347 * cse333 + cse333 * cse347) / cse348) + cse349 * ((cse316 + cse316) / cse350)) + cse351 * ((cse352 * cse342 + cse342 * cse352) / cse353)) + cse354 * ((cse358 * cse327 + cse327 * cse358 + (-cse359 * cse328 - cse328 * cse359)) / cse360)) + cse361 * (cse362 * (cse363 * (1.0 - cse364)) - cse365 * derived9_)) * ball_r_m_p_1 + (cse323 * (cse344 * (cse345 * (cse346 * ((ball_r_r_q_3 + ball_r_r_q_3) / cse348) + cse349 * ((cse366 * cse337 + cse337 * cse366) / cse350)) + cse351 * ((cse319 + cse319) / cse353)) + cse354 * ((-cse368 * cse327 - cse327 * cse368 + (cse369 * cse328 + cse328 * cse369)) / cse360)) + cse361 * (cse362 * (-cse363 * (cse364 * derived11_) + (1.0 - cse363)) + cse365 * derived12_)) * ball_r_m_p_3;
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
     const double on_platform_cat_f2 = ball_m_m_p_3;
     // drawn_surfaces.mbg:36:7  Sf rise.s_rate: f = value
@@ -1743,10 +1877,10 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double spin_m4_f1_3 = lift_reaction_f_f_3;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse358 = derived13_ * t;
-    const double cse359 = std::cos(cse358);
-    const double cse360 = std::sin(cse358);
-    const double spin_m4_f2_1 = cse359 * spin_m4_f1_1 - cse360 * spin_m4_f1_3;
+    const double cse370 = derived13_ * t;
+    const double cse371 = std::cos(cse370);
+    const double cse372 = std::sin(cse370);
+    const double spin_m4_f2_1 = cse371 * spin_m4_f1_1 - cse372 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_1 = spin_m4_f2_1;
     // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
@@ -1754,7 +1888,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
     const double spin_reaction_t_f_2 = spin_theta_rate_f;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse360 * spin_m4_f1_1 + cse359 * spin_m4_f1_3;
+    const double spin_m4_f2_3 = cse372 * spin_m4_f1_1 + cse371 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_3 = spin_m4_f2_3;
     // the stored energy
@@ -1805,37 +1939,37 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse361 = ball_s_r_q_1 - 1.5;
-    const double cse362 = cse361 + cse361;
-    const double cse363 = std::sqrt(cse361 * cse361 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double cse364 = 2.0 * cse363;
-    const double cse365 = cse362 / cse364;
-    const double cse366 = ball_s_r_q_2 + ball_s_r_q_2;
-    const double cse367 = cse366 / cse364;
-    const double cse368 = ball_s_r_q_3 + ball_s_r_q_3;
-    const double cse369 = cse368 / cse364;
-    const double on_dome_cat_f2 = cse365 * ball_s_m_p_1 + cse367 * ball_s_m_p_2 + cse369 * ball_s_m_p_3;
+    const double cse373 = ball_s_r_q_1 - 1.5;
+    const double cse374 = cse373 + cse373;
+    const double cse375 = std::sqrt(cse373 * cse373 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double cse376 = 2.0 * cse375;
+    const double cse377 = cse374 / cse376;
+    const double cse378 = ball_s_r_q_2 + ball_s_r_q_2;
+    const double cse379 = cse378 / cse376;
+    const double cse380 = ball_s_r_q_3 + ball_s_r_q_3;
+    const double cse381 = cse380 / cse376;
+    const double on_dome_cat_f2 = cse377 * ball_s_m_p_1 + cse379 * ball_s_m_p_2 + cse381 * ball_s_m_p_3;
     // drawn_surfaces.mbg:31:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_s.m.e[1], ball_s.m.e[2], ball_s.m.e[3], on_dome.cat.e1[1], on_dome.cat.e1[2], on_dome.cat.e1[3], on_dome.cn.e, der(on_dome.cat.f2))
-    const double cse370 = -cse365;
-    const double cse371 = -cse367;
-    const double cse372 = -cse369;
-    const double cse373 = 4.0 * cse363;
-    const double cse374 = 2.0 * cse365;
-    const double cse375 = (cse364*cse364);
-    const double cse376 = 2.0 * cse367;
-    const double cse377 = 2.0 * cse369;
+    const double cse382 = -cse377;
+    const double cse383 = -cse379;
+    const double cse384 = -cse381;
+    const double cse385 = 4.0 * cse375;
+    const double cse386 = 2.0 * cse377;
+    const double cse387 = (cse376*cse376);
+    const double cse388 = 2.0 * cse379;
+    const double cse389 = 2.0 * cse381;
     double blk2_a[64] = {
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse370, 0.0,
-        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse371, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse372, 0.0,
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse382, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse383, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse384, 0.0,
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 - mode_[1], mode_[1],
-        cse370, cse371, cse372, 0.0, 0.0, 0.0, 0.0, 1.0,
+        cse382, cse383, cse384, 0.0, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse363 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse373 - cse362 * cse374) / cse375 * ball_s_m_p_1 - cse366 * cse374 / cse375 * ball_s_m_p_2 - cse368 * cse374 / cse375 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse362 * cse376 / cse375 * ball_s_m_p_1 + (cse373 - cse366 * cse376) / cse375 * ball_s_m_p_2 - cse368 * cse376 / cse375 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse362 * cse377 / cse375 * ball_s_m_p_1 - cse366 * cse377 / cse375 * ball_s_m_p_2 + (cse373 - cse368 * cse377) / cse375 * ball_s_m_p_3) * ball_s_m_p_3};
+    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse375 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse385 - cse374 * cse386) / cse387 * ball_s_m_p_1 - cse378 * cse386 / cse387 * ball_s_m_p_2 - cse380 * cse386 / cse387 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse374 * cse388 / cse387 * ball_s_m_p_1 + (cse385 - cse378 * cse388) / cse387 * ball_s_m_p_2 - cse380 * cse388 / cse387 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse374 * cse389 / cse387 * ball_s_m_p_1 - cse378 * cse389 / cse387 * ball_s_m_p_2 + (cse385 - cse380 * cse389) / cse387 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
     double blk2_closest;
@@ -1843,31 +1977,31 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse378 = ball_c_r_q_1 - 3.0;
-    const double cse379 = cse378 + cse378;
-    const double cse380 = std::sqrt(cse378 * cse378 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double cse381 = 2.0 * cse380;
-    const double cse382 = cse379 / cse381;
-    const double cse383 = ball_c_r_q_3 + ball_c_r_q_3;
-    const double cse384 = cse383 / cse381;
-    const double on_drum_cat_f2 = cse382 * ball_c_m_p_1 + cse384 * ball_c_m_p_3;
+    const double cse390 = ball_c_r_q_1 - 3.0;
+    const double cse391 = cse390 + cse390;
+    const double cse392 = std::sqrt(cse390 * cse390 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double cse393 = 2.0 * cse392;
+    const double cse394 = cse391 / cse393;
+    const double cse395 = ball_c_r_q_3 + ball_c_r_q_3;
+    const double cse396 = cse395 / cse393;
+    const double on_drum_cat_f2 = cse394 * ball_c_m_p_1 + cse396 * ball_c_m_p_3;
     // drawn_surfaces.mbg:32:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_c.m.e[1], ball_c.m.e[3], on_drum.cat.e1[1], on_drum.cat.e1[3], on_drum.cn.e, der(on_drum.cat.f2))
-    const double cse385 = -cse382;
-    const double cse386 = -cse384;
-    const double cse387 = 4.0 * cse380;
-    const double cse388 = 2.0 * cse382;
-    const double cse389 = (cse381*cse381);
-    const double cse390 = 2.0 * cse384;
+    const double cse397 = -cse394;
+    const double cse398 = -cse396;
+    const double cse399 = 4.0 * cse392;
+    const double cse400 = 2.0 * cse394;
+    const double cse401 = (cse393*cse393);
+    const double cse402 = 2.0 * cse396;
     double blk3_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse385, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse386, 0.0,
+        0.0, 0.0, 1.0, 0.0, cse397, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse398, 0.0,
         0.0, 0.0, 0.0, 0.0, 1.0 - mode_[2], mode_[2],
-        cse385, cse386, 0.0, 0.0, 0.0, 1.0,
+        cse397, cse398, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse380 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse387 - cse379 * cse388) / cse389 * ball_c_m_p_1 - cse383 * cse388 / cse389 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse379 * cse390 / cse389 * ball_c_m_p_1 + (cse387 - cse383 * cse390) / cse389 * ball_c_m_p_3) * ball_c_m_p_3};
+    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse392 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse399 - cse391 * cse400) / cse401 * ball_c_m_p_1 - cse395 * cse400 / cse401 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse391 * cse402 / cse401 * ball_c_m_p_1 + (cse399 - cse395 * cse402) / cse401 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
     double blk3_closest;
@@ -1875,119 +2009,119 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse391 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse392 = ball_r_r_q_1 - 4.5;
-    const double cse393 = cse392 - 0.3;
-    const double cse394 = 0.2 * cse393 / 0.2;
-    const double cse395 = std::fmax(cse391, cse394);
-    const double cse396 = ball_r_r_q_3 - 0.2;
-    const double cse397 = 0.3 * cse396 / 0.3;
-    const double cse398 = std::fmax(cse395, cse397);
-    const double cse399 = (-0.2 * cse392 + cse396 * derived3_) / derived4_;
-    const double cse400 = std::fmax(cse398, cse399);
-    const double cse401 = ((cse400) >= 0.0 ? 1.0 : 0.0);
-    const double cse402 = (-cse392 * derived3_ - 0.2 * cse396) / derived5_;
-    const double cse403 = std::fmax(0.0, cse402);
-    const double cse404 = std::fmin(1.0, cse403);
-    const double cse405 = cse392 + cse404 * derived3_;
-    const double cse406 = cse396 + 0.2 * cse404;
-    const double cse407 = std::sqrt(cse405 * cse405 + cse406 * cse406);
-    const double cse408 = cse392 + derived3_;
-    const double cse409 = cse408 * derived1_ / derived6_;
-    const double cse410 = std::fmax(0.0, cse409);
-    const double cse411 = cse408 - std::fmin(1.0, cse410) * derived1_;
-    const double cse412 = std::sqrt(cse411 * cse411 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse413 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
-    const double cse414 = std::fmax(0.0, cse413);
-    const double cse415 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse414);
-    const double cse416 = std::sqrt(cse393 * cse393 + cse415 * cse415);
-    const double cse417 = std::fmin(cse412, cse416);
-    const double cse418 = 0.3 * cse393 / 0.09;
-    const double cse419 = std::fmax(0.0, -cse418);
-    const double cse420 = cse393 + 0.3 * std::fmin(1.0, cse419);
-    const double cse421 = std::sqrt(cse420 * cse420 + cse396 * cse396);
-    const double cse422 = std::fmin(cse417, cse421);
-    const double cse423 = ((cse407 - cse422) >= 0.0 ? 1.0 : 0.0);
-    const double cse424 = ((cse421 - cse417) >= 0.0 ? 1.0 : 0.0);
-    const double cse425 = ((cse416 - cse412) >= 0.0 ? 1.0 : 0.0);
-    const double cse426 = 1.0 - (1.0 - ((cse410 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse409) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse427 = cse426 * cse411 + cse411 * cse426;
-    const double cse428 = 2.0 * cse412;
-    const double cse429 = cse427 / cse428;
-    const double cse430 = 1.0 - cse425;
-    const double cse431 = cse393 + cse393;
-    const double cse432 = 2.0 * cse416;
-    const double cse433 = cse431 / cse432;
-    const double cse434 = 1.0 - cse424;
-    const double cse435 = 1.0 - 0.3 * ((1.0 - ((cse419 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse418) >= 0.0 ? 1.0 : 0.0))));
-    const double cse436 = cse435 * cse420 + cse420 * cse435;
-    const double cse437 = 2.0 * cse421;
-    const double cse438 = cse436 / cse437;
-    const double cse439 = 1.0 - cse423;
-    const double cse440 = 1.0 - ((cse403 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse441 = 1.0 - ((-cse402) >= 0.0 ? 1.0 : 0.0);
-    const double cse442 = cse440 * (cse441 * derived8_);
-    const double cse443 = 1.0 - cse442 * derived3_;
-    const double cse444 = 0.2 * cse442;
-    const double cse445 = cse443 * cse405 + cse405 * cse443 + (-cse444 * cse406 - cse406 * cse444);
-    const double cse446 = 2.0 * cse407;
-    const double cse447 = cse445 / cse446;
-    const double cse448 = 1.0 - cse401;
-    const double cse449 = ((cse398 - cse399) >= 0.0 ? 1.0 : 0.0);
-    const double cse450 = ((cse395 - cse397) >= 0.0 ? 1.0 : 0.0);
-    const double cse451 = ((cse391 - cse394) >= 0.0 ? 1.0 : 0.0);
-    const double cse452 = 1.0 - cse449;
-    const double cse453 = cse401 * (cse423 * (cse424 * (cse425 * cse429 + cse430 * cse433) + cse434 * cse438) + cse439 * cse447) + cse448 * (cse449 * (cse450 * (1.0 - cse451)) - cse452 * derived9_);
-    const double cse454 = ball_r_r_q_3 + ball_r_r_q_3;
-    const double cse455 = cse454 / cse428;
-    const double cse456 = 1.0 - 0.2 * ((1.0 - ((cse414 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse413) >= 0.0 ? 1.0 : 0.0))));
-    const double cse457 = cse456 * cse415 + cse415 * cse456;
-    const double cse458 = cse457 / cse432;
-    const double cse459 = cse396 + cse396;
-    const double cse460 = cse459 / cse437;
-    const double cse461 = cse440 * (cse441 * derived10_);
-    const double cse462 = cse461 * derived3_;
-    const double cse463 = 1.0 - 0.2 * cse461;
-    const double cse464 = -cse462 * cse405 - cse405 * cse462 + (cse463 * cse406 + cse406 * cse463);
-    const double cse465 = cse464 / cse446;
-    const double cse466 = cse401 * (cse423 * (cse424 * (cse425 * cse455 + cse430 * cse458) + cse434 * cse460) + cse439 * cse465) + cse448 * (cse449 * (-cse450 * (cse451 * derived11_) + (1.0 - cse450)) + cse452 * derived12_);
-    const double on_ridge_cat_f2 = cse453 * ball_r_m_p_1 + cse466 * ball_r_m_p_3;
+    const double cse403 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse404 = ball_r_r_q_1 - 4.5;
+    const double cse405 = cse404 - 0.3;
+    const double cse406 = 0.2 * cse405 / 0.2;
+    const double cse407 = std::fmax(cse403, cse406);
+    const double cse408 = ball_r_r_q_3 - 0.2;
+    const double cse409 = 0.3 * cse408 / 0.3;
+    const double cse410 = std::fmax(cse407, cse409);
+    const double cse411 = (-0.2 * cse404 + cse408 * derived3_) / derived4_;
+    const double cse412 = std::fmax(cse410, cse411);
+    const double cse413 = ((cse412) >= 0.0 ? 1.0 : 0.0);
+    const double cse414 = (-cse404 * derived3_ - 0.2 * cse408) / derived5_;
+    const double cse415 = std::fmax(0.0, cse414);
+    const double cse416 = std::fmin(1.0, cse415);
+    const double cse417 = cse404 + cse416 * derived3_;
+    const double cse418 = cse408 + 0.2 * cse416;
+    const double cse419 = std::sqrt(cse417 * cse417 + cse418 * cse418);
+    const double cse420 = cse404 + derived3_;
+    const double cse421 = cse420 * derived1_ / derived6_;
+    const double cse422 = std::fmax(0.0, cse421);
+    const double cse423 = cse420 - std::fmin(1.0, cse422) * derived1_;
+    const double cse424 = std::sqrt(cse423 * cse423 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse425 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse426 = std::fmax(0.0, cse425);
+    const double cse427 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse426);
+    const double cse428 = std::sqrt(cse405 * cse405 + cse427 * cse427);
+    const double cse429 = std::fmin(cse424, cse428);
+    const double cse430 = 0.3 * cse405 / 0.09;
+    const double cse431 = std::fmax(0.0, -cse430);
+    const double cse432 = cse405 + 0.3 * std::fmin(1.0, cse431);
+    const double cse433 = std::sqrt(cse432 * cse432 + cse408 * cse408);
+    const double cse434 = std::fmin(cse429, cse433);
+    const double cse435 = ((cse419 - cse434) >= 0.0 ? 1.0 : 0.0);
+    const double cse436 = ((cse433 - cse429) >= 0.0 ? 1.0 : 0.0);
+    const double cse437 = ((cse428 - cse424) >= 0.0 ? 1.0 : 0.0);
+    const double cse438 = 1.0 - (1.0 - ((cse422 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse421) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse439 = cse438 * cse423 + cse423 * cse438;
+    const double cse440 = 2.0 * cse424;
+    const double cse441 = cse439 / cse440;
+    const double cse442 = 1.0 - cse437;
+    const double cse443 = cse405 + cse405;
+    const double cse444 = 2.0 * cse428;
+    const double cse445 = cse443 / cse444;
+    const double cse446 = 1.0 - cse436;
+    const double cse447 = 1.0 - 0.3 * ((1.0 - ((cse431 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse430) >= 0.0 ? 1.0 : 0.0))));
+    const double cse448 = cse447 * cse432 + cse432 * cse447;
+    const double cse449 = 2.0 * cse433;
+    const double cse450 = cse448 / cse449;
+    const double cse451 = 1.0 - cse435;
+    const double cse452 = 1.0 - ((cse415 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse453 = 1.0 - ((-cse414) >= 0.0 ? 1.0 : 0.0);
+    const double cse454 = cse452 * (cse453 * derived8_);
+    const double cse455 = 1.0 - cse454 * derived3_;
+    const double cse456 = 0.2 * cse454;
+    const double cse457 = cse455 * cse417 + cse417 * cse455 + (-cse456 * cse418 - cse418 * cse456);
+    const double cse458 = 2.0 * cse419;
+    const double cse459 = cse457 / cse458;
+    const double cse460 = 1.0 - cse413;
+    const double cse461 = ((cse410 - cse411) >= 0.0 ? 1.0 : 0.0);
+    const double cse462 = ((cse407 - cse409) >= 0.0 ? 1.0 : 0.0);
+    const double cse463 = ((cse403 - cse406) >= 0.0 ? 1.0 : 0.0);
+    const double cse464 = 1.0 - cse461;
+    const double cse465 = cse413 * (cse435 * (cse436 * (cse437 * cse441 + cse442 * cse445) + cse446 * cse450) + cse451 * cse459) + cse460 * (cse461 * (cse462 * (1.0 - cse463)) - cse464 * derived9_);
+    const double cse466 = ball_r_r_q_3 + ball_r_r_q_3;
+    const double cse467 = cse466 / cse440;
+    const double cse468 = 1.0 - 0.2 * ((1.0 - ((cse426 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse425) >= 0.0 ? 1.0 : 0.0))));
+    const double cse469 = cse468 * cse427 + cse427 * cse468;
+    const double cse470 = cse469 / cse444;
+    const double cse471 = cse408 + cse408;
+    const double cse472 = cse471 / cse449;
+    const double cse473 = cse452 * (cse453 * derived10_);
+    const double cse474 = cse473 * derived3_;
+    const double cse475 = 1.0 - 0.2 * cse473;
+    const double cse476 = -cse474 * cse417 - cse417 * cse474 + (cse475 * cse418 + cse418 * cse475);
+    const double cse477 = cse476 / cse458;
+    const double cse478 = cse413 * (cse435 * (cse436 * (cse437 * cse467 + cse442 * cse470) + cse446 * cse472) + cse451 * cse477) + cse460 * (cse461 * (-cse462 * (cse463 * derived11_) + (1.0 - cse462)) + cse464 * derived12_);
+    const double on_ridge_cat_f2 = cse465 * ball_r_m_p_1 + cse478 * ball_r_m_p_3;
     // drawn_surfaces.mbg:33:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_r.m.e[1], ball_r.m.e[3], on_ridge.cat.e1[1], on_ridge.cat.e1[3], on_ridge.cn.e, der(on_ridge.cat.f2))
-    const double cse467 = -cse453;
-    const double cse468 = -cse466;
-    const double cse469 = cse426 * cse426;
-    const double cse470 = 2.0 * cse429;
-    const double cse471 = (cse428*cse428);
-    const double cse472 = 2.0 * cse433;
-    const double cse473 = (cse432*cse432);
-    const double cse474 = cse435 * cse435;
-    const double cse475 = 2.0 * cse438;
-    const double cse476 = (cse437*cse437);
-    const double cse477 = cse443 * cse443;
-    const double cse478 = cse444 * cse444;
-    const double cse479 = 2.0 * cse447;
-    const double cse480 = (cse446*cse446);
-    const double cse481 = cse462 * cse443;
-    const double cse482 = cse443 * cse462;
-    const double cse483 = cse463 * cse444;
-    const double cse484 = cse444 * cse463;
-    const double cse485 = 2.0 * cse455;
-    const double cse486 = 2.0 * cse458;
-    const double cse487 = 2.0 * cse460;
-    const double cse488 = 2.0 * cse465;
-    const double cse489 = cse456 * cse456;
-    const double cse490 = cse462 * cse462;
-    const double cse491 = cse463 * cse463;
+    const double cse479 = -cse465;
+    const double cse480 = -cse478;
+    const double cse481 = cse438 * cse438;
+    const double cse482 = 2.0 * cse441;
+    const double cse483 = (cse440*cse440);
+    const double cse484 = 2.0 * cse445;
+    const double cse485 = (cse444*cse444);
+    const double cse486 = cse447 * cse447;
+    const double cse487 = 2.0 * cse450;
+    const double cse488 = (cse449*cse449);
+    const double cse489 = cse455 * cse455;
+    const double cse490 = cse456 * cse456;
+    const double cse491 = 2.0 * cse459;
+    const double cse492 = (cse458*cse458);
+    const double cse493 = cse474 * cse455;
+    const double cse494 = cse455 * cse474;
+    const double cse495 = cse475 * cse456;
+    const double cse496 = cse456 * cse475;
+    const double cse497 = 2.0 * cse467;
+    const double cse498 = 2.0 * cse470;
+    const double cse499 = 2.0 * cse472;
+    const double cse500 = 2.0 * cse477;
+    const double cse501 = cse468 * cse468;
+    const double cse502 = cse474 * cse474;
+    const double cse503 = cse475 * cse475;
     double blk4_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse467, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse468, 0.0,
+        0.0, 0.0, 1.0, 0.0, cse479, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse480, 0.0,
         0.0, 0.0, 0.0, 0.0, 1.0 - mode_[3], mode_[3],
-        cse467, cse468, 0.0, 0.0, 0.0, 1.0,
+        cse479, cse480, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse401 * std::fmin(cse422, cse407) + cse448 * cse400 - on_ridge_radius) - contact_bias_[3]), (cse401 * (cse423 * (cse424 * (cse425 * (((cse469 + cse469) * cse428 - cse427 * cse470) / cse471) + cse430 * ((4.0 * cse416 - cse431 * cse472) / cse473)) + cse434 * (((cse474 + cse474) * cse437 - cse436 * cse475) / cse476)) + cse439 * (((cse477 + cse477 + (cse478 + cse478)) * cse446 - cse445 * cse479) / cse480)) * ball_r_m_p_1 + cse401 * (cse423 * (cse424 * (-cse425 * (cse454 * cse470 / cse471) - cse430 * (cse457 * cse472 / cse473)) - cse434 * (cse459 * cse475 / cse476)) + cse439 * (((-cse481 - cse482 + (-cse483 - cse484)) * cse446 - cse464 * cse479) / cse480)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse401 * (cse423 * (cse424 * (-cse425 * (cse427 * cse485 / cse471) - cse430 * (cse431 * cse486 / cse473)) - cse434 * (cse436 * cse487 / cse476)) + cse439 * (((-cse482 - cse481 + (-cse484 - cse483)) * cse446 - cse445 * cse488) / cse480)) * ball_r_m_p_1 + cse401 * (cse423 * (cse424 * (cse425 * ((4.0 * cse412 - cse454 * cse485) / cse471) + cse430 * (((cse489 + cse489) * cse432 - cse457 * cse486) / cse473)) + cse434 * ((4.0 * cse421 - cse459 * cse487) / cse476)) + cse439 * (((cse490 + cse490 + (cse491 + cse491)) * cse446 - cse464 * cse488) / cse480)) * ball_r_m_p_3) * ball_r_m_p_3};
+    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse413 * std::fmin(cse434, cse419) + cse460 * cse412 - on_ridge_radius) - contact_bias_[3]), (cse413 * (cse435 * (cse436 * (cse437 * (((cse481 + cse481) * cse440 - cse439 * cse482) / cse483) + cse442 * ((4.0 * cse428 - cse443 * cse484) / cse485)) + cse446 * (((cse486 + cse486) * cse449 - cse448 * cse487) / cse488)) + cse451 * (((cse489 + cse489 + (cse490 + cse490)) * cse458 - cse457 * cse491) / cse492)) * ball_r_m_p_1 + cse413 * (cse435 * (cse436 * (-cse437 * (cse466 * cse482 / cse483) - cse442 * (cse469 * cse484 / cse485)) - cse446 * (cse471 * cse487 / cse488)) + cse451 * (((-cse493 - cse494 + (-cse495 - cse496)) * cse458 - cse476 * cse491) / cse492)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse413 * (cse435 * (cse436 * (-cse437 * (cse439 * cse497 / cse483) - cse442 * (cse443 * cse498 / cse485)) - cse446 * (cse448 * cse499 / cse488)) + cse451 * (((-cse494 - cse493 + (-cse496 - cse495)) * cse458 - cse457 * cse500) / cse492)) * ball_r_m_p_1 + cse413 * (cse435 * (cse436 * (cse437 * ((4.0 * cse424 - cse466 * cse497) / cse483) + cse442 * (((cse501 + cse501) * cse444 - cse469 * cse498) / cse485)) + cse446 * ((4.0 * cse433 - cse471 * cse499) / cse488)) + cse451 * (((cse502 + cse502 + (cse503 + cse503)) * cse458 - cse476 * cse500) / cse492)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
     double blk4_closest;
@@ -2067,13 +2201,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
     const double der_spin_m4_f1_1 = der_lift_reaction_f_f_1;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
-    const double cse492 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse492);
+    const double cse504 = derived13_ * t;
+    const double wheel_pose_R33 = std::cos(cse504);
     // drawn_surfaces.mbg:52:6  Se wheel.weight: e = value
     const double wheel_weight_e_3 = -98.10000000000001 * wheel_pose_R33;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double cse493 = std::sin(cse492);
-    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse493 * spin_m4_f1_3;
+    const double cse505 = std::sin(cse504);
+    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse505 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_1 = spin_m4_f2_1;
     // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
@@ -2085,39 +2219,39 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
     const double wheel_ejs_v_e_3 = -spin_reaction_t_f_2 * wheel_m_p_1;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = cse493;
+    const double wheel_pose_R13 = cse505;
     // drawn_surfaces.mbg:53:7  signal sled.pose.r1
     const double sled_pose_r1 = v_v * t;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r1
     const double hub_pose_r1 = sled_pose_r1;
     // drawn_surfaces.mbg:56:6  signal tyre.road_slope
-    const double cse494 = hub_pose_r1 - 1.0;
-    const double cse495 = hub_pose_r1 - 1.2;
-    const double cse496 = hub_pose_r1 - 1.5;
-    const double cse497 = hub_pose_r1 - 1.7;
-    const double tyre_road_slope = derived14_ * (((cse494) >= 0.0 ? 1.0 : 0.0) - ((cse495) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse496) >= 0.0 ? 1.0 : 0.0) - ((cse497) >= 0.0 ? 1.0 : 0.0));
+    const double cse506 = hub_pose_r1 - 1.0;
+    const double cse507 = hub_pose_r1 - 1.2;
+    const double cse508 = hub_pose_r1 - 1.5;
+    const double cse509 = hub_pose_r1 - 1.7;
+    const double tyre_road_slope = derived14_ * (((cse506) >= 0.0 ? 1.0 : 0.0) - ((cse507) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse508) >= 0.0 ? 1.0 : 0.0) - ((cse509) >= 0.0 ? 1.0 : 0.0));
     // drawn_surfaces.mbg:56:6  signal tyre.normal_1
-    const double cse498 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
-    const double tyre_normal_1 = -tyre_road_slope / cse498;
+    const double cse510 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
+    const double tyre_normal_1 = -tyre_road_slope / cse510;
     // drawn_surfaces.mbg:56:6  signal tyre.normal_3
-    const double tyre_normal_3 = 1.0 / cse498;
+    const double tyre_normal_3 = 1.0 / cse510;
     // drawn_surfaces.mbg:56:6  signal tyre.forward_1
-    const double cse499 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
-    const double tyre_forward_1 = tyre_normal_3 / cse499;
+    const double cse511 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
+    const double tyre_forward_1 = tyre_normal_3 / cse511;
     // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse493 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
+    const double spin_m4_f2_3 = cse505 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_3 = spin_m4_f2_3;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
     const double wheel_pose_R11 = wheel_pose_R33;
     // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
-    const double wheel_pose_R31 = -cse493;
+    const double wheel_pose_R31 = -cse505;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r3
     const double hub_pose_r3 = lift_s_q;
     // drawn_surfaces.mbg:56:6  signal tyre.road_height
-    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse494) - std::fmax(0.0, cse495)) - derived14_ * (std::fmax(0.0, cse496) - std::fmax(0.0, cse497));
+    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse506) - std::fmax(0.0, cse507)) - derived14_ * (std::fmax(0.0, cse508) - std::fmax(0.0, cse509));
     // drawn_surfaces.mbg:56:6  signal tyre.centre_height
-    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse498;
+    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse510;
     // drawn_surfaces.mbg:56:6  signal tyre.deflection
     const double tyre_deflection = 0.3 - tyre_centre_height;
     // drawn_surfaces.mbg:56:6  signal tyre.Fz
@@ -2125,20 +2259,20 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  signal tyre.Kx
     const double tyre_Kx = 20.0 * tyre_Fz;
     // drawn_surfaces.mbg:56:6  signal tyre.Fx0
-    const double cse500 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
-    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse500 + 0.5 * (cse500 - std::atan(cse500))));
+    const double cse512 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
+    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse512 + 0.5 * (cse512 - std::atan(cse512))));
     // drawn_surfaces.mbg:56:6  signal tyre.slip_angle
     const double tyre_slip_angle = std::atan(tyre_tan_alpha_q);
     // drawn_surfaces.mbg:56:6  signal tyre.Gx
-    const double cse501 = 10.0 * tyre_kappa_q;
-    const double cse502 = 12.0 * (1.0 / std::sqrt(1.0 + cse501 * cse501)) * tyre_slip_angle;
-    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse502 * cse502);
+    const double cse513 = 10.0 * tyre_kappa_q;
+    const double cse514 = 12.0 * (1.0 / std::sqrt(1.0 + cse513 * cse513)) * tyre_slip_angle;
+    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse514 * cse514);
     // drawn_surfaces.mbg:56:6  signal tyre.Fx
     const double tyre_Fx = tyre_Gx * tyre_Fx0;
     // drawn_surfaces.mbg:56:6  signal tyre.force_1
     const double tyre_force_1 = tyre_Fx * tyre_forward_1 + tyre_Fz * tyre_normal_1;
     // drawn_surfaces.mbg:56:6  signal tyre.forward_3
-    const double tyre_forward_3 = -tyre_normal_1 / cse499;
+    const double tyre_forward_3 = -tyre_normal_1 / cse511;
     // drawn_surfaces.mbg:56:6  signal tyre.force_3
     const double tyre_force_3 = tyre_Fx * tyre_forward_3 + tyre_Fz * tyre_normal_3;
     // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
@@ -2152,14 +2286,14 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
     const double tyre_on_wheel_f_e_1 = wheel_pose_R11 * tyre_force_1 + wheel_pose_R31 * tyre_force_3;
     // drawn_surfaces.mbg:55:7  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double wheel_out1 = cse493 * (10.0 * cse493) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
-    const double cse503 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
-    const double cse504 = cse493 * derived13_;
-    const double cse505 = wheel_pose_R33 * derived13_;
-    const double cse506 = -cse504 * spin_m4_f1_1 - cse505 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
-    const double cse507 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
-    const double cse508 = cse505 * spin_m4_f1_1 - cse504 * spin_m4_f1_3 + cse493 * der_spin_m4_f1_1;
-    const double wheel_out2 = -cse493 * (-(cse503 - wheel_ejs_v_e_1) + 10.0 * cse506) + wheel_pose_R33 * (-(cse507 - wheel_ejs_v_e_3) + 10.0 * cse508);
+    const double wheel_out1 = cse505 * (10.0 * cse505) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
+    const double cse515 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
+    const double cse516 = cse505 * derived13_;
+    const double cse517 = wheel_pose_R33 * derived13_;
+    const double cse518 = -cse516 * spin_m4_f1_1 - cse517 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
+    const double cse519 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
+    const double cse520 = cse517 * spin_m4_f1_1 - cse516 * spin_m4_f1_3 + cse505 * der_spin_m4_f1_1;
+    const double wheel_out2 = -cse505 * (-(cse515 - wheel_ejs_v_e_1) + 10.0 * cse518) + wheel_pose_R33 * (-(cse519 - wheel_ejs_v_e_3) + 10.0 * cse520);
     // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: 1 / pivot of the joint's accelerations
     const double hub_pivot1 = 1.0 / (200.0 + wheel_out1);
     // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: joint acceleration as an affine function of the parent's motion
@@ -2171,7 +2305,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
     const double der_spin_m4_f1_3 = der_lift_reaction_f_f_3;
     // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_1 = cse506 - cse493 * der_spin_m4_f1_3;
+    const double der_spin_m4_f2_1 = cse518 - cse505 * der_spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
     const double der_spin_reaction_f_f_1 = der_spin_m4_f2_1;
     // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
@@ -2179,9 +2313,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
     const double wheel_m_e_1 = der_wheel_m_p_1;
     // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_1 = -(cse503 - (wheel_m_e_1 + wheel_ejs_v_e_1));
+    const double spin_reaction_f_e_1 = -(cse515 - (wheel_m_e_1 + wheel_ejs_v_e_1));
     // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_3 = cse508 + wheel_pose_R33 * der_spin_m4_f1_3;
+    const double der_spin_m4_f2_3 = cse520 + wheel_pose_R33 * der_spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
     const double der_spin_reaction_f_f_3 = der_spin_m4_f2_3;
     // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
@@ -2189,9 +2323,9 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
     const double wheel_m_e_3 = der_wheel_m_p_3;
     // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_3 = -(cse507 - (wheel_m_e_3 + wheel_ejs_v_e_3));
+    const double spin_reaction_f_e_3 = -(cse519 - (wheel_m_e_3 + wheel_ejs_v_e_3));
     // drawn_surfaces.mbg:55:7  MTF spin.m4: e1 = T' e2
-    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse493 * spin_reaction_f_e_3;
+    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse505 * spin_reaction_f_e_3;
     // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
     const double lift_reaction_f_e_1 = hub_m_e_1 + spin_m4_e1_1;
     // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out

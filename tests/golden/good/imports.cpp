@@ -138,6 +138,22 @@ class imports_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double mass_p = x[0];
+    // imports.mbg:7:3  I mass: p = I f
+    const double mass_f = mass_p / m;
+    // position derivatives
+    xdot[1] = mass_f;
+  }
+
   bool has_jacobian() const override {
     return true;
   }

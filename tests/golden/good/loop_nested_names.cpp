@@ -179,6 +179,26 @@ class loop_nested_names_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double mass1_1_p = x[1];
+    const double mass1_2_p = x[3];
+    const double mass2_1_p = x[5];
+    const double mass2_2_p = x[7];
+    // position derivatives
+    xdot[0] = mass1_1_p;
+    xdot[2] = mass1_2_p;
+    xdot[4] = mass2_1_p;
+    xdot[6] = mass2_2_p;
+  }
+
   bool has_jacobian() const override {
     return true;
   }

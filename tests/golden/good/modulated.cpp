@@ -116,6 +116,26 @@ class modulated_model final : public mbgrt::Model {
     xdot[1] = arm_f2;
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double m_p = x[0];
+    // modulated.mbg:6:3  I m: f = law(p)
+    const double m_f = m_p / 2.0;
+    // modulated.mbg:8:8  signal theta
+    const double theta = 0.5 * t;
+    // modulated.mbg:9:5  MTF arm: f2 = T f1
+    const double arm_f2 = std::cos(theta) * m_f;
+    // position derivatives
+    xdot[1] = arm_f2;
+  }
+
   bool has_jacobian() const override {
     return true;
   }

@@ -157,6 +157,25 @@ class multibond_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double mass_p_1 = x[0];
+    const double mass_p_2 = x[1];
+    // multibond.mbg:7:3  I mass: p = I f
+    const double mass_f_1 = mass_p_1 / m;
+    const double mass_f_2 = mass_p_2 / m;
+    // position derivatives
+    xdot[2] = mass_f_1;
+    xdot[3] = mass_f_2;
+  }
+
   bool has_jacobian() const override {
     return true;
   }

@@ -443,6 +443,28 @@ class outlined_chain_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double j1_theta_rate_rate = x[0];
+    const double j2_theta_rate_rate = x[2];
+    const double j3_theta_rate_rate = x[4];
+    const double j4_theta_rate_rate = x[6];
+    const double j5_theta_rate_rate = x[8];
+    // position derivatives
+    xdot[1] = j1_theta_rate_rate;
+    xdot[3] = j2_theta_rate_rate;
+    xdot[5] = j3_theta_rate_rate;
+    xdot[7] = j4_theta_rate_rate;
+    xdot[9] = j5_theta_rate_rate;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;

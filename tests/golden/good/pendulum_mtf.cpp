@@ -162,6 +162,22 @@ class pendulum_mtf_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double hub_p = x[0];
+    // pendulum_mtf.mbg:21:3  I hub: p = I f
+    const double hub_f = hub_p / J_hub;
+    // position derivatives
+    xdot[1] = hub_f;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;

@@ -520,6 +520,45 @@ class planar_below_moving_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double ball_spin_rate_rate_1 = x[0];
+    const double ball_spin_rate_rate_2 = x[1];
+    const double ball_spin_rate_rate_3 = x[2];
+    const double ball_rot_q_1 = x[3];
+    const double ball_rot_q_2 = x[4];
+    const double ball_rot_q_3 = x[5];
+    const double ball_rot_q_4 = x[6];
+    const double table_x_rate_rate = x[7];
+    const double table_y_rate_rate = x[9];
+    const double table_theta_rate_rate = x[11];
+    // planar_below_moving.mbg:13:7  MTF ball.rotrate: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse152 = 0.5 * ball_rot_q_2;
+    const double cse153 = 0.5 * ball_rot_q_3;
+    const double cse154 = 0.5 * ball_rot_q_4;
+    const double ball_rotrate_f2_1 = -cse152 * ball_spin_rate_rate_1 - cse153 * ball_spin_rate_rate_2 - cse154 * ball_spin_rate_rate_3;
+    const double cse155 = 0.5 * ball_rot_q_1;
+    const double ball_rotrate_f2_2 = cse155 * ball_spin_rate_rate_1 - cse154 * ball_spin_rate_rate_2 + cse153 * ball_spin_rate_rate_3;
+    const double ball_rotrate_f2_3 = cse154 * ball_spin_rate_rate_1 + cse155 * ball_spin_rate_rate_2 - cse152 * ball_spin_rate_rate_3;
+    const double ball_rotrate_f2_4 = -cse153 * ball_spin_rate_rate_1 + cse152 * ball_spin_rate_rate_2 + cse155 * ball_spin_rate_rate_3;
+    // position derivatives
+    xdot[3] = ball_rotrate_f2_1;
+    xdot[4] = ball_rotrate_f2_2;
+    xdot[5] = ball_rotrate_f2_3;
+    xdot[6] = ball_rotrate_f2_4;
+    xdot[8] = table_x_rate_rate;
+    xdot[10] = table_y_rate_rate;
+    xdot[12] = table_theta_rate_rate;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -535,72 +574,72 @@ class planar_below_moving_model final : public mbgrt::Model {
     const double table_theta_q = x[12];
     // planar_below_moving.mbg:13:7  signal ball.Rpc32
     // (cseN: a subexpression several equations below share)
-    const double cse152 = ball_rot_q_3 * ball_rot_q_4;
-    const double cse153 = ball_rot_q_1 * ball_rot_q_2;
-    const double cse154 = ball_rot_q_1 * ball_rot_q_1;
-    const double cse155 = ball_rot_q_2 * ball_rot_q_2;
-    const double cse156 = cse154 + cse155;
-    const double cse157 = ball_rot_q_3 * ball_rot_q_3;
-    const double cse158 = ball_rot_q_4 * ball_rot_q_4;
-    const double cse159 = cse156 + cse157 + cse158;
-    const double ball_Rpc32 = 2.0 * (cse152 + cse153) / cse159;
+    const double cse156 = ball_rot_q_3 * ball_rot_q_4;
+    const double cse157 = ball_rot_q_1 * ball_rot_q_2;
+    const double cse158 = ball_rot_q_1 * ball_rot_q_1;
+    const double cse159 = ball_rot_q_2 * ball_rot_q_2;
+    const double cse160 = cse158 + cse159;
+    const double cse161 = ball_rot_q_3 * ball_rot_q_3;
+    const double cse162 = ball_rot_q_4 * ball_rot_q_4;
+    const double cse163 = cse160 + cse161 + cse162;
+    const double ball_Rpc32 = 2.0 * (cse156 + cse157) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc31
-    const double cse160 = ball_rot_q_2 * ball_rot_q_4;
-    const double cse161 = ball_rot_q_1 * ball_rot_q_3;
-    const double ball_Rpc31 = 2.0 * (cse160 - cse161) / cse159;
+    const double cse164 = ball_rot_q_2 * ball_rot_q_4;
+    const double cse165 = ball_rot_q_1 * ball_rot_q_3;
+    const double ball_Rpc31 = 2.0 * (cse164 - cse165) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc33
-    const double ball_Rpc33 = (cse154 + cse158 - cse155 - cse157) / cse159;
+    const double ball_Rpc33 = (cse158 + cse162 - cse159 - cse161) / cse163;
     // planar_below_moving.mbg:14:7  signal lower.pose.R32
-    const double cse162 = std::cos(table_theta_q);
-    const double cse163 = std::sin(table_theta_q);
-    const double cse164 = 0.05067494832004038 * cse163;
-    const double cse165 = 0.9619937887599698 * cse162 + cse164;
-    const double cse166 = 0.05067494832004038 * cse162;
-    const double cse167 = -0.9619937887599698 * cse163 + cse166;
-    const double cse168 = 0.05067494832004038 * cse165 + 0.9324334022399462 * cse167 - 0.09600000000000002;
-    const double cse169 = cse166 + 0.9324334022399462 * cse163;
-    const double cse170 = -cse164 + 0.9324334022399462 * cse162;
-    const double cse171 = 0.05067494832004038 * cse169 + 0.9324334022399462 * cse170 + 0.12800000000000003;
-    const double cse172 = -0.2683281572999748 * cse162 + 0.3577708763999664 * cse163;
-    const double cse173 = 0.2683281572999748 * cse163 + 0.3577708763999664 * cse162;
-    const double cse174 = 0.05067494832004038 * cse172 + 0.9324334022399462 * cse173 - 0.32000000000000006;
-    const double lower_pose_R32 = ball_Rpc31 * cse168 + ball_Rpc32 * cse171 + ball_Rpc33 * cse174;
+    const double cse166 = std::cos(table_theta_q);
+    const double cse167 = std::sin(table_theta_q);
+    const double cse168 = 0.05067494832004038 * cse167;
+    const double cse169 = 0.9619937887599698 * cse166 + cse168;
+    const double cse170 = 0.05067494832004038 * cse166;
+    const double cse171 = -0.9619937887599698 * cse167 + cse170;
+    const double cse172 = 0.05067494832004038 * cse169 + 0.9324334022399462 * cse171 - 0.09600000000000002;
+    const double cse173 = cse170 + 0.9324334022399462 * cse167;
+    const double cse174 = -cse168 + 0.9324334022399462 * cse166;
+    const double cse175 = 0.05067494832004038 * cse173 + 0.9324334022399462 * cse174 + 0.12800000000000003;
+    const double cse176 = -0.2683281572999748 * cse166 + 0.3577708763999664 * cse167;
+    const double cse177 = 0.2683281572999748 * cse167 + 0.3577708763999664 * cse166;
+    const double cse178 = 0.05067494832004038 * cse176 + 0.9324334022399462 * cse177 - 0.32000000000000006;
+    const double lower_pose_R32 = ball_Rpc31 * cse172 + ball_Rpc32 * cse175 + ball_Rpc33 * cse178;
     // planar_below_moving.mbg:14:7  signal lower.pose.R31
-    const double cse175 = 0.9619937887599698 * cse165 + 0.05067494832004038 * cse167 + 0.07200000000000001;
-    const double cse176 = 0.9619937887599698 * cse169 + 0.05067494832004038 * cse170 - 0.09600000000000002;
-    const double cse177 = 0.9619937887599698 * cse172 + 0.05067494832004038 * cse173 + 0.24000000000000002;
-    const double lower_pose_R31 = ball_Rpc31 * cse175 + ball_Rpc32 * cse176 + ball_Rpc33 * cse177;
+    const double cse179 = 0.9619937887599698 * cse169 + 0.05067494832004038 * cse171 + 0.07200000000000001;
+    const double cse180 = 0.9619937887599698 * cse173 + 0.05067494832004038 * cse174 - 0.09600000000000002;
+    const double cse181 = 0.9619937887599698 * cse176 + 0.05067494832004038 * cse177 + 0.24000000000000002;
+    const double lower_pose_R31 = ball_Rpc31 * cse179 + ball_Rpc32 * cse180 + ball_Rpc33 * cse181;
     // planar_below_moving.mbg:13:7  signal ball.Rpc11
-    const double ball_Rpc11 = (cse156 - cse157 - cse158) / cse159;
+    const double ball_Rpc11 = (cse160 - cse161 - cse162) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc12
-    const double cse178 = ball_rot_q_2 * ball_rot_q_3;
-    const double cse179 = ball_rot_q_1 * ball_rot_q_4;
-    const double ball_Rpc12 = 2.0 * (cse178 - cse179) / cse159;
+    const double cse182 = ball_rot_q_2 * ball_rot_q_3;
+    const double cse183 = ball_rot_q_1 * ball_rot_q_4;
+    const double ball_Rpc12 = 2.0 * (cse182 - cse183) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc13
-    const double ball_Rpc13 = 2.0 * (cse160 + cse161) / cse159;
+    const double ball_Rpc13 = 2.0 * (cse164 + cse165) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc21
-    const double ball_Rpc21 = 2.0 * (cse178 + cse179) / cse159;
+    const double ball_Rpc21 = 2.0 * (cse182 + cse183) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc22
-    const double ball_Rpc22 = (cse154 + cse157 - cse155 - cse158) / cse159;
+    const double ball_Rpc22 = (cse158 + cse161 - cse159 - cse162) / cse163;
     // planar_below_moving.mbg:13:7  signal ball.Rpc23
-    const double ball_Rpc23 = 2.0 * (cse152 - cse153) / cse159;
+    const double ball_Rpc23 = 2.0 * (cse156 - cse157) / cse163;
     // planar_below_moving.mbg:14:7  signal lower.pose.R11
-    const double lower_pose_R11 = ball_Rpc11 * cse175 + ball_Rpc12 * cse176 + ball_Rpc13 * cse177;
+    const double lower_pose_R11 = ball_Rpc11 * cse179 + ball_Rpc12 * cse180 + ball_Rpc13 * cse181;
     // planar_below_moving.mbg:14:7  signal lower.pose.R12
-    const double lower_pose_R12 = ball_Rpc11 * cse168 + ball_Rpc12 * cse171 + ball_Rpc13 * cse174;
+    const double lower_pose_R12 = ball_Rpc11 * cse172 + ball_Rpc12 * cse175 + ball_Rpc13 * cse178;
     // planar_below_moving.mbg:14:7  signal lower.pose.R21
-    const double lower_pose_R21 = ball_Rpc21 * cse175 + ball_Rpc22 * cse176 + ball_Rpc23 * cse177;
+    const double lower_pose_R21 = ball_Rpc21 * cse179 + ball_Rpc22 * cse180 + ball_Rpc23 * cse181;
     // planar_below_moving.mbg:14:7  signal lower.pose.R22
-    const double lower_pose_R22 = ball_Rpc21 * cse168 + ball_Rpc22 * cse171 + ball_Rpc23 * cse174;
+    const double lower_pose_R22 = ball_Rpc21 * cse172 + ball_Rpc22 * cse175 + ball_Rpc23 * cse178;
     // planar_below_moving.mbg:14:7  signal lower.pose.r1
-    const double cse180 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
-    const double cse181 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
-    const double cse182 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
-    const double lower_pose_r1 = -ball_Rpc13 + (ball_Rpc11 * cse180 + ball_Rpc12 * cse181 + ball_Rpc13 * cse182) - (0.2 * lower_pose_R11 + 0.1 * lower_pose_R12);
+    const double cse184 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
+    const double cse185 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
+    const double cse186 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
+    const double lower_pose_r1 = -ball_Rpc13 + (ball_Rpc11 * cse184 + ball_Rpc12 * cse185 + ball_Rpc13 * cse186) - (0.2 * lower_pose_R11 + 0.1 * lower_pose_R12);
     // planar_below_moving.mbg:14:7  signal lower.pose.r2
-    const double lower_pose_r2 = -ball_Rpc23 + (ball_Rpc21 * cse180 + ball_Rpc22 * cse181 + ball_Rpc23 * cse182) - (0.2 * lower_pose_R21 + 0.1 * lower_pose_R22);
+    const double lower_pose_r2 = -ball_Rpc23 + (ball_Rpc21 * cse184 + ball_Rpc22 * cse185 + ball_Rpc23 * cse186) - (0.2 * lower_pose_R21 + 0.1 * lower_pose_R22);
     // planar_below_moving.mbg:14:7  signal lower.pose.r3
-    const double lower_pose_r3 = -ball_Rpc33 + (ball_Rpc31 * cse180 + ball_Rpc32 * cse181 + ball_Rpc33 * cse182) - (0.2 * lower_pose_R31 + 0.1 * lower_pose_R32);
+    const double lower_pose_r3 = -ball_Rpc33 + (ball_Rpc31 * cse184 + ball_Rpc32 * cse185 + ball_Rpc33 * cse186) - (0.2 * lower_pose_R31 + 0.1 * lower_pose_R32);
     // outputs, in declaration order
     out[0] = lower_pose_r1;  // x [m] (planar_below_moving.mbg:15:8)
     out[1] = lower_pose_r2;  // y [m] (planar_below_moving.mbg:16:8)
@@ -662,81 +701,81 @@ class planar_below_moving_model final : public mbgrt::Model {
     const double table_theta_q = x[12];
     // planar_below_moving.mbg:13:7  signal ball.Rpc32
     // (cseN: a subexpression several equations below share)
-    const double cse183 = ball_rot_q_3 * ball_rot_q_4;
-    const double cse184 = ball_rot_q_1 * ball_rot_q_2;
-    const double cse185 = ball_rot_q_1 * ball_rot_q_1;
-    const double cse186 = ball_rot_q_2 * ball_rot_q_2;
-    const double cse187 = cse185 + cse186;
-    const double cse188 = ball_rot_q_3 * ball_rot_q_3;
-    const double cse189 = ball_rot_q_4 * ball_rot_q_4;
-    const double cse190 = cse187 + cse188 + cse189;
-    const double ball_Rpc32 = 2.0 * (cse183 + cse184) / cse190;
+    const double cse187 = ball_rot_q_3 * ball_rot_q_4;
+    const double cse188 = ball_rot_q_1 * ball_rot_q_2;
+    const double cse189 = ball_rot_q_1 * ball_rot_q_1;
+    const double cse190 = ball_rot_q_2 * ball_rot_q_2;
+    const double cse191 = cse189 + cse190;
+    const double cse192 = ball_rot_q_3 * ball_rot_q_3;
+    const double cse193 = ball_rot_q_4 * ball_rot_q_4;
+    const double cse194 = cse191 + cse192 + cse193;
+    const double ball_Rpc32 = 2.0 * (cse187 + cse188) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc31
-    const double cse191 = ball_rot_q_2 * ball_rot_q_4;
-    const double cse192 = ball_rot_q_1 * ball_rot_q_3;
-    const double ball_Rpc31 = 2.0 * (cse191 - cse192) / cse190;
+    const double cse195 = ball_rot_q_2 * ball_rot_q_4;
+    const double cse196 = ball_rot_q_1 * ball_rot_q_3;
+    const double ball_Rpc31 = 2.0 * (cse195 - cse196) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc33
-    const double ball_Rpc33 = (cse185 + cse189 - cse186 - cse188) / cse190;
+    const double ball_Rpc33 = (cse189 + cse193 - cse190 - cse192) / cse194;
     // planar_below_moving.mbg:14:7  signal lower.pose.R33
-    const double cse193 = std::cos(table_theta_q);
-    const double cse194 = std::sin(table_theta_q);
-    const double cse195 = 0.05067494832004038 * cse194;
-    const double cse196 = 0.9619937887599698 * cse193 + cse195;
-    const double cse197 = 0.05067494832004038 * cse193;
-    const double cse198 = -0.9619937887599698 * cse194 + cse197;
-    const double cse199 = -0.2683281572999748 * cse196 + 0.3577708763999664 * cse198 + 0.24000000000000002;
-    const double cse200 = cse197 + 0.9324334022399462 * cse194;
-    const double cse201 = -cse195 + 0.9324334022399462 * cse193;
-    const double cse202 = -0.2683281572999748 * cse200 + 0.3577708763999664 * cse201 - 0.32000000000000006;
-    const double cse203 = -0.2683281572999748 * cse193 + 0.3577708763999664 * cse194;
-    const double cse204 = 0.2683281572999748 * cse194 + 0.3577708763999664 * cse193;
-    const double cse205 = -0.2683281572999748 * cse203 + 0.3577708763999664 * cse204 + 0.7999999999999999;
-    const double lower_pose_R33 = ball_Rpc31 * cse199 + ball_Rpc32 * cse202 + ball_Rpc33 * cse205;
+    const double cse197 = std::cos(table_theta_q);
+    const double cse198 = std::sin(table_theta_q);
+    const double cse199 = 0.05067494832004038 * cse198;
+    const double cse200 = 0.9619937887599698 * cse197 + cse199;
+    const double cse201 = 0.05067494832004038 * cse197;
+    const double cse202 = -0.9619937887599698 * cse198 + cse201;
+    const double cse203 = -0.2683281572999748 * cse200 + 0.3577708763999664 * cse202 + 0.24000000000000002;
+    const double cse204 = cse201 + 0.9324334022399462 * cse198;
+    const double cse205 = -cse199 + 0.9324334022399462 * cse197;
+    const double cse206 = -0.2683281572999748 * cse204 + 0.3577708763999664 * cse205 - 0.32000000000000006;
+    const double cse207 = -0.2683281572999748 * cse197 + 0.3577708763999664 * cse198;
+    const double cse208 = 0.2683281572999748 * cse198 + 0.3577708763999664 * cse197;
+    const double cse209 = -0.2683281572999748 * cse207 + 0.3577708763999664 * cse208 + 0.7999999999999999;
+    const double lower_pose_R33 = ball_Rpc31 * cse203 + ball_Rpc32 * cse206 + ball_Rpc33 * cse209;
     // planar_below_moving.mbg:14:7  signal lower.pose.R32
-    const double cse206 = 0.05067494832004038 * cse196 + 0.9324334022399462 * cse198 - 0.09600000000000002;
-    const double cse207 = 0.05067494832004038 * cse200 + 0.9324334022399462 * cse201 + 0.12800000000000003;
-    const double cse208 = 0.05067494832004038 * cse203 + 0.9324334022399462 * cse204 - 0.32000000000000006;
-    const double lower_pose_R32 = ball_Rpc31 * cse206 + ball_Rpc32 * cse207 + ball_Rpc33 * cse208;
+    const double cse210 = 0.05067494832004038 * cse200 + 0.9324334022399462 * cse202 - 0.09600000000000002;
+    const double cse211 = 0.05067494832004038 * cse204 + 0.9324334022399462 * cse205 + 0.12800000000000003;
+    const double cse212 = 0.05067494832004038 * cse207 + 0.9324334022399462 * cse208 - 0.32000000000000006;
+    const double lower_pose_R32 = ball_Rpc31 * cse210 + ball_Rpc32 * cse211 + ball_Rpc33 * cse212;
     // planar_below_moving.mbg:14:7  signal lower.pose.R31
-    const double cse209 = 0.9619937887599698 * cse196 + 0.05067494832004038 * cse198 + 0.07200000000000001;
-    const double cse210 = 0.9619937887599698 * cse200 + 0.05067494832004038 * cse201 - 0.09600000000000002;
-    const double cse211 = 0.9619937887599698 * cse203 + 0.05067494832004038 * cse204 + 0.24000000000000002;
-    const double lower_pose_R31 = ball_Rpc31 * cse209 + ball_Rpc32 * cse210 + ball_Rpc33 * cse211;
+    const double cse213 = 0.9619937887599698 * cse200 + 0.05067494832004038 * cse202 + 0.07200000000000001;
+    const double cse214 = 0.9619937887599698 * cse204 + 0.05067494832004038 * cse205 - 0.09600000000000002;
+    const double cse215 = 0.9619937887599698 * cse207 + 0.05067494832004038 * cse208 + 0.24000000000000002;
+    const double lower_pose_R31 = ball_Rpc31 * cse213 + ball_Rpc32 * cse214 + ball_Rpc33 * cse215;
     // planar_below_moving.mbg:13:7  signal ball.Rpc11
-    const double ball_Rpc11 = (cse187 - cse188 - cse189) / cse190;
+    const double ball_Rpc11 = (cse191 - cse192 - cse193) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc12
-    const double cse212 = ball_rot_q_2 * ball_rot_q_3;
-    const double cse213 = ball_rot_q_1 * ball_rot_q_4;
-    const double ball_Rpc12 = 2.0 * (cse212 - cse213) / cse190;
+    const double cse216 = ball_rot_q_2 * ball_rot_q_3;
+    const double cse217 = ball_rot_q_1 * ball_rot_q_4;
+    const double ball_Rpc12 = 2.0 * (cse216 - cse217) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc13
-    const double ball_Rpc13 = 2.0 * (cse191 + cse192) / cse190;
+    const double ball_Rpc13 = 2.0 * (cse195 + cse196) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc21
-    const double ball_Rpc21 = 2.0 * (cse212 + cse213) / cse190;
+    const double ball_Rpc21 = 2.0 * (cse216 + cse217) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc22
-    const double ball_Rpc22 = (cse185 + cse188 - cse186 - cse189) / cse190;
+    const double ball_Rpc22 = (cse189 + cse192 - cse190 - cse193) / cse194;
     // planar_below_moving.mbg:13:7  signal ball.Rpc23
-    const double ball_Rpc23 = 2.0 * (cse183 - cse184) / cse190;
+    const double ball_Rpc23 = 2.0 * (cse187 - cse188) / cse194;
     // planar_below_moving.mbg:14:7  signal lower.pose.R11
-    const double lower_pose_R11 = ball_Rpc11 * cse209 + ball_Rpc12 * cse210 + ball_Rpc13 * cse211;
+    const double lower_pose_R11 = ball_Rpc11 * cse213 + ball_Rpc12 * cse214 + ball_Rpc13 * cse215;
     // planar_below_moving.mbg:14:7  signal lower.pose.R12
-    const double lower_pose_R12 = ball_Rpc11 * cse206 + ball_Rpc12 * cse207 + ball_Rpc13 * cse208;
+    const double lower_pose_R12 = ball_Rpc11 * cse210 + ball_Rpc12 * cse211 + ball_Rpc13 * cse212;
     // planar_below_moving.mbg:14:7  signal lower.pose.R13
-    const double lower_pose_R13 = ball_Rpc11 * cse199 + ball_Rpc12 * cse202 + ball_Rpc13 * cse205;
+    const double lower_pose_R13 = ball_Rpc11 * cse203 + ball_Rpc12 * cse206 + ball_Rpc13 * cse209;
     // planar_below_moving.mbg:14:7  signal lower.pose.R21
-    const double lower_pose_R21 = ball_Rpc21 * cse209 + ball_Rpc22 * cse210 + ball_Rpc23 * cse211;
+    const double lower_pose_R21 = ball_Rpc21 * cse213 + ball_Rpc22 * cse214 + ball_Rpc23 * cse215;
     // planar_below_moving.mbg:14:7  signal lower.pose.R22
-    const double lower_pose_R22 = ball_Rpc21 * cse206 + ball_Rpc22 * cse207 + ball_Rpc23 * cse208;
+    const double lower_pose_R22 = ball_Rpc21 * cse210 + ball_Rpc22 * cse211 + ball_Rpc23 * cse212;
     // planar_below_moving.mbg:14:7  signal lower.pose.R23
-    const double lower_pose_R23 = ball_Rpc21 * cse199 + ball_Rpc22 * cse202 + ball_Rpc23 * cse205;
+    const double lower_pose_R23 = ball_Rpc21 * cse203 + ball_Rpc22 * cse206 + ball_Rpc23 * cse209;
     // planar_below_moving.mbg:14:7  signal lower.pose.r1
-    const double cse214 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
-    const double cse215 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
-    const double cse216 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
-    const double lower_pose_r1 = -ball_Rpc13 + (ball_Rpc11 * cse214 + ball_Rpc12 * cse215 + ball_Rpc13 * cse216) - (0.2 * lower_pose_R11 + 0.1 * lower_pose_R12);
+    const double cse218 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
+    const double cse219 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
+    const double cse220 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
+    const double lower_pose_r1 = -ball_Rpc13 + (ball_Rpc11 * cse218 + ball_Rpc12 * cse219 + ball_Rpc13 * cse220) - (0.2 * lower_pose_R11 + 0.1 * lower_pose_R12);
     // planar_below_moving.mbg:14:7  signal lower.pose.r2
-    const double lower_pose_r2 = -ball_Rpc23 + (ball_Rpc21 * cse214 + ball_Rpc22 * cse215 + ball_Rpc23 * cse216) - (0.2 * lower_pose_R21 + 0.1 * lower_pose_R22);
+    const double lower_pose_r2 = -ball_Rpc23 + (ball_Rpc21 * cse218 + ball_Rpc22 * cse219 + ball_Rpc23 * cse220) - (0.2 * lower_pose_R21 + 0.1 * lower_pose_R22);
     // planar_below_moving.mbg:14:7  signal lower.pose.r3
-    const double lower_pose_r3 = -ball_Rpc33 + (ball_Rpc31 * cse214 + ball_Rpc32 * cse215 + ball_Rpc33 * cse216) - (0.2 * lower_pose_R31 + 0.1 * lower_pose_R32);
+    const double lower_pose_r3 = -ball_Rpc33 + (ball_Rpc31 * cse218 + ball_Rpc32 * cse219 + ball_Rpc33 * cse220) - (0.2 * lower_pose_R31 + 0.1 * lower_pose_R32);
     // 12 per body (origin, rotation row-major), then every modal coordinate
     out[0] = -ball_Rpc13;
     out[1] = -ball_Rpc23;
@@ -783,9 +822,9 @@ class planar_below_moving_model final : public mbgrt::Model {
     const double ball_spin_rate_rate_3 = x[2];
     // the stored energy
     // (cseN: a subexpression several equations below share)
-    const double cse244 = ball_spin_rate_rate_2 * ball_spin_rate_rate_2;
-    const double cse245 = ball_spin_rate_rate_1 * ball_spin_rate_rate_1;
-    out[0] = 0.5 * (cse244 + cse245) + 0.5 * (0.1 * cse245 + 0.2 * cse244 + 0.3 * (ball_spin_rate_rate_3 * ball_spin_rate_rate_3)) + 0.5 * (table_reaction_f_f_1 * table_reaction_f_f_1 + table_reaction_f_f_2 * table_reaction_f_f_2 + table_reaction_f_f_3 * table_reaction_f_f_3) + 0.5 * (0.1 * (table_reaction_t_f_1 * table_reaction_t_f_1) + 0.1 * (table_reaction_t_f_2 * table_reaction_t_f_2) + 0.1 * (table_reaction_t_f_3 * table_reaction_t_f_3));
+    const double cse248 = ball_spin_rate_rate_2 * ball_spin_rate_rate_2;
+    const double cse249 = ball_spin_rate_rate_1 * ball_spin_rate_rate_1;
+    out[0] = 0.5 * (cse248 + cse249) + 0.5 * (0.1 * cse249 + 0.2 * cse248 + 0.3 * (ball_spin_rate_rate_3 * ball_spin_rate_rate_3)) + 0.5 * (table_reaction_f_f_1 * table_reaction_f_f_1 + table_reaction_f_f_2 * table_reaction_f_f_2 + table_reaction_f_f_3 * table_reaction_f_f_3) + 0.5 * (0.1 * (table_reaction_t_f_1 * table_reaction_t_f_1) + 0.1 * (table_reaction_t_f_2 * table_reaction_t_f_2) + 0.1 * (table_reaction_t_f_3 * table_reaction_t_f_3));
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -837,29 +876,29 @@ class planar_below_moving_model final : public mbgrt::Model {
     upper_ejs_e_2 = ball_spin_rate_rate_3 * upper_J_p_1 - ball_spin_rate_rate_1 * upper_J_p_3;
     // planar_below_moving.mbg:13:7  signal ball.Rpc32
     // (cseN: a subexpression several equations below share)
-    const double cse217 = ball_rot_q_1 * ball_rot_q_1;
-    const double cse218 = ball_rot_q_2 * ball_rot_q_2;
-    const double cse219 = ball_rot_q_3 * ball_rot_q_3;
-    const double cse220 = ball_rot_q_4 * ball_rot_q_4;
-    const double cse221 = cse217 + cse218 + cse219 + cse220;
-    const double ball_Rpc32 = 2.0 * (ball_rot_q_3 * ball_rot_q_4 + ball_rot_q_1 * ball_rot_q_2) / cse221;
+    const double cse221 = ball_rot_q_1 * ball_rot_q_1;
+    const double cse222 = ball_rot_q_2 * ball_rot_q_2;
+    const double cse223 = ball_rot_q_3 * ball_rot_q_3;
+    const double cse224 = ball_rot_q_4 * ball_rot_q_4;
+    const double cse225 = cse221 + cse222 + cse223 + cse224;
+    const double ball_Rpc32 = 2.0 * (ball_rot_q_3 * ball_rot_q_4 + ball_rot_q_1 * ball_rot_q_2) / cse225;
     // planar_below_moving.mbg:11:6  Se upper.weight: e = value
     upper_weight_e_2 = -9.81 * ball_Rpc32;
     // planar_below_moving.mbg:11:6  R upper.ejs_v: e = law(f)
     upper_ejs_v_e_2 = -ball_spin_rate_rate_3 * ball_spin_rate_rate_2;
     // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double cse222 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
-    const double cse223 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
-    const double table_m3_f2_1 = cse222 * ball_spin_rate_rate_2 - cse223 * ball_spin_rate_rate_3;
+    const double cse226 = -0.2 + (-0.2683281572999748 * table_x_q + 0.3577708763999664 * table_y_q);
+    const double cse227 = 0.05067494832004038 * table_x_q + 0.9324334022399462 * table_y_q;
+    const double table_m3_f2_1 = cse226 * ball_spin_rate_rate_2 - cse227 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
     const double table_m4_f1_1 = -ball_spin_rate_rate_2 + table_m3_f2_1;
     // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double cse224 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
-    const double table_m3_f2_2 = -cse222 * ball_spin_rate_rate_1 + cse224 * ball_spin_rate_rate_3;
+    const double cse228 = 0.1 + (0.9619937887599698 * table_x_q + 0.05067494832004038 * table_y_q);
+    const double table_m3_f2_2 = -cse226 * ball_spin_rate_rate_1 + cse228 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
     const double table_m4_f1_2 = ball_spin_rate_rate_1 + table_m3_f2_2;
     // planar_below_moving.mbg:14:7  MTF table.m3: f2 = T f1
-    const double table_m3_f2_3 = cse223 * ball_spin_rate_rate_1 - cse224 * ball_spin_rate_rate_2;
+    const double table_m3_f2_3 = cse227 * ball_spin_rate_rate_1 - cse228 * ball_spin_rate_rate_2;
     // planar_below_moving.mbg:14:7  0 table.vpa: flows in = flows out
     const double table_m4_f1_3 = table_m3_f2_3;
     // planar_below_moving.mbg:11:6  I upper.J: p = I f (derivative causality)
@@ -867,33 +906,33 @@ class planar_below_moving_model final : public mbgrt::Model {
     // planar_below_moving.mbg:11:6  R upper.ejs: e = law(f)
     upper_ejs_e_3 = ball_spin_rate_rate_1 * upper_J_p_2 - ball_spin_rate_rate_2 * upper_J_p_1;
     // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse225 = std::cos(table_theta_q);
-    const double cse226 = std::sin(table_theta_q);
-    const double cse227 = 0.05067494832004038 * cse226;
-    const double cse228 = 0.9619937887599698 * cse225 + cse227;
-    const double cse229 = 0.05067494832004038 * cse225;
-    const double cse230 = -0.9619937887599698 * cse226 + cse229;
-    const double cse231 = 0.9619937887599698 * cse228 + 0.05067494832004038 * cse230 + 0.07200000000000001;
-    const double cse232 = cse229 + 0.9324334022399462 * cse226;
-    const double cse233 = -cse227 + 0.9324334022399462 * cse225;
-    const double cse234 = 0.9619937887599698 * cse232 + 0.05067494832004038 * cse233 - 0.09600000000000002;
-    const double cse235 = -0.2683281572999748 * cse225 + 0.3577708763999664 * cse226;
-    const double cse236 = 0.2683281572999748 * cse226 + 0.3577708763999664 * cse225;
-    const double cse237 = 0.9619937887599698 * cse235 + 0.05067494832004038 * cse236 + 0.24000000000000002;
-    const double table_m1_f2_1 = cse231 * ball_spin_rate_rate_1 + cse234 * ball_spin_rate_rate_2 + cse237 * ball_spin_rate_rate_3;
+    const double cse229 = std::cos(table_theta_q);
+    const double cse230 = std::sin(table_theta_q);
+    const double cse231 = 0.05067494832004038 * cse230;
+    const double cse232 = 0.9619937887599698 * cse229 + cse231;
+    const double cse233 = 0.05067494832004038 * cse229;
+    const double cse234 = -0.9619937887599698 * cse230 + cse233;
+    const double cse235 = 0.9619937887599698 * cse232 + 0.05067494832004038 * cse234 + 0.07200000000000001;
+    const double cse236 = cse233 + 0.9324334022399462 * cse230;
+    const double cse237 = -cse231 + 0.9324334022399462 * cse229;
+    const double cse238 = 0.9619937887599698 * cse236 + 0.05067494832004038 * cse237 - 0.09600000000000002;
+    const double cse239 = -0.2683281572999748 * cse229 + 0.3577708763999664 * cse230;
+    const double cse240 = 0.2683281572999748 * cse230 + 0.3577708763999664 * cse229;
+    const double cse241 = 0.9619937887599698 * cse239 + 0.05067494832004038 * cse240 + 0.24000000000000002;
+    const double table_m1_f2_1 = cse235 * ball_spin_rate_rate_1 + cse238 * ball_spin_rate_rate_2 + cse241 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_1 = (0.2683281572999748 * cse231 - 0.3577708763999664 * cse234 + 0.8944271909999159 * cse237) * table_theta_rate_rate;
+    const double table_m2_f2_1 = (0.2683281572999748 * cse235 - 0.3577708763999664 * cse238 + 0.8944271909999159 * cse241) * table_theta_rate_rate;
     // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
     table_reaction_t_f_1 = table_m1_f2_1 + table_m2_f2_1;
     // planar_below_moving.mbg:12:6  I lower.J: p = I f (derivative causality)
     const double lower_J_p_1 = 0.1 * table_reaction_t_f_1;
     // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double cse238 = 0.05067494832004038 * cse228 + 0.9324334022399462 * cse230 - 0.09600000000000002;
-    const double cse239 = 0.05067494832004038 * cse232 + 0.9324334022399462 * cse233 + 0.12800000000000003;
-    const double cse240 = 0.05067494832004038 * cse235 + 0.9324334022399462 * cse236 - 0.32000000000000006;
-    const double table_m1_f2_2 = cse238 * ball_spin_rate_rate_1 + cse239 * ball_spin_rate_rate_2 + cse240 * ball_spin_rate_rate_3;
+    const double cse242 = 0.05067494832004038 * cse232 + 0.9324334022399462 * cse234 - 0.09600000000000002;
+    const double cse243 = 0.05067494832004038 * cse236 + 0.9324334022399462 * cse237 + 0.12800000000000003;
+    const double cse244 = 0.05067494832004038 * cse239 + 0.9324334022399462 * cse240 - 0.32000000000000006;
+    const double table_m1_f2_2 = cse242 * ball_spin_rate_rate_1 + cse243 * ball_spin_rate_rate_2 + cse244 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_2 = (0.2683281572999748 * cse238 - 0.3577708763999664 * cse239 + 0.8944271909999159 * cse240) * table_theta_rate_rate;
+    const double table_m2_f2_2 = (0.2683281572999748 * cse242 - 0.3577708763999664 * cse243 + 0.8944271909999159 * cse244) * table_theta_rate_rate;
     // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
     table_reaction_t_f_2 = table_m1_f2_2 + table_m2_f2_2;
     // planar_below_moving.mbg:12:6  I lower.J: p = I f (derivative causality)
@@ -901,26 +940,26 @@ class planar_below_moving_model final : public mbgrt::Model {
     // planar_below_moving.mbg:12:6  R lower.ejs: e = law(f)
     lower_ejs_e_3 = table_reaction_t_f_1 * lower_J_p_2 - table_reaction_t_f_2 * lower_J_p_1;
     // planar_below_moving.mbg:13:7  signal ball.Rpc31
-    const double ball_Rpc31 = 2.0 * (ball_rot_q_2 * ball_rot_q_4 - ball_rot_q_1 * ball_rot_q_3) / cse221;
+    const double ball_Rpc31 = 2.0 * (ball_rot_q_2 * ball_rot_q_4 - ball_rot_q_1 * ball_rot_q_3) / cse225;
     // planar_below_moving.mbg:13:7  signal ball.Rpc33
-    const double ball_Rpc33 = (cse217 + cse220 - cse218 - cse219) / cse221;
+    const double ball_Rpc33 = (cse221 + cse224 - cse222 - cse223) / cse225;
     // planar_below_moving.mbg:14:7  signal lower.pose.R33
-    const double cse241 = -0.2683281572999748 * cse228 + 0.3577708763999664 * cse230 + 0.24000000000000002;
-    const double cse242 = -0.2683281572999748 * cse232 + 0.3577708763999664 * cse233 - 0.32000000000000006;
-    const double cse243 = -0.2683281572999748 * cse235 + 0.3577708763999664 * cse236 + 0.7999999999999999;
-    const double lower_pose_R33 = ball_Rpc31 * cse241 + ball_Rpc32 * cse242 + ball_Rpc33 * cse243;
+    const double cse245 = -0.2683281572999748 * cse232 + 0.3577708763999664 * cse234 + 0.24000000000000002;
+    const double cse246 = -0.2683281572999748 * cse236 + 0.3577708763999664 * cse237 - 0.32000000000000006;
+    const double cse247 = -0.2683281572999748 * cse239 + 0.3577708763999664 * cse240 + 0.7999999999999999;
+    const double lower_pose_R33 = ball_Rpc31 * cse245 + ball_Rpc32 * cse246 + ball_Rpc33 * cse247;
     // planar_below_moving.mbg:12:6  Se lower.weight: e = value
     lower_weight_e_3 = -9.81 * lower_pose_R33;
     // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_1 = cse231 * table_m4_f1_1 + cse234 * table_m4_f1_2 + cse237 * table_m4_f1_3;
+    const double table_m4_f2_1 = cse235 * table_m4_f1_1 + cse238 * table_m4_f1_2 + cse241 * table_m4_f1_3;
     // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_1 = (0.9619937887599698 * cse231 + 0.05067494832004038 * cse234 - 0.2683281572999748 * cse237) * table_x_rate_rate;
+    const double table_m5_f2_1 = (0.9619937887599698 * cse235 + 0.05067494832004038 * cse238 - 0.2683281572999748 * cse241) * table_x_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_1 = (0.05067494832004038 * cse231 + 0.9324334022399462 * cse234 + 0.3577708763999664 * cse237) * table_y_rate_rate;
+    const double table_m6_f2_1 = (0.05067494832004038 * cse235 + 0.9324334022399462 * cse238 + 0.3577708763999664 * cse241) * table_y_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m1: f2 = T f1
-    const double table_m1_f2_3 = cse241 * ball_spin_rate_rate_1 + cse242 * ball_spin_rate_rate_2 + cse243 * ball_spin_rate_rate_3;
+    const double table_m1_f2_3 = cse245 * ball_spin_rate_rate_1 + cse246 * ball_spin_rate_rate_2 + cse247 * ball_spin_rate_rate_3;
     // planar_below_moving.mbg:14:7  MTF table.m2: f2 = T f1
-    const double table_m2_f2_3 = (0.2683281572999748 * cse241 - 0.3577708763999664 * cse242 + 0.8944271909999159 * cse243) * table_theta_rate_rate;
+    const double table_m2_f2_3 = (0.2683281572999748 * cse245 - 0.3577708763999664 * cse246 + 0.8944271909999159 * cse247) * table_theta_rate_rate;
     // planar_below_moving.mbg:14:7  0 table.wsum: flows in = flows out
     table_reaction_t_f_3 = table_m1_f2_3 + table_m2_f2_3;
     // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
@@ -928,11 +967,11 @@ class planar_below_moving_model final : public mbgrt::Model {
     // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
     table_reaction_f_f_1 = table_m4_f2_1 + table_m5_f2_1 + table_m6_f2_1 + table_m7_f2_1;
     // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_2 = cse238 * table_m4_f1_1 + cse239 * table_m4_f1_2 + cse240 * table_m4_f1_3;
+    const double table_m4_f2_2 = cse242 * table_m4_f1_1 + cse243 * table_m4_f1_2 + cse244 * table_m4_f1_3;
     // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_2 = (0.9619937887599698 * cse238 + 0.05067494832004038 * cse239 - 0.2683281572999748 * cse240) * table_x_rate_rate;
+    const double table_m5_f2_2 = (0.9619937887599698 * cse242 + 0.05067494832004038 * cse243 - 0.2683281572999748 * cse244) * table_x_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_2 = (0.05067494832004038 * cse238 + 0.9324334022399462 * cse239 + 0.3577708763999664 * cse240) * table_y_rate_rate;
+    const double table_m6_f2_2 = (0.05067494832004038 * cse242 + 0.9324334022399462 * cse243 + 0.3577708763999664 * cse244) * table_y_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
     const double table_m7_f2_2 = -0.2 * table_reaction_t_f_3;
     // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
@@ -940,15 +979,15 @@ class planar_below_moving_model final : public mbgrt::Model {
     // planar_below_moving.mbg:12:6  R lower.ejs_v: e = law(f)
     lower_ejs_v_e_3 = table_reaction_t_f_1 * table_reaction_f_f_2 - table_reaction_t_f_2 * table_reaction_f_f_1;
     // planar_below_moving.mbg:14:7  signal lower.pose.R32
-    const double lower_pose_R32 = ball_Rpc31 * cse238 + ball_Rpc32 * cse239 + ball_Rpc33 * cse240;
+    const double lower_pose_R32 = ball_Rpc31 * cse242 + ball_Rpc32 * cse243 + ball_Rpc33 * cse244;
     // planar_below_moving.mbg:12:6  Se lower.weight: e = value
     lower_weight_e_2 = -9.81 * lower_pose_R32;
     // planar_below_moving.mbg:14:7  MTF table.m4: f2 = T f1
-    const double table_m4_f2_3 = cse241 * table_m4_f1_1 + cse242 * table_m4_f1_2 + cse243 * table_m4_f1_3;
+    const double table_m4_f2_3 = cse245 * table_m4_f1_1 + cse246 * table_m4_f1_2 + cse247 * table_m4_f1_3;
     // planar_below_moving.mbg:14:7  MTF table.m5: f2 = T f1
-    const double table_m5_f2_3 = (0.9619937887599698 * cse241 + 0.05067494832004038 * cse242 - 0.2683281572999748 * cse243) * table_x_rate_rate;
+    const double table_m5_f2_3 = (0.9619937887599698 * cse245 + 0.05067494832004038 * cse246 - 0.2683281572999748 * cse247) * table_x_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m6: f2 = T f1
-    const double table_m6_f2_3 = (0.05067494832004038 * cse241 + 0.9324334022399462 * cse242 + 0.3577708763999664 * cse243) * table_y_rate_rate;
+    const double table_m6_f2_3 = (0.05067494832004038 * cse245 + 0.9324334022399462 * cse246 + 0.3577708763999664 * cse247) * table_y_rate_rate;
     // planar_below_moving.mbg:14:7  MTF table.m7: f2 = T f1
     const double table_m7_f2_3 = -lower_J_p_1 + 0.2 * table_reaction_t_f_2;
     // planar_below_moving.mbg:14:7  0 table.vsum: flows in = flows out
@@ -960,7 +999,7 @@ class planar_below_moving_model final : public mbgrt::Model {
     // planar_below_moving.mbg:12:6  R lower.ejs: e = law(f)
     lower_ejs_e_2 = table_reaction_t_f_3 * lower_J_p_1 - table_reaction_t_f_1 * lower_J_p_3;
     // planar_below_moving.mbg:14:7  signal lower.pose.R31
-    const double lower_pose_R31 = ball_Rpc31 * cse231 + ball_Rpc32 * cse234 + ball_Rpc33 * cse237;
+    const double lower_pose_R31 = ball_Rpc31 * cse235 + ball_Rpc32 * cse238 + ball_Rpc33 * cse241;
     // planar_below_moving.mbg:12:6  Se lower.weight: e = value
     lower_weight_e_1 = -9.81 * lower_pose_R31;
     // planar_below_moving.mbg:12:6  R lower.ejs_v: e = law(f)

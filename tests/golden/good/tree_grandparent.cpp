@@ -647,6 +647,49 @@ class tree_grandparent_model final : public mbgrt::Model {
     derivative_and_power(t, x, xdot, rate);
   }
 
+  bool has_position_rates() const override {
+    return true;
+  }
+
+  // POSITION RATES: the derivatives of the position states alone (the velocities' entries of xdot are left as they are).
+  void position_rates(double t, const double* x, double* xdot) override {
+    (void)t;
+    (void)x;
+    // states
+    const double float_x_rate_rate = x[0];
+    const double float_y_rate_rate = x[2];
+    const double float_z_rate_rate = x[4];
+    const double float_spin_rate_rate_1 = x[6];
+    const double float_spin_rate_rate_2 = x[7];
+    const double float_spin_rate_rate_3 = x[8];
+    const double float_rot_q_1 = x[9];
+    const double float_rot_q_2 = x[10];
+    const double float_rot_q_3 = x[11];
+    const double float_rot_q_4 = x[12];
+    const double slide_s_rate_rate = x[13];
+    const double hinge_theta_rate_rate = x[15];
+    // tree_grandparent.mbg:16:7  MTF float.rotrate: f2 = T f1
+    // (cseN: a subexpression several equations below share)
+    const double cse70 = 0.5 * float_rot_q_2;
+    const double cse71 = 0.5 * float_rot_q_3;
+    const double cse72 = 0.5 * float_rot_q_4;
+    const double float_rotrate_f2_1 = -cse70 * float_spin_rate_rate_1 - cse71 * float_spin_rate_rate_2 - cse72 * float_spin_rate_rate_3;
+    const double cse73 = 0.5 * float_rot_q_1;
+    const double float_rotrate_f2_2 = cse73 * float_spin_rate_rate_1 - cse72 * float_spin_rate_rate_2 + cse71 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_3 = cse72 * float_spin_rate_rate_1 + cse73 * float_spin_rate_rate_2 - cse70 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_4 = -cse71 * float_spin_rate_rate_1 + cse70 * float_spin_rate_rate_2 + cse73 * float_spin_rate_rate_3;
+    // position derivatives
+    xdot[1] = float_x_rate_rate;
+    xdot[3] = float_y_rate_rate;
+    xdot[5] = float_z_rate_rate;
+    xdot[9] = float_rotrate_f2_1;
+    xdot[10] = float_rotrate_f2_2;
+    xdot[11] = float_rotrate_f2_3;
+    xdot[12] = float_rotrate_f2_4;
+    xdot[14] = slide_s_rate_rate;
+    xdot[16] = hinge_theta_rate_rate;
+  }
+
   // OUTPUT: the declared outputs at (t, y).
   void outputs(double t, const double* x, const double* yp, double* out) override {
     (void)t;
@@ -727,41 +770,41 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double hinge_theta_q = x[16];
     // tree_grandparent.mbg:16:7  signal float.Rpc12
     // (cseN: a subexpression several equations below share)
-    const double cse70 = float_rot_q_2 * float_rot_q_3;
-    const double cse71 = float_rot_q_1 * float_rot_q_4;
-    const double cse72 = float_rot_q_1 * float_rot_q_1;
-    const double cse73 = float_rot_q_2 * float_rot_q_2;
-    const double cse74 = cse72 + cse73;
-    const double cse75 = float_rot_q_3 * float_rot_q_3;
-    const double cse76 = float_rot_q_4 * float_rot_q_4;
-    const double cse77 = cse74 + cse75 + cse76;
-    const double float_Rpc12 = 2.0 * (cse70 - cse71) / cse77;
+    const double cse74 = float_rot_q_2 * float_rot_q_3;
+    const double cse75 = float_rot_q_1 * float_rot_q_4;
+    const double cse76 = float_rot_q_1 * float_rot_q_1;
+    const double cse77 = float_rot_q_2 * float_rot_q_2;
+    const double cse78 = cse76 + cse77;
+    const double cse79 = float_rot_q_3 * float_rot_q_3;
+    const double cse80 = float_rot_q_4 * float_rot_q_4;
+    const double cse81 = cse78 + cse79 + cse80;
+    const double float_Rpc12 = 2.0 * (cse74 - cse75) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse74 - cse75 - cse76) / cse77;
+    const double float_Rpc11 = (cse78 - cse79 - cse80) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse78 = float_rot_q_2 * float_rot_q_4;
-    const double cse79 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse78 + cse79) / cse77;
+    const double cse82 = float_rot_q_2 * float_rot_q_4;
+    const double cse83 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse82 + cse83) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse80 = float_rot_q_3 * float_rot_q_4;
-    const double cse81 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse80 - cse81) / cse77;
+    const double cse84 = float_rot_q_3 * float_rot_q_4;
+    const double cse85 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse84 - cse85) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse70 + cse71) / cse77;
+    const double float_Rpc21 = 2.0 * (cse74 + cse75) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse72 + cse75 - cse73 - cse76) / cse77;
+    const double float_Rpc22 = (cse76 + cse79 - cse77 - cse80) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse78 - cse79) / cse77;
+    const double float_Rpc31 = 2.0 * (cse82 - cse83) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse80 + cse81) / cse77;
+    const double float_Rpc32 = 2.0 * (cse84 + cse85) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse72 + cse76 - cse73 - cse75) / cse77;
+    const double float_Rpc33 = (cse76 + cse80 - cse77 - cse79) / cse81;
     // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double cse82 = std::sin(hinge_theta_q);
-    const double cse83 = std::cos(hinge_theta_q);
-    const double arm_pose_R33 = float_Rpc31 * cse82 + float_Rpc33 * cse83;
+    const double cse86 = std::sin(hinge_theta_q);
+    const double cse87 = std::cos(hinge_theta_q);
+    const double arm_pose_R33 = float_Rpc31 * cse86 + float_Rpc33 * cse87;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse83 - float_Rpc33 * cse82;
+    const double arm_pose_R31 = float_Rpc31 * cse87 - float_Rpc33 * cse86;
     // tree_grandparent.mbg:17:7  signal slider.pose.r1
     const double slider_pose_r1 = float_x_q + float_Rpc13 * slide_s_q;
     // tree_grandparent.mbg:17:7  signal slider.pose.r2
@@ -769,13 +812,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:17:7  signal slider.pose.r3
     const double slider_pose_r3 = float_z_q + float_Rpc33 * slide_s_q;
     // tree_grandparent.mbg:18:7  signal arm.pose.R11
-    const double arm_pose_R11 = float_Rpc11 * cse83 - float_Rpc13 * cse82;
+    const double arm_pose_R11 = float_Rpc11 * cse87 - float_Rpc13 * cse86;
     // tree_grandparent.mbg:18:7  signal arm.pose.R13
-    const double arm_pose_R13 = float_Rpc11 * cse82 + float_Rpc13 * cse83;
+    const double arm_pose_R13 = float_Rpc11 * cse86 + float_Rpc13 * cse87;
     // tree_grandparent.mbg:18:7  signal arm.pose.R21
-    const double arm_pose_R21 = float_Rpc21 * cse83 - float_Rpc23 * cse82;
+    const double arm_pose_R21 = float_Rpc21 * cse87 - float_Rpc23 * cse86;
     // tree_grandparent.mbg:18:7  signal arm.pose.R23
-    const double arm_pose_R23 = float_Rpc21 * cse82 + float_Rpc23 * cse83;
+    const double arm_pose_R23 = float_Rpc21 * cse86 + float_Rpc23 * cse87;
     // tree_grandparent.mbg:18:7  signal arm.pose.r1
     const double arm_pose_r1 = slider_pose_r1 + 0.2 * arm_pose_R11;
     // tree_grandparent.mbg:18:7  signal arm.pose.r2
@@ -849,35 +892,35 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double hinge_theta_q = x[16];
     // tree_grandparent.mbg:16:7  signal float.Rpc12
     // (cseN: a subexpression several equations below share)
-    const double cse84 = float_rot_q_2 * float_rot_q_3;
-    const double cse85 = float_rot_q_1 * float_rot_q_4;
-    const double cse86 = float_rot_q_1 * float_rot_q_1;
-    const double cse87 = float_rot_q_2 * float_rot_q_2;
-    const double cse88 = cse86 + cse87;
-    const double cse89 = float_rot_q_3 * float_rot_q_3;
-    const double cse90 = float_rot_q_4 * float_rot_q_4;
-    const double cse91 = cse88 + cse89 + cse90;
-    const double float_Rpc12 = 2.0 * (cse84 - cse85) / cse91;
+    const double cse88 = float_rot_q_2 * float_rot_q_3;
+    const double cse89 = float_rot_q_1 * float_rot_q_4;
+    const double cse90 = float_rot_q_1 * float_rot_q_1;
+    const double cse91 = float_rot_q_2 * float_rot_q_2;
+    const double cse92 = cse90 + cse91;
+    const double cse93 = float_rot_q_3 * float_rot_q_3;
+    const double cse94 = float_rot_q_4 * float_rot_q_4;
+    const double cse95 = cse92 + cse93 + cse94;
+    const double float_Rpc12 = 2.0 * (cse88 - cse89) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse88 - cse89 - cse90) / cse91;
+    const double float_Rpc11 = (cse92 - cse93 - cse94) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse92 = float_rot_q_2 * float_rot_q_4;
-    const double cse93 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse92 + cse93) / cse91;
+    const double cse96 = float_rot_q_2 * float_rot_q_4;
+    const double cse97 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse96 + cse97) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse94 = float_rot_q_3 * float_rot_q_4;
-    const double cse95 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse94 - cse95) / cse91;
+    const double cse98 = float_rot_q_3 * float_rot_q_4;
+    const double cse99 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse98 - cse99) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse84 + cse85) / cse91;
+    const double float_Rpc21 = 2.0 * (cse88 + cse89) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse86 + cse89 - cse87 - cse90) / cse91;
+    const double float_Rpc22 = (cse90 + cse93 - cse91 - cse94) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse92 - cse93) / cse91;
+    const double float_Rpc31 = 2.0 * (cse96 - cse97) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse94 + cse95) / cse91;
+    const double float_Rpc32 = 2.0 * (cse98 + cse99) / cse95;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse86 + cse90 - cse87 - cse89) / cse91;
+    const double float_Rpc33 = (cse90 + cse94 - cse91 - cse93) / cse95;
     // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
     const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
     // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
@@ -923,18 +966,18 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_3 = slide_reaction_f_f_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse96 = std::cos(hinge_theta_q);
-    const double cse97 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse96 * float_spin_rate_rate_1 - cse97 * float_spin_rate_rate_3;
+    const double cse100 = std::cos(hinge_theta_q);
+    const double cse101 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse100 * float_spin_rate_rate_1 - cse101 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse97 * float_spin_rate_rate_1 + cse96 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse101 * float_spin_rate_rate_1 + cse100 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse96 * hinge_m4_f1_1 - cse97 * hinge_m4_f1_3;
+    const double hinge_m4_f2_1 = cse100 * hinge_m4_f1_1 - cse101 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
@@ -944,16 +987,16 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse97 * hinge_m4_f1_1 + cse96 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse101 * hinge_m4_f1_1 + cse100 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
     // the stored energy
-    const double cse98 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
-    const double cse99 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
-    const double cse100 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
-    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse98 + 2.0 * cse99 + 3.0 * cse100) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse98 + 0.1 * cse99 + 0.1 * cse100) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
+    const double cse102 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
+    const double cse103 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
+    const double cse104 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
+    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse102 + 2.0 * cse103 + 3.0 * cse104) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse102 + 0.1 * cse103 + 0.1 * cse104) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -979,35 +1022,35 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double hinge_theta_q = x[16];
     // tree_grandparent.mbg:16:7  signal float.Rpc12
     // (cseN: a subexpression several equations below share)
-    const double cse101 = float_rot_q_2 * float_rot_q_3;
-    const double cse102 = float_rot_q_1 * float_rot_q_4;
-    const double cse103 = float_rot_q_1 * float_rot_q_1;
-    const double cse104 = float_rot_q_2 * float_rot_q_2;
-    const double cse105 = cse103 + cse104;
-    const double cse106 = float_rot_q_3 * float_rot_q_3;
-    const double cse107 = float_rot_q_4 * float_rot_q_4;
-    const double cse108 = cse105 + cse106 + cse107;
-    const double float_Rpc12 = 2.0 * (cse101 - cse102) / cse108;
+    const double cse105 = float_rot_q_2 * float_rot_q_3;
+    const double cse106 = float_rot_q_1 * float_rot_q_4;
+    const double cse107 = float_rot_q_1 * float_rot_q_1;
+    const double cse108 = float_rot_q_2 * float_rot_q_2;
+    const double cse109 = cse107 + cse108;
+    const double cse110 = float_rot_q_3 * float_rot_q_3;
+    const double cse111 = float_rot_q_4 * float_rot_q_4;
+    const double cse112 = cse109 + cse110 + cse111;
+    const double float_Rpc12 = 2.0 * (cse105 - cse106) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse105 - cse106 - cse107) / cse108;
+    const double float_Rpc11 = (cse109 - cse110 - cse111) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse109 = float_rot_q_2 * float_rot_q_4;
-    const double cse110 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse109 + cse110) / cse108;
+    const double cse113 = float_rot_q_2 * float_rot_q_4;
+    const double cse114 = float_rot_q_1 * float_rot_q_3;
+    const double float_Rpc13 = 2.0 * (cse113 + cse114) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse111 = float_rot_q_3 * float_rot_q_4;
-    const double cse112 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse111 - cse112) / cse108;
+    const double cse115 = float_rot_q_3 * float_rot_q_4;
+    const double cse116 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc23 = 2.0 * (cse115 - cse116) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse101 + cse102) / cse108;
+    const double float_Rpc21 = 2.0 * (cse105 + cse106) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse103 + cse106 - cse104 - cse107) / cse108;
+    const double float_Rpc22 = (cse107 + cse110 - cse108 - cse111) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse109 - cse110) / cse108;
+    const double float_Rpc31 = 2.0 * (cse113 - cse114) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse111 + cse112) / cse108;
+    const double float_Rpc32 = 2.0 * (cse115 + cse116) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse103 + cse107 - cse104 - cse106) / cse108;
+    const double float_Rpc33 = (cse107 + cse111 - cse108 - cse110) / cse112;
     // tree_grandparent.mbg:12:6  Se base.weight: e = value
     const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
     // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
@@ -1033,8 +1076,8 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
     // tree_grandparent.mbg:17:7  Se slide.applied: e = value
-    const double cse113 = 1000.0 * slide_s_q;
-    const double slide_applied_e = -cse113 - 10.0 * slide_s_rate_rate;
+    const double cse117 = 1000.0 * slide_s_q;
+    const double slide_applied_e = -cse117 - 10.0 * slide_s_rate_rate;
     // tree_grandparent.mbg:13:6  Se slider.weight: e = value
     const double slider_weight_e_3 = -19.62 * float_Rpc33;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
@@ -1081,15 +1124,15 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
     const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse114 = std::cos(hinge_theta_q);
-    const double cse115 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse114 * float_spin_rate_rate_1 - cse115 * float_spin_rate_rate_3;
+    const double cse118 = std::cos(hinge_theta_q);
+    const double cse119 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse118 * float_spin_rate_rate_1 - cse119 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
     const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
     // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse115 * float_spin_rate_rate_1 + cse114 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse119 * float_spin_rate_rate_1 + cse118 * float_spin_rate_rate_3;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
@@ -1097,13 +1140,13 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
     const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
     // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double arm_pose_R33 = float_Rpc31 * cse115 + float_Rpc33 * cse114;
+    const double arm_pose_R33 = float_Rpc31 * cse119 + float_Rpc33 * cse118;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_3 = -9.81 * arm_pose_R33;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse114 * hinge_m4_f1_1 - cse115 * hinge_m4_f1_3;
+    const double hinge_m4_f2_1 = cse118 * hinge_m4_f1_1 - cse119 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
@@ -1121,11 +1164,11 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse114 - float_Rpc33 * cse115;
+    const double arm_pose_R31 = float_Rpc31 * cse118 - float_Rpc33 * cse119;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
     const double arm_weight_e_1 = -9.81 * arm_pose_R31;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse115 * hinge_m4_f1_1 + cse114 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse119 * hinge_m4_f1_1 + cse118 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
@@ -1169,9 +1212,9 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
     // the powers
-    const double cse116 = (slide_applied_e + cse113) * slide_s_rate_rate;
-    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse113 * slide_s_rate_rate + std::fmax(cse116, 0.0));
-    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse116, 0.0);
+    const double cse120 = (slide_applied_e + cse117) * slide_s_rate_rate;
+    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse117 * slide_s_rate_rate + std::fmax(cse120, 0.0));
+    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse120, 0.0);
   }
 
   // TERMINAL: nothing to do at the end of a run.
