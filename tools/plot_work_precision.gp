@@ -15,7 +15,11 @@ set xlabel 'wall time per run [s]'
 set ylabel 'max relative error of the outputs'
 set grid
 set key outside right top
+# ten integrators, ten colours (gnuplot's default cycle has eight)
+set linetype 9 linecolor rgb '#8c564b'
+set linetype 10 linecolor rgb '#7f7f7f'
+set linetype cycle 10
 # failed runs have error inf: gnuplot skips them
-if (!exists('solvers')) solvers = 'rk4 dopri5 cvode ida'
+if (!exists('solvers')) solvers = 'euler heun symplectic_euler rk4 dopri5 linearly_implicit_euler ros2 generalized_alpha cvode ida'
 plot for [s in solvers] csv every ::1 using (strcol(1) eq s ? $5 : NaN):($10 > 0 ? $10 : NaN) \
-     with linespoints linewidth 2 pointtype 7 title s
+     with linespoints linewidth 2 pointtype 7 title s noenhanced

@@ -234,6 +234,7 @@ void add_identity_methods(CppClass& c, const ReducedSystem& s, const EmitOptions
   if (ss.atol) settings.body.push_back(CppStmt::line(fmt::format("s.atol = {};", cpp_double(*ss.atol))));
   if (ss.step) settings.body.push_back(CppStmt::line(fmt::format("s.step_s = {};", cpp_double(*ss.step))));
   if (ss.rho_inf) settings.body.push_back(CppStmt::line(fmt::format("s.rho_inf = {};", cpp_double(*ss.rho_inf))));
+  if (ss.accuracy) settings.body.push_back(CppStmt::line(fmt::format("s.accuracy = {};", cpp_double(*ss.accuracy))));
   settings.body.push_back(CppStmt::line("return s;"));
   c.public_methods.push_back(settings);
   CppFunction set{"", "bool set_parameter(const std::string& name, double value) override", {}};

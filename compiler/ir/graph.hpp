@@ -167,7 +167,7 @@ struct UnitCheck {
 };
 
 struct SimSettings {
-  std::optional<double> t_end, interval, rtol, atol, step, rho_inf;
+  std::optional<double> t_end, interval, rtol, atol, step, rho_inf, accuracy;
   std::optional<std::string> solver;
   SourceLoc solver_loc;  // of the solver's name, when given
   // The command-line option that chose the model's form (`--constraints
@@ -197,6 +197,7 @@ inline const std::vector<SimSetting>& sim_settings() {
       {"rho_inf", &SimSettings::rho_inf, units::Dimension::none(), true,
        "generalized_alpha's spectral radius at an infinite step: 0 damps the modes far above 1/step out at once, 1 "
        "damps none"},
+      {"accuracy", &SimSettings::accuracy, units::Dimension::none()},
   };
   return all;
 }

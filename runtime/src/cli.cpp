@@ -190,13 +190,13 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   app.add_option("--interval", s.interval_s, "Communication interval: one CSV row each [s]")
       ->type_name("SECONDS")
       ->capture_default_str();
-  app.add_option("--solver", solver, solver_help())
+  auto* solver_option = app.add_option("--solver", solver, solver_help())
       ->type_name("NAME")
       ->capture_default_str();
-  app.add_option("--rtol", s.rtol, "Relative tolerance (adaptive solvers)")
+  auto* rtol = app.add_option("--rtol", s.rtol, "Relative tolerance (adaptive solvers)")
       ->type_name("X")
       ->capture_default_str();
-  app.add_option("--atol", s.atol, "Absolute tolerance (adaptive solvers)")
+  auto* atol = app.add_option("--atol", s.atol, "Absolute tolerance (adaptive solvers)")
       ->type_name("X")
       ->capture_default_str();
   auto* linear = app.add_option("--linear-solver", linear_solver,
@@ -209,6 +209,10 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
   auto* step = app.add_option("--step", s.step_s,
                               fmt::format("Fixed step for {} [s] (default: interval/10)", fixed_step_names()))
                    ->type_name("SECONDS");
+  auto* accuracy = app.add_option("--accuracy", s.accuracy,
+                                  "Pick the solver and its step or tolerance for this run: the cheapest that keeps the "
+                                  "outputs' relative error within X, measured over a probe of the run's first 10 %")
+                       ->type_name("X");
   auto* rho = app.add_option("--rho-inf", s.rho_inf,
                              "generalized_alpha: the spectral radius at an infinite step, from 0 (modes far above "
                              "1/step damped out in one step) to 1 (none damped)")
@@ -294,6 +298,19 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
         require(used == realtime.size() && used > 0,
                 fmt::format("--realtime {}: the factor is a number (1: real time, 10: ten times faster)", realtime));
       }
+    }
+    // --accuracy chooses the solver: one given beside it (or --step, --rtol, --atol) would not be used, and a
+    // solver given on its own overrides the model's `simulate { accuracy = ... }`
+    const std::size_t chosen_by_hand = solver_option->count() + step->count() + rtol->count() + atol->count();
+    if (accuracy->count() > 0) {
+      require(chosen_by_hand == 0 && rho->count() == 0,
+              "--accuracy chooses the solver and its step or tolerances: give --accuracy or those, not both");
+      require(std::isfinite(s.accuracy) && s.accuracy > 0,
+              fmt::format("--accuracy must be a positive relative error (got {})", s.accuracy));
+      require(!lin->count() && !o.work_precision && o.sweep.empty() && o.sweep_file.empty(),
+              "--accuracy picks the solver of one run: not with --linearize-at, --work-precision or a sweep");
+    } else if (chosen_by_hand > 0) {
+      s.accuracy = 0.0;
     }
     validate(o, step->count() > 0);
     require(rho->count() == 0 || s.solver == Solver::generalized_alpha,

@@ -47,6 +47,7 @@ struct Options {
   std::string case_dir;            ///< --case-dir: each case's CSV and run report
   unsigned jobs = 0;               ///< --jobs: threads for a sweep (0: one per core)
   bool sweeping() const { return !sweep.empty() || !sweep_file.empty(); }
+  std::string accuracy_note;       ///< what --accuracy chose, and why (accuracy.hpp); set by the run, not parsed
 };
 
 /// Options to run with, or the exit status to return at once (after --help,

@@ -86,6 +86,7 @@ void print_summary(std::FILE* err, const RunRecord& run) {
   fmt::print(err, "mbgrt: run summary for model '{}' ({})\n", run.model->name(),
              run.model->source_file());
   fmt::print(err, "  solver       {}: {}\n", integ.name(), integ.description());
+  if (!run.accuracy.empty()) fmt::print(err, "  accuracy     {}\n", run.accuracy);
   fmt::print(err, "  time         {} s to {} s, interval {} s, reached {} s\n",
              format_time(s.t_start_s), format_time(s.t_end_s), format_time(s.interval_s),
              format_time(integ.t()));

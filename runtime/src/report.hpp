@@ -22,6 +22,7 @@ struct RunRecord {
   std::string small_states;  ///< non-empty if states moved but stayed within a few atol
   std::string floored;       ///< non-empty if the rounding floor set some unknowns' tolerance (ErrorWeights)
   std::string realtime;  ///< --realtime: pacing, overruns, compute per frame
+  std::string accuracy;  ///< --accuracy: what it chose, and why
   std::string energy;          ///< the energy witness's line (EnergyWitness::summary), if the model has one
   std::string energy_warning;  ///< ... and its warning (EnergyWitness::warning)
   std::string energy_note;     ///< what the balance leaves out, or why there is none (Model::energy_note)

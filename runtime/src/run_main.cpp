@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "accuracy.hpp"
 #include "animation_sink.hpp"
 #include "cli.hpp"
 #include "csv.hpp"
@@ -64,6 +65,18 @@ int run(Model& model, int argc, char** argv) {
     return kExitUsage;
   }
 
+  // --accuracy (or the model's simulate { accuracy }): a probe picks a single
+  // run's solver before anything is written
+  Options chosen;
+  if (o.settings.accuracy > 0 && !o.linearize_at && !o.work_precision && !o.sweeping()) {
+    std::optional<AccuracyChoice> choice = choose_for_accuracy(model, o.settings, o.settings.accuracy);
+    if (!choice) return kExitRunFailed;
+    chosen = o;
+    chosen.settings = choice->settings;
+    chosen.accuracy_note = std::move(choice->note);
+  }
+  const Options& run_options = chosen.accuracy_note.empty() ? o : chosen;
+
   // A single run's files are written by a writer process that keeps their
   // rows whole even if the simulator is killed (csv.hpp); a sweep's threads
   // and MPI's ranks rule out forking, and their own records say what finished.
@@ -84,7 +97,7 @@ int run(Model& model, int argc, char** argv) {
   hooks.progress = is_terminal(stderr) && !o.quiet;
   const StopSignals stop_signals({SIGINT, SIGTERM, SIGHUP});  // a run asked to stop ends after a whole row
   hooks.stop = &StopSignals::flag();
-  const int status = simulate(model, o, *out, constraint_out ? &*constraint_out : nullptr,
+  const int status = simulate(model, run_options, *out, constraint_out ? &*constraint_out : nullptr,
                               event_out ? &*event_out : nullptr, hooks);
   for (auto* file : {&event_out, &constraint_out, &out})
     if (*file) (*file)->close();  // throws if a writer could not write it all

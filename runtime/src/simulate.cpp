@@ -330,6 +330,7 @@ int simulate(Model& model, const Options& o, OutputFile& out, OutputFile* constr
     record.model = &model;
     record.integrator = integrator.get();
     record.settings = s;
+    record.accuracy = o.accuracy_note;
     record.wall_s = wall_s;
     record.stability = stability;
     if (pacer) record.realtime = pacer->summary();

@@ -186,6 +186,7 @@ struct Settings {
   double atol = 1e-8;
   double step_s = 0.0;        ///< fixed step of the fixed-step methods (0: use interval/10)
   double rho_inf = 0.8;       ///< generalized_alpha: the spectral radius at an infinite step, in [0, 1]
+  double accuracy = 0.0;      ///< > 0: a single run picks its own solver and step to meet this error (--accuracy)
   LinearSolver linear_solver = LinearSolver::automatic;  ///< IDA only
 };
 
