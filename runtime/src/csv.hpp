@@ -1,12 +1,13 @@
 // CSV output (docs/cli.md): header `t,<outputs>`, one row per communication point.
 #pragma once
 
-#include <sys/types.h>
-
 #include <cstdio>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "row_writer.hpp"
 
 namespace mbgrt::detail {
 
@@ -20,14 +21,16 @@ class OutputFile {
   };
   /// Empty path or "-" means stdout. Throws std::runtime_error if it cannot be opened.
   ///
-  /// Rows::Whole forks a writer process that owns the destination: this
-  /// process sends it the text over a socket, and it writes out only up to
-  /// the last newline it has received. A simulator killed by SIGKILL (kill -9,
-  /// the out-of-memory killer) in the middle of a row leaves a file of whole
-  /// rows: the writer drops the unfinished row when the socket closes. The
-  /// writer ignores SIGINT, SIGTERM and SIGHUP (the simulator ends after a
-  /// whole row on those) and is waited for in close(). Only for a process
-  /// with one thread (a single run: not a sweep, not under MPI).
+  /// Rows::Whole forks a writer process that owns the destination
+  /// (row_writer.hpp): this process copies the text into memory the two
+  /// share, with no syscall, and the writer writes it out every few
+  /// milliseconds, only up to the last newline. A simulator killed by SIGKILL
+  /// (kill -9, the out-of-memory killer) leaves a file of whole rows holding
+  /// every row it finished: its socket to the writer closes, and the writer
+  /// writes what the memory holds and drops the unfinished row. The writer
+  /// ignores SIGINT, SIGTERM and SIGHUP (the simulator ends after a whole row
+  /// on those) and is waited for in close(). Only for a process with one
+  /// thread (a single run: not a sweep, not under MPI).
   OutputFile(const std::string& path, Rows rows = Rows::AsWritten);
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
@@ -36,7 +39,8 @@ class OutputFile {
   const std::string& display_name() const { return name_; }
   /// Writes and flushes at once (Rows::Whole: hands the text to the writer),
   /// so the text survives a later crash. Throws std::runtime_error on a write
-  /// error (e.g. disk full).
+  /// error (e.g. disk full; Rows::Whole: at the first write after the writer
+  /// met it, or in close()).
   void write(std::string_view text);
   /// Ends the output: with a writer process, waits until it has written
   /// everything. Throws std::runtime_error if it could not. Idempotent; the
@@ -44,13 +48,10 @@ class OutputFile {
   void close();
 
  private:
-  void wait_for_writer();
-
   std::FILE* f_;
   bool owned_;
   std::string name_;
-  int writer_socket_ = -1;  ///< Rows::Whole: our end of the socket to the writer
-  pid_t writer_ = -1;       ///< Rows::Whole: the writer process, until waited for
+  std::optional<RowWriter> writer_;  ///< Rows::Whole: the writer process, which has the file
 };
 
 class CsvWriter {

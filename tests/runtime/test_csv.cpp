@@ -4,15 +4,19 @@
 #include <gtest/gtest.h>
 
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "cli.hpp"
 #include "csv.hpp"
@@ -201,6 +205,157 @@ TEST(Csv, AWriteTheWriterCouldNotDoIsAnError) {
   RunResult r = run(m, {"-o", "/dev/full", "--quiet"}, false);
   EXPECT_EQ(r.status, detail::kExitRunFailed) << r.err;
   EXPECT_TRUE(Contains(r.err, "writing to /dev/full failed: No space left on device")) << r.err;
+}
+
+/// Rows `t,x` numbered 0, 1, ... until the text is `bytes` long or longer,
+/// each some 100 bytes: a reader sees one missing, doubled or out of order.
+std::string numbered_rows(std::size_t bytes) {
+  std::string text = "t,x\n";
+  for (long i = 0; text.size() < bytes; ++i)
+    text += std::to_string(i) + ',' + std::string(90, static_cast<char>('a' + i % 26)) + '\n';
+  return text;
+}
+
+constexpr std::size_t kRing = detail::RowWriter::kRingBytes;
+
+TEST(Csv, AKilledSimulatorsFileHoldsEveryRowItFinishedWhenTheyOverfillTheRing) {
+  // Three rings' worth of rows, one write() each: the simulator waits for the
+  // writer whenever the ring is full, then dies with up to a ring's worth not
+  // yet written out. It pauses once, after 0.7 of a ring, for the writer to
+  // take that much: every take after it wraps around the ring's end.
+  const std::string path = temp_path("killed_many.csv");
+  const std::string text = numbered_rows(3 * kRing);
+  run_and_kill([&] {
+    detail::OutputFile out(path, detail::OutputFile::Rows::Whole);
+    bool paused = false;
+    for (std::size_t at = 0, end; at < text.size(); at = end + 1) {
+      end = text.find('\n', at);
+      out.write(std::string_view(text).substr(at, end + 1 - at));
+      if (!paused && end > kRing * 7 / 10) {
+        paused = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+      }
+    }
+    out.write("123456,unfinished");
+  });
+  const std::string file = read_file(path);
+  EXPECT_EQ(file.size(), text.size());
+  EXPECT_TRUE(file == text) << "the rows differ from byte "
+                            << std::mismatch(file.begin(), file.end(), text.begin(), text.end()).first - file.begin();
+  std::filesystem::remove(path);
+}
+
+TEST(Csv, AWriteLargerThanTheRingIsWrittenWhole) {
+  // One write() of two and a half rings, with a row longer than the ring
+  // itself inside (the writer cannot wait for a newline the ring has no room
+  // for): through close(), and through a SIGKILL right after the write.
+  const std::string path = temp_path("large_write.csv");
+  const std::string text = numbered_rows(kRing / 2) + std::string(kRing + 3, 'b') + "\n" + numbered_rows(kRing);
+  {
+    detail::OutputFile out(path, detail::OutputFile::Rows::Whole);
+    out.write(text);
+    out.close();
+  }
+  EXPECT_TRUE(read_file(path) == text) << "written and closed";
+  run_and_kill([&] {
+    detail::OutputFile out(path, detail::OutputFile::Rows::Whole);
+    out.write(text + "0.5,unfinished");
+  });
+  EXPECT_TRUE(read_file(path) == text) << "written and killed";
+  std::filesystem::remove(path);
+}
+
+TEST(Csv, ASimulatorWhoseReaderIsSlowWaitsForItAsleep) {
+  // stdout is a pipe read 64 kB every 10 ms: the ring fills, and the
+  // simulator sleeps until the writer has room for it. It gets every row,
+  // and the simulator and its writer use a small part of a core meanwhile.
+  const std::string text = numbered_rows(3 * kRing);
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::dup2(ends[1], 1);
+    ::close(ends[0]);
+    ::close(ends[1]);
+    try {
+      detail::OutputFile out("-", detail::OutputFile::Rows::Whole);
+      out.write(text);
+      out.close();
+    } catch (...) {
+      ::_exit(1);
+    }
+    ::_exit(0);
+  }
+  ::close(ends[1]);
+  const auto started = std::chrono::steady_clock::now();
+  std::string got;
+  std::string chunk(1 << 16, '\0');
+  for (ssize_t n; (n = ::read(ends[0], chunk.data(), chunk.size())) != 0;) {
+    if (n < 0) continue;  // EINTR
+    got.append(chunk.data(), static_cast<std::size_t>(n));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::close(ends[0]);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  int status = 0;
+  rusage used{};
+  ASSERT_EQ(::wait4(pid, &status, 0, &used), pid);  // its usage counts the writer's, which it waited for
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_TRUE(got == text) << got.size() << " bytes of " << text.size();
+  const double cpu = static_cast<double>(used.ru_utime.tv_sec + used.ru_stime.tv_sec) +
+                     static_cast<double>(used.ru_utime.tv_usec + used.ru_stime.tv_usec) * 1e-6;
+  EXPECT_GT(elapsed, 0.3);  // 48 reads, 10 ms apart
+  EXPECT_LT(cpu, 0.25 * elapsed) << "CPU time " << cpu << " s in " << elapsed << " s";
+}
+
+TEST(Csv, AWriteErrorStopsTheSimulatorAtItsNextWrite) {
+  // The writer cannot write /dev/full: the simulator hears of it at a write
+  // soon after, long before it would fill the ring, as when it wrote itself.
+  detail::OutputFile out("/dev/full", detail::OutputFile::Rows::Whole);
+  std::size_t written = 0;
+  try {
+    for (const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+         std::chrono::steady_clock::now() < until; std::this_thread::sleep_for(std::chrono::milliseconds(1))) {
+      out.write("0,1\n");
+      written += 4;
+    }
+    ADD_FAILURE() << "writing on for 5 s after the writer failed";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(Contains(e.what(), "writing to /dev/full failed: No space left on device")) << e.what();
+  }
+  EXPECT_LT(written, kRing / 100);
+}
+
+TEST(Csv, ASimulatorWritingIntoAClosedPipeEndsBySigpipeAtItsNextWrite) {
+  // stdout piped into a reader that has gone (`sim | head`): the writer ends
+  // by SIGPIPE, and so does the simulator at a write soon after.
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::dup2(ends[1], 1);
+    ::close(ends[0]);
+    ::close(ends[1]);
+    try {
+      detail::OutputFile out("-", detail::OutputFile::Rows::Whole);
+      for (int i = 0; i < 5000; ++i) {
+        out.write("0,1\n");
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+      ::_exit(0);  // before close(), which would wait for the writer and end by SIGPIPE itself
+    } catch (...) {
+      ::_exit(1);
+    }
+  }
+  ::close(ends[0]);
+  ::close(ends[1]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGPIPE) << status;
 }
 
 }  // namespace
