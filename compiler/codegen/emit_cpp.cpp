@@ -484,13 +484,21 @@ class Emitter {
     return &cost_->ops;
   }
 
+  /// xdot[i] = the derivative of state i, each named by the body it is
+  /// about: every state's, or the positions' alone.
+  std::vector<SectionResult> state_derivatives(bool positions_only) {
+    std::vector<SectionResult> results;
+    for (std::size_t i = 0; i < s_.states.size(); ++i)
+      if (!positions_only || is_position_state(s_, i))
+        results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
+    return results;
+  }
+
   CppFunction derivative() {
     CppFunction f{"DERIVATIVE: the state derivatives, in causal order.",
                   "void derivative(double t, const double* x, double* xdot) override", {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
     const Counting counting = count_into(f);
-    std::vector<SectionResult> results;
-    for (std::size_t i = 0; i < s_.states.size(); ++i)
-      results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
+    std::vector<SectionResult> results = state_derivatives(false);
     if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
     section(f.body, s_.for_derivative, std::move(results), "state derivatives");
     return f;
@@ -506,9 +514,7 @@ class Emitter {
                   "void derivative_and_power(double t, const double* x, double* xdot, double* rate) override",
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
     const Counting counting = count_into(f);
-    std::vector<SectionResult> results;
-    for (std::size_t i = 0; i < s_.states.size(); ++i)
-      results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
+    std::vector<SectionResult> results = state_derivatives(false);
     if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
     const std::vector<Expr> powers = power_values(s_);
     for (std::size_t k = 0; k < powers.size(); ++k) results.push_back({"rate", k, powers[k], {}, {}, {}});
@@ -534,10 +540,7 @@ class Emitter {
                   "void position_rates(double t, const double* x, double* xdot) override",
                   {CppStmt::line("(void)t;"), CppStmt::line("(void)x;")}};
     const Counting counting = count_into(f);
-    std::vector<SectionResult> results;
-    for (std::size_t i = 0; i < s_.states.size(); ++i)
-      if (is_position_state(s_, i))
-        results.push_back({"xdot", i, s_.state_derivative[i], owner_of(var_name_in_model(s_.states[i].var)), {}, {}});
+    std::vector<SectionResult> results = state_derivatives(true);
     if (results.empty()) f.body.push_back(CppStmt::line("(void)xdot;"));
     section(f.body, s_.for_position_rates, std::move(results), "position derivatives");
     return f;

@@ -265,6 +265,23 @@ TEST(Csv, AWriteLargerThanTheRingIsWrittenWhole) {
   std::filesystem::remove(path);
 }
 
+/// A child process whose stdout is the pipe `ends` ([0] read, [1] write)
+/// runs `body` and exits: 0, or 1 if body threw. Returns its pid (-1: no fork).
+pid_t fork_writing_stdout_to(const int ends[2], const std::function<void()>& body) {
+  std::fflush(nullptr);
+  const pid_t pid = ::fork();
+  if (pid != 0) return pid;
+  ::dup2(ends[1], 1);
+  ::close(ends[0]);
+  ::close(ends[1]);
+  try {
+    body();
+  } catch (...) {
+    ::_exit(1);
+  }
+  ::_exit(0);
+}
+
 TEST(Csv, ASimulatorWhoseReaderIsSlowWaitsForItAsleep) {
   // stdout is a pipe read 64 kB every 10 ms: the ring fills, and the
   // simulator sleeps until the writer has room for it. It gets every row,
@@ -272,22 +289,12 @@ TEST(Csv, ASimulatorWhoseReaderIsSlowWaitsForItAsleep) {
   const std::string text = numbered_rows(3 * kRing);
   int ends[2];
   ASSERT_EQ(::pipe(ends), 0);
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
+  const pid_t pid = fork_writing_stdout_to(ends, [&] {
+    detail::OutputFile out("-", detail::OutputFile::Rows::Whole);
+    out.write(text);
+    out.close();
+  });
   ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::dup2(ends[1], 1);
-    ::close(ends[0]);
-    ::close(ends[1]);
-    try {
-      detail::OutputFile out("-", detail::OutputFile::Rows::Whole);
-      out.write(text);
-      out.close();
-    } catch (...) {
-      ::_exit(1);
-    }
-    ::_exit(0);
-  }
   ::close(ends[1]);
   const auto started = std::chrono::steady_clock::now();
   std::string got;
@@ -333,24 +340,15 @@ TEST(Csv, ASimulatorWritingIntoAClosedPipeEndsBySigpipeAtItsNextWrite) {
   // by SIGPIPE, and so does the simulator at a write soon after.
   int ends[2];
   ASSERT_EQ(::pipe(ends), 0);
-  std::fflush(nullptr);
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::dup2(ends[1], 1);
-    ::close(ends[0]);
-    ::close(ends[1]);
-    try {
-      detail::OutputFile out("-", detail::OutputFile::Rows::Whole);
-      for (int i = 0; i < 5000; ++i) {
-        out.write("0,1\n");
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      }
-      ::_exit(0);  // before close(), which would wait for the writer and end by SIGPIPE itself
-    } catch (...) {
-      ::_exit(1);
+  const pid_t pid = fork_writing_stdout_to(ends, [] {
+    detail::OutputFile out("-", detail::OutputFile::Rows::Whole);
+    for (int i = 0; i < 5000; ++i) {
+      out.write("0,1\n");
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
-  }
+    // (exits before close(), which would wait for the writer and end by SIGPIPE itself)
+  });
+  ASSERT_GE(pid, 0);
   ::close(ends[0]);
   ::close(ends[1]);
   int status = 0;
