@@ -74,9 +74,9 @@ class Emitter {
     } else if (s_.energy.available) {  // the powers read what the derivative computes: one pass gives both
       add_long_method(c, derivative_and_power());
       c.public_methods.push_back(
-          {"DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).",
+          {"DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).",
            "void derivative(double t, const double* x, double* xdot) override",
-           {CppStmt::line("double rate[2];"), CppStmt::line("derivative_and_power(t, x, xdot, rate);")}});
+           {CppStmt::line("derivative_and_power(t, x, xdot, nullptr);")}});
     } else {
       add_long_method(c, derivative());
     }
@@ -293,8 +293,11 @@ class Emitter {
   /// Read the unknowns a section uses, compute its assignments, then its results.
   /// `exporting`: the section is witness_values()'s, whose exported variables
   /// are set as members (or kept in their outlined runs' arrays) for its callers.
+  /// `optional` names an output array the caller may pass as null
+  /// (derivative_and_power's `rate`): the results into it are written inside
+  /// `if (rate) { ... }`, their shared subexpressions before it.
   void section(std::vector<CppStmt>& body, const std::vector<int>& assignment_indices, std::vector<SectionResult> results,
-               const std::string& results_comment, bool exporting = false) {
+               const std::string& results_comment, bool exporting = false, const char* optional = nullptr) {
     // Which variables does this section touch?
     std::unordered_set<int> used;
     std::set<int> blocks_read;  // a block's unknowns share its inputs: read them once
@@ -361,12 +364,22 @@ class Emitter {
       }
     }
     if (!results.empty()) body.push_back(CppStmt::comment(results_comment));
+    bool guarded = false;  // inside `if (optional) {`
     for (std::size_t i = 0; i < results.size(); ++i) {
       if (const int r = result_run_at[i]; r >= 0) {
         if (outlined.runs[static_cast<std::size_t>(r)].begin == i) outline_.call_shape(body, outlined_form, r, list, results, *ops());
         continue;
       }
-      body.push_back(CppStmt::assign(fmt::format("{}[{}]", results[i].array, results[i].index), results[i].value, results[i].note));
+      const bool inside = optional && results[i].array == optional;
+      if (inside && !guarded) body.push_back(CppStmt::line(fmt::format("if ({}) {{", optional)));
+      body.push_back(CppStmt::assign(fmt::format("{}{}[{}]", inside ? "  " : "", results[i].array, results[i].index),
+                                     results[i].value, results[i].note));
+      body.back().with_previous = inside;
+      guarded = guarded || inside;
+    }
+    if (guarded) {
+      body.push_back(CppStmt::line("}"));
+      body.back().with_previous = true;
     }
     // Common subexpressions: anything non-trivial used twice or more in this section.
     share_subexpressions(body, from, hoisted_, cse_counter_);
@@ -521,7 +534,7 @@ class Emitter {
     std::vector<int> slice;
     std::set_union(s_.for_derivative.begin(), s_.for_derivative.end(), s_.for_power.begin(), s_.for_power.end(),
                    std::back_inserter(slice));
-    section(f.body, slice, std::move(results), "state derivatives, then the powers");
+    section(f.body, slice, std::move(results), "state derivatives, then the powers (when asked for)", false, "rate");
     return f;
   }
 

@@ -96,16 +96,17 @@ class algebraic_loop_model final : public mbgrt::Model {
     const double r3_f = r3_e / 3.0;
     // algebraic_loop.mbg:6:3  algebraic loop (5 unknowns), solved for r2.f
     const double r2_f = b3_e / 2.0;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = r3_f;
-    rate[0] = 10.0 * b3_f;
-    rate[1] = b3_f * b3_f + b3_e * r2_f + r3_e * r3_f;
+    if (rate) {
+      rate[0] = 10.0 * b3_f;
+      rate[1] = b3_f * b3_f + b3_e * r2_f + r3_e * r3_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_jacobian() const override {

@@ -403,7 +403,7 @@ class ball_chain_model final : public mbgrt::Model {
     const double elbow_rotrate_f2_2 = cse54 * elbow_spin_rate_rate_1 - cse53 * elbow_spin_rate_rate_2 + cse52 * elbow_spin_rate_rate_3;
     const double elbow_rotrate_f2_3 = cse53 * elbow_spin_rate_rate_1 + cse54 * elbow_spin_rate_rate_2 - cse51 * elbow_spin_rate_rate_3;
     const double elbow_rotrate_f2_4 = -cse52 * elbow_spin_rate_rate_1 + cse51 * elbow_spin_rate_rate_2 + cse54 * elbow_spin_rate_rate_3;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = der_shoulder_spin_rate_rate_1;
     xdot[1] = der_shoulder_spin_rate_rate_2;
     xdot[2] = der_shoulder_spin_rate_rate_3;
@@ -418,14 +418,15 @@ class ball_chain_model final : public mbgrt::Model {
     xdot[11] = elbow_rotrate_f2_2;
     xdot[12] = elbow_rotrate_f2_3;
     xdot[13] = elbow_rotrate_f2_4;
-    rate[0] = upper_weight_e_2 * shoulder_m2_f2_2 + upper_weight_e_3 * shoulder_m2_f2_3 + (lower_weight_e_1 * elbow_reaction_f_f_1 + lower_weight_e_2 * elbow_reaction_f_f_2 + lower_weight_e_3 * elbow_reaction_f_f_3);
-    rate[1] = upper_ejs_v_e_2 * shoulder_m2_f2_2 + upper_ejs_v_e_3 * shoulder_m2_f2_3 + (upper_ejs_e_1 * shoulder_spin_rate_rate_1 + upper_ejs_e_2 * shoulder_spin_rate_rate_2 + upper_ejs_e_3 * shoulder_spin_rate_rate_3) + (lower_ejs_v_e_1 * elbow_reaction_f_f_1 + lower_ejs_v_e_2 * elbow_reaction_f_f_2 + lower_ejs_v_e_3 * elbow_reaction_f_f_3) + (lower_ejs_e_1 * elbow_reaction_t_f_1 + lower_ejs_e_2 * elbow_reaction_t_f_2 + lower_ejs_e_3 * elbow_reaction_t_f_3);
+    if (rate) {
+      rate[0] = upper_weight_e_2 * shoulder_m2_f2_2 + upper_weight_e_3 * shoulder_m2_f2_3 + (lower_weight_e_1 * elbow_reaction_f_f_1 + lower_weight_e_2 * elbow_reaction_f_f_2 + lower_weight_e_3 * elbow_reaction_f_f_3);
+      rate[1] = upper_ejs_v_e_2 * shoulder_m2_f2_2 + upper_ejs_v_e_3 * shoulder_m2_f2_3 + (upper_ejs_e_1 * shoulder_spin_rate_rate_1 + upper_ejs_e_2 * shoulder_spin_rate_rate_2 + upper_ejs_e_3 * shoulder_spin_rate_rate_3) + (lower_ejs_v_e_1 * elbow_reaction_f_f_1 + lower_ejs_v_e_2 * elbow_reaction_f_f_2 + lower_ejs_v_e_3 * elbow_reaction_f_f_3) + (lower_ejs_e_1 * elbow_reaction_t_f_1 + lower_ejs_e_2 * elbow_reaction_t_f_2 + lower_ejs_e_3 * elbow_reaction_t_f_3);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

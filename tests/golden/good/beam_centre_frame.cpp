@@ -330,7 +330,7 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double rod_q_f2_2 = cse61 * rod_M_f_4 - cse60 * rod_M_f_5 + cse59 * rod_M_f_6;
     const double rod_q_f2_3 = cse60 * rod_M_f_4 + cse61 * rod_M_f_5 - cse58 * rod_M_f_6;
     const double rod_q_f2_4 = -cse59 * rod_M_f_4 + cse58 * rod_M_f_5 + cse61 * rod_M_f_6;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = rod_M_e_1;
     xdot[1] = rod_M_e_2;
     xdot[2] = rod_M_e_3;
@@ -348,7 +348,6 @@ class beam_centre_frame_model final : public mbgrt::Model {
     xdot[14] = rod_q_f2_4;
     xdot[15] = rod_M_f_7;
     xdot[16] = rod_M_f_8;
-    rate[0] = 0.0;
     const double cse62 = 5.995923730955276 * rod_M_f_7;
     const double cse63 = 2.1903814167494206e-15 * rod_M_f_8;
     const double cse64 = -cse62 + cse63;
@@ -359,13 +358,15 @@ class beam_centre_frame_model final : public mbgrt::Model {
     const double cse69 = cse62 - cse63;
     const double cse70 = cse66 + cse67;
     const double cse71 = -9.582918698278714e-16 * rod_M_f_7 + 8.87873585802905 * rod_M_f_8;
-    rate[1] = 0.5 * (cse64 * (rod_M_f_1 * rod_M_f_6) + cse65 * (rod_M_f_1 * rod_M_f_7) + cse41 * (rod_M_f_1 * rod_M_f_8) + cse68 * (rod_M_f_2 * rod_M_f_6) + cse69 * (rod_M_f_3 * rod_M_f_4) + cse70 * (rod_M_f_3 * rod_M_f_5) + cse69 * (rod_M_f_4 * rod_M_f_3) + (cse37 * rod_M_f_7 + cse43 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse71 * (rod_M_f_4 * rod_M_f_5) + cse70 * (rod_M_f_5 * rod_M_f_3) + cse71 * (rod_M_f_5 * rod_M_f_4) + (-cse38 * rod_M_f_7 - cse44 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse64 * (rod_M_f_6 * rod_M_f_1) + cse68 * (rod_M_f_6 * rod_M_f_2) + (cse39 * rod_M_f_7 + cse45 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse65 * (rod_M_f_7 * rod_M_f_1) + cse41 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
+    if (rate) {
+      rate[0] = 0.0;
+      rate[1] = 0.5 * (cse64 * (rod_M_f_1 * rod_M_f_6) + cse65 * (rod_M_f_1 * rod_M_f_7) + cse41 * (rod_M_f_1 * rod_M_f_8) + cse68 * (rod_M_f_2 * rod_M_f_6) + cse69 * (rod_M_f_3 * rod_M_f_4) + cse70 * (rod_M_f_3 * rod_M_f_5) + cse69 * (rod_M_f_4 * rod_M_f_3) + (cse37 * rod_M_f_7 + cse43 * rod_M_f_8) * (rod_M_f_4 * rod_M_f_4) + cse71 * (rod_M_f_4 * rod_M_f_5) + cse70 * (rod_M_f_5 * rod_M_f_3) + cse71 * (rod_M_f_5 * rod_M_f_4) + (-cse38 * rod_M_f_7 - cse44 * rod_M_f_8) * (rod_M_f_5 * rod_M_f_5) + cse64 * (rod_M_f_6 * rod_M_f_1) + cse68 * (rod_M_f_6 * rod_M_f_2) + (cse39 * rod_M_f_7 + cse45 * rod_M_f_8) * (rod_M_f_6 * rod_M_f_6) + cse65 * (rod_M_f_7 * rod_M_f_1) + cse41 * (rod_M_f_8 * rod_M_f_1)) + (rod_ejs_e_1 * rod_M_f_1 + rod_ejs_e_2 * rod_M_f_2 + rod_ejs_e_3 * rod_M_f_3 + rod_ejs_e_4 * rod_M_f_4 + rod_ejs_e_5 * rod_M_f_5 + rod_ejs_e_6 * rod_M_f_6 + rod_ejs_e_7 * rod_M_f_7 + rod_ejs_e_8 * rod_M_f_8) + (rod_eta_e_1 * rod_M_f_7 + rod_eta_e_2 * rod_M_f_8);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

@@ -162,19 +162,20 @@ class beam_load_model final : public mbgrt::Model {
     const double der_b9_f_8 = der_blade_M_p_8 / 3.8170350741116;
     // beam_load.mbg:5:6  algebraic loop (6 unknowns), solved for der(blade.eta_rate.rate[2])
     const double der_blade_eta_rate_rate_2 = der_b9_f_8;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = der_blade_eta_rate_rate_1;
     xdot[1] = der_blade_eta_rate_rate_2;
     xdot[2] = blade_eta_rate_rate_1;
     xdot[3] = blade_eta_rate_rate_2;
-    rate[0] = 0.6882527423362675 * b9_f_7 + push_on_blade_e_8 * b9_f_8;
-    rate[1] = blade_eta_e_1 * blade_eta_rate_rate_1 + blade_eta_e_2 * blade_eta_rate_rate_2 + (blade_damp_e_1 * blade_eta_rate_rate_1 + blade_damp_e_2 * blade_eta_rate_rate_2);
+    if (rate) {
+      rate[0] = 0.6882527423362675 * b9_f_7 + push_on_blade_e_8 * b9_f_8;
+      rate[1] = blade_eta_e_1 * blade_eta_rate_rate_1 + blade_eta_e_2 * blade_eta_rate_rate_2 + (blade_damp_e_1 * blade_eta_rate_rate_1 + blade_damp_e_2 * blade_eta_rate_rate_2);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

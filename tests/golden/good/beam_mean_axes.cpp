@@ -334,7 +334,7 @@ class beam_mean_axes_model final : public mbgrt::Model {
     const double bar_q_f2_2 = cse59 * bar_M_f_4 - cse58 * bar_M_f_5 + cse57 * bar_M_f_6;
     const double bar_q_f2_3 = cse58 * bar_M_f_4 + cse59 * bar_M_f_5 - cse56 * bar_M_f_6;
     const double bar_q_f2_4 = -cse57 * bar_M_f_4 + cse56 * bar_M_f_5 + cse59 * bar_M_f_6;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = bar_M_e_1;
     xdot[1] = bar_M_e_2;
     xdot[2] = bar_M_e_3;
@@ -352,18 +352,19 @@ class beam_mean_axes_model final : public mbgrt::Model {
     xdot[14] = bar_q_f2_4;
     xdot[15] = bar_M_f_7;
     xdot[16] = bar_M_f_8;
-    rate[0] = 0.0;
     const double cse60 = cse34 * bar_M_f_7;
     const double cse61 = cse40 * bar_M_f_8;
     const double cse62 = -cse60 - cse61;
     const double cse63 = cse60 + cse61;
-    rate[1] = 0.5 * (cse33 * (bar_M_f_1 * bar_M_f_7) + cse39 * (bar_M_f_1 * bar_M_f_8) + cse62 * (bar_M_f_2 * bar_M_f_6) + cse63 * (bar_M_f_3 * bar_M_f_5) + (cse35 * bar_M_f_7 + cse41 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse63 * (bar_M_f_5 * bar_M_f_3) + (-cse36 * bar_M_f_7 - cse42 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse62 * (bar_M_f_6 * bar_M_f_2) + (cse37 * bar_M_f_7 + cse43 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse33 * (bar_M_f_7 * bar_M_f_1) + cse39 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+    if (rate) {
+      rate[0] = 0.0;
+      rate[1] = 0.5 * (cse33 * (bar_M_f_1 * bar_M_f_7) + cse39 * (bar_M_f_1 * bar_M_f_8) + cse62 * (bar_M_f_2 * bar_M_f_6) + cse63 * (bar_M_f_3 * bar_M_f_5) + (cse35 * bar_M_f_7 + cse41 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + cse63 * (bar_M_f_5 * bar_M_f_3) + (-cse36 * bar_M_f_7 - cse42 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + cse62 * (bar_M_f_6 * bar_M_f_2) + (cse37 * bar_M_f_7 + cse43 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6) + cse33 * (bar_M_f_7 * bar_M_f_1) + cse39 * (bar_M_f_8 * bar_M_f_1)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

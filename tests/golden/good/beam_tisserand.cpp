@@ -299,7 +299,7 @@ class beam_tisserand_model final : public mbgrt::Model {
     const double bar_q_f2_2 = cse44 * bar_M_f_4 - cse43 * bar_M_f_5 + cse42 * bar_M_f_6;
     const double bar_q_f2_3 = cse43 * bar_M_f_4 + cse44 * bar_M_f_5 - cse41 * bar_M_f_6;
     const double bar_q_f2_4 = -cse42 * bar_M_f_4 + cse41 * bar_M_f_5 + cse44 * bar_M_f_6;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = bar_M_e_1;
     xdot[1] = bar_M_e_2;
     xdot[2] = bar_M_e_3;
@@ -317,14 +317,15 @@ class beam_tisserand_model final : public mbgrt::Model {
     xdot[14] = bar_q_f2_4;
     xdot[15] = bar_M_f_7;
     xdot[16] = bar_M_f_8;
-    rate[0] = 0.0;
-    rate[1] = 0.5 * ((cse23 * bar_M_f_7 + cse26 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + (-cse24 * bar_M_f_7 - cse27 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + (cse25 * bar_M_f_7 + cse28 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+    if (rate) {
+      rate[0] = 0.0;
+      rate[1] = 0.5 * ((cse23 * bar_M_f_7 + cse26 * bar_M_f_8) * (bar_M_f_4 * bar_M_f_4) + (-cse24 * bar_M_f_7 - cse27 * bar_M_f_8) * (bar_M_f_5 * bar_M_f_5) + (cse25 * bar_M_f_7 + cse28 * bar_M_f_8) * (bar_M_f_6 * bar_M_f_6)) + (bar_ejs_e_1 * bar_M_f_1 + bar_ejs_e_2 * bar_M_f_2 + bar_ejs_e_3 * bar_M_f_3 + bar_ejs_e_4 * bar_M_f_4 + bar_ejs_e_5 * bar_M_f_5 + bar_ejs_e_6 * bar_M_f_6 + bar_ejs_e_7 * bar_M_f_7 + bar_ejs_e_8 * bar_M_f_8) + (bar_eta_e_1 * bar_M_f_7 + bar_eta_e_2 * bar_M_f_8);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

@@ -118,17 +118,18 @@ class components_model final : public mbgrt::Model {
     const double u2_r_f = u2_r_e / u2_R;
     // components.mbg:10:3  0 bus: flows in = flows out
     const double src_f = u1_r_f + u2_r_f;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = u1_r_f;
     xdot[1] = u2_r_f;
-    rate[0] = src_f;
-    rate[1] = u1_r_e * u1_r_f + u2_r_e * u2_r_f;
+    if (rate) {
+      rate[0] = src_f;
+      rate[1] = u1_r_e * u1_r_f + u2_r_e * u2_r_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_jacobian() const override {

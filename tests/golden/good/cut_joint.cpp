@@ -388,21 +388,22 @@ class cut_joint_model final : public mbgrt::Model {
     const double der_j1_m2_f2_2 = 0.1 * der_j1_theta_rate_rate;
     // cut_joint.mbg:15:7  joint acceleration of body coupler from its parent's motion (articulated-body form)
     const double der_j2_theta_rate_rate = coupler_accel6 + coupler_accel2 * j3_cn_e_1 + coupler_accel3 * j3_cn_e_2 + coupler_accel4 * der_j1_theta_rate_rate + coupler_accel5 * der_j1_m2_f2_2;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = der_j1_theta_rate_rate;
     xdot[1] = j1_theta_rate_rate;
     xdot[2] = der_j2_theta_rate_rate;
     xdot[3] = j2_theta_rate_rate;
     xdot[4] = der_j4_theta_rate_rate;
     xdot[5] = j4_theta_rate_rate;
-    rate[0] = crank_weight_e_2 * j1_m2_f2_2 + (coupler_weight_e_1 * j2_reaction_f_f_1 + coupler_weight_e_2 * j2_reaction_f_f_2) + rocker_weight_e_2 * j4_m2_f2_2;
-    rate[1] = coupler_ejs_v_e_1 * j2_reaction_f_f_1 + coupler_ejs_v_e_2 * j2_reaction_f_f_2 + (j3_cn_e_1 * j3_cn_f_1 + j3_cn_e_2 * j3_cn_f_2);
+    if (rate) {
+      rate[0] = crank_weight_e_2 * j1_m2_f2_2 + (coupler_weight_e_1 * j2_reaction_f_f_1 + coupler_weight_e_2 * j2_reaction_f_f_2) + rocker_weight_e_2 * j4_m2_f2_2;
+      rate[1] = coupler_ejs_v_e_1 * j2_reaction_f_f_1 + coupler_ejs_v_e_2 * j2_reaction_f_f_2 + (j3_cn_e_1 * j3_cn_f_1 + j3_cn_e_2 * j3_cn_f_2);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

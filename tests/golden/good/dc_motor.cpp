@@ -146,17 +146,18 @@ class dc_motor_model final : public mbgrt::Model {
     const double armature_l_e = supply_e - (armature_r_e + emf_e1);
     // dc_motor.mbg:21:3  1 shaft: efforts in = efforts out
     const double rotor_e = emf_e2 - friction_e;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = armature_l_e;
     xdot[1] = rotor_e;
-    rate[0] = supply_e * armature_l_f;
-    rate[1] = armature_r_e * armature_l_f + friction_e * rotor_f;
+    if (rate) {
+      rate[0] = supply_e * armature_l_f;
+      rate[1] = armature_r_e * armature_l_f + friction_e * rotor_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

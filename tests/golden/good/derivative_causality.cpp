@@ -116,16 +116,17 @@ class derivative_causality_model final : public mbgrt::Model {
     const double der_mass2_p = m2 * (derived1_ * force_e) / derived2_;
     // derivative_causality.mbg:8:3  algebraic loop (4 unknowns), solved for mass1.e
     const double mass1_e = -(-force_e + der_mass2_p);
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = mass1_e;
-    rate[0] = force_e * mass1_f;
-    rate[1] = 0.0;
+    if (rate) {
+      rate[0] = force_e * mass1_f;
+      rate[1] = 0.0;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

@@ -372,7 +372,7 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_q_f2_2 = cse10 * plain_J_f_1 - cse9 * plain_J_f_2 + cse8 * plain_J_f_3;
     const double plain_q_f2_3 = cse9 * plain_J_f_1 + cse10 * plain_J_f_2 - cse7 * plain_J_f_3;
     const double plain_q_f2_4 = -cse8 * plain_J_f_1 + cse7 * plain_J_f_2 + cse10 * plain_J_f_3;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = 0.0;
     xdot[1] = 0.0;
     xdot[2] = -0.9810000000000001;
@@ -409,14 +409,15 @@ class drawn_bodies_model final : public mbgrt::Model {
     xdot[33] = shoulder_theta_rate_rate;
     xdot[34] = der_axle_theta_rate_rate;
     xdot[35] = axle_theta_rate_rate;
-    rate[0] = link_weight_e_3 * shoulder_m2_f2_3 + wheel_weight_e_3 * axle_reaction_f_f_3 - 0.9810000000000001 * ball_m_f_3 - 1.9620000000000002 * tetra_m_f_3 - 2.943 * plain_m_f_3;
-    rate[1] = wheel_ejs_e_1 * axle_reaction_t_f_1 + wheel_ejs_e_2 * axle_reaction_t_f_2 + wheel_ejs_e_3 * axle_reaction_t_f_3 + (tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3) + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
+    if (rate) {
+      rate[0] = link_weight_e_3 * shoulder_m2_f2_3 + wheel_weight_e_3 * axle_reaction_f_f_3 - 0.9810000000000001 * ball_m_f_3 - 1.9620000000000002 * tetra_m_f_3 - 2.943 * plain_m_f_3;
+      rate[1] = wheel_ejs_e_1 * axle_reaction_t_f_1 + wheel_ejs_e_2 * axle_reaction_t_f_2 + wheel_ejs_e_3 * axle_reaction_t_f_3 + (tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3) + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

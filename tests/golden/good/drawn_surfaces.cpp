@@ -747,7 +747,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse155 / (1.0 + cse155 * cse155)));
     // drawn_surfaces.mbg:56:6  Sf tyre.tan_alpha_rate: f = value
     const double tyre_tan_alpha_rate_f = -cse154 * tyre_tan_alpha_q / tyre_sigma_alpha;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = 0.0;
     xdot[1] = 0.0;
     xdot[2] = ball_p_m_e_3;
@@ -782,14 +782,15 @@ class drawn_surfaces_model final : public mbgrt::Model {
     xdot[31] = lift_s_rate_rate;
     xdot[32] = tyre_kappa_rate_f;
     xdot[33] = tyre_tan_alpha_rate_f;
-    rate[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 + (wheel_weight_e_1 * spin_reaction_f_f_1 + wheel_weight_e_3 * spin_reaction_f_f_3) + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
-    rate[1] = wheel_ejs_v_e_1 * spin_reaction_f_f_1 + wheel_ejs_v_e_3 * spin_reaction_f_f_3 + on_floor_cn_e * ball_p_m_p_3 + on_dome_cn_e * on_dome_cat_f2 + on_drum_cn_e * on_drum_cat_f2 + on_ridge_cn_e * on_ridge_cat_f2 + on_platform_cn_e * on_platform_cn_f;
+    if (rate) {
+      rate[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 + (wheel_weight_e_1 * spin_reaction_f_f_1 + wheel_weight_e_3 * spin_reaction_f_f_3) + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
+      rate[1] = wheel_ejs_v_e_1 * spin_reaction_f_f_1 + wheel_ejs_v_e_3 * spin_reaction_f_f_3 + on_floor_cn_e * ball_p_m_p_3 + on_dome_cn_e * on_dome_cat_f2 + on_drum_cn_e * on_drum_cat_f2 + on_ridge_cn_e * on_ridge_cat_f2 + on_platform_cn_e * on_platform_cn_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

@@ -125,17 +125,18 @@ class imports_model final : public mbgrt::Model {
     const double b3_e = sd_spring_e + sd_damper_e;
     // imports.mbg:8:3  1 v: efforts in = efforts out
     const double mass_e = -b3_e;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = mass_e;
     xdot[1] = mass_f;
-    rate[0] = 0.0;
-    rate[1] = sd_damper_e * mass_f;
+    if (rate) {
+      rate[0] = 0.0;
+      rate[1] = sd_damper_e * mass_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

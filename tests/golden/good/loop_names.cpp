@@ -439,7 +439,7 @@ class loop_names_model final : public mbgrt::Model {
     const double plate2_q_f2_2 = cse29 * plate2_J_f_1 - cse28 * plate2_J_f_2 + cse27 * plate2_J_f_3;
     const double plate2_q_f2_3 = cse28 * plate2_J_f_1 + cse29 * plate2_J_f_2 - cse26 * plate2_J_f_3;
     const double plate2_q_f2_4 = -cse27 * plate2_J_f_1 + cse26 * plate2_J_f_2 + cse29 * plate2_J_f_3;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = bob1_m_e_1;
     xdot[1] = bob1_m_e_2;
     xdot[2] = bob1_m_e_3;
@@ -486,14 +486,15 @@ class loop_names_model final : public mbgrt::Model {
     const double cse35 = cse21 * cse23;
     const double cse36 = cse21 * cse24;
     const double cse37 = (spring2_on_bob2_f_e_1 + cse34) * bob2_m_p_1 + (spring2_on_bob2_f_e_2 + cse35) * bob2_m_p_2 + (spring2_on_bob2_f_e_3 + cse36) * bob2_m_p_3;
-    rate[0] = -9.81 * bob1_m_p_2 - 9.81 * plate1_m_p_2 - 9.81 * bob2_m_p_2 - 9.81 * plate2_m_p_2 + (-cse30 * bob1_m_p_1 - cse31 * bob1_m_p_2 - cse32 * bob1_m_p_3 + std::fmax(cse33, 0.0)) + (-cse34 * bob2_m_p_1 - cse35 * bob2_m_p_2 - cse36 * bob2_m_p_3 + std::fmax(cse37, 0.0));
-    rate[1] = plate1_ejs_e_1 * plate1_J_f_1 + plate1_ejs_e_2 * plate1_J_f_2 + plate1_ejs_e_3 * plate1_J_f_3 + (plate2_ejs_e_1 * plate2_J_f_1 + plate2_ejs_e_2 * plate2_J_f_2 + plate2_ejs_e_3 * plate2_J_f_3) + std::fmax(-cse33, 0.0) + std::fmax(-cse37, 0.0);
+    if (rate) {
+      rate[0] = -9.81 * bob1_m_p_2 - 9.81 * plate1_m_p_2 - 9.81 * bob2_m_p_2 - 9.81 * plate2_m_p_2 + (-cse30 * bob1_m_p_1 - cse31 * bob1_m_p_2 - cse32 * bob1_m_p_3 + std::fmax(cse33, 0.0)) + (-cse34 * bob2_m_p_1 - cse35 * bob2_m_p_2 - cse36 * bob2_m_p_3 + std::fmax(cse37, 0.0));
+      rate[1] = plate1_ejs_e_1 * plate1_J_f_1 + plate1_ejs_e_2 * plate1_J_f_2 + plate1_ejs_e_3 * plate1_J_f_3 + (plate2_ejs_e_1 * plate2_J_f_1 + plate2_ejs_e_2 * plate2_J_f_2 + plate2_ejs_e_3 * plate2_J_f_3) + std::fmax(-cse33, 0.0) + std::fmax(-cse37, 0.0);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

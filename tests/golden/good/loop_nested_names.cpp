@@ -160,7 +160,7 @@ class loop_nested_names_model final : public mbgrt::Model {
     const double damper2_2_e = 0.2 * mass2_2_p;
     // loop_nested_names.mbg:16:8  1 node2_2: efforts in = efforts out
     const double mass2_2_e = force2_2_e - (spring2_2_e + damper2_2_e);
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = mass1_1_p;
     xdot[1] = mass1_1_e;
     xdot[2] = mass1_2_p;
@@ -169,14 +169,15 @@ class loop_nested_names_model final : public mbgrt::Model {
     xdot[5] = mass2_1_e;
     xdot[6] = mass2_2_p;
     xdot[7] = mass2_2_e;
-    rate[0] = force1_1_e * mass1_1_p + force1_2_e * mass1_2_p + force2_1_e * mass2_1_p + force2_2_e * mass2_2_p;
-    rate[1] = damper1_1_e * mass1_1_p + damper1_2_e * mass1_2_p + damper2_1_e * mass2_1_p + damper2_2_e * mass2_2_p;
+    if (rate) {
+      rate[0] = force1_1_e * mass1_1_p + force1_2_e * mass1_2_p + force2_1_e * mass2_1_p + force2_2_e * mass2_2_p;
+      rate[1] = damper1_1_e * mass1_1_p + damper1_2_e * mass1_2_p + damper2_1_e * mass2_1_p + damper2_2_e * mass2_2_p;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

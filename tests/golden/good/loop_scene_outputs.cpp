@@ -91,16 +91,17 @@ class loop_scene_outputs_model final : public mbgrt::Model {
     const double r3_e = 3.0 - c3_e;
     // loop_scene_outputs.mbg:10:6  R r3: f = e / R
     const double r3_f = r3_e / 300.0;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = r3_f;
-    rate[0] = 3.0 * r3_f;
-    rate[1] = r3_e * r3_f;
+    if (rate) {
+      rate[0] = 3.0 * r3_f;
+      rate[1] = r3_e * r3_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_jacobian() const override {

@@ -142,19 +142,20 @@ class multibond_model final : public mbgrt::Model {
     // multibond.mbg:10:3  1 v: efforts in = efforts out
     const double mass_e_1 = -(spring_e_1 + damper_e_1);
     const double mass_e_2 = gravity_e_2 - (spring_e_2 + damper_e_2);
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = mass_e_1;
     xdot[1] = mass_e_2;
     xdot[2] = mass_f_1;
     xdot[3] = mass_f_2;
-    rate[0] = gravity_e_2 * mass_f_2;
-    rate[1] = damper_e_1 * mass_f_1 + damper_e_2 * mass_f_2;
+    if (rate) {
+      rate[0] = gravity_e_2 * mass_f_2;
+      rate[1] = damper_e_1 * mass_f_1 + damper_e_2 * mass_f_2;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

@@ -422,7 +422,7 @@ class outlined_chain_model final : public mbgrt::Model {
     derivative_and_power_shape3(rod4_in_3, rod4_elim, rod3_acc, rod4_kin, rod4_acc);
     // outlined_chain.mbg:27:9  joint acceleration of body rod5 from its parent's motion (articulated-body form)
     const double der_j5_theta_rate_rate = rod5_accel5 + rod5_accel2 * rod4_acc[29] + rod5_accel3 * rod4_acc[30] + rod5_accel4 * rod4_acc[31];
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = der_j1_theta_rate_rate;
     xdot[1] = j1_theta_rate_rate;
     xdot[2] = der_j2_theta_rate_rate;
@@ -433,14 +433,15 @@ class outlined_chain_model final : public mbgrt::Model {
     xdot[7] = j4_theta_rate_rate;
     xdot[8] = der_j5_theta_rate_rate;
     xdot[9] = j5_theta_rate_rate;
-    rate[0] = rod1_weight_e_1 * j1_m2_f2_1 + (rod2_weight_e_1 * j2_reaction_f_f_1 + rod2_weight_e_2 * j2_reaction_f_f_2) + (rod3_kin[8] * rod3_kin[6] + rod3_kin[9] * rod3_kin[3]) + (rod4_kin[8] * rod4_kin[6] + rod4_kin[9] * rod4_kin[3]) + (rod5_weight_e_1 * j5_reaction_f_f_1 + rod5_weight_e_2 * j5_reaction_f_f_2);
-    rate[1] = rod2_ejs_v_e_1 * j2_reaction_f_f_1 + rod2_ejs_v_e_2 * j2_reaction_f_f_2 + (rod3_kin[5] * rod3_kin[6] + rod3_kin[7] * rod3_kin[3]) + (rod4_kin[5] * rod4_kin[6] + rod4_kin[7] * rod4_kin[3]) + (rod5_ejs_v_e_1 * j5_reaction_f_f_1 + rod5_ejs_v_e_2 * j5_reaction_f_f_2);
+    if (rate) {
+      rate[0] = rod1_weight_e_1 * j1_m2_f2_1 + (rod2_weight_e_1 * j2_reaction_f_f_1 + rod2_weight_e_2 * j2_reaction_f_f_2) + (rod3_kin[8] * rod3_kin[6] + rod3_kin[9] * rod3_kin[3]) + (rod4_kin[8] * rod4_kin[6] + rod4_kin[9] * rod4_kin[3]) + (rod5_weight_e_1 * j5_reaction_f_f_1 + rod5_weight_e_2 * j5_reaction_f_f_2);
+      rate[1] = rod2_ejs_v_e_1 * j2_reaction_f_f_1 + rod2_ejs_v_e_2 * j2_reaction_f_f_2 + (rod3_kin[5] * rod3_kin[6] + rod3_kin[7] * rod3_kin[3]) + (rod4_kin[5] * rod4_kin[6] + rod4_kin[7] * rod4_kin[3]) + (rod5_ejs_v_e_1 * j5_reaction_f_f_1 + rod5_ejs_v_e_2 * j5_reaction_f_f_2);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

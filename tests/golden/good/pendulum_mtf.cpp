@@ -149,17 +149,18 @@ class pendulum_mtf_model final : public mbgrt::Model {
     double blk1_x[11] = {0.0, 0.0, 0.0, 0.0, 0.0, -gravity_e_2, 0.0, -arm_f2_2 * hub_f, 0.0, cse2 * hub_f * hub_f, 0.0};
     mbgrt::solve_linear(11, blk1_a, blk1_x);
     const double hub_e = blk1_x[3];
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = hub_e;
     xdot[1] = hub_f;
-    rate[0] = gravity_e_2 * arm_f2_2;
-    rate[1] = 0.0;
+    if (rate) {
+      rate[0] = gravity_e_2 * arm_f2_2;
+      rate[1] = 0.0;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

@@ -496,7 +496,7 @@ class planar_below_moving_model final : public mbgrt::Model {
     const double ball_rotrate_f2_2 = cse151 * ball_spin_rate_rate_1 - cse150 * ball_spin_rate_rate_2 + cse149 * ball_spin_rate_rate_3;
     const double ball_rotrate_f2_3 = cse150 * ball_spin_rate_rate_1 + cse151 * ball_spin_rate_rate_2 - cse148 * ball_spin_rate_rate_3;
     const double ball_rotrate_f2_4 = -cse149 * ball_spin_rate_rate_1 + cse148 * ball_spin_rate_rate_2 + cse151 * ball_spin_rate_rate_3;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = der_ball_spin_rate_rate_1;
     xdot[1] = der_ball_spin_rate_rate_2;
     xdot[2] = der_ball_spin_rate_rate_3;
@@ -510,14 +510,15 @@ class planar_below_moving_model final : public mbgrt::Model {
     xdot[10] = table_y_rate_rate;
     xdot[11] = der_table_theta_rate_rate;
     xdot[12] = table_theta_rate_rate;
-    rate[0] = -upper_weight_e_1 * ball_spin_rate_rate_2 + upper_weight_e_2 * ball_spin_rate_rate_1 + (lower_weight_e_1 * table_reaction_f_f_1 + lower_weight_e_2 * table_reaction_f_f_2 + lower_weight_e_3 * table_reaction_f_f_3);
-    rate[1] = -upper_ejs_v_e_1 * ball_spin_rate_rate_2 + upper_ejs_v_e_2 * ball_spin_rate_rate_1 + (upper_ejs_e_1 * ball_spin_rate_rate_1 + upper_ejs_e_2 * ball_spin_rate_rate_2 + upper_ejs_e_3 * ball_spin_rate_rate_3) + (lower_ejs_v_e_1 * table_reaction_f_f_1 + lower_ejs_v_e_2 * table_reaction_f_f_2 + lower_ejs_v_e_3 * table_reaction_f_f_3) + (lower_ejs_e_1 * table_reaction_t_f_1 + lower_ejs_e_2 * table_reaction_t_f_2 + lower_ejs_e_3 * table_reaction_t_f_3);
+    if (rate) {
+      rate[0] = -upper_weight_e_1 * ball_spin_rate_rate_2 + upper_weight_e_2 * ball_spin_rate_rate_1 + (lower_weight_e_1 * table_reaction_f_f_1 + lower_weight_e_2 * table_reaction_f_f_2 + lower_weight_e_3 * table_reaction_f_f_3);
+      rate[1] = -upper_ejs_v_e_1 * ball_spin_rate_rate_2 + upper_ejs_v_e_2 * ball_spin_rate_rate_1 + (upper_ejs_e_1 * ball_spin_rate_rate_1 + upper_ejs_e_2 * ball_spin_rate_rate_2 + upper_ejs_e_3 * ball_spin_rate_rate_3) + (lower_ejs_v_e_1 * table_reaction_f_f_1 + lower_ejs_v_e_2 * table_reaction_f_f_2 + lower_ejs_v_e_3 * table_reaction_f_f_3) + (lower_ejs_e_1 * table_reaction_t_f_1 + lower_ejs_e_2 * table_reaction_t_f_2 + lower_ejs_e_3 * table_reaction_t_f_3);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {

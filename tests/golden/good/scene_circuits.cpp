@@ -112,17 +112,18 @@ class scene_circuits_model final : public mbgrt::Model {
     const double r3_e = c1_e - c3_e;
     // scene_circuits.mbg:21:4  R r3: f = e / R
     const double r3_f = r3_e / 100.0;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = r1_f;
     xdot[1] = r3_f;
-    rate[0] = source_e * r1_f + c1_e * r3_f;
-    rate[1] = r1_e * r1_f + r3_e * r3_f;
+    if (rate) {
+      rate[0] = source_e * r1_f + c1_e * r3_f;
+      rate[1] = r1_e * r1_f + r3_e * r3_f;
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_jacobian() const override {

@@ -618,7 +618,7 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double float_rotrate_f2_2 = cse68 * float_spin_rate_rate_1 - cse67 * float_spin_rate_rate_2 + cse66 * float_spin_rate_rate_3;
     const double float_rotrate_f2_3 = cse67 * float_spin_rate_rate_1 + cse68 * float_spin_rate_rate_2 - cse65 * float_spin_rate_rate_3;
     const double float_rotrate_f2_4 = -cse66 * float_spin_rate_rate_1 + cse65 * float_spin_rate_rate_2 + cse68 * float_spin_rate_rate_3;
-    // state derivatives, then the powers
+    // state derivatives, then the powers (when asked for)
     xdot[0] = der_float_x_rate_rate;
     xdot[1] = float_x_rate_rate;
     xdot[2] = der_float_y_rate_rate;
@@ -637,14 +637,15 @@ class tree_grandparent_model final : public mbgrt::Model {
     xdot[15] = der_hinge_theta_rate_rate;
     xdot[16] = hinge_theta_rate_rate;
     const double cse69 = (slide_applied_e + cse13) * slide_s_rate_rate;
-    rate[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse13 * slide_s_rate_rate + std::fmax(cse69, 0.0));
-    rate[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse69, 0.0);
+    if (rate) {
+      rate[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse13 * slide_s_rate_rate + std::fmax(cse69, 0.0));
+      rate[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse69, 0.0);
+    }
   }
 
-  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, with the powers beside).
+  // DERIVATIVE: the state derivatives (derivative_and_power() computes them, and the powers where asked).
   void derivative(double t, const double* x, double* xdot) override {
-    double rate[2];
-    derivative_and_power(t, x, xdot, rate);
+    derivative_and_power(t, x, xdot, nullptr);
   }
 
   bool has_position_rates() const override {
