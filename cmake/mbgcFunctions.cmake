@@ -1,15 +1,21 @@
 # mbgcFunctions.cmake — compile .mbg models at build time.
 #
-#   mbgc_add_simulation(<target> MODEL <file.mbg> [OPTIONS <mbgc options>...]
+#   mbgc_add_simulation(<target> MODEL <file.mbg> [NATIVE] [OPTIONS <mbgc options>...]
 #                       [DEPENDS <files or targets>...])
 #       a simulator executable (generated C++ with main()). DEPENDS names files
 #       the model reads that the build itself makes (a modal-data file written
 #       by a custom command, found with OPTIONS -I <its directory>). The
 #       model itself may be written by the build too: the OUTPUT of an
-#       add_custom_command in the same directory (tests/random).
-#   mbgc_add_model(<target> MODEL <file.mbg> [OPTIONS ...] [DEPENDS ...])
+#       add_custom_command in the same directory (tests/random). NATIVE
+#       compiles the generated source for the build machine's processor
+#       (-march=native: its vector and FMA instructions), which may make it
+#       faster there and keeps it from running on an older processor: for a
+#       simulator that stays on the machine that built it, not for one to
+#       copy elsewhere. The runtime library is compiled as before.
+#   mbgc_add_model(<target> MODEL <file.mbg> [NATIVE] [OPTIONS ...] [DEPENDS ...])
 #       an INTERFACE library whose header <target>.hpp holds the model class
-#       (mbgc --library), for embedding a model in your own program.
+#       (mbgc --library), for embedding a model in your own program (NATIVE:
+#       the programs that include it are compiled with -march=native).
 #
 # The generated source is rebuilt when the model, any file it imports or reads
 # (modal-data files), or the compiler changes (add_custom_command with DEPENDS and a depfile).
@@ -26,6 +32,25 @@ endif()
 if(NOT DEFINED MBGC_RUNTIME_TARGET)
   set(MBGC_RUNTIME_TARGET mbgc::mbgrt)
 endif()
+
+# -march=native, where the compiler takes it (GCC and Clang do; MSVC does not)
+include(CheckCXXCompilerFlag)
+check_cxx_compiler_flag(-march=native MBGC_HAVE_MARCH_NATIVE)
+
+# The compile options of a generated source: MBGC_GENERATED_COMPILE_OPTIONS,
+# and -march=native if `native` is true (a warning where the compiler has none).
+function(_mbgc_generated_options target native out_var)
+  set(options ${MBGC_GENERATED_COMPILE_OPTIONS})
+  if(native)
+    if(MBGC_HAVE_MARCH_NATIVE)
+      list(APPEND options -march=native)
+    else()
+      message(WARNING "mbgc: ${target}: NATIVE asked for, but ${CMAKE_CXX_COMPILER_ID} does not take -march=native; "
+                      "compiled for the default target")
+    endif()
+  endif()
+  set(${out_var} ${options} PARENT_SCOPE)
+endfunction()
 
 function(_mbgc_generate target model_in out_file)
   cmake_parse_arguments(ARG "" "" "OPTIONS;DEPENDS" ${ARGN})
@@ -58,21 +83,22 @@ function(_mbgc_generate target model_in out_file)
 endfunction()
 
 function(mbgc_add_simulation target)
-  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "NATIVE" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbgc_add_simulation(${target}): MODEL <file.mbg> is required")
   endif()
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}.cpp)
   _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS ${ARG_OPTIONS} DEPENDS ${ARG_DEPENDS})
   add_executable(${target} ${out})
-  if(MBGC_GENERATED_COMPILE_OPTIONS)
-    set_source_files_properties(${out} PROPERTIES COMPILE_OPTIONS "${MBGC_GENERATED_COMPILE_OPTIONS}")
+  _mbgc_generated_options(${target} "${ARG_NATIVE}" options)
+  if(options)
+    set_source_files_properties(${out} PROPERTIES COMPILE_OPTIONS "${options}")
   endif()
   target_link_libraries(${target} PRIVATE ${MBGC_RUNTIME_TARGET})
 endfunction()
 
 function(mbgc_add_model target)
-  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "NATIVE" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
   if(NOT ARG_MODEL)
     message(FATAL_ERROR "mbgc_add_model(${target}): MODEL <file.mbg> is required")
   endif()
@@ -86,7 +112,8 @@ function(mbgc_add_model target)
   target_include_directories(${target} INTERFACE ${dir})
   target_link_libraries(${target} INTERFACE ${MBGC_RUNTIME_TARGET})
   # a program that includes the model compiles its code in its own source
-  if(MBGC_GENERATED_COMPILE_OPTIONS)
-    target_compile_options(${target} INTERFACE ${MBGC_GENERATED_COMPILE_OPTIONS})
+  _mbgc_generated_options(${target} "${ARG_NATIVE}" options)
+  if(options)
+    target_compile_options(${target} INTERFACE ${options})
   endif()
 endfunction()

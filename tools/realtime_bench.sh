@@ -30,7 +30,8 @@ summary() {  # LOG FIELD: a number from the run summary
 }
 
 echo "model,method,step_s,error,times_real_time,compute_s,median_step_us,worst_step_us,status"
-for model in two_track two_track_frame; do
+# (two_track_native: the car compiled with -march=native, mbgc_add_simulation's NATIVE)
+for model in two_track two_track_native two_track_frame; do
   sim="$build/examples/$model"
   [ -x "$sim" ] || { echo "no $sim: build first (cmake --build $build)" >&2; exit 1; }
   "$sim" --solver rk4 --step 1e-4 --t-end $t_end --interval 0.01 --quiet -o "$work/ref.csv"
