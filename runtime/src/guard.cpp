@@ -46,28 +46,25 @@ int GuardedModel::derivative(double t, const double* y, double* ydot, InputCheck
   // state itself points the user at the real culprit, not at its consumers.
   if (check == InputCheck::before)
     if (std::size_t i = first_non_finite(y); i < n_) return record(t, BlameSite::state, i, y[i]);
-  try {
+  const int status = rates(t, y, ydot, [&] {
     if (rate)
       model_.derivative_and_power(t, y, ydot, rate);
     else
       model_.derivative(t, y, ydot);
-  } catch (const std::exception& e) {
-    return record(t, BlameSite::exception, 0, 0.0, e.what());
-  } catch (...) {
-    return record(t, BlameSite::exception, 0, 0.0, "unknown exception");
-  }
+  });
   if (rate) keep_finite(t, rate);
-  if (std::size_t i = first_non_finite(ydot); i < n_) {
-    if (std::size_t j = first_non_finite(y); j < n_) return record(t, BlameSite::state, j, y[j]);
-    return record(t, BlameSite::derivative, i, ydot[i]);
-  }
-  return 0;
+  return status;
 }
 
 int GuardedModel::position_rates(double t, const double* y, double* ydot) {
   if (!model_.has_position_rates()) return derivative(t, y, ydot, InputCheck::on_failure);
+  return rates(t, y, ydot, [&] { model_.position_rates(t, y, ydot); });
+}
+
+template <class Evaluate>
+int GuardedModel::rates(double t, const double* y, const double* ydot, Evaluate&& evaluate) {
   try {
-    model_.position_rates(t, y, ydot);
+    evaluate();
   } catch (const std::exception& e) {
     return record(t, BlameSite::exception, 0, 0.0, e.what());
   } catch (...) {

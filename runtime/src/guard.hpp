@@ -116,6 +116,10 @@ class GuardedModel {
 
  private:
   int record(double t, BlameSite site, std::size_t index, double value, std::string detail = {});
+  /// `evaluate` (which fills ydot from y) guarded: an exception, or a
+  /// non-finite entry of ydot (blamed on y where y is not finite), is recorded.
+  template <class Evaluate>
+  int rates(double t, const double* y, const double* ydot, Evaluate&& evaluate);
   /// Index of the first non-finite entry of v[0..n), or n if all are finite.
   std::size_t first_non_finite(const double* v) const;
 

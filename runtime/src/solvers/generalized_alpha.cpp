@@ -79,15 +79,12 @@ class GeneralizedAlpha {
         if (!has_jacobian_ || attempt > 0) {  // (the second attempt: Newton's method in full)
           if (!matrix_.jacobian(t_f, y_f_.data(), f_.data())) return false;
           has_jacobian_ = true;
-          factored_ = 0.0;
         }
         const double c = alpha_f_ * gamma_ * h / alpha_m_;
-        if (c != factored_ && !matrix_.factor(c)) {
-          factored_ = 0.0;
+        if (!matrix_.factor(c)) {
           failure_ = singular_matrix(kName, c);
           return false;
         }
-        factored_ = c;
         // -r / alpha_m, r = v_{n+am} - f(t_f, y_f)
         for (std::size_t i = 0; i < n_; ++i) r_[i] = -(v_[i] + alpha_m_ * (v_trial_[i] - v_[i]) - f_[i]) / alpha_m_;
         matrix_.solve(r_.data());  // the correction to v_{n+1}
@@ -145,7 +142,6 @@ class GeneralizedAlpha {
   double rho_, alpha_m_, alpha_f_, gamma_;
   IterationMatrix matrix_;
   bool has_jacobian_ = false;  ///< J is kept from step to step
-  double factored_ = 0.0;      ///< the c of the factored I - c J (0: none)
   std::vector<double> v_, v_trial_, y_f_, f_, r_;
   double power_[2] = {}, power_trial_[2] = {};  ///< the witness's rates at the step's start and end
   long iterations_ = 0, slow_ = 0;

@@ -20,6 +20,7 @@ IterationMatrix::IterationMatrix(Stages& stages)
 
 bool IterationMatrix::jacobian(double t, const double* y, const double* ydot) {
   ++jacobians_;
+  factored_ = 0.0;
   if (generated_) {
     if (s_.model().jacobian(t, y, row_major_.data()) != 0) return false;
     for (std::size_t i = 0; i < n_; ++i)
@@ -43,6 +44,8 @@ bool IterationMatrix::jacobian(double t, const double* y, const double* ydot) {
 }
 
 bool IterationMatrix::factor(double c) {
+  if (c == factored_) return true;
+  factored_ = 0.0;
   ++factorizations_;
   m_ = -c * j_;
   m_.diagonal().array() += 1.0;
@@ -51,7 +54,9 @@ bool IterationMatrix::factor(double c) {
   // pivot (or one at rounding level of the largest) is one.
   const Eigen::VectorXd pivots = lu_.matrixLU().diagonal().cwiseAbs();
   const double largest = lu_.matrixLU().cwiseAbs().maxCoeff();
-  return pivots.allFinite() && std::isfinite(largest) && pivots.minCoeff() > 1e3 * DBL_EPSILON * largest;
+  if (!pivots.allFinite() || !std::isfinite(largest) || !(pivots.minCoeff() > 1e3 * DBL_EPSILON * largest)) return false;
+  factored_ = c;
+  return true;
 }
 
 void IterationMatrix::solve(double* b) {

@@ -21,7 +21,8 @@ class IterationMatrix {
   /// J at (t, y), where f(t, y) = ydot (the differences' base point). False
   /// (the guard's blame set) if the model failed there.
   bool jacobian(double t, const double* y, const double* ydot);
-  /// I - c J, factored (LU with partial pivoting). False if it is singular.
+  /// I - c J, factored (LU with partial pivoting), unless it already is for
+  /// this c and this J. False if it is singular.
   bool factor(double c);
   /// b = (I - c J)^-1 b.
   void solve(double* b);
@@ -40,6 +41,7 @@ class IterationMatrix {
   Eigen::VectorXd x_;
   std::vector<double> row_major_, y_, f_;  // the model's J; the perturbed state and its derivative
   long jacobians_ = 0, difference_evaluations_ = 0, factorizations_ = 0;
+  double factored_ = 0.0;  ///< the c of the factored I - c J (0: none)
 };
 
 /// What a failed factorization means, for the run report.

@@ -66,14 +66,11 @@ class LinearlyImplicit {
       if (!s_.derivative(t1, y, ft_.data())) return false;
       for (std::size_t i = 0; i < n_; ++i) ft_[i] = (ft_[i] - f0_[i]) / (t1 - t);
       linearized_ = true;
-      factored_ = 0.0;
     }
-    if (c != factored_ && !matrix_.factor(c)) {
-      factored_ = 0.0;
+    if (!matrix_.factor(c)) {
       failure_ = singular_matrix(method, c);
       return false;
     }
-    factored_ = c;
     return true;
   }
 
@@ -86,7 +83,6 @@ class LinearlyImplicit {
   std::optional<StepFailure> failure_;
   bool linearized_ = false;  ///< f0_, ft_ and the Jacobian are the accepted state's
   bool start_power_known_ = false, end_power_known_ = false;
-  double factored_ = 0.0;    ///< the c of the factored I - c J (0: none)
 };
 
 class LinearlyImplicitEuler : LinearlyImplicit {
