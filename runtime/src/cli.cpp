@@ -211,7 +211,8 @@ ParseOutcome parse_command_line(const Model& model, int argc, char** argv) {
                    ->type_name("SECONDS");
   auto* accuracy = app.add_option("--accuracy", s.accuracy,
                                   "Pick the solver and its step or tolerance for this run: the cheapest that keeps the "
-                                  "outputs' relative error within X, measured over a probe of the run's first 10 %")
+                                  "outputs' relative error within X, measured by trial runs of the whole run against a "
+                                  "tighter reference")
                        ->type_name("X");
   auto* rho = app.add_option("--rho-inf", s.rho_inf,
                              "generalized_alpha: the spectral radius at an infinite step, from 0 (modes far above "
