@@ -9,8 +9,11 @@
 # libsimbody-dev and libdart-dev, builds a Release tree in build-bench/
 # (BUILD_DIR=... for another), and writes
 # bench/peers/chain_peers.{csv,png}, bench/peers/{binary_tree,spherical_chain}_peers.csv,
-# bench/peers/tree_peers.png, bench/modal/rotating_beam.txt and
-# bench/modal/crank_rocker_flexible.txt.
+# bench/peers/tree_peers.png, bench/modal/rotating_beam.txt,
+# bench/modal/crank_rocker_flexible.txt and (where ../shared/bench/hand_chain
+# is, or HAND_CHAIN_DIR) bench/peers/hand_chain.{csv,txt}: the generated
+# 32-rod chain against that hand-written one as whole processes, under
+# CMake's Release flags and with -march=native (tools/bench_hand_chain.sh).
 set -euo pipefail
 # Before common.sh, which defaults BUILD_DIR to the test build (build/).
 BUILD_DIR=${BUILD_DIR:-build-bench}
@@ -26,7 +29,7 @@ generator=()
 [ -f "$BUILD_DIR/CMakeCache.txt" ] || generator=(-G Ninja)
 cmake -S "$MBGC_ROOT" -B "$BUILD_DIR" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DMBGC_BENCH=ON -DBUILD_TESTING=OFF
 step "Building chain_peers, tree_peers, rotating_beam_by_hand and crank_rocker_flexible_by_hand ($JOBS jobs; the generated models of chain_100 and the 3-D models take g++ a while)"
-cmake --build "$BUILD_DIR" --parallel "$JOBS" --target chain_peers tree_peers rotating_beam_by_hand crank_rocker_flexible_by_hand
+cmake --build "$BUILD_DIR" --parallel "$JOBS" --target chain_peers tree_peers rotating_beam_by_hand crank_rocker_flexible_by_hand mbgc mbgrt
 
 out=bench/peers
 step "Running $BUILD_DIR/bench/peers/chain_peers $out/chain_peers.csv"
@@ -48,3 +51,6 @@ step "The rotating beam: mbgc against its modal equations by hand (bench/modal)"
 step "The flexible crank-rocker: mbgc against its equations by hand (bench/modal)"
 "$BUILD_DIR/bench/modal/crank_rocker_flexible_by_hand" "$BUILD_DIR/bench/modal/bench_crank_rocker_flexible" |
   tee bench/modal/crank_rocker_flexible.txt
+
+step "The 32-rod chain against ../shared/bench/hand_chain, whole processes, two sets of flags (tools/bench_hand_chain.sh)"
+"$MBGC_ROOT/tools/bench_hand_chain.sh" "$BUILD_DIR" "$out/hand_chain.csv" | tee "$out/hand_chain.txt"
