@@ -139,7 +139,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
   if (failed()) return 1;
   std::string strategy_report;  // what constraints = auto chose, for the causality report
   ir::ExpandedProgram expanded =
-      multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, opt.contacts, &strategy_report});
+      multibody::expand(ast, sources, diags, {opt.constraints, opt.search_dirs, opt.contacts, &strategy_report, opt.rotors});
   timed("expand");
   if (failed()) return 1;
   if (opt.dump == Dump::Expanded) return finish(ir::print_expanded(expanded));

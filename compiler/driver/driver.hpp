@@ -43,6 +43,7 @@ struct Options {
   /// known), report (print every parameter's and output's unit instead of C++), off
   enum class Units { Check, Strict, Report, Off } units = Units::Check;
   bool energy_witness = true;  ///< false: --no-energy-witness (no stored_energy() or power(): reduce/energy.hpp)
+  bool rotors = true;          ///< false: --no-rotors (every body in its own frame: multibody/rotors.hpp)
   ir::Limits limits;          ///< how large a model may grow (the fuzz targets lower them)
 };
 

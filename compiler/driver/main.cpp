@@ -70,6 +70,11 @@ int main(int argc, char** argv) {
   app.add_flag("--no-energy-witness", no_energy_witness,
                "leave out the energy balance (stored_energy() and power(), whose code can reach the "
                "dynamics' own size): the simulator then reports no energy residual");
+  bool no_rotors = false;
+  app.add_flag("--no-rotors", no_rotors,
+               "write every body's equations in its own frame, also a rotor's (a body symmetric about the "
+               "revolute joint it spins on, whose frame otherwise leaves out its spin): the same motion, more "
+               "operations, to compare the two forms");
   std::string units = "check";
   app.add_option("--units", units,
                  "the units of measure: check (the default: equations whose units disagree are errors), strict "
@@ -128,6 +133,7 @@ int main(int argc, char** argv) {
   }
   opt.stats_csv = stats_format == "csv";
   opt.energy_witness = !no_energy_witness;
+  opt.rotors = !no_rotors;
   if (opt.stats && (opt.dump != Dump::None || opt.explain_scene)) {
     std::cerr << "mbgc: error: --stats prints the generated code's costs: it does not go with --dump or --explain-scene\n";
     return 2;

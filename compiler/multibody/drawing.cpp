@@ -241,7 +241,7 @@ void Expander::draw_bodies() {
     auto d = std::make_shared<Drawing>(body.kind.field() ? body.kind.field()->drawing(scale) : body.shape ? *body.shape : default_drawing(body, scale));
     d->body = n;
     d->colour = palette(index++);
-    E R = body.kind.particle() ? B.call("eye", {B.num(3)}) : rotation(B, n);
+    E R = body.kind.particle() ? B.call("eye", {B.num(3)}) : attitude(B, n);
     // (member by member: GCC 12 at -O3 took the braced form's shared_ptr for uninitialised, -Wmaybe-uninitialized)
     ir::ExpandedOutput out;
     out.name = BodySym(n).drawing().str();

@@ -4,6 +4,7 @@
 #include "multibody/expander.hpp"
 #include "multibody/quantities.hpp"
 #include "multibody/rewrite.hpp"
+#include "multibody/rotors.hpp"
 #include "multibody/spanning_tree.hpp"
 #include "multibody/units.hpp"
 
@@ -120,6 +121,7 @@ ir::ExpandedProgram expand(const ir::AstProgram& program, ir::SourceManager& sou
     return ir::as_expanded(program);  // nothing multibody here
   plan_tree(m, diags, options.strategy_report);
   if (diags.has_errors()) return {};
+  if (options.rotors) find_rotors(m, options.strategy_report);
   Quantities quantities;
   QuantityRewriter rewrite(quantities, m, diags);
   SymbolIds symbols;

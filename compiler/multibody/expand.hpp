@@ -63,8 +63,11 @@ struct ExpandOptions {
   std::vector<std::string> search_dirs;
   /// mbgc --contacts: the strategy of every contact that does not name its own.
   std::optional<ContactStrategy> contacts;
-  /// If set: what `constraints = auto` chose and why (empty when no joint was left to auto).
+  /// If set: what `constraints = auto` chose and why (empty when no joint was
+  /// left to auto), and the rotors (multibody/rotors.hpp).
   std::string* strategy_report = nullptr;
+  /// false (mbgc --no-rotors): every body in its own frame, no rotors.
+  bool rotors = true;
 };
 
 /// Modal-data files a model names (`flexible = modal("arm.mbm")`) are read

@@ -71,7 +71,18 @@ class Expander {
   void emit_rigid(const Body& body);
   E position(const Build& B, const std::string& body) const;
   E quaternion(const Build& B, const std::string& body) const;
+  /// The frame of the body's equations (its junctions' axes), body -> world:
+  /// the body's own axes, or a rotor's without its spin (rotors.hpp).
   E rotation(const Build& B, const std::string& body) const;
+  /// A rotor's spin in the frame of its equations, axis times its joint's
+  /// rate (null for any other body): its angular velocity there less the
+  /// frame's.
+  E rotor_spin(const Build& B, const Body& body) const;
+  /// The body's own orientation, body -> world, as a rotation matrix and as a
+  /// quaternion: rotation() and quaternion(), a rotor's with its spin put
+  /// back (once its joint is written). What users read and what is drawn.
+  E attitude(const Build& B, const std::string& body) const;
+  E attitude_quaternion(const Build& B, const std::string& body) const;
   bool body_frame_velocity(const Body& b) const;
   E velocity(const Build& B, const std::string& body) const;
 

@@ -84,7 +84,9 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   const std::deque<Mobilizer::Rate>& rates = m.rates;
   const E& disp = m.disp;
   const E& qrel = m.qrel;
-  const E rot = m.rot ? m.rot : B.call("rotq", {qrel});  // B's joint frame in A's
+  // B's joint frame in A's; a rotor's frame leaves its turn out (rotors.hpp)
+  const bool rotor = !C.rotor_joint.empty();
+  const E rot = rotor ? B.call("eye", {B.num(3)}) : m.rot ? m.rot : B.call("rotq", {qrel});
   auto qmul = [&](E x, E y) { return B.call("quat_mul", {std::move(x), std::move(y)}); };
   auto conj = [&](E x) { return B.call("quat_conj", {std::move(x)}); };
   drive_loads(B, j);
@@ -109,7 +111,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
   E pb = m_.bodies.at(j.b.body).kind.particle() ? B.vec(0, 0, 0) : seat_b.point ? seat_b.point : B.ref(jn.point('b'));
   E qP = quaternion(B, parent), RP = rotation(B, parent);
   if (seat.quaternion) qP = qmul(qP, seat.quaternion);
-  E qC = fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
+  E qC = rotor ? qmul(qmul(qP, fa), conj(fb)) : fwd ? qmul(qmul(qmul(qP, fa), qrel), conj(fb)) : qmul(qmul(qmul(qP, fb), conj(qrel)), conj(fa));
   if (own_seat.quaternion) qC = qmul(qC, conj(own_seat.quaternion));
   // R_PC = R_P^T R_C, the relative rotation of the bodies: the joint's own
   // turn between its fixed frames F_a and F_b.
@@ -154,7 +156,9 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     // the bond into its omega junction, below): 2 products an entry, where the
     // chain rule through R_P R_PC(q) would differentiate every factor.
     E Rc = !P.kind.turns() ? Rrel : times(RP, Rrel);
-    const E rate = times(rotation(B, child), B.call("skew", {B.ref(jn.reaction_torque().flow())}));
+    E omega = B.ref(jn.reaction_torque().flow());
+    if (E spin = rotor_spin(B, C)) omega = B.op('-', omega, spin);  // a rotor's frame turns without its spin
+    const E rate = times(rotation(B, child), B.call("skew", {omega}));
     for (int r = 1; r <= 3; ++r)
       for (int c = 1; c <= 3; ++c)
         signal(B, on_child.pose_R(r, c), idx2(B, Rc, r, c), idx2(B, rate, r, c));

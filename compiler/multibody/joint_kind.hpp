@@ -160,6 +160,8 @@ class JointKind {
   virtual InitialMotion initial(const Build& B, const Joint& joint) const;
 };
 
+/// The revolute joint's kind (multibody/rotors.hpp asks for it).
+const JointKind& revolute_joint();
 /// The kind named `name` (nullptr: no such joint type).
 const JointKind* find_joint_kind(std::string_view name);
 /// Every joint type's name, sorted.

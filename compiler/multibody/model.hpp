@@ -35,6 +35,7 @@ struct Body {
   std::string tree_parent;               // by_coordinates: its parent body in the tree ("" for ground)
   bool points_unknown = false;           // a modal body whose file could not be read (its error is out already)
   std::shared_ptr<ir::Drawing> shape;    // its `shape` setting (null: drawn by default, multibody/drawing.cpp)
+  std::string rotor_joint;               // a rotor (rotors.hpp): its tree joint, whose turn its frame leaves out; else ""
 };
 
 struct Side {

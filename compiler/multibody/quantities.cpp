@@ -30,11 +30,15 @@ void Expander::define_quantities() {
              body_frame_velocity(body) ? B.op('*', rotation(B, name), B.ref(n.m().momentum())) : B.ref(n.m().momentum()));
     E ke = B.op('*', B.num(0.5), B.dot(B.ref(n.v().flow()), B.ref(n.m().momentum())));  // in the junction's own axes
     if (!body.kind.particle()) {
-      E q = quaternion(B, name), R = rotation(B, name), w = B.ref(n.w().flow());
+      // R and w: the frame of the body's equations and the body's angular
+      // velocity in its axes (a rotor's frame leaves out its spin: what is
+      // read of the body's own axes turns it back, attitude())
+      E R = rotation(B, name), w = B.ref(n.w().flow());
+      E own = attitude(B, name), q = attitude_quaternion(B, name);
       quantity("quaternion", q);
-      quantity("rotation", R);
+      quantity("rotation", own);
       quantity("bryant", B.call("bryant", {q}));
-      quantity("omega", w);
+      quantity("omega", body.rotor_joint.empty() ? w : B.op('*', B.call("transpose", {own}), B.op('*', R, w)));
       quantity("omega_world", B.op('*', R, w));
       quantity("angular_momentum", B.op('*', R, B.ref(n.J().momentum())));
       ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.ref(n.J().momentum()))));

@@ -57,8 +57,13 @@ void Expander::emit_rigid(const Body& body) {
     element(B, "Se", n.weight(),
             B.op('*', B.ref(n.mass()),
                  body_axes ? B.op('*', B.call("transpose", {rotation(B, d.name)}), B.ref(Sym::gravity())) : B.ref(Sym::gravity())));
+  // The Euler junction structures turn the momenta with the frame of the
+  // junctions: the body's angular velocity, a rotor's less its spin.
+  const E spin = rotor_spin(B, body);
+  auto frame_turn = [&](E omega) { return spin ? B.op('-', std::move(omega), spin) : omega; };
   if (body_axes)
-    element(B, "R", n.ejs_v(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(n.J().flow()), B.ref(n.m().momentum())}), d.loc)});
+    element(B, "R", n.ejs_v(), nullptr,
+            {kv(element_setting::r_effort, B.call("cross", {frame_turn(B.ref(n.J().flow())), B.ref(n.m().momentum())}), d.loc)});
   if (body.kind.particle()) return;
   E com = body_term(d, body_setting::com);
   property(B, n.com(), com ? com : B.default_of(body_setting::com));
@@ -67,8 +72,10 @@ void Expander::emit_rigid(const Body& body) {
   if (own_states) w_out.push_back(n.qrate().port(1));
   junction(B, '1', n.w(), 3, torques_in, w_out);
   element(B, "I", n.J(), B.ref(n.inertia()), J_init);
-  // Euler junction structure: torque omega x h on the body-frame junction, no power.
-  element(B, "R", n.ejs(), nullptr, {kv(element_setting::r_effort, B.call("cross", {B.ref(Sym::own_flow()), B.ref(n.J().momentum())}), d.loc)});
+  // Euler junction structure: torque omega x h on the body-frame junction, no
+  // power (a rotor's Omega x h, Omega = omega less the spin: no power either,
+  // its inertia being symmetric about the spin's axis).
+  element(B, "R", n.ejs(), nullptr, {kv(element_setting::r_effort, B.call("cross", {frame_turn(B.ref(Sym::own_flow())), B.ref(n.J().momentum())}), d.loc)});
   if (!own_states) return;
   element(B, "MTF", n.qrate(), B.call("quat_rate", {B.ref(n.q().displacement())}));
   element(B, "C", n.q(), nullptr,
@@ -108,6 +115,27 @@ E Expander::velocity(const Build& B, const std::string& body) const {
   const Sym v = BodySym(body).v().flow();
   if (body_frame_velocity(b)) return B.op('*', rotation(B, body), B.ref(v));
   return B.ref(v);
+}
+
+E Expander::rotor_spin(const Build& B, const Body& body) const {
+  if (body.rotor_joint.empty()) return nullptr;
+  const JointSym jn(body.rotor_joint);
+  return B.op('*', B.ref(jn.axis('b')), B.ref(jn.rate_source("theta").flow()));
+}
+
+/// A rotor's frame turned by its joint's angle about the axis: the body's own axes.
+E Expander::attitude(const Build& B, const std::string& body) const {
+  const Body& b = m_.bodies.at(body);
+  if (b.rotor_joint.empty()) return rotation(B, body);
+  const JointSym jn(b.rotor_joint);
+  return B.op('*', rotation(B, body), B.call("rot_axis_angle", {B.ref(jn.axis('b')), coordinate_values_.at(b.rotor_joint).angle}));
+}
+
+E Expander::attitude_quaternion(const Build& B, const std::string& body) const {
+  const Body& b = m_.bodies.at(body);
+  if (b.rotor_joint.empty()) return quaternion(B, body);
+  const JointSym jn(b.rotor_joint);
+  return B.call("quat_mul", {quaternion(B, body), B.call("quat_axis_angle", {B.ref(jn.axis('b')), coordinate_values_.at(b.rotor_joint).angle})});
 }
 
 /// Rotation matrix body -> world (computed once per body in coordinates).

@@ -252,7 +252,6 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double shoulder_theta_rate_rate = x[32];
     const double shoulder_theta_q = x[33];
     const double axle_theta_rate_rate = x[34];
-    const double axle_theta_q = x[35];
     // drawn_bodies.mbg:40:7  MTF shoulder.m2: f2 = T f1
     const double shoulder_m2_f2_3 = -0.25 * shoulder_theta_rate_rate;
     // drawn_bodies.mbg:41:7  MTF axle.m3: f2 = T f1
@@ -261,49 +260,21 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double axle_m4_f1_3 = shoulder_m2_f2_3 + axle_m3_f2_3;
     // drawn_bodies.mbg:41:7  0 axle.vsum: flows in = flows out
     const double axle_reaction_f_f_3 = axle_m4_f1_3;
-    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
-    // (cseN: a subexpression several equations below share)
-    const double cse1 = std::cos(axle_theta_q);
-    const double axle_m1_f2_2 = cse1 * shoulder_theta_rate_rate;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_2 = axle_m1_f2_2;
-    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
-    const double cse2 = std::sin(axle_theta_q);
-    const double axle_m1_f2_1 = cse2 * shoulder_theta_rate_rate;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_1 = axle_m1_f2_1;
-    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
-    const double wheel_J_p_2 = 0.002 * axle_reaction_t_f_2;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_3 = axle_theta_rate_rate;
-    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
-    const double wheel_J_p_3 = 0.004 * axle_reaction_t_f_3;
-    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
-    const double wheel_ejs_e_1 = axle_reaction_t_f_2 * wheel_J_p_3 - axle_reaction_t_f_3 * wheel_J_p_2;
-    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
-    const double wheel_J_p_1 = 0.002 * axle_reaction_t_f_1;
-    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
-    const double wheel_ejs_e_2 = axle_reaction_t_f_3 * wheel_J_p_1 - axle_reaction_t_f_1 * wheel_J_p_3;
     // drawn_bodies.mbg:40:7  signal link.pose.R33
     const double link_pose_R33 = std::cos(shoulder_theta_q);
     // drawn_bodies.mbg:19:6  Se wheel.weight: e = value
     const double wheel_weight_e_3 = -4.905 * link_pose_R33;
     // drawn_bodies.mbg:11:6  Se link.weight: e = value
     const double link_weight_e_3 = -9.81 * link_pose_R33;
-    // drawn_bodies.mbg:41:7  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
+    // drawn_bodies.mbg:19:6  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
     const double wheel_out1 = -wheel_weight_e_3;
-    const double wheel_out2 = cse2 * (0.002 * cse2) + cse1 * (0.002 * cse1) + 0.03125;
-    const double wheel_out3 = cse2 * (wheel_ejs_e_1 + 0.002 * (axle_m1_f2_2 * axle_theta_rate_rate)) + cse1 * (wheel_ejs_e_2 - 0.002 * (axle_m1_f2_1 * axle_theta_rate_rate)) - 0.25 * wheel_out1;
-    // drawn_bodies.mbg:40:7  articulated-body elimination, body link: 1 / pivot of the joint's accelerations
-    const double link_pivot1 = 1.0 / (0.145 + wheel_out2 + 0.03125);
+    const double wheel_out2 = -0.25 * wheel_out1;
     // drawn_bodies.mbg:40:7  articulated-body elimination, body link: joint acceleration as an affine function of the parent's motion
-    const double link_accel2 = -link_pivot1 * (wheel_out3 - 0.25 * (-link_weight_e_3 + wheel_out1));
+    const double link_accel1 = -4.773269689737471 * (wheel_out2 - 0.25 * (-link_weight_e_3 + wheel_out1));
     // drawn_bodies.mbg:40:7  joint acceleration of body link from its parent's motion (articulated-body form)
-    const double der_shoulder_theta_rate_rate = link_accel2;
-    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
-    const double wheel_ejs_e_3 = axle_reaction_t_f_1 * wheel_J_p_2 - axle_reaction_t_f_2 * wheel_J_p_1;
+    const double der_shoulder_theta_rate_rate = link_accel1;
     // drawn_bodies.mbg:19:6  algebraic loop (6 unknowns), solved for der(wheel.J.p[3])
-    const double der_wheel_J_p_3 = -wheel_ejs_e_3;
+    const double der_wheel_J_p_3 = 0.0;
     // drawn_bodies.mbg:19:6  algebraic loop (6 unknowns), solved for der(axle.reaction_t.f[3])
     const double der_axle_reaction_t_f_3 = der_wheel_J_p_3 / 0.004;
     // drawn_bodies.mbg:19:6  algebraic loop (6 unknowns), solved for der(axle.theta_rate.rate)
@@ -334,14 +305,15 @@ class drawn_bodies_model final : public mbgrt::Model {
     // drawn_bodies.mbg:26:6  1 tetra.w: efforts in = efforts out
     const double tetra_J_e_3 = -tetra_ejs_e_3;
     // drawn_bodies.mbg:26:6  MTF tetra.qrate: f2 = T f1
-    const double cse3 = 0.5 * tetra_q_q_2;
-    const double cse4 = 0.5 * tetra_q_q_3;
-    const double cse5 = 0.5 * tetra_q_q_4;
-    const double tetra_q_f2_1 = -cse3 * tetra_J_f_1 - cse4 * tetra_J_f_2 - cse5 * tetra_J_f_3;
-    const double cse6 = 0.5 * tetra_q_q_1;
-    const double tetra_q_f2_2 = cse6 * tetra_J_f_1 - cse5 * tetra_J_f_2 + cse4 * tetra_J_f_3;
-    const double tetra_q_f2_3 = cse5 * tetra_J_f_1 + cse6 * tetra_J_f_2 - cse3 * tetra_J_f_3;
-    const double tetra_q_f2_4 = -cse4 * tetra_J_f_1 + cse3 * tetra_J_f_2 + cse6 * tetra_J_f_3;
+    // (cseN: a subexpression several equations below share)
+    const double cse1 = 0.5 * tetra_q_q_2;
+    const double cse2 = 0.5 * tetra_q_q_3;
+    const double cse3 = 0.5 * tetra_q_q_4;
+    const double tetra_q_f2_1 = -cse1 * tetra_J_f_1 - cse2 * tetra_J_f_2 - cse3 * tetra_J_f_3;
+    const double cse4 = 0.5 * tetra_q_q_1;
+    const double tetra_q_f2_2 = cse4 * tetra_J_f_1 - cse3 * tetra_J_f_2 + cse2 * tetra_J_f_3;
+    const double tetra_q_f2_3 = cse3 * tetra_J_f_1 + cse4 * tetra_J_f_2 - cse1 * tetra_J_f_3;
+    const double tetra_q_f2_4 = -cse2 * tetra_J_f_1 + cse1 * tetra_J_f_2 + cse4 * tetra_J_f_3;
     // drawn_bodies.mbg:33:6  I plain.m: p = I f
     const double plain_m_f_1 = plain_m_p_1 / 0.3;
     const double plain_m_f_2 = plain_m_p_2 / 0.3;
@@ -364,14 +336,14 @@ class drawn_bodies_model final : public mbgrt::Model {
     // drawn_bodies.mbg:33:6  1 plain.w: efforts in = efforts out
     const double plain_J_e_3 = -plain_ejs_e_3;
     // drawn_bodies.mbg:33:6  MTF plain.qrate: f2 = T f1
-    const double cse7 = 0.5 * plain_q_q_2;
-    const double cse8 = 0.5 * plain_q_q_3;
-    const double cse9 = 0.5 * plain_q_q_4;
-    const double plain_q_f2_1 = -cse7 * plain_J_f_1 - cse8 * plain_J_f_2 - cse9 * plain_J_f_3;
-    const double cse10 = 0.5 * plain_q_q_1;
-    const double plain_q_f2_2 = cse10 * plain_J_f_1 - cse9 * plain_J_f_2 + cse8 * plain_J_f_3;
-    const double plain_q_f2_3 = cse9 * plain_J_f_1 + cse10 * plain_J_f_2 - cse7 * plain_J_f_3;
-    const double plain_q_f2_4 = -cse8 * plain_J_f_1 + cse7 * plain_J_f_2 + cse10 * plain_J_f_3;
+    const double cse5 = 0.5 * plain_q_q_2;
+    const double cse6 = 0.5 * plain_q_q_3;
+    const double cse7 = 0.5 * plain_q_q_4;
+    const double plain_q_f2_1 = -cse5 * plain_J_f_1 - cse6 * plain_J_f_2 - cse7 * plain_J_f_3;
+    const double cse8 = 0.5 * plain_q_q_1;
+    const double plain_q_f2_2 = cse8 * plain_J_f_1 - cse7 * plain_J_f_2 + cse6 * plain_J_f_3;
+    const double plain_q_f2_3 = cse7 * plain_J_f_1 + cse8 * plain_J_f_2 - cse5 * plain_J_f_3;
+    const double plain_q_f2_4 = -cse6 * plain_J_f_1 + cse5 * plain_J_f_2 + cse8 * plain_J_f_3;
     // state derivatives, then the powers (when asked for)
     xdot[0] = 0.0;
     xdot[1] = 0.0;
@@ -411,7 +383,7 @@ class drawn_bodies_model final : public mbgrt::Model {
     xdot[35] = axle_theta_rate_rate;
     if (rate) {
       rate[0] = link_weight_e_3 * shoulder_m2_f2_3 + wheel_weight_e_3 * axle_reaction_f_f_3 - 0.9810000000000001 * ball_m_f_3 - 1.9620000000000002 * tetra_m_f_3 - 2.943 * plain_m_f_3;
-      rate[1] = wheel_ejs_e_1 * axle_reaction_t_f_1 + wheel_ejs_e_2 * axle_reaction_t_f_2 + wheel_ejs_e_3 * axle_reaction_t_f_3 + (tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3) + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
+      rate[1] = tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3 + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
     }
   }
 
@@ -468,14 +440,14 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double tetra_J_f_1 = tetra_J_p_1 / 0.001;
     // drawn_bodies.mbg:26:6  MTF tetra.qrate: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse11 = 0.5 * tetra_q_q_2;
-    const double cse12 = 0.5 * tetra_q_q_3;
-    const double cse13 = 0.5 * tetra_q_q_4;
-    const double tetra_q_f2_1 = -cse11 * tetra_J_f_1 - cse12 * tetra_J_f_2 - cse13 * tetra_J_f_3;
-    const double cse14 = 0.5 * tetra_q_q_1;
-    const double tetra_q_f2_2 = cse14 * tetra_J_f_1 - cse13 * tetra_J_f_2 + cse12 * tetra_J_f_3;
-    const double tetra_q_f2_3 = cse13 * tetra_J_f_1 + cse14 * tetra_J_f_2 - cse11 * tetra_J_f_3;
-    const double tetra_q_f2_4 = -cse12 * tetra_J_f_1 + cse11 * tetra_J_f_2 + cse14 * tetra_J_f_3;
+    const double cse9 = 0.5 * tetra_q_q_2;
+    const double cse10 = 0.5 * tetra_q_q_3;
+    const double cse11 = 0.5 * tetra_q_q_4;
+    const double tetra_q_f2_1 = -cse9 * tetra_J_f_1 - cse10 * tetra_J_f_2 - cse11 * tetra_J_f_3;
+    const double cse12 = 0.5 * tetra_q_q_1;
+    const double tetra_q_f2_2 = cse12 * tetra_J_f_1 - cse11 * tetra_J_f_2 + cse10 * tetra_J_f_3;
+    const double tetra_q_f2_3 = cse11 * tetra_J_f_1 + cse12 * tetra_J_f_2 - cse9 * tetra_J_f_3;
+    const double tetra_q_f2_4 = -cse10 * tetra_J_f_1 + cse9 * tetra_J_f_2 + cse12 * tetra_J_f_3;
     // drawn_bodies.mbg:33:6  I plain.m: p = I f
     const double plain_m_f_1 = plain_m_p_1 / 0.3;
     const double plain_m_f_2 = plain_m_p_2 / 0.3;
@@ -485,14 +457,14 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_J_f_3 = plain_J_p_3 / 0.002;
     const double plain_J_f_1 = plain_J_p_1 / 0.001;
     // drawn_bodies.mbg:33:6  MTF plain.qrate: f2 = T f1
-    const double cse15 = 0.5 * plain_q_q_2;
-    const double cse16 = 0.5 * plain_q_q_3;
-    const double cse17 = 0.5 * plain_q_q_4;
-    const double plain_q_f2_1 = -cse15 * plain_J_f_1 - cse16 * plain_J_f_2 - cse17 * plain_J_f_3;
-    const double cse18 = 0.5 * plain_q_q_1;
-    const double plain_q_f2_2 = cse18 * plain_J_f_1 - cse17 * plain_J_f_2 + cse16 * plain_J_f_3;
-    const double plain_q_f2_3 = cse17 * plain_J_f_1 + cse18 * plain_J_f_2 - cse15 * plain_J_f_3;
-    const double plain_q_f2_4 = -cse16 * plain_J_f_1 + cse15 * plain_J_f_2 + cse18 * plain_J_f_3;
+    const double cse13 = 0.5 * plain_q_q_2;
+    const double cse14 = 0.5 * plain_q_q_3;
+    const double cse15 = 0.5 * plain_q_q_4;
+    const double plain_q_f2_1 = -cse13 * plain_J_f_1 - cse14 * plain_J_f_2 - cse15 * plain_J_f_3;
+    const double cse16 = 0.5 * plain_q_q_1;
+    const double plain_q_f2_2 = cse16 * plain_J_f_1 - cse15 * plain_J_f_2 + cse14 * plain_J_f_3;
+    const double plain_q_f2_3 = cse15 * plain_J_f_1 + cse16 * plain_J_f_2 - cse13 * plain_J_f_3;
+    const double plain_q_f2_4 = -cse14 * plain_J_f_1 + cse13 * plain_J_f_2 + cse16 * plain_J_f_3;
     // position derivatives
     xdot[3] = ball_m_f_1;
     xdot[4] = ball_m_f_2;
@@ -652,32 +624,18 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double axle_theta_q = x[35];
     // drawn_bodies.mbg:40:7  signal link.pose.R31
     // (cseN: a subexpression several equations below share)
-    const double cse19 = std::sin(shoulder_theta_q);
-    const double link_pose_R31 = -cse19;
-    // drawn_bodies.mbg:41:7  signal wheel.pose.R31
-    const double cse20 = std::cos(axle_theta_q);
-    const double wheel_pose_R31 = link_pose_R31 * cse20;
-    // drawn_bodies.mbg:41:7  signal wheel.pose.R32
-    const double cse21 = std::sin(axle_theta_q);
-    const double wheel_pose_R32 = -link_pose_R31 * cse21;
+    const double cse17 = std::sin(shoulder_theta_q);
+    const double link_pose_R31 = -cse17;
     // drawn_bodies.mbg:40:7  signal link.pose.R33
     const double link_pose_R33 = std::cos(shoulder_theta_q);
     // drawn_bodies.mbg:40:7  signal link.pose.R11
     const double link_pose_R11 = link_pose_R33;
     // drawn_bodies.mbg:40:7  signal link.pose.R13
-    const double link_pose_R13 = cse19;
+    const double link_pose_R13 = cse17;
     // drawn_bodies.mbg:40:7  signal link.pose.r1
     const double link_pose_r1 = 0.25 * link_pose_R11;
     // drawn_bodies.mbg:40:7  signal link.pose.r3
     const double link_pose_r3 = 0.25 * link_pose_R31;
-    // drawn_bodies.mbg:41:7  signal wheel.pose.R11
-    const double wheel_pose_R11 = link_pose_R11 * cse20;
-    // drawn_bodies.mbg:41:7  signal wheel.pose.R12
-    const double wheel_pose_R12 = -link_pose_R11 * cse21;
-    // drawn_bodies.mbg:41:7  signal wheel.pose.R21
-    const double wheel_pose_R21 = cse21;
-    // drawn_bodies.mbg:41:7  signal wheel.pose.R22
-    const double wheel_pose_R22 = cse20;
     // drawn_bodies.mbg:41:7  signal wheel.pose.r1
     const double wheel_pose_r1 = link_pose_r1 + link_pose_r1;
     // drawn_bodies.mbg:41:7  signal wheel.pose.r3
@@ -698,14 +656,16 @@ class drawn_bodies_model final : public mbgrt::Model {
     out[12] = wheel_pose_r1;
     out[13] = 0.0;
     out[14] = wheel_pose_r3;
-    out[15] = wheel_pose_R11;
-    out[16] = wheel_pose_R12;
+    const double cse18 = std::cos(axle_theta_q);
+    out[15] = link_pose_R11 * cse18;
+    const double cse19 = std::sin(axle_theta_q);
+    out[16] = -link_pose_R11 * cse19;
     out[17] = link_pose_R13;
-    out[18] = wheel_pose_R21;
-    out[19] = wheel_pose_R22;
+    out[18] = cse19;
+    out[19] = cse18;
     out[20] = 0.0;
-    out[21] = wheel_pose_R31;
-    out[22] = wheel_pose_R32;
+    out[21] = link_pose_R31 * cse18;
+    out[22] = -link_pose_R31 * cse19;
     out[23] = link_pose_R33;
     out[24] = ball_r_q_1;
     out[25] = ball_r_q_2;
@@ -722,51 +682,51 @@ class drawn_bodies_model final : public mbgrt::Model {
     out[36] = tetra_r_q_1;
     out[37] = tetra_r_q_2;
     out[38] = tetra_r_q_3;
-    const double cse22 = tetra_q_q_1 * tetra_q_q_1;
-    const double cse23 = tetra_q_q_2 * tetra_q_q_2;
-    const double cse24 = cse22 + cse23;
-    const double cse25 = tetra_q_q_3 * tetra_q_q_3;
-    const double cse26 = tetra_q_q_4 * tetra_q_q_4;
-    const double cse27 = cse24 + cse25 + cse26;
-    out[39] = (cse24 - cse25 - cse26) / cse27;
-    const double cse28 = tetra_q_q_2 * tetra_q_q_3;
-    const double cse29 = tetra_q_q_1 * tetra_q_q_4;
-    out[40] = 2.0 * (cse28 - cse29) / cse27;
-    const double cse30 = tetra_q_q_2 * tetra_q_q_4;
-    const double cse31 = tetra_q_q_1 * tetra_q_q_3;
-    out[41] = 2.0 * (cse30 + cse31) / cse27;
-    out[42] = 2.0 * (cse28 + cse29) / cse27;
-    out[43] = (cse22 + cse25 - cse23 - cse26) / cse27;
-    const double cse32 = tetra_q_q_3 * tetra_q_q_4;
-    const double cse33 = tetra_q_q_1 * tetra_q_q_2;
-    out[44] = 2.0 * (cse32 - cse33) / cse27;
-    out[45] = 2.0 * (cse30 - cse31) / cse27;
-    out[46] = 2.0 * (cse32 + cse33) / cse27;
-    out[47] = (cse22 + cse26 - cse23 - cse25) / cse27;
+    const double cse20 = tetra_q_q_1 * tetra_q_q_1;
+    const double cse21 = tetra_q_q_2 * tetra_q_q_2;
+    const double cse22 = cse20 + cse21;
+    const double cse23 = tetra_q_q_3 * tetra_q_q_3;
+    const double cse24 = tetra_q_q_4 * tetra_q_q_4;
+    const double cse25 = cse22 + cse23 + cse24;
+    out[39] = (cse22 - cse23 - cse24) / cse25;
+    const double cse26 = tetra_q_q_2 * tetra_q_q_3;
+    const double cse27 = tetra_q_q_1 * tetra_q_q_4;
+    out[40] = 2.0 * (cse26 - cse27) / cse25;
+    const double cse28 = tetra_q_q_2 * tetra_q_q_4;
+    const double cse29 = tetra_q_q_1 * tetra_q_q_3;
+    out[41] = 2.0 * (cse28 + cse29) / cse25;
+    out[42] = 2.0 * (cse26 + cse27) / cse25;
+    out[43] = (cse20 + cse23 - cse21 - cse24) / cse25;
+    const double cse30 = tetra_q_q_3 * tetra_q_q_4;
+    const double cse31 = tetra_q_q_1 * tetra_q_q_2;
+    out[44] = 2.0 * (cse30 - cse31) / cse25;
+    out[45] = 2.0 * (cse28 - cse29) / cse25;
+    out[46] = 2.0 * (cse30 + cse31) / cse25;
+    out[47] = (cse20 + cse24 - cse21 - cse23) / cse25;
     out[48] = plain_r_q_1;
     out[49] = plain_r_q_2;
     out[50] = plain_r_q_3;
-    const double cse34 = plain_q_q_1 * plain_q_q_1;
-    const double cse35 = plain_q_q_2 * plain_q_q_2;
-    const double cse36 = cse34 + cse35;
-    const double cse37 = plain_q_q_3 * plain_q_q_3;
-    const double cse38 = plain_q_q_4 * plain_q_q_4;
-    const double cse39 = cse36 + cse37 + cse38;
-    out[51] = (cse36 - cse37 - cse38) / cse39;
-    const double cse40 = plain_q_q_2 * plain_q_q_3;
-    const double cse41 = plain_q_q_1 * plain_q_q_4;
-    out[52] = 2.0 * (cse40 - cse41) / cse39;
-    const double cse42 = plain_q_q_2 * plain_q_q_4;
-    const double cse43 = plain_q_q_1 * plain_q_q_3;
-    out[53] = 2.0 * (cse42 + cse43) / cse39;
-    out[54] = 2.0 * (cse40 + cse41) / cse39;
-    out[55] = (cse34 + cse37 - cse35 - cse38) / cse39;
-    const double cse44 = plain_q_q_3 * plain_q_q_4;
-    const double cse45 = plain_q_q_1 * plain_q_q_2;
-    out[56] = 2.0 * (cse44 - cse45) / cse39;
-    out[57] = 2.0 * (cse42 - cse43) / cse39;
-    out[58] = 2.0 * (cse44 + cse45) / cse39;
-    out[59] = (cse34 + cse38 - cse35 - cse37) / cse39;
+    const double cse32 = plain_q_q_1 * plain_q_q_1;
+    const double cse33 = plain_q_q_2 * plain_q_q_2;
+    const double cse34 = cse32 + cse33;
+    const double cse35 = plain_q_q_3 * plain_q_q_3;
+    const double cse36 = plain_q_q_4 * plain_q_q_4;
+    const double cse37 = cse34 + cse35 + cse36;
+    out[51] = (cse34 - cse35 - cse36) / cse37;
+    const double cse38 = plain_q_q_2 * plain_q_q_3;
+    const double cse39 = plain_q_q_1 * plain_q_q_4;
+    out[52] = 2.0 * (cse38 - cse39) / cse37;
+    const double cse40 = plain_q_q_2 * plain_q_q_4;
+    const double cse41 = plain_q_q_1 * plain_q_q_3;
+    out[53] = 2.0 * (cse40 + cse41) / cse37;
+    out[54] = 2.0 * (cse38 + cse39) / cse37;
+    out[55] = (cse32 + cse35 - cse33 - cse36) / cse37;
+    const double cse42 = plain_q_q_3 * plain_q_q_4;
+    const double cse43 = plain_q_q_1 * plain_q_q_2;
+    out[56] = 2.0 * (cse42 - cse43) / cse37;
+    out[57] = 2.0 * (cse40 - cse41) / cse37;
+    out[58] = 2.0 * (cse42 + cse43) / cse37;
+    out[59] = (cse32 + cse36 - cse33 - cse35) / cse37;
   }
 
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
@@ -798,7 +758,6 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_J_p_3 = x[27];
     const double shoulder_theta_rate_rate = x[32];
     const double axle_theta_rate_rate = x[34];
-    const double axle_theta_q = x[35];
     // drawn_bodies.mbg:40:7  MTF shoulder.m2: f2 = T f1
     const double shoulder_m2_f2_3 = -0.25 * shoulder_theta_rate_rate;
     // drawn_bodies.mbg:41:7  MTF axle.m3: f2 = T f1
@@ -807,14 +766,8 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double axle_m4_f1_3 = shoulder_m2_f2_3 + axle_m3_f2_3;
     // drawn_bodies.mbg:41:7  0 axle.vsum: flows in = flows out
     const double axle_reaction_f_f_3 = axle_m4_f1_3;
-    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
-    const double axle_m1_f2_2 = std::cos(axle_theta_q) * shoulder_theta_rate_rate;
     // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_2 = axle_m1_f2_2;
-    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
-    const double axle_m1_f2_1 = std::sin(axle_theta_q) * shoulder_theta_rate_rate;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_1 = axle_m1_f2_1;
+    const double axle_reaction_t_f_2 = shoulder_theta_rate_rate;
     const double axle_reaction_t_f_3 = axle_theta_rate_rate;
     // drawn_bodies.mbg:25:6  I ball.m: p = I f
     const double ball_m_f_1 = ball_m_p_1 / 0.1;
@@ -837,7 +790,7 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_J_f_3 = plain_J_p_3 / 0.002;
     const double plain_J_f_1 = plain_J_p_1 / 0.001;
     // the stored energy
-    out[0] = 0.5 * (shoulder_m2_f2_3 * shoulder_m2_f2_3) + 0.01 * (shoulder_theta_rate_rate * shoulder_theta_rate_rate) + 0.25 * (axle_reaction_f_f_3 * axle_reaction_f_f_3) + 0.5 * (0.002 * (axle_reaction_t_f_1 * axle_reaction_t_f_1) + 0.002 * (axle_reaction_t_f_2 * axle_reaction_t_f_2) + 0.004 * (axle_reaction_t_f_3 * axle_reaction_t_f_3)) + 0.5 * (ball_m_p_1 * ball_m_f_1 + ball_m_p_2 * ball_m_f_2 + ball_m_p_3 * ball_m_f_3) + 0.5 * (tetra_m_p_1 * tetra_m_f_1 + tetra_m_p_2 * tetra_m_f_2 + tetra_m_p_3 * tetra_m_f_3) + 0.5 * (tetra_J_p_1 * tetra_J_f_1 + tetra_J_p_2 * tetra_J_f_2 + tetra_J_p_3 * tetra_J_f_3) + 0.5 * (plain_m_p_1 * plain_m_f_1 + plain_m_p_2 * plain_m_f_2 + plain_m_p_3 * plain_m_f_3) + 0.5 * (plain_J_p_1 * plain_J_f_1 + plain_J_p_2 * plain_J_f_2 + plain_J_p_3 * plain_J_f_3);
+    out[0] = 0.5 * (shoulder_m2_f2_3 * shoulder_m2_f2_3) + 0.01 * (shoulder_theta_rate_rate * shoulder_theta_rate_rate) + 0.25 * (axle_reaction_f_f_3 * axle_reaction_f_f_3) + 0.5 * (0.002 * (axle_reaction_t_f_2 * axle_reaction_t_f_2) + 0.004 * (axle_reaction_t_f_3 * axle_reaction_t_f_3)) + 0.5 * (ball_m_p_1 * ball_m_f_1 + ball_m_p_2 * ball_m_f_2 + ball_m_p_3 * ball_m_f_3) + 0.5 * (tetra_m_p_1 * tetra_m_f_1 + tetra_m_p_2 * tetra_m_f_2 + tetra_m_p_3 * tetra_m_f_3) + 0.5 * (tetra_J_p_1 * tetra_J_f_1 + tetra_J_p_2 * tetra_J_f_2 + tetra_J_p_3 * tetra_J_f_3) + 0.5 * (plain_m_p_1 * plain_m_f_1 + plain_m_p_2 * plain_m_f_2 + plain_m_p_3 * plain_m_f_3) + 0.5 * (plain_J_p_1 * plain_J_f_1 + plain_J_p_2 * plain_J_f_2 + plain_J_p_3 * plain_J_f_3);
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -858,8 +811,6 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_J_p_3 = x[27];
     const double shoulder_theta_rate_rate = x[32];
     const double shoulder_theta_q = x[33];
-    const double axle_theta_rate_rate = x[34];
-    const double axle_theta_q = x[35];
     // drawn_bodies.mbg:40:7  MTF shoulder.m2: f2 = T f1
     const double shoulder_m2_f2_3 = -0.25 * shoulder_theta_rate_rate;
     // drawn_bodies.mbg:41:7  MTF axle.m3: f2 = T f1
@@ -868,34 +819,12 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double axle_m4_f1_3 = shoulder_m2_f2_3 + axle_m3_f2_3;
     // drawn_bodies.mbg:41:7  0 axle.vsum: flows in = flows out
     const double axle_reaction_f_f_3 = axle_m4_f1_3;
-    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
-    const double axle_m1_f2_2 = std::cos(axle_theta_q) * shoulder_theta_rate_rate;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_2 = axle_m1_f2_2;
-    // drawn_bodies.mbg:41:7  MTF axle.m1: f2 = T f1
-    const double axle_m1_f2_1 = std::sin(axle_theta_q) * shoulder_theta_rate_rate;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_1 = axle_m1_f2_1;
-    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
-    const double wheel_J_p_2 = 0.002 * axle_reaction_t_f_2;
-    // drawn_bodies.mbg:41:7  0 axle.wsum: flows in = flows out
-    const double axle_reaction_t_f_3 = axle_theta_rate_rate;
-    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
-    const double wheel_J_p_3 = 0.004 * axle_reaction_t_f_3;
-    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
-    const double wheel_ejs_e_1 = axle_reaction_t_f_2 * wheel_J_p_3 - axle_reaction_t_f_3 * wheel_J_p_2;
-    // drawn_bodies.mbg:19:6  I wheel.J: p = I f (derivative causality)
-    const double wheel_J_p_1 = 0.002 * axle_reaction_t_f_1;
-    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
-    const double wheel_ejs_e_2 = axle_reaction_t_f_3 * wheel_J_p_1 - axle_reaction_t_f_1 * wheel_J_p_3;
     // drawn_bodies.mbg:40:7  signal link.pose.R33
     const double link_pose_R33 = std::cos(shoulder_theta_q);
     // drawn_bodies.mbg:19:6  Se wheel.weight: e = value
     const double wheel_weight_e_3 = -4.905 * link_pose_R33;
     // drawn_bodies.mbg:11:6  Se link.weight: e = value
     const double link_weight_e_3 = -9.81 * link_pose_R33;
-    // drawn_bodies.mbg:19:6  R wheel.ejs: e = law(f)
-    const double wheel_ejs_e_3 = axle_reaction_t_f_1 * wheel_J_p_2 - axle_reaction_t_f_2 * wheel_J_p_1;
     // drawn_bodies.mbg:25:6  I ball.m: p = I f
     const double ball_m_f_3 = ball_m_p_3 / 0.1;
     // drawn_bodies.mbg:26:6  I tetra.m: p = I f
@@ -924,7 +853,7 @@ class drawn_bodies_model final : public mbgrt::Model {
     const double plain_ejs_e_3 = plain_J_f_1 * plain_J_p_2 - plain_J_f_2 * plain_J_p_1;
     // the powers
     out[0] = link_weight_e_3 * shoulder_m2_f2_3 + wheel_weight_e_3 * axle_reaction_f_f_3 - 0.9810000000000001 * ball_m_f_3 - 1.9620000000000002 * tetra_m_f_3 - 2.943 * plain_m_f_3;
-    out[1] = wheel_ejs_e_1 * axle_reaction_t_f_1 + wheel_ejs_e_2 * axle_reaction_t_f_2 + wheel_ejs_e_3 * axle_reaction_t_f_3 + (tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3) + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
+    out[1] = tetra_ejs_e_1 * tetra_J_f_1 + tetra_ejs_e_2 * tetra_J_f_2 + tetra_ejs_e_3 * tetra_J_f_3 + (plain_ejs_e_1 * plain_J_f_1 + plain_ejs_e_2 * plain_J_f_2 + plain_ejs_e_3 * plain_J_f_3);
   }
 
   // TERMINAL: nothing to do at the end of a run.

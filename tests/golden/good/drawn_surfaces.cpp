@@ -571,6 +571,47 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double der_hub_m_p_1 = 200.0 * der_lift_reaction_f_f_1;
     // drawn_surfaces.mbg:51:6  I hub.m: e = der(p) (derivative causality)
     const double hub_m_e_1 = der_hub_m_p_1;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
+    const double der_spin_m4_f1_1 = der_lift_reaction_f_f_1;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
+    const double der_spin_reaction_f_f_1 = der_spin_m4_f1_1;
+    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
+    const double der_wheel_m_p_1 = 10.0 * der_spin_reaction_f_f_1;
+    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
+    const double wheel_m_e_1 = der_wheel_m_p_1;
+    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
+    const double lift_reaction_f_f_3 = lift_s_rate_rate;
+    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
+    const double spin_m4_f1_3 = lift_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
+    const double spin_reaction_f_f_3 = spin_m4_f1_3;
+    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
+    const double wheel_m_p_3 = 10.0 * spin_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
+    const double spin_theta_rate_f = derived13_;
+    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
+    const double spin_reaction_t_f_2 = spin_theta_rate_f;
+    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
+    const double cse135 = spin_reaction_t_f_2 - spin_theta_rate_f;
+    const double wheel_ejs_v_e_1 = cse135 * wheel_m_p_3;
+    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
+    const double sled_pose_r1 = v_v * t;
+    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
+    const double hub_pose_r1 = sled_pose_r1;
+    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
+    const double cse136 = hub_pose_r1 - 1.0;
+    const double cse137 = hub_pose_r1 - 1.2;
+    const double cse138 = hub_pose_r1 - 1.5;
+    const double cse139 = hub_pose_r1 - 1.7;
+    const double tyre_road_slope = derived14_ * (((cse136) >= 0.0 ? 1.0 : 0.0) - ((cse137) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse138) >= 0.0 ? 1.0 : 0.0) - ((cse139) >= 0.0 ? 1.0 : 0.0));
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
+    const double cse140 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
+    const double tyre_normal_1 = -tyre_road_slope / cse140;
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
+    const double tyre_normal_3 = 1.0 / cse140;
+    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
+    const double cse141 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
+    const double tyre_forward_1 = tyre_normal_3 / cse141;
     // drawn_surfaces.mbg:53:7  Sf pull.s_rate: f = value
     const double pull_s_rate_f = v_v;
     // drawn_surfaces.mbg:53:7  0 pull.vsum: flows in = flows out
@@ -581,144 +622,60 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double lift_reaction_f_f_1 = lift_m3_f1_1;
     // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
     const double spin_m4_f1_1 = lift_reaction_f_f_1;
-    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
-    const double lift_reaction_f_f_3 = lift_s_rate_rate;
-    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
-    const double spin_m4_f1_3 = lift_reaction_f_f_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
-    const double der_spin_m4_f1_1 = der_lift_reaction_f_f_1;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
-    const double cse135 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse135);
-    // drawn_surfaces.mbg:52:6  Se wheel.weight: e = value
-    const double wheel_weight_e_3 = -98.10000000000001 * wheel_pose_R33;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double cse136 = std::sin(cse135);
-    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse136 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_1 = spin_m4_f2_1;
-    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
-    const double wheel_m_p_1 = 10.0 * spin_reaction_f_f_1;
-    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
-    const double spin_theta_rate_f = derived13_;
-    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
-    const double spin_reaction_t_f_2 = spin_theta_rate_f;
-    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
-    const double wheel_ejs_v_e_3 = -spin_reaction_t_f_2 * wheel_m_p_1;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = cse136;
-    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
-    const double sled_pose_r1 = v_v * t;
-    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
-    const double hub_pose_r1 = sled_pose_r1;
-    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
-    const double cse137 = hub_pose_r1 - 1.0;
-    const double cse138 = hub_pose_r1 - 1.2;
-    const double cse139 = hub_pose_r1 - 1.5;
-    const double cse140 = hub_pose_r1 - 1.7;
-    const double tyre_road_slope = derived14_ * (((cse137) >= 0.0 ? 1.0 : 0.0) - ((cse138) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse139) >= 0.0 ? 1.0 : 0.0) - ((cse140) >= 0.0 ? 1.0 : 0.0));
-    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
-    const double cse141 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
-    const double tyre_normal_1 = -tyre_road_slope / cse141;
-    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
-    const double tyre_normal_3 = 1.0 / cse141;
-    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
-    const double cse142 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
-    const double tyre_forward_1 = tyre_normal_3 / cse142;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse136 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_3 = spin_m4_f2_3;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
-    const double wheel_pose_R11 = wheel_pose_R33;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
-    const double wheel_pose_R31 = -cse136;
+    const double spin_reaction_f_f_1 = spin_m4_f1_1;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r3
     const double hub_pose_r3 = lift_s_q;
     // drawn_surfaces.mbg:56:6  signal tyre.road_height
-    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse137) - std::fmax(0.0, cse138)) - derived14_ * (std::fmax(0.0, cse139) - std::fmax(0.0, cse140));
+    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse136) - std::fmax(0.0, cse137)) - derived14_ * (std::fmax(0.0, cse138) - std::fmax(0.0, cse139));
     // drawn_surfaces.mbg:56:6  signal tyre.centre_height
-    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse141;
+    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse140;
     // drawn_surfaces.mbg:56:6  signal tyre.deflection
     const double tyre_deflection = 0.3 - tyre_centre_height;
     // drawn_surfaces.mbg:56:6  signal tyre.Fz
-    const double cse143 = wheel_pose_R11 * spin_reaction_f_f_1 + wheel_pose_R13 * spin_reaction_f_f_3;
-    const double cse144 = wheel_pose_R31 * spin_reaction_f_f_1 + wheel_pose_R33 * spin_reaction_f_f_3;
-    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * cse143 + tyre_normal_3 * cse144));
+    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * spin_reaction_f_f_1 + tyre_normal_3 * spin_reaction_f_f_3));
     // drawn_surfaces.mbg:56:6  signal tyre.Kx
     const double tyre_Kx = 20.0 * tyre_Fz;
     // drawn_surfaces.mbg:56:6  signal tyre.Fx0
-    const double cse145 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
-    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse145 + 0.5 * (cse145 - std::atan(cse145))));
+    const double cse142 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
+    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse142 + 0.5 * (cse142 - std::atan(cse142))));
     // drawn_surfaces.mbg:56:6  signal tyre.slip_angle
     const double tyre_slip_angle = std::atan(tyre_tan_alpha_q);
     // drawn_surfaces.mbg:56:6  signal tyre.Gx
-    const double cse146 = 10.0 * tyre_kappa_q;
-    const double cse147 = 12.0 * (1.0 / std::sqrt(1.0 + cse146 * cse146)) * tyre_slip_angle;
-    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse147 * cse147);
+    const double cse143 = 10.0 * tyre_kappa_q;
+    const double cse144 = 12.0 * (1.0 / std::sqrt(1.0 + cse143 * cse143)) * tyre_slip_angle;
+    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse144 * cse144);
     // drawn_surfaces.mbg:56:6  signal tyre.Fx
     const double tyre_Fx = tyre_Gx * tyre_Fx0;
     // drawn_surfaces.mbg:56:6  signal tyre.force_1
     const double tyre_force_1 = tyre_Fx * tyre_forward_1 + tyre_Fz * tyre_normal_1;
+    // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
+    const double tyre_on_wheel_f_e_1 = tyre_force_1;
+    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
+    const double spin_reaction_f_e_1 = -(tyre_on_wheel_f_e_1 - (wheel_m_e_1 + wheel_ejs_v_e_1));
+    // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
+    const double lift_reaction_f_e_1 = hub_m_e_1 + spin_reaction_f_e_1;
+    // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out
+    const double pull_reaction_f_e_1 = sled_m_e_1 + lift_reaction_f_e_1;
     // drawn_surfaces.mbg:56:6  signal tyre.forward_3
-    const double tyre_forward_3 = -tyre_normal_1 / cse142;
+    const double tyre_forward_3 = -tyre_normal_1 / cse141;
+    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
+    const double wheel_m_p_1 = 10.0 * spin_reaction_f_f_1;
+    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
+    const double wheel_ejs_v_e_3 = -cse135 * wheel_m_p_1;
     // drawn_surfaces.mbg:56:6  signal tyre.force_3
     const double tyre_force_3 = tyre_Fx * tyre_forward_3 + tyre_Fz * tyre_normal_3;
     // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
-    const double tyre_on_wheel_f_e_3 = wheel_pose_R13 * tyre_force_1 + wheel_pose_R33 * tyre_force_3;
-    // drawn_surfaces.mbg:52:6  Se wheel.weight: e = value
-    const double wheel_weight_e_1 = -98.10000000000001 * wheel_pose_R31;
-    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
-    const double wheel_m_p_3 = 10.0 * spin_reaction_f_f_3;
-    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
-    const double wheel_ejs_v_e_1 = spin_reaction_t_f_2 * wheel_m_p_3;
-    // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
-    const double tyre_on_wheel_f_e_1 = wheel_pose_R11 * tyre_force_1 + wheel_pose_R31 * tyre_force_3;
-    // drawn_surfaces.mbg:55:7  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double wheel_out1 = cse136 * (10.0 * cse136) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
-    const double cse148 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
-    const double cse149 = cse136 * derived13_;
-    const double cse150 = wheel_pose_R33 * derived13_;
-    const double cse151 = -cse149 * spin_m4_f1_1 - cse150 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
-    const double cse152 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
-    const double cse153 = cse150 * spin_m4_f1_1 - cse149 * spin_m4_f1_3 + cse136 * der_spin_m4_f1_1;
-    const double wheel_out2 = -cse136 * (-(cse148 - wheel_ejs_v_e_1) + 10.0 * cse151) + wheel_pose_R33 * (-(cse152 - wheel_ejs_v_e_3) + 10.0 * cse153);
-    // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: 1 / pivot of the joint's accelerations
-    const double hub_pivot1 = 1.0 / (200.0 + wheel_out1);
-    // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: joint acceleration as an affine function of the parent's motion
-    const double hub_accel2 = -hub_pivot1 * (1962.0 + wheel_out2);
-    // drawn_surfaces.mbg:54:7  joint acceleration of body hub from its parent's motion (articulated-body form)
-    const double der_lift_s_rate_rate = hub_accel2;
-    // drawn_surfaces.mbg:54:7  d/dt of [0 lift.vsum: flows in = flows out]
-    const double der_lift_reaction_f_f_3 = der_lift_s_rate_rate;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
-    const double der_spin_m4_f1_3 = der_lift_reaction_f_f_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_1 = cse151 - cse136 * der_spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
-    const double der_spin_reaction_f_f_1 = der_spin_m4_f2_1;
-    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
-    const double der_wheel_m_p_1 = 10.0 * der_spin_reaction_f_f_1;
-    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
-    const double wheel_m_e_1 = der_wheel_m_p_1;
-    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_1 = -(cse148 - (wheel_m_e_1 + wheel_ejs_v_e_1));
-    // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_3 = cse153 + wheel_pose_R33 * der_spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
-    const double der_spin_reaction_f_f_3 = der_spin_m4_f2_3;
-    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
-    const double der_wheel_m_p_3 = 10.0 * der_spin_reaction_f_f_3;
-    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
-    const double wheel_m_e_3 = der_wheel_m_p_3;
-    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_3 = -(cse152 - (wheel_m_e_3 + wheel_ejs_v_e_3));
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: e1 = T' e2
-    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse136 * spin_reaction_f_e_3;
-    // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
-    const double lift_reaction_f_e_1 = hub_m_e_1 + spin_m4_e1_1;
-    // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out
-    const double pull_reaction_f_e_1 = sled_m_e_1 + lift_reaction_f_e_1;
+    const double tyre_on_wheel_f_e_3 = tyre_force_3;
+    // drawn_surfaces.mbg:51:6  algebraic loop (11 unknowns), solved for der(wheel.m.p[3])
+    const double cse145 = 1962.0 - (-98.10000000000001 + tyre_on_wheel_f_e_3 - wheel_ejs_v_e_3);
+    const double der_wheel_m_p_3 = -0.05 * cse145 / 1.05;
+    // drawn_surfaces.mbg:51:6  algebraic loop (11 unknowns), solved for der(hub.m.p[3])
+    const double der_hub_m_p_3 = -cse145 - der_wheel_m_p_3;
+    // drawn_surfaces.mbg:51:6  algebraic loop (11 unknowns), solved for der(lift.reaction_f.f[3])
+    const double der_lift_reaction_f_f_3 = der_hub_m_p_3 / 200.0;
+    // drawn_surfaces.mbg:51:6  algebraic loop (11 unknowns), solved for der(lift.s_rate.rate)
+    const double der_lift_s_rate_rate = der_lift_reaction_f_f_3;
     // drawn_surfaces.mbg:55:7  d/dt of [Sf spin.theta_rate: f = value]
     const double der_spin_theta_rate_f = 0.0;
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.wsum: flows in = flows out]
@@ -732,7 +689,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  1 wheel.w: efforts in = efforts out
     const double spin_reaction_t_e_2 = -(tyre_on_wheel_t_e_2 - wheel_J_e_2);
     // drawn_surfaces.mbg:56:6  signal tyre.Vcx
-    const double tyre_Vcx = tyre_forward_1 * cse143 + tyre_forward_3 * cse144;
+    const double tyre_Vcx = tyre_forward_1 * spin_reaction_f_f_1 + tyre_forward_3 * spin_reaction_f_f_3;
     // drawn_surfaces.mbg:56:6  signal tyre.spin
     const double tyre_spin = spin_reaction_t_f_2;
     // drawn_surfaces.mbg:56:6  signal tyre.Vsx
@@ -740,13 +697,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  signal tyre.sigma_kappa
     const double tyre_sigma_kappa = std::fmax(0.003, 5.9999999999999995e-05 * tyre_Fz);
     // drawn_surfaces.mbg:56:6  Sf tyre.kappa_rate: f = value
-    const double cse154 = std::fabs(tyre_Vcx);
-    const double tyre_kappa_rate_f = (-tyre_Vsx - cse154 * tyre_kappa_q) / tyre_sigma_kappa;
+    const double cse146 = std::fabs(tyre_Vcx);
+    const double tyre_kappa_rate_f = (-tyre_Vsx - cse146 * tyre_kappa_q) / tyre_sigma_kappa;
     // drawn_surfaces.mbg:56:6  signal tyre.sigma_alpha
-    const double cse155 = tyre_Fz / 6800.0;
-    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse155 / (1.0 + cse155 * cse155)));
+    const double cse147 = tyre_Fz / 6800.0;
+    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse147 / (1.0 + cse147 * cse147)));
     // drawn_surfaces.mbg:56:6  Sf tyre.tan_alpha_rate: f = value
-    const double tyre_tan_alpha_rate_f = -cse154 * tyre_tan_alpha_q / tyre_sigma_alpha;
+    const double tyre_tan_alpha_rate_f = -cse146 * tyre_tan_alpha_q / tyre_sigma_alpha;
     // state derivatives, then the powers (when asked for)
     xdot[0] = 0.0;
     xdot[1] = 0.0;
@@ -783,7 +740,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     xdot[32] = tyre_kappa_rate_f;
     xdot[33] = tyre_tan_alpha_rate_f;
     if (rate) {
-      rate[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 + (wheel_weight_e_1 * spin_reaction_f_f_1 + wheel_weight_e_3 * spin_reaction_f_f_3) + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
+      rate[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 - 98.10000000000001 * spin_reaction_f_f_3 + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
       rate[1] = wheel_ejs_v_e_1 * spin_reaction_f_f_1 + wheel_ejs_v_e_3 * spin_reaction_f_f_3 + on_floor_cn_e * ball_p_m_p_3 + on_dome_cn_e * on_dome_cat_f2 + on_drum_cn_e * on_drum_cat_f2 + on_ridge_cn_e * on_ridge_cat_f2 + on_platform_cn_e * on_platform_cn_f;
     }
   }
@@ -821,6 +778,35 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double lift_s_q = x[31];
     const double tyre_kappa_q = x[32];
     const double tyre_tan_alpha_q = x[33];
+    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
+    const double lift_reaction_f_f_3 = lift_s_rate_rate;
+    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
+    const double spin_m4_f1_3 = lift_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
+    const double spin_reaction_f_f_3 = spin_m4_f1_3;
+    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
+    const double spin_theta_rate_f = derived13_;
+    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
+    const double spin_reaction_t_f_2 = spin_theta_rate_f;
+    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
+    const double sled_pose_r1 = v_v * t;
+    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
+    const double hub_pose_r1 = sled_pose_r1;
+    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
+    // (cseN: a subexpression several equations below share)
+    const double cse148 = hub_pose_r1 - 1.0;
+    const double cse149 = hub_pose_r1 - 1.2;
+    const double cse150 = hub_pose_r1 - 1.5;
+    const double cse151 = hub_pose_r1 - 1.7;
+    const double tyre_road_slope = derived14_ * (((cse148) >= 0.0 ? 1.0 : 0.0) - ((cse149) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse150) >= 0.0 ? 1.0 : 0.0) - ((cse151) >= 0.0 ? 1.0 : 0.0));
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
+    const double cse152 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
+    const double tyre_normal_1 = -tyre_road_slope / cse152;
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
+    const double tyre_normal_3 = 1.0 / cse152;
+    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
+    const double cse153 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
+    const double tyre_forward_1 = tyre_normal_3 / cse153;
     // drawn_surfaces.mbg:53:7  Sf pull.s_rate: f = value
     const double pull_s_rate_f = v_v;
     // drawn_surfaces.mbg:53:7  0 pull.vsum: flows in = flows out
@@ -831,67 +817,22 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double lift_reaction_f_f_1 = lift_m3_f1_1;
     // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
     const double spin_m4_f1_1 = lift_reaction_f_f_1;
-    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
-    const double lift_reaction_f_f_3 = lift_s_rate_rate;
-    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
-    const double spin_m4_f1_3 = lift_reaction_f_f_3;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
-    // (cseN: a subexpression several equations below share)
-    const double cse156 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse156);
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double cse157 = std::sin(cse156);
-    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse157 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_1 = spin_m4_f2_1;
-    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
-    const double spin_theta_rate_f = derived13_;
-    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
-    const double spin_reaction_t_f_2 = spin_theta_rate_f;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = cse157;
-    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
-    const double sled_pose_r1 = v_v * t;
-    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
-    const double hub_pose_r1 = sled_pose_r1;
-    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
-    const double cse158 = hub_pose_r1 - 1.0;
-    const double cse159 = hub_pose_r1 - 1.2;
-    const double cse160 = hub_pose_r1 - 1.5;
-    const double cse161 = hub_pose_r1 - 1.7;
-    const double tyre_road_slope = derived14_ * (((cse158) >= 0.0 ? 1.0 : 0.0) - ((cse159) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse160) >= 0.0 ? 1.0 : 0.0) - ((cse161) >= 0.0 ? 1.0 : 0.0));
-    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
-    const double cse162 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
-    const double tyre_normal_1 = -tyre_road_slope / cse162;
-    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
-    const double tyre_normal_3 = 1.0 / cse162;
-    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
-    const double cse163 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
-    const double tyre_forward_1 = tyre_normal_3 / cse163;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse157 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_3 = spin_m4_f2_3;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
-    const double wheel_pose_R11 = wheel_pose_R33;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
-    const double wheel_pose_R31 = -cse157;
+    const double spin_reaction_f_f_1 = spin_m4_f1_1;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r3
     const double hub_pose_r3 = lift_s_q;
     // drawn_surfaces.mbg:56:6  signal tyre.road_height
-    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse158) - std::fmax(0.0, cse159)) - derived14_ * (std::fmax(0.0, cse160) - std::fmax(0.0, cse161));
+    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse148) - std::fmax(0.0, cse149)) - derived14_ * (std::fmax(0.0, cse150) - std::fmax(0.0, cse151));
     // drawn_surfaces.mbg:56:6  signal tyre.centre_height
-    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse162;
+    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse152;
     // drawn_surfaces.mbg:56:6  signal tyre.deflection
     const double tyre_deflection = 0.3 - tyre_centre_height;
     // drawn_surfaces.mbg:56:6  signal tyre.Fz
-    const double cse164 = wheel_pose_R11 * spin_reaction_f_f_1 + wheel_pose_R13 * spin_reaction_f_f_3;
-    const double cse165 = wheel_pose_R31 * spin_reaction_f_f_1 + wheel_pose_R33 * spin_reaction_f_f_3;
-    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * cse164 + tyre_normal_3 * cse165));
+    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * spin_reaction_f_f_1 + tyre_normal_3 * spin_reaction_f_f_3));
     // drawn_surfaces.mbg:56:6  signal tyre.forward_3
-    const double tyre_forward_3 = -tyre_normal_1 / cse163;
+    const double tyre_forward_3 = -tyre_normal_1 / cse153;
     // drawn_surfaces.mbg:56:6  signal tyre.Vcx
-    const double tyre_Vcx = tyre_forward_1 * cse164 + tyre_forward_3 * cse165;
+    const double tyre_Vcx = tyre_forward_1 * spin_reaction_f_f_1 + tyre_forward_3 * spin_reaction_f_f_3;
     // drawn_surfaces.mbg:56:6  signal tyre.spin
     const double tyre_spin = spin_reaction_t_f_2;
     // drawn_surfaces.mbg:56:6  signal tyre.Vsx
@@ -899,13 +840,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:56:6  signal tyre.sigma_kappa
     const double tyre_sigma_kappa = std::fmax(0.003, 5.9999999999999995e-05 * tyre_Fz);
     // drawn_surfaces.mbg:56:6  Sf tyre.kappa_rate: f = value
-    const double cse166 = std::fabs(tyre_Vcx);
-    const double tyre_kappa_rate_f = (-tyre_Vsx - cse166 * tyre_kappa_q) / tyre_sigma_kappa;
+    const double cse154 = std::fabs(tyre_Vcx);
+    const double tyre_kappa_rate_f = (-tyre_Vsx - cse154 * tyre_kappa_q) / tyre_sigma_kappa;
     // drawn_surfaces.mbg:56:6  signal tyre.sigma_alpha
-    const double cse167 = tyre_Fz / 6800.0;
-    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse167 / (1.0 + cse167 * cse167)));
+    const double cse155 = tyre_Fz / 6800.0;
+    const double tyre_sigma_alpha = std::fmax(0.003, 0.6 * (2.0 * cse155 / (1.0 + cse155 * cse155)));
     // drawn_surfaces.mbg:56:6  Sf tyre.tan_alpha_rate: f = value
-    const double tyre_tan_alpha_rate_f = -cse166 * tyre_tan_alpha_q / tyre_sigma_alpha;
+    const double tyre_tan_alpha_rate_f = -cse154 * tyre_tan_alpha_q / tyre_sigma_alpha;
     // position derivatives
     xdot[3] = ball_p_m_p_1;
     xdot[4] = ball_p_m_p_2;
@@ -1196,20 +1137,10 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double lift_s_q = x[31];
     // drawn_surfaces.mbg:36:7  signal platform.pose.r3
     const double platform_pose_r3 = V * t;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
-    // (cseN: a subexpression several equations below share)
-    const double cse168 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse168);
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = std::sin(cse168);
     // drawn_surfaces.mbg:53:7  signal sled.pose.r1
     const double sled_pose_r1 = v_v * t;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r1
     const double hub_pose_r1 = sled_pose_r1;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
-    const double wheel_pose_R11 = wheel_pose_R33;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
-    const double wheel_pose_R31 = -wheel_pose_R13;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r3
     const double hub_pose_r3 = lift_s_q;
     // 12 per body (origin, rotation row-major), then every modal coordinate
@@ -1312,15 +1243,19 @@ class drawn_surfaces_model final : public mbgrt::Model {
     out[96] = hub_pose_r1;
     out[97] = -4.2;
     out[98] = hub_pose_r3;
-    out[99] = wheel_pose_R11;
+    // (cseN: a subexpression several equations below share)
+    const double cse156 = derived13_ * t;
+    const double cse157 = std::cos(cse156);
+    out[99] = cse157;
     out[100] = 0.0;
-    out[101] = wheel_pose_R13;
+    const double cse158 = std::sin(cse156);
+    out[101] = cse158;
     out[102] = 0.0;
     out[103] = 1.0;
     out[104] = 0.0;
-    out[105] = wheel_pose_R31;
+    out[105] = -cse158;
     out[106] = 0.0;
-    out[107] = wheel_pose_R33;
+    out[107] = cse157;
     out[108] = 0.0;
     out[109] = 0.0;
     out[110] = 0.0;
@@ -1422,13 +1357,13 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:30:6  algebraic loop (2 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_p.m.e[3], on_floor.cn.e)
     // (cseN: a subexpression several equations below share)
-    const double cse169 = 1.0 - mode_[0];
-    const double cse170 = ball_p_r_q_3 - on_floor_radius;
+    const double cse159 = 1.0 - mode_[0];
+    const double cse160 = ball_p_r_q_3 - on_floor_radius;
     double blk1_a[4] = {
         -1.0, -1.0,
-        mode_[0], cse169,
+        mode_[0], cse159,
     };
-    double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse170 - contact_bias_[0])};
+    double blk1_x[2] = {9.81, -mode_[0] * (2.0 * on_floor_stabilisation * ball_p_m_p_3 + on_floor_stabilisation * on_floor_stabilisation * cse160 - contact_bias_[0])};
     static const char* const blk1_rows[] = {"ball_p.m.e[3]", "on_floor.cn.e"};
     int blk1_dependent[2];
     double blk1_closest;
@@ -1436,39 +1371,39 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 2 x 2 system of the constraint multipliers", blk1_rank, 2, blk1_dependent, blk1_rows, blk1_closest, false);
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
-    const double cse171 = ball_s_r_q_1 - 1.5;
-    const double cse172 = cse171 + cse171;
-    const double cse173 = std::sqrt(cse171 * cse171 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double cse174 = 2.0 * cse173;
-    const double cse175 = cse172 / cse174;
-    const double cse176 = ball_s_r_q_2 + ball_s_r_q_2;
-    const double cse177 = cse176 / cse174;
-    const double cse178 = ball_s_r_q_3 + ball_s_r_q_3;
-    const double cse179 = cse178 / cse174;
-    const double on_dome_cat_f2 = cse175 * ball_s_m_p_1 + cse177 * ball_s_m_p_2 + cse179 * ball_s_m_p_3;
+    const double cse161 = ball_s_r_q_1 - 1.5;
+    const double cse162 = cse161 + cse161;
+    const double cse163 = std::sqrt(cse161 * cse161 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double cse164 = 2.0 * cse163;
+    const double cse165 = cse162 / cse164;
+    const double cse166 = ball_s_r_q_2 + ball_s_r_q_2;
+    const double cse167 = cse166 / cse164;
+    const double cse168 = ball_s_r_q_3 + ball_s_r_q_3;
+    const double cse169 = cse168 / cse164;
+    const double on_dome_cat_f2 = cse165 * ball_s_m_p_1 + cse167 * ball_s_m_p_2 + cse169 * ball_s_m_p_3;
     // drawn_surfaces.mbg:31:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_s.m.e[1], ball_s.m.e[2], ball_s.m.e[3], on_dome.cat.e1[1], on_dome.cat.e1[2], on_dome.cat.e1[3], on_dome.cn.e, der(on_dome.cat.f2))
-    const double cse180 = -cse175;
-    const double cse181 = -cse177;
-    const double cse182 = -cse179;
-    const double cse183 = 1.0 - mode_[1];
-    const double cse184 = cse173 - on_dome_surface_radius - on_dome_radius;
-    const double cse185 = 4.0 * cse173;
-    const double cse186 = 2.0 * cse175;
-    const double cse187 = (cse174*cse174);
-    const double cse188 = 2.0 * cse177;
-    const double cse189 = 2.0 * cse179;
+    const double cse170 = -cse165;
+    const double cse171 = -cse167;
+    const double cse172 = -cse169;
+    const double cse173 = 1.0 - mode_[1];
+    const double cse174 = cse163 - on_dome_surface_radius - on_dome_radius;
+    const double cse175 = 4.0 * cse163;
+    const double cse176 = 2.0 * cse165;
+    const double cse177 = (cse164*cse164);
+    const double cse178 = 2.0 * cse167;
+    const double cse179 = 2.0 * cse169;
     double blk2_a[64] = {
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse180, 0.0,
-        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse181, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse182, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse183, mode_[1],
-        cse180, cse181, cse182, 0.0, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse170, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse171, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse172, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0, cse173, mode_[1],
+        cse170, cse171, cse172, 0.0, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse184 - contact_bias_[1]), ((cse185 - cse172 * cse186) / cse187 * ball_s_m_p_1 - cse176 * cse186 / cse187 * ball_s_m_p_2 - cse178 * cse186 / cse187 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse172 * cse188 / cse187 * ball_s_m_p_1 + (cse185 - cse176 * cse188) / cse187 * ball_s_m_p_2 - cse178 * cse188 / cse187 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse172 * cse189 / cse187 * ball_s_m_p_1 - cse176 * cse189 / cse187 * ball_s_m_p_2 + (cse185 - cse178 * cse189) / cse187 * ball_s_m_p_3) * ball_s_m_p_3};
+    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * cse174 - contact_bias_[1]), ((cse175 - cse162 * cse176) / cse177 * ball_s_m_p_1 - cse166 * cse176 / cse177 * ball_s_m_p_2 - cse168 * cse176 / cse177 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse162 * cse178 / cse177 * ball_s_m_p_1 + (cse175 - cse166 * cse178) / cse177 * ball_s_m_p_2 - cse168 * cse178 / cse177 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse162 * cse179 / cse177 * ball_s_m_p_1 - cse166 * cse179 / cse177 * ball_s_m_p_2 + (cse175 - cse168 * cse179) / cse177 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
     double blk2_closest;
@@ -1476,33 +1411,33 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse190 = ball_c_r_q_1 - 3.0;
-    const double cse191 = cse190 + cse190;
-    const double cse192 = std::sqrt(cse190 * cse190 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double cse193 = 2.0 * cse192;
-    const double cse194 = cse191 / cse193;
-    const double cse195 = ball_c_r_q_3 + ball_c_r_q_3;
-    const double cse196 = cse195 / cse193;
-    const double on_drum_cat_f2 = cse194 * ball_c_m_p_1 + cse196 * ball_c_m_p_3;
+    const double cse180 = ball_c_r_q_1 - 3.0;
+    const double cse181 = cse180 + cse180;
+    const double cse182 = std::sqrt(cse180 * cse180 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double cse183 = 2.0 * cse182;
+    const double cse184 = cse181 / cse183;
+    const double cse185 = ball_c_r_q_3 + ball_c_r_q_3;
+    const double cse186 = cse185 / cse183;
+    const double on_drum_cat_f2 = cse184 * ball_c_m_p_1 + cse186 * ball_c_m_p_3;
     // drawn_surfaces.mbg:32:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_c.m.e[1], ball_c.m.e[3], on_drum.cat.e1[1], on_drum.cat.e1[3], on_drum.cn.e, der(on_drum.cat.f2))
-    const double cse197 = -cse194;
-    const double cse198 = -cse196;
-    const double cse199 = 1.0 - mode_[2];
-    const double cse200 = cse192 - on_drum_surface_radius - on_drum_radius;
-    const double cse201 = 4.0 * cse192;
-    const double cse202 = 2.0 * cse194;
-    const double cse203 = (cse193*cse193);
-    const double cse204 = 2.0 * cse196;
+    const double cse187 = -cse184;
+    const double cse188 = -cse186;
+    const double cse189 = 1.0 - mode_[2];
+    const double cse190 = cse182 - on_drum_surface_radius - on_drum_radius;
+    const double cse191 = 4.0 * cse182;
+    const double cse192 = 2.0 * cse184;
+    const double cse193 = (cse183*cse183);
+    const double cse194 = 2.0 * cse186;
     double blk3_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse197, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse198, 0.0,
-        0.0, 0.0, 0.0, 0.0, cse199, mode_[2],
-        cse197, cse198, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 1.0, 0.0, cse187, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse188, 0.0,
+        0.0, 0.0, 0.0, 0.0, cse189, mode_[2],
+        cse187, cse188, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse200 - contact_bias_[2]), ((cse201 - cse191 * cse202) / cse203 * ball_c_m_p_1 - cse195 * cse202 / cse203 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse191 * cse204 / cse203 * ball_c_m_p_1 + (cse201 - cse195 * cse204) / cse203 * ball_c_m_p_3) * ball_c_m_p_3};
+    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * cse190 - contact_bias_[2]), ((cse191 - cse181 * cse192) / cse193 * ball_c_m_p_1 - cse185 * cse192 / cse193 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse181 * cse194 / cse193 * ball_c_m_p_1 + (cse191 - cse185 * cse194) / cse193 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
     double blk3_closest;
@@ -1510,121 +1445,121 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse205 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse206 = ball_r_r_q_1 - 4.5;
-    const double cse207 = cse206 - 0.3;
-    const double cse208 = 0.2 * cse207 / 0.2;
-    const double cse209 = std::fmax(cse205, cse208);
-    const double cse210 = ball_r_r_q_3 - 0.2;
-    const double cse211 = 0.3 * cse210 / 0.3;
-    const double cse212 = std::fmax(cse209, cse211);
-    const double cse213 = (-0.2 * cse206 + cse210 * derived3_) / derived4_;
-    const double cse214 = std::fmax(cse212, cse213);
-    const double cse215 = ((cse214) >= 0.0 ? 1.0 : 0.0);
-    const double cse216 = (-cse206 * derived3_ - 0.2 * cse210) / derived5_;
-    const double cse217 = std::fmax(0.0, cse216);
-    const double cse218 = std::fmin(1.0, cse217);
-    const double cse219 = cse206 + cse218 * derived3_;
-    const double cse220 = cse210 + 0.2 * cse218;
-    const double cse221 = std::sqrt(cse219 * cse219 + cse220 * cse220);
-    const double cse222 = cse206 + derived3_;
-    const double cse223 = cse222 * derived1_ / derived6_;
-    const double cse224 = std::fmax(0.0, cse223);
-    const double cse225 = cse222 - std::fmin(1.0, cse224) * derived1_;
-    const double cse226 = std::sqrt(cse225 * cse225 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse227 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
-    const double cse228 = std::fmax(0.0, cse227);
-    const double cse229 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse228);
-    const double cse230 = std::sqrt(cse207 * cse207 + cse229 * cse229);
-    const double cse231 = std::fmin(cse226, cse230);
-    const double cse232 = 0.3 * cse207 / 0.09;
-    const double cse233 = std::fmax(0.0, -cse232);
-    const double cse234 = cse207 + 0.3 * std::fmin(1.0, cse233);
-    const double cse235 = std::sqrt(cse234 * cse234 + cse210 * cse210);
-    const double cse236 = std::fmin(cse231, cse235);
-    const double cse237 = ((cse221 - cse236) >= 0.0 ? 1.0 : 0.0);
-    const double cse238 = ((cse235 - cse231) >= 0.0 ? 1.0 : 0.0);
-    const double cse239 = ((cse230 - cse226) >= 0.0 ? 1.0 : 0.0);
-    const double cse240 = 1.0 - (1.0 - ((cse224 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse223) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse241 = cse240 * cse225 + cse225 * cse240;
-    const double cse242 = 2.0 * cse226;
-    const double cse243 = cse241 / cse242;
-    const double cse244 = 1.0 - cse239;
-    const double cse245 = cse207 + cse207;
-    const double cse246 = 2.0 * cse230;
-    const double cse247 = cse245 / cse246;
-    const double cse248 = 1.0 - cse238;
-    const double cse249 = 1.0 - 0.3 * ((1.0 - ((cse233 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse232) >= 0.0 ? 1.0 : 0.0))));
-    const double cse250 = cse249 * cse234 + cse234 * cse249;
-    const double cse251 = 2.0 * cse235;
-    const double cse252 = cse250 / cse251;
-    const double cse253 = 1.0 - cse237;
-    const double cse254 = 1.0 - ((cse217 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse255 = 1.0 - ((-cse216) >= 0.0 ? 1.0 : 0.0);
-    const double cse256 = cse254 * (cse255 * derived8_);
-    const double cse257 = 1.0 - cse256 * derived3_;
-    const double cse258 = 0.2 * cse256;
-    const double cse259 = cse257 * cse219 + cse219 * cse257 + (-cse258 * cse220 - cse220 * cse258);
-    const double cse260 = 2.0 * cse221;
-    const double cse261 = cse259 / cse260;
-    const double cse262 = 1.0 - cse215;
-    const double cse263 = ((cse212 - cse213) >= 0.0 ? 1.0 : 0.0);
-    const double cse264 = ((cse209 - cse211) >= 0.0 ? 1.0 : 0.0);
-    const double cse265 = ((cse205 - cse208) >= 0.0 ? 1.0 : 0.0);
-    const double cse266 = 1.0 - cse263;
-    const double cse267 = cse215 * (cse237 * (cse238 * (cse239 * cse243 + cse244 * cse247) + cse248 * cse252) + cse253 * cse261) + cse262 * (cse263 * (cse264 * (1.0 - cse265)) - cse266 * derived9_);
-    const double cse268 = ball_r_r_q_3 + ball_r_r_q_3;
-    const double cse269 = cse268 / cse242;
-    const double cse270 = 1.0 - 0.2 * ((1.0 - ((cse228 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse227) >= 0.0 ? 1.0 : 0.0))));
-    const double cse271 = cse270 * cse229 + cse229 * cse270;
-    const double cse272 = cse271 / cse246;
-    const double cse273 = cse210 + cse210;
-    const double cse274 = cse273 / cse251;
-    const double cse275 = cse254 * (cse255 * derived10_);
-    const double cse276 = cse275 * derived3_;
-    const double cse277 = 1.0 - 0.2 * cse275;
-    const double cse278 = -cse276 * cse219 - cse219 * cse276 + (cse277 * cse220 + cse220 * cse277);
-    const double cse279 = cse278 / cse260;
-    const double cse280 = cse215 * (cse237 * (cse238 * (cse239 * cse269 + cse244 * cse272) + cse248 * cse274) + cse253 * cse279) + cse262 * (cse263 * (-cse264 * (cse265 * derived11_) + (1.0 - cse264)) + cse266 * derived12_);
-    const double on_ridge_cat_f2 = cse267 * ball_r_m_p_1 + cse280 * ball_r_m_p_3;
+    const double cse195 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse196 = ball_r_r_q_1 - 4.5;
+    const double cse197 = cse196 - 0.3;
+    const double cse198 = 0.2 * cse197 / 0.2;
+    const double cse199 = std::fmax(cse195, cse198);
+    const double cse200 = ball_r_r_q_3 - 0.2;
+    const double cse201 = 0.3 * cse200 / 0.3;
+    const double cse202 = std::fmax(cse199, cse201);
+    const double cse203 = (-0.2 * cse196 + cse200 * derived3_) / derived4_;
+    const double cse204 = std::fmax(cse202, cse203);
+    const double cse205 = ((cse204) >= 0.0 ? 1.0 : 0.0);
+    const double cse206 = (-cse196 * derived3_ - 0.2 * cse200) / derived5_;
+    const double cse207 = std::fmax(0.0, cse206);
+    const double cse208 = std::fmin(1.0, cse207);
+    const double cse209 = cse196 + cse208 * derived3_;
+    const double cse210 = cse200 + 0.2 * cse208;
+    const double cse211 = std::sqrt(cse209 * cse209 + cse210 * cse210);
+    const double cse212 = cse196 + derived3_;
+    const double cse213 = cse212 * derived1_ / derived6_;
+    const double cse214 = std::fmax(0.0, cse213);
+    const double cse215 = cse212 - std::fmin(1.0, cse214) * derived1_;
+    const double cse216 = std::sqrt(cse215 * cse215 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse217 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse218 = std::fmax(0.0, cse217);
+    const double cse219 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse218);
+    const double cse220 = std::sqrt(cse197 * cse197 + cse219 * cse219);
+    const double cse221 = std::fmin(cse216, cse220);
+    const double cse222 = 0.3 * cse197 / 0.09;
+    const double cse223 = std::fmax(0.0, -cse222);
+    const double cse224 = cse197 + 0.3 * std::fmin(1.0, cse223);
+    const double cse225 = std::sqrt(cse224 * cse224 + cse200 * cse200);
+    const double cse226 = std::fmin(cse221, cse225);
+    const double cse227 = ((cse211 - cse226) >= 0.0 ? 1.0 : 0.0);
+    const double cse228 = ((cse225 - cse221) >= 0.0 ? 1.0 : 0.0);
+    const double cse229 = ((cse220 - cse216) >= 0.0 ? 1.0 : 0.0);
+    const double cse230 = 1.0 - (1.0 - ((cse214 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse213) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse231 = cse230 * cse215 + cse215 * cse230;
+    const double cse232 = 2.0 * cse216;
+    const double cse233 = cse231 / cse232;
+    const double cse234 = 1.0 - cse229;
+    const double cse235 = cse197 + cse197;
+    const double cse236 = 2.0 * cse220;
+    const double cse237 = cse235 / cse236;
+    const double cse238 = 1.0 - cse228;
+    const double cse239 = 1.0 - 0.3 * ((1.0 - ((cse223 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse222) >= 0.0 ? 1.0 : 0.0))));
+    const double cse240 = cse239 * cse224 + cse224 * cse239;
+    const double cse241 = 2.0 * cse225;
+    const double cse242 = cse240 / cse241;
+    const double cse243 = 1.0 - cse227;
+    const double cse244 = 1.0 - ((cse207 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse245 = 1.0 - ((-cse206) >= 0.0 ? 1.0 : 0.0);
+    const double cse246 = cse244 * (cse245 * derived8_);
+    const double cse247 = 1.0 - cse246 * derived3_;
+    const double cse248 = 0.2 * cse246;
+    const double cse249 = cse247 * cse209 + cse209 * cse247 + (-cse248 * cse210 - cse210 * cse248);
+    const double cse250 = 2.0 * cse211;
+    const double cse251 = cse249 / cse250;
+    const double cse252 = 1.0 - cse205;
+    const double cse253 = ((cse202 - cse203) >= 0.0 ? 1.0 : 0.0);
+    const double cse254 = ((cse199 - cse201) >= 0.0 ? 1.0 : 0.0);
+    const double cse255 = ((cse195 - cse198) >= 0.0 ? 1.0 : 0.0);
+    const double cse256 = 1.0 - cse253;
+    const double cse257 = cse205 * (cse227 * (cse228 * (cse229 * cse233 + cse234 * cse237) + cse238 * cse242) + cse243 * cse251) + cse252 * (cse253 * (cse254 * (1.0 - cse255)) - cse256 * derived9_);
+    const double cse258 = ball_r_r_q_3 + ball_r_r_q_3;
+    const double cse259 = cse258 / cse232;
+    const double cse260 = 1.0 - 0.2 * ((1.0 - ((cse218 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse217) >= 0.0 ? 1.0 : 0.0))));
+    const double cse261 = cse260 * cse219 + cse219 * cse260;
+    const double cse262 = cse261 / cse236;
+    const double cse263 = cse200 + cse200;
+    const double cse264 = cse263 / cse241;
+    const double cse265 = cse244 * (cse245 * derived10_);
+    const double cse266 = cse265 * derived3_;
+    const double cse267 = 1.0 - 0.2 * cse265;
+    const double cse268 = -cse266 * cse209 - cse209 * cse266 + (cse267 * cse210 + cse210 * cse267);
+    const double cse269 = cse268 / cse250;
+    const double cse270 = cse205 * (cse227 * (cse228 * (cse229 * cse259 + cse234 * cse262) + cse238 * cse264) + cse243 * cse269) + cse252 * (cse253 * (-cse254 * (cse255 * derived11_) + (1.0 - cse254)) + cse256 * derived12_);
+    const double on_ridge_cat_f2 = cse257 * ball_r_m_p_1 + cse270 * ball_r_m_p_3;
     // drawn_surfaces.mbg:33:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_r.m.e[1], ball_r.m.e[3], on_ridge.cat.e1[1], on_ridge.cat.e1[3], on_ridge.cn.e, der(on_ridge.cat.f2))
-    const double cse281 = -cse267;
-    const double cse282 = -cse280;
-    const double cse283 = 1.0 - mode_[3];
-    const double cse284 = cse215 * std::fmin(cse236, cse221) + cse262 * cse214 - on_ridge_radius;
-    const double cse285 = cse240 * cse240;
-    const double cse286 = 2.0 * cse243;
-    const double cse287 = (cse242*cse242);
-    const double cse288 = 2.0 * cse247;
-    const double cse289 = (cse246*cse246);
-    const double cse290 = cse249 * cse249;
-    const double cse291 = 2.0 * cse252;
-    const double cse292 = (cse251*cse251);
-    const double cse293 = cse257 * cse257;
-    const double cse294 = cse258 * cse258;
-    const double cse295 = 2.0 * cse261;
-    const double cse296 = (cse260*cse260);
-    const double cse297 = cse276 * cse257;
-    const double cse298 = cse257 * cse276;
-    const double cse299 = cse277 * cse258;
-    const double cse300 = cse258 * cse277;
-    const double cse301 = 2.0 * cse269;
-    const double cse302 = 2.0 * cse272;
-    const double cse303 = 2.0 * cse274;
-    const double cse304 = 2.0 * cse279;
-    const double cse305 = cse270 * cse270;
-    const double cse306 = cse276 * cse276;
-    const double cse307 = cse277 * cse277;
+    const double cse271 = -cse257;
+    const double cse272 = -cse270;
+    const double cse273 = 1.0 - mode_[3];
+    const double cse274 = cse205 * std::fmin(cse226, cse211) + cse252 * cse204 - on_ridge_radius;
+    const double cse275 = cse230 * cse230;
+    const double cse276 = 2.0 * cse233;
+    const double cse277 = (cse232*cse232);
+    const double cse278 = 2.0 * cse237;
+    const double cse279 = (cse236*cse236);
+    const double cse280 = cse239 * cse239;
+    const double cse281 = 2.0 * cse242;
+    const double cse282 = (cse241*cse241);
+    const double cse283 = cse247 * cse247;
+    const double cse284 = cse248 * cse248;
+    const double cse285 = 2.0 * cse251;
+    const double cse286 = (cse250*cse250);
+    const double cse287 = cse266 * cse247;
+    const double cse288 = cse247 * cse266;
+    const double cse289 = cse267 * cse248;
+    const double cse290 = cse248 * cse267;
+    const double cse291 = 2.0 * cse259;
+    const double cse292 = 2.0 * cse262;
+    const double cse293 = 2.0 * cse264;
+    const double cse294 = 2.0 * cse269;
+    const double cse295 = cse260 * cse260;
+    const double cse296 = cse266 * cse266;
+    const double cse297 = cse267 * cse267;
     double blk4_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse281, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse282, 0.0,
-        0.0, 0.0, 0.0, 0.0, cse283, mode_[3],
-        cse281, cse282, 0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 1.0, 0.0, cse271, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse272, 0.0,
+        0.0, 0.0, 0.0, 0.0, cse273, mode_[3],
+        cse271, cse272, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse284 - contact_bias_[3]), (cse215 * (cse237 * (cse238 * (cse239 * (((cse285 + cse285) * cse242 - cse241 * cse286) / cse287) + cse244 * ((4.0 * cse230 - cse245 * cse288) / cse289)) + cse248 * (((cse290 + cse290) * cse251 - cse250 * cse291) / cse292)) + cse253 * (((cse293 + cse293 + (cse294 + cse294)) * cse260 - cse259 * cse295) / cse296)) * ball_r_m_p_1 + cse215 * (cse237 * (cse238 * (-cse239 * (cse268 * cse286 / cse287) - cse244 * (cse271 * cse288 / cse289)) - cse248 * (cse273 * cse291 / cse292)) + cse253 * (((-cse297 - cse298 + (-cse299 - cse300)) * cse260 - cse278 * cse295) / cse296)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse215 * (cse237 * (cse238 * (-cse239 * (cse241 * cse301 / cse287) - cse244 * (cse245 * cse302 / cse289)) - cse248 * (cse250 * cse303 / cse292)) + cse253 * (((-cse298 - cse297 + (-cse300 - cse299)) * cse260 - cse259 * cse304) / cse296)) * ball_r_m_p_1 + cse215 * (cse237 * (cse238 * (cse239 * ((4.0 * cse226 - cse268 * cse301) / cse287) + cse244 * (((cse305 + cse305) * cse246 - cse271 * cse302) / cse289)) + cse248 * ((4.0 * cse235 - cse273 * cse303) / cse292)) + cse253 * (((cse306 + cse306 + (cse307 + cse307)) * cse260 - cse278 * cse304) / cse296)) * ball_r_m_p_3) * ball_r_m_p_3};
+    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * cse274 - contact_bias_[3]), (cse205 * (cse227 * (cse228 * (cse229 * (((cse275 + cse275) * cse232 - cse231 * cse276) / cse277) + cse234 * ((4.0 * cse220 - cse235 * cse278) / cse279)) + cse238 * (((cse280 + cse280) * cse241 - cse240 * cse281) / cse282)) + cse243 * (((cse283 + cse283 + (cse284 + cse284)) * cse250 - cse249 * cse285) / cse286)) * ball_r_m_p_1 + cse205 * (cse227 * (cse228 * (-cse229 * (cse258 * cse276 / cse277) - cse234 * (cse261 * cse278 / cse279)) - cse238 * (cse263 * cse281 / cse282)) + cse243 * (((-cse287 - cse288 + (-cse289 - cse290)) * cse250 - cse268 * cse285) / cse286)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse205 * (cse227 * (cse228 * (-cse229 * (cse231 * cse291 / cse277) - cse234 * (cse235 * cse292 / cse279)) - cse238 * (cse240 * cse293 / cse282)) + cse243 * (((-cse288 - cse287 + (-cse290 - cse289)) * cse250 - cse249 * cse294) / cse286)) * ball_r_m_p_1 + cse205 * (cse227 * (cse228 * (cse229 * ((4.0 * cse216 - cse258 * cse291) / cse277) + cse234 * (((cse295 + cse295) * cse236 - cse261 * cse292) / cse279)) + cse238 * ((4.0 * cse225 - cse263 * cse293) / cse282)) + cse243 * (((cse296 + cse296 + (cse297 + cse297)) * cse250 - cse268 * cse294) / cse286)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
     double blk4_closest;
@@ -1651,16 +1586,16 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double der_on_platform_cbt_f2 = -der_rise_reaction_f_f_3;
     // drawn_surfaces.mbg:34:6  algebraic loop (5 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_m.m.e[3], on_platform.cat.e1[3], on_platform.cn.e, der(on_platform.cat.f2), der(on_platform.cn.f))
-    const double cse308 = 1.0 - mode_[4];
-    const double cse309 = ball_m_r_q_3 - platform_pose_r3 - on_platform_radius;
+    const double cse298 = 1.0 - mode_[4];
+    const double cse299 = ball_m_r_q_3 - platform_pose_r3 - on_platform_radius;
     double blk5_a[25] = {
         -1.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 1.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, cse308, 0.0, mode_[4],
+        0.0, 0.0, cse298, 0.0, mode_[4],
         -1.0, 0.0, 0.0, 1.0, 0.0,
         0.0, 0.0, 0.0, -1.0, 1.0,
     };
-    double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse309 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
+    double blk5_x[5] = {9.81, 0.0, -mode_[4] * (2.0 * on_platform_stabilisation * on_platform_cn_f + on_platform_stabilisation * on_platform_stabilisation * cse299 - contact_bias_[4]), 0.0, der_on_platform_cbt_f2};
     static const char* const blk5_rows[] = {"ball_m.m.e[3]", "on_platform.cat.e1[3]", "on_platform.cn.e", "der(on_platform.cat.f2)", "der(on_platform.cn.f)"};
     int blk5_dependent[5];
     double blk5_closest;
@@ -1668,11 +1603,11 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 5 x 5 system of the constraint multipliers", blk5_rank, 5, blk5_dependent, blk5_rows, blk5_closest, false);
     const double on_platform_cn_e = blk5_x[2];
     // zero-crossing functions, in event order
-    g[0] = -mode_[0] * on_floor_cn_e + cse169 * cse170;
-    g[1] = -mode_[1] * on_dome_cn_e + cse183 * cse184;
-    g[2] = -mode_[2] * on_drum_cn_e + cse199 * cse200;
-    g[3] = -mode_[3] * on_ridge_cn_e + cse283 * cse284;
-    g[4] = -mode_[4] * on_platform_cn_e + cse308 * cse309;
+    g[0] = -mode_[0] * on_floor_cn_e + cse159 * cse160;
+    g[1] = -mode_[1] * on_dome_cn_e + cse173 * cse174;
+    g[2] = -mode_[2] * on_drum_cn_e + cse189 * cse190;
+    g[3] = -mode_[3] * on_ridge_cn_e + cse273 * cse274;
+    g[4] = -mode_[4] * on_platform_cn_e + cse298 * cse299;
   }
 
   // EVENTS: the model's discontinuities, each a step held as a mode between the zero crossings of its argument.
@@ -1739,71 +1674,71 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double ball_m_m_p_3 = x[26];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse310 = ball_s_r_q_1 - 1.5;
-    const double cse311 = 2.0 * std::sqrt(cse310 * cse310 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double on_dome_cat_f2 = (cse310 + cse310) / cse311 * ball_s_m_p_1 + (ball_s_r_q_2 + ball_s_r_q_2) / cse311 * ball_s_m_p_2 + (ball_s_r_q_3 + ball_s_r_q_3) / cse311 * ball_s_m_p_3;
+    const double cse300 = ball_s_r_q_1 - 1.5;
+    const double cse301 = 2.0 * std::sqrt(cse300 * cse300 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double on_dome_cat_f2 = (cse300 + cse300) / cse301 * ball_s_m_p_1 + (ball_s_r_q_2 + ball_s_r_q_2) / cse301 * ball_s_m_p_2 + (ball_s_r_q_3 + ball_s_r_q_3) / cse301 * ball_s_m_p_3;
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse312 = ball_c_r_q_1 - 3.0;
-    const double cse313 = 2.0 * std::sqrt(cse312 * cse312 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double on_drum_cat_f2 = (cse312 + cse312) / cse313 * ball_c_m_p_1 + (ball_c_r_q_3 + ball_c_r_q_3) / cse313 * ball_c_m_p_3;
+    const double cse302 = ball_c_r_q_1 - 3.0;
+    const double cse303 = 2.0 * std::sqrt(cse302 * cse302 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double on_drum_cat_f2 = (cse302 + cse302) / cse303 * ball_c_m_p_1 + (ball_c_r_q_3 + ball_c_r_q_3) / cse303 * ball_c_m_p_3;
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse314 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse315 = ball_r_r_q_1 - 4.5;
-    const double cse316 = cse315 - 0.3;
-    const double cse317 = 0.2 * cse316 / 0.2;
-    const double cse318 = std::fmax(cse314, cse317);
-    const double cse319 = ball_r_r_q_3 - 0.2;
-    const double cse320 = 0.3 * cse319 / 0.3;
-    const double cse321 = std::fmax(cse318, cse320);
-    const double cse322 = (-0.2 * cse315 + cse319 * derived3_) / derived4_;
-    const double cse323 = ((std::fmax(cse321, cse322)) >= 0.0 ? 1.0 : 0.0);
-    const double cse324 = (-cse315 * derived3_ - 0.2 * cse319) / derived5_;
-    const double cse325 = std::fmax(0.0, cse324);
-    const double cse326 = std::fmin(1.0, cse325);
-    const double cse327 = cse315 + cse326 * derived3_;
-    const double cse328 = cse319 + 0.2 * cse326;
-    const double cse329 = std::sqrt(cse327 * cse327 + cse328 * cse328);
-    const double cse330 = cse315 + derived3_;
-    const double cse331 = cse330 * derived1_ / derived6_;
-    const double cse332 = std::fmax(0.0, cse331);
-    const double cse333 = cse330 - std::fmin(1.0, cse332) * derived1_;
-    const double cse334 = std::sqrt(cse333 * cse333 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse335 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
-    const double cse336 = std::fmax(0.0, cse335);
-    const double cse337 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse336);
-    const double cse338 = std::sqrt(cse316 * cse316 + cse337 * cse337);
-    const double cse339 = std::fmin(cse334, cse338);
-    const double cse340 = 0.3 * cse316 / 0.09;
-    const double cse341 = std::fmax(0.0, -cse340);
-    const double cse342 = cse316 + 0.3 * std::fmin(1.0, cse341);
-    const double cse343 = std::sqrt(cse342 * cse342 + cse319 * cse319);
-    const double cse344 = ((cse329 - std::fmin(cse339, cse343)) >= 0.0 ? 1.0 : 0.0);
-    const double cse345 = ((cse343 - cse339) >= 0.0 ? 1.0 : 0.0);
-    const double cse346 = ((cse338 - cse334) >= 0.0 ? 1.0 : 0.0);
-    const double cse347 = 1.0 - (1.0 - ((cse332 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse331) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse348 = 2.0 * cse334;
-    const double cse349 = 1.0 - cse346;
-    const double cse350 = 2.0 * cse338;
-    const double cse351 = 1.0 - cse345;
-    const double cse352 = 1.0 - 0.3 * ((1.0 - ((cse341 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse340) >= 0.0 ? 1.0 : 0.0))));
-    const double cse353 = 2.0 * cse343;
-    const double cse354 = 1.0 - cse344;
-    const double cse355 = 1.0 - ((cse325 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse356 = 1.0 - ((-cse324) >= 0.0 ? 1.0 : 0.0);
-    const double cse357 = cse355 * (cse356 * derived8_);
-    const double cse358 = 1.0 - cse357 * derived3_;
-    const double cse359 = 0.2 * cse357;
-    const double cse360 = 2.0 * cse329;
-    const double cse361 = 1.0 - cse323;
-    const double cse362 = ((cse321 - cse322) >= 0.0 ? 1.0 : 0.0);
-    const double cse363 = ((cse318 - cse320) >= 0.0 ? 1.0 : 0.0);
-    const double cse364 = ((cse314 - cse317) >= 0.0 ? 1.0 : 0.0);
-    const double cse365 = 1.0 - cse362;
-    const double cse366 = 1.0 - 0.2 * ((1.0 - ((cse336 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse335) >= 0.0 ? 1.0 : 0.0))));
-    const double cse367 = cse355 * (cse356 * derived10_);
-    const double cse368 = cse367 * derived3_;
-    const double cse369 = 1.0 - 0.2 * cse367;
-    const double on_ridge_cat_f2 = (cse323 * (cse344 * (cse345 * (cse346 * ((cse347 * cse333 + cse333 * cse347) / cse348) + cse349 * ((cse316 + cse316) / cse350)) + cse351 * ((cse352 * cse342 + cse342 * cse352) / cse353)) + cse354 * ((cse358 * cse327 + cse327 * cse358 + (-cse359 * cse328 - cse328 * cse359)) / cse360)) + cse361 * (cse362 * (cse363 * (1.0 - cse364)) - cse365 * derived9_)) * ball_r_m_p_1 + (cse323 * (cse344 * (cse345 * (cse346 * ((ball_r_r_q_3 + ball_r_r_q_3) / cse348) + cse349 * ((cse366 * cse337 + cse337 * cse366) / cse350)) + cse351 * ((cse319 + cse319) / cse353)) + cse354 * ((-cse368 * cse327 - cse327 * cse368 + (cse369 * cse328 + cse328 * cse369)) / cse360)) + cse361 * (cse362 * (-cse363 * (cse364 * derived11_) + (1.0 - cse363)) + cse365 * derived12_)) * ball_r_m_p_3;
+    const double cse304 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse305 = ball_r_r_q_1 - 4.5;
+    const double cse306 = cse305 - 0.3;
+    const double cse307 = 0.2 * cse306 / 0.2;
+    const double cse308 = std::fmax(cse304, cse307);
+    const double cse309 = ball_r_r_q_3 - 0.2;
+    const double cse310 = 0.3 * cse309 / 0.3;
+    const double cse311 = std::fmax(cse308, cse310);
+    const double cse312 = (-0.2 * cse305 + cse309 * derived3_) / derived4_;
+    const double cse313 = ((std::fmax(cse311, cse312)) >= 0.0 ? 1.0 : 0.0);
+    const double cse314 = (-cse305 * derived3_ - 0.2 * cse309) / derived5_;
+    const double cse315 = std::fmax(0.0, cse314);
+    const double cse316 = std::fmin(1.0, cse315);
+    const double cse317 = cse305 + cse316 * derived3_;
+    const double cse318 = cse309 + 0.2 * cse316;
+    const double cse319 = std::sqrt(cse317 * cse317 + cse318 * cse318);
+    const double cse320 = cse305 + derived3_;
+    const double cse321 = cse320 * derived1_ / derived6_;
+    const double cse322 = std::fmax(0.0, cse321);
+    const double cse323 = cse320 - std::fmin(1.0, cse322) * derived1_;
+    const double cse324 = std::sqrt(cse323 * cse323 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse325 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse326 = std::fmax(0.0, cse325);
+    const double cse327 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse326);
+    const double cse328 = std::sqrt(cse306 * cse306 + cse327 * cse327);
+    const double cse329 = std::fmin(cse324, cse328);
+    const double cse330 = 0.3 * cse306 / 0.09;
+    const double cse331 = std::fmax(0.0, -cse330);
+    const double cse332 = cse306 + 0.3 * std::fmin(1.0, cse331);
+    const double cse333 = std::sqrt(cse332 * cse332 + cse309 * cse309);
+    const double cse334 = ((cse319 - std::fmin(cse329, cse333)) >= 0.0 ? 1.0 : 0.0);
+    const double cse335 = ((cse333 - cse329) >= 0.0 ? 1.0 : 0.0);
+    const double cse336 = ((cse328 - cse324) >= 0.0 ? 1.0 : 0.0);
+    const double cse337 = 1.0 - (1.0 - ((cse322 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse321) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse338 = 2.0 * cse324;
+    const double cse339 = 1.0 - cse336;
+    const double cse340 = 2.0 * cse328;
+    const double cse341 = 1.0 - cse335;
+    const double cse342 = 1.0 - 0.3 * ((1.0 - ((cse331 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse330) >= 0.0 ? 1.0 : 0.0))));
+    const double cse343 = 2.0 * cse333;
+    const double cse344 = 1.0 - cse334;
+    const double cse345 = 1.0 - ((cse315 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse346 = 1.0 - ((-cse314) >= 0.0 ? 1.0 : 0.0);
+    const double cse347 = cse345 * (cse346 * derived8_);
+    const double cse348 = 1.0 - cse347 * derived3_;
+    const double cse349 = 0.2 * cse347;
+    const double cse350 = 2.0 * cse319;
+    const double cse351 = 1.0 - cse313;
+    const double cse352 = ((cse311 - cse312) >= 0.0 ? 1.0 : 0.0);
+    const double cse353 = ((cse308 - cse310) >= 0.0 ? 1.0 : 0.0);
+    const double cse354 = ((cse304 - cse307) >= 0.0 ? 1.0 : 0.0);
+    const double cse355 = 1.0 - cse352;
+    const double cse356 = 1.0 - 0.2 * ((1.0 - ((cse326 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse325) >= 0.0 ? 1.0 : 0.0))));
+    const double cse357 = cse345 * (cse346 * derived10_);
+    const double cse358 = cse357 * derived3_;
+    const double cse359 = 1.0 - 0.2 * cse357;
+    const double on_ridge_cat_f2 = (cse313 * (cse334 * (cse335 * (cse336 * ((cse337 * cse323 + cse323 * cse337) / cse338) + cse339 * ((cse306 + cse306) / cse340)) + cse341 * ((cse342 * cse332 + cse332 * cse342) / cse343)) + cse344 * ((cse348 * cse317 + cse317 * cse348 + (-cse349 * cse318 - cse318 * cse349)) / cse350)) + cse351 * (cse352 * (cse353 * (1.0 - cse354)) - cse355 * derived9_)) * ball_r_m_p_1 + (cse313 * (cse334 * (cse335 * (cse336 * ((ball_r_r_q_3 + ball_r_r_q_3) / cse338) + cse339 * ((cse356 * cse327 + cse327 * cse356) / cse340)) + cse341 * ((cse309 + cse309) / cse343)) + cse344 * ((-cse358 * cse317 - cse317 * cse358 + (cse359 * cse318 + cse318 * cse359)) / cse350)) + cse351 * (cse352 * (-cse353 * (cse354 * derived11_) + (1.0 - cse353)) + cse355 * derived12_)) * ball_r_m_p_3;
     // drawn_surfaces.mbg:47:9  MTF on_platform.cat: f2 = T f1
     const double on_platform_cat_f2 = ball_m_m_p_3;
     // drawn_surfaces.mbg:36:7  Sf rise.s_rate: f = value
@@ -1862,6 +1797,16 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double rise_s_rate_f = V;
     // drawn_surfaces.mbg:36:7  0 rise.vsum: flows in = flows out
     const double rise_reaction_f_f_3 = rise_s_rate_f;
+    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
+    const double lift_reaction_f_f_3 = lift_s_rate_rate;
+    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
+    const double spin_m4_f1_3 = lift_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
+    const double spin_reaction_f_f_3 = spin_m4_f1_3;
+    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
+    const double spin_theta_rate_f = derived13_;
+    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
+    const double spin_reaction_t_f_2 = spin_theta_rate_f;
     // drawn_surfaces.mbg:53:7  Sf pull.s_rate: f = value
     const double pull_s_rate_f = v_v;
     // drawn_surfaces.mbg:53:7  0 pull.vsum: flows in = flows out
@@ -1872,26 +1817,8 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double lift_reaction_f_f_1 = lift_m3_f1_1;
     // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
     const double spin_m4_f1_1 = lift_reaction_f_f_1;
-    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
-    const double lift_reaction_f_f_3 = lift_s_rate_rate;
-    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
-    const double spin_m4_f1_3 = lift_reaction_f_f_3;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    // (cseN: a subexpression several equations below share)
-    const double cse370 = derived13_ * t;
-    const double cse371 = std::cos(cse370);
-    const double cse372 = std::sin(cse370);
-    const double spin_m4_f2_1 = cse371 * spin_m4_f1_1 - cse372 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_1 = spin_m4_f2_1;
-    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
-    const double spin_theta_rate_f = derived13_;
-    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
-    const double spin_reaction_t_f_2 = spin_theta_rate_f;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse372 * spin_m4_f1_1 + cse371 * spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_3 = spin_m4_f2_3;
+    const double spin_reaction_f_f_1 = spin_m4_f1_1;
     // the stored energy
     out[0] = 0.5 * (ball_p_m_p_1 * ball_p_m_p_1 + ball_p_m_p_2 * ball_p_m_p_2 + ball_p_m_p_3 * ball_p_m_p_3) + 0.5 * (ball_s_m_p_1 * ball_s_m_p_1 + ball_s_m_p_2 * ball_s_m_p_2 + ball_s_m_p_3 * ball_s_m_p_3) + 0.5 * (ball_c_m_p_1 * ball_c_m_p_1 + ball_c_m_p_2 * ball_c_m_p_2 + ball_c_m_p_3 * ball_c_m_p_3) + 0.5 * (ball_r_m_p_1 * ball_r_m_p_1 + ball_r_m_p_2 * ball_r_m_p_2 + ball_r_m_p_3 * ball_r_m_p_3) + 0.5 * (ball_m_m_p_1 * ball_m_m_p_1 + ball_m_m_p_2 * ball_m_m_p_2 + ball_m_m_p_3 * ball_m_m_p_3) + 2.5 * (rise_reaction_f_f_3 * rise_reaction_f_f_3) + 0.5 * (pull_reaction_f_f_1 * pull_reaction_f_f_1) + 0.5 * (200.0 * (lift_reaction_f_f_1 * lift_reaction_f_f_1) + 200.0 * (lift_reaction_f_f_3 * lift_reaction_f_f_3)) + 0.5 * (10.0 * (spin_reaction_f_f_1 * spin_reaction_f_f_1) + 10.0 * (spin_reaction_f_f_3 * spin_reaction_f_f_3)) + 0.4 * (spin_reaction_t_f_2 * spin_reaction_t_f_2);
   }
@@ -1940,37 +1867,37 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double on_floor_cn_e = blk1_x[1];
     // drawn_surfaces.mbg:40:9  MTF on_dome.cat: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse373 = ball_s_r_q_1 - 1.5;
-    const double cse374 = cse373 + cse373;
-    const double cse375 = std::sqrt(cse373 * cse373 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
-    const double cse376 = 2.0 * cse375;
-    const double cse377 = cse374 / cse376;
-    const double cse378 = ball_s_r_q_2 + ball_s_r_q_2;
-    const double cse379 = cse378 / cse376;
-    const double cse380 = ball_s_r_q_3 + ball_s_r_q_3;
-    const double cse381 = cse380 / cse376;
-    const double on_dome_cat_f2 = cse377 * ball_s_m_p_1 + cse379 * ball_s_m_p_2 + cse381 * ball_s_m_p_3;
+    const double cse360 = ball_s_r_q_1 - 1.5;
+    const double cse361 = cse360 + cse360;
+    const double cse362 = std::sqrt(cse360 * cse360 + ball_s_r_q_2 * ball_s_r_q_2 + ball_s_r_q_3 * ball_s_r_q_3);
+    const double cse363 = 2.0 * cse362;
+    const double cse364 = cse361 / cse363;
+    const double cse365 = ball_s_r_q_2 + ball_s_r_q_2;
+    const double cse366 = cse365 / cse363;
+    const double cse367 = ball_s_r_q_3 + ball_s_r_q_3;
+    const double cse368 = cse367 / cse363;
+    const double on_dome_cat_f2 = cse364 * ball_s_m_p_1 + cse366 * ball_s_m_p_2 + cse368 * ball_s_m_p_3;
     // drawn_surfaces.mbg:31:6  algebraic loop (8 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_s.m.e[1], ball_s.m.e[2], ball_s.m.e[3], on_dome.cat.e1[1], on_dome.cat.e1[2], on_dome.cat.e1[3], on_dome.cn.e, der(on_dome.cat.f2))
-    const double cse382 = -cse377;
-    const double cse383 = -cse379;
-    const double cse384 = -cse381;
-    const double cse385 = 4.0 * cse375;
-    const double cse386 = 2.0 * cse377;
-    const double cse387 = (cse376*cse376);
-    const double cse388 = 2.0 * cse379;
-    const double cse389 = 2.0 * cse381;
+    const double cse369 = -cse364;
+    const double cse370 = -cse366;
+    const double cse371 = -cse368;
+    const double cse372 = 4.0 * cse362;
+    const double cse373 = 2.0 * cse364;
+    const double cse374 = (cse363*cse363);
+    const double cse375 = 2.0 * cse366;
+    const double cse376 = 2.0 * cse368;
     double blk2_a[64] = {
         -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, 0.0, -1.0, 0.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse382, 0.0,
-        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse383, 0.0,
-        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse384, 0.0,
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, cse369, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0, cse370, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0, cse371, 0.0,
         0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0 - mode_[1], mode_[1],
-        cse382, cse383, cse384, 0.0, 0.0, 0.0, 0.0, 1.0,
+        cse369, cse370, cse371, 0.0, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse375 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse385 - cse374 * cse386) / cse387 * ball_s_m_p_1 - cse378 * cse386 / cse387 * ball_s_m_p_2 - cse380 * cse386 / cse387 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse374 * cse388 / cse387 * ball_s_m_p_1 + (cse385 - cse378 * cse388) / cse387 * ball_s_m_p_2 - cse380 * cse388 / cse387 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse374 * cse389 / cse387 * ball_s_m_p_1 - cse378 * cse389 / cse387 * ball_s_m_p_2 + (cse385 - cse380 * cse389) / cse387 * ball_s_m_p_3) * ball_s_m_p_3};
+    double blk2_x[8] = {0.0, 0.0, 9.81, 0.0, 0.0, 0.0, -mode_[1] * (2.0 * on_dome_stabilisation * on_dome_cat_f2 + on_dome_stabilisation * on_dome_stabilisation * (cse362 - on_dome_surface_radius - on_dome_radius) - contact_bias_[1]), ((cse372 - cse361 * cse373) / cse374 * ball_s_m_p_1 - cse365 * cse373 / cse374 * ball_s_m_p_2 - cse367 * cse373 / cse374 * ball_s_m_p_3) * ball_s_m_p_1 + (-cse361 * cse375 / cse374 * ball_s_m_p_1 + (cse372 - cse365 * cse375) / cse374 * ball_s_m_p_2 - cse367 * cse375 / cse374 * ball_s_m_p_3) * ball_s_m_p_2 + (-cse361 * cse376 / cse374 * ball_s_m_p_1 - cse365 * cse376 / cse374 * ball_s_m_p_2 + (cse372 - cse367 * cse376) / cse374 * ball_s_m_p_3) * ball_s_m_p_3};
     static const char* const blk2_rows[] = {"ball_s.m.e[1]", "ball_s.m.e[2]", "ball_s.m.e[3]", "on_dome.cat.e1[1]", "on_dome.cat.e1[2]", "on_dome.cat.e1[3]", "on_dome.cn.e", "der(on_dome.cat.f2)"};
     int blk2_dependent[8];
     double blk2_closest;
@@ -1978,31 +1905,31 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 8 x 8 system of the constraint multipliers", blk2_rank, 8, blk2_dependent, blk2_rows, blk2_closest, false);
     const double on_dome_cn_e = blk2_x[6];
     // drawn_surfaces.mbg:41:9  MTF on_drum.cat: f2 = T f1
-    const double cse390 = ball_c_r_q_1 - 3.0;
-    const double cse391 = cse390 + cse390;
-    const double cse392 = std::sqrt(cse390 * cse390 + ball_c_r_q_3 * ball_c_r_q_3);
-    const double cse393 = 2.0 * cse392;
-    const double cse394 = cse391 / cse393;
-    const double cse395 = ball_c_r_q_3 + ball_c_r_q_3;
-    const double cse396 = cse395 / cse393;
-    const double on_drum_cat_f2 = cse394 * ball_c_m_p_1 + cse396 * ball_c_m_p_3;
+    const double cse377 = ball_c_r_q_1 - 3.0;
+    const double cse378 = cse377 + cse377;
+    const double cse379 = std::sqrt(cse377 * cse377 + ball_c_r_q_3 * ball_c_r_q_3);
+    const double cse380 = 2.0 * cse379;
+    const double cse381 = cse378 / cse380;
+    const double cse382 = ball_c_r_q_3 + ball_c_r_q_3;
+    const double cse383 = cse382 / cse380;
+    const double on_drum_cat_f2 = cse381 * ball_c_m_p_1 + cse383 * ball_c_m_p_3;
     // drawn_surfaces.mbg:32:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_c.m.e[1], ball_c.m.e[3], on_drum.cat.e1[1], on_drum.cat.e1[3], on_drum.cn.e, der(on_drum.cat.f2))
-    const double cse397 = -cse394;
-    const double cse398 = -cse396;
-    const double cse399 = 4.0 * cse392;
-    const double cse400 = 2.0 * cse394;
-    const double cse401 = (cse393*cse393);
-    const double cse402 = 2.0 * cse396;
+    const double cse384 = -cse381;
+    const double cse385 = -cse383;
+    const double cse386 = 4.0 * cse379;
+    const double cse387 = 2.0 * cse381;
+    const double cse388 = (cse380*cse380);
+    const double cse389 = 2.0 * cse383;
     double blk3_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse397, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse398, 0.0,
+        0.0, 0.0, 1.0, 0.0, cse384, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse385, 0.0,
         0.0, 0.0, 0.0, 0.0, 1.0 - mode_[2], mode_[2],
-        cse397, cse398, 0.0, 0.0, 0.0, 1.0,
+        cse384, cse385, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse392 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse399 - cse391 * cse400) / cse401 * ball_c_m_p_1 - cse395 * cse400 / cse401 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse391 * cse402 / cse401 * ball_c_m_p_1 + (cse399 - cse395 * cse402) / cse401 * ball_c_m_p_3) * ball_c_m_p_3};
+    double blk3_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[2] * (2.0 * on_drum_stabilisation * on_drum_cat_f2 + on_drum_stabilisation * on_drum_stabilisation * (cse379 - on_drum_surface_radius - on_drum_radius) - contact_bias_[2]), ((cse386 - cse378 * cse387) / cse388 * ball_c_m_p_1 - cse382 * cse387 / cse388 * ball_c_m_p_3) * ball_c_m_p_1 + (-cse378 * cse389 / cse388 * ball_c_m_p_1 + (cse386 - cse382 * cse389) / cse388 * ball_c_m_p_3) * ball_c_m_p_3};
     static const char* const blk3_rows[] = {"ball_c.m.e[1]", "ball_c.m.e[3]", "on_drum.cat.e1[1]", "on_drum.cat.e1[3]", "on_drum.cn.e", "der(on_drum.cat.f2)"};
     int blk3_dependent[6];
     double blk3_closest;
@@ -2010,119 +1937,119 @@ class drawn_surfaces_model final : public mbgrt::Model {
     rank_loss_.observe(t, "the 6 x 6 system of the constraint multipliers", blk3_rank, 6, blk3_dependent, blk3_rows, blk3_closest, false);
     const double on_drum_cn_e = blk3_x[4];
     // drawn_surfaces.mbg:42:9  MTF on_ridge.cat: f2 = T f1
-    const double cse403 = -ball_r_r_q_3 * derived1_ / derived2_;
-    const double cse404 = ball_r_r_q_1 - 4.5;
-    const double cse405 = cse404 - 0.3;
-    const double cse406 = 0.2 * cse405 / 0.2;
-    const double cse407 = std::fmax(cse403, cse406);
-    const double cse408 = ball_r_r_q_3 - 0.2;
-    const double cse409 = 0.3 * cse408 / 0.3;
-    const double cse410 = std::fmax(cse407, cse409);
-    const double cse411 = (-0.2 * cse404 + cse408 * derived3_) / derived4_;
-    const double cse412 = std::fmax(cse410, cse411);
-    const double cse413 = ((cse412) >= 0.0 ? 1.0 : 0.0);
-    const double cse414 = (-cse404 * derived3_ - 0.2 * cse408) / derived5_;
-    const double cse415 = std::fmax(0.0, cse414);
-    const double cse416 = std::fmin(1.0, cse415);
-    const double cse417 = cse404 + cse416 * derived3_;
-    const double cse418 = cse408 + 0.2 * cse416;
-    const double cse419 = std::sqrt(cse417 * cse417 + cse418 * cse418);
-    const double cse420 = cse404 + derived3_;
-    const double cse421 = cse420 * derived1_ / derived6_;
-    const double cse422 = std::fmax(0.0, cse421);
-    const double cse423 = cse420 - std::fmin(1.0, cse422) * derived1_;
-    const double cse424 = std::sqrt(cse423 * cse423 + ball_r_r_q_3 * ball_r_r_q_3);
-    const double cse425 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
-    const double cse426 = std::fmax(0.0, cse425);
-    const double cse427 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse426);
-    const double cse428 = std::sqrt(cse405 * cse405 + cse427 * cse427);
-    const double cse429 = std::fmin(cse424, cse428);
-    const double cse430 = 0.3 * cse405 / 0.09;
-    const double cse431 = std::fmax(0.0, -cse430);
-    const double cse432 = cse405 + 0.3 * std::fmin(1.0, cse431);
-    const double cse433 = std::sqrt(cse432 * cse432 + cse408 * cse408);
-    const double cse434 = std::fmin(cse429, cse433);
-    const double cse435 = ((cse419 - cse434) >= 0.0 ? 1.0 : 0.0);
-    const double cse436 = ((cse433 - cse429) >= 0.0 ? 1.0 : 0.0);
-    const double cse437 = ((cse428 - cse424) >= 0.0 ? 1.0 : 0.0);
-    const double cse438 = 1.0 - (1.0 - ((cse422 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse421) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
-    const double cse439 = cse438 * cse423 + cse423 * cse438;
-    const double cse440 = 2.0 * cse424;
-    const double cse441 = cse439 / cse440;
-    const double cse442 = 1.0 - cse437;
-    const double cse443 = cse405 + cse405;
-    const double cse444 = 2.0 * cse428;
-    const double cse445 = cse443 / cse444;
-    const double cse446 = 1.0 - cse436;
-    const double cse447 = 1.0 - 0.3 * ((1.0 - ((cse431 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse430) >= 0.0 ? 1.0 : 0.0))));
-    const double cse448 = cse447 * cse432 + cse432 * cse447;
-    const double cse449 = 2.0 * cse433;
-    const double cse450 = cse448 / cse449;
-    const double cse451 = 1.0 - cse435;
-    const double cse452 = 1.0 - ((cse415 - 1.0) >= 0.0 ? 1.0 : 0.0);
-    const double cse453 = 1.0 - ((-cse414) >= 0.0 ? 1.0 : 0.0);
-    const double cse454 = cse452 * (cse453 * derived8_);
-    const double cse455 = 1.0 - cse454 * derived3_;
-    const double cse456 = 0.2 * cse454;
-    const double cse457 = cse455 * cse417 + cse417 * cse455 + (-cse456 * cse418 - cse418 * cse456);
-    const double cse458 = 2.0 * cse419;
-    const double cse459 = cse457 / cse458;
-    const double cse460 = 1.0 - cse413;
-    const double cse461 = ((cse410 - cse411) >= 0.0 ? 1.0 : 0.0);
-    const double cse462 = ((cse407 - cse409) >= 0.0 ? 1.0 : 0.0);
-    const double cse463 = ((cse403 - cse406) >= 0.0 ? 1.0 : 0.0);
-    const double cse464 = 1.0 - cse461;
-    const double cse465 = cse413 * (cse435 * (cse436 * (cse437 * cse441 + cse442 * cse445) + cse446 * cse450) + cse451 * cse459) + cse460 * (cse461 * (cse462 * (1.0 - cse463)) - cse464 * derived9_);
-    const double cse466 = ball_r_r_q_3 + ball_r_r_q_3;
-    const double cse467 = cse466 / cse440;
-    const double cse468 = 1.0 - 0.2 * ((1.0 - ((cse426 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse425) >= 0.0 ? 1.0 : 0.0))));
-    const double cse469 = cse468 * cse427 + cse427 * cse468;
-    const double cse470 = cse469 / cse444;
-    const double cse471 = cse408 + cse408;
-    const double cse472 = cse471 / cse449;
-    const double cse473 = cse452 * (cse453 * derived10_);
-    const double cse474 = cse473 * derived3_;
-    const double cse475 = 1.0 - 0.2 * cse473;
-    const double cse476 = -cse474 * cse417 - cse417 * cse474 + (cse475 * cse418 + cse418 * cse475);
-    const double cse477 = cse476 / cse458;
-    const double cse478 = cse413 * (cse435 * (cse436 * (cse437 * cse467 + cse442 * cse470) + cse446 * cse472) + cse451 * cse477) + cse460 * (cse461 * (-cse462 * (cse463 * derived11_) + (1.0 - cse462)) + cse464 * derived12_);
-    const double on_ridge_cat_f2 = cse465 * ball_r_m_p_1 + cse478 * ball_r_m_p_3;
+    const double cse390 = -ball_r_r_q_3 * derived1_ / derived2_;
+    const double cse391 = ball_r_r_q_1 - 4.5;
+    const double cse392 = cse391 - 0.3;
+    const double cse393 = 0.2 * cse392 / 0.2;
+    const double cse394 = std::fmax(cse390, cse393);
+    const double cse395 = ball_r_r_q_3 - 0.2;
+    const double cse396 = 0.3 * cse395 / 0.3;
+    const double cse397 = std::fmax(cse394, cse396);
+    const double cse398 = (-0.2 * cse391 + cse395 * derived3_) / derived4_;
+    const double cse399 = std::fmax(cse397, cse398);
+    const double cse400 = ((cse399) >= 0.0 ? 1.0 : 0.0);
+    const double cse401 = (-cse391 * derived3_ - 0.2 * cse395) / derived5_;
+    const double cse402 = std::fmax(0.0, cse401);
+    const double cse403 = std::fmin(1.0, cse402);
+    const double cse404 = cse391 + cse403 * derived3_;
+    const double cse405 = cse395 + 0.2 * cse403;
+    const double cse406 = std::sqrt(cse404 * cse404 + cse405 * cse405);
+    const double cse407 = cse391 + derived3_;
+    const double cse408 = cse407 * derived1_ / derived6_;
+    const double cse409 = std::fmax(0.0, cse408);
+    const double cse410 = cse407 - std::fmin(1.0, cse409) * derived1_;
+    const double cse411 = std::sqrt(cse410 * cse410 + ball_r_r_q_3 * ball_r_r_q_3);
+    const double cse412 = 0.2 * ball_r_r_q_3 / 0.04000000000000001;
+    const double cse413 = std::fmax(0.0, cse412);
+    const double cse414 = ball_r_r_q_3 - 0.2 * std::fmin(1.0, cse413);
+    const double cse415 = std::sqrt(cse392 * cse392 + cse414 * cse414);
+    const double cse416 = std::fmin(cse411, cse415);
+    const double cse417 = 0.3 * cse392 / 0.09;
+    const double cse418 = std::fmax(0.0, -cse417);
+    const double cse419 = cse392 + 0.3 * std::fmin(1.0, cse418);
+    const double cse420 = std::sqrt(cse419 * cse419 + cse395 * cse395);
+    const double cse421 = std::fmin(cse416, cse420);
+    const double cse422 = ((cse406 - cse421) >= 0.0 ? 1.0 : 0.0);
+    const double cse423 = ((cse420 - cse416) >= 0.0 ? 1.0 : 0.0);
+    const double cse424 = ((cse415 - cse411) >= 0.0 ? 1.0 : 0.0);
+    const double cse425 = 1.0 - (1.0 - ((cse409 - 1.0) >= 0.0 ? 1.0 : 0.0)) * ((1.0 - ((-cse408) >= 0.0 ? 1.0 : 0.0)) * derived7_) * derived1_;
+    const double cse426 = cse425 * cse410 + cse410 * cse425;
+    const double cse427 = 2.0 * cse411;
+    const double cse428 = cse426 / cse427;
+    const double cse429 = 1.0 - cse424;
+    const double cse430 = cse392 + cse392;
+    const double cse431 = 2.0 * cse415;
+    const double cse432 = cse430 / cse431;
+    const double cse433 = 1.0 - cse423;
+    const double cse434 = 1.0 - 0.3 * ((1.0 - ((cse418 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (3.3333333333333335 * (1.0 - ((cse417) >= 0.0 ? 1.0 : 0.0))));
+    const double cse435 = cse434 * cse419 + cse419 * cse434;
+    const double cse436 = 2.0 * cse420;
+    const double cse437 = cse435 / cse436;
+    const double cse438 = 1.0 - cse422;
+    const double cse439 = 1.0 - ((cse402 - 1.0) >= 0.0 ? 1.0 : 0.0);
+    const double cse440 = 1.0 - ((-cse401) >= 0.0 ? 1.0 : 0.0);
+    const double cse441 = cse439 * (cse440 * derived8_);
+    const double cse442 = 1.0 - cse441 * derived3_;
+    const double cse443 = 0.2 * cse441;
+    const double cse444 = cse442 * cse404 + cse404 * cse442 + (-cse443 * cse405 - cse405 * cse443);
+    const double cse445 = 2.0 * cse406;
+    const double cse446 = cse444 / cse445;
+    const double cse447 = 1.0 - cse400;
+    const double cse448 = ((cse397 - cse398) >= 0.0 ? 1.0 : 0.0);
+    const double cse449 = ((cse394 - cse396) >= 0.0 ? 1.0 : 0.0);
+    const double cse450 = ((cse390 - cse393) >= 0.0 ? 1.0 : 0.0);
+    const double cse451 = 1.0 - cse448;
+    const double cse452 = cse400 * (cse422 * (cse423 * (cse424 * cse428 + cse429 * cse432) + cse433 * cse437) + cse438 * cse446) + cse447 * (cse448 * (cse449 * (1.0 - cse450)) - cse451 * derived9_);
+    const double cse453 = ball_r_r_q_3 + ball_r_r_q_3;
+    const double cse454 = cse453 / cse427;
+    const double cse455 = 1.0 - 0.2 * ((1.0 - ((cse413 - 1.0) >= 0.0 ? 1.0 : 0.0)) * (4.999999999999999 * (1.0 - ((-cse412) >= 0.0 ? 1.0 : 0.0))));
+    const double cse456 = cse455 * cse414 + cse414 * cse455;
+    const double cse457 = cse456 / cse431;
+    const double cse458 = cse395 + cse395;
+    const double cse459 = cse458 / cse436;
+    const double cse460 = cse439 * (cse440 * derived10_);
+    const double cse461 = cse460 * derived3_;
+    const double cse462 = 1.0 - 0.2 * cse460;
+    const double cse463 = -cse461 * cse404 - cse404 * cse461 + (cse462 * cse405 + cse405 * cse462);
+    const double cse464 = cse463 / cse445;
+    const double cse465 = cse400 * (cse422 * (cse423 * (cse424 * cse454 + cse429 * cse457) + cse433 * cse459) + cse438 * cse464) + cse447 * (cse448 * (-cse449 * (cse450 * derived11_) + (1.0 - cse449)) + cse451 * derived12_);
+    const double on_ridge_cat_f2 = cse452 * ball_r_m_p_1 + cse465 * ball_r_m_p_3;
     // drawn_surfaces.mbg:33:6  algebraic loop (6 unknowns), solved numerically (pivots depend on the state)
     // A x = b for x = (ball_r.m.e[1], ball_r.m.e[3], on_ridge.cat.e1[1], on_ridge.cat.e1[3], on_ridge.cn.e, der(on_ridge.cat.f2))
-    const double cse479 = -cse465;
-    const double cse480 = -cse478;
-    const double cse481 = cse438 * cse438;
-    const double cse482 = 2.0 * cse441;
-    const double cse483 = (cse440*cse440);
-    const double cse484 = 2.0 * cse445;
-    const double cse485 = (cse444*cse444);
-    const double cse486 = cse447 * cse447;
-    const double cse487 = 2.0 * cse450;
-    const double cse488 = (cse449*cse449);
-    const double cse489 = cse455 * cse455;
-    const double cse490 = cse456 * cse456;
-    const double cse491 = 2.0 * cse459;
-    const double cse492 = (cse458*cse458);
-    const double cse493 = cse474 * cse455;
-    const double cse494 = cse455 * cse474;
-    const double cse495 = cse475 * cse456;
-    const double cse496 = cse456 * cse475;
-    const double cse497 = 2.0 * cse467;
-    const double cse498 = 2.0 * cse470;
-    const double cse499 = 2.0 * cse472;
-    const double cse500 = 2.0 * cse477;
-    const double cse501 = cse468 * cse468;
-    const double cse502 = cse474 * cse474;
-    const double cse503 = cse475 * cse475;
+    const double cse466 = -cse452;
+    const double cse467 = -cse465;
+    const double cse468 = cse425 * cse425;
+    const double cse469 = 2.0 * cse428;
+    const double cse470 = (cse427*cse427);
+    const double cse471 = 2.0 * cse432;
+    const double cse472 = (cse431*cse431);
+    const double cse473 = cse434 * cse434;
+    const double cse474 = 2.0 * cse437;
+    const double cse475 = (cse436*cse436);
+    const double cse476 = cse442 * cse442;
+    const double cse477 = cse443 * cse443;
+    const double cse478 = 2.0 * cse446;
+    const double cse479 = (cse445*cse445);
+    const double cse480 = cse461 * cse442;
+    const double cse481 = cse442 * cse461;
+    const double cse482 = cse462 * cse443;
+    const double cse483 = cse443 * cse462;
+    const double cse484 = 2.0 * cse454;
+    const double cse485 = 2.0 * cse457;
+    const double cse486 = 2.0 * cse459;
+    const double cse487 = 2.0 * cse464;
+    const double cse488 = cse455 * cse455;
+    const double cse489 = cse461 * cse461;
+    const double cse490 = cse462 * cse462;
     double blk4_a[36] = {
         -1.0, 0.0, -1.0, 0.0, 0.0, 0.0,
         0.0, -1.0, 0.0, -1.0, 0.0, 0.0,
-        0.0, 0.0, 1.0, 0.0, cse479, 0.0,
-        0.0, 0.0, 0.0, 1.0, cse480, 0.0,
+        0.0, 0.0, 1.0, 0.0, cse466, 0.0,
+        0.0, 0.0, 0.0, 1.0, cse467, 0.0,
         0.0, 0.0, 0.0, 0.0, 1.0 - mode_[3], mode_[3],
-        cse479, cse480, 0.0, 0.0, 0.0, 1.0,
+        cse466, cse467, 0.0, 0.0, 0.0, 1.0,
     };
-    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse413 * std::fmin(cse434, cse419) + cse460 * cse412 - on_ridge_radius) - contact_bias_[3]), (cse413 * (cse435 * (cse436 * (cse437 * (((cse481 + cse481) * cse440 - cse439 * cse482) / cse483) + cse442 * ((4.0 * cse428 - cse443 * cse484) / cse485)) + cse446 * (((cse486 + cse486) * cse449 - cse448 * cse487) / cse488)) + cse451 * (((cse489 + cse489 + (cse490 + cse490)) * cse458 - cse457 * cse491) / cse492)) * ball_r_m_p_1 + cse413 * (cse435 * (cse436 * (-cse437 * (cse466 * cse482 / cse483) - cse442 * (cse469 * cse484 / cse485)) - cse446 * (cse471 * cse487 / cse488)) + cse451 * (((-cse493 - cse494 + (-cse495 - cse496)) * cse458 - cse476 * cse491) / cse492)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse413 * (cse435 * (cse436 * (-cse437 * (cse439 * cse497 / cse483) - cse442 * (cse443 * cse498 / cse485)) - cse446 * (cse448 * cse499 / cse488)) + cse451 * (((-cse494 - cse493 + (-cse496 - cse495)) * cse458 - cse457 * cse500) / cse492)) * ball_r_m_p_1 + cse413 * (cse435 * (cse436 * (cse437 * ((4.0 * cse424 - cse466 * cse497) / cse483) + cse442 * (((cse501 + cse501) * cse444 - cse469 * cse498) / cse485)) + cse446 * ((4.0 * cse433 - cse471 * cse499) / cse488)) + cse451 * (((cse502 + cse502 + (cse503 + cse503)) * cse458 - cse476 * cse500) / cse492)) * ball_r_m_p_3) * ball_r_m_p_3};
+    double blk4_x[6] = {0.0, 9.81, 0.0, 0.0, -mode_[3] * (2.0 * on_ridge_stabilisation * on_ridge_cat_f2 + on_ridge_stabilisation * on_ridge_stabilisation * (cse400 * std::fmin(cse421, cse406) + cse447 * cse399 - on_ridge_radius) - contact_bias_[3]), (cse400 * (cse422 * (cse423 * (cse424 * (((cse468 + cse468) * cse427 - cse426 * cse469) / cse470) + cse429 * ((4.0 * cse415 - cse430 * cse471) / cse472)) + cse433 * (((cse473 + cse473) * cse436 - cse435 * cse474) / cse475)) + cse438 * (((cse476 + cse476 + (cse477 + cse477)) * cse445 - cse444 * cse478) / cse479)) * ball_r_m_p_1 + cse400 * (cse422 * (cse423 * (-cse424 * (cse453 * cse469 / cse470) - cse429 * (cse456 * cse471 / cse472)) - cse433 * (cse458 * cse474 / cse475)) + cse438 * (((-cse480 - cse481 + (-cse482 - cse483)) * cse445 - cse463 * cse478) / cse479)) * ball_r_m_p_3) * ball_r_m_p_1 + (cse400 * (cse422 * (cse423 * (-cse424 * (cse426 * cse484 / cse470) - cse429 * (cse430 * cse485 / cse472)) - cse433 * (cse435 * cse486 / cse475)) + cse438 * (((-cse481 - cse480 + (-cse483 - cse482)) * cse445 - cse444 * cse487) / cse479)) * ball_r_m_p_1 + cse400 * (cse422 * (cse423 * (cse424 * ((4.0 * cse411 - cse453 * cse484) / cse470) + cse429 * (((cse488 + cse488) * cse431 - cse456 * cse485) / cse472)) + cse433 * ((4.0 * cse420 - cse458 * cse486) / cse475)) + cse438 * (((cse489 + cse489 + (cse490 + cse490)) * cse445 - cse463 * cse487) / cse479)) * ball_r_m_p_3) * ball_r_m_p_3};
     static const char* const blk4_rows[] = {"ball_r.m.e[1]", "ball_r.m.e[3]", "on_ridge.cat.e1[1]", "on_ridge.cat.e1[3]", "on_ridge.cn.e", "der(on_ridge.cat.f2)"};
     int blk4_dependent[6];
     double blk4_closest;
@@ -2185,6 +2112,47 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double der_hub_m_p_1 = 200.0 * der_lift_reaction_f_f_1;
     // drawn_surfaces.mbg:51:6  I hub.m: e = der(p) (derivative causality)
     const double hub_m_e_1 = der_hub_m_p_1;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
+    const double der_spin_m4_f1_1 = der_lift_reaction_f_f_1;
+    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
+    const double der_spin_reaction_f_f_1 = der_spin_m4_f1_1;
+    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
+    const double der_wheel_m_p_1 = 10.0 * der_spin_reaction_f_f_1;
+    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
+    const double wheel_m_e_1 = der_wheel_m_p_1;
+    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
+    const double lift_reaction_f_f_3 = lift_s_rate_rate;
+    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
+    const double spin_m4_f1_3 = lift_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
+    const double spin_reaction_f_f_3 = spin_m4_f1_3;
+    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
+    const double wheel_m_p_3 = 10.0 * spin_reaction_f_f_3;
+    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
+    const double spin_theta_rate_f = derived13_;
+    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
+    const double spin_reaction_t_f_2 = spin_theta_rate_f;
+    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
+    const double cse491 = spin_reaction_t_f_2 - spin_theta_rate_f;
+    const double wheel_ejs_v_e_1 = cse491 * wheel_m_p_3;
+    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
+    const double sled_pose_r1 = v_v * t;
+    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
+    const double hub_pose_r1 = sled_pose_r1;
+    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
+    const double cse492 = hub_pose_r1 - 1.0;
+    const double cse493 = hub_pose_r1 - 1.2;
+    const double cse494 = hub_pose_r1 - 1.5;
+    const double cse495 = hub_pose_r1 - 1.7;
+    const double tyre_road_slope = derived14_ * (((cse492) >= 0.0 ? 1.0 : 0.0) - ((cse493) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse494) >= 0.0 ? 1.0 : 0.0) - ((cse495) >= 0.0 ? 1.0 : 0.0));
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
+    const double cse496 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
+    const double tyre_normal_1 = -tyre_road_slope / cse496;
+    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
+    const double tyre_normal_3 = 1.0 / cse496;
+    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
+    const double cse497 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
+    const double tyre_forward_1 = tyre_normal_3 / cse497;
     // drawn_surfaces.mbg:53:7  Sf pull.s_rate: f = value
     const double pull_s_rate_f = v_v;
     // drawn_surfaces.mbg:53:7  0 pull.vsum: flows in = flows out
@@ -2195,142 +2163,51 @@ class drawn_surfaces_model final : public mbgrt::Model {
     const double lift_reaction_f_f_1 = lift_m3_f1_1;
     // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
     const double spin_m4_f1_1 = lift_reaction_f_f_1;
-    // drawn_surfaces.mbg:54:7  0 lift.vsum: flows in = flows out
-    const double lift_reaction_f_f_3 = lift_s_rate_rate;
-    // drawn_surfaces.mbg:55:7  0 spin.vpa: flows in = flows out
-    const double spin_m4_f1_3 = lift_reaction_f_f_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
-    const double der_spin_m4_f1_1 = der_lift_reaction_f_f_1;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R33
-    const double cse504 = derived13_ * t;
-    const double wheel_pose_R33 = std::cos(cse504);
-    // drawn_surfaces.mbg:52:6  Se wheel.weight: e = value
-    const double wheel_weight_e_3 = -98.10000000000001 * wheel_pose_R33;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double cse505 = std::sin(cse504);
-    const double spin_m4_f2_1 = wheel_pose_R33 * spin_m4_f1_1 - cse505 * spin_m4_f1_3;
     // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_1 = spin_m4_f2_1;
-    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
-    const double wheel_m_p_1 = 10.0 * spin_reaction_f_f_1;
-    // drawn_surfaces.mbg:55:7  Sf spin.theta_rate: f = value
-    const double spin_theta_rate_f = derived13_;
-    // drawn_surfaces.mbg:55:7  0 spin.wsum: flows in = flows out
-    const double spin_reaction_t_f_2 = spin_theta_rate_f;
-    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
-    const double wheel_ejs_v_e_3 = -spin_reaction_t_f_2 * wheel_m_p_1;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R13
-    const double wheel_pose_R13 = cse505;
-    // drawn_surfaces.mbg:53:7  signal sled.pose.r1
-    const double sled_pose_r1 = v_v * t;
-    // drawn_surfaces.mbg:54:7  signal hub.pose.r1
-    const double hub_pose_r1 = sled_pose_r1;
-    // drawn_surfaces.mbg:56:6  signal tyre.road_slope
-    const double cse506 = hub_pose_r1 - 1.0;
-    const double cse507 = hub_pose_r1 - 1.2;
-    const double cse508 = hub_pose_r1 - 1.5;
-    const double cse509 = hub_pose_r1 - 1.7;
-    const double tyre_road_slope = derived14_ * (((cse506) >= 0.0 ? 1.0 : 0.0) - ((cse507) >= 0.0 ? 1.0 : 0.0)) - derived14_ * (((cse508) >= 0.0 ? 1.0 : 0.0) - ((cse509) >= 0.0 ? 1.0 : 0.0));
-    // drawn_surfaces.mbg:56:6  signal tyre.normal_1
-    const double cse510 = std::sqrt(1.0 + tyre_road_slope * tyre_road_slope);
-    const double tyre_normal_1 = -tyre_road_slope / cse510;
-    // drawn_surfaces.mbg:56:6  signal tyre.normal_3
-    const double tyre_normal_3 = 1.0 / cse510;
-    // drawn_surfaces.mbg:56:6  signal tyre.forward_1
-    const double cse511 = std::sqrt(tyre_normal_3 * tyre_normal_3 + tyre_normal_1 * tyre_normal_1);
-    const double tyre_forward_1 = tyre_normal_3 / cse511;
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: f2 = T f1
-    const double spin_m4_f2_3 = cse505 * spin_m4_f1_1 + wheel_pose_R33 * spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  0 spin.vsum: flows in = flows out
-    const double spin_reaction_f_f_3 = spin_m4_f2_3;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R11
-    const double wheel_pose_R11 = wheel_pose_R33;
-    // drawn_surfaces.mbg:55:7  signal wheel.pose.R31
-    const double wheel_pose_R31 = -cse505;
+    const double spin_reaction_f_f_1 = spin_m4_f1_1;
     // drawn_surfaces.mbg:54:7  signal hub.pose.r3
     const double hub_pose_r3 = lift_s_q;
     // drawn_surfaces.mbg:56:6  signal tyre.road_height
-    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse506) - std::fmax(0.0, cse507)) - derived14_ * (std::fmax(0.0, cse508) - std::fmax(0.0, cse509));
+    const double tyre_road_height = derived14_ * (std::fmax(0.0, cse492) - std::fmax(0.0, cse493)) - derived14_ * (std::fmax(0.0, cse494) - std::fmax(0.0, cse495));
     // drawn_surfaces.mbg:56:6  signal tyre.centre_height
-    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse510;
+    const double tyre_centre_height = (hub_pose_r3 - tyre_road_height) / cse496;
     // drawn_surfaces.mbg:56:6  signal tyre.deflection
     const double tyre_deflection = 0.3 - tyre_centre_height;
     // drawn_surfaces.mbg:56:6  signal tyre.Fz
-    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * (wheel_pose_R11 * spin_reaction_f_f_1 + wheel_pose_R13 * spin_reaction_f_f_3) + tyre_normal_3 * (wheel_pose_R31 * spin_reaction_f_f_1 + wheel_pose_R33 * spin_reaction_f_f_3)));
+    const double tyre_Fz = std::fmax(0.0, 200000.0 * tyre_deflection - 12961.48139681572 * (tyre_normal_1 * spin_reaction_f_f_1 + tyre_normal_3 * spin_reaction_f_f_3));
     // drawn_surfaces.mbg:56:6  signal tyre.Kx
     const double tyre_Kx = 20.0 * tyre_Fz;
     // drawn_surfaces.mbg:56:6  signal tyre.Fx0
-    const double cse512 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
-    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse512 + 0.5 * (cse512 - std::atan(cse512))));
+    const double cse498 = tyre_Kx / (1.65 * tyre_Fz + 1e-09) * tyre_kappa_q;
+    const double tyre_Fx0 = tyre_Fz * std::sin(1.65 * std::atan(cse498 + 0.5 * (cse498 - std::atan(cse498))));
     // drawn_surfaces.mbg:56:6  signal tyre.slip_angle
     const double tyre_slip_angle = std::atan(tyre_tan_alpha_q);
     // drawn_surfaces.mbg:56:6  signal tyre.Gx
-    const double cse513 = 10.0 * tyre_kappa_q;
-    const double cse514 = 12.0 * (1.0 / std::sqrt(1.0 + cse513 * cse513)) * tyre_slip_angle;
-    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse514 * cse514);
+    const double cse499 = 10.0 * tyre_kappa_q;
+    const double cse500 = 12.0 * (1.0 / std::sqrt(1.0 + cse499 * cse499)) * tyre_slip_angle;
+    const double tyre_Gx = 1.0 / std::sqrt(1.0 + cse500 * cse500);
     // drawn_surfaces.mbg:56:6  signal tyre.Fx
     const double tyre_Fx = tyre_Gx * tyre_Fx0;
     // drawn_surfaces.mbg:56:6  signal tyre.force_1
     const double tyre_force_1 = tyre_Fx * tyre_forward_1 + tyre_Fz * tyre_normal_1;
+    // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
+    const double tyre_on_wheel_f_e_1 = tyre_force_1;
+    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
+    const double spin_reaction_f_e_1 = -(tyre_on_wheel_f_e_1 - (wheel_m_e_1 + wheel_ejs_v_e_1));
+    // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
+    const double lift_reaction_f_e_1 = hub_m_e_1 + spin_reaction_f_e_1;
+    // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out
+    const double pull_reaction_f_e_1 = sled_m_e_1 + lift_reaction_f_e_1;
     // drawn_surfaces.mbg:56:6  signal tyre.forward_3
-    const double tyre_forward_3 = -tyre_normal_1 / cse511;
+    const double tyre_forward_3 = -tyre_normal_1 / cse497;
+    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
+    const double wheel_m_p_1 = 10.0 * spin_reaction_f_f_1;
+    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
+    const double wheel_ejs_v_e_3 = -cse491 * wheel_m_p_1;
     // drawn_surfaces.mbg:56:6  signal tyre.force_3
     const double tyre_force_3 = tyre_Fx * tyre_forward_3 + tyre_Fz * tyre_normal_3;
     // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
-    const double tyre_on_wheel_f_e_3 = wheel_pose_R13 * tyre_force_1 + wheel_pose_R33 * tyre_force_3;
-    // drawn_surfaces.mbg:52:6  Se wheel.weight: e = value
-    const double wheel_weight_e_1 = -98.10000000000001 * wheel_pose_R31;
-    // drawn_surfaces.mbg:52:6  I wheel.m: p = I f (derivative causality)
-    const double wheel_m_p_3 = 10.0 * spin_reaction_f_f_3;
-    // drawn_surfaces.mbg:52:6  R wheel.ejs_v: e = law(f)
-    const double wheel_ejs_v_e_1 = spin_reaction_t_f_2 * wheel_m_p_3;
-    // drawn_surfaces.mbg:56:6  Se tyre.on_wheel_f: e = value
-    const double tyre_on_wheel_f_e_1 = wheel_pose_R11 * tyre_force_1 + wheel_pose_R31 * tyre_force_3;
-    // drawn_surfaces.mbg:55:7  articulated-body elimination, body wheel: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double wheel_out1 = cse505 * (10.0 * cse505) + wheel_pose_R33 * (10.0 * wheel_pose_R33);
-    const double cse515 = wheel_weight_e_1 + tyre_on_wheel_f_e_1;
-    const double cse516 = cse505 * derived13_;
-    const double cse517 = wheel_pose_R33 * derived13_;
-    const double cse518 = -cse516 * spin_m4_f1_1 - cse517 * spin_m4_f1_3 + wheel_pose_R33 * der_spin_m4_f1_1;
-    const double cse519 = wheel_weight_e_3 + tyre_on_wheel_f_e_3;
-    const double cse520 = cse517 * spin_m4_f1_1 - cse516 * spin_m4_f1_3 + cse505 * der_spin_m4_f1_1;
-    const double wheel_out2 = -cse505 * (-(cse515 - wheel_ejs_v_e_1) + 10.0 * cse518) + wheel_pose_R33 * (-(cse519 - wheel_ejs_v_e_3) + 10.0 * cse520);
-    // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: 1 / pivot of the joint's accelerations
-    const double hub_pivot1 = 1.0 / (200.0 + wheel_out1);
-    // drawn_surfaces.mbg:54:7  articulated-body elimination, body hub: joint acceleration as an affine function of the parent's motion
-    const double hub_accel2 = -hub_pivot1 * (1962.0 + wheel_out2);
-    // drawn_surfaces.mbg:54:7  joint acceleration of body hub from its parent's motion (articulated-body form)
-    const double der_lift_s_rate_rate = hub_accel2;
-    // drawn_surfaces.mbg:54:7  d/dt of [0 lift.vsum: flows in = flows out]
-    const double der_lift_reaction_f_f_3 = der_lift_s_rate_rate;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vpa: flows in = flows out]
-    const double der_spin_m4_f1_3 = der_lift_reaction_f_f_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_1 = cse518 - cse505 * der_spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
-    const double der_spin_reaction_f_f_1 = der_spin_m4_f2_1;
-    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
-    const double der_wheel_m_p_1 = 10.0 * der_spin_reaction_f_f_1;
-    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
-    const double wheel_m_e_1 = der_wheel_m_p_1;
-    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_1 = -(cse515 - (wheel_m_e_1 + wheel_ejs_v_e_1));
-    // drawn_surfaces.mbg:55:7  d/dt of [MTF spin.m4: f2 = T f1]
-    const double der_spin_m4_f2_3 = cse520 + wheel_pose_R33 * der_spin_m4_f1_3;
-    // drawn_surfaces.mbg:55:7  d/dt of [0 spin.vsum: flows in = flows out]
-    const double der_spin_reaction_f_f_3 = der_spin_m4_f2_3;
-    // drawn_surfaces.mbg:52:6  d/dt of [I wheel.m: p = I f (derivative causality)]
-    const double der_wheel_m_p_3 = 10.0 * der_spin_reaction_f_f_3;
-    // drawn_surfaces.mbg:52:6  I wheel.m: e = der(p) (derivative causality)
-    const double wheel_m_e_3 = der_wheel_m_p_3;
-    // drawn_surfaces.mbg:52:6  1 wheel.v: efforts in = efforts out
-    const double spin_reaction_f_e_3 = -(cse519 - (wheel_m_e_3 + wheel_ejs_v_e_3));
-    // drawn_surfaces.mbg:55:7  MTF spin.m4: e1 = T' e2
-    const double spin_m4_e1_1 = wheel_pose_R33 * spin_reaction_f_e_1 + cse505 * spin_reaction_f_e_3;
-    // drawn_surfaces.mbg:51:6  1 hub.v: efforts in = efforts out
-    const double lift_reaction_f_e_1 = hub_m_e_1 + spin_m4_e1_1;
-    // drawn_surfaces.mbg:50:6  1 sled.v: efforts in = efforts out
-    const double pull_reaction_f_e_1 = sled_m_e_1 + lift_reaction_f_e_1;
+    const double tyre_on_wheel_f_e_3 = tyre_force_3;
     // drawn_surfaces.mbg:55:7  d/dt of [Sf spin.theta_rate: f = value]
     const double der_spin_theta_rate_f = 0.0;
     // drawn_surfaces.mbg:55:7  d/dt of [0 spin.wsum: flows in = flows out]
@@ -2344,7 +2221,7 @@ class drawn_surfaces_model final : public mbgrt::Model {
     // drawn_surfaces.mbg:52:6  1 wheel.w: efforts in = efforts out
     const double spin_reaction_t_e_2 = -(tyre_on_wheel_t_e_2 - wheel_J_e_2);
     // the powers
-    out[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 + (wheel_weight_e_1 * spin_reaction_f_f_1 + wheel_weight_e_3 * spin_reaction_f_f_3) + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
+    out[0] = -9.81 * ball_p_m_p_3 - 9.81 * ball_s_m_p_3 - 9.81 * ball_c_m_p_3 - 9.81 * ball_r_m_p_3 - 9.81 * ball_m_m_p_3 - 49.050000000000004 * rise_reaction_f_f_3 - 1962.0 * lift_reaction_f_f_3 - 98.10000000000001 * spin_reaction_f_f_3 + rise_reaction_f_e_3 * rise_s_rate_f + pull_reaction_f_e_1 * pull_s_rate_f + spin_reaction_t_e_2 * spin_theta_rate_f + (tyre_on_wheel_f_e_1 * spin_reaction_f_f_1 + tyre_on_wheel_f_e_3 * spin_reaction_f_f_3) + tyre_on_wheel_t_e_2 * spin_reaction_t_f_2;
     out[1] = wheel_ejs_v_e_1 * spin_reaction_f_f_1 + wheel_ejs_v_e_3 * spin_reaction_f_f_3 + on_floor_cn_e * ball_p_m_p_3 + on_dome_cn_e * on_dome_cat_f2 + on_drum_cn_e * on_drum_cat_f2 + on_ridge_cn_e * on_ridge_cat_f2 + on_platform_cn_e * on_platform_cn_f;
   }
 
