@@ -74,12 +74,29 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       rates.push_back({sym.spin(), nullptr, B.ref(sym.spin_rate().flow()), B.call("rotq", {qrel}), nullptr,
                        B.call("eye", {B.num(3)})});
     }
+    /// B's velocity in B's joint axes, a free rate source; the translation
+    /// (A's joint axes) integrates it turned by the relative rotation.
+    void float_in_child_axes(E r0, E v0) override {
+      const SourceLoc& at = joint.decl->loc;
+      const E rot_now = B.call("rotq", {qrel});
+      const E u0 = B.op('*', B.call("transpose", {B.call("rotq", {setting_or_default(joint_setting::rot0)})}), std::move(v0));
+      x_.element(B, "Sf", sym.drift_rate(), nullptr, {kv(element_setting::rate0, u0, at)});
+      x_.element(B, "C", sym.offset(), nullptr,
+                 {kv(element_setting::c_effort, B.vec(0, 0, 0), at), kv(element_setting::q0, std::move(r0), at)});
+      x_.element(B, "MTF", sym.offset_rate(), rot_now);
+      x_.junction(B, '1', sym.drift(), 3, {sym.drift_rate()}, {sym.offset_rate().port(1)});
+      x_.bond(B, sym.offset_rate().port(2), sym.offset(), 3);
+      disp = B.ref(sym.offset().displacement());
+      // V = R(q) in A's joint axes, the identity in B's
+      rates.push_back({sym.drift(), nullptr, B.ref(sym.drift_rate().flow()), nullptr, rot_now, nullptr, B.call("eye", {B.num(3)})});
+    }
     std::deque<Rate> rates;  // a deque: references rate() returned stay valid
 
    private:
     Expander& x_;
   };
   Rates m(*this, B, j, C.kind.particle());
+  for (const auto& [name, body] : m_.bodies) m.child_carries = m.child_carries || body.tree_parent == child;
   j.kind->mobilize(m);
   const std::deque<Mobilizer::Rate>& rates = m.rates;
   const E& disp = m.disp;
@@ -221,8 +238,9 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       if (!P.kind.ground()) feed(on_parent.v(), body_frame_velocity(P) || P.kind.particle() ? RrelT : times(RrelT, T(RP)), vsum);
       if (parent_turns) feed(on_parent.w(), times(RrelT, B.neg(skew(fwd ? pa : pb))), vsum);
     }
+    // (R_PC^T Fa V = Fb R^T V: where the kind gives R^T V (Vb), no rotation is left)
     for (const Mobilizer::Rate& r : rates)
-      if (r.V) feed(r.junction, fwd ? times(times(RrelT, Fa), r.V) : B.neg(times(Fa, r.V)), vsum);
+      if (r.V) feed(r.junction, fwd ? (r.Vb ? times(Fb, r.Vb) : times(times(RrelT, Fa), r.V)) : B.neg(times(Fa, r.V)), vsum);
     feed(on_child.w(), skew(fwd ? pb : pa), vsum);
     if (seat.point) {  // the parent's modal rates move and turn the joint's seat
       E q = B.ref(on_parent.eta().displacement());

@@ -75,6 +75,7 @@ class Mobilizer {
     E rate;                // its rate
     E W, V;                // angular and linear velocity per unit rate, A's joint axes (null: none)
     E Wb;                  // W in B's joint axes, R^T W, where the kind knows it simply (null: R^T W is formed)
+    E Vb;                  // V in B's joint axes, R^T V, likewise
   };
   Mobilizer(const Build& b, const Joint& j, bool child_particle);
   virtual ~Mobilizer() = default;
@@ -86,6 +87,12 @@ class Mobilizer {
   /// Three rates: the relative angular velocity in B's joint frame,
   /// integrated into a relative quaternion (a ball joint); sets qrel.
   virtual void ball() = 0;
+  /// Three rates: the velocity of B's joint point in B's joint axes, turned
+  /// into A's by the relative rotation and integrated into the translation
+  /// (a free joint's: a floating body's velocity in its own axes, as its
+  /// momentum is, so that no rotation enters its inertia); sets disp. After
+  /// ball(), whose rotation it needs; r0 and v0 in A's joint axes.
+  virtual void float_in_child_axes(E r0, E v0) = 0;
 
   /// The joint's setting `key`, or `fallback`.
   E setting_or(const Setting& s, E fallback) const;
@@ -97,6 +104,7 @@ class Mobilizer {
   const Joint& joint;
   const JointSym sym;         // the joint's names
   const bool child_particle;  // the child body has no orientation
+  bool child_carries = false;  // other bodies hang from the child (it is the base of a subtree)
   E zero, ex, ey, ez;
   // The relative pose of B's joint frame in A's: the translation disp (A's
   // axes) and the rotation qrel; and the coordinates users read. Kinds that

@@ -72,6 +72,14 @@ class JointSym : public Sym {
   Sym spin_rate() const { return part("spin_rate"); }
   Sym rot() const { return part("rot"); }
   Sym rot_rate() const { return part("rotrate"); }
+  /// A free joint's translation (Mobilizer::float_in_child_axes): the
+  /// 1-junction of its velocity (B's joint axes), the Sf of that rate, the C
+  /// of the translation (A's joint axes), the MTF turning the one into the
+  /// other's rate between them.
+  Sym drift() const { return part("drift"); }
+  Sym drift_rate() const { return part("drift_rate"); }
+  Sym offset() const { return part("offset"); }
+  Sym offset_rate() const { return part("offsetrate"); }
   /// The bodies' relative rotation R_PC, entry (r, c), where it is a signal.
   Sym relative_R(int r, int c) const { return part(fmt::format("Rpc{}{}", r, c)); }
   /// The k-th MTF (from 1) feeding the child's velocity sums.

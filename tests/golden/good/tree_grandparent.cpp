@@ -34,7 +34,7 @@ class tree_grandparent_model final : public mbgrt::Model {
   }
 
   std::string variable_name(std::size_t i) const override {
-    static const char* const kNames[] = {"float.x_rate.rate", "float.x.q", "float.y_rate.rate", "float.y.q", "float.z_rate.rate", "float.z.q", "float.spin_rate.rate[1]", "float.spin_rate.rate[2]", "float.spin_rate.rate[3]", "float.rot.q[1]", "float.rot.q[2]", "float.rot.q[3]", "float.rot.q[4]", "slide.s_rate.rate", "slide.s.q", "hinge.theta_rate.rate", "hinge.theta.q"};
+    static const char* const kNames[] = {"float.spin_rate.rate[1]", "float.spin_rate.rate[2]", "float.spin_rate.rate[3]", "float.rot.q[1]", "float.rot.q[2]", "float.rot.q[3]", "float.rot.q[4]", "float.drift_rate.rate[1]", "float.drift_rate.rate[2]", "float.drift_rate.rate[3]", "float.offset.q[1]", "float.offset.q[2]", "float.offset.q[3]", "slide.s_rate.rate", "slide.s.q", "hinge.theta_rate.rate", "hinge.theta.q"};
     return i < 17 ? kNames[i] : "?";
   }
 
@@ -42,8 +42,8 @@ class tree_grandparent_model final : public mbgrt::Model {
   mbgrt::UnknownRole unknown_role(std::size_t i) const override {
     using R = mbgrt::UnknownRole;
     static const R kRoles[] = {
-        R::velocity, R::position, R::velocity, R::position, R::velocity, R::position, R::velocity, R::velocity,
-        R::velocity, R::position, R::position, R::position, R::position, R::velocity, R::position, R::velocity,
+        R::velocity, R::velocity, R::velocity, R::position, R::position, R::position, R::position, R::velocity,
+        R::velocity, R::velocity, R::position, R::position, R::position, R::velocity, R::position, R::velocity,
         R::position,
     };
     return i < 17 ? kRoles[i] : R::unspecified;
@@ -52,7 +52,7 @@ class tree_grandparent_model final : public mbgrt::Model {
   // GROUPS: the first unknown of each unknown's vector (one storage's components), for the tolerances.
   std::size_t unknown_group(std::size_t i) const override {
     static const unsigned kGroups[] = {
-        0, 1, 2, 3, 4, 5, 6, 6, 6, 9, 9, 9, 9, 13, 14, 15, 16,
+        0, 0, 0, 3, 3, 3, 3, 7, 7, 7, 10, 10, 10, 13, 14, 15, 16,
     };
     return i < 17 ? kGroups[i] : i;
   }
@@ -89,19 +89,19 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)t;
     (void)yp;
     // INITIAL STATE
-    x[0] = 0.0;  // float.x_rate.rate (tree_grandparent.mbg:16:7)
-    x[1] = 0.0;  // float.x.q (tree_grandparent.mbg:16:7)
-    x[2] = 0.0;  // float.y_rate.rate (tree_grandparent.mbg:16:7)
-    x[3] = 0.0;  // float.y.q (tree_grandparent.mbg:16:7)
-    x[4] = 0.0;  // float.z_rate.rate (tree_grandparent.mbg:16:7)
-    x[5] = 1.0;  // float.z.q (tree_grandparent.mbg:16:7)
-    x[6] = 0.1;  // float.spin_rate.rate[1] (tree_grandparent.mbg:16:7)
-    x[7] = 0.2;  // float.spin_rate.rate[2] (tree_grandparent.mbg:16:7)
-    x[8] = 0.3;  // float.spin_rate.rate[3] (tree_grandparent.mbg:16:7)
-    x[9] = 1.0;  // float.rot.q[1] (tree_grandparent.mbg:16:7)
-    x[10] = 0.0;  // float.rot.q[2] (tree_grandparent.mbg:16:7)
-    x[11] = 0.0;  // float.rot.q[3] (tree_grandparent.mbg:16:7)
-    x[12] = 0.0;  // float.rot.q[4] (tree_grandparent.mbg:16:7)
+    x[0] = 0.1;  // float.spin_rate.rate[1] (tree_grandparent.mbg:16:7)
+    x[1] = 0.2;  // float.spin_rate.rate[2] (tree_grandparent.mbg:16:7)
+    x[2] = 0.3;  // float.spin_rate.rate[3] (tree_grandparent.mbg:16:7)
+    x[3] = 1.0;  // float.rot.q[1] (tree_grandparent.mbg:16:7)
+    x[4] = 0.0;  // float.rot.q[2] (tree_grandparent.mbg:16:7)
+    x[5] = 0.0;  // float.rot.q[3] (tree_grandparent.mbg:16:7)
+    x[6] = 0.0;  // float.rot.q[4] (tree_grandparent.mbg:16:7)
+    x[7] = 0.0;  // float.drift_rate.rate[1] (tree_grandparent.mbg:16:7)
+    x[8] = 0.0;  // float.drift_rate.rate[2] (tree_grandparent.mbg:16:7)
+    x[9] = 0.0;  // float.drift_rate.rate[3] (tree_grandparent.mbg:16:7)
+    x[10] = 0.0;  // float.offset.q[1] (tree_grandparent.mbg:16:7)
+    x[11] = 0.0;  // float.offset.q[2] (tree_grandparent.mbg:16:7)
+    x[12] = 1.0;  // float.offset.q[3] (tree_grandparent.mbg:16:7)
     x[13] = 0.0;  // slide.s_rate.rate (tree_grandparent.mbg:17:7)
     x[14] = 0.0;  // slide.s.q (tree_grandparent.mbg:17:7)
     x[15] = 1.0;  // hinge.theta_rate.rate (tree_grandparent.mbg:18:7)
@@ -113,94 +113,90 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)t;
     (void)x;
     // states
-    const double float_x_rate_rate = x[0];
-    const double float_y_rate_rate = x[2];
-    const double float_z_rate_rate = x[4];
-    const double float_spin_rate_rate_1 = x[6];
-    const double float_spin_rate_rate_2 = x[7];
-    const double float_spin_rate_rate_3 = x[8];
-    const double float_rot_q_1 = x[9];
-    const double float_rot_q_2 = x[10];
-    const double float_rot_q_3 = x[11];
-    const double float_rot_q_4 = x[12];
+    const double float_spin_rate_rate_1 = x[0];
+    const double float_spin_rate_rate_2 = x[1];
+    const double float_spin_rate_rate_3 = x[2];
+    const double float_rot_q_1 = x[3];
+    const double float_rot_q_2 = x[4];
+    const double float_rot_q_3 = x[5];
+    const double float_rot_q_4 = x[6];
+    const double float_drift_rate_rate_1 = x[7];
+    const double float_drift_rate_rate_2 = x[8];
+    const double float_drift_rate_rate_3 = x[9];
     const double slide_s_rate_rate = x[13];
     const double slide_s_q = x[14];
     const double hinge_theta_rate_rate = x[15];
     const double hinge_theta_q = x[16];
-    // tree_grandparent.mbg:16:7  signal float.Rpc12
+    // tree_grandparent.mbg:16:7  signal float.Rpc31
     // (cseN: a subexpression several equations below share)
-    const double cse1 = float_rot_q_2 * float_rot_q_3;
-    const double cse2 = float_rot_q_1 * float_rot_q_4;
+    const double cse1 = float_rot_q_2 * float_rot_q_4;
+    const double cse2 = float_rot_q_1 * float_rot_q_3;
     const double cse3 = float_rot_q_1 * float_rot_q_1;
     const double cse4 = float_rot_q_2 * float_rot_q_2;
     const double cse5 = cse3 + cse4;
     const double cse6 = float_rot_q_3 * float_rot_q_3;
     const double cse7 = float_rot_q_4 * float_rot_q_4;
     const double cse8 = cse5 + cse6 + cse7;
-    const double float_Rpc12 = 2.0 * (cse1 - cse2) / cse8;
-    // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse5 - cse6 - cse7) / cse8;
-    // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse9 = float_rot_q_2 * float_rot_q_4;
-    const double cse10 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse9 + cse10) / cse8;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc12] in closed form
-    const double der_float_Rpc12 = -float_Rpc11 * float_spin_rate_rate_3 + float_Rpc13 * float_spin_rate_rate_1;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc13] in closed form
-    const double der_float_Rpc13 = float_Rpc11 * float_spin_rate_rate_2 - float_Rpc12 * float_spin_rate_rate_1;
-    // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse11 = float_rot_q_3 * float_rot_q_4;
-    const double cse12 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse11 - cse12) / cse8;
-    // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse1 + cse2) / cse8;
-    // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse3 + cse6 - cse4 - cse7) / cse8;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc23] in closed form
-    const double der_float_Rpc23 = float_Rpc21 * float_spin_rate_rate_2 - float_Rpc22 * float_spin_rate_rate_1;
-    // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse9 - cse10) / cse8;
-    // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse11 + cse12) / cse8;
-    // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse3 + cse7 - cse4 - cse6) / cse8;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc33] in closed form
-    const double der_float_Rpc33 = float_Rpc31 * float_spin_rate_rate_2 - float_Rpc32 * float_spin_rate_rate_1;
+    const double float_Rpc31 = 2.0 * (cse1 - cse2) / cse8;
     // tree_grandparent.mbg:12:6  Se base.weight: e = value
-    const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_1 = float_Rpc21 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_1 = float_Rpc31 * float_z_rate_rate;
+    const double base_weight_e_1 = -98.10000000000001 * float_Rpc31;
     // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_1 = float_m2_f2_1 + float_m3_f2_1 + float_m4_f2_1;
-    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
-    const double base_m_p_1 = 10.0 * float_reaction_f_f_1;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_2 = float_Rpc12 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_2 = float_Rpc22 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_2 = float_Rpc32 * float_z_rate_rate;
-    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_2 = float_m2_f2_2 + float_m3_f2_2 + float_m4_f2_2;
+    const double float_reaction_f_f_2 = float_drift_rate_rate_2;
     // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
     const double base_m_p_2 = 10.0 * float_reaction_f_f_2;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_3 = float_drift_rate_rate_3;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_3 = 10.0 * float_reaction_f_f_3;
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
-    const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
-    // tree_grandparent.mbg:17:7  Se slide.applied: e = value
-    const double cse13 = 1000.0 * slide_s_q;
-    const double slide_applied_e = -cse13 - 10.0 * slide_s_rate_rate;
-    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
-    const double slider_weight_e_3 = -19.62 * float_Rpc33;
+    const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
+    // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
+    const double base_J_p_3 = 3.0 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
+    const double base_ejs_e_2 = float_spin_rate_rate_3 * float_spin_rate_rate_1 - float_spin_rate_rate_1 * base_J_p_3;
+    // tree_grandparent.mbg:13:6  I slider.J: p = I f (derivative causality)
+    const double slider_J_p_1 = 0.1 * float_spin_rate_rate_1;
+    const double slider_J_p_3 = 0.1 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
+    const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double cse9 = std::cos(hinge_theta_q);
+    const double cse10 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse9 * float_spin_rate_rate_1 - cse10 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double cse11 = cse10 * float_spin_rate_rate_1;
+    const double cse12 = cse9 * float_spin_rate_rate_3;
+    const double hinge_m1_f2_3 = cse11 + cse12;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_3 = 0.05 * hinge_reaction_t_f_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_1 = float_drift_rate_rate_1;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
     const double slide_m2_f2_1 = slide_s_q * float_spin_rate_rate_2;
     // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
     const double slide_m3_f1_1 = float_reaction_f_f_1 + slide_m2_f2_1;
     // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
     const double slide_reaction_f_f_1 = slide_m3_f1_1;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_1 = slide_reaction_f_f_1;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_3 = float_reaction_f_f_3;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_3 = slide_reaction_f_f_3;
+    // tree_grandparent.mbg:16:7  signal float.Rpc33
+    const double float_Rpc33 = (cse3 + cse7 - cse4 - cse6) / cse8;
+    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
+    const double slider_weight_e_3 = -19.62 * float_Rpc33;
     // tree_grandparent.mbg:13:6  I slider.m: p = I f (derivative causality)
     const double slider_m_p_1 = 2.0 * slide_reaction_f_f_1;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
@@ -213,65 +209,45 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double slider_m_p_2 = 2.0 * slide_reaction_f_f_2;
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_3 = float_spin_rate_rate_1 * slider_m_p_2 - float_spin_rate_rate_2 * slider_m_p_1;
-    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
-    const double hinge_m4_f1_1 = slide_reaction_f_f_1;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_3 = float_Rpc13 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_3 = float_Rpc23 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_3 = float_Rpc33 * float_z_rate_rate;
-    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_3 = float_m2_f2_3 + float_m3_f2_3 + float_m4_f2_3;
-    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
-    const double slide_m3_f1_3 = float_reaction_f_f_3;
-    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
-    const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
-    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
-    const double hinge_m4_f1_3 = slide_reaction_f_f_3;
-    // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
-    const double base_J_p_3 = 3.0 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
-    const double base_ejs_e_2 = float_spin_rate_rate_3 * float_spin_rate_rate_1 - float_spin_rate_rate_1 * base_J_p_3;
-    // tree_grandparent.mbg:13:6  I slider.J: p = I f (derivative causality)
-    const double slider_J_p_1 = 0.1 * float_spin_rate_rate_1;
-    const double slider_J_p_3 = 0.1 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
-    const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
-    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse14 = std::cos(hinge_theta_q);
-    const double cse15 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse14 * float_spin_rate_rate_1 - cse15 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
-    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
-    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
-    const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
-    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse16 = cse15 * float_spin_rate_rate_1;
-    const double cse17 = cse14 * float_spin_rate_rate_3;
-    const double hinge_m1_f2_3 = cse16 + cse17;
-    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
-    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
-    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
-    const double arm_J_p_3 = 0.05 * hinge_reaction_t_f_3;
-    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
-    const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
-    // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double arm_pose_R33 = float_Rpc31 * cse15 + float_Rpc33 * cse14;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R31
+    const double arm_pose_R31 = float_Rpc31 * cse9 - float_Rpc33 * cse10;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
-    const double arm_weight_e_3 = -9.81 * arm_pose_R33;
+    const double arm_weight_e_1 = -9.81 * arm_pose_R31;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
-    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse14 * hinge_m4_f1_1 - cse15 * hinge_m4_f1_3;
-    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
-    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_2 = slide_reaction_f_f_2;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_2 = 0.2 * hinge_reaction_t_f_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double cse13 = cse10 * hinge_m4_f1_1;
+    const double cse14 = cse9 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse13 + cse14;
+    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
+    const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
+    const double arm_ejs_v_e_1 = hinge_reaction_t_f_2 * hinge_reaction_f_f_3 - hinge_reaction_t_f_3 * hinge_reaction_f_f_2;
+    // tree_grandparent.mbg:17:7  Se slide.applied: e = value
+    const double cse15 = 1000.0 * slide_s_q;
+    const double slide_applied_e = -cse15 - 10.0 * slide_s_rate_rate;
+    // tree_grandparent.mbg:12:6  Se base.weight: e = value
+    const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_1 = 10.0 * float_reaction_f_f_1;
+    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
+    const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R33
+    const double arm_pose_R33 = float_Rpc31 * cse10 + float_Rpc33 * cse9;
+    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
+    const double arm_weight_e_3 = -9.81 * arm_pose_R33;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_1 = cse9 * hinge_m4_f1_1 - cse10 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
     const double arm_ejs_v_e_3 = hinge_reaction_t_f_1 * hinge_reaction_f_f_2 - hinge_reaction_t_f_2 * hinge_reaction_f_f_1;
     // tree_grandparent.mbg:13:6  Se slider.weight: e = value
@@ -280,28 +256,105 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double slider_m_p_3 = 2.0 * slide_reaction_f_f_3;
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
-    // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse14 - float_Rpc33 * cse15;
-    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
-    const double arm_weight_e_1 = -9.81 * arm_pose_R31;
-    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double cse18 = cse15 * hinge_m4_f1_1;
-    const double cse19 = cse14 * hinge_m4_f1_3;
-    const double hinge_m4_f2_3 = cse18 + cse19;
-    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
-    const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
-    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
-    const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
-    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
-    const double arm_ejs_v_e_1 = hinge_reaction_t_f_2 * hinge_reaction_f_f_3 - hinge_reaction_t_f_3 * hinge_reaction_f_f_2;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc22] in closed form
-    const double der_float_Rpc22 = -float_Rpc21 * float_spin_rate_rate_3 + float_Rpc23 * float_spin_rate_rate_1;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc32] in closed form
-    const double der_float_Rpc32 = -float_Rpc31 * float_spin_rate_rate_3 + float_Rpc33 * float_spin_rate_rate_1;
+    // tree_grandparent.mbg:18:7  articulated-body elimination, body arm: joint acceleration as an affine function of the parent's motion
+    const double arm_accel1 = 2.222222222222222 * cse10;
+    const double arm_accel2 = 2.222222222222222 * cse9;
+    const double cse16 = -(arm_weight_e_3 - arm_ejs_v_e_3) + hinge_m4_f2_1 * hinge_theta_rate_rate;
+    const double arm_accel3 = -11.111111111111109 * (arm_ejs_e_2 - 0.2 * cse16);
+    // tree_grandparent.mbg:18:7  articulated-body elimination, body arm: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
+    const double cse17 = 0.2 * cse10;
+    const double arm_out4 = -cse17 + 0.19999999999999998 * cse10;
+    const double arm_out5 = -cse17 * arm_accel1 + 1.0;
+    const double cse18 = cse9 * cse10;
+    const double cse19 = cse10 * cse9;
+    const double arm_out6 = -cse17 * arm_accel2 + (-cse18 + cse19);
+    const double cse20 = -(arm_weight_e_1 - arm_ejs_v_e_1) + (-cse13 - cse14) * hinge_theta_rate_rate;
+    const double arm_out7 = cse9 * cse20 + cse10 * cse16 - cse17 * arm_accel3;
+    const double cse21 = 0.2 * cse9;
+    const double arm_out8 = -cse21 + 0.19999999999999998 * cse9;
+    const double arm_out9 = -cse21 * arm_accel1 + (-cse19 + cse18);
+    const double arm_out10 = -cse21 * arm_accel2 + 1.0;
+    const double arm_out11 = -cse10 * cse20 + cse9 * cse16 - cse21 * arm_accel3;
+    // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: 1 / pivot of the joint's accelerations
+    const double cse22 = 2.0 + arm_out10;
+    const double slider_pivot1 = 1.0 / cse22;
+    // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: joint acceleration as an affine function of the parent's motion
+    const double cse23 = arm_out8 + arm_out9 * slide_s_q;
+    const double slider_accel2 = -slider_pivot1 * cse23;
+    const double slider_accel3 = -slider_pivot1 * arm_out9;
+    const double slider_accel4 = -slider_pivot1 * cse22;
+    const double cse24 = float_spin_rate_rate_2 * slide_s_rate_rate;
+    const double cse25 = -(slider_weight_e_3 - slider_ejs_v_e_3) + arm_out11 + arm_out9 * cse24;
+    const double slider_accel5 = -slider_pivot1 * (-slide_applied_e + cse25);
+    // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
+    const double cse26 = 2.0 * slide_s_q;
+    const double slider_out6 = cse26 + arm_out4 + arm_out5 * slide_s_q + arm_out6 * slider_accel2;
+    const double slider_out7 = arm_out6 * slider_accel3 + (2.0 + arm_out5);
+    const double slider_out8 = arm_out6 * slider_accel4 + arm_out6;
+    const double slider_out9 = -(slider_weight_e_1 - slider_ejs_v_e_1) + arm_out7 + 2.0 * cse24 + arm_out5 * cse24 + arm_out6 * slider_accel5;
+    const double slider_out10 = cse23 + cse22 * slider_accel2;
+    const double slider_out11 = cse22 * slider_accel3 + arm_out9;
+    const double slider_out12 = cse22 * slider_accel4 + cse22;
+    const double slider_out13 = cse25 + cse22 * slider_accel5;
+    const double slider_out14 = 0.1 + slide_s_q * slider_out6;
+    const double slider_out15 = slide_s_q * slider_out7;
+    const double slider_out16 = slide_s_q * slider_out8;
+    const double slider_out17 = slider_ejs_e_2 + slide_s_q * slider_out9;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
+    const double base_pivot1 = 1.0 / (2.0 + slider_out14);
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
+    const double base_factor2 = slider_out6 * base_pivot1;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
+    const double base_row3 = 10.0 + slider_out7 - base_factor2 * slider_out15;
+    const double base_row4 = slider_out8 - base_factor2 * slider_out16;
+    const double cse27 = base_ejs_e_2 + slider_out17;
+    const double base_row5 = -(base_weight_e_1 - base_ejs_v_e_1) + slider_out9 - base_factor2 * cse27;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
+    const double base_factor6 = slider_out10 * base_pivot1;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
+    const double base_row7 = slider_out11 - base_factor6 * slider_out15;
+    const double base_row8 = 10.0 + slider_out12 - base_factor6 * slider_out16;
+    const double base_row9 = -(base_weight_e_3 - base_ejs_v_e_3) + slider_out13 - base_factor6 * cse27;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
+    const double base_pivot10 = 1.0 / base_row3;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
+    const double base_factor11 = base_row7 * base_pivot10;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
+    const double base_row12 = base_row8 - base_factor11 * base_row4;
+    const double base_row13 = base_row9 - base_factor11 * base_row5;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
+    const double base_pivot14 = 1.0 / base_row12;
+    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: joint acceleration as an affine function of the parent's motion
+    const double base_accel15 = -base_pivot14 * base_row13;
+    const double base_accel16 = -base_pivot10 * (base_row5 + base_row4 * base_accel15);
+    const double base_accel17 = -base_pivot1 * (cse27 + slider_out15 * base_accel16 + slider_out16 * base_accel15);
+    // tree_grandparent.mbg:16:7  joint acceleration of body base from its parent's motion (articulated-body form)
+    const double der_float_spin_rate_rate_2 = base_accel17;
+    const double der_float_drift_rate_rate_1 = base_accel16;
+    const double der_float_drift_rate_rate_3 = base_accel15;
+    // tree_grandparent.mbg:16:7  d/dt of [0 float.vsum: flows in = flows out]
+    const double der_float_reaction_f_f_1 = der_float_drift_rate_rate_1;
+    const double der_float_reaction_f_f_3 = der_float_drift_rate_rate_3;
+    // tree_grandparent.mbg:17:7  joint acceleration of body slider from its parent's motion (articulated-body form)
+    const double der_slide_s_rate_rate = slider_accel5 + slider_accel2 * der_float_spin_rate_rate_2 + slider_accel3 * der_float_reaction_f_f_1 + slider_accel4 * der_float_reaction_f_f_3;
+    // tree_grandparent.mbg:17:7  d/dt of [MTF slide.m2: f2 = T f1]
+    const double der_slide_m2_f2_1 = slide_s_q * der_float_spin_rate_rate_2 + cse24;
+    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vpa: flows in = flows out]
+    const double der_slide_m3_f1_1 = der_float_reaction_f_f_1 + der_slide_m2_f2_1;
+    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vsum: flows in = flows out]
+    const double der_slide_reaction_f_f_1 = der_slide_m3_f1_1;
+    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vpa: flows in = flows out]
+    const double der_slide_m3_f1_3 = der_float_reaction_f_f_3;
+    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vsum: flows in = flows out]
+    const double der_slide_reaction_f_f_3 = der_slide_m3_f1_3 + der_slide_s_rate_rate;
+    // tree_grandparent.mbg:18:7  joint acceleration of body arm from its parent's motion (articulated-body form)
+    const double der_hinge_theta_rate_rate = arm_accel3 - 0.9999999999999999 * der_float_spin_rate_rate_2 + arm_accel1 * der_slide_reaction_f_f_1 + arm_accel2 * der_slide_reaction_f_f_3;
+    // tree_grandparent.mbg:16:7  signal float.Rpc32
+    const double cse28 = float_rot_q_3 * float_rot_q_4;
+    const double cse29 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc32 = 2.0 * (cse28 + cse29) / cse8;
     // tree_grandparent.mbg:12:6  Se base.weight: e = value
     const double base_weight_e_2 = -98.10000000000001 * float_Rpc32;
-    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
-    const double base_m_p_3 = 10.0 * float_reaction_f_f_3;
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_2 = float_spin_rate_rate_3 * base_m_p_1 - float_spin_rate_rate_1 * base_m_p_3;
     // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
@@ -330,316 +383,106 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double slider_weight_e_2 = -19.62 * float_Rpc32;
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_2 = float_spin_rate_rate_3 * slider_m_p_1 - float_spin_rate_rate_1 * slider_m_p_3;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc11] in closed form
-    const double der_float_Rpc11 = float_Rpc12 * float_spin_rate_rate_3 - float_Rpc13 * float_spin_rate_rate_2;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc21] in closed form
-    const double der_float_Rpc21 = float_Rpc22 * float_spin_rate_rate_3 - float_Rpc23 * float_spin_rate_rate_2;
-    // tree_grandparent.mbg:16:7  d/dt of [signal float.Rpc31] in closed form
-    const double der_float_Rpc31 = float_Rpc32 * float_spin_rate_rate_3 - float_Rpc33 * float_spin_rate_rate_2;
-    // tree_grandparent.mbg:12:6  Se base.weight: e = value
-    const double base_weight_e_1 = -98.10000000000001 * float_Rpc31;
-    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
-    const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
-    // tree_grandparent.mbg:18:7  articulated-body elimination, body arm: joint acceleration as an affine function of the parent's motion
-    const double arm_accel1 = 2.222222222222222 * cse15;
-    const double arm_accel2 = 2.222222222222222 * cse14;
-    const double cse20 = -(arm_weight_e_3 - arm_ejs_v_e_3) + hinge_m4_f2_1 * hinge_theta_rate_rate;
-    const double arm_accel3 = -11.111111111111109 * (arm_ejs_e_2 - 0.2 * cse20);
     // tree_grandparent.mbg:18:7  articulated-body elimination, body arm: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse21 = 0.01 * cse14;
-    const double cse22 = 0.05 * cse15 + 0.04000000000000001 * cse15;
-    const double arm_out4 = cse14 * cse21 + cse15 * cse22;
-    const double cse23 = 0.01 * cse15;
-    const double cse24 = 0.05 * cse14 + 0.04000000000000001 * cse14;
-    const double arm_out5 = -cse14 * cse23 + cse15 * cse24;
-    const double arm_out6 = 0.2 * cse15;
-    const double cse25 = arm_ejs_e_1 + 0.01 * ((-cse16 - cse17) * hinge_theta_rate_rate);
-    const double cse26 = hinge_m1_f2_1 * hinge_theta_rate_rate;
-    const double cse27 = -(arm_weight_e_2 - arm_ejs_v_e_2) + 0.2 * cse26;
-    const double cse28 = arm_ejs_e_3 + 0.05 * cse26 + 0.2 * cse27;
-    const double arm_out7 = cse14 * cse25 + cse15 * cse28;
-    const double arm_out8 = -cse15 * cse21 + cse14 * cse22;
-    const double arm_out9 = cse15 * cse23 + cse14 * cse24;
-    const double arm_out10 = 0.2 * cse14;
-    const double arm_out11 = -cse15 * cse25 + cse14 * cse28;
-    const double arm_out12 = -arm_out6 + 0.19999999999999998 * cse15;
-    const double arm_out13 = -arm_out6 * arm_accel1 + 1.0;
-    const double cse29 = cse14 * cse15;
-    const double cse30 = cse15 * cse14;
-    const double arm_out14 = -arm_out6 * arm_accel2 + (-cse29 + cse30);
-    const double cse31 = -(arm_weight_e_1 - arm_ejs_v_e_1) + (-cse18 - cse19) * hinge_theta_rate_rate;
-    const double arm_out15 = cse14 * cse31 + cse15 * cse20 - arm_out6 * arm_accel3;
-    const double arm_out16 = -arm_out10 + 0.19999999999999998 * cse14;
-    const double arm_out17 = -arm_out10 * arm_accel1 + (-cse30 + cse29);
-    const double arm_out18 = -arm_out10 * arm_accel2 + 1.0;
-    const double arm_out19 = -cse15 * cse31 + cse14 * cse20 - arm_out10 * arm_accel3;
-    const double arm_out20 = arm_out6;
-    const double arm_out21 = arm_out10;
-    const double arm_out22 = cse27;
-    // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: 1 / pivot of the joint's accelerations
-    const double cse32 = 2.0 + arm_out18;
-    const double slider_pivot1 = 1.0 / cse32;
-    // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: joint acceleration as an affine function of the parent's motion
-    const double cse33 = arm_out16 + arm_out17 * slide_s_q;
-    const double slider_accel2 = -slider_pivot1 * cse33;
-    const double slider_accel3 = -slider_pivot1 * arm_out17;
-    const double slider_accel4 = -slider_pivot1 * cse32;
-    const double cse34 = float_spin_rate_rate_2 * slide_s_rate_rate;
-    const double cse35 = -(slider_weight_e_3 - slider_ejs_v_e_3) + arm_out19 + arm_out17 * cse34;
-    const double slider_accel5 = -slider_pivot1 * (-slide_applied_e + cse35);
-    // tree_grandparent.mbg:17:7  articulated-body elimination, body slider: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double slider_out6 = arm_out8 - arm_out10 * slide_s_q;
-    const double slider_out7 = 0.1 + arm_out9;
-    const double cse36 = float_spin_rate_rate_1 * slide_s_rate_rate;
-    const double slider_out8 = slider_ejs_e_3 + arm_out11 - arm_out10 * cse36;
-    const double cse37 = 2.0 * slide_s_q;
-    const double slider_out9 = cse37 + arm_out12 + arm_out13 * slide_s_q + arm_out14 * slider_accel2;
-    const double slider_out10 = arm_out14 * slider_accel3 + (2.0 + arm_out13);
-    const double slider_out11 = arm_out14 * slider_accel4 + arm_out14;
-    const double slider_out12 = -(slider_weight_e_1 - slider_ejs_v_e_1) + arm_out15 + 2.0 * cse34 + arm_out13 * cse34 + arm_out14 * slider_accel5;
-    const double slider_out13 = -cse37 + arm_out20 - slide_s_q;
-    const double slider_out14 = -(slider_weight_e_2 - slider_ejs_v_e_2) + arm_out22 - 2.0 * cse36 - cse36;
-    const double slider_out15 = cse33 + cse32 * slider_accel2;
-    const double slider_out16 = cse32 * slider_accel3 + arm_out17;
-    const double slider_out17 = cse32 * slider_accel4 + cse32;
-    const double slider_out18 = cse35 + cse32 * slider_accel5;
-    const double slider_out19 = 0.1 + arm_out4 - arm_out6 * slide_s_q - slide_s_q * slider_out13;
-    const double slider_out20 = arm_out5 - slide_s_q * arm_out21;
-    const double slider_out21 = arm_out6 - 3.0 * slide_s_q;
-    const double slider_out22 = slider_ejs_e_1 + arm_out7 - arm_out6 * cse36 - slide_s_q * slider_out14;
-    const double slider_out23 = 0.1 + slide_s_q * slider_out9;
-    const double slider_out24 = slide_s_q * slider_out10;
-    const double slider_out25 = slide_s_q * slider_out11;
-    const double slider_out26 = slider_ejs_e_2 + slide_s_q * slider_out12;
+    const double cse30 = 0.01 * cse9;
+    const double cse31 = 0.05 * cse10 + 0.04000000000000001 * cse10;
+    const double arm_out1 = cse9 * cse30 + cse10 * cse31;
+    const double cse32 = 0.01 * cse10;
+    const double cse33 = 0.05 * cse9 + 0.04000000000000001 * cse9;
+    const double arm_out2 = -cse9 * cse32 + cse10 * cse33;
+    const double arm_out3 = cse17;
+    const double cse34 = arm_ejs_e_1 + 0.01 * ((-cse11 - cse12) * hinge_theta_rate_rate);
+    const double cse35 = hinge_m1_f2_1 * hinge_theta_rate_rate;
+    const double cse36 = -(arm_weight_e_2 - arm_ejs_v_e_2) + 0.2 * cse35;
+    const double cse37 = arm_ejs_e_3 + 0.05 * cse35 + 0.2 * cse36;
+    const double arm_out4_2 = cse9 * cse34 + cse10 * cse37;
+    const double arm_out5_2 = -cse10 * cse30 + cse9 * cse31;
+    const double arm_out6_2 = cse10 * cse32 + cse9 * cse33;
+    const double arm_out7_2 = cse21;
+    const double arm_out8_2 = -cse10 * cse34 + cse9 * cse37;
+    const double arm_out9_2 = cse17;
+    const double arm_out10_2 = cse21;
+    const double arm_out11_2 = cse36;
+    // tree_grandparent.mbg:13:6  articulated-body elimination, body slider: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
+    const double slider_out1 = arm_out5_2 - arm_out7_2 * slide_s_q;
+    const double slider_out2 = 0.1 + arm_out6_2;
+    const double cse38 = float_spin_rate_rate_1 * slide_s_rate_rate;
+    const double slider_out3 = slider_ejs_e_3 + arm_out8_2 - arm_out7_2 * cse38;
+    const double slider_out4 = -cse26 + arm_out9_2 - slide_s_q;
+    const double slider_out5 = -(slider_weight_e_2 - slider_ejs_v_e_2) + arm_out11_2 - 2.0 * cse38 - cse38;
+    const double slider_out6_2 = 0.1 + arm_out1 - arm_out3 * slide_s_q - slide_s_q * slider_out4;
+    const double slider_out7_2 = arm_out2 - slide_s_q * arm_out10_2;
+    const double slider_out8_2 = arm_out3 - 3.0 * slide_s_q;
+    const double slider_out9_2 = slider_ejs_e_1 + arm_out4_2 - arm_out3 * cse38 - slide_s_q * slider_out5;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double cse38 = 10.0 * float_Rpc11 + slider_out10 * float_Rpc11 + slider_out11 * float_Rpc13;
-    const double cse39 = 10.0 * float_Rpc12 + 3.0 * float_Rpc12;
-    const double cse40 = 10.0 * float_Rpc13 + slider_out16 * float_Rpc11 + slider_out17 * float_Rpc13;
-    const double base_pivot1 = 1.0 / (float_Rpc11 * cse38 + float_Rpc12 * cse39 + float_Rpc13 * cse40);
+    const double base_pivot1_2 = 1.0 / (1.0 + slider_out6_2);
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor2 = (float_Rpc21 * cse38 + float_Rpc22 * cse39 + float_Rpc23 * cse40) * base_pivot1;
+    const double base_factor2_2 = slider_out1 * base_pivot1_2;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double cse41 = 10.0 * float_Rpc21 + slider_out10 * float_Rpc21 + slider_out11 * float_Rpc23;
-    const double cse42 = 10.0 * float_Rpc22 + 3.0 * float_Rpc22;
-    const double cse43 = 10.0 * float_Rpc23 + slider_out16 * float_Rpc21 + slider_out17 * float_Rpc23;
-    const double cse44 = float_Rpc11 * cse41 + float_Rpc12 * cse42 + float_Rpc13 * cse43;
-    const double base_row3 = float_Rpc21 * cse41 + float_Rpc22 * cse42 + float_Rpc23 * cse43 - base_factor2 * cse44;
-    const double cse45 = 10.0 * float_Rpc31 + slider_out10 * float_Rpc31 + slider_out11 * float_Rpc33;
-    const double cse46 = 10.0 * float_Rpc32 + 3.0 * float_Rpc32;
-    const double cse47 = 10.0 * float_Rpc33 + slider_out16 * float_Rpc31 + slider_out17 * float_Rpc33;
-    const double cse48 = float_Rpc11 * cse45 + float_Rpc12 * cse46 + float_Rpc13 * cse47;
-    const double base_row4 = float_Rpc21 * cse45 + float_Rpc22 * cse46 + float_Rpc23 * cse47 - base_factor2 * cse48;
-    const double cse49 = float_Rpc12 * slider_out13;
-    const double base_row5 = float_Rpc22 * slider_out13 - base_factor2 * cse49;
-    const double cse50 = float_Rpc11 * slider_out9 + float_Rpc13 * slider_out15;
-    const double base_row6 = float_Rpc21 * slider_out9 + float_Rpc23 * slider_out15 - base_factor2 * cse50;
-    const double cse51 = float_Rpc12 * arm_out21;
-    const double base_row7 = float_Rpc22 * arm_out21 - base_factor2 * cse51;
-    const double cse52 = float_x_rate_rate * der_float_Rpc11;
-    const double cse53 = float_y_rate_rate * der_float_Rpc21;
-    const double cse54 = float_z_rate_rate * der_float_Rpc31;
-    const double cse55 = cse52 + cse53 + cse54;
-    const double cse56 = float_x_rate_rate * der_float_Rpc13;
-    const double cse57 = float_y_rate_rate * der_float_Rpc23;
-    const double cse58 = float_z_rate_rate * der_float_Rpc33;
-    const double cse59 = cse56 + cse57 + cse58;
-    const double cse60 = -(base_weight_e_1 - base_ejs_v_e_1) + slider_out12 + 10.0 * cse55 + slider_out10 * cse55 + slider_out11 * cse59;
-    const double cse61 = float_x_rate_rate * der_float_Rpc12 + float_y_rate_rate * der_float_Rpc22 + float_z_rate_rate * der_float_Rpc32;
-    const double cse62 = -(base_weight_e_2 - base_ejs_v_e_2) + slider_out14 + 10.0 * cse61 + 3.0 * cse61;
-    const double cse63 = -(base_weight_e_3 - base_ejs_v_e_3) + slider_out18 + 10.0 * cse59 + slider_out16 * cse55 + slider_out17 * cse59;
-    const double cse64 = float_Rpc11 * cse60 + float_Rpc12 * cse62 + float_Rpc13 * cse63;
-    const double base_row8 = float_Rpc21 * cse60 + float_Rpc22 * cse62 + float_Rpc23 * cse63 - base_factor2 * cse64;
+    const double base_row3_2 = 3.0 + slider_out2 - base_factor2_2 * slider_out7_2;
+    const double base_row4_2 = arm_out7_2 - base_factor2_2 * slider_out8_2;
+    const double cse39 = base_ejs_e_1 + slider_out9_2;
+    const double base_row5_2 = base_ejs_e_3 + slider_out3 - base_factor2_2 * cse39;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor9 = (float_Rpc31 * cse38 + float_Rpc32 * cse39 + float_Rpc33 * cse40) * base_pivot1;
+    const double base_factor6_2 = slider_out4 * base_pivot1_2;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row10 = float_Rpc31 * cse41 + float_Rpc32 * cse42 + float_Rpc33 * cse43 - base_factor9 * cse44;
-    const double base_row11 = float_Rpc31 * cse45 + float_Rpc32 * cse46 + float_Rpc33 * cse47 - base_factor9 * cse48;
-    const double base_row12 = float_Rpc32 * slider_out13 - base_factor9 * cse49;
-    const double base_row13 = float_Rpc31 * slider_out9 + float_Rpc33 * slider_out15 - base_factor9 * cse50;
-    const double base_row14 = float_Rpc32 * arm_out21 - base_factor9 * cse51;
-    const double base_row15 = float_Rpc31 * cse60 + float_Rpc32 * cse62 + float_Rpc33 * cse63 - base_factor9 * cse64;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor16 = slider_out21 * float_Rpc12 * base_pivot1;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row17 = slider_out21 * float_Rpc22 - base_factor16 * cse44;
-    const double base_row18 = slider_out21 * float_Rpc32 - base_factor16 * cse48;
-    const double base_row19 = 1.0 + slider_out19 - base_factor16 * cse49;
-    const double base_row20 = -base_factor16 * cse50;
-    const double base_row21 = slider_out20 - base_factor16 * cse51;
-    const double base_row22 = base_ejs_e_1 + slider_out22 + slider_out21 * cse61 - base_factor16 * cse64;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor23 = (slider_out24 * float_Rpc11 + slider_out25 * float_Rpc13) * base_pivot1;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row24 = slider_out24 * float_Rpc21 + slider_out25 * float_Rpc23 - base_factor23 * cse44;
-    const double base_row25 = slider_out24 * float_Rpc31 + slider_out25 * float_Rpc33 - base_factor23 * cse48;
-    const double base_row26 = -base_factor23 * cse49;
-    const double base_row27 = 2.0 + slider_out23 - base_factor23 * cse50;
-    const double base_row28 = -base_factor23 * cse51;
-    const double base_row29 = base_ejs_e_2 + slider_out26 + slider_out24 * cse55 + slider_out25 * cse59 - base_factor23 * cse64;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor30 = arm_out10 * float_Rpc12 * base_pivot1;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row31 = arm_out10 * float_Rpc22 - base_factor30 * cse44;
-    const double base_row32 = arm_out10 * float_Rpc32 - base_factor30 * cse48;
-    const double base_row33 = slider_out6 - base_factor30 * cse49;
-    const double base_row34 = -base_factor30 * cse50;
-    const double base_row35 = 3.0 + slider_out7 - base_factor30 * cse51;
-    const double base_row36 = base_ejs_e_3 + slider_out8 + arm_out10 * cse61 - base_factor30 * cse64;
+    const double base_row7_2 = arm_out10_2 - base_factor6_2 * slider_out7_2;
+    const double base_row8_2 = 13.0 - base_factor6_2 * slider_out8_2;
+    const double base_row9_2 = -(base_weight_e_2 - base_ejs_v_e_2) + slider_out5 - base_factor6_2 * cse39;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double base_pivot37 = 1.0 / base_row3;
+    const double base_pivot10_2 = 1.0 / base_row3_2;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor38 = base_row10 * base_pivot37;
+    const double base_factor11_2 = base_row7_2 * base_pivot10_2;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row39 = base_row11 - base_factor38 * base_row4;
-    const double base_row40 = base_row12 - base_factor38 * base_row5;
-    const double base_row41 = base_row13 - base_factor38 * base_row6;
-    const double base_row42 = base_row14 - base_factor38 * base_row7;
-    const double base_row43 = base_row15 - base_factor38 * base_row8;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor44 = base_row17 * base_pivot37;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row45 = base_row18 - base_factor44 * base_row4;
-    const double base_row46 = base_row19 - base_factor44 * base_row5;
-    const double base_row47 = base_row20 - base_factor44 * base_row6;
-    const double base_row48 = base_row21 - base_factor44 * base_row7;
-    const double base_row49 = base_row22 - base_factor44 * base_row8;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor50 = base_row24 * base_pivot37;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row51 = base_row25 - base_factor50 * base_row4;
-    const double base_row52 = base_row26 - base_factor50 * base_row5;
-    const double base_row53 = base_row27 - base_factor50 * base_row6;
-    const double base_row54 = base_row28 - base_factor50 * base_row7;
-    const double base_row55 = base_row29 - base_factor50 * base_row8;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor56 = base_row31 * base_pivot37;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row57 = base_row32 - base_factor56 * base_row4;
-    const double base_row58 = base_row33 - base_factor56 * base_row5;
-    const double base_row59 = base_row34 - base_factor56 * base_row6;
-    const double base_row60 = base_row35 - base_factor56 * base_row7;
-    const double base_row61 = base_row36 - base_factor56 * base_row8;
+    const double base_row12_2 = base_row8_2 - base_factor11_2 * base_row4_2;
+    const double base_row13_2 = base_row9_2 - base_factor11_2 * base_row5_2;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double base_pivot62 = 1.0 / base_row39;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor63 = base_row45 * base_pivot62;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row64 = base_row46 - base_factor63 * base_row40;
-    const double base_row65 = base_row47 - base_factor63 * base_row41;
-    const double base_row66 = base_row48 - base_factor63 * base_row42;
-    const double base_row67 = base_row49 - base_factor63 * base_row43;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor68 = base_row51 * base_pivot62;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row69 = base_row52 - base_factor68 * base_row40;
-    const double base_row70 = base_row53 - base_factor68 * base_row41;
-    const double base_row71 = base_row54 - base_factor68 * base_row42;
-    const double base_row72 = base_row55 - base_factor68 * base_row43;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor73 = base_row57 * base_pivot62;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row74 = base_row58 - base_factor73 * base_row40;
-    const double base_row75 = base_row59 - base_factor73 * base_row41;
-    const double base_row76 = base_row60 - base_factor73 * base_row42;
-    const double base_row77 = base_row61 - base_factor73 * base_row43;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double base_pivot78 = 1.0 / base_row64;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor79 = base_row69 * base_pivot78;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row80 = base_row70 - base_factor79 * base_row65;
-    const double base_row81 = base_row71 - base_factor79 * base_row66;
-    const double base_row82 = base_row72 - base_factor79 * base_row67;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor83 = base_row74 * base_pivot78;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row84 = base_row75 - base_factor83 * base_row65;
-    const double base_row85 = base_row76 - base_factor83 * base_row66;
-    const double base_row86 = base_row77 - base_factor83 * base_row67;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double base_pivot87 = 1.0 / base_row80;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: elimination factor
-    const double base_factor88 = base_row84 * base_pivot87;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: reduced row of the joint's equations
-    const double base_row89 = base_row85 - base_factor88 * base_row81;
-    const double base_row90 = base_row86 - base_factor88 * base_row82;
-    // tree_grandparent.mbg:16:7  articulated-body elimination, body base: 1 / pivot of the joint's accelerations
-    const double base_pivot91 = 1.0 / base_row89;
+    const double base_pivot14_2 = 1.0 / base_row12_2;
     // tree_grandparent.mbg:16:7  articulated-body elimination, body base: joint acceleration as an affine function of the parent's motion
-    const double base_accel92 = -base_pivot91 * base_row90;
-    const double base_accel93 = -base_pivot87 * (base_row82 + base_row81 * base_accel92);
-    const double base_accel94 = -base_pivot78 * (base_row67 + base_row65 * base_accel93 + base_row66 * base_accel92);
-    const double base_accel95 = -base_pivot62 * (base_row43 + base_row40 * base_accel94 + base_row41 * base_accel93 + base_row42 * base_accel92);
-    const double base_accel96 = -base_pivot37 * (base_row8 + base_row4 * base_accel95 + base_row5 * base_accel94 + base_row6 * base_accel93 + base_row7 * base_accel92);
-    const double base_accel97 = -base_pivot1 * (cse64 + cse44 * base_accel96 + cse48 * base_accel95 + cse49 * base_accel94 + cse50 * base_accel93 + cse51 * base_accel92);
+    const double base_accel15_2 = -base_pivot14_2 * base_row13_2;
+    const double base_accel16_2 = -base_pivot10_2 * (base_row5_2 + base_row4_2 * base_accel15_2);
+    const double base_accel17_2 = -base_pivot1_2 * (cse39 + slider_out7_2 * base_accel16_2 + slider_out8_2 * base_accel15_2);
     // tree_grandparent.mbg:16:7  joint acceleration of body base from its parent's motion (articulated-body form)
-    const double der_float_x_rate_rate = base_accel97;
-    const double der_float_y_rate_rate = base_accel96;
-    const double der_float_z_rate_rate = base_accel95;
-    const double der_float_spin_rate_rate_1 = base_accel94;
-    const double der_float_spin_rate_rate_2 = base_accel93;
-    const double der_float_spin_rate_rate_3 = base_accel92;
-    // tree_grandparent.mbg:16:7  d/dt of [MTF float.m2: f2 = T f1]
-    const double der_float_m2_f2_1 = float_Rpc11 * der_float_x_rate_rate + cse52;
-    // tree_grandparent.mbg:16:7  d/dt of [MTF float.m3: f2 = T f1]
-    const double der_float_m3_f2_1 = float_Rpc21 * der_float_y_rate_rate + cse53;
-    // tree_grandparent.mbg:16:7  d/dt of [MTF float.m4: f2 = T f1]
-    const double der_float_m4_f2_1 = float_Rpc31 * der_float_z_rate_rate + cse54;
-    // tree_grandparent.mbg:16:7  d/dt of [0 float.vsum: flows in = flows out]
-    const double der_float_reaction_f_f_1 = der_float_m2_f2_1 + der_float_m3_f2_1 + der_float_m4_f2_1;
-    // tree_grandparent.mbg:16:7  d/dt of [MTF float.m2: f2 = T f1]
-    const double der_float_m2_f2_3 = float_Rpc13 * der_float_x_rate_rate + cse56;
-    // tree_grandparent.mbg:16:7  d/dt of [MTF float.m3: f2 = T f1]
-    const double der_float_m3_f2_3 = float_Rpc23 * der_float_y_rate_rate + cse57;
-    // tree_grandparent.mbg:16:7  d/dt of [MTF float.m4: f2 = T f1]
-    const double der_float_m4_f2_3 = float_Rpc33 * der_float_z_rate_rate + cse58;
-    // tree_grandparent.mbg:16:7  d/dt of [0 float.vsum: flows in = flows out]
-    const double der_float_reaction_f_f_3 = der_float_m2_f2_3 + der_float_m3_f2_3 + der_float_m4_f2_3;
-    // tree_grandparent.mbg:17:7  joint acceleration of body slider from its parent's motion (articulated-body form)
-    const double der_slide_s_rate_rate = slider_accel5 + slider_accel2 * der_float_spin_rate_rate_2 + slider_accel3 * der_float_reaction_f_f_1 + slider_accel4 * der_float_reaction_f_f_3;
-    // tree_grandparent.mbg:17:7  d/dt of [MTF slide.m2: f2 = T f1]
-    const double der_slide_m2_f2_1 = slide_s_q * der_float_spin_rate_rate_2 + cse34;
-    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vpa: flows in = flows out]
-    const double der_slide_m3_f1_1 = der_float_reaction_f_f_1 + der_slide_m2_f2_1;
-    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vsum: flows in = flows out]
-    const double der_slide_reaction_f_f_1 = der_slide_m3_f1_1;
-    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vpa: flows in = flows out]
-    const double der_slide_m3_f1_3 = der_float_reaction_f_f_3;
-    // tree_grandparent.mbg:17:7  d/dt of [0 slide.vsum: flows in = flows out]
-    const double der_slide_reaction_f_f_3 = der_slide_m3_f1_3 + der_slide_s_rate_rate;
-    // tree_grandparent.mbg:18:7  joint acceleration of body arm from its parent's motion (articulated-body form)
-    const double der_hinge_theta_rate_rate = arm_accel3 - 0.9999999999999999 * der_float_spin_rate_rate_2 + arm_accel1 * der_slide_reaction_f_f_1 + arm_accel2 * der_slide_reaction_f_f_3;
+    const double der_float_spin_rate_rate_1 = base_accel17_2;
+    const double der_float_spin_rate_rate_3 = base_accel16_2;
+    const double der_float_drift_rate_rate_2 = base_accel15_2;
     // tree_grandparent.mbg:16:7  MTF float.rotrate: f2 = T f1
-    const double cse65 = 0.5 * float_rot_q_2;
-    const double cse66 = 0.5 * float_rot_q_3;
-    const double cse67 = 0.5 * float_rot_q_4;
-    const double float_rotrate_f2_1 = -cse65 * float_spin_rate_rate_1 - cse66 * float_spin_rate_rate_2 - cse67 * float_spin_rate_rate_3;
-    const double cse68 = 0.5 * float_rot_q_1;
-    const double float_rotrate_f2_2 = cse68 * float_spin_rate_rate_1 - cse67 * float_spin_rate_rate_2 + cse66 * float_spin_rate_rate_3;
-    const double float_rotrate_f2_3 = cse67 * float_spin_rate_rate_1 + cse68 * float_spin_rate_rate_2 - cse65 * float_spin_rate_rate_3;
-    const double float_rotrate_f2_4 = -cse66 * float_spin_rate_rate_1 + cse65 * float_spin_rate_rate_2 + cse68 * float_spin_rate_rate_3;
+    const double cse40 = 0.5 * float_rot_q_2;
+    const double cse41 = 0.5 * float_rot_q_3;
+    const double cse42 = 0.5 * float_rot_q_4;
+    const double float_rotrate_f2_1 = -cse40 * float_spin_rate_rate_1 - cse41 * float_spin_rate_rate_2 - cse42 * float_spin_rate_rate_3;
+    const double cse43 = 0.5 * float_rot_q_1;
+    const double float_rotrate_f2_2 = cse43 * float_spin_rate_rate_1 - cse42 * float_spin_rate_rate_2 + cse41 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_3 = cse42 * float_spin_rate_rate_1 + cse43 * float_spin_rate_rate_2 - cse40 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_4 = -cse41 * float_spin_rate_rate_1 + cse40 * float_spin_rate_rate_2 + cse43 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:16:7  MTF float.offsetrate: f2 = T f1
+    const double cse44 = float_rot_q_2 * float_rot_q_3;
+    const double cse45 = float_rot_q_1 * float_rot_q_4;
+    const double float_offsetrate_f2_1 = (cse5 - cse6 - cse7) / cse8 * float_drift_rate_rate_1 + 2.0 * (cse44 - cse45) / cse8 * float_drift_rate_rate_2 + 2.0 * (cse1 + cse2) / cse8 * float_drift_rate_rate_3;
+    const double float_offsetrate_f2_2 = 2.0 * (cse44 + cse45) / cse8 * float_drift_rate_rate_1 + (cse3 + cse6 - cse4 - cse7) / cse8 * float_drift_rate_rate_2 + 2.0 * (cse28 - cse29) / cse8 * float_drift_rate_rate_3;
+    const double float_offsetrate_f2_3 = float_Rpc31 * float_drift_rate_rate_1 + float_Rpc32 * float_drift_rate_rate_2 + float_Rpc33 * float_drift_rate_rate_3;
     // state derivatives, then the powers (when asked for)
-    xdot[0] = der_float_x_rate_rate;
-    xdot[1] = float_x_rate_rate;
-    xdot[2] = der_float_y_rate_rate;
-    xdot[3] = float_y_rate_rate;
-    xdot[4] = der_float_z_rate_rate;
-    xdot[5] = float_z_rate_rate;
-    xdot[6] = der_float_spin_rate_rate_1;
-    xdot[7] = der_float_spin_rate_rate_2;
-    xdot[8] = der_float_spin_rate_rate_3;
-    xdot[9] = float_rotrate_f2_1;
-    xdot[10] = float_rotrate_f2_2;
-    xdot[11] = float_rotrate_f2_3;
-    xdot[12] = float_rotrate_f2_4;
+    xdot[0] = der_float_spin_rate_rate_1;
+    xdot[1] = der_float_spin_rate_rate_2;
+    xdot[2] = der_float_spin_rate_rate_3;
+    xdot[3] = float_rotrate_f2_1;
+    xdot[4] = float_rotrate_f2_2;
+    xdot[5] = float_rotrate_f2_3;
+    xdot[6] = float_rotrate_f2_4;
+    xdot[7] = der_float_drift_rate_rate_1;
+    xdot[8] = der_float_drift_rate_rate_2;
+    xdot[9] = der_float_drift_rate_rate_3;
+    xdot[10] = float_offsetrate_f2_1;
+    xdot[11] = float_offsetrate_f2_2;
+    xdot[12] = float_offsetrate_f2_3;
     xdot[13] = der_slide_s_rate_rate;
     xdot[14] = slide_s_rate_rate;
     xdot[15] = der_hinge_theta_rate_rate;
     xdot[16] = hinge_theta_rate_rate;
-    const double cse69 = (slide_applied_e + cse13) * slide_s_rate_rate;
+    const double cse46 = (slide_applied_e + cse15) * slide_s_rate_rate;
     if (rate) {
-      rate[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse13 * slide_s_rate_rate + std::fmax(cse69, 0.0));
-      rate[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse69, 0.0);
+      rate[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse15 * slide_s_rate_rate + std::fmax(cse46, 0.0));
+      rate[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse46, 0.0);
     }
   }
 
@@ -657,36 +500,52 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)t;
     (void)x;
     // states
-    const double float_x_rate_rate = x[0];
-    const double float_y_rate_rate = x[2];
-    const double float_z_rate_rate = x[4];
-    const double float_spin_rate_rate_1 = x[6];
-    const double float_spin_rate_rate_2 = x[7];
-    const double float_spin_rate_rate_3 = x[8];
-    const double float_rot_q_1 = x[9];
-    const double float_rot_q_2 = x[10];
-    const double float_rot_q_3 = x[11];
-    const double float_rot_q_4 = x[12];
+    const double float_spin_rate_rate_1 = x[0];
+    const double float_spin_rate_rate_2 = x[1];
+    const double float_spin_rate_rate_3 = x[2];
+    const double float_rot_q_1 = x[3];
+    const double float_rot_q_2 = x[4];
+    const double float_rot_q_3 = x[5];
+    const double float_rot_q_4 = x[6];
+    const double float_drift_rate_rate_1 = x[7];
+    const double float_drift_rate_rate_2 = x[8];
+    const double float_drift_rate_rate_3 = x[9];
     const double slide_s_rate_rate = x[13];
     const double hinge_theta_rate_rate = x[15];
     // tree_grandparent.mbg:16:7  MTF float.rotrate: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse70 = 0.5 * float_rot_q_2;
-    const double cse71 = 0.5 * float_rot_q_3;
-    const double cse72 = 0.5 * float_rot_q_4;
-    const double float_rotrate_f2_1 = -cse70 * float_spin_rate_rate_1 - cse71 * float_spin_rate_rate_2 - cse72 * float_spin_rate_rate_3;
-    const double cse73 = 0.5 * float_rot_q_1;
-    const double float_rotrate_f2_2 = cse73 * float_spin_rate_rate_1 - cse72 * float_spin_rate_rate_2 + cse71 * float_spin_rate_rate_3;
-    const double float_rotrate_f2_3 = cse72 * float_spin_rate_rate_1 + cse73 * float_spin_rate_rate_2 - cse70 * float_spin_rate_rate_3;
-    const double float_rotrate_f2_4 = -cse71 * float_spin_rate_rate_1 + cse70 * float_spin_rate_rate_2 + cse73 * float_spin_rate_rate_3;
+    const double cse47 = 0.5 * float_rot_q_2;
+    const double cse48 = 0.5 * float_rot_q_3;
+    const double cse49 = 0.5 * float_rot_q_4;
+    const double float_rotrate_f2_1 = -cse47 * float_spin_rate_rate_1 - cse48 * float_spin_rate_rate_2 - cse49 * float_spin_rate_rate_3;
+    const double cse50 = 0.5 * float_rot_q_1;
+    const double float_rotrate_f2_2 = cse50 * float_spin_rate_rate_1 - cse49 * float_spin_rate_rate_2 + cse48 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_3 = cse49 * float_spin_rate_rate_1 + cse50 * float_spin_rate_rate_2 - cse47 * float_spin_rate_rate_3;
+    const double float_rotrate_f2_4 = -cse48 * float_spin_rate_rate_1 + cse47 * float_spin_rate_rate_2 + cse50 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:16:7  MTF float.offsetrate: f2 = T f1
+    const double cse51 = float_rot_q_1 * float_rot_q_1;
+    const double cse52 = float_rot_q_2 * float_rot_q_2;
+    const double cse53 = cse51 + cse52;
+    const double cse54 = float_rot_q_3 * float_rot_q_3;
+    const double cse55 = float_rot_q_4 * float_rot_q_4;
+    const double cse56 = cse53 + cse54 + cse55;
+    const double cse57 = float_rot_q_2 * float_rot_q_3;
+    const double cse58 = float_rot_q_1 * float_rot_q_4;
+    const double cse59 = float_rot_q_2 * float_rot_q_4;
+    const double cse60 = float_rot_q_1 * float_rot_q_3;
+    const double float_offsetrate_f2_1 = (cse53 - cse54 - cse55) / cse56 * float_drift_rate_rate_1 + 2.0 * (cse57 - cse58) / cse56 * float_drift_rate_rate_2 + 2.0 * (cse59 + cse60) / cse56 * float_drift_rate_rate_3;
+    const double cse61 = float_rot_q_3 * float_rot_q_4;
+    const double cse62 = float_rot_q_1 * float_rot_q_2;
+    const double float_offsetrate_f2_2 = 2.0 * (cse57 + cse58) / cse56 * float_drift_rate_rate_1 + (cse51 + cse54 - cse52 - cse55) / cse56 * float_drift_rate_rate_2 + 2.0 * (cse61 - cse62) / cse56 * float_drift_rate_rate_3;
+    const double float_offsetrate_f2_3 = 2.0 * (cse59 - cse60) / cse56 * float_drift_rate_rate_1 + 2.0 * (cse61 + cse62) / cse56 * float_drift_rate_rate_2 + (cse51 + cse55 - cse52 - cse54) / cse56 * float_drift_rate_rate_3;
     // position derivatives
-    xdot[1] = float_x_rate_rate;
-    xdot[3] = float_y_rate_rate;
-    xdot[5] = float_z_rate_rate;
-    xdot[9] = float_rotrate_f2_1;
-    xdot[10] = float_rotrate_f2_2;
-    xdot[11] = float_rotrate_f2_3;
-    xdot[12] = float_rotrate_f2_4;
+    xdot[3] = float_rotrate_f2_1;
+    xdot[4] = float_rotrate_f2_2;
+    xdot[5] = float_rotrate_f2_3;
+    xdot[6] = float_rotrate_f2_4;
+    xdot[10] = float_offsetrate_f2_1;
+    xdot[11] = float_offsetrate_f2_2;
+    xdot[12] = float_offsetrate_f2_3;
     xdot[14] = slide_s_rate_rate;
     xdot[16] = hinge_theta_rate_rate;
   }
@@ -697,11 +556,11 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)x;
     (void)yp;
     // states
-    const double float_z_q = x[5];
+    const double float_offset_q_3 = x[12];
     const double hinge_theta_q = x[16];
     // outputs, in declaration order
     out[0] = hinge_theta_q;  // arm_angle [rad] (tree_grandparent.mbg:20:8)
-    out[1] = float_z_q;  // height [m] (tree_grandparent.mbg:21:8)
+    out[1] = float_offset_q_3;  // height [m] (tree_grandparent.mbg:21:8)
   }
 
   // DRAWN BODIES (--animate): how many.
@@ -760,66 +619,66 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)x;
     (void)yp;
     // states
-    const double float_x_q = x[1];
-    const double float_y_q = x[3];
-    const double float_z_q = x[5];
-    const double float_rot_q_1 = x[9];
-    const double float_rot_q_2 = x[10];
-    const double float_rot_q_3 = x[11];
-    const double float_rot_q_4 = x[12];
+    const double float_rot_q_1 = x[3];
+    const double float_rot_q_2 = x[4];
+    const double float_rot_q_3 = x[5];
+    const double float_rot_q_4 = x[6];
+    const double float_offset_q_1 = x[10];
+    const double float_offset_q_2 = x[11];
+    const double float_offset_q_3 = x[12];
     const double slide_s_q = x[14];
     const double hinge_theta_q = x[16];
-    // tree_grandparent.mbg:16:7  signal float.Rpc12
-    // (cseN: a subexpression several equations below share)
-    const double cse74 = float_rot_q_2 * float_rot_q_3;
-    const double cse75 = float_rot_q_1 * float_rot_q_4;
-    const double cse76 = float_rot_q_1 * float_rot_q_1;
-    const double cse77 = float_rot_q_2 * float_rot_q_2;
-    const double cse78 = cse76 + cse77;
-    const double cse79 = float_rot_q_3 * float_rot_q_3;
-    const double cse80 = float_rot_q_4 * float_rot_q_4;
-    const double cse81 = cse78 + cse79 + cse80;
-    const double float_Rpc12 = 2.0 * (cse74 - cse75) / cse81;
-    // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse78 - cse79 - cse80) / cse81;
-    // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse82 = float_rot_q_2 * float_rot_q_4;
-    const double cse83 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse82 + cse83) / cse81;
-    // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse84 = float_rot_q_3 * float_rot_q_4;
-    const double cse85 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse84 - cse85) / cse81;
-    // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse74 + cse75) / cse81;
-    // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse76 + cse79 - cse77 - cse80) / cse81;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse82 - cse83) / cse81;
-    // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse84 + cse85) / cse81;
+    // (cseN: a subexpression several equations below share)
+    const double cse63 = float_rot_q_2 * float_rot_q_4;
+    const double cse64 = float_rot_q_1 * float_rot_q_3;
+    const double cse65 = float_rot_q_1 * float_rot_q_1;
+    const double cse66 = float_rot_q_2 * float_rot_q_2;
+    const double cse67 = cse65 + cse66;
+    const double cse68 = float_rot_q_3 * float_rot_q_3;
+    const double cse69 = float_rot_q_4 * float_rot_q_4;
+    const double cse70 = cse67 + cse68 + cse69;
+    const double float_Rpc31 = 2.0 * (cse63 - cse64) / cse70;
     // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse76 + cse80 - cse77 - cse79) / cse81;
-    // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double cse86 = std::sin(hinge_theta_q);
-    const double cse87 = std::cos(hinge_theta_q);
-    const double arm_pose_R33 = float_Rpc31 * cse86 + float_Rpc33 * cse87;
+    const double float_Rpc33 = (cse65 + cse69 - cse66 - cse68) / cse70;
     // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse87 - float_Rpc33 * cse86;
+    const double cse71 = std::cos(hinge_theta_q);
+    const double cse72 = std::sin(hinge_theta_q);
+    const double arm_pose_R31 = float_Rpc31 * cse71 - float_Rpc33 * cse72;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R33
+    const double arm_pose_R33 = float_Rpc31 * cse72 + float_Rpc33 * cse71;
+    // tree_grandparent.mbg:16:7  signal float.Rpc32
+    const double cse73 = float_rot_q_3 * float_rot_q_4;
+    const double cse74 = float_rot_q_1 * float_rot_q_2;
+    const double float_Rpc32 = 2.0 * (cse73 + cse74) / cse70;
+    // tree_grandparent.mbg:16:7  signal float.Rpc11
+    const double float_Rpc11 = (cse67 - cse68 - cse69) / cse70;
+    // tree_grandparent.mbg:16:7  signal float.Rpc12
+    const double cse75 = float_rot_q_2 * float_rot_q_3;
+    const double cse76 = float_rot_q_1 * float_rot_q_4;
+    const double float_Rpc12 = 2.0 * (cse75 - cse76) / cse70;
+    // tree_grandparent.mbg:16:7  signal float.Rpc13
+    const double float_Rpc13 = 2.0 * (cse63 + cse64) / cse70;
+    // tree_grandparent.mbg:16:7  signal float.Rpc21
+    const double float_Rpc21 = 2.0 * (cse75 + cse76) / cse70;
+    // tree_grandparent.mbg:16:7  signal float.Rpc22
+    const double float_Rpc22 = (cse65 + cse68 - cse66 - cse69) / cse70;
+    // tree_grandparent.mbg:16:7  signal float.Rpc23
+    const double float_Rpc23 = 2.0 * (cse73 - cse74) / cse70;
     // tree_grandparent.mbg:17:7  signal slider.pose.r1
-    const double slider_pose_r1 = float_x_q + float_Rpc13 * slide_s_q;
+    const double slider_pose_r1 = float_offset_q_1 + float_Rpc13 * slide_s_q;
     // tree_grandparent.mbg:17:7  signal slider.pose.r2
-    const double slider_pose_r2 = float_y_q + float_Rpc23 * slide_s_q;
+    const double slider_pose_r2 = float_offset_q_2 + float_Rpc23 * slide_s_q;
     // tree_grandparent.mbg:17:7  signal slider.pose.r3
-    const double slider_pose_r3 = float_z_q + float_Rpc33 * slide_s_q;
+    const double slider_pose_r3 = float_offset_q_3 + float_Rpc33 * slide_s_q;
     // tree_grandparent.mbg:18:7  signal arm.pose.R11
-    const double arm_pose_R11 = float_Rpc11 * cse87 - float_Rpc13 * cse86;
+    const double arm_pose_R11 = float_Rpc11 * cse71 - float_Rpc13 * cse72;
     // tree_grandparent.mbg:18:7  signal arm.pose.R13
-    const double arm_pose_R13 = float_Rpc11 * cse86 + float_Rpc13 * cse87;
+    const double arm_pose_R13 = float_Rpc11 * cse72 + float_Rpc13 * cse71;
     // tree_grandparent.mbg:18:7  signal arm.pose.R21
-    const double arm_pose_R21 = float_Rpc21 * cse87 - float_Rpc23 * cse86;
+    const double arm_pose_R21 = float_Rpc21 * cse71 - float_Rpc23 * cse72;
     // tree_grandparent.mbg:18:7  signal arm.pose.R23
-    const double arm_pose_R23 = float_Rpc21 * cse86 + float_Rpc23 * cse87;
+    const double arm_pose_R23 = float_Rpc21 * cse72 + float_Rpc23 * cse71;
     // tree_grandparent.mbg:18:7  signal arm.pose.r1
     const double arm_pose_r1 = slider_pose_r1 + 0.2 * arm_pose_R11;
     // tree_grandparent.mbg:18:7  signal arm.pose.r2
@@ -827,9 +686,9 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  signal arm.pose.r3
     const double arm_pose_r3 = slider_pose_r3 + 0.2 * arm_pose_R31;
     // 12 per body (origin, rotation row-major), then every modal coordinate
-    out[0] = float_x_q;
-    out[1] = float_y_q;
-    out[2] = float_z_q;
+    out[0] = float_offset_q_1;
+    out[1] = float_offset_q_2;
+    out[2] = float_offset_q_3;
     out[3] = float_Rpc11;
     out[4] = float_Rpc12;
     out[5] = float_Rpc13;
@@ -877,110 +736,54 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)x;
     (void)yp;
     // states
-    const double float_x_rate_rate = x[0];
-    const double float_y_rate_rate = x[2];
-    const double float_z_rate_rate = x[4];
-    const double float_spin_rate_rate_1 = x[6];
-    const double float_spin_rate_rate_2 = x[7];
-    const double float_spin_rate_rate_3 = x[8];
-    const double float_rot_q_1 = x[9];
-    const double float_rot_q_2 = x[10];
-    const double float_rot_q_3 = x[11];
-    const double float_rot_q_4 = x[12];
+    const double float_spin_rate_rate_1 = x[0];
+    const double float_spin_rate_rate_2 = x[1];
+    const double float_spin_rate_rate_3 = x[2];
+    const double float_drift_rate_rate_1 = x[7];
+    const double float_drift_rate_rate_2 = x[8];
+    const double float_drift_rate_rate_3 = x[9];
     const double slide_s_rate_rate = x[13];
     const double slide_s_q = x[14];
     const double hinge_theta_rate_rate = x[15];
     const double hinge_theta_q = x[16];
-    // tree_grandparent.mbg:16:7  signal float.Rpc12
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_2 = float_drift_rate_rate_2;
+    const double float_reaction_f_f_3 = float_drift_rate_rate_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse88 = float_rot_q_2 * float_rot_q_3;
-    const double cse89 = float_rot_q_1 * float_rot_q_4;
-    const double cse90 = float_rot_q_1 * float_rot_q_1;
-    const double cse91 = float_rot_q_2 * float_rot_q_2;
-    const double cse92 = cse90 + cse91;
-    const double cse93 = float_rot_q_3 * float_rot_q_3;
-    const double cse94 = float_rot_q_4 * float_rot_q_4;
-    const double cse95 = cse92 + cse93 + cse94;
-    const double float_Rpc12 = 2.0 * (cse88 - cse89) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse92 - cse93 - cse94) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse96 = float_rot_q_2 * float_rot_q_4;
-    const double cse97 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse96 + cse97) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse98 = float_rot_q_3 * float_rot_q_4;
-    const double cse99 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse98 - cse99) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse88 + cse89) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse90 + cse93 - cse91 - cse94) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse96 - cse97) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse98 + cse99) / cse95;
-    // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse90 + cse94 - cse91 - cse93) / cse95;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_1 = float_Rpc21 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_1 = float_Rpc31 * float_z_rate_rate;
+    const double cse77 = std::cos(hinge_theta_q);
+    const double cse78 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse77 * float_spin_rate_rate_1 - cse78 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double hinge_m1_f2_3 = cse78 * float_spin_rate_rate_1 + cse77 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_1 = float_m2_f2_1 + float_m3_f2_1 + float_m4_f2_1;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_2 = float_Rpc12 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_2 = float_Rpc22 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_2 = float_Rpc32 * float_z_rate_rate;
-    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_2 = float_m2_f2_2 + float_m3_f2_2 + float_m4_f2_2;
+    const double float_reaction_f_f_1 = float_drift_rate_rate_1;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
     const double slide_m2_f2_1 = slide_s_q * float_spin_rate_rate_2;
     // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
     const double slide_m3_f1_1 = float_reaction_f_f_1 + slide_m2_f2_1;
     // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
     const double slide_reaction_f_f_1 = slide_m3_f1_1;
-    // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
-    const double slide_m2_f2_2 = -slide_s_q * float_spin_rate_rate_1;
-    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
-    const double slide_m3_f1_2 = float_reaction_f_f_2 + slide_m2_f2_2;
-    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
-    const double slide_reaction_f_f_2 = slide_m3_f1_2;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_1 = slide_reaction_f_f_1;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_3 = float_Rpc13 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_3 = float_Rpc23 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_3 = float_Rpc33 * float_z_rate_rate;
-    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_3 = float_m2_f2_3 + float_m3_f2_3 + float_m4_f2_3;
     // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
     const double slide_m3_f1_3 = float_reaction_f_f_3;
     // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
     const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_3 = slide_reaction_f_f_3;
-    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse100 = std::cos(hinge_theta_q);
-    const double cse101 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse100 * float_spin_rate_rate_1 - cse101 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
+    const double slide_m2_f2_2 = -slide_s_q * float_spin_rate_rate_1;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_2 = float_reaction_f_f_2 + slide_m2_f2_2;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_2 = slide_m3_f1_2;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
-    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
-    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse101 * float_spin_rate_rate_1 + cse100 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
-    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
-    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse100 * hinge_m4_f1_1 - cse101 * hinge_m4_f1_3;
-    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
-    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_2 = slide_reaction_f_f_2;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
@@ -988,16 +791,20 @@ class tree_grandparent_model final : public mbgrt::Model {
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
     // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse101 * hinge_m4_f1_1 + cse100 * hinge_m4_f1_3;
+    const double hinge_m4_f2_3 = cse78 * hinge_m4_f1_1 + cse77 * hinge_m4_f1_3;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_1 = cse77 * hinge_m4_f1_1 - cse78 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // the stored energy
-    const double cse102 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
-    const double cse103 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
-    const double cse104 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
-    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse102 + 2.0 * cse103 + 3.0 * cse104) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse102 + 0.1 * cse103 + 0.1 * cse104) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
+    const double cse79 = float_spin_rate_rate_1 * float_spin_rate_rate_1;
+    const double cse80 = float_spin_rate_rate_2 * float_spin_rate_rate_2;
+    const double cse81 = float_spin_rate_rate_3 * float_spin_rate_rate_3;
+    out[0] = 0.5 * (10.0 * (float_reaction_f_f_1 * float_reaction_f_f_1) + 10.0 * (float_reaction_f_f_2 * float_reaction_f_f_2) + 10.0 * (float_reaction_f_f_3 * float_reaction_f_f_3)) + 0.5 * (cse79 + 2.0 * cse80 + 3.0 * cse81) + 0.5 * (2.0 * (slide_reaction_f_f_1 * slide_reaction_f_f_1) + 2.0 * (slide_reaction_f_f_2 * slide_reaction_f_f_2) + 2.0 * (slide_reaction_f_f_3 * slide_reaction_f_f_3)) + 0.5 * (0.1 * cse79 + 0.1 * cse80 + 0.1 * cse81) + 0.5 * (hinge_reaction_f_f_1 * hinge_reaction_f_f_1 + hinge_reaction_f_f_2 * hinge_reaction_f_f_2 + hinge_reaction_f_f_3 * hinge_reaction_f_f_3) + 0.5 * (0.01 * (hinge_reaction_t_f_1 * hinge_reaction_t_f_1) + 0.05 * (hinge_reaction_t_f_2 * hinge_reaction_t_f_2) + 0.05 * (hinge_reaction_t_f_3 * hinge_reaction_t_f_3));
   }
 
   // POWER at (t, y): out[0] what the sources deliver, out[1] what the rest absorbs (the energy witness).
@@ -1007,86 +814,85 @@ class tree_grandparent_model final : public mbgrt::Model {
     (void)x;
     (void)yp;
     // states
-    const double float_x_rate_rate = x[0];
-    const double float_y_rate_rate = x[2];
-    const double float_z_rate_rate = x[4];
-    const double float_spin_rate_rate_1 = x[6];
-    const double float_spin_rate_rate_2 = x[7];
-    const double float_spin_rate_rate_3 = x[8];
-    const double float_rot_q_1 = x[9];
-    const double float_rot_q_2 = x[10];
-    const double float_rot_q_3 = x[11];
-    const double float_rot_q_4 = x[12];
+    const double float_spin_rate_rate_1 = x[0];
+    const double float_spin_rate_rate_2 = x[1];
+    const double float_spin_rate_rate_3 = x[2];
+    const double float_rot_q_1 = x[3];
+    const double float_rot_q_2 = x[4];
+    const double float_rot_q_3 = x[5];
+    const double float_rot_q_4 = x[6];
+    const double float_drift_rate_rate_1 = x[7];
+    const double float_drift_rate_rate_2 = x[8];
+    const double float_drift_rate_rate_3 = x[9];
     const double slide_s_rate_rate = x[13];
     const double slide_s_q = x[14];
     const double hinge_theta_rate_rate = x[15];
     const double hinge_theta_q = x[16];
-    // tree_grandparent.mbg:16:7  signal float.Rpc12
-    // (cseN: a subexpression several equations below share)
-    const double cse105 = float_rot_q_2 * float_rot_q_3;
-    const double cse106 = float_rot_q_1 * float_rot_q_4;
-    const double cse107 = float_rot_q_1 * float_rot_q_1;
-    const double cse108 = float_rot_q_2 * float_rot_q_2;
-    const double cse109 = cse107 + cse108;
-    const double cse110 = float_rot_q_3 * float_rot_q_3;
-    const double cse111 = float_rot_q_4 * float_rot_q_4;
-    const double cse112 = cse109 + cse110 + cse111;
-    const double float_Rpc12 = 2.0 * (cse105 - cse106) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc11
-    const double float_Rpc11 = (cse109 - cse110 - cse111) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc13
-    const double cse113 = float_rot_q_2 * float_rot_q_4;
-    const double cse114 = float_rot_q_1 * float_rot_q_3;
-    const double float_Rpc13 = 2.0 * (cse113 + cse114) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc23
-    const double cse115 = float_rot_q_3 * float_rot_q_4;
-    const double cse116 = float_rot_q_1 * float_rot_q_2;
-    const double float_Rpc23 = 2.0 * (cse115 - cse116) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc21
-    const double float_Rpc21 = 2.0 * (cse105 + cse106) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc22
-    const double float_Rpc22 = (cse107 + cse110 - cse108 - cse111) / cse112;
     // tree_grandparent.mbg:16:7  signal float.Rpc31
-    const double float_Rpc31 = 2.0 * (cse113 - cse114) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc32
-    const double float_Rpc32 = 2.0 * (cse115 + cse116) / cse112;
-    // tree_grandparent.mbg:16:7  signal float.Rpc33
-    const double float_Rpc33 = (cse107 + cse111 - cse108 - cse110) / cse112;
+    // (cseN: a subexpression several equations below share)
+    const double cse82 = float_rot_q_1 * float_rot_q_1;
+    const double cse83 = float_rot_q_2 * float_rot_q_2;
+    const double cse84 = float_rot_q_3 * float_rot_q_3;
+    const double cse85 = float_rot_q_4 * float_rot_q_4;
+    const double cse86 = cse82 + cse83 + cse84 + cse85;
+    const double float_Rpc31 = 2.0 * (float_rot_q_2 * float_rot_q_4 - float_rot_q_1 * float_rot_q_3) / cse86;
     // tree_grandparent.mbg:12:6  Se base.weight: e = value
-    const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_1 = float_Rpc11 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_1 = float_Rpc21 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_1 = float_Rpc31 * float_z_rate_rate;
+    const double base_weight_e_1 = -98.10000000000001 * float_Rpc31;
     // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_1 = float_m2_f2_1 + float_m3_f2_1 + float_m4_f2_1;
-    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
-    const double base_m_p_1 = 10.0 * float_reaction_f_f_1;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_2 = float_Rpc12 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_2 = float_Rpc22 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_2 = float_Rpc32 * float_z_rate_rate;
-    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_2 = float_m2_f2_2 + float_m3_f2_2 + float_m4_f2_2;
+    const double float_reaction_f_f_2 = float_drift_rate_rate_2;
     // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
     const double base_m_p_2 = 10.0 * float_reaction_f_f_2;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_3 = float_drift_rate_rate_3;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_3 = 10.0 * float_reaction_f_f_3;
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
-    const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
-    // tree_grandparent.mbg:17:7  Se slide.applied: e = value
-    const double cse117 = 1000.0 * slide_s_q;
-    const double slide_applied_e = -cse117 - 10.0 * slide_s_rate_rate;
-    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
-    const double slider_weight_e_3 = -19.62 * float_Rpc33;
+    const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
+    // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
+    const double base_J_p_3 = 3.0 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
+    const double base_ejs_e_2 = float_spin_rate_rate_3 * float_spin_rate_rate_1 - float_spin_rate_rate_1 * base_J_p_3;
+    // tree_grandparent.mbg:13:6  I slider.J: p = I f (derivative causality)
+    const double slider_J_p_1 = 0.1 * float_spin_rate_rate_1;
+    const double slider_J_p_3 = 0.1 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
+    const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double cse87 = std::cos(hinge_theta_q);
+    const double cse88 = std::sin(hinge_theta_q);
+    const double hinge_m1_f2_1 = cse87 * float_spin_rate_rate_1 - cse88 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
+    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
+    const double hinge_m1_f2_3 = cse88 * float_spin_rate_rate_1 + cse87 * float_spin_rate_rate_3;
+    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
+    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
+    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
+    const double arm_J_p_3 = 0.05 * hinge_reaction_t_f_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
+    const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
+    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
+    const double float_reaction_f_f_1 = float_drift_rate_rate_1;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
     const double slide_m2_f2_1 = slide_s_q * float_spin_rate_rate_2;
     // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
     const double slide_m3_f1_1 = float_reaction_f_f_1 + slide_m2_f2_1;
     // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
     const double slide_reaction_f_f_1 = slide_m3_f1_1;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_1 = slide_reaction_f_f_1;
+    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
+    const double slide_m3_f1_3 = float_reaction_f_f_3;
+    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
+    const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
+    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
+    const double hinge_m4_f1_3 = slide_reaction_f_f_3;
+    // tree_grandparent.mbg:16:7  signal float.Rpc33
+    const double float_Rpc33 = (cse82 + cse85 - cse83 - cse84) / cse86;
+    // tree_grandparent.mbg:13:6  Se slider.weight: e = value
+    const double slider_weight_e_3 = -19.62 * float_Rpc33;
     // tree_grandparent.mbg:13:6  I slider.m: p = I f (derivative causality)
     const double slider_m_p_1 = 2.0 * slide_reaction_f_f_1;
     // tree_grandparent.mbg:17:7  MTF slide.m2: f2 = T f1
@@ -1099,63 +905,43 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double slider_m_p_2 = 2.0 * slide_reaction_f_f_2;
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_3 = float_spin_rate_rate_1 * slider_m_p_2 - float_spin_rate_rate_2 * slider_m_p_1;
-    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
-    const double hinge_m4_f1_1 = slide_reaction_f_f_1;
-    // tree_grandparent.mbg:16:7  MTF float.m2: f2 = T f1
-    const double float_m2_f2_3 = float_Rpc13 * float_x_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m3: f2 = T f1
-    const double float_m3_f2_3 = float_Rpc23 * float_y_rate_rate;
-    // tree_grandparent.mbg:16:7  MTF float.m4: f2 = T f1
-    const double float_m4_f2_3 = float_Rpc33 * float_z_rate_rate;
-    // tree_grandparent.mbg:16:7  0 float.vsum: flows in = flows out
-    const double float_reaction_f_f_3 = float_m2_f2_3 + float_m3_f2_3 + float_m4_f2_3;
-    // tree_grandparent.mbg:17:7  0 slide.vpa: flows in = flows out
-    const double slide_m3_f1_3 = float_reaction_f_f_3;
-    // tree_grandparent.mbg:17:7  0 slide.vsum: flows in = flows out
-    const double slide_reaction_f_f_3 = slide_m3_f1_3 + slide_s_rate_rate;
-    // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
-    const double hinge_m4_f1_3 = slide_reaction_f_f_3;
-    // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
-    const double base_J_p_3 = 3.0 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:12:6  R base.ejs: e = law(f)
-    const double base_ejs_e_2 = float_spin_rate_rate_3 * float_spin_rate_rate_1 - float_spin_rate_rate_1 * base_J_p_3;
-    // tree_grandparent.mbg:13:6  I slider.J: p = I f (derivative causality)
-    const double slider_J_p_1 = 0.1 * float_spin_rate_rate_1;
-    const double slider_J_p_3 = 0.1 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:13:6  R slider.ejs: e = law(f)
-    const double slider_ejs_e_2 = float_spin_rate_rate_3 * slider_J_p_1 - float_spin_rate_rate_1 * slider_J_p_3;
-    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double cse118 = std::cos(hinge_theta_q);
-    const double cse119 = std::sin(hinge_theta_q);
-    const double hinge_m1_f2_1 = cse118 * float_spin_rate_rate_1 - cse119 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
-    const double hinge_reaction_t_f_1 = hinge_m1_f2_1;
-    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
-    const double arm_J_p_1 = 0.01 * hinge_reaction_t_f_1;
-    // tree_grandparent.mbg:18:7  MTF hinge.m1: f2 = T f1
-    const double hinge_m1_f2_3 = cse119 * float_spin_rate_rate_1 + cse118 * float_spin_rate_rate_3;
-    // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
-    const double hinge_reaction_t_f_3 = hinge_m1_f2_3;
-    // tree_grandparent.mbg:14:6  I arm.J: p = I f (derivative causality)
-    const double arm_J_p_3 = 0.05 * hinge_reaction_t_f_3;
-    // tree_grandparent.mbg:14:6  R arm.ejs: e = law(f)
-    const double arm_ejs_e_2 = hinge_reaction_t_f_3 * arm_J_p_1 - hinge_reaction_t_f_1 * arm_J_p_3;
-    // tree_grandparent.mbg:18:7  signal arm.pose.R33
-    const double arm_pose_R33 = float_Rpc31 * cse119 + float_Rpc33 * cse118;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R31
+    const double arm_pose_R31 = float_Rpc31 * cse87 - float_Rpc33 * cse88;
     // tree_grandparent.mbg:14:6  Se arm.weight: e = value
-    const double arm_weight_e_3 = -9.81 * arm_pose_R33;
+    const double arm_weight_e_1 = -9.81 * arm_pose_R31;
     // tree_grandparent.mbg:18:7  0 hinge.wsum: flows in = flows out
     const double hinge_reaction_t_f_2 = float_spin_rate_rate_2 + hinge_theta_rate_rate;
-    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_1 = cse118 * hinge_m4_f1_1 - cse119 * hinge_m4_f1_3;
-    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
-    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:18:7  0 hinge.vpa: flows in = flows out
     const double hinge_m4_f1_2 = slide_reaction_f_f_2;
     // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
     const double hinge_m5_f2_2 = 0.2 * hinge_reaction_t_f_3;
     // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
     const double hinge_reaction_f_f_2 = hinge_m4_f1_2 + hinge_m5_f2_2;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_3 = cse88 * hinge_m4_f1_1 + cse87 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
+    const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
+    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
+    const double arm_ejs_v_e_1 = hinge_reaction_t_f_2 * hinge_reaction_f_f_3 - hinge_reaction_t_f_3 * hinge_reaction_f_f_2;
+    // tree_grandparent.mbg:17:7  Se slide.applied: e = value
+    const double cse89 = 1000.0 * slide_s_q;
+    const double slide_applied_e = -cse89 - 10.0 * slide_s_rate_rate;
+    // tree_grandparent.mbg:12:6  Se base.weight: e = value
+    const double base_weight_e_3 = -98.10000000000001 * float_Rpc33;
+    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
+    const double base_m_p_1 = 10.0 * float_reaction_f_f_1;
+    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
+    const double base_ejs_v_e_3 = float_spin_rate_rate_1 * base_m_p_2 - float_spin_rate_rate_2 * base_m_p_1;
+    // tree_grandparent.mbg:18:7  signal arm.pose.R33
+    const double arm_pose_R33 = float_Rpc31 * cse88 + float_Rpc33 * cse87;
+    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
+    const double arm_weight_e_3 = -9.81 * arm_pose_R33;
+    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
+    const double hinge_m4_f2_1 = cse87 * hinge_m4_f1_1 - cse88 * hinge_m4_f1_3;
+    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
+    const double hinge_reaction_f_f_1 = hinge_m4_f2_1;
     // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
     const double arm_ejs_v_e_3 = hinge_reaction_t_f_1 * hinge_reaction_f_f_2 - hinge_reaction_t_f_2 * hinge_reaction_f_f_1;
     // tree_grandparent.mbg:13:6  Se slider.weight: e = value
@@ -1164,22 +950,10 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double slider_m_p_3 = 2.0 * slide_reaction_f_f_3;
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_1 = float_spin_rate_rate_2 * slider_m_p_3 - float_spin_rate_rate_3 * slider_m_p_2;
-    // tree_grandparent.mbg:18:7  signal arm.pose.R31
-    const double arm_pose_R31 = float_Rpc31 * cse118 - float_Rpc33 * cse119;
-    // tree_grandparent.mbg:14:6  Se arm.weight: e = value
-    const double arm_weight_e_1 = -9.81 * arm_pose_R31;
-    // tree_grandparent.mbg:18:7  MTF hinge.m4: f2 = T f1
-    const double hinge_m4_f2_3 = cse119 * hinge_m4_f1_1 + cse118 * hinge_m4_f1_3;
-    // tree_grandparent.mbg:18:7  MTF hinge.m5: f2 = T f1
-    const double hinge_m5_f2_3 = -0.2 * hinge_reaction_t_f_2;
-    // tree_grandparent.mbg:18:7  0 hinge.vsum: flows in = flows out
-    const double hinge_reaction_f_f_3 = hinge_m4_f2_3 + hinge_m5_f2_3;
-    // tree_grandparent.mbg:14:6  R arm.ejs_v: e = law(f)
-    const double arm_ejs_v_e_1 = hinge_reaction_t_f_2 * hinge_reaction_f_f_3 - hinge_reaction_t_f_3 * hinge_reaction_f_f_2;
+    // tree_grandparent.mbg:16:7  signal float.Rpc32
+    const double float_Rpc32 = 2.0 * (float_rot_q_3 * float_rot_q_4 + float_rot_q_1 * float_rot_q_2) / cse86;
     // tree_grandparent.mbg:12:6  Se base.weight: e = value
     const double base_weight_e_2 = -98.10000000000001 * float_Rpc32;
-    // tree_grandparent.mbg:12:6  I base.m: p = I f (derivative causality)
-    const double base_m_p_3 = 10.0 * float_reaction_f_f_3;
     // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
     const double base_ejs_v_e_2 = float_spin_rate_rate_3 * base_m_p_1 - float_spin_rate_rate_1 * base_m_p_3;
     // tree_grandparent.mbg:12:6  I base.J: p = I f (derivative causality)
@@ -1208,14 +982,10 @@ class tree_grandparent_model final : public mbgrt::Model {
     const double slider_weight_e_2 = -19.62 * float_Rpc32;
     // tree_grandparent.mbg:13:6  R slider.ejs_v: e = law(f)
     const double slider_ejs_v_e_2 = float_spin_rate_rate_3 * slider_m_p_1 - float_spin_rate_rate_1 * slider_m_p_3;
-    // tree_grandparent.mbg:12:6  Se base.weight: e = value
-    const double base_weight_e_1 = -98.10000000000001 * float_Rpc31;
-    // tree_grandparent.mbg:12:6  R base.ejs_v: e = law(f)
-    const double base_ejs_v_e_1 = float_spin_rate_rate_2 * base_m_p_3 - float_spin_rate_rate_3 * base_m_p_2;
     // the powers
-    const double cse120 = (slide_applied_e + cse117) * slide_s_rate_rate;
-    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse117 * slide_s_rate_rate + std::fmax(cse120, 0.0));
-    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse120, 0.0);
+    const double cse90 = (slide_applied_e + cse89) * slide_s_rate_rate;
+    out[0] = base_weight_e_1 * float_reaction_f_f_1 + base_weight_e_2 * float_reaction_f_f_2 + base_weight_e_3 * float_reaction_f_f_3 + (slider_weight_e_1 * slide_reaction_f_f_1 + slider_weight_e_2 * slide_reaction_f_f_2 + slider_weight_e_3 * slide_reaction_f_f_3) + (arm_weight_e_1 * hinge_reaction_f_f_1 + arm_weight_e_2 * hinge_reaction_f_f_2 + arm_weight_e_3 * hinge_reaction_f_f_3) + (-cse89 * slide_s_rate_rate + std::fmax(cse90, 0.0));
+    out[1] = base_ejs_v_e_1 * float_reaction_f_f_1 + base_ejs_v_e_2 * float_reaction_f_f_2 + base_ejs_v_e_3 * float_reaction_f_f_3 + (base_ejs_e_1 * float_spin_rate_rate_1 + base_ejs_e_2 * float_spin_rate_rate_2 + base_ejs_e_3 * float_spin_rate_rate_3) + (slider_ejs_v_e_1 * slide_reaction_f_f_1 + slider_ejs_v_e_2 * slide_reaction_f_f_2 + slider_ejs_v_e_3 * slide_reaction_f_f_3) + (slider_ejs_e_1 * float_spin_rate_rate_1 + slider_ejs_e_2 * float_spin_rate_rate_2 + slider_ejs_e_3 * float_spin_rate_rate_3) + (arm_ejs_v_e_1 * hinge_reaction_f_f_1 + arm_ejs_v_e_2 * hinge_reaction_f_f_2 + arm_ejs_v_e_3 * hinge_reaction_f_f_3) + (arm_ejs_e_1 * hinge_reaction_t_f_1 + arm_ejs_e_2 * hinge_reaction_t_f_2 + arm_ejs_e_3 * hinge_reaction_t_f_3) + std::fmax(-cse90, 0.0);
   }
 
   // TERMINAL: nothing to do at the end of a run.
