@@ -36,11 +36,27 @@ endif()
 # -march=native, where the compiler takes it (GCC and Clang do; MSVC does not)
 include(CheckCXXCompilerFlag)
 check_cxx_compiler_flag(-march=native MBGC_HAVE_MARCH_NATIVE)
+# A simulator's generated source reads no errno and tests no floating-point
+# exception flag: -fno-math-errno and -fno-trapping-math change none of its
+# values (the two-track car's rows are the same to the last bit) and let the
+# compiler inline sqrt and if-convert (the car 3 % faster). Only there: a
+# program that includes a model of mbgc_add_model keeps its own flags.
+check_cxx_compiler_flag(-fno-math-errno MBGC_HAVE_NO_MATH_ERRNO)
+check_cxx_compiler_flag(-fno-trapping-math MBGC_HAVE_NO_TRAPPING_MATH)
 
 # The compile options of a generated source: MBGC_GENERATED_COMPILE_OPTIONS,
-# and -march=native if `native` is true (a warning where the compiler has none).
+# and -march=native if `native` is true (a warning where the compiler has
+# none); `simulator`: a simulator's own source (the math flags above).
 function(_mbgc_generated_options target native out_var)
   set(options ${MBGC_GENERATED_COMPILE_OPTIONS})
+  if(ARGN STREQUAL "simulator")
+    if(MBGC_HAVE_NO_MATH_ERRNO)
+      list(APPEND options -fno-math-errno)
+    endif()
+    if(MBGC_HAVE_NO_TRAPPING_MATH)
+      list(APPEND options -fno-trapping-math)
+    endif()
+  endif()
   if(native)
     if(MBGC_HAVE_MARCH_NATIVE)
       list(APPEND options -march=native)
@@ -90,7 +106,7 @@ function(mbgc_add_simulation target)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}.cpp)
   _mbgc_generate(${target} ${ARG_MODEL} ${out} OPTIONS ${ARG_OPTIONS} DEPENDS ${ARG_DEPENDS})
   add_executable(${target} ${out})
-  _mbgc_generated_options(${target} "${ARG_NATIVE}" options)
+  _mbgc_generated_options(${target} "${ARG_NATIVE}" options simulator)
   if(options)
     set_source_files_properties(${out} PROPERTIES COMPILE_OPTIONS "${options}")
   endif()
