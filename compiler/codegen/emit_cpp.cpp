@@ -1,6 +1,7 @@
 #include "codegen/emit_cpp.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -420,11 +421,17 @@ class Emitter {
   void witness_values(CppClass& c, const std::vector<Expr>& stored, const std::vector<Expr>& powers) {
     std::vector<Expr> read = powers;
     read.insert(read.end(), stored.begin(), stored.end());
-    witness_ = find_shared_values(s_, {&s_.for_power, &s_.for_energy}, read);
+    // the union, unless stored_energy() would then do more than twice its own work
+    std::vector<int> either;
+    std::set_union(s_.for_power.begin(), s_.for_power.end(), s_.for_energy.begin(), s_.for_energy.end(), std::back_inserter(either));
+    const Sharing sharing = either.size() > 2 * s_.for_energy.size() ? Sharing::common : Sharing::all;
+    witness_ = find_shared_values(s_, {&s_.for_power, &s_.for_energy}, read, sharing);
     if (witness_.empty()) return;
     const char* y = s_.dae ? "y" : "x";
-    CppFunction f{fmt::format("WITNESS VALUES: what power() and stored_energy() both read (the velocities, the forces), at "
+    CppFunction f{fmt::format("WITNESS VALUES: what power() and stored_energy() {}, at "
                               "(t, {}); each calls it first and reads them from members.",
+                              sharing == Sharing::all ? "both read (the velocities, the forces)"
+                                                      : "both read (the velocities; each computes the rest it needs)",
                               y),
                   fmt::format("void witness_values(double t, const double* {}{})", y, s_.dae ? ", const double* yp" : ""),
                   {CppStmt::line("(void)t;"), CppStmt::line(fmt::format("(void){};", y))}};
@@ -440,8 +447,8 @@ class Emitter {
     add_long_method(c, std::move(f), true);
   }
 
-  /// A caller of witness_values(): the call, then nothing of `slice` (all of
-  /// it is computed there), its variables named by their members.
+  /// A caller of witness_values(): the call, then the rest of `slice` (what
+  /// the call does not compute), the shared variables named by their members.
   std::vector<int> call_witness_values(std::vector<CppStmt>& body, const std::vector<int>& slice) {
     if (witness_.empty()) return slice;
     body.push_back(CppStmt::comment("witness_values() sets the members read below"));
@@ -449,7 +456,7 @@ class Emitter {
     *ops() += witness_cost_.ops;
     cost_->solves.insert(cost_->solves.end(), witness_cost_.solves.begin(), witness_cost_.solves.end());
     witness_active_ = true;
-    return {};
+    return witness_.rest_of(slice);
   }
 
   std::size_t block_position(const Assignment& a) const {
