@@ -41,7 +41,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
     Rate& rate(const Sym& junction, const std::string& c, E q0, E rate0, bool prescribed) override {
       const SourceLoc& at = joint.decl->loc;
       const Sym source = sym.rate_source(c);
-      Rate k{junction, nullptr, B.ref(source.flow()), nullptr, nullptr, nullptr};
+      Rate k{junction, nullptr, B.ref(source.flow()), nullptr, nullptr, nullptr, nullptr};
       if (prescribed) {
         E motion = term(given_attr(joint, joint_setting::motion)->value);
         x_.element(B, "Sf", source, B.call("partial_t", {motion}));
@@ -72,7 +72,7 @@ void Expander::emit_coordinate_joint(const Build& B, const Joint& j) {
       free_rotation = true;
       // the spin is B's angular velocity in B's joint axes: W = R(q) in A's, I in B's
       rates.push_back({sym.spin(), nullptr, B.ref(sym.spin_rate().flow()), B.call("rotq", {qrel}), nullptr,
-                       B.call("eye", {B.num(3)})});
+                       B.call("eye", {B.num(3)}), nullptr});
     }
     /// B's velocity in B's joint axes, a free rate source; the translation
     /// (A's joint axes) integrates it turned by the relative rotation.
