@@ -78,6 +78,10 @@ class Expander {
   /// rate (null for any other body): its angular velocity there less the
   /// frame's.
   E rotor_spin(const Build& B, const Body& body) const;
+  /// A rotor's turn by its joint's angle about its axis, as `form`
+  /// ("rot_axis_angle" or "quat_axis_angle"): its frame -> its own axes
+  /// (null for any other body; once its joint is written).
+  E rotor_turn(const Build& B, const Body& body, const char* form) const;
   /// The body's own orientation, body -> world, as a rotation matrix and as a
   /// quaternion: rotation() and quaternion(), a rotor's with its spin put
   /// back (once its joint is written). What users read and what is drawn.

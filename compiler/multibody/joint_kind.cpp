@@ -77,7 +77,7 @@ bool Mobilizer::prescribed() const { return given(joint, joint_setting::motion);
 
 Mobilizer::Rate& turn_about_axis(Mobilizer& m) {
   const Build& B = m.B;
-  Mobilizer::Rate& r = m.rate(m.sym.drive(), "theta", m.setting_or_default(joint_setting::q0),
+  Mobilizer::Rate& r = m.rate(m.sym.drive(), kTurnCoordinate, m.setting_or_default(joint_setting::q0),
                               m.setting_or_default(joint_setting::rate0), m.prescribed());
   r.W = m.ez;
   r.Wb = m.ez;  // a turn about z leaves z where it is

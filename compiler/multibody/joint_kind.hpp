@@ -177,7 +177,9 @@ std::vector<std::string> joint_kind_names();
 
 /// The rotation about A's joint z axis by the joint's q0 / rate0 (or its
 /// prescribed motion), on the joint's drive(): revolute, cylindrical, screw.
+/// Its coordinate is kTurnCoordinate (JointSym::coordinate, rate_source).
 Mobilizer::Rate& turn_about_axis(Mobilizer& m);
+inline constexpr const char* kTurnCoordinate = "theta";
 
 /// A slide along A's joint z axis by the settings `q0`, `rate0` (or the
 /// prescribed motion), on 1-junction `junction` (the joint's drive() or

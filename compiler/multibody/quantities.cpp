@@ -34,11 +34,11 @@ void Expander::define_quantities() {
       // velocity in its axes (a rotor's frame leaves out its spin: what is
       // read of the body's own axes turns it back, attitude())
       E R = rotation(B, name), w = B.ref(n.w().flow());
-      E own = attitude(B, name), q = attitude_quaternion(B, name);
+      E q = attitude_quaternion(B, name), turn = rotor_turn(B, body, "rot_axis_angle");
       quantity("quaternion", q);
-      quantity("rotation", own);
+      quantity("rotation", attitude(B, name));
       quantity("bryant", B.call("bryant", {q}));
-      quantity("omega", body.rotor_joint.empty() ? w : B.op('*', B.call("transpose", {own}), B.op('*', R, w)));
+      quantity("omega", turn ? B.op('*', B.call("transpose", {turn}), w) : w);
       quantity("omega_world", B.op('*', R, w));
       quantity("angular_momentum", B.op('*', R, B.ref(n.J().momentum())));
       ke = B.op('+', ke, B.op('*', B.num(0.5), B.dot(w, B.ref(n.J().momentum()))));

@@ -120,22 +120,22 @@ E Expander::velocity(const Build& B, const std::string& body) const {
 E Expander::rotor_spin(const Build& B, const Body& body) const {
   if (body.rotor_joint.empty()) return nullptr;
   const JointSym jn(body.rotor_joint);
-  return B.op('*', B.ref(jn.axis('b')), B.ref(jn.rate_source("theta").flow()));
+  return B.op('*', B.ref(jn.axis('b')), B.ref(jn.rate_source(kTurnCoordinate).flow()));
 }
 
-/// A rotor's frame turned by its joint's angle about the axis: the body's own axes.
+E Expander::rotor_turn(const Build& B, const Body& body, const char* form) const {
+  if (body.rotor_joint.empty()) return nullptr;
+  return B.call(form, {B.ref(JointSym(body.rotor_joint).axis('b')), coordinate_values_.at(body.rotor_joint).angle});
+}
+
 E Expander::attitude(const Build& B, const std::string& body) const {
-  const Body& b = m_.bodies.at(body);
-  if (b.rotor_joint.empty()) return rotation(B, body);
-  const JointSym jn(b.rotor_joint);
-  return B.op('*', rotation(B, body), B.call("rot_axis_angle", {B.ref(jn.axis('b')), coordinate_values_.at(b.rotor_joint).angle}));
+  E turn = rotor_turn(B, m_.bodies.at(body), "rot_axis_angle");
+  return turn ? B.op('*', rotation(B, body), turn) : rotation(B, body);
 }
 
 E Expander::attitude_quaternion(const Build& B, const std::string& body) const {
-  const Body& b = m_.bodies.at(body);
-  if (b.rotor_joint.empty()) return quaternion(B, body);
-  const JointSym jn(b.rotor_joint);
-  return B.call("quat_mul", {quaternion(B, body), B.call("quat_axis_angle", {B.ref(jn.axis('b')), coordinate_values_.at(b.rotor_joint).angle})});
+  E turn = rotor_turn(B, m_.bodies.at(body), "quat_axis_angle");
+  return turn ? B.call("quat_mul", {quaternion(B, body), turn}) : quaternion(B, body);
 }
 
 /// Rotation matrix body -> world (computed once per body in coordinates).

@@ -30,23 +30,23 @@ GuardedModel::GuardedModel(Model& model)
   limits_.reserve(n_);
   for (std::size_t i = 0; i < n_; ++i) limits_.push_back(model_.state_limit(i));
   // (the largest finite double where there is no limit: an infinity is then beyond it, as a NaN is)
-  for (double l : limits_) bounds_.push_back(std::min(l, std::numeric_limits<double>::max()));
-  largest_.assign(n_, std::numeric_limits<double>::max());
+  for (double l : limits_) bounds_.push_back(std::min(l, kLargest));
 }
 
 namespace {
-/// Whether |v[i]| <= bound[i] for every i: false at an infinity or a NaN
-/// when the bounds are finite. One loop without an early exit, which the
-/// compiler vectorises: it runs on every state and every derivative.
-bool within(const double* v, const double* bound, std::size_t n) {
+/// Whether |v[i]| <= bound(i) for every i: false at an infinity or a NaN
+/// where the bound is finite. One loop without an early exit: it runs on
+/// every state and every derivative.
+template <class Bound>
+bool within(const double* v, std::size_t n, Bound&& bound) {
   unsigned ok = 1;
-  for (std::size_t i = 0; i < n; ++i) ok &= static_cast<unsigned>(std::abs(v[i]) <= bound[i]);
+  for (std::size_t i = 0; i < n; ++i) ok &= static_cast<unsigned>(std::abs(v[i]) <= bound(i));
   return ok != 0;
 }
 }  // namespace
 
 std::size_t GuardedModel::first_non_finite(const double* v) const {
-  if (within(v, largest_.data(), n_)) return n_;
+  if (within(v, n_, [](std::size_t) { return kLargest; })) return n_;
   for (std::size_t i = 0; i < n_; ++i)
     if (!std::isfinite(v[i])) return i;
   return n_;
@@ -139,7 +139,7 @@ int GuardedModel::residual(double t, const double* y, const double* yp, double* 
 }
 
 bool GuardedModel::check_state(double t, const double* y) {
-  if (within(y, bounds_.data(), n_)) return true;  // the usual case, without an early exit
+  if (within(y, n_, [&](std::size_t i) { return bounds_[i]; })) return true;  // the usual case
   if (std::size_t i = first_non_finite(y); i < n_) {
     record(t, BlameSite::state, i, y[i]);
     return false;

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <limits>
 #include <vector>
 
 #include "constraints.hpp"
@@ -130,8 +131,8 @@ class GuardedModel {
   bool dae_;
   std::vector<double> ids_;
   std::vector<double> limits_;  ///< Model::state_limit per unknown (HUGE_VAL: none)
-  std::vector<double> bounds_;   ///< the limits, the largest finite double for none (a check in one loop)
-  std::vector<double> largest_;  ///< the largest finite double per unknown (the finiteness check)
+  std::vector<double> bounds_;  ///< the limits, kLargest for none (a check in one loop)
+  static constexpr double kLargest = std::numeric_limits<double>::max();  ///< the largest finite double
   double bound_of(std::size_t row) const { return held_[row] ? held_bound_ : penalty_bound_; }
   std::vector<char> held_;    ///< per position row: Model::constraint_held
   std::vector<double> rows_;  ///< the rows' values (Model::constraints)

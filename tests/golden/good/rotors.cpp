@@ -860,58 +860,46 @@ class rotors_model final : public mbgrt::Model {
     out[1] = spin_theta_rate_rate;  // disc_rate [rad/s] (rotors.mbg:52:8)
     const double cse104 = std::cos(spin_theta_q);
     const double cse105 = std::sin(spin_theta_q);
-    const double cse106 = table_pose_R12 * cse104 + table_pose_R13 * cse105;
-    out[2] = cse106;  // disc_y[1] [1] (rotors.mbg:53:8)
-    const double cse107 = table_pose_R22 * cse104 + table_pose_R23 * cse105;
-    out[3] = cse107;  // disc_y[2] [1] (rotors.mbg:53:8)
-    const double cse108 = table_pose_R32 * cse104 + table_pose_R33 * cse105;
-    out[4] = cse108;  // disc_y[3] [1] (rotors.mbg:53:8)
-    const double cse109 = table_pose_R11 * spin_reaction_t_f_1 + table_pose_R13 * spin_reaction_t_f_3;
-    const double cse110 = table_pose_R21 * spin_reaction_t_f_1 + table_pose_R23 * spin_reaction_t_f_3;
-    const double cse111 = table_pose_R31 * spin_reaction_t_f_1 + table_pose_R33 * spin_reaction_t_f_3;
-    out[5] = table_pose_R11 * cse109 + table_pose_R21 * cse110 + table_pose_R31 * cse111;  // disc_omega[1] [rad/s] (rotors.mbg:54:8)
-    out[6] = cse106 * cse109 + cse107 * cse110 + cse108 * cse111;  // disc_omega[2] [rad/s] (rotors.mbg:54:8)
-    out[7] = (-table_pose_R12 * cse105 + table_pose_R13 * cse104) * cse109 + (-table_pose_R22 * cse105 + table_pose_R23 * cse104) * cse110 + (-table_pose_R32 * cse105 + table_pose_R33 * cse104) * cse111;  // disc_omega[3] [rad/s] (rotors.mbg:54:8)
-    const double cse112 = 0.5 * spin_theta_q;
-    const double cse113 = std::cos(cse112);
-    const double cse114 = std::sin(cse112);
-    const double cse115 = disc_pose_q1 * cse113 - disc_pose_q2 * cse114;
-    out[8] = cse115;  // disc_q[1] [1] (rotors.mbg:55:8)
-    const double cse116 = disc_pose_q1 * cse114 + cse113 * disc_pose_q2;
-    out[9] = cse116;  // disc_q[2] [1] (rotors.mbg:55:8)
-    const double cse117 = cse113 * disc_pose_q3 + disc_pose_q4 * cse114;
-    out[10] = cse117;  // disc_q[3] [1] (rotors.mbg:55:8)
-    const double cse118 = cse113 * disc_pose_q4 - disc_pose_q3 * cse114;
-    out[11] = cse118;  // disc_q[4] [1] (rotors.mbg:55:8)
-    const double cse119 = cse115 * cse115;
-    const double cse120 = cse118 * cse118;
-    const double cse121 = cse116 * cse116;
-    const double cse122 = cse117 * cse117;
-    out[12] = std::atan2(-2.0 * (cse117 * cse118 - cse115 * cse116), cse119 + cse120 - cse121 - cse122);  // disc_bryant[1] [rad] (rotors.mbg:56:8)
-    const double cse123 = cse119 + cse121;
-    out[13] = std::asin(std::fmax(-1.0, std::fmin(1.0, 2.0 * (cse116 * cse118 + cse115 * cse117) / (cse123 + cse122 + cse120))));  // disc_bryant[2] [rad] (rotors.mbg:56:8)
-    out[14] = std::atan2(-2.0 * (cse116 * cse117 - cse115 * cse118), cse123 - cse122 - cse120);  // disc_bryant[3] [rad] (rotors.mbg:56:8)
+    out[2] = table_pose_R12 * cse104 + table_pose_R13 * cse105;  // disc_y[1] [1] (rotors.mbg:53:8)
+    out[3] = table_pose_R22 * cse104 + table_pose_R23 * cse105;  // disc_y[2] [1] (rotors.mbg:53:8)
+    out[4] = table_pose_R32 * cse104 + table_pose_R33 * cse105;  // disc_y[3] [1] (rotors.mbg:53:8)
+    out[5] = spin_reaction_t_f_1;  // disc_omega[1] [rad/s] (rotors.mbg:54:8)
+    out[6] = cse105 * spin_reaction_t_f_3;  // disc_omega[2] [rad/s] (rotors.mbg:54:8)
+    out[7] = cse104 * spin_reaction_t_f_3;  // disc_omega[3] [rad/s] (rotors.mbg:54:8)
+    const double cse106 = 0.5 * spin_theta_q;
+    const double cse107 = std::cos(cse106);
+    const double cse108 = std::sin(cse106);
+    const double cse109 = disc_pose_q1 * cse107 - disc_pose_q2 * cse108;
+    out[8] = cse109;  // disc_q[1] [1] (rotors.mbg:55:8)
+    const double cse110 = disc_pose_q1 * cse108 + cse107 * disc_pose_q2;
+    out[9] = cse110;  // disc_q[2] [1] (rotors.mbg:55:8)
+    const double cse111 = cse107 * disc_pose_q3 + disc_pose_q4 * cse108;
+    out[10] = cse111;  // disc_q[3] [1] (rotors.mbg:55:8)
+    const double cse112 = cse107 * disc_pose_q4 - disc_pose_q3 * cse108;
+    out[11] = cse112;  // disc_q[4] [1] (rotors.mbg:55:8)
+    const double cse113 = cse109 * cse109;
+    const double cse114 = cse112 * cse112;
+    const double cse115 = cse110 * cse110;
+    const double cse116 = cse111 * cse111;
+    out[12] = std::atan2(-2.0 * (cse111 * cse112 - cse109 * cse110), cse113 + cse114 - cse115 - cse116);  // disc_bryant[1] [rad] (rotors.mbg:56:8)
+    const double cse117 = cse113 + cse115;
+    out[13] = std::asin(std::fmax(-1.0, std::fmin(1.0, 2.0 * (cse110 * cse112 + cse109 * cse111) / (cse117 + cse116 + cse114))));  // disc_bryant[2] [rad] (rotors.mbg:56:8)
+    out[14] = std::atan2(-2.0 * (cse110 * cse111 - cse109 * cse112), cse117 - cse116 - cse114);  // disc_bryant[3] [rad] (rotors.mbg:56:8)
     out[15] = table_pose_R11 * disc_J_p_1 + table_pose_R13 * disc_J_p_3;  // disc_h[1] [kg*m^2/s] (rotors.mbg:57:8)
     out[16] = table_pose_R21 * disc_J_p_1 + table_pose_R23 * disc_J_p_3;  // disc_h[2] [kg*m^2/s] (rotors.mbg:57:8)
     out[17] = table_pose_R31 * disc_J_p_1 + table_pose_R33 * disc_J_p_3;  // disc_h[3] [kg*m^2/s] (rotors.mbg:57:8)
     out[18] = disc_pose_r1 + cse101;  // hub[1] [m] (rotors.mbg:58:8)
     out[19] = disc_pose_r2 + cse102;  // hub[2] [m] (rotors.mbg:58:8)
     out[20] = disc_pose_r3 + cse103;  // hub[3] [m] (rotors.mbg:58:8)
-    const double cse124 = 20.0 * t;
-    const double cse125 = std::cos(cse124);
-    const double cse126 = std::sin(cse124);
-    const double cse127 = table_pose_R11 * cse125 + table_pose_R12 * cse126;
-    out[21] = cse127;  // fan_x[1] [1] (rotors.mbg:59:8)
-    const double cse128 = table_pose_R21 * cse125 + table_pose_R22 * cse126;
-    out[22] = cse128;  // fan_x[2] [1] (rotors.mbg:59:8)
-    const double cse129 = table_pose_R31 * cse125 + table_pose_R32 * cse126;
-    out[23] = cse129;  // fan_x[3] [1] (rotors.mbg:59:8)
-    const double cse130 = table_pose_R11 * j_fan_reaction_t_f_1 + table_pose_R13 * j_fan_reaction_t_f_3;
-    const double cse131 = table_pose_R21 * j_fan_reaction_t_f_1 + table_pose_R23 * j_fan_reaction_t_f_3;
-    const double cse132 = table_pose_R31 * j_fan_reaction_t_f_1 + table_pose_R33 * j_fan_reaction_t_f_3;
-    out[24] = cse127 * cse130 + cse128 * cse131 + cse129 * cse132;  // fan_omega[1] [rad/s] (rotors.mbg:60:8)
-    out[25] = (-table_pose_R11 * cse126 + table_pose_R12 * cse125) * cse130 + (-table_pose_R21 * cse126 + table_pose_R22 * cse125) * cse131 + (-table_pose_R31 * cse126 + table_pose_R32 * cse125) * cse132;  // fan_omega[2] [rad/s] (rotors.mbg:60:8)
-    out[26] = table_pose_R13 * cse130 + table_pose_R23 * cse131 + table_pose_R33 * cse132;  // fan_omega[3] [rad/s] (rotors.mbg:60:8)
+    const double cse118 = 20.0 * t;
+    const double cse119 = std::cos(cse118);
+    const double cse120 = std::sin(cse118);
+    out[21] = table_pose_R11 * cse119 + table_pose_R12 * cse120;  // fan_x[1] [1] (rotors.mbg:59:8)
+    out[22] = table_pose_R21 * cse119 + table_pose_R22 * cse120;  // fan_x[2] [1] (rotors.mbg:59:8)
+    out[23] = table_pose_R31 * cse119 + table_pose_R32 * cse120;  // fan_x[3] [1] (rotors.mbg:59:8)
+    out[24] = cse119 * j_fan_reaction_t_f_1;  // fan_omega[1] [rad/s] (rotors.mbg:60:8)
+    out[25] = -cse120 * j_fan_reaction_t_f_1;  // fan_omega[2] [rad/s] (rotors.mbg:60:8)
+    out[26] = j_fan_reaction_t_f_3;  // fan_omega[3] [rad/s] (rotors.mbg:60:8)
     out[27] = bob_pose_r3;  // bob_z [m] (rotors.mbg:61:8)
   }
 
@@ -1059,110 +1047,110 @@ class rotors_model final : public mbgrt::Model {
     const double j_bob_theta_q = x[15];
     // rotors.mbg:25:7  signal table.pose.R31
     // (cseN: a subexpression several equations below share)
-    const double cse133 = std::cos(turn_theta_q);
-    const double table_pose_R31 = -0.5 * cse133 + 0.5;
+    const double cse121 = std::cos(turn_theta_q);
+    const double table_pose_R31 = -0.5 * cse121 + 0.5;
     // rotors.mbg:25:7  signal table.pose.R32
-    const double cse134 = std::sin(turn_theta_q);
-    const double table_pose_R32 = 0.7071067811865476 * cse134;
+    const double cse122 = std::sin(turn_theta_q);
+    const double table_pose_R32 = 0.7071067811865476 * cse122;
     // rotors.mbg:25:7  signal table.pose.R33
-    const double table_pose_R33 = 0.5000000000000001 * cse133 + 0.4999999999999999;
+    const double table_pose_R33 = 0.5000000000000001 * cse121 + 0.4999999999999999;
     // rotors.mbg:38:7  signal cam.pose.R32
-    const double cse135 = std::cos(j_cam_theta_q);
-    const double cse136 = std::sin(j_cam_theta_q);
-    const double cam_pose_R32 = table_pose_R32 * cse135 + table_pose_R33 * cse136;
+    const double cse123 = std::cos(j_cam_theta_q);
+    const double cse124 = std::sin(j_cam_theta_q);
+    const double cam_pose_R32 = table_pose_R32 * cse123 + table_pose_R33 * cse124;
     // rotors.mbg:35:7  signal crank.pose.R32
-    const double cse137 = std::cos(j_crank_theta_q);
-    const double cse138 = std::sin(j_crank_theta_q);
-    const double crank_pose_R32 = table_pose_R32 * cse137 + table_pose_R33 * cse138;
+    const double cse125 = std::cos(j_crank_theta_q);
+    const double cse126 = std::sin(j_crank_theta_q);
+    const double crank_pose_R32 = table_pose_R32 * cse125 + table_pose_R33 * cse126;
     // rotors.mbg:35:7  signal crank.pose.R33
-    const double crank_pose_R33 = -table_pose_R32 * cse138 + table_pose_R33 * cse137;
+    const double crank_pose_R33 = -table_pose_R32 * cse126 + table_pose_R33 * cse125;
     // rotors.mbg:38:7  signal cam.pose.R33
-    const double cam_pose_R33 = -table_pose_R32 * cse136 + table_pose_R33 * cse135;
+    const double cam_pose_R33 = -table_pose_R32 * cse124 + table_pose_R33 * cse123;
     // rotors.mbg:41:7  signal tilted.pose.R31
-    const double cse139 = std::cos(j_tilted_theta_q);
-    const double cse140 = 0.49999999999999994 * cse139;
-    const double cse141 = std::sin(j_tilted_theta_q);
-    const double cse142 = 0.5000000000000001 * cse141;
-    const double cse143 = cse140 - cse142;
-    const double cse144 = 0.49999999999999994 * cse141;
-    const double cse145 = 0.5000000000000001 * cse139;
-    const double cse146 = -cse144 - cse145;
-    const double cse147 = 0.49999999999999994 * cse143 - 0.5000000000000001 * cse146 + 0.5000000000000001;
-    const double cse148 = -cse145 + cse144;
-    const double cse149 = cse142 + cse140;
-    const double cse150 = 0.49999999999999994 * cse148 - 0.5000000000000001 * cse149 + 0.5000000000000001;
-    const double cse151 = 0.7071067811865476 * cse139;
-    const double cse152 = 0.7071067811865476 * cse141;
-    const double cse153 = -cse151 - cse152;
-    const double cse154 = cse152 - cse151;
-    const double cse155 = 0.49999999999999994 * cse153 - 0.5000000000000001 * cse154 - 7.850462293418877e-17;
-    const double tilted_pose_R31 = table_pose_R31 * cse147 + table_pose_R32 * cse150 + table_pose_R33 * cse155;
+    const double cse127 = std::cos(j_tilted_theta_q);
+    const double cse128 = 0.49999999999999994 * cse127;
+    const double cse129 = std::sin(j_tilted_theta_q);
+    const double cse130 = 0.5000000000000001 * cse129;
+    const double cse131 = cse128 - cse130;
+    const double cse132 = 0.49999999999999994 * cse129;
+    const double cse133 = 0.5000000000000001 * cse127;
+    const double cse134 = -cse132 - cse133;
+    const double cse135 = 0.49999999999999994 * cse131 - 0.5000000000000001 * cse134 + 0.5000000000000001;
+    const double cse136 = -cse133 + cse132;
+    const double cse137 = cse130 + cse128;
+    const double cse138 = 0.49999999999999994 * cse136 - 0.5000000000000001 * cse137 + 0.5000000000000001;
+    const double cse139 = 0.7071067811865476 * cse127;
+    const double cse140 = 0.7071067811865476 * cse129;
+    const double cse141 = -cse139 - cse140;
+    const double cse142 = cse140 - cse139;
+    const double cse143 = 0.49999999999999994 * cse141 - 0.5000000000000001 * cse142 - 7.850462293418877e-17;
+    const double tilted_pose_R31 = table_pose_R31 * cse135 + table_pose_R32 * cse138 + table_pose_R33 * cse143;
     // rotors.mbg:41:7  signal tilted.pose.R32
-    const double cse156 = -0.5000000000000001 * cse143 + 0.49999999999999994 * cse146 + 0.5000000000000001;
-    const double cse157 = -0.5000000000000001 * cse148 + 0.49999999999999994 * cse149 + 0.5000000000000001;
-    const double cse158 = -0.5000000000000001 * cse153 + 0.49999999999999994 * cse154 - 7.850462293418877e-17;
-    const double tilted_pose_R32 = table_pose_R31 * cse156 + table_pose_R32 * cse157 + table_pose_R33 * cse158;
+    const double cse144 = -0.5000000000000001 * cse131 + 0.49999999999999994 * cse134 + 0.5000000000000001;
+    const double cse145 = -0.5000000000000001 * cse136 + 0.49999999999999994 * cse137 + 0.5000000000000001;
+    const double cse146 = -0.5000000000000001 * cse141 + 0.49999999999999994 * cse142 - 7.850462293418877e-17;
+    const double tilted_pose_R32 = table_pose_R31 * cse144 + table_pose_R32 * cse145 + table_pose_R33 * cse146;
     // rotors.mbg:41:7  signal tilted.pose.R33
-    const double cse159 = -0.7071067811865476 * cse143 - 0.7071067811865476 * cse146 - 7.850462293418877e-17;
-    const double cse160 = -0.7071067811865476 * cse148 - 0.7071067811865476 * cse149 - 7.850462293418877e-17;
-    const double cse161 = -0.7071067811865476 * cse153 - 0.7071067811865476 * cse154 + 1.2325951644078315e-32;
-    const double tilted_pose_R33 = table_pose_R31 * cse159 + table_pose_R32 * cse160 + table_pose_R33 * cse161;
+    const double cse147 = -0.7071067811865476 * cse131 - 0.7071067811865476 * cse134 - 7.850462293418877e-17;
+    const double cse148 = -0.7071067811865476 * cse136 - 0.7071067811865476 * cse137 - 7.850462293418877e-17;
+    const double cse149 = -0.7071067811865476 * cse141 - 0.7071067811865476 * cse142 + 1.2325951644078315e-32;
+    const double tilted_pose_R33 = table_pose_R31 * cse147 + table_pose_R32 * cse148 + table_pose_R33 * cse149;
     // rotors.mbg:44:7  signal shaft.pose.R32
-    const double cse162 = std::cos(j_shaft_theta_q);
-    const double cse163 = std::sin(j_shaft_theta_q);
-    const double shaft_pose_R32 = table_pose_R32 * cse162 + table_pose_R33 * cse163;
+    const double cse150 = std::cos(j_shaft_theta_q);
+    const double cse151 = std::sin(j_shaft_theta_q);
+    const double shaft_pose_R32 = table_pose_R32 * cse150 + table_pose_R33 * cse151;
     // rotors.mbg:44:7  signal shaft.pose.R33
-    const double shaft_pose_R33 = -table_pose_R32 * cse163 + table_pose_R33 * cse162;
+    const double shaft_pose_R33 = -table_pose_R32 * cse151 + table_pose_R33 * cse150;
     // rotors.mbg:32:7  signal lopsided.pose.R32
-    const double cse164 = std::cos(j_lopsided_theta_q);
-    const double cse165 = std::sin(j_lopsided_theta_q);
-    const double lopsided_pose_R32 = table_pose_R32 * cse164 + table_pose_R33 * cse165;
+    const double cse152 = std::cos(j_lopsided_theta_q);
+    const double cse153 = std::sin(j_lopsided_theta_q);
+    const double lopsided_pose_R32 = table_pose_R32 * cse152 + table_pose_R33 * cse153;
     // rotors.mbg:32:7  signal lopsided.pose.R33
-    const double lopsided_pose_R33 = -table_pose_R32 * cse165 + table_pose_R33 * cse164;
+    const double lopsided_pose_R33 = -table_pose_R32 * cse153 + table_pose_R33 * cse152;
     // rotors.mbg:25:7  signal table.pose.R11
-    const double table_pose_R11 = 0.4999999999999999 * cse133 + 0.5000000000000001;
+    const double table_pose_R11 = 0.4999999999999999 * cse121 + 0.5000000000000001;
     // rotors.mbg:25:7  signal table.pose.R12
-    const double cse166 = 0.7071067811865475 * cse134;
-    const double table_pose_R12 = -cse166;
+    const double cse154 = 0.7071067811865475 * cse122;
+    const double table_pose_R12 = -cse154;
     // rotors.mbg:25:7  signal table.pose.R13
     const double table_pose_R13 = table_pose_R31;
     // rotors.mbg:25:7  signal table.pose.R21
-    const double table_pose_R21 = cse166;
+    const double table_pose_R21 = cse154;
     // rotors.mbg:25:7  signal table.pose.R22
-    const double table_pose_R22 = cse133;
+    const double table_pose_R22 = cse121;
     // rotors.mbg:25:7  signal table.pose.R23
     const double table_pose_R23 = -table_pose_R32;
     // rotors.mbg:29:7  signal disc.pose.r1
-    const double cse167 = 0.5 * table_pose_R11;
-    const double disc_pose_r1 = cse167 - 0.05 * table_pose_R11;
+    const double cse155 = 0.5 * table_pose_R11;
+    const double disc_pose_r1 = cse155 - 0.05 * table_pose_R11;
     // rotors.mbg:29:7  signal disc.pose.r2
-    const double cse168 = 0.5 * table_pose_R21;
-    const double disc_pose_r2 = cse168 - 0.05 * table_pose_R21;
+    const double cse156 = 0.5 * table_pose_R21;
+    const double disc_pose_r2 = cse156 - 0.05 * table_pose_R21;
     // rotors.mbg:29:7  signal disc.pose.r3
-    const double cse169 = 0.5 * table_pose_R31;
-    const double disc_pose_r3 = cse169 - 0.05 * table_pose_R31;
+    const double cse157 = 0.5 * table_pose_R31;
+    const double disc_pose_r3 = cse157 - 0.05 * table_pose_R31;
     // rotors.mbg:32:7  signal lopsided.pose.R12
-    const double lopsided_pose_R12 = table_pose_R12 * cse164 + table_pose_R13 * cse165;
+    const double lopsided_pose_R12 = table_pose_R12 * cse152 + table_pose_R13 * cse153;
     // rotors.mbg:32:7  signal lopsided.pose.R13
-    const double lopsided_pose_R13 = -table_pose_R12 * cse165 + table_pose_R13 * cse164;
+    const double lopsided_pose_R13 = -table_pose_R12 * cse153 + table_pose_R13 * cse152;
     // rotors.mbg:32:7  signal lopsided.pose.R22
-    const double lopsided_pose_R22 = table_pose_R22 * cse164 + table_pose_R23 * cse165;
+    const double lopsided_pose_R22 = table_pose_R22 * cse152 + table_pose_R23 * cse153;
     // rotors.mbg:32:7  signal lopsided.pose.R23
-    const double lopsided_pose_R23 = -table_pose_R22 * cse165 + table_pose_R23 * cse164;
+    const double lopsided_pose_R23 = -table_pose_R22 * cse153 + table_pose_R23 * cse152;
     // rotors.mbg:32:7  signal lopsided.pose.r1
-    const double lopsided_pose_r1 = -cse167;
+    const double lopsided_pose_r1 = -cse155;
     // rotors.mbg:32:7  signal lopsided.pose.r2
-    const double lopsided_pose_r2 = -cse168;
+    const double lopsided_pose_r2 = -cse156;
     // rotors.mbg:32:7  signal lopsided.pose.r3
-    const double lopsided_pose_r3 = -cse169;
+    const double lopsided_pose_r3 = -cse157;
     // rotors.mbg:35:7  signal crank.pose.R12
-    const double crank_pose_R12 = table_pose_R12 * cse137 + table_pose_R13 * cse138;
+    const double crank_pose_R12 = table_pose_R12 * cse125 + table_pose_R13 * cse126;
     // rotors.mbg:35:7  signal crank.pose.R13
-    const double crank_pose_R13 = -table_pose_R12 * cse138 + table_pose_R13 * cse137;
+    const double crank_pose_R13 = -table_pose_R12 * cse126 + table_pose_R13 * cse125;
     // rotors.mbg:35:7  signal crank.pose.R22
-    const double crank_pose_R22 = table_pose_R22 * cse137 + table_pose_R23 * cse138;
+    const double crank_pose_R22 = table_pose_R22 * cse125 + table_pose_R23 * cse126;
     // rotors.mbg:35:7  signal crank.pose.R23
-    const double crank_pose_R23 = -table_pose_R22 * cse138 + table_pose_R23 * cse137;
+    const double crank_pose_R23 = -table_pose_R22 * cse126 + table_pose_R23 * cse125;
     // rotors.mbg:35:7  signal crank.pose.r1
     const double crank_pose_r1 = 0.5 * table_pose_R12;
     // rotors.mbg:35:7  signal crank.pose.r2
@@ -1170,13 +1158,13 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:35:7  signal crank.pose.r3
     const double crank_pose_r3 = 0.5 * table_pose_R32;
     // rotors.mbg:38:7  signal cam.pose.R12
-    const double cam_pose_R12 = table_pose_R12 * cse135 + table_pose_R13 * cse136;
+    const double cam_pose_R12 = table_pose_R12 * cse123 + table_pose_R13 * cse124;
     // rotors.mbg:38:7  signal cam.pose.R13
-    const double cam_pose_R13 = -table_pose_R12 * cse136 + table_pose_R13 * cse135;
+    const double cam_pose_R13 = -table_pose_R12 * cse124 + table_pose_R13 * cse123;
     // rotors.mbg:38:7  signal cam.pose.R22
-    const double cam_pose_R22 = table_pose_R22 * cse135 + table_pose_R23 * cse136;
+    const double cam_pose_R22 = table_pose_R22 * cse123 + table_pose_R23 * cse124;
     // rotors.mbg:38:7  signal cam.pose.R23
-    const double cam_pose_R23 = -table_pose_R22 * cse136 + table_pose_R23 * cse135;
+    const double cam_pose_R23 = -table_pose_R22 * cse124 + table_pose_R23 * cse123;
     // rotors.mbg:38:7  signal cam.pose.r1
     const double cam_pose_r1 = -crank_pose_r1 + 0.01 * cam_pose_R13;
     // rotors.mbg:38:7  signal cam.pose.r2
@@ -1184,17 +1172,17 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:38:7  signal cam.pose.r3
     const double cam_pose_r3 = -crank_pose_r3 + 0.01 * cam_pose_R33;
     // rotors.mbg:41:7  signal tilted.pose.R11
-    const double tilted_pose_R11 = table_pose_R11 * cse147 + table_pose_R12 * cse150 + table_pose_R13 * cse155;
+    const double tilted_pose_R11 = table_pose_R11 * cse135 + table_pose_R12 * cse138 + table_pose_R13 * cse143;
     // rotors.mbg:41:7  signal tilted.pose.R12
-    const double tilted_pose_R12 = table_pose_R11 * cse156 + table_pose_R12 * cse157 + table_pose_R13 * cse158;
+    const double tilted_pose_R12 = table_pose_R11 * cse144 + table_pose_R12 * cse145 + table_pose_R13 * cse146;
     // rotors.mbg:41:7  signal tilted.pose.R13
-    const double tilted_pose_R13 = table_pose_R11 * cse159 + table_pose_R12 * cse160 + table_pose_R13 * cse161;
+    const double tilted_pose_R13 = table_pose_R11 * cse147 + table_pose_R12 * cse148 + table_pose_R13 * cse149;
     // rotors.mbg:41:7  signal tilted.pose.R21
-    const double tilted_pose_R21 = table_pose_R21 * cse147 + table_pose_R22 * cse150 + table_pose_R23 * cse155;
+    const double tilted_pose_R21 = table_pose_R21 * cse135 + table_pose_R22 * cse138 + table_pose_R23 * cse143;
     // rotors.mbg:41:7  signal tilted.pose.R22
-    const double tilted_pose_R22 = table_pose_R21 * cse156 + table_pose_R22 * cse157 + table_pose_R23 * cse158;
+    const double tilted_pose_R22 = table_pose_R21 * cse144 + table_pose_R22 * cse145 + table_pose_R23 * cse146;
     // rotors.mbg:41:7  signal tilted.pose.R23
-    const double tilted_pose_R23 = table_pose_R21 * cse159 + table_pose_R22 * cse160 + table_pose_R23 * cse161;
+    const double tilted_pose_R23 = table_pose_R21 * cse147 + table_pose_R22 * cse148 + table_pose_R23 * cse149;
     // rotors.mbg:41:7  signal tilted.pose.r1
     const double tilted_pose_r1 = 0.3 * table_pose_R13;
     // rotors.mbg:41:7  signal tilted.pose.r2
@@ -1202,25 +1190,25 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:41:7  signal tilted.pose.r3
     const double tilted_pose_r3 = 0.3 * table_pose_R33;
     // rotors.mbg:44:7  signal shaft.pose.R12
-    const double shaft_pose_R12 = table_pose_R12 * cse162 + table_pose_R13 * cse163;
+    const double shaft_pose_R12 = table_pose_R12 * cse150 + table_pose_R13 * cse151;
     // rotors.mbg:44:7  signal shaft.pose.R13
-    const double shaft_pose_R13 = -table_pose_R12 * cse163 + table_pose_R13 * cse162;
+    const double shaft_pose_R13 = -table_pose_R12 * cse151 + table_pose_R13 * cse150;
     // rotors.mbg:44:7  signal shaft.pose.R22
-    const double shaft_pose_R22 = table_pose_R22 * cse162 + table_pose_R23 * cse163;
+    const double shaft_pose_R22 = table_pose_R22 * cse150 + table_pose_R23 * cse151;
     // rotors.mbg:44:7  signal shaft.pose.R23
-    const double shaft_pose_R23 = -table_pose_R22 * cse163 + table_pose_R23 * cse162;
+    const double shaft_pose_R23 = -table_pose_R22 * cse151 + table_pose_R23 * cse150;
     // rotors.mbg:44:7  signal shaft.pose.r1
-    const double cse170 = 0.3 * table_pose_R11;
-    const double cse171 = 0.3 * table_pose_R12;
-    const double shaft_pose_r1 = -cse170 - cse171;
+    const double cse158 = 0.3 * table_pose_R11;
+    const double cse159 = 0.3 * table_pose_R12;
+    const double shaft_pose_r1 = -cse158 - cse159;
     // rotors.mbg:44:7  signal shaft.pose.r2
-    const double cse172 = 0.3 * table_pose_R21;
-    const double cse173 = 0.3 * table_pose_R22;
-    const double shaft_pose_r2 = -cse172 - cse173;
+    const double cse160 = 0.3 * table_pose_R21;
+    const double cse161 = 0.3 * table_pose_R22;
+    const double shaft_pose_r2 = -cse160 - cse161;
     // rotors.mbg:44:7  signal shaft.pose.r3
-    const double cse174 = 0.3 * table_pose_R31;
-    const double cse175 = 0.3 * table_pose_R32;
-    const double shaft_pose_r3 = -cse174 - cse175;
+    const double cse162 = 0.3 * table_pose_R31;
+    const double cse163 = 0.3 * table_pose_R32;
+    const double shaft_pose_r3 = -cse162 - cse163;
     // rotors.mbg:46:7  signal bob.pose.r1
     const double bob_pose_r1 = shaft_pose_r1 + 0.2 * table_pose_R11;
     // rotors.mbg:46:7  signal bob.pose.r2
@@ -1228,11 +1216,11 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:46:7  signal bob.pose.r3
     const double bob_pose_r3 = shaft_pose_r3 + 0.2 * table_pose_R31;
     // rotors.mbg:49:7  signal fan.pose.r1
-    const double fan_pose_r1 = cse170 + cse171;
+    const double fan_pose_r1 = cse158 + cse159;
     // rotors.mbg:49:7  signal fan.pose.r2
-    const double fan_pose_r2 = cse172 + cse173;
+    const double fan_pose_r2 = cse160 + cse161;
     // rotors.mbg:49:7  signal fan.pose.r3
-    const double fan_pose_r3 = cse174 + cse175;
+    const double fan_pose_r3 = cse162 + cse163;
     // 12 per body (origin, rotation row-major), then every modal coordinate
     out[0] = 0.0;
     out[1] = 0.0;
@@ -1250,16 +1238,16 @@ class rotors_model final : public mbgrt::Model {
     out[13] = disc_pose_r2;
     out[14] = disc_pose_r3;
     out[15] = table_pose_R11;
-    const double cse176 = std::cos(spin_theta_q);
-    const double cse177 = std::sin(spin_theta_q);
-    out[16] = table_pose_R12 * cse176 + table_pose_R13 * cse177;
-    out[17] = -table_pose_R12 * cse177 + table_pose_R13 * cse176;
+    const double cse164 = std::cos(spin_theta_q);
+    const double cse165 = std::sin(spin_theta_q);
+    out[16] = table_pose_R12 * cse164 + table_pose_R13 * cse165;
+    out[17] = -table_pose_R12 * cse165 + table_pose_R13 * cse164;
     out[18] = table_pose_R21;
-    out[19] = table_pose_R22 * cse176 + table_pose_R23 * cse177;
-    out[20] = -table_pose_R22 * cse177 + table_pose_R23 * cse176;
+    out[19] = table_pose_R22 * cse164 + table_pose_R23 * cse165;
+    out[20] = -table_pose_R22 * cse165 + table_pose_R23 * cse164;
     out[21] = table_pose_R31;
-    out[22] = table_pose_R32 * cse176 + table_pose_R33 * cse177;
-    out[23] = -table_pose_R32 * cse177 + table_pose_R33 * cse176;
+    out[22] = table_pose_R32 * cse164 + table_pose_R33 * cse165;
+    out[23] = -table_pose_R32 * cse165 + table_pose_R33 * cse164;
     out[24] = lopsided_pose_r1;
     out[25] = lopsided_pose_r2;
     out[26] = lopsided_pose_r3;
@@ -1323,31 +1311,31 @@ class rotors_model final : public mbgrt::Model {
     out[84] = bob_pose_r1;
     out[85] = bob_pose_r2;
     out[86] = bob_pose_r3;
-    const double cse178 = std::cos(j_bob_theta_q);
-    const double cse179 = std::sin(j_bob_theta_q);
-    out[87] = table_pose_R11 * cse178 - shaft_pose_R13 * cse179;
+    const double cse166 = std::cos(j_bob_theta_q);
+    const double cse167 = std::sin(j_bob_theta_q);
+    out[87] = table_pose_R11 * cse166 - shaft_pose_R13 * cse167;
     out[88] = shaft_pose_R12;
-    out[89] = table_pose_R11 * cse179 + shaft_pose_R13 * cse178;
-    out[90] = table_pose_R21 * cse178 - shaft_pose_R23 * cse179;
+    out[89] = table_pose_R11 * cse167 + shaft_pose_R13 * cse166;
+    out[90] = table_pose_R21 * cse166 - shaft_pose_R23 * cse167;
     out[91] = shaft_pose_R22;
-    out[92] = table_pose_R21 * cse179 + shaft_pose_R23 * cse178;
-    out[93] = table_pose_R31 * cse178 - shaft_pose_R33 * cse179;
+    out[92] = table_pose_R21 * cse167 + shaft_pose_R23 * cse166;
+    out[93] = table_pose_R31 * cse166 - shaft_pose_R33 * cse167;
     out[94] = shaft_pose_R32;
-    out[95] = table_pose_R31 * cse179 + shaft_pose_R33 * cse178;
+    out[95] = table_pose_R31 * cse167 + shaft_pose_R33 * cse166;
     out[96] = fan_pose_r1;
     out[97] = fan_pose_r2;
     out[98] = fan_pose_r3;
-    const double cse180 = 20.0 * t;
-    const double cse181 = std::cos(cse180);
-    const double cse182 = std::sin(cse180);
-    out[99] = table_pose_R11 * cse181 + table_pose_R12 * cse182;
-    out[100] = -table_pose_R11 * cse182 + table_pose_R12 * cse181;
+    const double cse168 = 20.0 * t;
+    const double cse169 = std::cos(cse168);
+    const double cse170 = std::sin(cse168);
+    out[99] = table_pose_R11 * cse169 + table_pose_R12 * cse170;
+    out[100] = -table_pose_R11 * cse170 + table_pose_R12 * cse169;
     out[101] = table_pose_R13;
-    out[102] = table_pose_R21 * cse181 + table_pose_R22 * cse182;
-    out[103] = -table_pose_R21 * cse182 + table_pose_R22 * cse181;
+    out[102] = table_pose_R21 * cse169 + table_pose_R22 * cse170;
+    out[103] = -table_pose_R21 * cse170 + table_pose_R22 * cse169;
     out[104] = table_pose_R23;
-    out[105] = table_pose_R31 * cse181 + table_pose_R32 * cse182;
-    out[106] = -table_pose_R31 * cse182 + table_pose_R32 * cse181;
+    out[105] = table_pose_R31 * cse169 + table_pose_R32 * cse170;
+    out[106] = -table_pose_R31 * cse170 + table_pose_R32 * cse169;
     out[107] = table_pose_R33;
   }
 
@@ -1390,13 +1378,13 @@ class rotors_model final : public mbgrt::Model {
     const double spin_reaction_f_f_2 = spin_m4_f1_2 + spin_m5_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m1: f2 = T f1
     // (cseN: a subexpression several equations below share)
-    const double cse183 = std::sin(j_lopsided_theta_q);
-    const double j_lopsided_m1_f2_2 = cse183 * turn_m1_f2_3;
+    const double cse171 = std::sin(j_lopsided_theta_q);
+    const double j_lopsided_m1_f2_2 = cse171 * turn_m1_f2_3;
     // rotors.mbg:32:7  0 j_lopsided.wsum: flows in = flows out
     const double j_lopsided_reaction_t_f_2 = j_lopsided_m1_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m1: f2 = T f1
-    const double cse184 = std::cos(j_lopsided_theta_q);
-    const double j_lopsided_m1_f2_3 = cse184 * turn_m1_f2_3;
+    const double cse172 = std::cos(j_lopsided_theta_q);
+    const double j_lopsided_m1_f2_3 = cse172 * turn_m1_f2_3;
     // rotors.mbg:32:7  0 j_lopsided.wsum: flows in = flows out
     const double j_lopsided_reaction_t_f_3 = j_lopsided_m1_f2_3;
     // rotors.mbg:32:7  MTF j_lopsided.m3: f2 = T f1
@@ -1404,38 +1392,38 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:32:7  0 j_lopsided.vpa: flows in = flows out
     const double j_lopsided_m4_f1_2 = j_lopsided_m3_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m4: f2 = T f1
-    const double j_lopsided_m4_f2_2 = cse184 * j_lopsided_m4_f1_2;
+    const double j_lopsided_m4_f2_2 = cse172 * j_lopsided_m4_f1_2;
     // rotors.mbg:32:7  0 j_lopsided.vsum: flows in = flows out
     const double j_lopsided_reaction_f_f_2 = j_lopsided_m4_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m4: f2 = T f1
-    const double j_lopsided_m4_f2_3 = -cse183 * j_lopsided_m4_f1_2;
+    const double j_lopsided_m4_f2_3 = -cse171 * j_lopsided_m4_f1_2;
     // rotors.mbg:32:7  0 j_lopsided.vsum: flows in = flows out
     const double j_lopsided_reaction_f_f_3 = j_lopsided_m4_f2_3;
     // rotors.mbg:35:7  MTF j_crank.m1: f2 = T f1
-    const double cse185 = std::sin(j_crank_theta_q);
-    const double j_crank_m1_f2_2 = cse185 * turn_m1_f2_3;
+    const double cse173 = std::sin(j_crank_theta_q);
+    const double j_crank_m1_f2_2 = cse173 * turn_m1_f2_3;
     // rotors.mbg:35:7  0 j_crank.wsum: flows in = flows out
     const double j_crank_reaction_t_f_2 = j_crank_m1_f2_2;
     // rotors.mbg:35:7  MTF j_crank.m1: f2 = T f1
-    const double cse186 = std::cos(j_crank_theta_q);
-    const double j_crank_m1_f2_3 = cse186 * turn_m1_f2_3;
+    const double cse174 = std::cos(j_crank_theta_q);
+    const double j_crank_m1_f2_3 = cse174 * turn_m1_f2_3;
     // rotors.mbg:35:7  0 j_crank.wsum: flows in = flows out
     const double j_crank_reaction_t_f_3 = j_crank_m1_f2_3;
     // rotors.mbg:38:7  MTF j_cam.m1: f2 = T f1
-    const double cse187 = std::sin(j_cam_theta_q);
-    const double j_cam_m1_f2_2 = cse187 * turn_m1_f2_3;
+    const double cse175 = std::sin(j_cam_theta_q);
+    const double j_cam_m1_f2_2 = cse175 * turn_m1_f2_3;
     // rotors.mbg:38:7  0 j_cam.wsum: flows in = flows out
     const double j_cam_reaction_t_f_2 = j_cam_m1_f2_2;
     // rotors.mbg:38:7  MTF j_cam.m1: f2 = T f1
-    const double cse188 = std::cos(j_cam_theta_q);
-    const double j_cam_m1_f2_3 = cse188 * turn_m1_f2_3;
+    const double cse176 = std::cos(j_cam_theta_q);
+    const double j_cam_m1_f2_3 = cse176 * turn_m1_f2_3;
     // rotors.mbg:38:7  0 j_cam.wsum: flows in = flows out
     const double j_cam_reaction_t_f_3 = j_cam_m1_f2_3;
     // rotors.mbg:25:7  MTF turn.m1: f2 = T f1
     const double turn_m1_f2_1 = 0.7071067811865476 * turn_theta_rate_rate;
     // rotors.mbg:38:7  MTF j_cam.m3: f2 = T f1
-    const double cse189 = 0.5 * turn_m1_f2_1;
-    const double j_cam_m3_f2_3 = -cse189;
+    const double cse177 = 0.5 * turn_m1_f2_1;
+    const double j_cam_m3_f2_3 = -cse177;
     // rotors.mbg:38:7  0 j_cam.vpa: flows in = flows out
     const double j_cam_m4_f1_3 = j_cam_m3_f2_3;
     // rotors.mbg:38:7  0 j_cam.wsum: flows in = flows out
@@ -1449,24 +1437,24 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:38:7  0 j_cam.vsum: flows in = flows out
     const double j_cam_reaction_f_f_1 = j_cam_m4_f1_1 + j_cam_m5_f2_1;
     // rotors.mbg:38:7  MTF j_cam.m4: f2 = T f1
-    const double j_cam_m4_f2_3 = cse188 * j_cam_m4_f1_3;
+    const double j_cam_m4_f2_3 = cse176 * j_cam_m4_f1_3;
     // rotors.mbg:38:7  0 j_cam.vsum: flows in = flows out
     const double j_cam_reaction_f_f_3 = j_cam_m4_f2_3;
     // rotors.mbg:44:7  MTF j_shaft.m1: f2 = T f1
-    const double cse190 = std::sin(j_shaft_theta_q);
-    const double j_shaft_m1_f2_2 = cse190 * turn_m1_f2_3;
+    const double cse178 = std::sin(j_shaft_theta_q);
+    const double j_shaft_m1_f2_2 = cse178 * turn_m1_f2_3;
     // rotors.mbg:44:7  0 j_shaft.wsum: flows in = flows out
     const double j_shaft_reaction_t_f_2 = j_shaft_m1_f2_2;
     // rotors.mbg:44:7  MTF j_shaft.m1: f2 = T f1
-    const double cse191 = std::cos(j_shaft_theta_q);
-    const double j_shaft_m1_f2_3 = cse191 * turn_m1_f2_3;
+    const double cse179 = std::cos(j_shaft_theta_q);
+    const double j_shaft_m1_f2_3 = cse179 * turn_m1_f2_3;
     // rotors.mbg:44:7  0 j_shaft.wsum: flows in = flows out
     const double j_shaft_reaction_t_f_3 = j_shaft_m1_f2_3;
     // rotors.mbg:46:7  0 j_bob.wsum: flows in = flows out
     const double j_bob_reaction_t_f_2 = j_shaft_reaction_t_f_2 + j_bob_theta_rate_rate;
     const double j_bob_reaction_t_f_3 = j_shaft_reaction_t_f_3;
     // rotors.mbg:35:7  MTF j_crank.m3: f2 = T f1
-    const double j_crank_m3_f2_3 = cse189;
+    const double j_crank_m3_f2_3 = cse177;
     // rotors.mbg:35:7  0 j_crank.vpa: flows in = flows out
     const double j_crank_m4_f1_3 = j_crank_m3_f2_3;
     // rotors.mbg:35:7  0 j_crank.wsum: flows in = flows out
@@ -1478,71 +1466,71 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:35:7  0 j_crank.vsum: flows in = flows out
     const double j_crank_reaction_f_f_1 = j_crank_m4_f1_1;
     // rotors.mbg:35:7  MTF j_crank.m4: f2 = T f1
-    const double j_crank_m4_f2_3 = cse186 * j_crank_m4_f1_3;
+    const double j_crank_m4_f2_3 = cse174 * j_crank_m4_f1_3;
     // rotors.mbg:35:7  0 j_crank.vsum: flows in = flows out
     const double j_crank_reaction_f_f_3 = j_crank_m4_f2_3;
     // rotors.mbg:35:7  MTF j_crank.m4: f2 = T f1
-    const double j_crank_m4_f2_2 = cse185 * j_crank_m4_f1_3;
+    const double j_crank_m4_f2_2 = cse173 * j_crank_m4_f1_3;
     // rotors.mbg:35:7  0 j_crank.vsum: flows in = flows out
     const double j_crank_reaction_f_f_2 = j_crank_m4_f2_2;
     // rotors.mbg:38:7  MTF j_cam.m4: f2 = T f1
-    const double j_cam_m4_f2_2 = cse187 * j_cam_m4_f1_3;
+    const double j_cam_m4_f2_2 = cse175 * j_cam_m4_f1_3;
     // rotors.mbg:38:7  MTF j_cam.m5: f2 = T f1
     const double j_cam_m5_f2_2 = -0.01 * j_cam_reaction_t_f_1;
     // rotors.mbg:38:7  0 j_cam.vsum: flows in = flows out
     const double j_cam_reaction_f_f_2 = j_cam_m4_f2_2 + j_cam_m5_f2_2;
     // rotors.mbg:41:7  MTF j_tilted.m1: f2 = T f1
-    const double cse192 = std::cos(j_tilted_theta_q);
-    const double cse193 = 0.49999999999999994 * cse192;
-    const double cse194 = std::sin(j_tilted_theta_q);
-    const double cse195 = 0.5000000000000001 * cse194;
-    const double cse196 = cse193 - cse195;
-    const double cse197 = 0.49999999999999994 * cse194;
-    const double cse198 = 0.5000000000000001 * cse192;
-    const double cse199 = -cse197 - cse198;
-    const double cse200 = 0.7071067811865476 * cse192;
-    const double cse201 = 0.7071067811865476 * cse194;
-    const double cse202 = -cse200 - cse201;
-    const double cse203 = cse201 - cse200;
-    const double j_tilted_m1_f2_1 = (0.49999999999999994 * cse196 - 0.5000000000000001 * cse199 + 0.5000000000000001) * turn_m1_f2_1 + (0.49999999999999994 * cse202 - 0.5000000000000001 * cse203 - 7.850462293418877e-17) * turn_m1_f2_3;
+    const double cse180 = std::cos(j_tilted_theta_q);
+    const double cse181 = 0.49999999999999994 * cse180;
+    const double cse182 = std::sin(j_tilted_theta_q);
+    const double cse183 = 0.5000000000000001 * cse182;
+    const double cse184 = cse181 - cse183;
+    const double cse185 = 0.49999999999999994 * cse182;
+    const double cse186 = 0.5000000000000001 * cse180;
+    const double cse187 = -cse185 - cse186;
+    const double cse188 = 0.7071067811865476 * cse180;
+    const double cse189 = 0.7071067811865476 * cse182;
+    const double cse190 = -cse188 - cse189;
+    const double cse191 = cse189 - cse188;
+    const double j_tilted_m1_f2_1 = (0.49999999999999994 * cse184 - 0.5000000000000001 * cse187 + 0.5000000000000001) * turn_m1_f2_1 + (0.49999999999999994 * cse190 - 0.5000000000000001 * cse191 - 7.850462293418877e-17) * turn_m1_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m2: f2 = T f1
     const double j_tilted_m2_f2_1 = 0.7071067811865476 * j_tilted_theta_rate_rate;
     // rotors.mbg:41:7  0 j_tilted.wsum: flows in = flows out
     const double j_tilted_reaction_t_f_1 = j_tilted_m1_f2_1 + j_tilted_m2_f2_1;
     // rotors.mbg:41:7  MTF j_tilted.m1: f2 = T f1
-    const double j_tilted_m1_f2_3 = (-0.7071067811865476 * cse196 - 0.7071067811865476 * cse199 - 7.850462293418877e-17) * turn_m1_f2_1 + (-0.7071067811865476 * cse202 - 0.7071067811865476 * cse203 + 1.2325951644078315e-32) * turn_m1_f2_3;
+    const double j_tilted_m1_f2_3 = (-0.7071067811865476 * cse184 - 0.7071067811865476 * cse187 - 7.850462293418877e-17) * turn_m1_f2_1 + (-0.7071067811865476 * cse190 - 0.7071067811865476 * cse191 + 1.2325951644078315e-32) * turn_m1_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m2: f2 = T f1
     const double j_tilted_m2_f2_3 = -1.1102230246251568e-16 * j_tilted_theta_rate_rate;
     // rotors.mbg:41:7  0 j_tilted.wsum: flows in = flows out
     const double j_tilted_reaction_t_f_3 = j_tilted_m1_f2_3 + j_tilted_m2_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m1: f2 = T f1
-    const double j_tilted_m1_f2_2 = (-0.5000000000000001 * cse196 + 0.49999999999999994 * cse199 + 0.5000000000000001) * turn_m1_f2_1 + (-0.5000000000000001 * cse202 + 0.49999999999999994 * cse203 - 7.850462293418877e-17) * turn_m1_f2_3;
+    const double j_tilted_m1_f2_2 = (-0.5000000000000001 * cse184 + 0.49999999999999994 * cse187 + 0.5000000000000001) * turn_m1_f2_1 + (-0.5000000000000001 * cse190 + 0.49999999999999994 * cse191 - 7.850462293418877e-17) * turn_m1_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m2: f2 = T f1
     const double j_tilted_m2_f2_2 = j_tilted_m2_f2_1;
     // rotors.mbg:41:7  0 j_tilted.wsum: flows in = flows out
     const double j_tilted_reaction_t_f_2 = j_tilted_m1_f2_2 + j_tilted_m2_f2_2;
     // rotors.mbg:41:7  MTF j_tilted.m3: f2 = T f1
-    const double cse204 = 0.3 * turn_m1_f2_1;
-    const double j_tilted_m3_f2_2 = -cse204;
+    const double cse192 = 0.3 * turn_m1_f2_1;
+    const double j_tilted_m3_f2_2 = -cse192;
     // rotors.mbg:41:7  0 j_tilted.vpa: flows in = flows out
     const double j_tilted_m4_f1_2 = j_tilted_m3_f2_2;
     // rotors.mbg:41:7  MTF j_tilted.m4: f2 = T f1
-    const double cse205 = -cse198 + cse197;
-    const double cse206 = cse195 + cse193;
-    const double j_tilted_m4_f2_2 = (-0.5000000000000001 * cse205 + 0.49999999999999994 * cse206 + 0.5000000000000001) * j_tilted_m4_f1_2;
+    const double cse193 = -cse186 + cse185;
+    const double cse194 = cse183 + cse181;
+    const double j_tilted_m4_f2_2 = (-0.5000000000000001 * cse193 + 0.49999999999999994 * cse194 + 0.5000000000000001) * j_tilted_m4_f1_2;
     // rotors.mbg:41:7  0 j_tilted.vsum: flows in = flows out
     const double j_tilted_reaction_f_f_2 = j_tilted_m4_f2_2;
     // rotors.mbg:41:7  MTF j_tilted.m4: f2 = T f1
-    const double j_tilted_m4_f2_3 = (-0.7071067811865476 * cse205 - 0.7071067811865476 * cse206 - 7.850462293418877e-17) * j_tilted_m4_f1_2;
+    const double j_tilted_m4_f2_3 = (-0.7071067811865476 * cse193 - 0.7071067811865476 * cse194 - 7.850462293418877e-17) * j_tilted_m4_f1_2;
     // rotors.mbg:41:7  0 j_tilted.vsum: flows in = flows out
     const double j_tilted_reaction_f_f_3 = j_tilted_m4_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m4: f2 = T f1
-    const double j_tilted_m4_f2_1 = (0.49999999999999994 * cse205 - 0.5000000000000001 * cse206 + 0.5000000000000001) * j_tilted_m4_f1_2;
+    const double j_tilted_m4_f2_1 = (0.49999999999999994 * cse193 - 0.5000000000000001 * cse194 + 0.5000000000000001) * j_tilted_m4_f1_2;
     // rotors.mbg:41:7  0 j_tilted.vsum: flows in = flows out
     const double j_tilted_reaction_f_f_1 = j_tilted_m4_f2_1;
     // rotors.mbg:44:7  MTF j_shaft.m3: f2 = T f1
-    const double cse207 = 0.3 * turn_m1_f2_3;
-    const double j_shaft_m3_f2_2 = -cse207;
+    const double cse195 = 0.3 * turn_m1_f2_3;
+    const double j_shaft_m3_f2_2 = -cse195;
     // rotors.mbg:44:7  0 j_shaft.vpa: flows in = flows out
     const double j_shaft_m4_f1_2 = j_shaft_m3_f2_2;
     // rotors.mbg:44:7  MTF j_shaft.m3: f2 = T f1
@@ -1552,13 +1540,13 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:44:7  0 j_shaft.wsum: flows in = flows out
     const double j_shaft_reaction_t_f_1 = turn_m1_f2_1 + j_shaft_theta_rate_rate;
     // rotors.mbg:44:7  MTF j_shaft.m3: f2 = T f1
-    const double j_shaft_m3_f2_1 = cse207;
+    const double j_shaft_m3_f2_1 = cse195;
     // rotors.mbg:44:7  0 j_shaft.vpa: flows in = flows out
     const double j_shaft_m4_f1_1 = j_shaft_m3_f2_1;
     // rotors.mbg:44:7  0 j_shaft.vsum: flows in = flows out
     const double j_shaft_reaction_f_f_1 = j_shaft_m4_f1_1;
     // rotors.mbg:44:7  MTF j_shaft.m4: f2 = T f1
-    const double j_shaft_m4_f2_3 = -cse190 * j_shaft_m4_f1_2 + cse191 * j_shaft_m4_f1_3;
+    const double j_shaft_m4_f2_3 = -cse178 * j_shaft_m4_f1_2 + cse179 * j_shaft_m4_f1_3;
     // rotors.mbg:44:7  0 j_shaft.vsum: flows in = flows out
     const double j_shaft_reaction_f_f_3 = j_shaft_m4_f2_3;
     // rotors.mbg:46:7  0 j_bob.vpa: flows in = flows out
@@ -1574,7 +1562,7 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:46:7  0 j_bob.wsum: flows in = flows out
     const double j_bob_reaction_t_f_1 = j_shaft_reaction_t_f_1;
     // rotors.mbg:44:7  MTF j_shaft.m4: f2 = T f1
-    const double j_shaft_m4_f2_2 = cse191 * j_shaft_m4_f1_2 + cse190 * j_shaft_m4_f1_3;
+    const double j_shaft_m4_f2_2 = cse179 * j_shaft_m4_f1_2 + cse178 * j_shaft_m4_f1_3;
     // rotors.mbg:44:7  0 j_shaft.vsum: flows in = flows out
     const double j_shaft_reaction_f_f_2 = j_shaft_m4_f2_2;
     // rotors.mbg:46:7  MTF j_bob.m3: f2 = T f1
@@ -1584,7 +1572,7 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:46:7  0 j_bob.vsum: flows in = flows out
     const double j_bob_reaction_f_f_2 = j_bob_m4_f1_2;
     // rotors.mbg:49:7  MTF j_fan.m3: f2 = T f1
-    const double j_fan_m3_f2_2 = cse207;
+    const double j_fan_m3_f2_2 = cse195;
     // rotors.mbg:49:7  0 j_fan.vpa: flows in = flows out
     const double j_fan_m4_f1_2 = j_fan_m3_f2_2;
     // rotors.mbg:49:7  0 j_fan.vsum: flows in = flows out
@@ -1602,7 +1590,7 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:49:7  0 j_fan.vsum: flows in = flows out
     const double j_fan_reaction_f_f_1 = j_fan_m4_f1_1;
     // rotors.mbg:49:7  MTF j_fan.m3: f2 = T f1
-    const double j_fan_m3_f2_3 = cse204;
+    const double j_fan_m3_f2_3 = cse192;
     // rotors.mbg:49:7  0 j_fan.vpa: flows in = flows out
     const double j_fan_m4_f1_3 = j_fan_m3_f2_3;
     // rotors.mbg:49:7  0 j_fan.vsum: flows in = flows out
@@ -1635,8 +1623,8 @@ class rotors_model final : public mbgrt::Model {
     const double j_bob_theta_rate_rate = x[14];
     // rotors.mbg:25:7  signal table.pose.R31
     // (cseN: a subexpression several equations below share)
-    const double cse208 = std::cos(turn_theta_q);
-    const double table_pose_R31 = -0.5 * cse208 + 0.5;
+    const double cse196 = std::cos(turn_theta_q);
+    const double table_pose_R31 = -0.5 * cse196 + 0.5;
     // rotors.mbg:25:7  MTF turn.m1: f2 = T f1
     const double turn_m1_f2_3 = 0.7071067811865475 * turn_theta_rate_rate;
     // rotors.mbg:29:7  0 spin.wsum: flows in = flows out
@@ -1650,13 +1638,13 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:29:7  0 spin.vsum: flows in = flows out
     const double spin_reaction_f_f_2 = spin_m4_f1_2 + spin_m5_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m1: f2 = T f1
-    const double cse209 = std::sin(j_lopsided_theta_q);
-    const double j_lopsided_m1_f2_2 = cse209 * turn_m1_f2_3;
+    const double cse197 = std::sin(j_lopsided_theta_q);
+    const double j_lopsided_m1_f2_2 = cse197 * turn_m1_f2_3;
     // rotors.mbg:32:7  0 j_lopsided.wsum: flows in = flows out
     const double j_lopsided_reaction_t_f_2 = j_lopsided_m1_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m1: f2 = T f1
-    const double cse210 = std::cos(j_lopsided_theta_q);
-    const double j_lopsided_m1_f2_3 = cse210 * turn_m1_f2_3;
+    const double cse198 = std::cos(j_lopsided_theta_q);
+    const double j_lopsided_m1_f2_3 = cse198 * turn_m1_f2_3;
     // rotors.mbg:32:7  0 j_lopsided.wsum: flows in = flows out
     const double j_lopsided_reaction_t_f_3 = j_lopsided_m1_f2_3;
     // rotors.mbg:32:7  MTF j_lopsided.m3: f2 = T f1
@@ -1664,12 +1652,12 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:32:7  0 j_lopsided.vpa: flows in = flows out
     const double j_lopsided_m4_f1_2 = j_lopsided_m3_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m4: f2 = T f1
-    const double j_lopsided_m4_f2_2 = cse210 * j_lopsided_m4_f1_2;
+    const double j_lopsided_m4_f2_2 = cse198 * j_lopsided_m4_f1_2;
     // rotors.mbg:32:7  0 j_lopsided.vsum: flows in = flows out
     const double j_lopsided_reaction_f_f_2 = j_lopsided_m4_f2_2;
     // rotors.mbg:32:7  MTF j_lopsided.m4: f2 = T f1
-    const double cse211 = cse209 * j_lopsided_m4_f1_2;
-    const double j_lopsided_m4_f2_3 = -cse211;
+    const double cse199 = cse197 * j_lopsided_m4_f1_2;
+    const double j_lopsided_m4_f2_3 = -cse199;
     // rotors.mbg:32:7  0 j_lopsided.vsum: flows in = flows out
     const double j_lopsided_reaction_f_f_3 = j_lopsided_m4_f2_3;
     // rotors.mbg:31:6  I lopsided.J: p = I f (derivative causality)
@@ -1678,15 +1666,15 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:31:6  R lopsided.ejs: e = law(f)
     const double lopsided_ejs_e_1 = j_lopsided_reaction_t_f_2 * lopsided_J_p_3 - j_lopsided_reaction_t_f_3 * lopsided_J_p_2;
     // rotors.mbg:35:7  MTF j_crank.m1: f2 = T f1
-    const double cse212 = std::sin(j_crank_theta_q);
-    const double j_crank_m1_f2_2 = cse212 * turn_m1_f2_3;
+    const double cse200 = std::sin(j_crank_theta_q);
+    const double j_crank_m1_f2_2 = cse200 * turn_m1_f2_3;
     // rotors.mbg:35:7  0 j_crank.wsum: flows in = flows out
     const double j_crank_reaction_t_f_2 = j_crank_m1_f2_2;
     // rotors.mbg:34:6  I crank.J: p = I f (derivative causality)
     const double crank_J_p_2 = 0.01 * j_crank_reaction_t_f_2;
     // rotors.mbg:35:7  MTF j_crank.m1: f2 = T f1
-    const double cse213 = std::cos(j_crank_theta_q);
-    const double j_crank_m1_f2_3 = cse213 * turn_m1_f2_3;
+    const double cse201 = std::cos(j_crank_theta_q);
+    const double j_crank_m1_f2_3 = cse201 * turn_m1_f2_3;
     // rotors.mbg:35:7  0 j_crank.wsum: flows in = flows out
     const double j_crank_reaction_t_f_3 = j_crank_m1_f2_3;
     // rotors.mbg:34:6  I crank.J: p = I f (derivative causality)
@@ -1694,15 +1682,15 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:34:6  R crank.ejs: e = law(f)
     const double crank_ejs_e_1 = j_crank_reaction_t_f_2 * crank_J_p_3 - j_crank_reaction_t_f_3 * crank_J_p_2;
     // rotors.mbg:38:7  MTF j_cam.m1: f2 = T f1
-    const double cse214 = std::sin(j_cam_theta_q);
-    const double j_cam_m1_f2_2 = cse214 * turn_m1_f2_3;
+    const double cse202 = std::sin(j_cam_theta_q);
+    const double j_cam_m1_f2_2 = cse202 * turn_m1_f2_3;
     // rotors.mbg:38:7  0 j_cam.wsum: flows in = flows out
     const double j_cam_reaction_t_f_2 = j_cam_m1_f2_2;
     // rotors.mbg:37:6  I cam.J: p = I f (derivative causality)
     const double cam_J_p_2 = 0.01 * j_cam_reaction_t_f_2;
     // rotors.mbg:38:7  MTF j_cam.m1: f2 = T f1
-    const double cse215 = std::cos(j_cam_theta_q);
-    const double j_cam_m1_f2_3 = cse215 * turn_m1_f2_3;
+    const double cse203 = std::cos(j_cam_theta_q);
+    const double j_cam_m1_f2_3 = cse203 * turn_m1_f2_3;
     // rotors.mbg:38:7  0 j_cam.wsum: flows in = flows out
     const double j_cam_reaction_t_f_3 = j_cam_m1_f2_3;
     // rotors.mbg:37:6  I cam.J: p = I f (derivative causality)
@@ -1712,16 +1700,16 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:25:7  MTF turn.m1: f2 = T f1
     const double turn_m1_f2_1 = 0.7071067811865476 * turn_theta_rate_rate;
     // rotors.mbg:38:7  MTF j_cam.m3: f2 = T f1
-    const double cse216 = 0.5 * turn_m1_f2_1;
-    const double j_cam_m3_f2_3 = -cse216;
+    const double cse204 = 0.5 * turn_m1_f2_1;
+    const double j_cam_m3_f2_3 = -cse204;
     // rotors.mbg:38:7  0 j_cam.vpa: flows in = flows out
     const double j_cam_m4_f1_3 = j_cam_m3_f2_3;
     // rotors.mbg:25:7  signal table.pose.R32
     const double table_pose_R32 = 0.7071067811865476 * std::sin(turn_theta_q);
     // rotors.mbg:25:7  signal table.pose.R33
-    const double table_pose_R33 = 0.5000000000000001 * cse208 + 0.4999999999999999;
+    const double table_pose_R33 = 0.5000000000000001 * cse196 + 0.4999999999999999;
     // rotors.mbg:38:7  signal cam.pose.R32
-    const double cam_pose_R32 = table_pose_R32 * cse215 + table_pose_R33 * cse214;
+    const double cam_pose_R32 = table_pose_R32 * cse203 + table_pose_R33 * cse202;
     // rotors.mbg:37:6  Se cam.weight: e = value
     const double cam_weight_e_2 = -9.81 * cam_pose_R32;
     // rotors.mbg:38:7  0 j_cam.wsum: flows in = flows out
@@ -1735,21 +1723,21 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:38:7  0 j_cam.vsum: flows in = flows out
     const double j_cam_reaction_f_f_1 = j_cam_m4_f1_1 + j_cam_m5_f2_1;
     // rotors.mbg:38:7  MTF j_cam.m4: f2 = T f1
-    const double j_cam_m4_f2_3 = cse215 * j_cam_m4_f1_3;
+    const double j_cam_m4_f2_3 = cse203 * j_cam_m4_f1_3;
     // rotors.mbg:38:7  0 j_cam.vsum: flows in = flows out
     const double j_cam_reaction_f_f_3 = j_cam_m4_f2_3;
     // rotors.mbg:37:6  R cam.ejs_v: e = law(f)
     const double cam_ejs_v_e_2 = j_cam_reaction_t_f_3 * j_cam_reaction_f_f_1 - j_cam_reaction_t_f_1 * j_cam_reaction_f_f_3;
     // rotors.mbg:44:7  MTF j_shaft.m1: f2 = T f1
-    const double cse217 = std::sin(j_shaft_theta_q);
-    const double j_shaft_m1_f2_2 = cse217 * turn_m1_f2_3;
+    const double cse205 = std::sin(j_shaft_theta_q);
+    const double j_shaft_m1_f2_2 = cse205 * turn_m1_f2_3;
     // rotors.mbg:44:7  0 j_shaft.wsum: flows in = flows out
     const double j_shaft_reaction_t_f_2 = j_shaft_m1_f2_2;
     // rotors.mbg:43:6  I shaft.J: p = I f (derivative causality)
     const double shaft_J_p_2 = 0.01 * j_shaft_reaction_t_f_2;
     // rotors.mbg:44:7  MTF j_shaft.m1: f2 = T f1
-    const double cse218 = std::cos(j_shaft_theta_q);
-    const double j_shaft_m1_f2_3 = cse218 * turn_m1_f2_3;
+    const double cse206 = std::cos(j_shaft_theta_q);
+    const double j_shaft_m1_f2_3 = cse206 * turn_m1_f2_3;
     // rotors.mbg:44:7  0 j_shaft.wsum: flows in = flows out
     const double j_shaft_reaction_t_f_3 = j_shaft_m1_f2_3;
     // rotors.mbg:43:6  I shaft.J: p = I f (derivative causality)
@@ -1765,14 +1753,14 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:45:6  I bob.J: p = I f (derivative causality)
     const double bob_J_p_3 = 0.001 * j_bob_reaction_t_f_3;
     // rotors.mbg:45:6  R bob.ejs: e = law(f)
-    const double cse219 = j_bob_reaction_t_f_2 - j_bob_theta_rate_rate;
-    const double bob_ejs_e_1 = cse219 * bob_J_p_3 - j_bob_reaction_t_f_3 * bob_J_p_2;
+    const double cse207 = j_bob_reaction_t_f_2 - j_bob_theta_rate_rate;
+    const double bob_ejs_e_1 = cse207 * bob_J_p_3 - j_bob_reaction_t_f_3 * bob_J_p_2;
     // rotors.mbg:35:7  MTF j_crank.m3: f2 = T f1
-    const double j_crank_m3_f2_3 = cse216;
+    const double j_crank_m3_f2_3 = cse204;
     // rotors.mbg:35:7  0 j_crank.vpa: flows in = flows out
     const double j_crank_m4_f1_3 = j_crank_m3_f2_3;
     // rotors.mbg:35:7  signal crank.pose.R32
-    const double crank_pose_R32 = table_pose_R32 * cse213 + table_pose_R33 * cse212;
+    const double crank_pose_R32 = table_pose_R32 * cse201 + table_pose_R33 * cse200;
     // rotors.mbg:34:6  Se crank.weight: e = value
     const double crank_weight_e_2 = -9.81 * crank_pose_R32;
     // rotors.mbg:35:7  0 j_crank.wsum: flows in = flows out
@@ -1784,27 +1772,27 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:35:7  0 j_crank.vsum: flows in = flows out
     const double j_crank_reaction_f_f_1 = j_crank_m4_f1_1;
     // rotors.mbg:35:7  MTF j_crank.m4: f2 = T f1
-    const double j_crank_m4_f2_3 = cse213 * j_crank_m4_f1_3;
+    const double j_crank_m4_f2_3 = cse201 * j_crank_m4_f1_3;
     // rotors.mbg:35:7  0 j_crank.vsum: flows in = flows out
     const double j_crank_reaction_f_f_3 = j_crank_m4_f2_3;
     // rotors.mbg:34:6  R crank.ejs_v: e = law(f)
     const double crank_ejs_v_e_2 = j_crank_reaction_t_f_3 * j_crank_reaction_f_f_1 - j_crank_reaction_t_f_1 * j_crank_reaction_f_f_3;
     // rotors.mbg:35:7  signal crank.pose.R33
-    const double crank_pose_R33 = -table_pose_R32 * cse212 + table_pose_R33 * cse213;
+    const double crank_pose_R33 = -table_pose_R32 * cse200 + table_pose_R33 * cse201;
     // rotors.mbg:34:6  Se crank.weight: e = value
     const double crank_weight_e_3 = -9.81 * crank_pose_R33;
     // rotors.mbg:35:7  MTF j_crank.m4: f2 = T f1
-    const double j_crank_m4_f2_2 = cse212 * j_crank_m4_f1_3;
+    const double j_crank_m4_f2_2 = cse200 * j_crank_m4_f1_3;
     // rotors.mbg:35:7  0 j_crank.vsum: flows in = flows out
     const double j_crank_reaction_f_f_2 = j_crank_m4_f2_2;
     // rotors.mbg:34:6  R crank.ejs_v: e = law(f)
     const double crank_ejs_v_e_3 = j_crank_reaction_t_f_1 * j_crank_reaction_f_f_2 - j_crank_reaction_t_f_2 * j_crank_reaction_f_f_1;
     // rotors.mbg:38:7  signal cam.pose.R33
-    const double cam_pose_R33 = -table_pose_R32 * cse214 + table_pose_R33 * cse215;
+    const double cam_pose_R33 = -table_pose_R32 * cse202 + table_pose_R33 * cse203;
     // rotors.mbg:37:6  Se cam.weight: e = value
     const double cam_weight_e_3 = -9.81 * cam_pose_R33;
     // rotors.mbg:38:7  MTF j_cam.m4: f2 = T f1
-    const double j_cam_m4_f2_2 = cse214 * j_cam_m4_f1_3;
+    const double j_cam_m4_f2_2 = cse202 * j_cam_m4_f1_3;
     // rotors.mbg:38:7  MTF j_cam.m5: f2 = T f1
     const double j_cam_m5_f2_2 = -0.01 * j_cam_reaction_t_f_1;
     // rotors.mbg:38:7  0 j_cam.vsum: flows in = flows out
@@ -1812,23 +1800,23 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:37:6  R cam.ejs_v: e = law(f)
     const double cam_ejs_v_e_3 = j_cam_reaction_t_f_1 * j_cam_reaction_f_f_2 - j_cam_reaction_t_f_2 * j_cam_reaction_f_f_1;
     // rotors.mbg:41:7  MTF j_tilted.m1: f2 = T f1
-    const double cse220 = std::cos(j_tilted_theta_q);
-    const double cse221 = 0.49999999999999994 * cse220;
-    const double cse222 = std::sin(j_tilted_theta_q);
-    const double cse223 = 0.5000000000000001 * cse222;
-    const double cse224 = cse221 - cse223;
-    const double cse225 = 0.49999999999999994 * cse222;
-    const double cse226 = 0.5000000000000001 * cse220;
-    const double cse227 = -cse225 - cse226;
-    const double cse228 = 0.5000000000000001 * cse227;
-    const double cse229 = 0.49999999999999994 * cse224 - cse228 + 0.5000000000000001;
-    const double cse230 = 0.7071067811865476 * cse220;
-    const double cse231 = 0.7071067811865476 * cse222;
-    const double cse232 = -cse230 - cse231;
-    const double cse233 = cse231 - cse230;
-    const double cse234 = 0.5000000000000001 * cse233;
-    const double cse235 = 0.49999999999999994 * cse232 - cse234 - 7.850462293418877e-17;
-    const double j_tilted_m1_f2_1 = cse229 * turn_m1_f2_1 + cse235 * turn_m1_f2_3;
+    const double cse208 = std::cos(j_tilted_theta_q);
+    const double cse209 = 0.49999999999999994 * cse208;
+    const double cse210 = std::sin(j_tilted_theta_q);
+    const double cse211 = 0.5000000000000001 * cse210;
+    const double cse212 = cse209 - cse211;
+    const double cse213 = 0.49999999999999994 * cse210;
+    const double cse214 = 0.5000000000000001 * cse208;
+    const double cse215 = -cse213 - cse214;
+    const double cse216 = 0.5000000000000001 * cse215;
+    const double cse217 = 0.49999999999999994 * cse212 - cse216 + 0.5000000000000001;
+    const double cse218 = 0.7071067811865476 * cse208;
+    const double cse219 = 0.7071067811865476 * cse210;
+    const double cse220 = -cse218 - cse219;
+    const double cse221 = cse219 - cse218;
+    const double cse222 = 0.5000000000000001 * cse221;
+    const double cse223 = 0.49999999999999994 * cse220 - cse222 - 7.850462293418877e-17;
+    const double j_tilted_m1_f2_1 = cse217 * turn_m1_f2_1 + cse223 * turn_m1_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m2: f2 = T f1
     const double j_tilted_m2_f2_1 = 0.7071067811865476 * j_tilted_theta_rate_rate;
     // rotors.mbg:41:7  0 j_tilted.wsum: flows in = flows out
@@ -1836,11 +1824,11 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:40:6  I tilted.J: p = I f (derivative causality)
     const double tilted_J_p_1 = 0.02 * j_tilted_reaction_t_f_1;
     // rotors.mbg:41:7  MTF j_tilted.m1: f2 = T f1
-    const double cse236 = 0.7071067811865476 * cse227;
-    const double cse237 = -0.7071067811865476 * cse224 - cse236 - 7.850462293418877e-17;
-    const double cse238 = 0.7071067811865476 * cse233;
-    const double cse239 = -0.7071067811865476 * cse232 - cse238 + 1.2325951644078315e-32;
-    const double j_tilted_m1_f2_3 = cse237 * turn_m1_f2_1 + cse239 * turn_m1_f2_3;
+    const double cse224 = 0.7071067811865476 * cse215;
+    const double cse225 = -0.7071067811865476 * cse212 - cse224 - 7.850462293418877e-17;
+    const double cse226 = 0.7071067811865476 * cse221;
+    const double cse227 = -0.7071067811865476 * cse220 - cse226 + 1.2325951644078315e-32;
+    const double j_tilted_m1_f2_3 = cse225 * turn_m1_f2_1 + cse227 * turn_m1_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m2: f2 = T f1
     const double j_tilted_m2_f2_3 = -1.1102230246251568e-16 * j_tilted_theta_rate_rate;
     // rotors.mbg:41:7  0 j_tilted.wsum: flows in = flows out
@@ -1850,11 +1838,11 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:40:6  R tilted.ejs: e = law(f)
     const double tilted_ejs_e_2 = j_tilted_reaction_t_f_3 * tilted_J_p_1 - j_tilted_reaction_t_f_1 * tilted_J_p_3;
     // rotors.mbg:41:7  MTF j_tilted.m1: f2 = T f1
-    const double cse240 = 0.49999999999999994 * cse227;
-    const double cse241 = -0.5000000000000001 * cse224 + cse240 + 0.5000000000000001;
-    const double cse242 = 0.49999999999999994 * cse233;
-    const double cse243 = -0.5000000000000001 * cse232 + cse242 - 7.850462293418877e-17;
-    const double j_tilted_m1_f2_2 = cse241 * turn_m1_f2_1 + cse243 * turn_m1_f2_3;
+    const double cse228 = 0.49999999999999994 * cse215;
+    const double cse229 = -0.5000000000000001 * cse212 + cse228 + 0.5000000000000001;
+    const double cse230 = 0.49999999999999994 * cse221;
+    const double cse231 = -0.5000000000000001 * cse220 + cse230 - 7.850462293418877e-17;
+    const double j_tilted_m1_f2_2 = cse229 * turn_m1_f2_1 + cse231 * turn_m1_f2_3;
     // rotors.mbg:41:7  MTF j_tilted.m2: f2 = T f1
     const double j_tilted_m2_f2_2 = j_tilted_m2_f2_1;
     // rotors.mbg:41:7  0 j_tilted.wsum: flows in = flows out
@@ -1865,51 +1853,51 @@ class rotors_model final : public mbgrt::Model {
     const double tilted_ejs_e_3 = j_tilted_reaction_t_f_1 * tilted_J_p_2 - j_tilted_reaction_t_f_2 * tilted_J_p_1;
     const double tilted_ejs_e_1 = j_tilted_reaction_t_f_2 * tilted_J_p_3 - j_tilted_reaction_t_f_3 * tilted_J_p_2;
     // rotors.mbg:41:7  MTF j_tilted.m3: f2 = T f1
-    const double cse244 = 0.3 * turn_m1_f2_1;
-    const double j_tilted_m3_f2_2 = -cse244;
+    const double cse232 = 0.3 * turn_m1_f2_1;
+    const double j_tilted_m3_f2_2 = -cse232;
     // rotors.mbg:41:7  0 j_tilted.vpa: flows in = flows out
     const double j_tilted_m4_f1_2 = j_tilted_m3_f2_2;
     // rotors.mbg:41:7  signal tilted.pose.R31
-    const double cse245 = -cse226 + cse225;
-    const double cse246 = cse223 + cse221;
-    const double cse247 = 0.5000000000000001 * cse246;
-    const double cse248 = 0.49999999999999994 * cse245 - cse247 + 0.5000000000000001;
-    const double tilted_pose_R31 = table_pose_R31 * cse229 + table_pose_R32 * cse248 + table_pose_R33 * cse235;
+    const double cse233 = -cse214 + cse213;
+    const double cse234 = cse211 + cse209;
+    const double cse235 = 0.5000000000000001 * cse234;
+    const double cse236 = 0.49999999999999994 * cse233 - cse235 + 0.5000000000000001;
+    const double tilted_pose_R31 = table_pose_R31 * cse217 + table_pose_R32 * cse236 + table_pose_R33 * cse223;
     // rotors.mbg:40:6  Se tilted.weight: e = value
     const double tilted_weight_e_1 = -9.81 * tilted_pose_R31;
     // rotors.mbg:41:7  MTF j_tilted.m4: f2 = T f1
-    const double cse249 = 0.49999999999999994 * cse246;
-    const double cse250 = -0.5000000000000001 * cse245 + cse249 + 0.5000000000000001;
-    const double j_tilted_m4_f2_2 = cse250 * j_tilted_m4_f1_2;
+    const double cse237 = 0.49999999999999994 * cse234;
+    const double cse238 = -0.5000000000000001 * cse233 + cse237 + 0.5000000000000001;
+    const double j_tilted_m4_f2_2 = cse238 * j_tilted_m4_f1_2;
     // rotors.mbg:41:7  0 j_tilted.vsum: flows in = flows out
     const double j_tilted_reaction_f_f_2 = j_tilted_m4_f2_2;
     // rotors.mbg:41:7  MTF j_tilted.m4: f2 = T f1
-    const double cse251 = 0.7071067811865476 * cse246;
-    const double cse252 = -0.7071067811865476 * cse245 - cse251 - 7.850462293418877e-17;
-    const double j_tilted_m4_f2_3 = cse252 * j_tilted_m4_f1_2;
+    const double cse239 = 0.7071067811865476 * cse234;
+    const double cse240 = -0.7071067811865476 * cse233 - cse239 - 7.850462293418877e-17;
+    const double j_tilted_m4_f2_3 = cse240 * j_tilted_m4_f1_2;
     // rotors.mbg:41:7  0 j_tilted.vsum: flows in = flows out
     const double j_tilted_reaction_f_f_3 = j_tilted_m4_f2_3;
     // rotors.mbg:40:6  R tilted.ejs_v: e = law(f)
     const double tilted_ejs_v_e_1 = j_tilted_reaction_t_f_2 * j_tilted_reaction_f_f_3 - j_tilted_reaction_t_f_3 * j_tilted_reaction_f_f_2;
     // rotors.mbg:41:7  signal tilted.pose.R32
-    const double tilted_pose_R32 = table_pose_R31 * cse241 + table_pose_R32 * cse250 + table_pose_R33 * cse243;
+    const double tilted_pose_R32 = table_pose_R31 * cse229 + table_pose_R32 * cse238 + table_pose_R33 * cse231;
     // rotors.mbg:40:6  Se tilted.weight: e = value
     const double tilted_weight_e_2 = -9.81 * tilted_pose_R32;
     // rotors.mbg:41:7  MTF j_tilted.m4: f2 = T f1
-    const double j_tilted_m4_f2_1 = cse248 * j_tilted_m4_f1_2;
+    const double j_tilted_m4_f2_1 = cse236 * j_tilted_m4_f1_2;
     // rotors.mbg:41:7  0 j_tilted.vsum: flows in = flows out
     const double j_tilted_reaction_f_f_1 = j_tilted_m4_f2_1;
     // rotors.mbg:40:6  R tilted.ejs_v: e = law(f)
     const double tilted_ejs_v_e_2 = j_tilted_reaction_t_f_3 * j_tilted_reaction_f_f_1 - j_tilted_reaction_t_f_1 * j_tilted_reaction_f_f_3;
     // rotors.mbg:41:7  signal tilted.pose.R33
-    const double tilted_pose_R33 = table_pose_R31 * cse237 + table_pose_R32 * cse252 + table_pose_R33 * cse239;
+    const double tilted_pose_R33 = table_pose_R31 * cse225 + table_pose_R32 * cse240 + table_pose_R33 * cse227;
     // rotors.mbg:40:6  Se tilted.weight: e = value
     const double tilted_weight_e_3 = -9.81 * tilted_pose_R33;
     // rotors.mbg:40:6  R tilted.ejs_v: e = law(f)
     const double tilted_ejs_v_e_3 = j_tilted_reaction_t_f_1 * j_tilted_reaction_f_f_2 - j_tilted_reaction_t_f_2 * j_tilted_reaction_f_f_1;
     // rotors.mbg:44:7  MTF j_shaft.m3: f2 = T f1
-    const double cse253 = 0.3 * turn_m1_f2_3;
-    const double j_shaft_m3_f2_2 = -cse253;
+    const double cse241 = 0.3 * turn_m1_f2_3;
+    const double j_shaft_m3_f2_2 = -cse241;
     // rotors.mbg:44:7  0 j_shaft.vpa: flows in = flows out
     const double j_shaft_m4_f1_2 = j_shaft_m3_f2_2;
     // rotors.mbg:44:7  MTF j_shaft.m3: f2 = T f1
@@ -1917,19 +1905,19 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:44:7  0 j_shaft.vpa: flows in = flows out
     const double j_shaft_m4_f1_3 = j_shaft_m3_f2_3;
     // rotors.mbg:44:7  signal shaft.pose.R32
-    const double shaft_pose_R32 = table_pose_R32 * cse218 + table_pose_R33 * cse217;
+    const double shaft_pose_R32 = table_pose_R32 * cse206 + table_pose_R33 * cse205;
     // rotors.mbg:43:6  Se shaft.weight: e = value
     const double shaft_weight_e_2 = -9.81 * shaft_pose_R32;
     // rotors.mbg:44:7  0 j_shaft.wsum: flows in = flows out
     const double j_shaft_reaction_t_f_1 = turn_m1_f2_1 + j_shaft_theta_rate_rate;
     // rotors.mbg:44:7  MTF j_shaft.m3: f2 = T f1
-    const double j_shaft_m3_f2_1 = cse253;
+    const double j_shaft_m3_f2_1 = cse241;
     // rotors.mbg:44:7  0 j_shaft.vpa: flows in = flows out
     const double j_shaft_m4_f1_1 = j_shaft_m3_f2_1;
     // rotors.mbg:44:7  0 j_shaft.vsum: flows in = flows out
     const double j_shaft_reaction_f_f_1 = j_shaft_m4_f1_1;
     // rotors.mbg:44:7  MTF j_shaft.m4: f2 = T f1
-    const double j_shaft_m4_f2_3 = -cse217 * j_shaft_m4_f1_2 + cse218 * j_shaft_m4_f1_3;
+    const double j_shaft_m4_f2_3 = -cse205 * j_shaft_m4_f1_2 + cse206 * j_shaft_m4_f1_3;
     // rotors.mbg:44:7  0 j_shaft.vsum: flows in = flows out
     const double j_shaft_reaction_f_f_3 = j_shaft_m4_f2_3;
     // rotors.mbg:43:6  R shaft.ejs_v: e = law(f)
@@ -1955,13 +1943,13 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:45:6  R bob.ejs_v: e = law(f)
     const double bob_ejs_v_e_2 = j_bob_reaction_t_f_3 * bob_m_p_1 - j_bob_reaction_t_f_1 * bob_m_p_3;
     // rotors.mbg:44:7  signal shaft.pose.R33
-    const double shaft_pose_R33 = -table_pose_R32 * cse217 + table_pose_R33 * cse218;
+    const double shaft_pose_R33 = -table_pose_R32 * cse205 + table_pose_R33 * cse206;
     // rotors.mbg:43:6  Se shaft.weight: e = value
     const double shaft_weight_e_3 = -9.81 * shaft_pose_R33;
     // rotors.mbg:44:7  MTF j_shaft.m4: f2 = T f1
-    const double cse254 = cse218 * j_shaft_m4_f1_2;
-    const double cse255 = cse217 * j_shaft_m4_f1_3;
-    const double j_shaft_m4_f2_2 = cse254 + cse255;
+    const double cse242 = cse206 * j_shaft_m4_f1_2;
+    const double cse243 = cse205 * j_shaft_m4_f1_3;
+    const double j_shaft_m4_f2_2 = cse242 + cse243;
     // rotors.mbg:44:7  0 j_shaft.vsum: flows in = flows out
     const double j_shaft_reaction_f_f_2 = j_shaft_m4_f2_2;
     // rotors.mbg:43:6  R shaft.ejs_v: e = law(f)
@@ -1977,11 +1965,11 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:45:6  I bob.m: p = I f (derivative causality)
     const double bob_m_p_2 = 0.5 * j_bob_reaction_f_f_2;
     // rotors.mbg:45:6  R bob.ejs_v: e = law(f)
-    const double bob_ejs_v_e_3 = j_bob_reaction_t_f_1 * bob_m_p_2 - cse219 * bob_m_p_1;
+    const double bob_ejs_v_e_3 = j_bob_reaction_t_f_1 * bob_m_p_2 - cse207 * bob_m_p_1;
     // rotors.mbg:48:6  Se fan.weight: e = value
     const double fan_weight_e_3 = -4.905 * table_pose_R33;
     // rotors.mbg:49:7  MTF j_fan.m3: f2 = T f1
-    const double j_fan_m3_f2_2 = cse253;
+    const double j_fan_m3_f2_2 = cse241;
     // rotors.mbg:49:7  0 j_fan.vpa: flows in = flows out
     const double j_fan_m4_f1_2 = j_fan_m3_f2_2;
     // rotors.mbg:49:7  0 j_fan.vsum: flows in = flows out
@@ -2002,13 +1990,13 @@ class rotors_model final : public mbgrt::Model {
     const double lopsided_ejs_e_2 = j_lopsided_reaction_t_f_3 * lopsided_J_p_1 - j_lopsided_reaction_t_f_1 * lopsided_J_p_3;
     const double lopsided_ejs_e_3 = j_lopsided_reaction_t_f_1 * lopsided_J_p_2 - j_lopsided_reaction_t_f_2 * lopsided_J_p_1;
     // rotors.mbg:32:7  signal lopsided.pose.R32
-    const double lopsided_pose_R32 = table_pose_R32 * cse210 + table_pose_R33 * cse209;
+    const double lopsided_pose_R32 = table_pose_R32 * cse198 + table_pose_R33 * cse197;
     // rotors.mbg:31:6  Se lopsided.weight: e = value
     const double lopsided_weight_e_2 = -9.81 * lopsided_pose_R32;
     // rotors.mbg:31:6  R lopsided.ejs_v: e = law(f)
     const double lopsided_ejs_v_e_2 = -j_lopsided_reaction_t_f_1 * j_lopsided_reaction_f_f_3;
     // rotors.mbg:32:7  signal lopsided.pose.R33
-    const double lopsided_pose_R33 = -table_pose_R32 * cse209 + table_pose_R33 * cse210;
+    const double lopsided_pose_R33 = -table_pose_R32 * cse197 + table_pose_R33 * cse198;
     // rotors.mbg:31:6  Se lopsided.weight: e = value
     const double lopsided_weight_e_3 = -9.81 * lopsided_pose_R33;
     // rotors.mbg:31:6  R lopsided.ejs_v: e = law(f)
@@ -2039,7 +2027,7 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:43:6  R shaft.ejs: e = law(f)
     const double shaft_ejs_e_3 = j_shaft_reaction_t_f_1 * shaft_J_p_2 - j_shaft_reaction_t_f_2 * shaft_J_p_1;
     // rotors.mbg:45:6  R bob.ejs: e = law(f)
-    const double bob_ejs_e_3 = j_bob_reaction_t_f_1 * bob_J_p_2 - cse219 * bob_J_p_1;
+    const double bob_ejs_e_3 = j_bob_reaction_t_f_1 * bob_J_p_2 - cse207 * bob_J_p_1;
     // rotors.mbg:43:6  Se shaft.weight: e = value
     const double shaft_weight_e_1 = cam_weight_e_1;
     // rotors.mbg:43:6  R shaft.ejs_v: e = law(f)
@@ -2047,14 +2035,14 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:45:6  Se bob.weight: e = value
     const double bob_weight_e_1 = -4.905 * table_pose_R31;
     // rotors.mbg:45:6  R bob.ejs_v: e = law(f)
-    const double bob_ejs_v_e_1 = cse219 * bob_m_p_3 - j_bob_reaction_t_f_3 * bob_m_p_2;
+    const double bob_ejs_v_e_1 = cse207 * bob_m_p_3 - j_bob_reaction_t_f_3 * bob_m_p_2;
     // rotors.mbg:48:6  Se fan.weight: e = value
     const double fan_weight_e_1 = bob_weight_e_1;
     // rotors.mbg:49:7  0 j_fan.wsum: flows in = flows out
     const double j_fan_reaction_t_f_3 = turn_m1_f2_3 + 20.0;
     // rotors.mbg:48:6  R fan.ejs_v: e = law(f)
-    const double cse256 = j_fan_reaction_t_f_3 - 20.0;
-    const double fan_ejs_v_e_1 = -cse256 * fan_m_p_2;
+    const double cse244 = j_fan_reaction_t_f_3 - 20.0;
+    const double fan_ejs_v_e_1 = -cse244 * fan_m_p_2;
     // rotors.mbg:48:6  Se fan.weight: e = value
     const double fan_weight_e_2 = -4.905 * table_pose_R32;
     // rotors.mbg:49:7  MTF j_fan.m3: f2 = T f1
@@ -2066,7 +2054,7 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:48:6  I fan.m: p = I f (derivative causality)
     const double fan_m_p_1 = 0.5 * j_fan_reaction_f_f_1;
     // rotors.mbg:49:7  MTF j_fan.m3: f2 = T f1
-    const double j_fan_m3_f2_3 = cse244;
+    const double j_fan_m3_f2_3 = cse232;
     // rotors.mbg:49:7  0 j_fan.vpa: flows in = flows out
     const double j_fan_m4_f1_3 = j_fan_m3_f2_3;
     // rotors.mbg:49:7  0 j_fan.vsum: flows in = flows out
@@ -2074,7 +2062,7 @@ class rotors_model final : public mbgrt::Model {
     // rotors.mbg:48:6  I fan.m: p = I f (derivative causality)
     const double fan_m_p_3 = 0.5 * j_fan_reaction_f_f_3;
     // rotors.mbg:48:6  R fan.ejs_v: e = law(f)
-    const double fan_ejs_v_e_2 = cse256 * fan_m_p_1 - j_fan_reaction_t_f_1 * fan_m_p_3;
+    const double fan_ejs_v_e_2 = cse244 * fan_m_p_1 - j_fan_reaction_t_f_1 * fan_m_p_3;
     // rotors.mbg:34:6  Se crank.weight: e = value
     const double crank_weight_e_1 = cam_weight_e_1;
     // rotors.mbg:34:6  R crank.ejs_v: e = law(f)
@@ -2089,74 +2077,74 @@ class rotors_model final : public mbgrt::Model {
     const double disc_out1 = 0.225 + (disc_inertia_3_3 - 0.022500000000000003);
     const double disc_out2 = -0.5 * disc_weight_e_2 + 0.05 * disc_weight_e_2;
     // rotors.mbg:32:7  articulated-body elimination, body lopsided: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double lopsided_out2 = cse209 * (lopsided_inertia_2_2 * cse209) + cse210 * (lopsided_inertia_3_3 * cse210) - 0.5 * (-cse210 * (0.5 * cse210) - cse209 * (0.5 * cse209));
-    const double lopsided_out3 = cse209 * (lopsided_ejs_e_2 + lopsided_inertia_2_2 * (j_lopsided_m1_f2_3 * j_lopsided_theta_rate_rate)) + cse210 * (lopsided_ejs_e_3 - lopsided_inertia_3_3 * (j_lopsided_m1_f2_2 * j_lopsided_theta_rate_rate)) - 0.5 * (cse210 * (-(lopsided_weight_e_2 - lopsided_ejs_v_e_2) - cse211 * j_lopsided_theta_rate_rate) - cse209 * (-(lopsided_weight_e_3 - lopsided_ejs_v_e_3) - j_lopsided_m4_f2_2 * j_lopsided_theta_rate_rate));
+    const double lopsided_out2 = cse197 * (lopsided_inertia_2_2 * cse197) + cse198 * (lopsided_inertia_3_3 * cse198) - 0.5 * (-cse198 * (0.5 * cse198) - cse197 * (0.5 * cse197));
+    const double lopsided_out3 = cse197 * (lopsided_ejs_e_2 + lopsided_inertia_2_2 * (j_lopsided_m1_f2_3 * j_lopsided_theta_rate_rate)) + cse198 * (lopsided_ejs_e_3 - lopsided_inertia_3_3 * (j_lopsided_m1_f2_2 * j_lopsided_theta_rate_rate)) - 0.5 * (cse198 * (-(lopsided_weight_e_2 - lopsided_ejs_v_e_2) - cse199 * j_lopsided_theta_rate_rate) - cse197 * (-(lopsided_weight_e_3 - lopsided_ejs_v_e_3) - j_lopsided_m4_f2_2 * j_lopsided_theta_rate_rate));
     // rotors.mbg:35:7  articulated-body elimination, body crank: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double crank_out2 = 0.5 * (cse212 * (0.5 * cse212) + cse213 * (0.5 * cse213));
-    const double crank_out3 = 0.5 * (cse212 * (-(crank_weight_e_2 - crank_ejs_v_e_2) + j_crank_m4_f2_3 * j_crank_theta_rate_rate) + cse213 * (-(crank_weight_e_3 - crank_ejs_v_e_3) - j_crank_m4_f2_2 * j_crank_theta_rate_rate));
-    const double crank_out4 = cse212 * (0.01 * cse212) + cse213 * (0.01 * cse213) + 0.25;
-    const double crank_out5 = cse212 * (crank_ejs_e_2 + 0.01 * (j_crank_m1_f2_3 * j_crank_theta_rate_rate)) + cse213 * (crank_ejs_e_3 - 0.01 * (j_crank_m1_f2_2 * j_crank_theta_rate_rate)) + 0.5 * (crank_weight_e_1 - crank_ejs_v_e_1);
+    const double crank_out2 = 0.5 * (cse200 * (0.5 * cse200) + cse201 * (0.5 * cse201));
+    const double crank_out3 = 0.5 * (cse200 * (-(crank_weight_e_2 - crank_ejs_v_e_2) + j_crank_m4_f2_3 * j_crank_theta_rate_rate) + cse201 * (-(crank_weight_e_3 - crank_ejs_v_e_3) - j_crank_m4_f2_2 * j_crank_theta_rate_rate));
+    const double crank_out4 = cse200 * (0.01 * cse200) + cse201 * (0.01 * cse201) + 0.25;
+    const double crank_out5 = cse200 * (crank_ejs_e_2 + 0.01 * (j_crank_m1_f2_3 * j_crank_theta_rate_rate)) + cse201 * (crank_ejs_e_3 - 0.01 * (j_crank_m1_f2_2 * j_crank_theta_rate_rate)) + 0.5 * (crank_weight_e_1 - crank_ejs_v_e_1);
     // rotors.mbg:38:7  articulated-body elimination, body cam: joint acceleration as an affine function of the parent's motion
-    const double cse257 = -0.5 * cse214 - 0.01;
-    const double cam_accel1 = -49.75124378109453 * (0.02 - 0.01 * cse257);
-    const double cse258 = -(cam_weight_e_2 - cam_ejs_v_e_2) + j_cam_m4_f2_3 * j_cam_theta_rate_rate;
-    const double cam_accel2 = -49.75124378109453 * (cam_ejs_e_1 - 0.01 * cse258);
+    const double cse245 = -0.5 * cse202 - 0.01;
+    const double cam_accel1 = -49.75124378109453 * (0.02 - 0.01 * cse245);
+    const double cse246 = -(cam_weight_e_2 - cam_ejs_v_e_2) + j_cam_m4_f2_3 * j_cam_theta_rate_rate;
+    const double cam_accel2 = -49.75124378109453 * (cam_ejs_e_1 - 0.01 * cse246);
     // rotors.mbg:38:7  articulated-body elimination, body cam: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse259 = 0.005 * cse214;
-    const double cam_out3 = cse259 * cam_accel1 - 0.5 * (cse214 * cse257 - cse215 * (0.5 * cse215));
-    const double cam_out4 = -0.5 * (cse214 * cse258 + cse215 * (-(cam_weight_e_3 - cam_ejs_v_e_3) - j_cam_m4_f2_2 * j_cam_theta_rate_rate)) + cse259 * cam_accel2;
-    const double cse260 = 0.01 * cse214;
-    const double cse261 = 0.5 + cse260;
-    const double cam_out5 = cse214 * (cse260 + 0.01 * cse261) + cse215 * (0.01 * cse215) + 0.5 * cse261;
-    const double cse262 = 0.01 * (j_cam_m1_f2_3 * j_cam_theta_rate_rate);
-    const double cse263 = -(cam_weight_e_1 - cam_ejs_v_e_1) + cse262;
-    const double cam_out6 = cse214 * (cam_ejs_e_2 + cse262 + 0.01 * cse263) + cse215 * (cam_ejs_e_3 - 0.01 * (j_cam_m1_f2_2 * j_cam_theta_rate_rate)) + 0.5 * cse263;
+    const double cse247 = 0.005 * cse202;
+    const double cam_out3 = cse247 * cam_accel1 - 0.5 * (cse202 * cse245 - cse203 * (0.5 * cse203));
+    const double cam_out4 = -0.5 * (cse202 * cse246 + cse203 * (-(cam_weight_e_3 - cam_ejs_v_e_3) - j_cam_m4_f2_2 * j_cam_theta_rate_rate)) + cse247 * cam_accel2;
+    const double cse248 = 0.01 * cse202;
+    const double cse249 = 0.5 + cse248;
+    const double cam_out5 = cse202 * (cse248 + 0.01 * cse249) + cse203 * (0.01 * cse203) + 0.5 * cse249;
+    const double cse250 = 0.01 * (j_cam_m1_f2_3 * j_cam_theta_rate_rate);
+    const double cse251 = -(cam_weight_e_1 - cam_ejs_v_e_1) + cse250;
+    const double cam_out6 = cse202 * (cam_ejs_e_2 + cse250 + 0.01 * cse251) + cse203 * (cam_ejs_e_3 - 0.01 * (j_cam_m1_f2_2 * j_cam_theta_rate_rate)) + 0.5 * cse251;
     // rotors.mbg:41:7  articulated-body elimination, body tilted: joint acceleration as an affine function of the parent's motion
-    const double cse264 = 0.014142135623730952 * cse229 + 0.007071067811865476 * cse241 - 1.1102230246251568e-18 * cse237;
-    const double tilted_accel1 = -66.66666666666666 * cse264;
-    const double cse265 = 0.014142135623730952 * cse235 + 0.007071067811865476 * cse243 - 1.1102230246251568e-18 * cse239;
-    const double tilted_accel2 = -66.66666666666666 * cse265;
-    const double cse266 = -cse221 + cse223;
-    const double cse267 = cse230 + cse231;
-    const double cse268 = tilted_ejs_e_1 + 0.02 * (((cse240 - 0.5000000000000001 * cse266) * turn_m1_f2_1 + (cse242 - 0.5000000000000001 * cse267) * turn_m1_f2_3) * j_tilted_theta_rate_rate);
-    const double cse269 = tilted_ejs_e_2 + 0.01 * (((-cse228 + 0.49999999999999994 * cse266) * turn_m1_f2_1 + (-cse234 + 0.49999999999999994 * cse267) * turn_m1_f2_3) * j_tilted_theta_rate_rate);
-    const double cse270 = tilted_ejs_e_3 + 0.01 * (((-cse236 - 0.7071067811865476 * cse266) * turn_m1_f2_1 + (-cse238 - 0.7071067811865476 * cse267) * turn_m1_f2_3) * j_tilted_theta_rate_rate);
-    const double tilted_accel3 = -66.66666666666666 * (0.7071067811865476 * cse268 + 0.7071067811865476 * cse269 - 1.1102230246251568e-16 * cse270);
+    const double cse252 = 0.014142135623730952 * cse217 + 0.007071067811865476 * cse229 - 1.1102230246251568e-18 * cse225;
+    const double tilted_accel1 = -66.66666666666666 * cse252;
+    const double cse253 = 0.014142135623730952 * cse223 + 0.007071067811865476 * cse231 - 1.1102230246251568e-18 * cse227;
+    const double tilted_accel2 = -66.66666666666666 * cse253;
+    const double cse254 = -cse209 + cse211;
+    const double cse255 = cse218 + cse219;
+    const double cse256 = tilted_ejs_e_1 + 0.02 * (((cse228 - 0.5000000000000001 * cse254) * turn_m1_f2_1 + (cse230 - 0.5000000000000001 * cse255) * turn_m1_f2_3) * j_tilted_theta_rate_rate);
+    const double cse257 = tilted_ejs_e_2 + 0.01 * (((-cse216 + 0.49999999999999994 * cse254) * turn_m1_f2_1 + (-cse222 + 0.49999999999999994 * cse255) * turn_m1_f2_3) * j_tilted_theta_rate_rate);
+    const double cse258 = tilted_ejs_e_3 + 0.01 * (((-cse224 - 0.7071067811865476 * cse254) * turn_m1_f2_1 + (-cse226 - 0.7071067811865476 * cse255) * turn_m1_f2_3) * j_tilted_theta_rate_rate);
+    const double tilted_accel3 = -66.66666666666666 * (0.7071067811865476 * cse256 + 0.7071067811865476 * cse257 - 1.1102230246251568e-16 * cse258);
     // rotors.mbg:41:7  articulated-body elimination, body tilted: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse271 = 0.02 * cse229;
-    const double cse272 = 0.01 * cse241;
-    const double cse273 = 0.01 * cse237;
-    const double tilted_out4 = cse265 * tilted_accel1 + (cse235 * cse271 + cse243 * cse272 + cse239 * cse273);
-    const double cse274 = 0.02 * cse235;
-    const double cse275 = 0.01 * cse243;
-    const double cse276 = 0.01 * cse239;
-    const double tilted_out5 = cse265 * tilted_accel2 + (cse235 * cse274 + cse243 * cse275 + cse239 * cse276);
-    const double tilted_out6 = cse235 * cse268 + cse243 * cse269 + cse239 * cse270 + cse265 * tilted_accel3;
-    const double tilted_out7 = cse264 * tilted_accel1 + (cse229 * cse271 + cse241 * cse272 + cse237 * cse273 - 0.3 * (-cse248 * (0.3 * cse248) - cse250 * (0.3 * cse250) - cse252 * (0.3 * cse252)));
-    const double tilted_out8 = cse264 * tilted_accel2 + (cse229 * cse274 + cse241 * cse275 + cse237 * cse276);
-    const double cse277 = cse226 - cse225;
-    const double tilted_out9 = cse229 * cse268 + cse241 * cse269 + cse237 * cse270 - 0.3 * (cse248 * (-(tilted_weight_e_1 - tilted_ejs_v_e_1) + (cse249 - 0.5000000000000001 * cse277) * j_tilted_m4_f1_2 * j_tilted_theta_rate_rate) + cse250 * (-(tilted_weight_e_2 - tilted_ejs_v_e_2) + (-cse247 + 0.49999999999999994 * cse277) * j_tilted_m4_f1_2 * j_tilted_theta_rate_rate) + cse252 * (-(tilted_weight_e_3 - tilted_ejs_v_e_3) + (-cse251 - 0.7071067811865476 * cse277) * j_tilted_m4_f1_2 * j_tilted_theta_rate_rate)) + cse264 * tilted_accel3;
+    const double cse259 = 0.02 * cse217;
+    const double cse260 = 0.01 * cse229;
+    const double cse261 = 0.01 * cse225;
+    const double tilted_out4 = cse253 * tilted_accel1 + (cse223 * cse259 + cse231 * cse260 + cse227 * cse261);
+    const double cse262 = 0.02 * cse223;
+    const double cse263 = 0.01 * cse231;
+    const double cse264 = 0.01 * cse227;
+    const double tilted_out5 = cse253 * tilted_accel2 + (cse223 * cse262 + cse231 * cse263 + cse227 * cse264);
+    const double tilted_out6 = cse223 * cse256 + cse231 * cse257 + cse227 * cse258 + cse253 * tilted_accel3;
+    const double tilted_out7 = cse252 * tilted_accel1 + (cse217 * cse259 + cse229 * cse260 + cse225 * cse261 - 0.3 * (-cse236 * (0.3 * cse236) - cse238 * (0.3 * cse238) - cse240 * (0.3 * cse240)));
+    const double tilted_out8 = cse252 * tilted_accel2 + (cse217 * cse262 + cse229 * cse263 + cse225 * cse264);
+    const double cse265 = cse214 - cse213;
+    const double tilted_out9 = cse217 * cse256 + cse229 * cse257 + cse225 * cse258 - 0.3 * (cse236 * (-(tilted_weight_e_1 - tilted_ejs_v_e_1) + (cse237 - 0.5000000000000001 * cse265) * j_tilted_m4_f1_2 * j_tilted_theta_rate_rate) + cse238 * (-(tilted_weight_e_2 - tilted_ejs_v_e_2) + (-cse235 + 0.49999999999999994 * cse265) * j_tilted_m4_f1_2 * j_tilted_theta_rate_rate) + cse240 * (-(tilted_weight_e_3 - tilted_ejs_v_e_3) + (-cse239 - 0.7071067811865476 * cse265) * j_tilted_m4_f1_2 * j_tilted_theta_rate_rate)) + cse252 * tilted_accel3;
     // rotors.mbg:44:7  articulated-body elimination, body shaft: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
-    const double cse278 = 0.3 * cse217;
-    const double cse279 = 0.15 * cse217;
-    const double cse280 = -cse278 - cse279;
-    const double cse281 = -0.3 * cse218 - 0.15 * cse218;
-    const double shaft_out2 = -0.3 * (cse217 * cse280 + cse218 * cse281);
-    const double cse282 = cse281 + 0.1 * cse218;
-    const double cse283 = cse278 + cse279 - 0.1 * cse217;
-    const double shaft_out3 = -0.3 * (cse217 * cse282 + cse218 * cse283);
-    const double cse284 = j_shaft_m4_f2_3 * j_shaft_theta_rate_rate;
-    const double cse285 = j_shaft_m1_f2_2 * j_shaft_theta_rate_rate;
-    const double cse286 = -(shaft_weight_e_2 - shaft_ejs_v_e_2) + bob_out3 + cse284 + 0.5 * cse284 - 0.1 * cse285;
-    const double cse287 = (-cse254 - cse255) * j_shaft_theta_rate_rate;
-    const double cse288 = j_shaft_m1_f2_3 * j_shaft_theta_rate_rate;
-    const double cse289 = -(shaft_weight_e_3 - shaft_ejs_v_e_3) + bob_out4 + cse287 + 0.5 * cse287 - 0.1 * cse288;
-    const double shaft_out4 = -0.3 * (cse217 * cse286 + cse218 * cse289);
-    const double cse290 = 0.03 * cse218;
-    const double cse291 = 0.03 * cse217;
-    const double shaft_out5 = cse217 * cse290 - cse218 * cse291 - 0.3 * (cse218 * cse280 - cse217 * cse281);
-    const double shaft_out6 = cse217 * (0.01 * cse217 - cse291 + 0.020000000000000004 * cse217) + cse218 * (0.01 * cse218 - cse290 + 0.021000000000000005 * cse218) + (-0.3 * (cse218 * cse282 - cse217 * cse283) + 0.13499999999999998);
-    const double shaft_out7 = cse217 * (shaft_ejs_e_2 + bob_out5 + 0.01 * cse288 - 0.1 * cse287 + 0.020000000000000004 * cse288) + cse218 * (shaft_ejs_e_3 + bob_out6 - 0.01 * cse285 + 0.1 * cse284 - 0.021000000000000005 * cse285) + (-0.3 * (cse218 * cse286 - cse217 * cse289) + 0.3 * (-(shaft_weight_e_1 - shaft_ejs_v_e_1) + bob_out2));
+    const double cse266 = 0.3 * cse205;
+    const double cse267 = 0.15 * cse205;
+    const double cse268 = -cse266 - cse267;
+    const double cse269 = -0.3 * cse206 - 0.15 * cse206;
+    const double shaft_out2 = -0.3 * (cse205 * cse268 + cse206 * cse269);
+    const double cse270 = cse269 + 0.1 * cse206;
+    const double cse271 = cse266 + cse267 - 0.1 * cse205;
+    const double shaft_out3 = -0.3 * (cse205 * cse270 + cse206 * cse271);
+    const double cse272 = j_shaft_m4_f2_3 * j_shaft_theta_rate_rate;
+    const double cse273 = j_shaft_m1_f2_2 * j_shaft_theta_rate_rate;
+    const double cse274 = -(shaft_weight_e_2 - shaft_ejs_v_e_2) + bob_out3 + cse272 + 0.5 * cse272 - 0.1 * cse273;
+    const double cse275 = (-cse242 - cse243) * j_shaft_theta_rate_rate;
+    const double cse276 = j_shaft_m1_f2_3 * j_shaft_theta_rate_rate;
+    const double cse277 = -(shaft_weight_e_3 - shaft_ejs_v_e_3) + bob_out4 + cse275 + 0.5 * cse275 - 0.1 * cse276;
+    const double shaft_out4 = -0.3 * (cse205 * cse274 + cse206 * cse277);
+    const double cse278 = 0.03 * cse206;
+    const double cse279 = 0.03 * cse205;
+    const double shaft_out5 = cse205 * cse278 - cse206 * cse279 - 0.3 * (cse206 * cse268 - cse205 * cse269);
+    const double shaft_out6 = cse205 * (0.01 * cse205 - cse279 + 0.020000000000000004 * cse205) + cse206 * (0.01 * cse206 - cse278 + 0.021000000000000005 * cse206) + (-0.3 * (cse206 * cse270 - cse205 * cse271) + 0.13499999999999998);
+    const double shaft_out7 = cse205 * (shaft_ejs_e_2 + bob_out5 + 0.01 * cse276 - 0.1 * cse275 + 0.020000000000000004 * cse276) + cse206 * (shaft_ejs_e_3 + bob_out6 - 0.01 * cse273 + 0.1 * cse272 - 0.021000000000000005 * cse273) + (-0.3 * (cse206 * cse274 - cse205 * cse277) + 0.3 * (-(shaft_weight_e_1 - shaft_ejs_v_e_1) + bob_out2));
     // rotors.mbg:48:6  articulated-body elimination, body fan: what the parent reads of this body, as an affine function of the parent's motion (articulated inertia and bias)
     const double fan_out1 = -0.3 * (fan_weight_e_3 - fan_ejs_v_e_3);
     const double fan_out2 = 0.3 * (fan_weight_e_1 - fan_ejs_v_e_1) - 0.3 * (fan_weight_e_2 - fan_ejs_v_e_2);
