@@ -134,7 +134,8 @@ class Emitter {
       body = "namespace " + ns + " {\n\n" + print(c) + "\n}  // namespace " + ns + "\n";
     } else {
       body = "namespace {\n\n" + print(c) + "\n}  // namespace\n";
-      entry = simulator_main({class_name_, !g_.drawings.empty(), s_.dae && !s_.residual_pattern.empty()});
+      entry = opt_.entry_point ? opt_.entry_point(class_name_)
+                               : simulator_main({class_name_, !g_.drawings.empty(), s_.dae && !s_.residual_pattern.empty()});
     }
     std::string out = kSimulatorTemplate;
     replace(out, "{{banner}}", banner);

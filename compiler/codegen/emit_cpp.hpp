@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct EmitOptions {
   /// Bodies with the same equations share one function (codegen/outline.hpp):
   /// automatic: where the inline code would not fit the instruction cache.
   enum class Outline { automatic, always, never } outline = Outline::automatic;
+  /// Instead of main(): what follows the class, given its name (mbgc --fmu's
+  /// table of variables, fmu/interface.hpp); the class stays file-local.
+  std::function<std::string(const std::string& class_name)> entry_point;
 };
 
 /// Empty if `name` can be the namespace of --library's class, else why not.

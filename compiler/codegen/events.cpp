@@ -10,8 +10,7 @@ namespace mbgc::codegen {
 
 std::string event_mode_name(std::size_t k) { return fmt::format("mode_[{}]", k); }
 
-/// "heaviside(t - t_off) (time event), Sf src (events.mbg:15:4)"
-static std::string event_name(const ir::EventRelation& ev, const ir::Namer& names,
+std::string event_name(const ir::EventRelation& ev, const ir::Namer& names,
                               const std::function<std::string(const ir::SourceLoc&)>& where) {
   if (ev.contact >= 0) return ev.origin + (ev.loc.valid() ? " (" + where(ev.loc) + ")" : std::string());
   std::string name = to_string(ev.step, names) + (ev.time_event ? " (time event)" : "");

@@ -17,6 +17,11 @@ namespace mbgc::codegen {
 /// How event k's mode is written in expressions: "mode_[k]".
 std::string event_mode_name(std::size_t k);
 
+/// Event `ev` in model terms (Model::event_name): "heaviside(t - t_off) (time
+/// event), Sf src (events.mbg:15:4)".
+std::string event_name(const ir::EventRelation& ev, const ir::Namer& names,
+                       const std::function<std::string(const ir::SourceLoc&)>& where);
+
 /// event_count(), event_name(), set_event_mode() and the modes' member array
 /// (nothing when the model has no events). An event's name is its step and
 /// the element and model line it comes from, `where` writing the line

@@ -14,6 +14,9 @@
 #include "causality/scap.hpp"
 #include "codegen/emit_cpp.hpp"
 #include "elaborate/unroll.hpp"
+#include "fmu/interface.hpp"
+#include "fmu/model_description.hpp"
+#include "fmu/package.hpp"
 #include "multibody/expand.hpp"
 #include "equations/generate.hpp"
 #include "graph/build_graph.hpp"
@@ -71,6 +74,36 @@ bool write_atomically(const std::string& given, const std::string& text, bool ke
   std::filesystem::rename(tmp, path, ec);
   if (ec) std::remove(tmp.c_str());
   return !ec;
+}
+
+/// mbgc --fmu: the model's FMU (fmu/package.hpp), or why not.
+int export_fmu(const Options& opt, const ir::ReducedSystem& reduced, const ir::SourceManager& sources,
+               codegen::EmitOptions emit, std::ostream& err) {
+  if (reduced.dae) {
+    err << "mbgc: error: model `" << reduced.graph.model_name
+        << "` is a DAE (its joints are held by Lagrange multipliers, or its equations have algebraic unknowns): an "
+           "FMU exports an ODE\n"
+        << "  hint: export it in joint coordinates or with penalty joints (mbgc --fmu ... --constraints coordinates)\n";
+    return 1;
+  }
+  const fmu::Interface interface = fmu::describe(reduced, sources);
+  emit.entry_point = [&interface](const std::string& class_name) { return fmu::entry_source(interface, class_name); };
+  std::string source = codegen::emit_cpp(reduced, sources, emit);
+  const std::string token = fmu::token_of(source);
+  source.replace(source.find(fmu::kTokenPlaceholder), std::string(fmu::kTokenPlaceholder).size(), token);
+  const fmu::FmiVersion version = opt.fmi_version == 2 ? fmu::FmiVersion::v2 : fmu::FmiVersion::v3;
+  fmu::Package package;
+  package.model_identifier = reduced.graph.model_name;
+  package.source = source;
+  package.version = version;
+  package.model_description = fmu::model_description(interface, version, {opt.fmu_model_exchange, opt.fmu_co_simulation},
+                                                     token, std::string("mbgc ") + MBGC_VERSION);
+  if (const std::string error = fmu::write_fmu(package, opt.fmu); !error.empty()) {
+    err << "mbgc: error: " << error << "\n";
+    return 3;
+  }
+  for (const std::string& note : interface.notes) err << "mbgc: note: " << note << "\n";
+  return 0;
 }
 
 }  // namespace
@@ -220,6 +253,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
     codegen::emit_cpp(reduced, sources, emit, &stats);
     return finish(codegen::format_stats(stats, opt.stats_csv));
   }
+  if (!opt.fmu.empty()) return export_fmu(opt, reduced, sources, emit, err);
   std::string text = codegen::emit_cpp(reduced, sources, emit);
   timed("emit");
   const int rc = finish(text);

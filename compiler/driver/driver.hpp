@@ -44,6 +44,9 @@ struct Options {
   enum class Units { Check, Strict, Report, Off } units = Units::Check;
   bool energy_witness = true;  ///< false: --no-energy-witness (no stored_energy() or power(): reduce/energy.hpp)
   bool rotors = true;          ///< false: --no-rotors (every body in its own frame: multibody/rotors.hpp)
+  std::string fmu;             ///< --fmu FILE: build a Functional Mock-up Unit there instead of writing C++
+  int fmi_version = 3;         ///< --fmi 3|2
+  bool fmu_model_exchange = true, fmu_co_simulation = true;  ///< --fmu-kind me|cs|both
   ir::Limits limits;          ///< how large a model may grow (the fuzz targets lower them)
 };
 

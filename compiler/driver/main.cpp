@@ -83,6 +83,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"check", "strict", "report", "off"}));
   app.add_option("--stats-format", stats_format, "with --stats: text (a table, the default) or csv")
       ->check(CLI::IsMember({"text", "csv"}));
+  app.add_option("--fmu", opt.fmu,
+                 "build a Functional Mock-up Unit (FMI) of the model into this file instead of writing C++ "
+                 "(docs/fmi.md)");
+  int fmi = 3;
+  app.add_option("--fmi", fmi, "with --fmu: the FMI version, 3 (the default) or 2")->check(CLI::IsMember({3, 2}));
+  std::string fmu_kind = "both";
+  app.add_option("--fmu-kind", fmu_kind, "with --fmu: model exchange (me), co-simulation (cs) or both (the default)")
+      ->check(CLI::IsMember({"me", "cs", "both"}));
   app.set_version_flag("--version", "mbgc " MBGC_VERSION);
   CLI11_PARSE(app, argc, argv);
   opt.units = units == "strict"   ? mbgc::driver::Options::Units::Strict
@@ -138,6 +146,18 @@ int main(int argc, char** argv) {
     std::cerr << "mbgc: error: --stats prints the generated code's costs: it does not go with --dump or --explain-scene\n";
     return 2;
   }
+  const bool fmu_options = app.count("--fmi") > 0 || app.count("--fmu-kind") > 0;
+  if (fmu_options && opt.fmu.empty()) {
+    std::cerr << "mbgc: error: --fmi and --fmu-kind go with --fmu FILE\n";
+    return 2;
+  }
+  if (!opt.fmu.empty() && (opt.dump != Dump::None || opt.stats || opt.explain_scene || opt.library)) {
+    std::cerr << "mbgc: error: --fmu builds an FMU: it does not go with --dump, --stats, --explain-scene or --library\n";
+    return 2;
+  }
+  opt.fmi_version = fmi;
+  opt.fmu_model_exchange = fmu_kind != "cs";
+  opt.fmu_co_simulation = fmu_kind != "me";
   opt.exit_when_done = true;
   try {
     return mbgc::driver::compile(opt, std::cout, std::cerr);

@@ -1,0 +1,495 @@
+#include "fmi/instance.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <utility>
+
+#include "cli.hpp"
+#include "constraints.hpp"
+#include "march.hpp"
+#include "report.hpp"
+
+namespace mbgrt::fmu {
+
+namespace {
+
+const char* kind_name(Kind k) {
+  switch (k) {
+    case Kind::time: return "the time";
+    case Kind::parameter: return "a parameter";
+    case Kind::output: return "an output";
+    case Kind::state: return "a continuous state";
+    case Kind::derivative: return "a state derivative";
+    case Kind::event_indicator: return "an event indicator";
+    case Kind::setting: return "a solver setting";
+  }
+  return "a variable";
+}
+
+const char* phase_name(Phase p) {
+  switch (p) {
+    case Phase::instantiated: return "Instantiated";
+    case Phase::initialization: return "Initialization Mode";
+    case Phase::event: return "Event Mode";
+    case Phase::continuous_time: return "Continuous-Time Mode";
+    case Phase::step: return "Step Mode";
+    case Phase::terminated: return "Terminated";
+    case Phase::failed: return "an error state (a call failed)";
+  }
+  return "?";
+}
+
+/// The runtime's "mbgrt: error: ..." lines, one by one, with their severity.
+void forward_lines(const std::string& text, const std::function<void(Status, const std::string&)>& to) {
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    if (line.empty()) continue;
+    Status status = Status::ok;
+    if (line.rfind("mbgrt: error: ", 0) == 0) status = Status::error, line.erase(0, 14);
+    else if (line.rfind("mbgrt: warning: ", 0) == 0) status = Status::warning, line.erase(0, 16);
+    else if (line.rfind("mbgrt: note: ", 0) == 0) line.erase(0, 13);
+    to(status, line);
+  }
+}
+
+}  // namespace
+
+Instance::Instance(const Description& description, Interface interface, std::string name, Logger logger,
+                   bool logging_on)
+    : description_(description),
+      interface_(interface),
+      name_(std::move(name)),
+      logger_(std::move(logger)),
+      logging_on_(logging_on) {
+  model_ = description_.make_model();
+  n_ = model_->size();
+  parameters_ = model_->parameters();
+  parameter_values_.resize(parameters_.size());
+  for (std::size_t i = 0; i < parameters_.size(); ++i) parameter_values_[i] = parameters_[i].default_value;
+  parameter_set_.assign(parameters_.size(), 0);
+  defaults_ = settings_ = model_->default_settings();
+  // the fixed-step methods' step as the native simulator takes it by default
+  if (!(settings_.step_s > 0)) settings_.step_s = settings_.interval_s / 10;
+  y_.assign(n_, 0.0);
+  ydot_.assign(n_, 0.0);
+  outputs_.assign(model_->output_names().size(), 0.0);
+  indicators_.assign(model_->event_count(), 0.0);
+}
+
+Instance::~Instance() = default;
+
+void Instance::log(Status status, const char* category, const std::string& message) {
+  // errors are always said; the rest only with logging on
+  if (!logger_ || (!logging_on_ && status < Status::error)) return;
+  logger_(status, category, message);
+}
+
+Status Instance::refuse(const std::string& why) {
+  log(Status::error, "logStatusError", why);
+  return Status::error;
+}
+
+Status Instance::fail(const std::string& why) {
+  if (!why.empty()) log(Status::error, "logStatusError", why);
+  phase_ = Phase::failed;
+  return Status::error;
+}
+
+bool Instance::allowed(const char* what, std::initializer_list<Phase> phases) {
+  if (std::find(phases.begin(), phases.end(), phase_) != phases.end()) return true;
+  refuse(fmt::format("{} is not allowed in {}", what, phase_name(phase_)));
+  return false;
+}
+
+template <class Body>
+Status Instance::captured(Body&& body) {
+  char* buffer = nullptr;
+  std::size_t length = 0;
+  std::FILE* stream = open_memstream(&buffer, &length);
+  Status status = Status::ok;
+  {
+    detail::ErrorRedirect redirect(stream ? stream : stderr);
+    status = body(stream ? stream : stderr);
+  }
+  if (stream) {
+    std::fclose(stream);
+    const std::string text(buffer, length);
+    std::free(buffer);
+    forward_lines(text, [&](Status s, const std::string& line) {
+      // a report's lines belong to the call's outcome: an error's, or notes
+      const Status as = s == Status::ok && status >= Status::error ? Status::error : s;
+      log(as, as >= Status::error ? "logStatusError" : as == Status::warning ? "logStatusWarning" : "logEvents", line);
+    });
+  }
+  return status;
+}
+
+const Variable* Instance::variable(std::uint32_t vr) {
+  if (vr < description_.variable_count) return &description_.variables[vr];
+  refuse(fmt::format("unknown value reference {} (this FMU's are 0 to {})", vr, description_.variable_count - 1));
+  return nullptr;
+}
+
+std::size_t Instance::event_indicator_count() const { return indicators_.size(); }
+
+Settings Instance::run_settings() const {
+  Settings s = settings_;
+  s.t_start_s = t_;
+  // the integrators never step past t_end_s: the importer's stop time, if it gave one
+  s.t_end_s = stop_defined_ ? stop_ : std::numeric_limits<double>::max();
+  return s;
+}
+
+// ---- the lifecycle ----------------------------------------------------------------
+
+Status Instance::enter_initialization(double start, bool tolerance_defined, double tolerance, bool stop_defined,
+                                      double stop) {
+  if (!allowed("EnterInitializationMode", {Phase::instantiated})) return Status::error;
+  if (!std::isfinite(start)) return refuse(fmt::format("the start time {} is not finite", start));
+  if (stop_defined && !(stop >= start)) return refuse(fmt::format("the stop time {} is before the start time {}", stop, start));
+  if (tolerance_defined && !(tolerance > 0)) return refuse(fmt::format("the tolerance {} is not positive", tolerance));
+  t_ = start;
+  stop_defined_ = stop_defined;
+  stop_ = stop;
+  if (tolerance_defined) settings_.rtol = tolerance;
+  phase_ = Phase::initialization;
+  return Status::ok;
+}
+
+Status Instance::exit_initialization() {
+  if (!allowed("ExitInitializationMode", {Phase::initialization})) return Status::error;
+  return captured([&](std::FILE* report) {
+    for (std::size_t i = 0; i < parameters_.size(); ++i)
+      if (parameter_set_[i]) model_->set_parameter(parameters_[i].name, parameter_values_[i]);
+    guard_ = std::make_unique<detail::GuardedModel>(*model_);
+    y_.assign(n_, 0.0);
+    model_->initial(t_, y_.data(), nullptr);
+    std::vector<double> yp;
+    const detail::ConstrainedStart start = detail::prepare_constrained_start(*model_, *guard_, t_, y_, yp);
+    if (!start.ok) return fail("the initial state cannot be made consistent with the model's joints");
+    if (!guard_->check_state(t_, y_.data())) return fail(guard_->describe(*guard_->blame()));
+    if (!guard_->events().start(t_, y_.data(), nullptr))
+      return fail("an event function (the argument of a step) is not finite at the start");
+    guard_->hold_constraints(detail::held_row_bound(settings_), detail::kHeldCeiling);
+    reference_.assign(indicators_.size(), 0.0);
+    if (!reference_.empty()) guard_->events().functions(t_, y_.data(), nullptr, reference_.data());
+    invalidate();
+    if (interface_ == Interface::co_simulation) {
+      const std::string why = detail::why_integrator_does_not_fit(integrator_info(settings_.solver), *model_);
+      if (!why.empty()) return fail(fmt::format("solver {} cannot integrate this model: {}", integrator_info(settings_.solver).name, why));
+      integrator_ = detail::make_integrator(*guard_, run_settings());
+      if (!integrator_->init(t_, y_.data(), nullptr)) {
+        detail::print_stop_message(report, *guard_, *integrator_, true);
+        return fail({});
+      }
+      phase_ = Phase::step;
+    } else {
+      phase_ = Phase::event;
+    }
+    return Status::ok;
+  });
+}
+
+Status Instance::enter_event_mode() {
+  if (!allowed("EnterEventMode", {Phase::continuous_time, Phase::step})) return Status::error;
+  phase_ = Phase::event;
+  return Status::ok;
+}
+
+Status Instance::enter_continuous_time_mode() {
+  if (!allowed("EnterContinuousTimeMode", {Phase::event})) return Status::error;
+  if (interface_ != Interface::model_exchange) return refuse("EnterContinuousTimeMode is for model exchange");
+  phase_ = Phase::continuous_time;
+  return Status::ok;
+}
+
+Status Instance::enter_step_mode() {
+  if (!allowed("EnterStepMode", {Phase::event})) return Status::error;
+  if (interface_ != Interface::co_simulation) return refuse("EnterStepMode is for co-simulation");
+  phase_ = Phase::step;
+  return Status::ok;
+}
+
+Status Instance::terminate() {
+  if (!allowed("Terminate", {Phase::event, Phase::continuous_time, Phase::step})) return Status::error;
+  return captured([&](std::FILE*) {
+    model_->terminal(t_, y_.data());
+    phase_ = Phase::terminated;
+    return Status::ok;
+  });
+}
+
+Status Instance::reset() {
+  integrator_.reset();
+  guard_.reset();
+  model_ = description_.make_model();
+  for (std::size_t i = 0; i < parameters_.size(); ++i) parameter_values_[i] = parameters_[i].default_value;
+  std::fill(parameter_set_.begin(), parameter_set_.end(), 0);
+  settings_ = defaults_;
+  if (!(settings_.step_s > 0)) settings_.step_s = settings_.interval_s / 10;
+  t_ = 0.0;
+  std::fill(y_.begin(), y_.end(), 0.0);
+  invalidate();
+  phase_ = Phase::instantiated;
+  return Status::ok;
+}
+
+// ---- values -------------------------------------------------------------------------
+
+bool Instance::evaluate_derivatives() {
+  if (derivatives_valid_) return true;
+  if (guard_->derivative(t_, y_.data(), ydot_.data()) != 0) {
+    fail(fmt::format("at t = {} s: {}", detail::format_time(t_), guard_->describe(*guard_->blame())));
+    return false;
+  }
+  return derivatives_valid_ = true;
+}
+
+bool Instance::evaluate_outputs() {
+  if (outputs_valid_) return true;
+  model_->outputs(t_, y_.data(), nullptr, outputs_.data());
+  return outputs_valid_ = true;
+}
+
+Status Instance::get_float64(const std::uint32_t* vr, std::size_t n, double* values) {
+  if (phase_ == Phase::failed) return refuse("the FMU failed at an earlier call: only FreeInstance or Reset may follow");
+  const bool started = guard_ != nullptr && phase_ != Phase::instantiated && phase_ != Phase::initialization;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Variable* v = variable(vr[k]);
+    if (!v) return Status::error;
+    const bool computed = v->kind == Kind::output || v->kind == Kind::state || v->kind == Kind::derivative ||
+                          v->kind == Kind::event_indicator;
+    if (computed && !started)
+      return refuse(fmt::format("value reference {} is {}: it has a value once the initialisation is done "
+                                "(ExitInitializationMode)",
+                                vr[k], kind_name(v->kind)));
+    switch (v->kind) {
+      case Kind::time: values[k] = t_; break;
+      case Kind::parameter: values[k] = parameter_values_[v->index]; break;
+      case Kind::output:
+        evaluate_outputs();
+        values[k] = outputs_[v->index];
+        break;
+      case Kind::state: values[k] = y_[v->index]; break;
+      case Kind::derivative:
+        if (!evaluate_derivatives()) return Status::error;
+        values[k] = ydot_[v->index];
+        break;
+      case Kind::event_indicator:
+        if (!guard_->events().functions(t_, y_.data(), nullptr, indicators_.data()))
+          return fail(fmt::format("at t = {} s an event function is not finite", detail::format_time(t_)));
+        values[k] = indicators_[v->index];
+        break;
+      case Kind::setting:
+        switch (static_cast<Setting>(v->index)) {
+          case Setting::rtol: values[k] = settings_.rtol; break;
+          case Setting::atol: values[k] = settings_.atol; break;
+          case Setting::step: values[k] = settings_.step_s; break;
+          case Setting::solver: return refuse(fmt::format("value reference {} is an Enumeration (GetInt64)", vr[k]));
+        }
+        break;
+    }
+  }
+  return Status::ok;
+}
+
+Status Instance::set_float64(const std::uint32_t* vr, std::size_t n, const double* values) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const Variable* v = variable(vr[k]);
+    if (!v) return Status::error;
+    if (v->kind != Kind::parameter && v->kind != Kind::setting)
+      return refuse(fmt::format("value reference {} is {}: only parameters and solver settings can be set",
+                                vr[k], kind_name(v->kind)));
+    const std::string name = v->kind == Kind::parameter ? parameters_[v->index].name : "a solver setting";
+    if (phase_ != Phase::instantiated && phase_ != Phase::initialization)
+      return refuse(fmt::format("'{}' (value reference {}) is fixed: it can be set only before "
+                                "ExitInitializationMode, not in {}",
+                                name, vr[k], phase_name(phase_)));
+    if (!std::isfinite(values[k]))
+      return refuse(fmt::format("'{}' (value reference {}) cannot be set to {}", name, vr[k], values[k]));
+    if (v->kind == Kind::parameter) {
+      parameter_values_[v->index] = values[k];
+      parameter_set_[v->index] = 1;
+      continue;
+    }
+    const auto setting = static_cast<Setting>(v->index);
+    if (setting == Setting::solver) return refuse(fmt::format("value reference {} is an Enumeration (SetInt64)", vr[k]));
+    if (!(values[k] > 0)) return refuse(fmt::format("solver setting (value reference {}) must be positive, not {}", vr[k], values[k]));
+    if (setting == Setting::rtol) settings_.rtol = values[k];
+    if (setting == Setting::atol) settings_.atol = values[k];
+    if (setting == Setting::step) settings_.step_s = values[k];
+  }
+  return Status::ok;
+}
+
+Status Instance::get_int64(const std::uint32_t* vr, std::size_t n, std::int64_t* values) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const Variable* v = variable(vr[k]);
+    if (!v) return Status::error;
+    if (v->kind != Kind::setting || static_cast<Setting>(v->index) != Setting::solver)
+      return refuse(fmt::format("value reference {} is {} of type Float64", vr[k], kind_name(v->kind)));
+    values[k] = static_cast<std::int64_t>(settings_.solver) + 1;
+  }
+  return Status::ok;
+}
+
+Status Instance::set_int64(const std::uint32_t* vr, std::size_t n, const std::int64_t* values) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const Variable* v = variable(vr[k]);
+    if (!v) return Status::error;
+    if (v->kind != Kind::setting || static_cast<Setting>(v->index) != Setting::solver)
+      return refuse(fmt::format("value reference {} is {} of type Float64", vr[k], kind_name(v->kind)));
+    if (phase_ != Phase::instantiated && phase_ != Phase::initialization)
+      return refuse(fmt::format("the solver (value reference {}) is fixed: it can be set only before "
+                                "ExitInitializationMode",
+                                vr[k]));
+    if (values[k] < 1 || values[k] > static_cast<std::int64_t>(kIntegrators.size()))
+      return refuse(fmt::format("the solver (value reference {}) has no item {}", vr[k], values[k]));
+    settings_.solver = static_cast<Solver>(values[k] - 1);
+  }
+  return Status::ok;
+}
+
+// ---- model exchange ---------------------------------------------------------------
+
+Status Instance::set_time(double t) {
+  if (!allowed("SetTime", {Phase::event, Phase::continuous_time})) return Status::error;
+  if (!std::isfinite(t)) return refuse(fmt::format("SetTime: the time {} is not finite", t));
+  t_ = t;
+  invalidate();
+  return Status::ok;
+}
+
+Status Instance::set_states(const double* x, std::size_t n) {
+  if (!allowed("SetContinuousStates", {Phase::event, Phase::continuous_time})) return Status::error;
+  if (n != n_) return refuse(fmt::format("SetContinuousStates: {} states given, the model has {}", n, n_));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(x[i]))
+      return refuse(fmt::format("SetContinuousStates: state '{}' is {}", model_->variable_name(i), x[i]));
+  std::copy(x, x + n, y_.begin());
+  invalidate();
+  return Status::ok;
+}
+
+Status Instance::get_states(double* x, std::size_t n) {
+  if (!guard_ || phase_ == Phase::failed || phase_ == Phase::initialization)
+    return refuse(fmt::format("GetContinuousStates is not allowed in {}", phase_name(phase_)));
+  if (n != n_) return refuse(fmt::format("GetContinuousStates: room for {} states, the model has {}", n, n_));
+  std::copy(y_.begin(), y_.end(), x);
+  return Status::ok;
+}
+
+Status Instance::get_derivatives(double* dx, std::size_t n) {
+  if (!allowed("GetContinuousStateDerivatives", {Phase::event, Phase::continuous_time, Phase::terminated}))
+    return Status::error;
+  if (n != n_) return refuse(fmt::format("GetContinuousStateDerivatives: room for {} derivatives, the model has {}", n, n_));
+  if (!evaluate_derivatives()) return Status::error;
+  std::copy(ydot_.begin(), ydot_.end(), dx);
+  return Status::ok;
+}
+
+Status Instance::get_event_indicators(double* g, std::size_t n) {
+  if (!allowed("GetEventIndicators", {Phase::event, Phase::continuous_time, Phase::terminated})) return Status::error;
+  if (n != indicators_.size())
+    return refuse(fmt::format("GetEventIndicators: room for {} indicators, the model has {}", n, indicators_.size()));
+  if (n == 0) return Status::ok;
+  if (!guard_->events().functions(t_, y_.data(), nullptr, indicators_.data()))
+    return fail(fmt::format("at t = {} s an event function is not finite", detail::format_time(t_)));
+  std::copy(indicators_.begin(), indicators_.end(), g);
+  return Status::ok;
+}
+
+Status Instance::get_nominals(double* nominal, std::size_t n) {
+  if (n != n_) return refuse(fmt::format("GetNominalsOfContinuousStates: room for {} nominals, the model has {}", n, n_));
+  for (std::size_t i = 0; i < n; ++i) nominal[i] = guard_ ? std::max(model_->nominal(i), 1e-300) : 1.0;
+  return Status::ok;
+}
+
+Status Instance::completed_integrator_step(bool* enter_event_mode, bool* terminate_simulation) {
+  if (!allowed("CompletedIntegratorStep", {Phase::continuous_time})) return Status::error;
+  *enter_event_mode = false;
+  *terminate_simulation = false;
+  // what the native run checks after every step: finite states within their
+  // limits, the joints that must hold holding
+  if (guard_->check_state(t_, y_.data()) && guard_->check_constraints(t_, y_.data())) return Status::ok;
+  *terminate_simulation = true;
+  return fail(fmt::format("at t = {} s: {}", detail::format_time(t_), guard_->describe(*guard_->blame())));
+}
+
+Status Instance::update_discrete_states(bool* values_changed, bool* terminate_simulation) {
+  if (!allowed("UpdateDiscreteStates", {Phase::event})) return Status::error;
+  *values_changed = false;
+  *terminate_simulation = false;
+  if (indicators_.empty()) return Status::ok;
+  return captured([&](std::FILE*) {
+    detail::Events& events = guard_->events();
+    if (!events.functions(t_, y_.data(), nullptr, indicators_.data()))
+      return fail(fmt::format("at t = {} s an event function is not finite", detail::format_time(t_)));
+    // Every event whose function changed sign since the last event switches
+    // (as the runtime's fixed-step methods do at a located crossing).
+    const std::size_t logged = events.log().size();
+    const std::vector<double> before = y_;
+    bool any = false;
+    for (std::size_t k = 0; k < indicators_.size(); ++k) {
+      if ((reference_[k] >= 0.0) == (indicators_[k] >= 0.0)) continue;
+      if (!any) events.note_roots(t_);
+      any = true;
+      events.fire(t_, k, indicators_[k] >= 0.0, y_.data());
+    }
+    for (std::size_t r = logged; r < events.log().size(); ++r) log(Status::ok, "logEvents", events.describe(events.log()[r]));
+    detail::SolverFailure chatter;
+    if (any && !detail::chatter_failure(events, t_, chatter)) {
+      *terminate_simulation = true;
+      return fail(chatter.explanation);
+    }
+    if (!guard_->check_state(t_, y_.data())) {
+      *terminate_simulation = true;
+      return fail(guard_->describe(*guard_->blame()));
+    }
+    *values_changed = y_ != before;
+    events.functions(t_, y_.data(), nullptr, reference_.data());
+    invalidate();
+    return Status::ok;
+  });
+}
+
+// ---- co-simulation ----------------------------------------------------------------
+
+Status Instance::do_step(double t, double h, bool* terminate_simulation, double* last_successful_time) {
+  *terminate_simulation = false;
+  *last_successful_time = t_;
+  if (!allowed("DoStep", {Phase::step})) return Status::error;
+  if (!(h > 0) || !std::isfinite(h)) return refuse(fmt::format("DoStep: the step size {} is not positive", h));
+  if (std::abs(t - t_) > 1e-12 * std::max(1.0, std::abs(t_)))
+    return refuse(fmt::format("DoStep from t = {} s, but the FMU is at t = {} s", t, t_));
+  if (stop_defined_ && t + h > stop_ + 1e-12 * std::max(1.0, std::abs(stop_)))
+    return refuse(fmt::format("DoStep to t = {} s, past the stop time {} s", t + h, stop_));
+  const double target = stop_defined_ ? std::min(t + h, stop_) : t + h;
+  return captured([&](std::FILE* report) {
+    const bool solved = integrator_->advance_to(target);
+    const bool ok = solved && guard_->check_state(integrator_->t(), integrator_->y()) &&
+                    guard_->check_constraints(integrator_->t(), integrator_->y());
+    if (!ok) {
+      detail::print_stop_message(report, *guard_, *integrator_, !solved);
+      *terminate_simulation = true;
+      *last_successful_time = integrator_->t();
+      return fail({});
+    }
+    t_ = integrator_->t();
+    std::copy(integrator_->y(), integrator_->y() + n_, y_.begin());
+    invalidate();
+    *last_successful_time = t_;
+    return Status::ok;
+  });
+}
+
+}  // namespace mbgrt::fmu

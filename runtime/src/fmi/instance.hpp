@@ -1,0 +1,125 @@
+// fmi/instance.hpp — one instance of an FMU, whatever the FMI version: the
+// model, its state and the FMI state machine. fmi3.cpp and fmi2.cpp are thin
+// C shims that translate their arguments and call these methods.
+//
+// Model exchange: the importer integrates; the instance evaluates the model
+// at the time and states it is given (through the guard, so that a NaN or a
+// state beyond its limit is an error with the runtime's report, never a
+// value handed on), and at an event switches the modes whose functions
+// changed sign since the last event, as the runtime's own fixed-step methods
+// do (Events::fire: impacts, contacts made and lost).
+// Co-simulation: doStep runs the runtime's integrator (Integrator::advance_to,
+// which locates and handles the events inside the step) from the
+// communication point to the next.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "guard.hpp"
+#include "integrator.hpp"
+#include "mbgrt/fmu.hpp"
+#include "mbgrt/model.hpp"
+
+namespace mbgrt::fmu {
+
+/// The first five of fmi3Status and fmi2Status, in their order.
+enum class Status { ok, warning, discard, error, fatal };
+
+enum class Interface { model_exchange, co_simulation };
+
+/// Where an instance is in the FMI state machine (the FMI 3.0 names; FMI 2.0's
+/// map onto them).
+enum class Phase { instantiated, initialization, event, continuous_time, step, terminated, failed };
+
+/// The importer's logger: severity, category ("logEvents", "logStatusError",
+/// ...), message.
+using Logger = std::function<void(Status, const char*, const std::string&)>;
+
+class Instance {
+ public:
+  Instance(const Description& description, Interface interface, std::string name, Logger logger, bool logging_on);
+  ~Instance();
+
+  const std::string& name() const { return name_; }
+  Interface interface() const { return interface_; }
+  Phase phase() const { return phase_; }
+  void set_logging(bool on) { logging_on_ = on; }
+
+  // ---- the lifecycle ------------------------------------------------------------
+  Status enter_initialization(double start, bool tolerance_defined, double tolerance, bool stop_defined,
+                              double stop);
+  Status exit_initialization();
+  Status enter_event_mode();
+  Status enter_continuous_time_mode();
+  Status enter_step_mode();
+  Status terminate();
+  Status reset();
+
+  // ---- values by reference --------------------------------------------------------
+  Status get_float64(const std::uint32_t* vr, std::size_t n, double* values);
+  Status set_float64(const std::uint32_t* vr, std::size_t n, const double* values);
+  /// The integrator (Setting::solver), an Enumeration.
+  Status get_int64(const std::uint32_t* vr, std::size_t n, std::int64_t* values);
+  Status set_int64(const std::uint32_t* vr, std::size_t n, const std::int64_t* values);
+
+  // ---- model exchange -------------------------------------------------------------
+  std::size_t state_count() const { return n_; }
+  std::size_t event_indicator_count() const;
+  Status set_time(double t);
+  Status set_states(const double* x, std::size_t n);
+  Status get_states(double* x, std::size_t n);
+  Status get_derivatives(double* dx, std::size_t n);
+  Status get_event_indicators(double* g, std::size_t n);
+  Status get_nominals(double* nominal, std::size_t n);
+  Status completed_integrator_step(bool* enter_event_mode, bool* terminate_simulation);
+  Status update_discrete_states(bool* values_changed, bool* terminate_simulation);
+
+  // ---- co-simulation ------------------------------------------------------------
+  Status do_step(double t, double h, bool* terminate_simulation, double* last_successful_time);
+
+  /// An error of the importer's making (a call out of order, a bad argument):
+  /// logged, fmi*Error returned.
+  Status refuse(const std::string& why);
+  /// Checks that the call `what` may come in this phase.
+  bool allowed(const char* what, std::initializer_list<Phase> phases);
+
+ private:
+  Status fail(const std::string& why);  ///< the model cannot go on: logged, the instance fails
+  void log(Status status, const char* category, const std::string& message);
+  /// Runs `body` with the runtime's diagnostics (print_error and the stop
+  /// reports) captured and handed to the importer's logger.
+  template <class Body>
+  Status captured(Body&& body);
+  const Variable* variable(std::uint32_t vr);
+  void invalidate() { outputs_valid_ = derivatives_valid_ = false; }
+  bool evaluate_derivatives();
+  bool evaluate_outputs();
+  Settings run_settings() const;
+
+  const Description& description_;
+  Interface interface_;
+  std::string name_;
+  Logger logger_;
+  bool logging_on_;
+  Phase phase_ = Phase::instantiated;
+
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<detail::GuardedModel> guard_;
+  std::unique_ptr<detail::Integrator> integrator_;  ///< co-simulation
+  std::size_t n_ = 0;
+  std::vector<ParameterInfo> parameters_;
+  std::vector<double> parameter_values_;  ///< in each parameter's declared unit
+  std::vector<char> parameter_set_;
+  Settings defaults_, settings_;
+  double t_ = 0.0, stop_ = 0.0;
+  bool stop_defined_ = false;
+  std::vector<double> y_, ydot_, outputs_, indicators_, reference_;  ///< reference_: the event functions after the last event
+  bool outputs_valid_ = false, derivatives_valid_ = false;
+};
+
+}  // namespace mbgrt::fmu
