@@ -12,6 +12,11 @@
 #       faster there and keeps it from running on an older processor: for a
 #       simulator that stays on the machine that built it, not for one to
 #       copy elsewhere. The runtime library is compiled as before.
+#   mbgc_add_fmu(<target> MODEL <file.mbg> [OPTIONS <mbgc options>...] [DEPENDS ...])
+#       a Functional Mock-up Unit, <target>.fmu in the current binary
+#       directory, built by `mbgc --fmu` (OPTIONS: --fmi 2, --fmu-kind me,
+#       --constraints coordinates, ...; docs/fmi.md); the target <target>
+#       builds it with `all`.
 #   mbgc_add_model(<target> MODEL <file.mbg> [NATIVE] [OPTIONS ...] [DEPENDS ...])
 #       an INTERFACE library whose header <target>.hpp holds the model class
 #       (mbgc --library), for embedding a model in your own program (NATIVE:
@@ -31,6 +36,9 @@ if(NOT DEFINED MBGC_COMPILER_TARGET)
 endif()
 if(NOT DEFINED MBGC_RUNTIME_TARGET)
   set(MBGC_RUNTIME_TARGET mbgc::mbgrt)
+endif()
+if(NOT DEFINED MBGC_FMU_RUNTIME_TARGET)
+  set(MBGC_FMU_RUNTIME_TARGET mbgc::mbgrt_fmu)
 endif()
 
 # -march=native, where the compiler takes it (GCC and Clang do; MSVC does not)
@@ -69,7 +77,10 @@ function(_mbgc_generated_options target native out_var)
 endfunction()
 
 function(_mbgc_generate target model_in out_file)
-  cmake_parse_arguments(ARG "" "" "OPTIONS;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "" "OUTPUT_OPTION" "OPTIONS;DEPENDS" ${ARGN})
+  if(NOT ARG_OUTPUT_OPTION)
+    set(ARG_OUTPUT_OPTION -o)
+  endif()
   get_filename_component(model ${model_in} ABSOLUTE)
   # a model the build writes (the OUTPUT of an add_custom_command in the same
   # directory, as tests/random does) need not exist yet
@@ -86,12 +97,12 @@ function(_mbgc_generate target model_in out_file)
   # Ninja re-checks a custom command's outputs (restat): when a new mbgc
   # generates the same C++, the simulator is not recompiled. (Make would
   # rerun mbgc on every build instead, so only under Ninja.)
-  if(CMAKE_GENERATOR MATCHES "Ninja")
+  if(CMAKE_GENERATOR MATCHES "Ninja" AND ARG_OUTPUT_OPTION STREQUAL "-o")
     list(APPEND ARG_OPTIONS --keep-unchanged)
   endif()
   add_custom_command(
     OUTPUT ${out_file}
-    COMMAND ${MBGC_COMPILER_TARGET} ${model} -o ${out_file} ${ARG_OPTIONS}
+    COMMAND ${MBGC_COMPILER_TARGET} ${model} ${ARG_OUTPUT_OPTION} ${out_file} ${ARG_OPTIONS}
     DEPENDS ${model} ${MBGC_COMPILER_TARGET} ${ARG_DEPENDS}
     ${depfile_args}
     COMMENT "mbgc: compiling model ${model_in}"
@@ -132,4 +143,16 @@ function(mbgc_add_model target)
   if(options)
     target_compile_options(${target} INTERFACE ${options})
   endif()
+endfunction()
+
+function(mbgc_add_fmu target)
+  cmake_parse_arguments(ARG "" "MODEL" "OPTIONS;DEPENDS" ${ARGN})
+  if(NOT ARG_MODEL)
+    message(FATAL_ERROR "mbgc_add_fmu(${target}): MODEL <file.mbg> is required")
+  endif()
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/${target}.fmu)
+  # (the FMU links the runtime's FMU library: rebuilt when it changes)
+  _mbgc_generate(${target} ${ARG_MODEL} ${out} OUTPUT_OPTION --fmu OPTIONS ${ARG_OPTIONS}
+                 DEPENDS ${ARG_DEPENDS} ${MBGC_FMU_RUNTIME_TARGET})
+  add_custom_target(${target} ALL DEPENDS ${out})
 endfunction()

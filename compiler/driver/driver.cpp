@@ -102,6 +102,14 @@ int export_fmu(const Options& opt, const ir::ReducedSystem& reduced, const ir::S
     err << "mbgc: error: " << error << "\n";
     return 3;
   }
+  if (!opt.depfile.empty()) {
+    std::string deps = opt.fmu + ":";
+    for (int f = 0; f < sources.count(); ++f) deps += " " + sources.file(f).display_path;
+    if (!write_atomically(opt.depfile, deps + "\n", false)) {
+      err << "mbgc: error: cannot write `" << opt.depfile << "`\n";
+      return 3;
+    }
+  }
   for (const std::string& note : interface.notes) err << "mbgc: note: " << note << "\n";
   return 0;
 }

@@ -434,16 +434,22 @@ Status Instance::update_discrete_states(bool* values_changed, bool* terminate_si
     detail::Events& events = guard_->events();
     if (!events.functions(t_, y_.data(), nullptr, indicators_.data()))
       return fail(fmt::format("at t = {} s an event function is not finite", detail::format_time(t_)));
-    // Every event whose function changed sign since the last event switches
-    // (as the runtime's fixed-step methods do at a located crossing).
+    // Every event whose function crossed zero since the last event switches,
+    // rising or falling, as a located crossing does in the runtime's own
+    // methods. An importer's root finder may stop exactly on the zero: a
+    // function that fell from above to 0 has crossed (step(x) is on at 0, so
+    // the rise is from below to 0 or more).
     const std::size_t logged = events.log().size();
     const std::vector<double> before = y_;
     bool any = false;
     for (std::size_t k = 0; k < indicators_.size(); ++k) {
-      if ((reference_[k] >= 0.0) == (indicators_[k] >= 0.0)) continue;
+      const double was = reference_[k], now = indicators_[k];
+      const bool rose = was < 0.0 && now >= 0.0;
+      const bool fell = was >= 0.0 && (now < 0.0 || (now == 0.0 && was > 0.0));
+      if (!rose && !fell) continue;
       if (!any) events.note_roots(t_);
       any = true;
-      events.fire(t_, k, indicators_[k] >= 0.0, y_.data());
+      events.fire(t_, k, rose, y_.data());
     }
     for (std::size_t r = logged; r < events.log().size(); ++r) log(Status::ok, "logEvents", events.describe(events.log()[r]));
     detail::SolverFailure chatter;
