@@ -23,10 +23,10 @@ mbgc_install_packages
 mbgc_configure_and_build "$@"
 
 # Every test carries one of the labels that select it (tests/README.md).
-unlabelled=$(ctest --test-dir "$BUILD_DIR" -N -LE '^(unit|golden|numeric|runtime|fuzz|viewer|docs)$' | grep -c '^ *Test *#' || true)
+unlabelled=$(ctest --test-dir "$BUILD_DIR" -N -LE '^(unit|golden|numeric|runtime|fmi|fuzz|viewer|docs)$' | grep -c '^ *Test *#' || true)
 [ "$unlabelled" -eq 0 ] || {
-  ctest --test-dir "$BUILD_DIR" -N -LE '^(unit|golden|numeric|runtime|fuzz|viewer|docs)$'
-  die "$unlabelled tests carry none of the labels unit, golden, numeric, runtime, fuzz, viewer, docs"
+  ctest --test-dir "$BUILD_DIR" -N -LE '^(unit|golden|numeric|runtime|fmi|fuzz|viewer|docs)$'
+  die "$unlabelled tests carry none of the labels unit, golden, numeric, runtime, fmi, fuzz, viewer, docs"
 }
 
 if [ -n "$labels" ]; then

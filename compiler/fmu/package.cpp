@@ -121,7 +121,7 @@ std::string write_fmu(const Package& p, const std::string& path) {
   // the FMI functions and nothing else: the runtime and SUNDIALS stay inside
   if (!write_file(source, p.source) || !write_file(exports, "{\n  global: fmi2*; fmi3*;\n  local: *;\n};\n"))
     return fmt::format("cannot write into `{}`", tmp.path().string());
-  std::string command = fmt::format("{} -std=c++17 -O2 -fPIC -shared -fvisibility=hidden -I{} {} -o {} {}",
+  std::string command = fmt::format("{} -std=c++17 -O3 -DNDEBUG -fno-math-errno -fno-trapping-math -fPIC -shared -fvisibility=hidden -I{} {} -o {} {}",
                                     quoted(tc.compiler), quoted(tc.include.string()), quoted(source.string()),
                                     quoted(object.string()), quoted(tc.library.string()));
   for (const std::string& lib : tc.static_libraries) command += " " + quoted(lib);

@@ -144,8 +144,12 @@ std::size_t Instance::event_indicator_count() const { return indicators_.size();
 Settings Instance::run_settings() const {
   Settings s = settings_;
   s.t_start_s = t_;
-  // the integrators never step past t_end_s: the importer's stop time, if it gave one
-  s.t_end_s = stop_defined_ ? stop_ : std::numeric_limits<double>::max();
+  // The integrators never step past t_end_s: the importer's stop time, if it
+  // gave one, else the model's own end (as its simulator has it, so that a
+  // run over the same span takes the same steps); past that, without end.
+  s.t_end_s = stop_defined_                 ? stop_
+              : defaults_.t_end_s > t_ * (1 + 1e-12) ? defaults_.t_end_s
+                                                      : std::numeric_limits<double>::max();
   return s;
 }
 
@@ -187,6 +191,7 @@ Status Instance::exit_initialization() {
       const std::string why = detail::why_integrator_does_not_fit(integrator_info(settings_.solver), *model_);
       if (!why.empty()) return fail(fmt::format("solver {} cannot integrate this model: {}", integrator_info(settings_.solver).name, why));
       integrator_ = detail::make_integrator(*guard_, run_settings());
+      integrate_until_ = run_settings().t_end_s;
       if (!integrator_->init(t_, y_.data(), nullptr)) {
         detail::print_stop_message(report, *guard_, *integrator_, true);
         return fail({});
@@ -481,6 +486,15 @@ Status Instance::do_step(double t, double h, bool* terminate_simulation, double*
     return refuse(fmt::format("DoStep to t = {} s, past the stop time {} s", t + h, stop_));
   const double target = stop_defined_ ? std::min(t + h, stop_) : t + h;
   return captured([&](std::FILE* report) {
+    if (target > integrate_until_) {
+      // past the model's end without a stop time: the integrator starts again from here, with none
+      integrator_ = detail::make_integrator(*guard_, run_settings());
+      integrate_until_ = run_settings().t_end_s;
+      if (!integrator_->init(t_, y_.data(), nullptr)) {
+        detail::print_stop_message(report, *guard_, *integrator_, true);
+        return fail({});
+      }
+    }
     const bool solved = integrator_->advance_to(target);
     const bool ok = solved && guard_->check_state(integrator_->t(), integrator_->y()) &&
                     guard_->check_constraints(integrator_->t(), integrator_->y());

@@ -117,6 +117,7 @@ class Instance {
   std::vector<char> parameter_set_;
   Settings defaults_, settings_;
   double t_ = 0.0, stop_ = 0.0;
+  double integrate_until_ = 0.0;  ///< co-simulation: the integrator's stop time (run_settings)
   bool stop_defined_ = false;
   std::vector<double> y_, ydot_, outputs_, indicators_, reference_;  ///< reference_: the event functions after the last event
   bool outputs_valid_ = false, derivatives_valid_ = false;
