@@ -155,10 +155,6 @@ int main(int argc, char** argv) {
     std::cerr << "mbgc: error: --fmu builds an FMU: it does not go with --dump, --stats, --explain-scene or --library\n";
     return 2;
   }
-  if (fmi == 2) {
-    std::cerr << "mbgc: error: --fmi 2: FMI 2.0 export is not built yet; FMI 3.0 (the default) is\n";
-    return 2;
-  }
   opt.fmi_version = fmi;
   opt.fmu_model_exchange = fmu_kind != "cs";
   opt.fmu_co_simulation = fmu_kind != "me";

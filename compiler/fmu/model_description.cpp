@@ -61,6 +61,37 @@ std::string attribute(const char* name, const std::string& value) {
   return value.empty() ? std::string() : fmt::format(" {}=\"{}\"", name, xml_escape(value));
 }
 
+std::string unit_definitions(const Interface& fmu) {
+  if (fmu.units.empty()) return {};
+  std::string x = "  <UnitDefinitions>\n";
+  for (const Unit& u : fmu.units) {
+    const std::string base = base_unit(u);
+    if (base.empty()) x += fmt::format("    <Unit name=\"{}\"/>\n", xml_escape(u.name));
+    else x += fmt::format("    <Unit name=\"{}\">{}</Unit>\n", xml_escape(u.name), base);
+  }
+  return x + "  </UnitDefinitions>\n";
+}
+
+std::string log_categories_and_experiment(const Interface& fmu) {
+  std::string x =
+      "  <LogCategories>\n"
+      "    <Category name=\"logEvents\" description=\"events: modes switched, impacts, contacts made and lost\"/>\n"
+      "    <Category name=\"logStatusWarning\"/>\n"
+      "    <Category name=\"logStatusError\" description=\"why a call failed: the run's stop report\"/>\n"
+      "  </LogCategories>\n";
+  const mbgrt::Settings& d = fmu.defaults;
+  return x + fmt::format("  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" tolerance=\"{}\" stepSize=\"{}\"/>\n",
+                         number(d.t_start_s), number(d.t_end_s), number(d.rtol), number(d.interval_s));
+}
+
+/// The solver's items: name, value (mbgrt::Solver + 1), description.
+template <class Item>
+std::string solver_items(Item&& item) {
+  std::string x;
+  for (const mbgrt::IntegratorInfo& i : mbgrt::kIntegrators) x += item(i.name, static_cast<int>(i.solver) + 1, xml_escape(i.method));
+  return x;
+}
+
 std::string v3(const Interface& fmu, const Offer& offer, const std::string& token, const std::string& generator) {
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   x += fmt::format("<fmiModelDescription fmiVersion=\"3.0\" modelName=\"{}\" instantiationToken=\"{}\"{} "
@@ -75,29 +106,13 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
                      "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\"/>\n",
                      id);
-  if (!fmu.units.empty()) {
-    x += "  <UnitDefinitions>\n";
-    for (const Unit& u : fmu.units) {
-      const std::string base = base_unit(u);
-      if (base.empty()) x += fmt::format("    <Unit name=\"{}\"/>\n", xml_escape(u.name));
-      else x += fmt::format("    <Unit name=\"{}\">{}</Unit>\n", xml_escape(u.name), base);
-    }
-    x += "  </UnitDefinitions>\n";
-  }
+  x += unit_definitions(fmu);
   x += "  <TypeDefinitions>\n    <EnumerationType name=\"Solver\">\n";
-  for (const mbgrt::IntegratorInfo& i : mbgrt::kIntegrators) {
-    x += fmt::format("      <Item name=\"{}\" value=\"{}\" description=\"{}\"/>\n", i.name,
-                     static_cast<int>(i.solver) + 1, xml_escape(i.method));
-  }
+  x += solver_items([](const char* name, int value, const std::string& description) {
+    return fmt::format("      <Item name=\"{}\" value=\"{}\" description=\"{}\"/>\n", name, value, description);
+  });
   x += "    </EnumerationType>\n  </TypeDefinitions>\n";
-  x += "  <LogCategories>\n"
-       "    <Category name=\"logEvents\" description=\"events: modes switched, impacts, contacts made and lost\"/>\n"
-       "    <Category name=\"logStatusWarning\"/>\n"
-       "    <Category name=\"logStatusError\" description=\"why a call failed: the run's stop report\"/>\n"
-       "  </LogCategories>\n";
-  const mbgrt::Settings& d = fmu.defaults;
-  x += fmt::format("  <DefaultExperiment startTime=\"{}\" stopTime=\"{}\" tolerance=\"{}\" stepSize=\"{}\"/>\n",
-                   number(d.t_start_s), number(d.t_end_s), number(d.rtol), number(d.interval_s));
+  x += log_categories_and_experiment(fmu);
   x += "  <ModelVariables>\n";
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr) {
     const Variable& v = fmu.variables[vr];
@@ -133,12 +148,70 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
   return x;
 }
 
+
+/// FMI 2.0: ScalarVariables, event indicators counted (not variables), and
+/// ModelStructure by 1-based index into ModelVariables. The event indicators
+/// are the last value references, so every other variable's index is its
+/// value reference + 1.
+std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid, const std::string& generator) {
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += fmt::format("<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\"{} generationTool=\"{}\" "
+                   "variableNamingConvention=\"flat\" numberOfEventIndicators=\"{}\">\n",
+                   xml_escape(fmu.model_name), guid, attribute("description", fmu.description), xml_escape(generator),
+                   fmu.event_indicators);
+  const std::string id = xml_escape(fmu.model_name);
+  if (offer.model_exchange)
+    x += fmt::format("  <ModelExchange modelIdentifier=\"{}\" completedIntegratorStepNotNeeded=\"false\" "
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\"/>\n",
+                     id);
+  if (offer.co_simulation)
+    x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\"/>\n",
+                     id);
+  x += unit_definitions(fmu);
+  x += "  <TypeDefinitions>\n    <SimpleType name=\"Solver\">\n      <Enumeration>\n";
+  x += solver_items([](const char* name, int value, const std::string& description) {
+    return fmt::format("        <Item name=\"{}\" value=\"{}\" description=\"{}\"/>\n", name, value, description);
+  });
+  x += "      </Enumeration>\n    </SimpleType>\n  </TypeDefinitions>\n";
+  x += log_categories_and_experiment(fmu);
+  x += "  <ModelVariables>\n";
+  for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr) {
+    const Variable& v = fmu.variables[vr];
+    if (v.kind == Kind::event_indicator) continue;
+    const bool enumeration = v.type == Type::enumeration;
+    std::string a = fmt::format("name=\"{}\" valueReference=\"{}\"", xml_escape(v.name), vr);
+    a += attribute("description", v.description);
+    a += fmt::format(" causality=\"{}\"", causality_name(v.causality));
+    a += v.variability == Variability::fixed ? " variability=\"fixed\"" : enumeration ? "" : " variability=\"continuous\"";
+    if (v.kind == Kind::state || v.kind == Kind::derivative) a += " initial=\"calculated\"";
+    std::string type;
+    if (enumeration) type = "<Enumeration declaredType=\"Solver\"";
+    else type = "<Real";
+    if (v.start) type += fmt::format(" start=\"{}\"", enumeration ? fmt::format("{}", static_cast<long>(*v.start)) : number(*v.start));
+    if (v.derivative_of >= 0) type += fmt::format(" derivative=\"{}\"", v.derivative_of + 1);
+    type += attribute("unit", v.unit) + "/>";
+    x += fmt::format("    <ScalarVariable {}>{}</ScalarVariable>\n", a, type);
+  }
+  x += "  </ModelVariables>\n  <ModelStructure>\n";
+  auto list = [&](const char* element, auto&& wanted) {
+    std::string items;
+    for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr)
+      if (wanted(fmu.variables[vr].kind)) items += fmt::format("      <Unknown index=\"{}\"/>\n", vr + 1);
+    if (!items.empty()) x += fmt::format("    <{0}>\n{1}    </{0}>\n", element, items);
+  };
+  list("Outputs", [](Kind k) { return k == Kind::output; });
+  list("Derivatives", [](Kind k) { return k == Kind::derivative; });
+  list("InitialUnknowns", [](Kind k) { return k == Kind::output || k == Kind::state || k == Kind::derivative; });
+  x += "  </ModelStructure>\n</fmiModelDescription>\n";
+  return x;
+}
+
 }  // namespace
 
 std::string model_description(const Interface& fmu, FmiVersion version, const Offer& offer, const std::string& token,
                               const std::string& generator) {
-  (void)version;  // FMI 2.0: fmu/model_description.cpp writes 3.0 only so far
-  return v3(fmu, offer, token, generator);
+  return version == FmiVersion::v2 ? v2(fmu, offer, token, generator) : v3(fmu, offer, token, generator);
 }
 
 }  // namespace mbgc::fmu

@@ -118,12 +118,15 @@ std::string write_fmu(const Package& p, const std::string& path) {
   const fs::path object = tmp.path() / (p.model_identifier + ".so");
   const fs::path exports = tmp.path() / "exports.map";
   const fs::path log = tmp.path() / "compiler.log";
-  // the FMI functions and nothing else: the runtime and SUNDIALS stay inside
+  // The runtime's FMU library whole (nothing in the model's source calls the
+  // FMI functions, so the linker would take none of them from the archive);
+  // exported: the FMI functions and nothing else, the runtime and SUNDIALS
+  // stay inside.
   if (!write_file(source, p.source) || !write_file(exports, "{\n  global: fmi2*; fmi3*;\n  local: *;\n};\n"))
     return fmt::format("cannot write into `{}`", tmp.path().string());
   std::string command = fmt::format("{} -std=c++17 -O3 -DNDEBUG -fno-math-errno -fno-trapping-math -fPIC -shared -fvisibility=hidden -I{} {} -o {} {}",
                                     quoted(tc.compiler), quoted(tc.include.string()), quoted(source.string()),
-                                    quoted(object.string()), quoted(tc.library.string()));
+                                    quoted(object.string()), "-Wl,--whole-archive " + quoted(tc.library.string()) + " -Wl,--no-whole-archive");
   for (const std::string& lib : tc.static_libraries) command += " " + quoted(lib);
   command += fmt::format(" -pthread -Wl,--version-script={} -Wl,--no-undefined > {} 2>&1", quoted(exports.string()),
                          quoted(log.string()));

@@ -1,4 +1,4 @@
-// The examples' FMUs (mbgc --fmu) under an independent importer, fmusim:
+// The examples' FMUs (mbgc --fmu, FMI 3.0 and 2.0) under an independent importer, fmusim:
 // co-simulation runs the same integrator with the same steps as the
 // example's own simulator and must agree with it to 1e-9 of each output's
 // size; model exchange is integrated by fmusim's CVODE and must agree within
@@ -149,52 +149,78 @@ const Example kExamples[] = {
     {"two_track", SIM_TWO_TRACK, 1e-8, 3e-5},
 };
 
-void PrintTo(const Example& e, std::ostream* os) { *os << e.name; }
+/// An example's FMU for one FMI version.
+struct Case {
+  Example example;
+  int version;
+};
 
-std::string fmu_of(const std::string& name) { return std::string(FMU_DIR) + "/fmu_" + name + ".fmu"; }
+void PrintTo(const Case& c, std::ostream* os) { *os << c.example.name << " FMI " << c.version; }
 
-class Fmi3 : public ::testing::TestWithParam<Example> {};
+std::string fmu_of(const std::string& name, int version = 3) {
+  return std::string(FMU_DIR) + "/fmu" + std::to_string(version) + "_" + name + ".fmu";
+}
 
-TEST_P(Fmi3, CoSimulationAgreesWithTheNativeRunTo1e9) {
-  const Example& e = GetParam();
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (int version : {3, 2})
+    for (const Example& e : kExamples) all.push_back({e, version});
+  return all;
+}
+
+class Fmi : public ::testing::TestWithParam<Case> {
+ protected:
+  const Example& e = GetParam().example;
+  const int version = GetParam().version;
+  std::string tag(const char* kind) const { return std::string(e.name) + ".fmi" + std::to_string(version) + "." + kind; }
+};
+
+TEST_P(Fmi, CoSimulationAgreesWithTheNativeRunTo1e9) {
   const Table reference = native(e.simulator, e.name);
-  const Table cs = imported(fmu_of(e.name), std::string(e.name) + ".cs", "--interface-type cs");
+  const Table cs = imported(fmu_of(e.name, version), tag("cs"), "--interface-type cs");
   ASSERT_FALSE(reference.rows.empty());
   ASSERT_EQ(cs.rows.size(), reference.rows.size());
   std::string where;
-  EXPECT_LE(worst_difference(reference, cs, where), 1e-9) << where;
+  const double worst = worst_difference(reference, cs, where);
+  std::printf("%s FMI %d co-simulation: %.2g of scale (%s)\n", e.name, version, worst, where.c_str());
+  EXPECT_LE(worst, 1e-9) << where;
 }
 
-TEST_P(Fmi3, ModelExchangeAgreesWithinItsTolerancesReach) {
-  const Example& e = GetParam();
+TEST_P(Fmi, ModelExchangeAgreesWithinItsTolerancesReach) {
   const Table reference = native(e.simulator, e.name);
-  const Table me = imported(fmu_of(e.name), std::string(e.name) + ".me",
+  const Table me = imported(fmu_of(e.name, version), tag("me"),
                             "--interface-type me --solver cvode --tolerance " + number(e.me_tolerance));
   ASSERT_FALSE(reference.rows.empty());
   ASSERT_FALSE(me.rows.empty());
   std::string where;
-  EXPECT_LE(worst_difference(reference, me, where, false), e.me_bound) << where;
+  const double worst = worst_difference(reference, me, where, false);
+  std::printf("%s FMI %d model exchange: %.2g of scale (%s)\n", e.name, version, worst, where.c_str());
+  EXPECT_LE(worst, e.me_bound) << where;
 }
 
-INSTANTIATE_TEST_SUITE_P(Examples, Fmi3, ::testing::ValuesIn(kExamples),
-                         [](const ::testing::TestParamInfo<Example>& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Examples, Fmi, ::testing::ValuesIn(cases()), [](const ::testing::TestParamInfo<Case>& info) {
+  return std::string(info.param.example.name) + "_fmi" + std::to_string(info.param.version);
+});
 
-TEST(Fmi3Parameters, AStartValueChangesTheResultAsSetDoes) {
+TEST(FmiParameters, AStartValueChangesTheResultAsSetDoes) {
   const Table set = native(SIM_DC_MOTOR, "dc_motor_30V", "--set V_supply=30");
-  const Table start = imported(fmu_of("dc_motor"), "dc_motor_30V.cs", "--interface-type cs --start-value V_supply 30");
   const Table plain = native(SIM_DC_MOTOR, "dc_motor");
   ASSERT_FALSE(set.rows.empty());
-  ASSERT_EQ(start.rows.size(), set.rows.size());
-  std::string where;
-  EXPECT_LE(worst_difference(set, start, where), 1e-9) << where;
-  // and it did change it: the final current at 30 V is half that at 60 V
-  EXPECT_NEAR(start.rows.back()[1], 0.5 * plain.rows.back()[1], 1e-6 * plain.rows.back()[1]);
+  for (int version : {3, 2}) {
+    const Table start = imported(fmu_of("dc_motor", version), "dc_motor_30V.fmi" + std::to_string(version),
+                                 "--interface-type cs --start-value V_supply 30");
+    ASSERT_EQ(start.rows.size(), set.rows.size());
+    std::string where;
+    EXPECT_LE(worst_difference(set, start, where), 1e-9) << "FMI " << version << ": " << where;
+    // and it did change it: the final current at 30 V is half that at 60 V
+    EXPECT_NEAR(start.rows.back()[1], 0.5 * plain.rows.back()[1], 1e-6 * plain.rows.back()[1]);
+  }
 }
 
-TEST(Fmi3Binary, TheSharedObjectLoadsOnlyTheCAndCxxRuntimeAndLibm) {
+TEST(FmiBinary, TheSharedObjectLoadsOnlyTheCAndCxxRuntimeAndLibm) {
   const std::string dir = work("dc_motor_unzipped");
   ASSERT_EQ(shell("rm -rf \"" + dir + "\" && mkdir -p \"" + dir + "\" && cd \"" + dir + "\" && unzip -q \"" +
-                  fmu_of("dc_motor") + "\""),
+                  fmu_of("dc_motor", 3) + "\""),
             0);
   const std::string libs = work("dc_motor_ldd.txt");
   ASSERT_EQ(shell("ldd \"" + dir + "/binaries/x86_64-linux/dc_motor.so\" > \"" + libs + "\""), 0);
@@ -211,17 +237,19 @@ TEST(Fmi3Binary, TheSharedObjectLoadsOnlyTheCAndCxxRuntimeAndLibm) {
     ++count;
   }
   EXPECT_GE(count, 3);
-  // the FMI functions are what it exports, the runtime and SUNDIALS stay inside
+  // the FMI functions (3.0's and 2.0's) are what it exports, the runtime and SUNDIALS stay inside
   const std::string symbols = work("dc_motor_symbols.txt");
   ASSERT_EQ(shell("nm -D --defined-only \"" + dir + "/binaries/x86_64-linux/dc_motor.so\" > \"" + symbols + "\""), 0);
   std::istringstream defined(slurp(symbols));
-  int fmi = 0;
+  int fmi3 = 0, fmi2 = 0;
   for (std::string line; std::getline(defined, line);) {
     const std::string name = line.substr(line.rfind(' ') + 1);
-    EXPECT_EQ(name.rfind("fmi3", 0), 0u) << "the FMU exports " << name;
-    fmi += name.rfind("fmi3", 0) == 0 ? 1 : 0;
+    fmi3 += name.rfind("fmi3", 0) == 0 ? 1 : 0;
+    fmi2 += name.rfind("fmi2", 0) == 0 ? 1 : 0;
+    EXPECT_TRUE(name.rfind("fmi3", 0) == 0 || name.rfind("fmi2", 0) == 0) << "the FMU exports " << name;
   }
-  EXPECT_GE(fmi, 70);
+  EXPECT_EQ(fmi3, 75);  // every function of FMI 3.0
+  EXPECT_EQ(fmi2, 44);  // and of FMI 2.0
 }
 
 }  // namespace

@@ -3,8 +3,8 @@
 // function: one becomes fmi3Error with the reason logged.
 #include <fmt/format.h>
 
-#include <exception>
 #include <string>
+#include <utility>
 
 #include "fmi/fmi3_api.hpp"
 #include "fmi/instance.hpp"
@@ -16,20 +16,12 @@ namespace {
 
 fmi3Status to_fmi3(Status s) { return static_cast<fmi3Status>(s); }
 
-/// Calls `body` on the instance, an exception turned into fmi3Error.
 template <class Body>
 fmi3Status call(fmi3Instance instance, const char* what, Body&& body) {
-  if (!instance) return fmi3Error;
-  auto& i = *static_cast<Instance*>(instance);
-  try {
-    return to_fmi3(body(i));
-  } catch (const std::exception& e) {
-    i.refuse(fmt::format("{}: {}", what, e.what()));
-  } catch (...) {
-    i.refuse(fmt::format("{}: an unexpected error", what));
-  }
-  return fmi3Error;
+  return to_fmi3(mbgrt::fmu::call(instance, what, std::forward<Body>(body)));
 }
+
+fmi3Status absent(fmi3Instance instance, const char* what) { return to_fmi3(mbgrt::fmu::absent(instance, what)); }
 
 fmi3Instance instantiate(mbgrt::fmu::Interface interface, fmi3String name, fmi3String token, fmi3Boolean logging_on,
                          fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
@@ -51,13 +43,6 @@ fmi3Instance instantiate(mbgrt::fmu::Interface interface, fmi3String name, fmi3S
     logger(Status::error, "logStatusError", fmt::format("the model could not be made: {}", e.what()));
   }
   return nullptr;
-}
-
-/// A function for something this FMU does not have (clocks, other types).
-fmi3Status absent(fmi3Instance instance, const char* what) {
-  return call(instance, what, [&](Instance& i) {
-    return i.refuse(fmt::format("{}: this FMU has no such variables or features (modelDescription.xml lists what it has)", what));
-  });
 }
 
 }  // namespace
@@ -105,7 +90,8 @@ void fmi3FreeInstance(fmi3Instance instance) { delete static_cast<Instance*>(ins
 fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined, fmi3Float64 tolerance,
                                        fmi3Float64 startTime, fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
   return call(instance, "EnterInitializationMode", [&](Instance& i) {
-    return i.enter_initialization(startTime, toleranceDefined, tolerance, stopTimeDefined, stopTime);
+    const Status s = i.setup_experiment(startTime, toleranceDefined, tolerance, stopTimeDefined, stopTime);
+    return s == Status::ok ? i.enter_initialization() : s;
   });
 }
 

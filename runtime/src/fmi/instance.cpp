@@ -155,9 +155,9 @@ Settings Instance::run_settings() const {
 
 // ---- the lifecycle ----------------------------------------------------------------
 
-Status Instance::enter_initialization(double start, bool tolerance_defined, double tolerance, bool stop_defined,
-                                      double stop) {
-  if (!allowed("EnterInitializationMode", {Phase::instantiated})) return Status::error;
+Status Instance::setup_experiment(double start, bool tolerance_defined, double tolerance, bool stop_defined,
+                                  double stop) {
+  if (!allowed("SetupExperiment", {Phase::instantiated})) return Status::error;
   if (!std::isfinite(start)) return refuse(fmt::format("the start time {} is not finite", start));
   if (stop_defined && !(stop >= start)) return refuse(fmt::format("the stop time {} is before the start time {}", stop, start));
   if (tolerance_defined && !(tolerance > 0)) return refuse(fmt::format("the tolerance {} is not positive", tolerance));
@@ -165,6 +165,11 @@ Status Instance::enter_initialization(double start, bool tolerance_defined, doub
   stop_defined_ = stop_defined;
   stop_ = stop;
   if (tolerance_defined) settings_.rtol = tolerance;
+  return Status::ok;
+}
+
+Status Instance::enter_initialization() {
+  if (!allowed("EnterInitializationMode", {Phase::instantiated})) return Status::error;
   phase_ = Phase::initialization;
   return Status::ok;
 }
@@ -484,7 +489,9 @@ Status Instance::do_step(double t, double h, bool* terminate_simulation, double*
     return refuse(fmt::format("DoStep from t = {} s, but the FMU is at t = {} s", t, t_));
   if (stop_defined_ && t + h > stop_ + 1e-12 * std::max(1.0, std::abs(stop_)))
     return refuse(fmt::format("DoStep to t = {} s, past the stop time {} s", t + h, stop_));
-  const double target = stop_defined_ ? std::min(t + h, stop_) : t + h;
+  double target = stop_defined_ ? std::min(t + h, stop_) : t + h;
+  // a communication point the importer summed up, a rounding past the end: the end
+  if (std::abs(target - integrate_until_) <= 1e-12 * std::max(1.0, std::abs(integrate_until_))) target = integrate_until_;
   return captured([&](std::FILE* report) {
     if (target > integrate_until_) {
       // past the model's end without a stop time: the integrator starts again from here, with none
@@ -509,6 +516,13 @@ Status Instance::do_step(double t, double h, bool* terminate_simulation, double*
     invalidate();
     *last_successful_time = t_;
     return Status::ok;
+  });
+}
+
+Status absent(void* instance, const char* what) {
+  return call(instance, what, [&](Instance& i) {
+    return i.refuse(fmt::format("{}: this FMU has no such variables or features (modelDescription.xml lists what it has)",
+                                what));
   });
 }
 

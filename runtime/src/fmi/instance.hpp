@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -48,11 +49,15 @@ class Instance {
   const std::string& name() const { return name_; }
   Interface interface() const { return interface_; }
   Phase phase() const { return phase_; }
+  double time() const { return t_; }
   void set_logging(bool on) { logging_on_ = on; }
 
   // ---- the lifecycle ------------------------------------------------------------
-  Status enter_initialization(double start, bool tolerance_defined, double tolerance, bool stop_defined,
-                              double stop);
+  /// The run's start and, if defined, its tolerance (the integrators' rtol in
+  /// co-simulation) and stop time (FMI 2's SetupExperiment; FMI 3 passes them
+  /// to EnterInitializationMode).
+  Status setup_experiment(double start, bool tolerance_defined, double tolerance, bool stop_defined, double stop);
+  Status enter_initialization();
   Status exit_initialization();
   Status enter_event_mode();
   Status enter_continuous_time_mode();
@@ -87,6 +92,9 @@ class Instance {
   Status refuse(const std::string& why);
   /// Checks that the call `what` may come in this phase.
   bool allowed(const char* what, std::initializer_list<Phase> phases);
+  /// The description of a value reference the importer passed, or null (and
+  /// the error logged).
+  const Variable* variable(std::uint32_t vr);
 
  private:
   Status fail(const std::string& why);  ///< the model cannot go on: logged, the instance fails
@@ -95,7 +103,6 @@ class Instance {
   /// reports) captured and handed to the importer's logger.
   template <class Body>
   Status captured(Body&& body);
-  const Variable* variable(std::uint32_t vr);
   void invalidate() { outputs_valid_ = derivatives_valid_ = false; }
   bool evaluate_derivatives();
   bool evaluate_outputs();
@@ -122,5 +129,24 @@ class Instance {
   std::vector<double> y_, ydot_, outputs_, indicators_, reference_;  ///< reference_: the event functions after the last event
   bool outputs_valid_ = false, derivatives_valid_ = false;
 };
+
+/// What every FMI function does with its instance (void* in C): `body` on it,
+/// an exception logged and turned into an error; a null instance is an error.
+template <class Body>
+Status call(void* instance, const char* what, Body&& body) {
+  if (!instance) return Status::error;
+  Instance& i = *static_cast<Instance*>(instance);
+  try {
+    return body(i);
+  } catch (const std::exception& e) {
+    return i.refuse(std::string(what) + ": " + e.what());
+  } catch (...) {
+    return i.refuse(std::string(what) + ": an unexpected error");
+  }
+}
+
+/// A function for something this FMU does not have (clocks, types it has no
+/// variables of): logged, an error.
+Status absent(void* instance, const char* what);
 
 }  // namespace mbgrt::fmu
