@@ -1,0 +1,249 @@
+// An importer of our own that calls an FMU's FMI 3.0 functions directly
+// (dlopen, as importers do), for what fmusim never does: calls out of the
+// state machine's order, unknown value references, NaN, a fixed parameter
+// set after initialisation, a wrong token, two instances in one process, and
+// a model that stops at the extremes. Each bad call must return fmi3Error
+// with the reason logged, never crash or hand back a NaN.
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fmi/fmi3_api.hpp"
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The messages an instance logged, in order.
+struct Log {
+  std::vector<std::string> messages;
+  std::string all() const {
+    std::string out;
+    for (const std::string& m : messages) out += m + "\n";
+    return out;
+  }
+  bool mentions(const std::string& text) const { return all().find(text) != std::string::npos; }
+};
+
+void log_message(fmi3InstanceEnvironment environment, fmi3Status, fmi3String, fmi3String message) {
+  static_cast<Log*>(environment)->messages.push_back(message ? message : "");
+}
+
+/// An FMU unzipped and its shared object loaded: the FMI functions by name,
+/// value references by variable name (from its modelDescription.xml).
+class Fmu {
+ public:
+  explicit Fmu(const std::string& name) {
+    dir_ = std::string(WORK_DIR) + "/calls_" + name;
+    const std::string fmu = std::string(FMU_DIR) + "/fmu3_" + name + ".fmu";
+    const std::string command = "rm -rf '" + dir_ + "' && mkdir -p '" + dir_ + "' && cd '" + dir_ + "' && unzip -q '" + fmu + "'";
+    if (std::system(command.c_str()) != 0) return;
+    description_ = slurp(dir_ + "/modelDescription.xml");
+    handle_ = dlopen((dir_ + "/binaries/x86_64-linux/" + name + ".so").c_str(), RTLD_NOW | RTLD_LOCAL);
+  }
+  ~Fmu() {
+    if (handle_) dlclose(handle_);
+  }
+  Fmu(const Fmu&) = delete;
+  Fmu& operator=(const Fmu&) = delete;
+
+  bool loaded() const { return handle_ != nullptr; }
+  template <class F>
+  F* function(const char* name) const {
+    return reinterpret_cast<F*>(dlsym(handle_, name));
+  }
+  fmi3ValueReference reference(const std::string& variable) const {
+    std::smatch m;
+    const std::regex pattern("name=\"" + std::regex_replace(variable, std::regex(R"([.\[\]()])"), R"(\$&)") +
+                             "\" valueReference=\"([0-9]+)\"");
+    EXPECT_TRUE(std::regex_search(description_, m, pattern)) << "no variable " << variable;
+    return m.empty() ? 0 : static_cast<fmi3ValueReference>(std::stoul(m[1]));
+  }
+  std::string token() const {
+    std::smatch m;
+    std::regex_search(description_, m, std::regex("instantiationToken=\"([^\"]+)\""));
+    return m.empty() ? "" : m[1].str();
+  }
+
+  fmi3Instance co_simulation(Log& log, const std::string& token) const {
+    return function<decltype(fmi3InstantiateCoSimulation)>("fmi3InstantiateCoSimulation")(
+        "calls", token.c_str(), "", false, true, false, false, nullptr, 0, &log, log_message, nullptr);
+  }
+  fmi3Instance model_exchange(Log& log) const {
+    return function<decltype(fmi3InstantiateModelExchange)>("fmi3InstantiateModelExchange")(
+        "calls", token().c_str(), "", false, true, &log, log_message);
+  }
+  fmi3Status enter_initialization(fmi3Instance i) const {
+    return function<decltype(fmi3EnterInitializationMode)>("fmi3EnterInitializationMode")(i, false, 0.0, 0.0, false, 0.0);
+  }
+  fmi3Status exit_initialization(fmi3Instance i) const {
+    return function<decltype(fmi3ExitInitializationMode)>("fmi3ExitInitializationMode")(i);
+  }
+  fmi3Status set(fmi3Instance i, fmi3ValueReference vr, double value) const {
+    return function<decltype(fmi3SetFloat64)>("fmi3SetFloat64")(i, &vr, 1, &value, 1);
+  }
+  fmi3Status get(fmi3Instance i, fmi3ValueReference vr, double& value) const {
+    return function<decltype(fmi3GetFloat64)>("fmi3GetFloat64")(i, &vr, 1, &value, 1);
+  }
+  fmi3Status step(fmi3Instance i, double t, double h) const {
+    fmi3Boolean event = false, terminate = false, early = false;
+    double last = 0;
+    return function<decltype(fmi3DoStep)>("fmi3DoStep")(i, t, h, true, &event, &terminate, &early, &last);
+  }
+  void free(fmi3Instance i) const { function<decltype(fmi3FreeInstance)>("fmi3FreeInstance")(i); }
+
+ private:
+  std::string dir_, description_;
+  void* handle_ = nullptr;
+};
+
+TEST(FmiCalls, ATokenNotTheFmusIsRefusedAndSaidWhy) {
+  Fmu fmu("dc_motor");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  EXPECT_EQ(fmu.co_simulation(log, "{not-this-one}"), nullptr);
+  EXPECT_TRUE(log.mentions("is not this FMU's")) << log.all();
+}
+
+TEST(FmiCalls, AnUnknownValueReferenceIsAnError) {
+  Fmu fmu("dc_motor");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  double v = 0;
+  EXPECT_EQ(fmu.get(i, 100000, v), fmi3Error);
+  EXPECT_TRUE(log.mentions("unknown value reference 100000")) << log.all();
+  EXPECT_EQ(fmu.set(i, 100000, 1.0), fmi3Error);
+  fmu.free(i);
+}
+
+TEST(FmiCalls, ANanOrAnOutputSetIsAnError) {
+  Fmu fmu("dc_motor");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  EXPECT_EQ(fmu.set(i, fmu.reference("V_supply"), NAN), fmi3Error);
+  EXPECT_TRUE(log.mentions("'V_supply' (value reference")) << log.all();
+  EXPECT_TRUE(log.mentions("cannot be set to nan")) << log.all();
+  EXPECT_EQ(fmu.set(i, fmu.reference("omega"), 1.0), fmi3Error);
+  EXPECT_TRUE(log.mentions("is an output: only parameters and solver settings can be set")) << log.all();
+  fmu.free(i);
+}
+
+TEST(FmiCalls, AFixedParameterSetAfterInitialisationIsAnError) {
+  Fmu fmu("dc_motor");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  EXPECT_EQ(fmu.set(i, fmu.reference("V_supply"), 30.0), fmi3OK);  // before: as --set
+  ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
+  ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
+  EXPECT_EQ(fmu.set(i, fmu.reference("V_supply"), 40.0), fmi3Error);
+  EXPECT_TRUE(log.mentions("'V_supply' (value reference")) << log.all();
+  EXPECT_TRUE(log.mentions("is fixed: it can be set only before ExitInitializationMode")) << log.all();
+  double v = 0;
+  EXPECT_EQ(fmu.get(i, fmu.reference("V_supply"), v), fmi3OK);
+  EXPECT_EQ(v, 30.0);
+  fmu.free(i);
+}
+
+TEST(FmiCalls, CallsOutOfTheStateMachinesOrderAreErrors) {
+  Fmu fmu("dc_motor");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  EXPECT_EQ(fmu.step(i, 0.0, 0.01), fmi3Error);
+  EXPECT_TRUE(log.mentions("DoStep is not allowed in Instantiated")) << log.all();
+  EXPECT_EQ(fmu.exit_initialization(i), fmi3Error);
+  EXPECT_TRUE(log.mentions("ExitInitializationMode is not allowed in Instantiated")) << log.all();
+  double omega = 0;
+  EXPECT_EQ(fmu.get(i, fmu.reference("omega"), omega), fmi3Error);
+  EXPECT_TRUE(log.mentions("it has a value once the initialisation is done")) << log.all();
+  ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
+  ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
+  EXPECT_EQ(fmu.step(i, 0.5, 0.01), fmi3Error);  // not where the FMU is
+  EXPECT_TRUE(log.mentions("DoStep from t = 0.5 s, but the FMU is at t = 0 s")) << log.all();
+  EXPECT_EQ(fmu.step(i, 0.0, -0.01), fmi3Error);
+  EXPECT_EQ(fmu.step(i, 0.0, 0.01), fmi3OK);  // the refused calls changed nothing
+  fmi3Boolean event = false, terminate = false;
+  EXPECT_EQ(fmu.function<decltype(fmi3CompletedIntegratorStep)>("fmi3CompletedIntegratorStep")(i, true, &event, &terminate),
+            fmi3Error);  // model exchange's, on a co-simulation instance in Step Mode
+  fmu.free(i);
+  // model exchange: derivatives before the initialisation
+  Log me_log;
+  fmi3Instance m = fmu.model_exchange(me_log);
+  ASSERT_NE(m, nullptr);
+  double dx[2];
+  EXPECT_EQ(fmu.function<decltype(fmi3GetContinuousStateDerivatives)>("fmi3GetContinuousStateDerivatives")(m, dx, 2),
+            fmi3Error);
+  EXPECT_TRUE(me_log.mentions("GetContinuousStateDerivatives is not allowed in Instantiated")) << me_log.all();
+  fmu.free(m);
+}
+
+TEST(FmiCalls, TwoInstancesInOneProcessRunApart) {
+  Fmu fmu("dc_motor");
+  ASSERT_TRUE(fmu.loaded());
+  Log log_a, log_b;
+  fmi3Instance a = fmu.co_simulation(log_a, fmu.token()), b = fmu.co_simulation(log_b, fmu.token());
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  ASSERT_EQ(fmu.set(b, fmu.reference("V_supply"), 30.0), fmi3OK);
+  for (fmi3Instance i : {a, b}) {
+    ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
+    ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
+  }
+  for (int k = 0; k < 200; ++k)  // stepped in turns
+    for (fmi3Instance i : {a, b}) ASSERT_EQ(fmu.step(i, k * 0.01, 0.01), fmi3OK);
+  double current_a = 0, current_b = 0;
+  ASSERT_EQ(fmu.get(a, fmu.reference("current"), current_a), fmi3OK);
+  ASSERT_EQ(fmu.get(b, fmu.reference("current"), current_b), fmi3OK);
+  EXPECT_NEAR(current_a, 24.7659, 1e-4);  // the simulator's final current (README)
+  EXPECT_NEAR(current_b, 0.5 * current_a, 1e-9 * current_a);  // linear in the supply
+  fmu.free(a);
+  fmu.free(b);
+}
+
+TEST(FmiCalls, AModelThatBlowsUpStopsWithTheReportNeverANan) {
+  Fmu fmu("blowup");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
+  ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
+  fmi3Status status = fmi3OK;
+  double t = 0;
+  for (; t < 2 - 1e-9 && status == fmi3OK; t += 0.1) {
+    status = fmu.step(i, t, 0.1);
+    double v = 0;
+    if (status == fmi3OK) {
+      EXPECT_EQ(fmu.get(i, fmu.reference("v"), v), fmi3OK);
+      EXPECT_TRUE(std::isfinite(v)) << "at t = " << t + 0.1;
+    }
+  }
+  EXPECT_EQ(status, fmi3Error);
+  EXPECT_LT(t, 1.05);  // the source is infinite at t = 1 s
+  EXPECT_TRUE(log.mentions("cap.q")) << log.all();  // the state, in model terms
+  double v = 0;
+  EXPECT_EQ(fmu.get(i, fmu.reference("v"), v), fmi3Error);  // nothing after the failure
+  EXPECT_TRUE(log.mentions("the FMU failed at an earlier call")) << log.all();
+  fmu.free(i);
+}
+
+}  // namespace
