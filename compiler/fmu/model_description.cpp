@@ -100,11 +100,11 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
   const std::string id = xml_escape(fmu.model_name);
   if (offer.model_exchange)
     x += fmt::format("  <ModelExchange modelIdentifier=\"{}\" needsCompletedIntegratorStep=\"true\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\"/>\n",
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" providesDirectionalDerivatives=\"true\"/>\n",
                      id);
   if (offer.co_simulation)
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\"/>\n",
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\" providesDirectionalDerivatives=\"true\"/>\n",
                      id);
   x += unit_definitions(fmu);
   x += "  <TypeDefinitions>\n    <EnumerationType name=\"Solver\">\n";
@@ -162,11 +162,13 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
   const std::string id = xml_escape(fmu.model_name);
   if (offer.model_exchange)
     x += fmt::format("  <ModelExchange modelIdentifier=\"{}\" completedIntegratorStepNotNeeded=\"false\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\"/>\n",
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" "
+                     "providesDirectionalDerivative=\"true\"/>\n",
                      id);
   if (offer.co_simulation)
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\"/>\n",
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" "
+                     "providesDirectionalDerivative=\"true\"/>\n",
                      id);
   x += unit_definitions(fmu);
   x += "  <TypeDefinitions>\n    <SimpleType name=\"Solver\">\n      <Enumeration>\n";

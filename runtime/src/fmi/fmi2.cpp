@@ -144,9 +144,12 @@ fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate, fmi2Byte[], size
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte[], size_t, fmi2FMUstate*) {
   return absent(c, "fmi2DeSerializeFMUstate");
 }
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t, const fmi2ValueReference[],
-                                        size_t, const fmi2Real[], fmi2Real[]) {
-  return absent(c, "fmi2GetDirectionalDerivative");
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
+                                        const fmi2ValueReference vKnown_ref[], size_t nKnown, const fmi2Real dvKnown[],
+                                        fmi2Real dvUnknown[]) {
+  return call(c, "fmi2GetDirectionalDerivative", [&](Instance& i) {
+    return i.directional_derivative(vUnknown_ref, nUnknown, vKnown_ref, nKnown, dvKnown, dvUnknown);
+  });
 }
 
 fmi2Status fmi2EnterEventMode(fmi2Component c) {

@@ -200,10 +200,15 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte[], size
   return absent(instance, "DeserializeFMUState");
 }
 
-fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference[], size_t,
-                                        const fmi3ValueReference[], size_t, const fmi3Float64[], size_t,
-                                        fmi3Float64[], size_t) {
-  return absent(instance, "GetDirectionalDerivative");
+fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,
+                                        const fmi3ValueReference knowns[], size_t nKnowns, const fmi3Float64 seed[],
+                                        size_t nSeed, fmi3Float64 sensitivity[], size_t nSensitivity) {
+  return call(instance, "GetDirectionalDerivative", [&](Instance& i) {
+    if (nSeed != nKnowns || nSensitivity != nUnknowns)
+      return i.refuse(fmt::format("GetDirectionalDerivative: {} seeds for {} knowns, {} sensitivities for {} unknowns",
+                                  nSeed, nKnowns, nSensitivity, nUnknowns));
+    return i.directional_derivative(unknowns, nUnknowns, knowns, nKnowns, seed, sensitivity);
+  });
 }
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueReference[], size_t,
                                     const fmi3ValueReference[], size_t, const fmi3Float64[], size_t, fmi3Float64[],

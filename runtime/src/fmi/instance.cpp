@@ -478,6 +478,65 @@ Status Instance::update_discrete_states(bool* values_changed, bool* terminate_si
   });
 }
 
+Status Instance::directional_derivative(const std::uint32_t* unknowns, std::size_t n_unknowns,
+                                        const std::uint32_t* knowns, std::size_t n_knowns, const double* seed,
+                                        double* sensitivity) {
+  if (!guard_ || phase_ == Phase::instantiated || phase_ == Phase::initialization || phase_ == Phase::failed)
+    return refuse(fmt::format("GetDirectionalDerivative is not allowed in {}", phase_name(phase_)));
+  std::vector<double> direction(n_, 0.0);
+  for (std::size_t k = 0; k < n_knowns; ++k) {
+    const Variable* v = variable(knowns[k]);
+    if (!v) return Status::error;
+    if (v->kind != Kind::state)
+      return refuse(fmt::format("GetDirectionalDerivative: value reference {} is {}; the knowns are continuous states",
+                                knowns[k], kind_name(v->kind)));
+    if (!std::isfinite(seed[k])) return refuse(fmt::format("GetDirectionalDerivative: seed {} is {}", k, seed[k]));
+    direction[v->index] += seed[k];
+  }
+  std::vector<const Variable*> wanted(n_unknowns);
+  bool derivatives_only = true;
+  for (std::size_t u = 0; u < n_unknowns; ++u) {
+    wanted[u] = variable(unknowns[u]);
+    if (!wanted[u]) return Status::error;
+    if (wanted[u]->kind != Kind::derivative && wanted[u]->kind != Kind::output)
+      return refuse(fmt::format("GetDirectionalDerivative: value reference {} is {}; the unknowns are state "
+                                "derivatives and outputs",
+                                unknowns[u], kind_name(wanted[u]->kind)));
+    derivatives_only = derivatives_only && wanted[u]->kind == Kind::derivative;
+  }
+  if (derivatives_only && guard_->has_jacobian()) {  // the Jacobian the compiler derived
+    std::vector<double> jacobian(n_ * n_);
+    if (guard_->jacobian(t_, y_.data(), jacobian.data()) != 0)
+      return fail(fmt::format("at t = {} s: {}", detail::format_time(t_), guard_->describe(*guard_->blame())));
+    for (std::size_t u = 0; u < n_unknowns; ++u) {
+      const std::size_t row = wanted[u]->index;
+      double sum = 0.0;
+      for (std::size_t j = 0; j < n_; ++j) sum += jacobian[row * n_ + j] * direction[j];
+      sensitivity[u] = sum;
+    }
+    return Status::ok;
+  }
+  // Central differences along the direction, a step of 1e-6 of the states' size over the direction's.
+  double size = 1.0, length = 0.0;
+  for (std::size_t j = 0; j < n_; ++j) size = std::max(size, std::abs(y_[j])), length = std::max(length, std::abs(direction[j]));
+  if (length == 0.0) {
+    std::fill(sensitivity, sensitivity + n_unknowns, 0.0);
+    return Status::ok;
+  }
+  const double h = 1e-6 * size / length;
+  std::vector<double> plus(n_), minus(n_), dplus(n_), dminus(n_), oplus(outputs_.size()), ominus(outputs_.size());
+  for (std::size_t j = 0; j < n_; ++j) plus[j] = y_[j] + h * direction[j], minus[j] = y_[j] - h * direction[j];
+  if (guard_->derivative(t_, plus.data(), dplus.data()) != 0 || guard_->derivative(t_, minus.data(), dminus.data()) != 0)
+    return fail(fmt::format("at t = {} s: {}", detail::format_time(t_), guard_->describe(*guard_->blame())));
+  model_->outputs(t_, plus.data(), nullptr, oplus.data());
+  model_->outputs(t_, minus.data(), nullptr, ominus.data());
+  for (std::size_t u = 0; u < n_unknowns; ++u) {
+    const std::size_t i = wanted[u]->index;
+    sensitivity[u] = wanted[u]->kind == Kind::derivative ? (dplus[i] - dminus[i]) / (2 * h) : (oplus[i] - ominus[i]) / (2 * h);
+  }
+  return Status::ok;
+}
+
 // ---- co-simulation ----------------------------------------------------------------
 
 Status Instance::do_step(double t, double h, bool* terminate_simulation, double* last_successful_time) {

@@ -84,6 +84,12 @@ class Instance {
   Status completed_integrator_step(bool* enter_event_mode, bool* terminate_simulation);
   Status update_discrete_states(bool* values_changed, bool* terminate_simulation);
 
+  /// The derivatives of the unknowns (state derivatives, outputs) along the
+  /// states' seed, at the current time and states: the model's own Jacobian
+  /// where every unknown is a state derivative, else central differences.
+  Status directional_derivative(const std::uint32_t* unknowns, std::size_t n_unknowns, const std::uint32_t* knowns,
+                                std::size_t n_knowns, const double* seed, double* sensitivity);
+
   // ---- co-simulation ------------------------------------------------------------
   Status do_step(double t, double h, bool* terminate_simulation, double* last_successful_time);
 
