@@ -34,8 +34,7 @@ Toolchain find_toolchain() {
   t.compiler = cxx && *cxx ? cxx : toolchain::kCompiler;
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  const std::string build = toolchain::kBuildDir;
-  if (!ec && exe.string().rfind(build + "/", 0) == 0) {
+  if (!ec && fs::equivalent(exe, toolchain::kBuildExecutable, ec)) {
     t.include = toolchain::kBuildInclude;
     t.library = toolchain::kBuildLibrary;
   } else {

@@ -6,6 +6,8 @@
 #   3. run both simulators (rc from mbgc_add_simulation, rc_embedded from
 #      mbgc_add_model + main.cpp) with --t-end 1 --out FILE.csv and check the
 #      CSV against the RC closed form to 1e-6 relative;
+#   3a. run its FMU (mbgc_add_fmu) under fmusim (FMUSIM, when given) and
+#      check its CSV the same way;
 #   4. touch rc.mbg, rebuild: mbgc must run for both targets (under Ninja,
 #      leaving the same C++ untouched and nothing recompiled); edit it so that
 #      the C++ changes: both generated files must be rewritten; a further
@@ -178,6 +180,8 @@ foreach(f
     ${INSTALL_BINDIR}/${COMPILER_FILE_NAME}
     ${INSTALL_LIBDIR}/${RUNTIME_FILE_NAME}
     ${INSTALL_INCLUDEDIR}/mbgrt/model.hpp
+    ${INSTALL_INCLUDEDIR}/mbgrt/fmu.hpp
+    ${INSTALL_LIBDIR}/libmbgrt_fmu.a
     ${INSTALL_LIBDIR}/cmake/mbgc/mbgcConfig.cmake
     ${INSTALL_LIBDIR}/cmake/mbgc/mbgcConfigVersion.cmake
     ${INSTALL_LIBDIR}/cmake/mbgc/mbgcTargets.cmake
@@ -239,6 +243,23 @@ foreach(sim rc rc_embedded)
   check_csv(${WORK_DIR}/${sim}.csv)
 endforeach()
 
+# ---- 3a. the FMU of mbgc_add_fmu, under fmusim (when the build has it: tests/fmi) ----------
+if(NOT EXISTS ${bld}/rc_fmu.fmu)
+  message(FATAL_ERROR "install test: mbgc_add_fmu made no ${bld}/rc_fmu.fmu")
+endif()
+if(FMUSIM)
+  run("fmusim --interface-type cs rc_fmu.fmu"
+    COMMAND ${FMUSIM} --interface-type cs --stop-time 1 --output-file ${WORK_DIR}/rc_fmu_fmusim.csv ${bld}/rc_fmu.fmu)
+  # fmusim quotes its header and calls the time `time`: as the simulators write it
+  file(READ ${WORK_DIR}/rc_fmu_fmusim.csv fmu_csv)
+  string(REPLACE "\"" "" fmu_csv "${fmu_csv}")
+  string(REGEX REPLACE "^time," "t," fmu_csv "${fmu_csv}")
+  file(WRITE ${WORK_DIR}/rc_fmu.csv "${fmu_csv}")
+  check_csv(${WORK_DIR}/rc_fmu.csv)
+else()
+  message(STATUS "install test: no fmusim, the outside project's FMU was built but not run")
+endif()
+
 # ---- 3b. without CMake: the installed mbgc, then c++ with pkg-config's flags ----------
 find_program(PKG_CONFIG pkg-config REQUIRED)
 run("installed mbgc rc.mbg -o rc_by_hand.cpp"
@@ -282,9 +303,9 @@ run("rebuild after touching rc.mbg" OUTPUT_VARIABLE out
   COMMAND ${CMAKE_COMMAND} --build ${bld} ${config_args})
 string(REGEX MATCHALL "${comment_regex}" hits "${out}")
 list(LENGTH hits n_hits)
-if(NOT n_hits EQUAL 2)
+if(NOT n_hits EQUAL 3)
   message(FATAL_ERROR "install test: after touching rc.mbg, expected the model compiled "
-                      "twice (rc and rc_lib), saw ${n_hits}:\n${out}")
+                      "three times (rc, rc_lib and rc_fmu), saw ${n_hits}:\n${out}")
 endif()
 # Under Ninja mbgc runs with --keep-unchanged: the same C++ is left alone
 # (restat: nothing is recompiled); an edit that changes the C++ (here a new
