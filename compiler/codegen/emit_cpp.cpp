@@ -98,6 +98,7 @@ class Emitter {
       const bool friction = std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const ContactRow& r) { return bool(r.friction); });
       add_contact_methods(c, s_, contact_speeds(), friction ? std::optional<CppFunction>(contact_tangents()) : std::nullopt);
     }
+    add_held_state_methods(c, s_);
     if (!s_.constraints.empty()) constraint_functions(c);
     std::optional<EnergyMethods> energy;
     if (s_.energy.available) {

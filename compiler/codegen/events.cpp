@@ -3,6 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include "codegen/identity.hpp"
 #include "codegen/names.hpp"
 
@@ -105,6 +109,43 @@ void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction sp
     c.private_members.push_back(CppStmt::comment("unilateral contacts with friction: the slip direction while sliding (in the rows' tangent basis)"));
     c.private_members.push_back(CppStmt::line(fmt::format("double contact_slip_[{}][2] = {{}};", n)));
   }
+}
+
+void add_held_state_methods(CppClass& c, const ir::ReducedSystem& s) {
+  if (s.events.empty() && s.contacts.empty()) return;
+  const bool friction =
+      std::any_of(s.contacts.begin(), s.contacts.end(), [](const ir::ContactRow& r) { return bool(r.friction); });
+  // the members a run changes besides y, each a run of doubles
+  std::vector<std::pair<std::string, std::size_t>> runs;
+  if (!s.events.empty()) runs.emplace_back("mode_", s.events.size());
+  if (!s.contacts.empty()) {
+    runs.emplace_back("contact_bias_", s.contacts.size());
+    runs.emplace_back("contact_damping_", s.contacts.size());
+  }
+  std::size_t size = 0;
+  CppFunction get{"", "void get_held_state(double* out) const override", {}};
+  CppFunction set{"", "void set_held_state(const double* in) override", {}};
+  for (const auto& [member, count] : runs) {
+    get.body.push_back(CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) out[{} + k] = {}[k];", count, size, member)));
+    set.body.push_back(CppStmt::line(fmt::format("for (std::size_t k = 0; k < {}; ++k) {}[k] = in[{} + k];", count, member, size)));
+    size += count;
+  }
+  if (friction) {  // the slip directions, two per contact
+    const std::size_t n = s.contacts.size();
+    get.body.push_back(CppStmt::line(fmt::format(
+        "for (std::size_t k = 0; k < {}; ++k) out[{} + 2 * k] = contact_slip_[k][0], out[{} + 2 * k + 1] = contact_slip_[k][1];",
+        n, size, size)));
+    set.body.push_back(CppStmt::line(fmt::format(
+        "for (std::size_t k = 0; k < {}; ++k) contact_slip_[k][0] = in[{} + 2 * k], contact_slip_[k][1] = in[{} + 2 * k + 1];",
+        n, size, size)));
+    size += 2 * n;
+  }
+  c.public_methods.push_back({"HELD STATE: what a run changes besides y (the event modes, what the runtime set of the "
+                              "contacts), saved and restored with y (an FMU's state).",
+                              "std::size_t held_state_size() const override",
+                              {CppStmt::line(fmt::format("return {};", size))}});
+  c.public_methods.push_back(std::move(get));
+  c.public_methods.push_back(std::move(set));
 }
 
 }  // namespace mbgc::codegen

@@ -37,6 +37,10 @@ std::unordered_map<int, std::string> contact_member_names(const ir::ReducedSyste
 /// the members they write, and `speeds` (the contacts' dg/dt, a section of
 /// equations the emitter wrote). initial() fills contact_restitution_.
 /// `tangents`: the sliding velocities and frictions, when a contact has friction rows.
+/// held_state_size/get_held_state/set_held_state (mbgrt::Model): the event
+/// modes and the contacts' run-time settings, for a model with either.
+void add_held_state_methods(CppClass& c, const ir::ReducedSystem& s);
+
 void add_contact_methods(CppClass& c, const ir::ReducedSystem& s, CppFunction speeds, std::optional<CppFunction> tangents);
 
 }  // namespace mbgc::codegen

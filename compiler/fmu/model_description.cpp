@@ -100,11 +100,13 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
   const std::string id = xml_escape(fmu.model_name);
   if (offer.model_exchange)
     x += fmt::format("  <ModelExchange modelIdentifier=\"{}\" needsCompletedIntegratorStep=\"true\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\" providesDirectionalDerivatives=\"true\"/>\n",
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" providesDirectionalDerivatives=\"true\" "
+                     "canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"/>\n",
                      id);
   if (offer.co_simulation)
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\" providesDirectionalDerivatives=\"true\"/>\n",
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\" providesDirectionalDerivatives=\"true\" "
+                     "canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"/>\n",
                      id);
   x += unit_definitions(fmu);
   x += "  <TypeDefinitions>\n    <EnumerationType name=\"Solver\">\n";
@@ -163,12 +165,12 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
   if (offer.model_exchange)
     x += fmt::format("  <ModelExchange modelIdentifier=\"{}\" completedIntegratorStepNotNeeded=\"false\" "
                      "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" "
-                     "providesDirectionalDerivative=\"true\"/>\n",
+                     "providesDirectionalDerivative=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>\n",
                      id);
   if (offer.co_simulation)
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
                      "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" "
-                     "providesDirectionalDerivative=\"true\"/>\n",
+                     "providesDirectionalDerivative=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>\n",
                      id);
   x += unit_definitions(fmu);
   x += "  <TypeDefinitions>\n    <SimpleType name=\"Solver\">\n      <Enumeration>\n";

@@ -58,6 +58,9 @@ class Contacts {
   /// Contact c's friction event crossed zero: sticks or slides.
   ContactSwitch fire_friction(double t, std::size_t c, bool rising, double* y);
   bool closed(std::size_t c) const { return closed_[c] != 0; }
+  bool stuck(std::size_t c) const { return stuck_[c] != 0; }
+  /// Contact c's modes as a run left them (Events::restore): closed, stuck.
+  void restore(std::size_t c, bool closed, bool stuck) { closed_[c] = closed ? 1 : 0, stuck_[c] = stuck ? 1 : 0; }
   bool compliant(std::size_t c) const { return info_[c].compliant; }
   /// Contact c's event (Model::event_name).
   std::size_t event(std::size_t c) const { return info_[c].event; }

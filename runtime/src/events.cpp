@@ -41,6 +41,48 @@ bool Events::start(double t, const double* y, const double* yp) {
   return true;
 }
 
+void Events::save(std::vector<double>& out) const {
+  out.push_back(jumped_energy_);
+  out.push_back(instant_);
+  out.push_back(static_cast<double>(at_instant_));
+  out.push_back(root_instant_);
+  out.push_back(static_cast<double>(roots_at_instant_));
+  out.push_back(static_cast<double>(zeno_event_));
+  for (std::size_t k = 0; k < n_; ++k) {
+    out.push_back(k < last_t_.size() ? last_t_[k] : std::nan(""));
+    out.push_back(k < last_dt_.size() ? last_dt_[k] : std::nan(""));
+    out.push_back(k < shrinking_.size() ? static_cast<double>(shrinking_[k]) : 0.0);
+    out.push_back(g_[k]);
+  }
+  for (std::size_t c = 0; c < contacts_.count(); ++c) {
+    out.push_back(contacts_.closed(c) ? 1.0 : 0.0);
+    out.push_back(contacts_.stuck(c) ? 1.0 : 0.0);
+  }
+}
+
+void Events::restore(const double*& in) {
+  jumped_energy_ = *in++;
+  instant_ = *in++;
+  at_instant_ = static_cast<long>(*in++);
+  root_instant_ = *in++;
+  roots_at_instant_ = static_cast<long>(*in++);
+  zeno_event_ = static_cast<long>(*in++);
+  last_t_.assign(n_, 0.0);
+  last_dt_.assign(n_, 0.0);
+  shrinking_.assign(n_, 0);
+  for (std::size_t k = 0; k < n_; ++k) {
+    last_t_[k] = *in++;
+    last_dt_[k] = *in++;
+    shrinking_[k] = static_cast<long>(*in++);
+    g_[k] = *in++;
+  }
+  for (std::size_t c = 0; c < contacts_.count(); ++c) {
+    const bool closed = *in++ != 0.0;
+    const bool stuck = *in++ != 0.0;
+    contacts_.restore(c, closed, stuck);
+  }
+}
+
 bool Events::fire(double t, std::size_t k, bool on, double* y) {
   if (!count_jumped_energy_) return switch_and_jump(t, k, on, y);
   // the energy a jump takes (an impact's, by Newton's law) is the witness's,

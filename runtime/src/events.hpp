@@ -62,6 +62,15 @@ class Events {
   void note_roots(double t);
 
   const std::vector<EventRecord>& log() const { return log_; }
+
+  /// What a run has changed here besides the model (each contact's mode, the
+  /// switches' timing that tells chattering and Zeno's accumulation), as
+  /// numbers appended to `out`, for an FMU's saved state; restore() reads
+  /// them back from `in` (the same count), for a run that goes on from there.
+  void save(std::vector<double>& out) const;
+  void restore(const double*& in);
+  /// How many numbers save() appends.
+  std::size_t saved_size() const { return 6 + 4 * n_ + 2 * contacts_.count(); }
   /// "t = 0.5 s: step(t - t_bump) (time event) on"
   std::string describe(const EventRecord& e) const;
   /// Event k in model terms (Model::event_name).

@@ -327,6 +327,71 @@ TEST_P(NonlinearFmi, DirectionalDerivativesMatchTheDerivativesDifferenced) {
 INSTANTIATE_TEST_SUITE_P(Examples, NonlinearFmi,
                          ::testing::Values("pendulum", "bouncing_ball", "rotating_beam", "crank_rocker"));
 
+TEST(FmiCalls, AMasterRollsBackToAStateAndAnotherInstanceGoesOnFromItsBytes) {
+  Fmu fmu("bouncing_ball");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
+  ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
+  auto get_state = fmu.function<decltype(fmi3GetFMUState)>("fmi3GetFMUState");
+  auto set_state = fmu.function<decltype(fmi3SetFMUState)>("fmi3SetFMUState");
+  auto free_state = fmu.function<decltype(fmi3FreeFMUState)>("fmi3FreeFMUState");
+  auto size_of = fmu.function<decltype(fmi3SerializedFMUStateSize)>("fmi3SerializedFMUStateSize");
+  auto serialize = fmu.function<decltype(fmi3SerializeFMUState)>("fmi3SerializeFMUState");
+  auto deserialize = fmu.function<decltype(fmi3DeserializeFMUState)>("fmi3DeserializeFMUState");
+  const fmi3ValueReference gap = fmu.reference("gap"), vz = fmu.reference("vz");
+  for (int k = 0; k < 30; ++k) ASSERT_EQ(fmu.step(i, k * 0.01, 0.01), fmi3OK);  // to 0.3 s
+  fmi3FMUState saved = nullptr;
+  ASSERT_EQ(get_state(i, &saved), fmi3OK);
+  ASSERT_NE(saved, nullptr);
+  // on through the first impact (about 0.45 s) to 1 s, three times from the state
+  auto on_to_one_second = [&](fmi3Instance at, double* values) {
+    for (int k = 30; k < 100; ++k) ASSERT_EQ(fmu.step(at, k * 0.01, 0.01), fmi3OK);
+    ASSERT_EQ(fmu.get(at, gap, values[0]), fmi3OK);
+    ASSERT_EQ(fmu.get(at, vz, values[1]), fmi3OK);
+  };
+  double first[2], second[2], third[2];
+  on_to_one_second(i, first);
+  ASSERT_EQ(set_state(i, saved), fmi3OK);
+  on_to_one_second(i, second);
+  ASSERT_EQ(set_state(i, saved), fmi3OK);
+  on_to_one_second(i, third);
+  EXPECT_EQ(second[0], third[0]);  // from one state, the same steps: the same values
+  EXPECT_EQ(second[1], third[1]);
+  EXPECT_NEAR(first[1], second[1], 1e-6);  // the integrator's history is not in the state: to its tolerance
+  EXPECT_GT(second[0], 0.0);  // it bounced, not fell through the floor (the contact's mode came back with the state)
+  // the state's bytes, read by another instance, go on the same way
+  std::size_t size = 0;
+  ASSERT_EQ(size_of(i, saved, &size), fmi3OK);
+  std::vector<fmi3Byte> bytes(size);
+  ASSERT_EQ(serialize(i, saved, bytes.data(), size), fmi3OK);
+  Log other_log;
+  fmi3Instance other = fmu.co_simulation(other_log, fmu.token());
+  ASSERT_NE(other, nullptr);
+  fmi3FMUState read = nullptr;
+  ASSERT_EQ(deserialize(other, bytes.data(), size, &read), fmi3OK);
+  ASSERT_EQ(set_state(other, read), fmi3OK);
+  double fourth[2];
+  on_to_one_second(other, fourth);
+  EXPECT_EQ(fourth[0], second[0]);
+  EXPECT_EQ(fourth[1], second[1]);
+  // what is not a state of this instance is refused, never dereferenced
+  EXPECT_EQ(set_state(other, saved), fmi3Error);  // the first instance's
+  EXPECT_TRUE(other_log.mentions("not a state this instance made")) << other_log.all();
+  const std::vector<fmi3Byte> garbage(64, 7);
+  fmi3FMUState none = nullptr;
+  EXPECT_EQ(deserialize(other, garbage.data(), garbage.size(), &none), fmi3Error);
+  EXPECT_TRUE(other_log.mentions("not an mbgc FMU's state")) << other_log.all();
+  EXPECT_EQ(deserialize(other, bytes.data(), size / 2, &none), fmi3Error);
+  EXPECT_EQ(free_state(i, &saved), fmi3OK);
+  EXPECT_EQ(saved, nullptr);
+  EXPECT_EQ(free_state(other, &read), fmi3OK);
+  fmu.free(i);
+  fmu.free(other);
+}
+
 TEST(FmiCalls, AModelThatBlowsUpStopsWithTheReportNeverANan) {
   Fmu fmu("blowup");
   ASSERT_TRUE(fmu.loaded());

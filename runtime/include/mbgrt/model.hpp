@@ -388,6 +388,13 @@ class Model {
     return false;
   }
 
+  /// HELD STATE: what the model holds that a run changes besides y (its
+  /// events' modes, what the runtime set of its contacts), as doubles: saved
+  /// and restored with y where a run is (an FMU's state). 0: nothing.
+  virtual std::size_t held_state_size() const { return 0; }
+  virtual void get_held_state(double* out) const { (void)out; }
+  virtual void set_held_state(const double* in) { (void)in; }
+
   // ---- bodies, for animation (optional) --------------------------------------
   /// Bodies to draw (--animate), then the surfaces they touch; 0: none (a bond graph).
   virtual std::size_t body_count() const { return 0; }

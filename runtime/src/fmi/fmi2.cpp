@@ -130,19 +130,17 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference[], size_t nvr
   return nvr == 0 ? fmi2OK : absent(c, "fmi2SetString");
 }
 
-fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate*) { return absent(c, "fmi2GetFMUstate"); }
-fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate) { return absent(c, "fmi2SetFMUstate"); }
-fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* state) {
-  return state && *state ? absent(c, "fmi2FreeFMUstate") : fmi2OK;
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* state) { return to_fmi2(mbgrt::fmu::get_fmu_state(c, state)); }
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state) { return to_fmi2(mbgrt::fmu::set_fmu_state(c, state)); }
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* state) { return to_fmi2(mbgrt::fmu::free_fmu_state(c, state)); }
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t* size) {
+  return to_fmi2(mbgrt::fmu::serialized_fmu_state_size(c, state, size));
 }
-fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate, size_t*) {
-  return absent(c, "fmi2SerializedFMUstateSize");
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte bytes[], size_t size) {
+  return to_fmi2(mbgrt::fmu::serialize_fmu_state(c, state, reinterpret_cast<unsigned char*>(bytes), size));
 }
-fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate, fmi2Byte[], size_t) {
-  return absent(c, "fmi2SerializeFMUstate");
-}
-fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte[], size_t, fmi2FMUstate*) {
-  return absent(c, "fmi2DeSerializeFMUstate");
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
+  return to_fmi2(mbgrt::fmu::deserialize_fmu_state(c, reinterpret_cast<const unsigned char*>(bytes), size, state));
 }
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
                                         const fmi2ValueReference vKnown_ref[], size_t nKnown, const fmi2Real dvKnown[],

@@ -185,19 +185,23 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference
   return absent(instance, "GetVariableDependencies");
 }
 
-fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState*) { return absent(instance, "GetFMUState"); }
-fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState) { return absent(instance, "SetFMUState"); }
+fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState* state) {
+  return to_fmi3(mbgrt::fmu::get_fmu_state(instance, state));
+}
+fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState state) {
+  return to_fmi3(mbgrt::fmu::set_fmu_state(instance, state));
+}
 fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState* state) {
-  return state && *state ? absent(instance, "FreeFMUState") : fmi3OK;
+  return to_fmi3(mbgrt::fmu::free_fmu_state(instance, state));
 }
-fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState, size_t*) {
-  return absent(instance, "SerializedFMUStateSize");
+fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState state, size_t* size) {
+  return to_fmi3(mbgrt::fmu::serialized_fmu_state_size(instance, state, size));
 }
-fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState, fmi3Byte[], size_t) {
-  return absent(instance, "SerializeFMUState");
+fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState state, fmi3Byte bytes[], size_t size) {
+  return to_fmi3(mbgrt::fmu::serialize_fmu_state(instance, state, bytes, size));
 }
-fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte[], size_t, fmi3FMUState*) {
-  return absent(instance, "DeserializeFMUState");
+fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte bytes[], size_t size, fmi3FMUState* state) {
+  return to_fmi3(mbgrt::fmu::deserialize_fmu_state(instance, bytes, size, state));
 }
 
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[], size_t nUnknowns,

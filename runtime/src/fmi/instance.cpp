@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -537,6 +538,164 @@ Status Instance::directional_derivative(const std::uint32_t* unknowns, std::size
   return Status::ok;
 }
 
+// ---- the FMU state ------------------------------------------------------------------
+
+namespace {
+constexpr char kStateTag[8] = {'m', 'b', 'g', 'c', 'F', 'M', 'U', '1'};
+}  // namespace
+
+std::vector<unsigned char> Snapshot::serialize(const std::string& token) const {
+  std::vector<double> numbers{static_cast<double>(phase),
+                              t,
+                              stop,
+                              integrate_until,
+                              stop_defined ? 1.0 : 0.0,
+                              static_cast<double>(settings.solver),
+                              settings.rtol,
+                              settings.atol,
+                              settings.step_s};
+  for (const std::vector<double>* v : {&parameters, &parameter_set, &y, &reference, &held, &runtime}) {
+    numbers.push_back(static_cast<double>(v->size()));
+    numbers.insert(numbers.end(), v->begin(), v->end());
+  }
+  std::vector<unsigned char> bytes(sizeof kStateTag + sizeof(std::uint32_t) + token.size() + numbers.size() * sizeof(double));
+  unsigned char* at = bytes.data();
+  std::memcpy(at, kStateTag, sizeof kStateTag), at += sizeof kStateTag;
+  const auto length = static_cast<std::uint32_t>(token.size());
+  std::memcpy(at, &length, sizeof length), at += sizeof length;
+  std::memcpy(at, token.data(), token.size()), at += token.size();
+  std::memcpy(at, numbers.data(), numbers.size() * sizeof(double));
+  return bytes;
+}
+
+bool Snapshot::deserialize(const unsigned char* bytes, std::size_t size, const std::string& token, Snapshot& out,
+                           std::string& why) {
+  std::uint32_t length = 0;
+  if (!bytes || size < sizeof kStateTag + sizeof length || std::memcmp(bytes, kStateTag, sizeof kStateTag) != 0) {
+    why = "the bytes are not an mbgc FMU's state";
+    return false;
+  }
+  std::memcpy(&length, bytes + sizeof kStateTag, sizeof length);
+  const std::size_t head = sizeof kStateTag + sizeof length + length;
+  if (size < head || std::string(reinterpret_cast<const char*>(bytes) + sizeof kStateTag + sizeof length, length) != token) {
+    why = "the state is another FMU's (its instantiation token differs)";
+    return false;
+  }
+  if ((size - head) % sizeof(double) != 0) {
+    why = "the state's length is not whole numbers";
+    return false;
+  }
+  std::vector<double> numbers((size - head) / sizeof(double));
+  std::memcpy(numbers.data(), bytes + head, numbers.size() * sizeof(double));
+  std::size_t k = 0;
+  auto next = [&](double& v) { return k < numbers.size() ? (v = numbers[k++], true) : false; };
+  double phase = 0, stop_defined = 0, solver = 0;
+  bool ok = next(phase) && next(out.t) && next(out.stop) && next(out.integrate_until) && next(stop_defined) &&
+            next(solver) && next(out.settings.rtol) && next(out.settings.atol) && next(out.settings.step_s);
+  for (std::vector<double>* v : {&out.parameters, &out.parameter_set, &out.y, &out.reference, &out.held, &out.runtime}) {
+    double count = 0;
+    ok = ok && next(count) && count >= 0 && k + static_cast<std::size_t>(count) <= numbers.size();
+    if (!ok) break;
+    v->assign(numbers.begin() + static_cast<long>(k), numbers.begin() + static_cast<long>(k + static_cast<std::size_t>(count)));
+    k += static_cast<std::size_t>(count);
+  }
+  ok = ok && k == numbers.size() && phase >= 0 && phase <= static_cast<double>(Phase::failed) && solver >= 0 &&
+       solver < static_cast<double>(kIntegrators.size());
+  if (!ok) {
+    why = "the state is truncated or malformed";
+    return false;
+  }
+  out.phase = static_cast<Phase>(static_cast<int>(phase));
+  out.stop_defined = stop_defined != 0.0;
+  out.settings.solver = static_cast<Solver>(static_cast<int>(solver));
+  return true;
+}
+
+Snapshot* Instance::new_snapshot() {
+  snapshots_.push_back(std::make_unique<Snapshot>());
+  return snapshots_.back().get();
+}
+
+bool Instance::owns(const void* state) const {
+  return state && std::any_of(snapshots_.begin(), snapshots_.end(), [state](const auto& s) { return s.get() == state; });
+}
+
+void Instance::release(Snapshot* state) {
+  snapshots_.erase(std::remove_if(snapshots_.begin(), snapshots_.end(), [state](const auto& s) { return s.get() == state; }),
+                   snapshots_.end());
+}
+
+Status Instance::get_state(Snapshot& out) {
+  if (phase_ == Phase::failed) return refuse("GetFMUState: the FMU failed at an earlier call: there is no state to keep");
+  out = Snapshot{};
+  out.phase = phase_;
+  out.t = t_;
+  out.stop = stop_;
+  out.stop_defined = stop_defined_;
+  out.integrate_until = integrate_until_;
+  out.settings = settings_;
+  out.parameters = parameter_values_;
+  out.parameter_set.assign(parameter_set_.begin(), parameter_set_.end());
+  if (!guard_) return Status::ok;  // (not initialised: the parameters and settings are all there is)
+  out.y = y_;
+  out.reference = reference_;
+  out.held.resize(model_->held_state_size());
+  model_->get_held_state(out.held.data());
+  guard_->events().save(out.runtime);
+  return Status::ok;
+}
+
+Status Instance::set_state(const Snapshot& s) {
+  const bool started = !s.y.empty() || s.phase == Phase::event || s.phase == Phase::continuous_time || s.phase == Phase::step;
+  if (s.parameters.size() != parameters_.size() || s.parameter_set.size() != parameters_.size() ||
+      (started && (s.y.size() != n_ || s.reference.size() != indicators_.size())))
+    return refuse("SetFMUState: the state is not this FMU's (its sizes differ)");
+  if (s.phase == Phase::failed) return refuse("SetFMUState: the state is of a failed instance");
+  return captured([&](std::FILE* report) {
+    integrator_.reset();
+    guard_.reset();
+    model_ = description_.make_model();
+    parameter_values_ = s.parameters;
+    for (std::size_t i = 0; i < parameters_.size(); ++i) parameter_set_[i] = s.parameter_set[i] != 0.0 ? 1 : 0;
+    // the settings an importer may set (the rest are the model's own)
+    settings_ = defaults_;
+    settings_.solver = s.settings.solver;
+    settings_.rtol = s.settings.rtol;
+    settings_.atol = s.settings.atol;
+    settings_.step_s = s.settings.step_s;
+    t_ = s.t;
+    stop_ = s.stop;
+    stop_defined_ = s.stop_defined;
+    integrate_until_ = s.integrate_until;
+    phase_ = s.phase;
+    invalidate();
+    if (!started) return Status::ok;
+    // the parameters and what is derived of them, then what the run changed
+    for (std::size_t i = 0; i < parameters_.size(); ++i)
+      if (parameter_set_[i]) model_->set_parameter(parameters_[i].name, parameter_values_[i]);
+    std::vector<double> discarded(n_);
+    model_->initial(t_, discarded.data(), nullptr);
+    if (s.held.size() != model_->held_state_size() || s.runtime.size() != detail::Events(*model_).saved_size())
+      return fail("SetFMUState: the state is not this FMU's (its model's sizes differ)");
+    model_->set_held_state(s.held.data());
+    guard_ = std::make_unique<detail::GuardedModel>(*model_);
+    guard_->hold_constraints(detail::held_row_bound(settings_), detail::kHeldCeiling);
+    const double* in = s.runtime.data();
+    guard_->events().restore(in);
+    y_ = s.y;
+    reference_ = s.reference;
+    if (interface_ == Interface::co_simulation && phase_ != Phase::terminated) {
+      integrator_ = detail::make_integrator(*guard_, run_settings());
+      integrate_until_ = run_settings().t_end_s;
+      if (!integrator_->init(t_, y_.data(), nullptr)) {
+        detail::print_stop_message(report, *guard_, *integrator_, true);
+        return fail({});
+      }
+    }
+    return Status::ok;
+  });
+}
+
 // ---- co-simulation ----------------------------------------------------------------
 
 Status Instance::do_step(double t, double h, bool* terminate_simulation, double* last_successful_time) {
@@ -574,6 +733,71 @@ Status Instance::do_step(double t, double h, bool* terminate_simulation, double*
     std::copy(integrator_->y(), integrator_->y() + n_, y_.begin());
     invalidate();
     *last_successful_time = t_;
+    return Status::ok;
+  });
+}
+
+Status get_fmu_state(void* instance, void** state) {
+  return call(instance, "GetFMUState", [&](Instance& i) {
+    if (!state) return i.refuse("GetFMUState: no place for the state");
+    // a state given back is reused; anything else the importer left there is not ours to touch
+    Snapshot* snapshot = i.owns(*state) ? static_cast<Snapshot*>(*state) : i.new_snapshot();
+    const Status s = i.get_state(*snapshot);
+    if (s == Status::ok) *state = snapshot;
+    else if (snapshot != *state) i.release(snapshot);
+    return s;
+  });
+}
+
+Status set_fmu_state(void* instance, void* state) {
+  return call(instance, "SetFMUState", [&](Instance& i) {
+    if (!i.owns(state)) return i.refuse("SetFMUState: not a state this instance made (GetFMUState, DeserializeFMUState)");
+    return i.set_state(*static_cast<const Snapshot*>(state));
+  });
+}
+
+Status free_fmu_state(void* instance, void** state) {
+  return call(instance, "FreeFMUState", [&](Instance& i) {
+    if (!state || !*state) return Status::ok;
+    if (i.owns(state)) {  // (an importer that passes the state where its address belongs: fmusim 0.0.36's files)
+      i.release(reinterpret_cast<Snapshot*>(state));
+      return Status::ok;
+    }
+    if (!i.owns(*state)) return i.refuse("FreeFMUState: not a state this instance made");
+    i.release(static_cast<Snapshot*>(*state));
+    *state = nullptr;
+    return Status::ok;
+  });
+}
+
+Status serialized_fmu_state_size(void* instance, void* state, std::size_t* size) {
+  return call(instance, "SerializedFMUStateSize", [&](Instance& i) {
+    if (!i.owns(state) || !size) return i.refuse("SerializedFMUStateSize: not a state this instance made");
+    *size = static_cast<const Snapshot*>(state)->serialize(i.token()).size();
+    return Status::ok;
+  });
+}
+
+Status serialize_fmu_state(void* instance, void* state, unsigned char* bytes, std::size_t size) {
+  return call(instance, "SerializeFMUState", [&](Instance& i) {
+    if (!i.owns(state) || !bytes) return i.refuse("SerializeFMUState: not a state this instance made");
+    const std::vector<unsigned char> out = static_cast<const Snapshot*>(state)->serialize(i.token());
+    if (size < out.size())
+      return i.refuse(fmt::format("SerializeFMUState: {} bytes given, the state takes {}", size, out.size()));
+    std::memcpy(bytes, out.data(), out.size());
+    return Status::ok;
+  });
+}
+
+Status deserialize_fmu_state(void* instance, const unsigned char* bytes, std::size_t size, void** state) {
+  return call(instance, "DeserializeFMUState", [&](Instance& i) {
+    if (!state) return i.refuse("DeserializeFMUState: no place for the state");
+    Snapshot read;
+    std::string why;
+    if (!Snapshot::deserialize(bytes, size, i.token(), read, why)) return i.refuse("DeserializeFMUState: " + why);
+    Snapshot* snapshot = i.owns(*state) ? static_cast<Snapshot*>(*state) : i.new_snapshot();
+    *snapshot = std::move(read);
+    *state = snapshot;
     return Status::ok;
   });
 }

@@ -37,6 +37,28 @@ enum class Interface { model_exchange, co_simulation };
 /// map onto them).
 enum class Phase { instantiated, initialization, event, continuous_time, step, terminated, failed };
 
+/// An instance's state at a moment (FMI's FMU state): enough to go on from
+/// there in this instance or another of the same FMU. In co-simulation the
+/// integrator starts again from it (a multistep method's history is not
+/// kept: an adaptive run continued from a state agrees with the uninterrupted
+/// one to its tolerance, a fixed-step one exactly).
+struct Snapshot {
+  Phase phase = Phase::instantiated;
+  double t = 0.0, stop = 0.0, integrate_until = 0.0;
+  bool stop_defined = false;
+  Settings settings;  ///< of which the state keeps what an importer sets: solver, rtol, atol, step_s
+  std::vector<double> parameters, parameter_set;
+  std::vector<double> y, reference;  ///< the states; the event functions after the last event
+  std::vector<double> held;          ///< Model::get_held_state
+  std::vector<double> runtime;       ///< detail::Events::save
+
+  /// The bytes of FMI's serialised state: a tag, the FMU's token, the numbers.
+  std::vector<unsigned char> serialize(const std::string& token) const;
+  /// The state `bytes` hold into `out`, or false and `why` (not this FMU's, truncated).
+  static bool deserialize(const unsigned char* bytes, std::size_t size, const std::string& token, Snapshot& out,
+                          std::string& why);
+};
+
 /// The importer's logger: severity, category ("logEvents", "logStatusError",
 /// ...), message.
 using Logger = std::function<void(Status, const char*, const std::string&)>;
@@ -90,6 +112,16 @@ class Instance {
   Status directional_derivative(const std::uint32_t* unknowns, std::size_t n_unknowns, const std::uint32_t* knowns,
                                 std::size_t n_knowns, const double* seed, double* sensitivity);
 
+  // ---- the FMU state ----------------------------------------------------------
+  Status get_state(Snapshot& out);
+  Status set_state(const Snapshot& state);
+  const char* token() const { return description_.instantiation_token; }
+  /// The states this instance handed out (the importer's handles), freed
+  /// with it: a handle is only ever dereferenced if it is one of them.
+  Snapshot* new_snapshot();
+  bool owns(const void* state) const;
+  void release(Snapshot* state);
+
   // ---- co-simulation ------------------------------------------------------------
   Status do_step(double t, double h, bool* terminate_simulation, double* last_successful_time);
 
@@ -134,6 +166,7 @@ class Instance {
   bool stop_defined_ = false;
   std::vector<double> y_, ydot_, outputs_, indicators_, reference_;  ///< reference_: the event functions after the last event
   bool outputs_valid_ = false, derivatives_valid_ = false;
+  std::vector<std::unique_ptr<Snapshot>> snapshots_;
 };
 
 /// What every FMI function does with its instance (void* in C): `body` on it,
@@ -150,6 +183,15 @@ Status call(void* instance, const char* what, Body&& body) {
     return i.refuse(std::string(what) + ": an unexpected error");
   }
 }
+
+/// FMI's FMU-state functions over an instance, for both versions' shims:
+/// `state` is the importer's handle (a Snapshot*).
+Status get_fmu_state(void* instance, void** state);
+Status set_fmu_state(void* instance, void* state);
+Status free_fmu_state(void* instance, void** state);
+Status serialized_fmu_state_size(void* instance, void* state, std::size_t* size);
+Status serialize_fmu_state(void* instance, void* state, unsigned char* bytes, std::size_t size);
+Status deserialize_fmu_state(void* instance, const unsigned char* bytes, std::size_t size, void** state);
 
 /// A function for something this FMU does not have (clocks, types it has no
 /// variables of): logged, an error.

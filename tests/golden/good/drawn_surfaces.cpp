@@ -1765,6 +1765,23 @@ class drawn_surfaces_model final : public mbgrt::Model {
     if (c < 5) contact_damping_[c] = d;
   }
 
+  // HELD STATE: what a run changes besides y (the event modes, what the runtime set of the contacts), saved and restored with y (an FMU's state).
+  std::size_t held_state_size() const override {
+    return 15;
+  }
+
+  void get_held_state(double* out) const override {
+    for (std::size_t k = 0; k < 5; ++k) out[0 + k] = mode_[k];
+    for (std::size_t k = 0; k < 5; ++k) out[5 + k] = contact_bias_[k];
+    for (std::size_t k = 0; k < 5; ++k) out[10 + k] = contact_damping_[k];
+  }
+
+  void set_held_state(const double* in) override {
+    for (std::size_t k = 0; k < 5; ++k) mode_[k] = in[0 + k];
+    for (std::size_t k = 0; k < 5; ++k) contact_bias_[k] = in[5 + k];
+    for (std::size_t k = 0; k < 5; ++k) contact_damping_[k] = in[10 + k];
+  }
+
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
   bool has_energy_balance() const override {
     return true;

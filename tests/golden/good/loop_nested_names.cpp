@@ -270,6 +270,19 @@ class loop_nested_names_model final : public mbgrt::Model {
     return true;
   }
 
+  // HELD STATE: what a run changes besides y (the event modes, what the runtime set of the contacts), saved and restored with y (an FMU's state).
+  std::size_t held_state_size() const override {
+    return 1;
+  }
+
+  void get_held_state(double* out) const override {
+    for (std::size_t k = 0; k < 1; ++k) out[0 + k] = mode_[k];
+  }
+
+  void set_held_state(const double* in) override {
+    for (std::size_t k = 0; k < 1; ++k) mode_[k] = in[0 + k];
+  }
+
   // ENERGY WITNESS: stored_energy() and power() below (reduce/energy.hpp).
   bool has_energy_balance() const override {
     return true;
