@@ -5,6 +5,7 @@
 // a model that stops at the extremes. Each bad call must return fmi3Error
 // with the reason logged, never crash or hand back a NaN.
 #include <dlfcn.h>
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,7 +47,8 @@ void log_message(fmi3InstanceEnvironment environment, fmi3Status, fmi3String, fm
 class Fmu {
  public:
   explicit Fmu(const std::string& name) {
-    dir_ = std::string(WORK_DIR) + "/calls_" + name;
+    // (a directory of this process's own: ctest runs the tests side by side)
+    dir_ = std::string(WORK_DIR) + "/calls_" + name + "_" + std::to_string(::getpid());
     const std::string fmu = std::string(FMU_DIR) + "/fmu3_" + name + ".fmu";
     const std::string command = "rm -rf '" + dir_ + "' && mkdir -p '" + dir_ + "' && cd '" + dir_ + "' && unzip -q '" + fmu + "'";
     if (std::system(command.c_str()) != 0) return;
@@ -55,11 +57,14 @@ class Fmu {
   }
   ~Fmu() {
     if (handle_) dlclose(handle_);
+    const int removed = std::system(("rm -rf '" + dir_ + "'").c_str());
+    (void)removed;
   }
   Fmu(const Fmu&) = delete;
   Fmu& operator=(const Fmu&) = delete;
 
   bool loaded() const { return handle_ != nullptr; }
+  const std::string& description() const { return description_; }
   template <class F>
   F* function(const char* name) const {
     return reinterpret_cast<F*>(dlsym(handle_, name));
@@ -292,7 +297,7 @@ TEST_P(NonlinearFmi, DirectionalDerivativesMatchTheDerivativesDifferenced) {
   // the derivative's references are the states' after them, in the same order (modelDescription.xml)
   std::vector<fmi3ValueReference> states(n), rates(n);
   std::smatch m;
-  std::string text = slurp(std::string(WORK_DIR) + "/calls_" + GetParam() + "/modelDescription.xml");
+  const std::string& text = fmu.description();
   std::regex derivative_of("valueReference=\"([0-9]+)\"[^>]*derivative=\"([0-9]+)\"");
   std::size_t k = 0;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), derivative_of); it != std::sregex_iterator() && k < n; ++it, ++k) {

@@ -175,8 +175,9 @@ class Fmi : public ::testing::TestWithParam<Case> {
   std::string tag(const char* kind) const { return std::string(e.name) + ".fmi" + std::to_string(version) + "." + kind; }
 };
 
+// (every file a test writes is its own: ctest runs the tests side by side)
 TEST_P(Fmi, CoSimulationAgreesWithTheNativeRunTo1e9) {
-  const Table reference = native(e.simulator, e.name);
+  const Table reference = native(e.simulator, tag("cs.native"));
   const Table cs = imported(fmu_of(e.name, version), tag("cs"), "--interface-type cs");
   ASSERT_FALSE(reference.rows.empty());
   ASSERT_EQ(cs.rows.size(), reference.rows.size());
@@ -187,7 +188,7 @@ TEST_P(Fmi, CoSimulationAgreesWithTheNativeRunTo1e9) {
 }
 
 TEST_P(Fmi, ModelExchangeAgreesWithinItsTolerancesReach) {
-  const Table reference = native(e.simulator, e.name);
+  const Table reference = native(e.simulator, tag("me.native"));
   const Table me = imported(fmu_of(e.name, version), tag("me"),
                             "--interface-type me --solver cvode --tolerance " + number(e.me_tolerance));
   ASSERT_FALSE(reference.rows.empty());
@@ -203,11 +204,11 @@ INSTANTIATE_TEST_SUITE_P(Examples, Fmi, ::testing::ValuesIn(cases()), [](const :
 });
 
 TEST(FmiParameters, AStartValueChangesTheResultAsSetDoes) {
-  const Table set = native(SIM_DC_MOTOR, "dc_motor_30V", "--set V_supply=30");
-  const Table plain = native(SIM_DC_MOTOR, "dc_motor");
+  const Table set = native(SIM_DC_MOTOR, "parameters.30V", "--set V_supply=30");
+  const Table plain = native(SIM_DC_MOTOR, "parameters.60V");
   ASSERT_FALSE(set.rows.empty());
   for (int version : {3, 2}) {
-    const Table start = imported(fmu_of("dc_motor", version), "dc_motor_30V.fmi" + std::to_string(version),
+    const Table start = imported(fmu_of("dc_motor", version), "parameters.30V.fmi" + std::to_string(version),
                                  "--interface-type cs --start-value V_supply 30");
     ASSERT_EQ(start.rows.size(), set.rows.size());
     std::string where;
