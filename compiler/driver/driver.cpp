@@ -76,6 +76,17 @@ bool write_atomically(const std::string& given, const std::string& text, bool ke
   return !ec;
 }
 
+/// --depfile: `target` and the files the compilation read (the model and its
+/// imports), for build tools; false (and an error said) if it cannot be written.
+bool write_depfile(const Options& opt, const std::string& target, const ir::SourceManager& sources, std::ostream& err) {
+  if (opt.depfile.empty()) return true;
+  std::string deps = target + ":";
+  for (int f = 0; f < sources.count(); ++f) deps += " " + sources.file(f).display_path;
+  if (write_atomically(opt.depfile, deps + "\n", opt.keep_unchanged)) return true;
+  err << "mbgc: error: cannot write `" << opt.depfile << "`\n";
+  return false;
+}
+
 /// mbgc --fmu: the model's FMU (fmu/package.hpp), or why not.
 int export_fmu(const Options& opt, const ir::ReducedSystem& reduced, const ir::SourceManager& sources,
                codegen::EmitOptions emit, std::ostream& err) {
@@ -102,14 +113,7 @@ int export_fmu(const Options& opt, const ir::ReducedSystem& reduced, const ir::S
     err << "mbgc: error: " << error << "\n";
     return 3;
   }
-  if (!opt.depfile.empty()) {
-    std::string deps = opt.fmu + ":";
-    for (int f = 0; f < sources.count(); ++f) deps += " " + sources.file(f).display_path;
-    if (!write_atomically(opt.depfile, deps + "\n", false)) {
-      err << "mbgc: error: cannot write `" << opt.depfile << "`\n";
-      return 3;
-    }
-  }
+  if (!write_depfile(opt, opt.fmu, sources, err)) return 3;
   for (const std::string& note : interface.notes) err << "mbgc: note: " << note << "\n";
   return 0;
 }
@@ -135,14 +139,7 @@ int compile(const Options& opt, std::ostream& out, std::ostream& err) {
       err << "mbgc: error: cannot write `" << opt.output << "`\n";
       return 3;
     }
-    if (!opt.depfile.empty()) {
-      std::string deps = opt.output + ":";
-      for (int f = 0; f < sources.count(); ++f) deps += " " + sources.file(f).display_path;
-      if (!write_atomically(opt.depfile, deps + "\n", opt.keep_unchanged)) {
-        err << "mbgc: error: cannot write `" << opt.depfile << "`\n";
-        return 3;
-      }
-    }
+    if (!write_depfile(opt, opt.output, sources, err)) return 3;
     return 0;
   };
 

@@ -1,8 +1,6 @@
 // fmi2.cpp — the FMI 2.0 functions of an mbgc FMU, over the same
 // fmu::Instance as FMI 3.0's (instance.hpp). FMI 2.0 has no event indicator
 // variables and gives the solver enumeration through GetInteger/SetInteger.
-#include <fmt/format.h>
-
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -50,21 +48,9 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
   auto logger = [log, environment, name](Status s, const char* category, const std::string& message) {
     if (log) log(environment, name.c_str(), to_fmi2(s), category, "%s", message.c_str());
   };
-  const mbgrt::fmu::Description& d = mbgrt::fmu::description();
-  if (!fmuGUID || std::string(fmuGUID) != d.instantiation_token) {
-    logger(Status::error, "logStatusError",
-           fmt::format("GUID '{}' is not this FMU's ('{}': the modelDescription.xml of another build?)",
-                       fmuGUID ? fmuGUID : "(null)", d.instantiation_token));
-    return nullptr;
-  }
   const auto interface =
       fmuType == fmi2CoSimulation ? mbgrt::fmu::Interface::co_simulation : mbgrt::fmu::Interface::model_exchange;
-  try {
-    return new Instance(d, interface, name, logger, loggingOn != 0);
-  } catch (const std::exception& e) {
-    logger(Status::error, "logStatusError", fmt::format("the model could not be made: {}", e.what()));
-  }
-  return nullptr;
+  return mbgrt::fmu::instantiate(interface, name, fmuGUID, "GUID", logger, loggingOn != 0);
 }
 
 void fmi2FreeInstance(fmi2Component c) { delete static_cast<Instance*>(c); }

@@ -29,20 +29,7 @@ fmi3Instance instantiate(mbgrt::fmu::Interface interface, fmi3String name, fmi3S
   auto logger = [environment, log](Status s, const char* category, const std::string& message) {
     if (log) log(environment, to_fmi3(s), category, message.c_str());
   };
-  const mbgrt::fmu::Description& d = mbgrt::fmu::description();
-  if (!token || std::string(token) != d.instantiation_token) {
-    logger(Status::error, "logStatusError",
-           fmt::format("instantiation token '{}' is not this FMU's ('{}': the modelDescription.xml of another "
-                       "build?)",
-                       token ? token : "(null)", d.instantiation_token));
-    return nullptr;
-  }
-  try {
-    return new Instance(d, interface, instance_name, logger, logging_on);
-  } catch (const std::exception& e) {
-    logger(Status::error, "logStatusError", fmt::format("the model could not be made: {}", e.what()));
-  }
-  return nullptr;
+  return mbgrt::fmu::instantiate(interface, instance_name, token, "instantiation token", logger, logging_on);
 }
 
 }  // namespace

@@ -77,9 +77,10 @@ Instance::Instance(const Description& description, Interface interface, std::str
   parameter_values_.resize(parameters_.size());
   for (std::size_t i = 0; i < parameters_.size(); ++i) parameter_values_[i] = parameters_[i].default_value;
   parameter_set_.assign(parameters_.size(), 0);
-  defaults_ = settings_ = model_->default_settings();
+  defaults_ = model_->default_settings();
   // the fixed-step methods' step as the native simulator takes it by default
-  if (!(settings_.step_s > 0)) settings_.step_s = settings_.interval_s / 10;
+  if (!(defaults_.step_s > 0)) defaults_.step_s = defaults_.interval_s / 10;
+  settings_ = defaults_;
   y_.assign(n_, 0.0);
   ydot_.assign(n_, 0.0);
   outputs_.assign(model_->output_names().size(), 0.0);
@@ -246,7 +247,6 @@ Status Instance::reset() {
   for (std::size_t i = 0; i < parameters_.size(); ++i) parameter_values_[i] = parameters_[i].default_value;
   std::fill(parameter_set_.begin(), parameter_set_.end(), 0);
   settings_ = defaults_;
-  if (!(settings_.step_s > 0)) settings_.step_s = settings_.interval_s / 10;
   t_ = 0.0;
   std::fill(y_.begin(), y_.end(), 0.0);
   invalidate();
@@ -800,6 +800,23 @@ Status deserialize_fmu_state(void* instance, const unsigned char* bytes, std::si
     *state = snapshot;
     return Status::ok;
   });
+}
+
+Instance* instantiate(Interface interface, const std::string& name, const char* token, const char* token_name,
+                      const Logger& logger, bool logging_on) {
+  const Description& d = description();
+  if (!token || std::string(token) != d.instantiation_token) {
+    logger(Status::error, "logStatusError",
+           fmt::format("{} '{}' is not this FMU's ('{}': the modelDescription.xml of another build?)", token_name,
+                       token ? token : "(null)", d.instantiation_token));
+    return nullptr;
+  }
+  try {
+    return new Instance(d, interface, name, logger, logging_on);
+  } catch (const std::exception& e) {
+    logger(Status::error, "logStatusError", fmt::format("the model could not be made: {}", e.what()));
+  }
+  return nullptr;
 }
 
 Status absent(void* instance, const char* what) {

@@ -184,6 +184,12 @@ Status call(void* instance, const char* what, Body&& body) {
   }
 }
 
+/// A new instance of this FMU, or null with the reason logged: `token` (the
+/// importer's copy of the instantiation token, FMI 2's GUID: `token_name`)
+/// must be this FMU's.
+Instance* instantiate(Interface interface, const std::string& name, const char* token, const char* token_name,
+                      const Logger& logger, bool logging_on);
+
 /// FMI's FMU-state functions over an instance, for both versions' shims:
 /// `state` is the importer's handle (a Snapshot*).
 Status get_fmu_state(void* instance, void** state);
