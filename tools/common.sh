@@ -21,7 +21,7 @@ JOBS=${JOBS:-2}
 MBGC_PACKAGES=(g++ cmake ninja-build pkg-config libeigen3-dev libfmt-dev libcli11-dev
                libsundials-dev libsuitesparse-dev libgtest-dev gnuplot-nox libjemalloc-dev libspectra-dev
                libopenmpi-dev openmpi-bin libtinygltf-dev nodejs chromium-headless-shell
-               libminizip-dev libxml2-dev zlib1g-dev unzip)
+               libminizip-dev libxml2-dev zlib1g-dev unzip zip)
 # The sanitizer pass of .ci/run is built by clang, for libFuzzer (fuzz/).
 MBGC_FUZZ_PACKAGES=(clang libclang-rt-14-dev)
 

@@ -17,6 +17,7 @@
 #include "fmu/interface.hpp"
 #include "fmu/model_description.hpp"
 #include "fmu/package.hpp"
+#include "fmu/sources.hpp"
 #include "multibody/expand.hpp"
 #include "equations/generate.hpp"
 #include "graph/build_graph.hpp"
@@ -108,7 +109,8 @@ int export_fmu(const Options& opt, const ir::ReducedSystem& reduced, const ir::S
   package.source = source;
   package.version = version;
   package.model_description = fmu::model_description(interface, version, {opt.fmu_model_exchange, opt.fmu_co_simulation},
-                                                     token, std::string("mbgc ") + MBGC_VERSION);
+                                                     token, std::string("mbgc ") + MBGC_VERSION,
+                                                     fmu::compiled_sources(package.model_identifier));
   if (const std::string error = fmu::write_fmu(package, opt.fmu); !error.empty()) {
     err << "mbgc: error: " << error << "\n";
     return 3;

@@ -10,6 +10,7 @@
 #include "codegen/events.hpp"
 #include "codegen/identity.hpp"
 #include "mbgrt/integrators.hpp"
+#include "reduce/sparsity.hpp"
 
 namespace mbgc::fmu {
 namespace {
@@ -169,6 +170,7 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
     b.add(std::move(v));
   }
 
+  std::vector<unsigned> output_refs;
   for (std::size_t i = 0; i < g.outputs.size(); ++i) {
     const ir::Output& o = g.outputs[i];
     if (fmu.description.empty()) fmu.description = file_description(sources, o.loc);
@@ -178,7 +180,7 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
     if (o.unit && o.unit->unit.is_si()) v.unit = b.unit(o.unit->unit.text, o.unit->unit.dimension, 1.0);
     else if (o.dimension && !o.dimension->is_none()) v.unit = b.unit(units::format(*o.dimension), o.dimension, 1.0);
     v.description = trailing_comment(sources, o.loc);
-    b.add(std::move(v));
+    output_refs.push_back(b.add(std::move(v)));
   }
 
   std::vector<unsigned> state_refs;
@@ -188,19 +190,39 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
     v.description = "a continuous state";
     state_refs.push_back(b.add(std::move(v)));
   }
+  std::vector<unsigned> derivative_refs;
   for (std::size_t i = 0; i < s.states.size(); ++i) {
     const ir::Variable& var = g.vars[static_cast<std::size_t>(s.states[i].var)];
     Variable v = variable("der(" + var.name + ")", Kind::derivative, static_cast<unsigned>(i));
     v.derivative_of = state_refs[i];
-    b.add(std::move(v));
+    derivative_refs.push_back(b.add(std::move(v)));
   }
   const ir::Namer names = codegen::names_for_dump(g);
   const auto where = [&sources](const ir::SourceLoc& loc) { return sources.where(loc); };
+  std::vector<unsigned> event_refs;
   for (std::size_t k = 0; k < s.events.size(); ++k) {
     Variable v = variable(fmt::format("events[{}]", k), Kind::event_indicator, static_cast<unsigned>(k));
     v.description = codegen::event_name(s.events[k], names, where);
-    b.add(std::move(v));
+    event_refs.push_back(b.add(std::move(v)));
   }
+
+  // ModelStructure: what each output, derivative and event indicator reads
+  // of the knowns (the states and time), as the reduced equations say.
+  const auto depend = [&](const std::vector<unsigned>& refs, const std::vector<ir::Expr>& values) {
+    const std::vector<reduce::StateReads> reads = reduce::state_reads(s, values);
+    for (std::size_t i = 0; i < refs.size(); ++i) {
+      std::vector<unsigned> known;
+      if (reads[i].time) known.push_back(0);  // time's value reference
+      for (int state : reads[i].states) known.push_back(state_refs[static_cast<std::size_t>(state)]);
+      fmu.variables[refs[i]].dependencies = std::move(known);
+    }
+  };
+  std::vector<ir::Expr> output_values, event_values;
+  for (const ir::Output& o : g.outputs) output_values.push_back(o.value);
+  for (const ir::EventRelation& e : s.events) event_values.push_back(e.arg);
+  depend(output_refs, output_values);
+  depend(derivative_refs, s.state_derivative);
+  depend(event_refs, event_values);
   return fmu;
 }
 

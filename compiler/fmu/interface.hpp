@@ -34,6 +34,9 @@ struct Variable {
   std::string unit;             ///< a Unit's name (Interface::units), or empty
   std::string description;
   long derivative_of = -1;      ///< a derivative: its state's value reference
+  /// An output, a derivative or an event indicator: the value references of
+  /// the knowns it reads (states, time), ascending (ModelStructure).
+  std::optional<std::vector<unsigned>> dependencies;
 };
 
 /// A unit of the FMU's variables: its name (as the model writes it) and, where

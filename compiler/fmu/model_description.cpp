@@ -84,6 +84,17 @@ std::string log_categories_and_experiment(const Interface& fmu) {
                          number(d.t_start_s), number(d.t_end_s), number(d.rtol), number(d.interval_s));
 }
 
+/// ` dependencies="..."`: what `v` reads, by value reference (FMI 3.0,
+/// `base` 0) or 1-based index (FMI 2.0, `base` 1, where every variable
+/// before the event indicators has index value reference + 1); empty where
+/// not known.
+std::string dependencies(const Variable& v, unsigned base) {
+  if (!v.dependencies) return {};
+  std::string list;
+  for (unsigned known : *v.dependencies) list += (list.empty() ? "" : " ") + std::to_string(known + base);
+  return fmt::format(" dependencies=\"{}\"", list);
+}
+
 /// The solver's items: name, value (mbgrt::Solver + 1), description.
 template <class Item>
 std::string solver_items(Item&& item) {
@@ -133,19 +144,20 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
     x += fmt::format("    <{} {}/>\n", enumeration ? "Enumeration" : "Float64", a);
   }
   x += "  </ModelVariables>\n  <ModelStructure>\n";
+  const auto unknown = [&](const char* element, std::size_t vr) {
+    return fmt::format("    <{} valueReference=\"{}\"{}/>\n", element, vr, dependencies(fmu.variables[vr], 0));
+  };
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr)
-    if (fmu.variables[vr].kind == Kind::output) x += fmt::format("    <Output valueReference=\"{}\"/>\n", vr);
+    if (fmu.variables[vr].kind == Kind::output) x += unknown("Output", vr);
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr)
-    if (fmu.variables[vr].kind == Kind::derivative)
-      x += fmt::format("    <ContinuousStateDerivative valueReference=\"{}\"/>\n", vr);
+    if (fmu.variables[vr].kind == Kind::derivative) x += unknown("ContinuousStateDerivative", vr);
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr) {
     const Kind k = fmu.variables[vr].kind;
     if (k == Kind::output || k == Kind::state || k == Kind::derivative)
       x += fmt::format("    <InitialUnknown valueReference=\"{}\"/>\n", vr);
   }
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr)
-    if (fmu.variables[vr].kind == Kind::event_indicator)
-      x += fmt::format("    <EventIndicator valueReference=\"{}\"/>\n", vr);
+    if (fmu.variables[vr].kind == Kind::event_indicator) x += unknown("EventIndicator", vr);
   x += "  </ModelStructure>\n</fmiModelDescription>\n";
   return x;
 }
@@ -155,7 +167,14 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
 /// ModelStructure by 1-based index into ModelVariables. The event indicators
 /// are the last value references, so every other variable's index is its
 /// value reference + 1.
-std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid, const std::string& generator) {
+std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid, const std::string& generator,
+               const std::vector<std::string>& sources) {
+  std::string files;
+  if (!sources.empty()) {
+    files = "    <SourceFiles>\n";
+    for (const std::string& file : sources) files += fmt::format("      <File name=\"{}\"/>\n", xml_escape(file));
+    files += "    </SourceFiles>\n";
+  }
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   x += fmt::format("<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\"{} generationTool=\"{}\" "
                    "variableNamingConvention=\"flat\" numberOfEventIndicators=\"{}\">\n",
@@ -165,13 +184,15 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
   if (offer.model_exchange)
     x += fmt::format("  <ModelExchange modelIdentifier=\"{}\" completedIntegratorStepNotNeeded=\"false\" "
                      "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" "
-                     "providesDirectionalDerivative=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>\n",
-                     id);
+                     "providesDirectionalDerivative=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\">\n{}"
+                     "  </{}>\n",
+                     id, files, "ModelExchange");
   if (offer.co_simulation)
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
                      "canBeInstantiatedOnlyOncePerProcess=\"false\" canNotUseMemoryManagementFunctions=\"true\" "
-                     "providesDirectionalDerivative=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"/>\n",
-                     id);
+                     "providesDirectionalDerivative=\"true\" canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\">\n{}"
+                     "  </{}>\n",
+                     id, files, "CoSimulation");
   x += unit_definitions(fmu);
   x += "  <TypeDefinitions>\n    <SimpleType name=\"Solver\">\n      <Enumeration>\n";
   x += solver_items([](const char* name, int value, const std::string& description) {
@@ -198,15 +219,18 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
     x += fmt::format("    <ScalarVariable {}>{}</ScalarVariable>\n", a, type);
   }
   x += "  </ModelVariables>\n  <ModelStructure>\n";
-  auto list = [&](const char* element, auto&& wanted) {
+  auto list = [&](const char* element, auto&& wanted, bool with_dependencies = true) {
     std::string items;
     for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr)
-      if (wanted(fmu.variables[vr].kind)) items += fmt::format("      <Unknown index=\"{}\"/>\n", vr + 1);
+      if (wanted(fmu.variables[vr].kind))
+        items += fmt::format("      <Unknown index=\"{}\"{}/>\n", vr + 1,
+                             with_dependencies ? dependencies(fmu.variables[vr], 1) : std::string());
     if (!items.empty()) x += fmt::format("    <{0}>\n{1}    </{0}>\n", element, items);
   };
   list("Outputs", [](Kind k) { return k == Kind::output; });
   list("Derivatives", [](Kind k) { return k == Kind::derivative; });
-  list("InitialUnknowns", [](Kind k) { return k == Kind::output || k == Kind::state || k == Kind::derivative; });
+  // (an initial unknown depends on the parameters too: not stated, so on every known)
+  list("InitialUnknowns", [](Kind k) { return k == Kind::output || k == Kind::state || k == Kind::derivative; }, false);
   x += "  </ModelStructure>\n</fmiModelDescription>\n";
   return x;
 }
@@ -214,8 +238,8 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
 }  // namespace
 
 std::string model_description(const Interface& fmu, FmiVersion version, const Offer& offer, const std::string& token,
-                              const std::string& generator) {
-  return version == FmiVersion::v2 ? v2(fmu, offer, token, generator) : v3(fmu, offer, token, generator);
+                              const std::string& generator, const std::vector<std::string>& sources) {
+  return version == FmiVersion::v2 ? v2(fmu, offer, token, generator, sources) : v3(fmu, offer, token, generator);
 }
 
 }  // namespace mbgc::fmu

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "fmu/interface.hpp"
 
@@ -17,8 +18,9 @@ struct Offer {
 };
 
 /// modelDescription.xml of `fmu`, with `token` its instantiation token (FMI 3)
-/// or GUID (FMI 2), `generator` "mbgc VERSION".
+/// or GUID (FMI 2), `generator` "mbgc VERSION"; FMI 2.0 lists `sources` (the
+/// files to compile, relative to sources/) in its SourceFiles.
 std::string model_description(const Interface& fmu, FmiVersion version, const Offer& offer, const std::string& token,
-                              const std::string& generator);
+                              const std::string& generator, const std::vector<std::string>& sources);
 
 }  // namespace mbgc::fmu

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "fmu/sources.hpp"
 #include "fmu/toolchain.hpp"
 
 namespace mbgc::fmu {
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 
 struct Toolchain {
   std::string compiler;
-  fs::path include, library;
+  fs::path include, library, runtime_sources;
   std::vector<std::string> static_libraries;
 };
 
@@ -37,10 +38,12 @@ Toolchain find_toolchain() {
   if (!ec && fs::equivalent(exe, toolchain::kBuildExecutable, ec)) {
     t.include = toolchain::kBuildInclude;
     t.library = toolchain::kBuildLibrary;
+    t.runtime_sources = toolchain::kBuildRuntimeSources;
   } else {
     const fs::path bin = ec ? fs::path(".") : exe.parent_path();
     t.include = (bin / toolchain::kInstalledInclude).lexically_normal();
     t.library = (bin / toolchain::kInstalledLibrary).lexically_normal();
+    t.runtime_sources = (bin / toolchain::kInstalledRuntimeSources).lexically_normal();
   }
   std::stringstream libs(toolchain::kStaticLibraries);
   for (std::string lib; std::getline(libs, lib, ';');)
@@ -137,6 +140,13 @@ std::string write_fmu(const Package& p, const std::string& path) {
       {fmt::format("binaries/{}/{}.so", platform, p.model_identifier), read_file(object)},
       {fmt::format("sources/{}.cpp", p.model_identifier), p.source},
   };
+  if (p.version == FmiVersion::v3) entries.emplace_back("sources/buildDescription.xml", build_description(p.model_identifier));
+  for (const std::string& file : runtime_files()) {
+    const fs::path from = tc.runtime_sources / file;
+    if (!fs::is_regular_file(from))
+      return fmt::format("the runtime's source `{}` is missing (the FMU's sources/ holds it)", from.string());
+    entries.emplace_back("sources/" + source_path(file), read_file(from));
+  }
   // written beside the target, then renamed over it: never a partial FMU
   const std::string partial = path + ".mbgc-tmp-" + std::to_string(::getpid());
   if (std::string error = zip_files(partial, entries); !error.empty()) {

@@ -2,7 +2,7 @@
 // generated source is compiled into a shared object with the C++ compiler
 // mbgc was built with (or $CXX), linked with the runtime's FMU library
 // (libmbgrt_fmu.a) and SUNDIALS' static libraries, and zipped with
-// modelDescription.xml and the source (minizip).
+// modelDescription.xml and the sources (fmu/sources.hpp) with minizip.
 #pragma once
 
 #include <string>

@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "cli.hpp"
+#include "messages.hpp"
 #include "integrator.hpp"
 #include "trial_run.hpp"
 #include "work_precision.hpp"

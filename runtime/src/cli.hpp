@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mbgrt/model.hpp"
+#include "messages.hpp"
 
 namespace mbgrt::detail {
 
@@ -58,25 +59,5 @@ struct ParseOutcome {
 };
 
 ParseOutcome parse_command_line(const Model& model, int argc, char** argv);
-
-/// Prints "mbgrt: error: <message>" on stderr, or on the stream an
-/// ErrorRedirect of this thread names.
-void print_error(const std::string& message);
-/// "mbgrt: warning: ..." where print_error writes.
-void print_warning(const std::string& message);
-/// "mbgrt: note: ..." where print_error writes.
-void print_note(const std::string& message);
-
-/// While alive, print_error on this thread writes to `to` (a sweep case's report).
-class ErrorRedirect {
- public:
-  explicit ErrorRedirect(std::FILE* to);
-  ~ErrorRedirect();
-  ErrorRedirect(const ErrorRedirect&) = delete;
-  ErrorRedirect& operator=(const ErrorRedirect&) = delete;
-
- private:
-  std::FILE* previous_;
-};
 
 }  // namespace mbgrt::detail

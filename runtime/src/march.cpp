@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cli.hpp"
+#include "messages.hpp"
 #include "grid.hpp"
 
 namespace mbgrt::detail {

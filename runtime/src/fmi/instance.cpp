@@ -10,7 +10,7 @@
 #include <limits>
 #include <utility>
 
-#include "cli.hpp"
+#include "messages.hpp"
 #include "constraints.hpp"
 #include "march.hpp"
 #include "report.hpp"
