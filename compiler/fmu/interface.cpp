@@ -5,11 +5,13 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 
 #include "codegen/names.hpp"
 #include "codegen/events.hpp"
 #include "codegen/identity.hpp"
 #include "mbgrt/integrators.hpp"
+#include "reduce/parameter_use.hpp"
 #include "reduce/sparsity.hpp"
 
 namespace mbgc::fmu {
@@ -99,18 +101,25 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
   b.unit("s", units::dim::time(), 1.0);
 
   // Parameters: as --set takes them, in their declared unit. Those computed
-  // from others have no value of their own to start from.
+  // from others have no value of their own to start from. Those the run
+  // never reads (the compiler used them up) are constants, and say so.
+  const std::vector<bool> read = reduce::parameters_read(s);
   std::size_t computed = 0;
   for (std::size_t i = 0; i < g.params.size(); ++i) {
     const ir::Parameter& p = g.params[i];
     if (!p.literal) {
-      ++computed;
+      computed += read[i] ? 1 : 0;
       continue;
     }
     if (fmu.description.empty()) fmu.description = file_description(sources, p.loc);
-    Variable v = variable(p.name, Kind::parameter, static_cast<unsigned>(i));
-    v.causality = Causality::parameter;
-    v.variability = Variability::fixed;
+    Variable v = variable(p.name, read[i] ? Kind::parameter : Kind::constant,
+                          static_cast<unsigned>(read[i] ? i : fmu.constants.size()));
+    if (read[i]) {
+      v.causality = Causality::parameter;
+      v.variability = Variability::fixed;
+    } else {
+      v.variability = Variability::constant;
+    }
     if (p.unit) {
       v.start = p.literal_value / p.unit->unit.scale;
       v.unit = b.unit(p.unit->unit.text, p.unit->unit.dimension, p.unit->unit.scale);
@@ -119,6 +128,12 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
       if (p.dimension && !p.dimension->is_none()) v.unit = b.unit(units::format(*p.dimension), p.dimension, 1.0);
     }
     v.description = trailing_comment(sources, p.loc);
+    if (!read[i]) {
+      fmu.constants.push_back(*v.start);
+      v.description += fmt::format("{}used up when mbgc compiled the model, fixed in this FMU (mbgc --set {}=VALUE "
+                                   "exports another)",
+                                   v.description.empty() ? "" : "; ", p.name);
+    }
     b.add(std::move(v));
   }
   if (computed > 0)
@@ -227,12 +242,16 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
 }
 
 std::string entry_source(const Interface& fmu, const std::string& class_name) {
-  static const char* const kKinds[] = {"time", "parameter", "output", "state", "derivative", "event_indicator", "setting"};
+  static const char* const kKinds[] = {"time",       "parameter",       "output",  "state",
+                                       "derivative", "event_indicator", "setting", "constant"};
   std::string rows;
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr) {
     const Variable& v = fmu.variables[vr];
     rows += fmt::format("    {{K::{}, {}}},  // {}: {}\n", kKinds[static_cast<int>(v.kind)], v.index, vr, v.name);
   }
+  // (an empty array is not C++: a 0 nobody reads)
+  std::string constants = fmu.constants.empty() ? "0.0" : "";
+  for (double c : fmu.constants) constants += (constants.empty() ? "" : ", ") + codegen::cpp_double(c);
   return fmt::format(
       "// The FMU's entry (mbgc --fmu): its variables by value reference, as\n"
       "// modelDescription.xml lists them, and the model they belong to. The\n"
@@ -242,14 +261,16 @@ std::string entry_source(const Interface& fmu, const std::string& class_name) {
       "const Description& description() {{\n"
       "  using K = Kind;\n"
       "  static const Variable kVariables[] = {{\n{}  }};\n"
+      "  static const double kConstants[] = {{{}}};  // the compile-time parameters' values\n"
       "  static const Description kDescription{{\n"
       "      {}, {},\n"
       "      kVariables, {},\n"
-      "      [] {{ return std::unique_ptr<Model>(new ::{}()); }}}};\n"
+      "      [] {{ return std::unique_ptr<Model>(new ::{}()); }},\n"
+      "      kConstants}};\n"
       "  return kDescription;\n"
       "}}\n\n"
       "}}  // namespace mbgrt::fmu\n",
-      rows, codegen::cpp_string(fmu.model_name), codegen::cpp_string(kTokenPlaceholder), fmu.variables.size(),
+      rows, constants, codegen::cpp_string(fmu.model_name), codegen::cpp_string(kTokenPlaceholder), fmu.variables.size(),
       class_name);
 }
 

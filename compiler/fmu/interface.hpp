@@ -20,7 +20,7 @@ namespace mbgc::fmu {
 using mbgrt::fmu::Kind;
 
 enum class Causality { independent, parameter, output, local };
-enum class Variability { continuous, fixed };
+enum class Variability { continuous, fixed, constant };
 enum class Type { float64, enumeration };
 
 struct Variable {
@@ -52,6 +52,7 @@ struct Interface {
   std::string description;  ///< the model file's first comment line, if any
   std::vector<Variable> variables;  ///< indexed by value reference
   std::vector<Unit> units;
+  std::vector<double> constants;    ///< Kind::constant's values, by index
   std::vector<std::string> notes;   ///< what the FMU leaves out, for the user (printed by mbgc --fmu)
   mbgrt::Settings defaults;         ///< the model's simulate { } block (DefaultExperiment)
   std::size_t states = 0, event_indicators = 0;
@@ -59,7 +60,9 @@ struct Interface {
 };
 
 /// The FMU's interface of `system`; descriptions come from the model lines'
-/// trailing comments (`param R = 0.4 {Ohm}  // armature resistance`).
+/// trailing comments (`param R = 0.4 {Ohm}  // armature resistance`). A
+/// parameter the run never reads (the compiler used it up: a loop bound, a
+/// beam's length) is a constant.
 Interface describe(const ir::ReducedSystem& system, const ir::SourceManager& sources);
 
 /// The table the FMU's shared object reads (mbgrt::fmu::description()): C++

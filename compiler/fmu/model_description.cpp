@@ -84,6 +84,16 @@ std::string log_categories_and_experiment(const Interface& fmu) {
                          number(d.t_start_s), number(d.t_end_s), number(d.rtol), number(d.interval_s));
 }
 
+/// ` variability="..."`; none for an enumeration (its default, discrete).
+std::string variability(const Variable& v) {
+  switch (v.variability) {
+    case Variability::fixed: return " variability=\"fixed\"";
+    case Variability::constant: return " variability=\"constant\"";
+    case Variability::continuous: break;
+  }
+  return v.type == Type::enumeration ? "" : " variability=\"continuous\"";
+}
+
 /// ` dependencies="..."`: what `v` reads, by value reference (FMI 3.0,
 /// `base` 0) or 1-based index (FMI 2.0, `base` 1, where every variable
 /// before the event indicators has index value reference + 1); empty where
@@ -134,8 +144,7 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
     if (enumeration) a += " declaredType=\"Solver\"";
     a += attribute("description", v.description);
     a += fmt::format(" causality=\"{}\"", causality_name(v.causality));
-    if (v.variability == Variability::fixed) a += " variability=\"fixed\"";
-    else if (!enumeration) a += " variability=\"continuous\"";
+    a += variability(v);
     if (v.start) a += fmt::format(" start=\"{}\"", enumeration ? fmt::format("{}", static_cast<long>(*v.start)) : number(*v.start));
     // states, derivatives and indicators come out of the initialisation
     if (v.kind == Kind::state || v.kind == Kind::derivative) a += " initial=\"calculated\"";
@@ -208,7 +217,7 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
     std::string a = fmt::format("name=\"{}\" valueReference=\"{}\"", xml_escape(v.name), vr);
     a += attribute("description", v.description);
     a += fmt::format(" causality=\"{}\"", causality_name(v.causality));
-    a += v.variability == Variability::fixed ? " variability=\"fixed\"" : enumeration ? "" : " variability=\"continuous\"";
+    a += variability(v);
     if (v.kind == Kind::state || v.kind == Kind::derivative) a += " initial=\"calculated\"";
     std::string type;
     if (enumeration) type = "<Enumeration declaredType=\"Solver\"";

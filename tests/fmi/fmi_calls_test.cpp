@@ -45,6 +45,20 @@ TEST(FmiCalls, ANanOrAnOutputSetIsAnError) {
   fmu.free(i);
 }
 
+TEST(FmiCalls, ACompileTimeParameterIsReadButNeverSet) {
+  Fmu fmu("rotating_beam");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  double modes = 0;
+  EXPECT_EQ(fmu.get(i, fmu.reference("modes"), modes), fmi3OK);
+  EXPECT_EQ(modes, 3.0);
+  EXPECT_EQ(fmu.set(i, fmu.reference("modes"), 4.0), fmi3Error);
+  EXPECT_TRUE(log.mentions("is a compile-time parameter (fixed when mbgc compiled the model")) << log.all();
+  fmu.free(i);
+}
+
 TEST(FmiCalls, AFixedParameterSetAfterInitialisationIsAnError) {
   Fmu fmu("dc_motor");
   ASSERT_TRUE(fmu.loaded());

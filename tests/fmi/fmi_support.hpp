@@ -15,6 +15,7 @@
 #include <iterator>
 #include <map>
 #include <ostream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>

@@ -25,6 +25,7 @@ enum class Kind : unsigned char {
   derivative,       ///< its derivative
   event_indicator,  ///< Model::event_functions()[index]
   setting,          ///< a run setting of the FMU's own integrators (co-simulation): Setting(index)
+  constant,         ///< a compile-time parameter (a loop bound, a beam's length): Description::constants[index]
 };
 
 /// The run settings an importer may set before initialisation (co-simulation
@@ -49,6 +50,7 @@ struct Description {
   const Variable* variables;        ///< indexed by value reference
   std::size_t variable_count;
   std::unique_ptr<Model> (*make_model)();
+  const double* constants;          ///< the compile-time parameters' values (Kind::constant), in their declared units
 };
 
 /// Defined by the FMU's generated source (mbgc --fmu); the FMI functions read it.

@@ -28,6 +28,7 @@ const char* kind_name(Kind k) {
     case Kind::derivative: return "a state derivative";
     case Kind::event_indicator: return "an event indicator";
     case Kind::setting: return "a solver setting";
+    case Kind::constant: return "a compile-time parameter (fixed when mbgc compiled the model: mbgc --set changes it)";
   }
   return "a variable";
 }
@@ -286,6 +287,7 @@ Status Instance::get_float64(const std::uint32_t* vr, std::size_t n, double* val
     switch (v->kind) {
       case Kind::time: values[k] = t_; break;
       case Kind::parameter: values[k] = parameter_values_[v->index]; break;
+      case Kind::constant: values[k] = description_.constants[v->index]; break;
       case Kind::output:
         evaluate_outputs();
         values[k] = outputs_[v->index];
