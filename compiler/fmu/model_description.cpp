@@ -126,7 +126,8 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
                      id);
   if (offer.co_simulation)
     x += fmt::format("  <CoSimulation modelIdentifier=\"{}\" canHandleVariableCommunicationStepSize=\"true\" "
-                     "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\" providesDirectionalDerivatives=\"true\" "
+                     "canBeInstantiatedOnlyOncePerProcess=\"false\" hasEventMode=\"false\" mightReturnEarlyFromDoStep=\"true\" "
+                     "providesDirectionalDerivatives=\"true\" "
                      "canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"/>\n",
                      id);
   x += unit_definitions(fmu);

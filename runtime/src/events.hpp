@@ -31,6 +31,12 @@ class Events {
   std::size_t count() const { return n_; }
   Model& model() { return model_; }
 
+  /// While on, an integrator's advance_to returns at the first instant it
+  /// fires events at, short of its target (an FMU's early return from a
+  /// co-simulation step, at the event).
+  void pause_at_events(bool on) { pause_ = on; }
+  bool pausing() const { return pause_; }
+
   /// The zero-crossing functions at (t, y[, yp]); false if one is not finite.
   bool functions(double t, const double* y, const double* yp, double* g);
   /// Each mode from the sign of its function at the start of the run (x >= 0:
@@ -94,6 +100,7 @@ class Events {
   std::vector<EventRecord> log_;
   Contacts contacts_;
   double instant_ = 0.0;  ///< time of the latest switch
+  bool pause_ = false;    ///< pause_at_events
   long at_instant_ = 0;   ///< switches at that time
   double root_instant_ = 0.0;
   long roots_at_instant_ = 0;      ///< root reports at root_instant_

@@ -48,7 +48,10 @@ class Integrator {
   /// the initial values (IDA computes consistent ones). False on failure.
   virtual bool init(double t0, const double* y0, const double* yp0) = 0;
 
-  /// Integrates to exactly t_out (never beyond the stop time). False on failure.
+  /// Integrates to exactly t_out (never beyond the stop time), or, while the
+  /// model's events pause (Events::pause_at_events), to the first instant
+  /// inside where events fire, if there is one: t() says where it stopped.
+  /// False on failure.
   virtual bool advance_to(double t_out) = 0;
 
   virtual double t() const = 0;

@@ -194,9 +194,9 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2Real communicationStepSize, fmi2Boolean) {
   return call(c, "fmi2DoStep", [&](Instance& i) {
-    bool terminate = false;
+    bool terminate = false, early = false;  // (FMI 2.0 has no early return: never allowed)
     double last = currentCommunicationPoint;
-    return i.do_step(currentCommunicationPoint, communicationStepSize, &terminate, &last);
+    return i.do_step(currentCommunicationPoint, communicationStepSize, &terminate, &early, &last);
   });
 }
 

@@ -54,12 +54,14 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String in
 }
 
 fmi3Instance fmi3InstantiateCoSimulation(fmi3String instanceName, fmi3String instantiationToken, fmi3String,
-                                         fmi3Boolean, fmi3Boolean loggingOn, fmi3Boolean, fmi3Boolean,
+                                         fmi3Boolean, fmi3Boolean loggingOn, fmi3Boolean, fmi3Boolean earlyReturnAllowed,
                                          const fmi3ValueReference[], size_t,
                                          fmi3InstanceEnvironment instanceEnvironment,
                                          fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback) {
-  return instantiate(mbgrt::fmu::Interface::co_simulation, instanceName, instantiationToken, loggingOn,
-                     instanceEnvironment, logMessage);
+  fmi3Instance i = instantiate(mbgrt::fmu::Interface::co_simulation, instanceName, instantiationToken, loggingOn,
+                               instanceEnvironment, logMessage);
+  if (i) static_cast<Instance*>(i)->allow_early_return(earlyReturnAllowed);
+  return i;
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(fmi3String, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
@@ -323,12 +325,12 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                       fmi3Float64 communicationStepSize, fmi3Boolean, fmi3Boolean* eventHandlingNeeded,
                       fmi3Boolean* terminateSimulation, fmi3Boolean* earlyReturn, fmi3Float64* lastSuccessfulTime) {
   return call(instance, "DoStep", [&](Instance& i) {
-    bool terminate = false;
+    bool terminate = false, early = false;
     double last = currentCommunicationPoint;
-    const Status s = i.do_step(currentCommunicationPoint, communicationStepSize, &terminate, &last);
+    const Status s = i.do_step(currentCommunicationPoint, communicationStepSize, &terminate, &early, &last);
     if (eventHandlingNeeded) *eventHandlingNeeded = false;  // events are handled inside the step
     if (terminateSimulation) *terminateSimulation = terminate;
-    if (earlyReturn) *earlyReturn = false;
+    if (earlyReturn) *earlyReturn = early;
     if (lastSuccessfulTime) *lastSuccessfulTime = last;
     return s;
   });

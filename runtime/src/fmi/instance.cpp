@@ -700,8 +700,10 @@ Status Instance::set_state(const Snapshot& s) {
 
 // ---- co-simulation ----------------------------------------------------------------
 
-Status Instance::do_step(double t, double h, bool* terminate_simulation, double* last_successful_time) {
+Status Instance::do_step(double t, double h, bool* terminate_simulation, bool* early_return,
+                         double* last_successful_time) {
   *terminate_simulation = false;
+  *early_return = false;
   *last_successful_time = t_;
   if (!allowed("DoStep", {Phase::step})) return Status::error;
   if (!(h > 0) || !std::isfinite(h)) return refuse(fmt::format("DoStep: the step size {} is not positive", h));
@@ -722,7 +724,9 @@ Status Instance::do_step(double t, double h, bool* terminate_simulation, double*
         return fail({});
       }
     }
+    guard_->events().pause_at_events(early_return_allowed_);
     const bool solved = integrator_->advance_to(target);
+    guard_->events().pause_at_events(false);
     const bool ok = solved && guard_->check_state(integrator_->t(), integrator_->y()) &&
                     guard_->check_constraints(integrator_->t(), integrator_->y());
     if (!ok) {
@@ -734,6 +738,7 @@ Status Instance::do_step(double t, double h, bool* terminate_simulation, double*
     t_ = integrator_->t();
     std::copy(integrator_->y(), integrator_->y() + n_, y_.begin());
     invalidate();
+    *early_return = t_ < target;  // (an event inside the step: the importer goes on from here)
     *last_successful_time = t_;
     return Status::ok;
   });

@@ -123,7 +123,12 @@ class Instance {
   void release(Snapshot* state);
 
   // ---- co-simulation ------------------------------------------------------------
-  Status do_step(double t, double h, bool* terminate_simulation, double* last_successful_time);
+  /// The importer lets doStep return early (FMI 3.0's earlyReturnAllowed):
+  /// a step then ends at the first event inside it.
+  void allow_early_return(bool allowed) { early_return_allowed_ = allowed; }
+  /// From t over h: to t + h, or (early return allowed) to the first event
+  /// inside (`early_return` set, `last_successful_time` its time).
+  Status do_step(double t, double h, bool* terminate_simulation, bool* early_return, double* last_successful_time);
 
   /// An error of the importer's making (a call out of order, a bad argument):
   /// logged, fmi*Error returned.
@@ -151,6 +156,7 @@ class Instance {
   std::string name_;
   Logger logger_;
   bool logging_on_;
+  bool early_return_allowed_ = false;
   Phase phase_ = Phase::instantiated;
 
   std::unique_ptr<Model> model_;

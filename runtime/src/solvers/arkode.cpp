@@ -88,7 +88,7 @@ class Dopri5 final : public Integrator {
       ERKStepGetRootInfo(mem_, root_info_.data());
       if (!fire_events(m_.events(), t_, y_.data(), root_info_, failure_)) return false;
       check_setup(ERKStepReset(mem_, t_, y_.get()), "ERKStepReset", sink_);
-      if (reached(t_, t_out)) return true;  // the event is at the communication point
+      if (reached(t_, t_out) || m_.events().pausing()) return true;  // the event is at the communication point, or pauses
       flag = ERKStepEvolve(mem_, t_out, y_.get(), &t_, ARK_NORMAL);
     }
     if (flag < 0) {

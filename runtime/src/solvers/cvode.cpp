@@ -133,6 +133,7 @@ class Cvode final : public Integrator {
         // an event: switch its mode, restart there
         if (!fire_events(m_.events(), t_, y_.data(), events, failure_)) return false;
         restart();
+        if (m_.events().pausing()) return true;
       } else if (carry_->active() && root_info_[k] != 0) {  // a change point ahead
         carry_->begin(t_, y_.data(), energy_.data());
         if (!carry_on(t_out)) return false;

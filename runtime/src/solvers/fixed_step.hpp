@@ -126,6 +126,7 @@ class FixedStep final : public Integrator {
         const double t_next = (i + 1 == count) ? t_out : t_ + h;
         if (!step(t_next - t_, t_next, event)) return false;
       }
+      if (event && events_.pausing()) return true;
     }
     return true;
   }

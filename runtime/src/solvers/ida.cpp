@@ -157,6 +157,7 @@ class Ida final : public Integrator {
         if (std::any_of(events.begin(), events.end(), [](int r) { return r != 0; })) {
           if (!fire_events(m_.events(), t_, y_.data(), events, failure_)) return false;
           if (!restart_after_event()) return false;
+          if (m_.events().pausing()) return true;
         } else if (watch_change_points_ && root_info_[k] != 0 && step_across()) {  // a change point ahead
           if (t_out < crossing_->to()) return state_in_crossing(t_out);
         } else if (carry_ && carry_->active() && root_info_[k] != 0) {  // one of the cut joints
