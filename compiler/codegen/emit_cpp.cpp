@@ -99,6 +99,14 @@ class Emitter {
       add_contact_methods(c, s_, contact_speeds(), friction ? std::optional<CppFunction>(contact_tangents()) : std::nullopt);
     }
     add_held_state_methods(c, s_);
+    if (opt_.entry_point && !g_.params.empty()) {  // an FMU's calculated parameters read them
+      CppFunction values{"PARAMETER VALUES: each parameter as initial() set it (SI), in parameters() order.",
+                         "bool parameter_values(double* out) const override", {}};
+      for (std::size_t i = 0; i < g_.params.size(); ++i)
+        values.body.push_back(CppStmt::line(fmt::format("out[{}] = {};", i, names_.param(static_cast<int>(i)))));
+      values.body.push_back(CppStmt::line("return true;"));
+      c.public_methods.push_back(std::move(values));
+    }
     if (!s_.constraints.empty()) constraint_functions(c);
     std::optional<EnergyMethods> energy;
     if (s_.energy.available) {

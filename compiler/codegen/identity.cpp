@@ -43,28 +43,6 @@ void state_limits(CppClass& c, const ReducedSystem& s) {
   c.public_methods.push_back(why);
 }
 
-/// "= FORMULA" of a computed parameter (sim --list-parameters prints it); a
-/// long one (a joint frame from its axis) as the parameters it is computed from.
-std::string computed_doc(const Parameter& p, const BondGraph& g) {
-  // Every node prints at least one character: past 80 nodes, no need to print it.
-  if (ir::size(p.value) <= 80) {
-    std::string formula = to_string(p.value, names_for_dump(g));
-    if (formula.size() <= 80) return "= " + formula;
-  }
-  std::unordered_set<int> ids;
-  collect_params(p.value, ids);
-  std::vector<int> order(ids.begin(), ids.end());
-  std::sort(order.begin(), order.end());
-  std::vector<std::string> from;
-  for (int id : order) {
-    const std::string& full = g.params[static_cast<std::size_t>(id)].name;
-    std::string base = full.substr(0, full.find('['));  // link.axis_a[2] -> link.axis_a
-    if (std::find(from.begin(), from.end(), base) == from.end()) from.push_back(base);
-  }
-  if (from.empty()) return "= a long constant expression";
-  return fmt::format("= a function of {}", fmt::join(from, ", "));
-}
-
 /// LAYOUT: what each unknown is, from the element that holds it: q of a C is
 /// a position (a displacement), p of an I and an independent joint rate are
 /// velocities; the DAE's algebraic unknowns are multipliers where a CN row
@@ -121,6 +99,28 @@ void unknown_groups(CppClass& c, const ReducedSystem& s) {
 }
 
 }  // namespace
+
+/// "= FORMULA" of a computed parameter (sim --list-parameters prints it); a
+/// long one (a joint frame from its axis) as the parameters it is computed from.
+std::string computed_doc(const ir::Parameter& p, const ir::BondGraph& g) {
+  // Every node prints at least one character: past 80 nodes, no need to print it.
+  if (ir::size(p.value) <= 80) {
+    std::string formula = to_string(p.value, names_for_dump(g));
+    if (formula.size() <= 80) return "= " + formula;
+  }
+  std::unordered_set<int> ids;
+  collect_params(p.value, ids);
+  std::vector<int> order(ids.begin(), ids.end());
+  std::sort(order.begin(), order.end());
+  std::vector<std::string> from;
+  for (int id : order) {
+    const std::string& full = g.params[static_cast<std::size_t>(id)].name;
+    std::string base = full.substr(0, full.find('['));  // link.axis_a[2] -> link.axis_a
+    if (std::find(from.begin(), from.end(), base) == from.end()) from.push_back(base);
+  }
+  if (from.empty()) return "= a long constant expression";
+  return fmt::format("= a function of {}", fmt::join(from, ", "));
+}
 
 ir::Namer names_for_dump(const ir::BondGraph& g) {
   ir::Namer n;

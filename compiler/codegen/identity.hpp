@@ -16,6 +16,10 @@ namespace mbgc::codegen {
 /// (a large model of repeated bodies, codegen/emit_cpp) written compactly.
 void add_identity_methods(CppClass& c, const ir::ReducedSystem& s, const EmitOptions& opt, bool compact);
 
+/// "= FORMULA" of a computed parameter (sim --list-parameters prints it); a
+/// long one (a joint frame from its axis) as the parameters it is computed from.
+std::string computed_doc(const ir::Parameter& p, const ir::BondGraph& g);
+
 /// A DAE's residual_sparsity(): where IDA's matrix dF/dy + c_j dF/dy' can be
 /// nonzero, by column (reduce/sparsity.hpp).
 CppFunction residual_sparsity_method(const ir::ReducedSystem& s);

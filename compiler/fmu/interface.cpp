@@ -83,6 +83,19 @@ class Builder {
   std::map<std::string, std::size_t> seen_;
 };
 
+/// A parameter computed from others (a body's mass from its shape): read
+/// once the model is initialised, in SI; its formula says what it is.
+Variable calculated_parameter(const ir::Parameter& p, std::size_t index, Builder& b, const ir::SourceManager& sources,
+                              const ir::BondGraph& g) {
+  Variable v = variable(p.name, Kind::calculated, static_cast<unsigned>(index));
+  v.causality = Causality::calculated_parameter;
+  v.variability = Variability::fixed;
+  if (p.dimension && !p.dimension->is_none()) v.unit = b.unit(units::format(*p.dimension), p.dimension, 1.0);
+  const std::string comment = trailing_comment(sources, p.loc);
+  v.description = (comment.empty() ? "" : comment + "; ") + codegen::computed_doc(p, g);
+  return v;
+}
+
 }  // namespace
 
 Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources) {
@@ -104,11 +117,10 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
   // from others have no value of their own to start from. Those the run
   // never reads (the compiler used them up) are constants, and say so.
   const std::vector<bool> read = reduce::parameters_read(s);
-  std::size_t computed = 0;
   for (std::size_t i = 0; i < g.params.size(); ++i) {
     const ir::Parameter& p = g.params[i];
     if (!p.literal) {
-      computed += read[i] ? 1 : 0;
+      if (read[i]) b.add(calculated_parameter(p, i, b, sources, g));
       continue;
     }
     if (fmu.description.empty()) fmu.description = file_description(sources, p.loc);
@@ -136,12 +148,6 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
     }
     b.add(std::move(v));
   }
-  if (computed > 0)
-    fmu.notes.push_back(fmt::format("{} parameter{} computed from others (a body's mass from its shape, a joint's "
-                                    "frame from its axis) {} not in the FMU: set what {} computed from",
-                                    computed, computed == 1 ? "" : "s", computed == 1 ? "is" : "are",
-                                    computed == 1 ? "it is" : "they are"));
-
   // The solver settings of co-simulation (the runtime's integrators).
   {
     const ir::SimSettings& ss = g.settings;
@@ -243,7 +249,7 @@ Interface describe(const ir::ReducedSystem& s, const ir::SourceManager& sources)
 
 std::string entry_source(const Interface& fmu, const std::string& class_name) {
   static const char* const kKinds[] = {"time",       "parameter",       "output",  "state",
-                                       "derivative", "event_indicator", "setting", "constant"};
+                                       "derivative", "event_indicator", "setting", "constant", "calculated"};
   std::string rows;
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr) {
     const Variable& v = fmu.variables[vr];

@@ -19,7 +19,7 @@ namespace mbgc::fmu {
 
 using mbgrt::fmu::Kind;
 
-enum class Causality { independent, parameter, output, local };
+enum class Causality { independent, parameter, calculated_parameter, output, local };
 enum class Variability { continuous, fixed, constant };
 enum class Type { float64, enumeration };
 

@@ -32,6 +32,7 @@ const char* causality_name(Causality c) {
   switch (c) {
     case Causality::independent: return "independent";
     case Causality::parameter: return "parameter";
+    case Causality::calculated_parameter: return "calculatedParameter";
     case Causality::output: return "output";
     case Causality::local: return "local";
   }
@@ -148,7 +149,7 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
     a += variability(v);
     if (v.start) a += fmt::format(" start=\"{}\"", enumeration ? fmt::format("{}", static_cast<long>(*v.start)) : number(*v.start));
     // states, derivatives and indicators come out of the initialisation
-    if (v.kind == Kind::state || v.kind == Kind::derivative) a += " initial=\"calculated\"";
+    if (v.kind == Kind::state || v.kind == Kind::derivative || v.kind == Kind::calculated) a += " initial=\"calculated\"";
     if (v.derivative_of >= 0) a += fmt::format(" derivative=\"{}\"", v.derivative_of);
     a += attribute("unit", v.unit);
     x += fmt::format("    <{} {}/>\n", enumeration ? "Enumeration" : "Float64", a);
@@ -163,7 +164,7 @@ std::string v3(const Interface& fmu, const Offer& offer, const std::string& toke
     if (fmu.variables[vr].kind == Kind::derivative) x += unknown("ContinuousStateDerivative", vr);
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr) {
     const Kind k = fmu.variables[vr].kind;
-    if (k == Kind::output || k == Kind::state || k == Kind::derivative)
+    if (k == Kind::output || k == Kind::state || k == Kind::derivative || k == Kind::calculated)
       x += fmt::format("    <InitialUnknown valueReference=\"{}\"/>\n", vr);
   }
   for (std::size_t vr = 0; vr < fmu.variables.size(); ++vr)
@@ -219,7 +220,7 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
     a += attribute("description", v.description);
     a += fmt::format(" causality=\"{}\"", causality_name(v.causality));
     a += variability(v);
-    if (v.kind == Kind::state || v.kind == Kind::derivative) a += " initial=\"calculated\"";
+    if (v.kind == Kind::state || v.kind == Kind::derivative || v.kind == Kind::calculated) a += " initial=\"calculated\"";
     std::string type;
     if (enumeration) type = "<Enumeration declaredType=\"Solver\"";
     else type = "<Real";
@@ -240,7 +241,9 @@ std::string v2(const Interface& fmu, const Offer& offer, const std::string& guid
   list("Outputs", [](Kind k) { return k == Kind::output; });
   list("Derivatives", [](Kind k) { return k == Kind::derivative; });
   // (an initial unknown depends on the parameters too: not stated, so on every known)
-  list("InitialUnknowns", [](Kind k) { return k == Kind::output || k == Kind::state || k == Kind::derivative; }, false);
+  list("InitialUnknowns",
+       [](Kind k) { return k == Kind::output || k == Kind::state || k == Kind::derivative || k == Kind::calculated; },
+       false);
   x += "  </ModelStructure>\n</fmiModelDescription>\n";
   return x;
 }

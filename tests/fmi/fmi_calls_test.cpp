@@ -122,6 +122,23 @@ TEST(FmiCalls, ACompileTimeParameterIsReadButNeverSet) {
   fmu.free(i);
 }
 
+TEST(FmiCalls, AComputedParameterIsReadOnceInitialisedButNeverSet) {
+  Fmu fmu("pendulum");
+  ASSERT_TRUE(fmu.loaded());
+  Log log;
+  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  ASSERT_NE(i, nullptr);
+  EXPECT_EQ(fmu.set(i, fmu.reference("bob.mass"), 3.0), fmi3Error);
+  EXPECT_TRUE(log.mentions("is a parameter computed from others (set those)")) << log.all();
+  ASSERT_EQ(fmu.set(i, fmu.reference("m"), 2.5), fmi3OK);
+  ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
+  ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
+  double mass = 0;
+  EXPECT_EQ(fmu.get(i, fmu.reference("bob.mass"), mass), fmi3OK);
+  EXPECT_EQ(mass, 2.5);
+  fmu.free(i);
+}
+
 TEST(FmiCalls, AFixedParameterSetAfterInitialisationIsAnError) {
   Fmu fmu("dc_motor");
   ASSERT_TRUE(fmu.loaded());

@@ -93,6 +93,22 @@ TEST(FmiParameters, AStartValueChangesTheResultAsSetDoes) {
   }
 }
 
+// A parameter computed from others (the pendulum's bob mass = m) is a
+// calculated parameter: read, never set, and it follows what it is computed from.
+TEST(FmiParameters, AComputedParameterFollowsWhatItIsComputedFrom) {
+  for (int version : {3, 2}) {
+    const std::string tag = "calculated.fmi" + std::to_string(version);
+    const Table t = imported(fmu_of("pendulum", version), tag,
+                             "--interface-type cs --start-value m 2.5 --output-variable bob.mass "
+                             "--output-variable link.length");
+    ASSERT_FALSE(t.rows.empty());
+    ASSERT_EQ(t.header.size(), 3u);
+    EXPECT_EQ(t.rows.front()[1], 2.5) << "FMI " << version;
+    EXPECT_EQ(t.rows.back()[1], 2.5) << "FMI " << version;
+    EXPECT_EQ(t.rows.back()[2], 1.0) << "FMI " << version;  // L's start value
+  }
+}
+
 // Co-simulation with early return allowed (fmusim --early-return-allowed):
 // a step ends at the first event inside it, and fmusim records a row there
 // before it goes on. Every event of the native run (its event log) has a row

@@ -26,6 +26,7 @@ enum class Kind : unsigned char {
   event_indicator,  ///< Model::event_functions()[index]
   setting,          ///< a run setting of the FMU's own integrators (co-simulation): Setting(index)
   constant,         ///< a compile-time parameter (a loop bound, a beam's length): Description::constants[index]
+  calculated,       ///< a parameter computed from others: Model::parameter_values()[index] (SI)
 };
 
 /// The run settings an importer may set before initialisation (co-simulation

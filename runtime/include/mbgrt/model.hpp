@@ -308,6 +308,10 @@ class Model {
   // ---- parameters ------------------------------------------------------------
   /// Override a parameter before initial(). Returns false for an unknown name.
   virtual bool set_parameter(const std::string& name, double value) = 0;
+  /// Each parameter's value as initial() set it (overrides and formulas
+  /// applied), in SI, in parameters() order. False when the model does not
+  /// say: mbgc writes it into an FMU's model (its calculated parameters).
+  virtual bool parameter_values(double* out) const { (void)out; return false; }
 
   // ---- ACSL sections ---------------------------------------------------------
   /// INITIAL: evaluate parameters (honouring overrides), then write the initial

@@ -29,6 +29,7 @@ const char* kind_name(Kind k) {
     case Kind::event_indicator: return "an event indicator";
     case Kind::setting: return "a solver setting";
     case Kind::constant: return "a compile-time parameter (fixed when mbgc compiled the model: mbgc --set changes it)";
+    case Kind::calculated: return "a parameter computed from others (set those)";
   }
   return "a variable";
 }
@@ -279,7 +280,7 @@ Status Instance::get_float64(const std::uint32_t* vr, std::size_t n, double* val
     const Variable* v = variable(vr[k]);
     if (!v) return Status::error;
     const bool computed = v->kind == Kind::output || v->kind == Kind::state || v->kind == Kind::derivative ||
-                          v->kind == Kind::event_indicator;
+                          v->kind == Kind::event_indicator || v->kind == Kind::calculated;
     if (computed && !started)
       return refuse(fmt::format("value reference {} is {}: it has a value once the initialisation is done "
                                 "(ExitInitializationMode)",
@@ -288,6 +289,12 @@ Status Instance::get_float64(const std::uint32_t* vr, std::size_t n, double* val
       case Kind::time: values[k] = t_; break;
       case Kind::parameter: values[k] = parameter_values_[v->index]; break;
       case Kind::constant: values[k] = description_.constants[v->index]; break;
+      case Kind::calculated:
+        calculated_.resize(parameters_.size());
+        if (!model_->parameter_values(calculated_.data()))
+          return refuse(fmt::format("value reference {}: this model does not give its parameters' values", vr[k]));
+        values[k] = calculated_[v->index];
+        break;
       case Kind::output:
         evaluate_outputs();
         values[k] = outputs_[v->index];

@@ -165,6 +165,7 @@ class Instance {
   std::size_t n_ = 0;
   std::vector<ParameterInfo> parameters_;
   std::vector<double> parameter_values_;  ///< in each parameter's declared unit
+  std::vector<double> calculated_;        ///< Model::parameter_values() (SI), read for Kind::calculated
   std::vector<char> parameter_set_;
   Settings defaults_, settings_;
   double t_ = 0.0, stop_ = 0.0;
