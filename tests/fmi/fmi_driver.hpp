@@ -1,5 +1,7 @@
 // An importer of our own for the FMI tests: an FMU's shared object loaded with
-// dlopen (as importers do) and its FMI 3.0 functions called directly.
+// dlopen (as importers do) and its FMI 3.0 functions called directly; or,
+// compiled with MBGC_FMI_IN_PROCESS="MODEL", the FMI functions of the test
+// program itself, which links that model's FMU source and the runtime.
 #pragma once
 
 #include <dlfcn.h>
@@ -38,7 +40,13 @@ class Fmu {
     const std::string command = "rm -rf '" + dir_ + "' && mkdir -p '" + dir_ + "' && cd '" + dir_ + "' && unzip -q '" + fmu + "'";
     if (std::system(command.c_str()) != 0) return;
     description_ = slurp(dir_ + "/modelDescription.xml");
+#ifdef MBGC_FMI_IN_PROCESS
+    // the test program is the FMU (its source and the runtime's FMU library
+    // linked in, the FMI functions exported): the calls go to it
+    if (name == MBGC_FMI_IN_PROCESS) handle_ = dlopen(nullptr, RTLD_NOW);
+#else
     handle_ = dlopen((dir_ + "/binaries/x86_64-linux/" + name + ".so").c_str(), RTLD_NOW | RTLD_LOCAL);
+#endif
   }
   ~Fmu() {
     if (handle_) dlclose(handle_);
