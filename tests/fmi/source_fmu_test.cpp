@@ -10,6 +10,8 @@
 #include <libxml/xmlschemas.h>
 #include <unistd.h>
 
+#include <cstdarg>
+
 #include "fmi_support.hpp"
 
 #ifdef MBGC_BUILD_DESCRIPTION_SCHEMA
@@ -43,6 +45,7 @@ bool named(xmlNode* node, const char* name) {
   return node->type == XML_ELEMENT_NODE && std::string(reinterpret_cast<const char*>(node->name)) == name;
 }
 
+#ifdef MBGC_BUILD_DESCRIPTION_SCHEMA
 void collect_error(void* context, const char* format, ...) {
   char text[1024];
   va_list args;
@@ -51,6 +54,7 @@ void collect_error(void* context, const char* format, ...) {
   va_end(args);
   *static_cast<std::string*>(context) += text;
 }
+#endif
 
 BuildDescription read_build_description(const std::string& path) {
   BuildDescription d;
