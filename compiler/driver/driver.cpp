@@ -116,7 +116,6 @@ int export_fmu(const Options& opt, const ir::ReducedSystem& reduced, const ir::S
     return 3;
   }
   if (!write_depfile(opt, opt.fmu, sources, err)) return 3;
-  for (const std::string& note : interface.notes) err << "mbgc: note: " << note << "\n";
   return 0;
 }
 

@@ -5,7 +5,6 @@
 
 #include <cstdint>
 #include <map>
-#include <set>
 
 #include "codegen/names.hpp"
 #include "codegen/events.hpp"

@@ -53,7 +53,6 @@ struct Interface {
   std::vector<Variable> variables;  ///< indexed by value reference
   std::vector<Unit> units;
   std::vector<double> constants;    ///< Kind::constant's values, by index
-  std::vector<std::string> notes;   ///< what the FMU leaves out, for the user (printed by mbgc --fmu)
   mbgrt::Settings defaults;         ///< the model's simulate { } block (DefaultExperiment)
   std::size_t states = 0, event_indicators = 0;
   bool dae = false;
