@@ -78,10 +78,8 @@ TEST(BouncingBallCalls, AMasterRollsBackToAStateAndAnotherInstanceGoesOnFromItsB
   Fmu fmu("bouncing_ball");
   ASSERT_TRUE(fmu.loaded());
   Log log;
-  fmi3Instance i = fmu.co_simulation(log, fmu.token());
+  fmi3Instance i = fmu.started_co_simulation(log);
   ASSERT_NE(i, nullptr);
-  ASSERT_EQ(fmu.enter_initialization(i), fmi3OK);
-  ASSERT_EQ(fmu.exit_initialization(i), fmi3OK);
   auto get_state = fmu.function<decltype(fmi3GetFMUState)>("fmi3GetFMUState");
   auto set_state = fmu.function<decltype(fmi3SetFMUState)>("fmi3SetFMUState");
   auto free_state = fmu.function<decltype(fmi3FreeFMUState)>("fmi3FreeFMUState");

@@ -87,6 +87,15 @@ class Fmu {
     return function<decltype(fmi3InstantiateCoSimulation)>("fmi3InstantiateCoSimulation")(
         "calls", token.c_str(), "", false, true, false, false, nullptr, 0, &log, log_message, nullptr);
   }
+  /// A co-simulation instance through its initialisation (null if that failed).
+  fmi3Instance started_co_simulation(Log& log) const {
+    fmi3Instance i = co_simulation(log, token());
+    if (i && (enter_initialization(i) != fmi3OK || exit_initialization(i) != fmi3OK)) {
+      free(i);
+      return nullptr;
+    }
+    return i;
+  }
   fmi3Instance model_exchange(Log& log) const {
     return function<decltype(fmi3InstantiateModelExchange)>("fmi3InstantiateModelExchange")(
         "calls", token().c_str(), "", false, true, &log, log_message);
